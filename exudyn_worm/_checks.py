@@ -1,0 +1,62 @@
+"""Argument checks shared by every public constructor and builder.
+
+Each check raises ``ValueError`` (or ``TypeError``) whose message names the calling
+function, the argument, the allowed range with its unit and the value received, e.g.
+``WormGear: 'backlash' must be >= 0 m, got -0.001``.
+"""
+import math
+from numbers import Real
+
+__all__ = ['CheckReal', 'CheckPositive', 'CheckNonNegative', 'CheckAngle', 'CheckRange']
+
+
+def _Format(value) -> str:
+    return repr(value) if not isinstance(value, float) else f'{value:g}'
+
+
+def CheckReal(where: str, name: str, value, unit: str = '') -> float:
+    """Return ``value`` as float; raise if it is not a finite real number."""
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise TypeError(f"{where}: '{name}' must be a real number{' in ' + unit if unit else ''}, "
+                        f"got {type(value).__name__} {value!r}")
+    value = float(value)
+    if not math.isfinite(value):
+        raise ValueError(f"{where}: '{name}' must be finite{' (' + unit + ')' if unit else ''}, got {value}")
+    return value
+
+
+def CheckRange(where: str, name: str, value, low=None, high=None, unit: str = '',
+               lowOpen: bool = False, highOpen: bool = False) -> float:
+    """Check ``low <= value <= high`` (open ends when ``lowOpen``/``highOpen``)."""
+    value = CheckReal(where, name, value, unit)
+    badLow = low is not None and (value <= low if lowOpen else value < low)
+    badHigh = high is not None and (value >= high if highOpen else value > high)
+    if badLow or badHigh:
+        u = ' ' + unit if unit else ''
+        if low is not None and high is not None:
+            text = f"in {'(' if lowOpen else '['}{_Format(low)}, {_Format(high)}{')' if highOpen else ']'}{u}"
+        elif low is not None:
+            text = f"{'>' if lowOpen else '>='} {_Format(low)}{u}"
+        else:
+            text = f"{'<' if highOpen else '<='} {_Format(high)}{u}"
+        raise ValueError(f"{where}: '{name}' must be {text}, got {_Format(value)}{u}")
+    return value
+
+
+def CheckPositive(where: str, name: str, value, unit: str = '') -> float:
+    """Check ``value > 0``."""
+    return CheckRange(where, name, value, low=0., unit=unit, lowOpen=True)
+
+
+def CheckNonNegative(where: str, name: str, value, unit: str = '') -> float:
+    """Check ``value >= 0``."""
+    return CheckRange(where, name, value, low=0., unit=unit)
+
+
+def CheckAngle(where: str, name: str, value) -> float:
+    """Check an angle in the open interval (0, 90 deg), given in radians."""
+    value = CheckReal(where, name, value, 'rad')
+    if not 0. < value < 0.5 * math.pi:
+        raise ValueError(f"{where}: '{name}' must be in (0, pi/2) rad, i.e. (0, 90) deg, "
+                         f"got {value:g} rad ({math.degrees(value):g} deg)")
+    return value

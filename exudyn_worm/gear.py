@@ -1,0 +1,167 @@
+"""Worm-gear geometry, friction and the mesh coefficients (paper eqs. (3), (5), (9)-(13)).
+
+This module is the single source of truth for the coefficients c1..c4: the analytical
+stability model, the Exudyn connector and post-processing all call
+:meth:`WormGear.Coefficients`.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Optional
+
+from ._checks import CheckAngle, CheckNonNegative, CheckPositive
+
+__all__ = ['WormGear']
+
+#: relative tolerance for ``mu`` and ``rho`` given together (they must describe one friction)
+FRICTION_CONSISTENCY_RTOL = 1e-6
+
+
+@dataclass(frozen=True)
+class WormGear:
+    """A worm-gear mesh: geometry, mesh stiffness/damping in the normal direction, backlash, friction.
+
+    Parameters
+    ----------
+    alphaN : float
+        Normal pressure angle in rad, in (0, pi/2).
+    gamma : float
+        Pitch (lead) angle of the worm in rad, in (0, pi/2).
+    r1 : float
+        Reference radius of the worm in m, > 0.
+    r2 : float
+        Reference radius of the wheel in m, > 0.
+    kV : float
+        Mesh stiffness in the normal direction in N/m, > 0.
+    dV : float
+        Mesh damping in the normal direction in N*s/m, >= 0.
+    backlash : float, optional
+        Total normal backlash delta in m, >= 0 (no force while ``|Delta s| <= delta/2``).
+    mu : float, optional
+        Flank friction coefficient, >= 0. Give ``mu`` or ``rho`` (or both, consistent via eq. (13)).
+    rho : float, optional
+        Friction angle in rad, in [0, pi/2).
+
+    Raises
+    ------
+    ValueError
+        If a value is out of range or non-finite, if neither or inconsistent ``mu``/``rho`` are given.
+    TypeError
+        If a value is not a real number.
+
+    Examples
+    --------
+    >>> import math
+    >>> g = WormGear(alphaN=math.radians(20), gamma=math.radians(5.3228), r1=0.01805, r2=0.10595,
+    ...              kV=2e8, dV=21470., rho=math.radians(8))
+    >>> round(g.ratio, 2), g.selfLocking
+    (63.0, True)
+    """
+    alphaN: float
+    gamma: float
+    r1: float
+    r2: float
+    kV: float
+    dV: float
+    backlash: float = 0.
+    mu: Optional[float] = None
+    rho: Optional[float] = None
+
+    def __post_init__(self):
+        w = 'WormGear'
+        set_ = lambda k, v: object.__setattr__(self, k, v)  # frozen dataclass: normalise once here
+        set_('alphaN', CheckAngle(w, 'alphaN', self.alphaN))
+        set_('gamma', CheckAngle(w, 'gamma', self.gamma))
+        set_('r1', CheckPositive(w, 'r1', self.r1, 'm'))
+        set_('r2', CheckPositive(w, 'r2', self.r2, 'm'))
+        set_('kV', CheckPositive(w, 'kV', self.kV, 'N/m'))
+        set_('dV', CheckNonNegative(w, 'dV', self.dV, 'N*s/m'))
+        set_('backlash', CheckNonNegative(w, 'backlash', self.backlash, 'm'))
+        if self.mu is None and self.rho is None:
+            raise ValueError(f"{w}: give the friction as 'mu' (>= 0) or as 'rho' (in [0, pi/2) rad), got neither")
+        cosA = math.cos(self.alphaN)
+        if self.mu is not None:
+            set_('mu', CheckNonNegative(w, 'mu', self.mu, ''))
+        if self.rho is not None:
+            rho = CheckNonNegative(w, 'rho', self.rho, 'rad')
+            if rho >= 0.5 * math.pi:
+                raise ValueError(f"{w}: 'rho' must be in [0, pi/2) rad, got {rho:g} rad ({math.degrees(rho):g} deg)")
+            set_('rho', rho)
+        if self.rho is None:
+            set_('rho', math.atan(self.mu / cosA))              # eq. (13)
+        elif self.mu is None:
+            set_('mu', math.tan(self.rho) * cosA)               # eq. (13) inverted
+        elif not math.isclose(self.mu, math.tan(self.rho) * cosA, rel_tol=FRICTION_CONSISTENCY_RTOL,
+                              abs_tol=1e-12):
+            raise ValueError(f"{w}: 'mu' and 'rho' are inconsistent through eq. (13) rho = atan(mu/cos(alphaN)): "
+                             f"mu = {self.mu:g} needs rho = {math.degrees(math.atan(self.mu / cosA)):.6g} deg, "
+                             f"got rho = {math.degrees(self.rho):.6g} deg; give only one of them")
+
+    # --- derived quantities -------------------------------------------------------------
+    @property
+    def ratio(self) -> float:
+        """Transmission ratio u = r2 / (r1 tan(gamma)), eq. (3)."""
+        return self.r2 / (self.r1 * math.tan(self.gamma))
+
+    @property
+    def frictionAngle(self) -> float:
+        """Friction angle rho in rad, eq. (13)."""
+        return self.rho
+
+    @property
+    def selfLocking(self) -> bool:
+        """True if the gear is self-locking: gamma < rho."""
+        return self.gamma < self.rho
+
+    @property
+    def normalLever(self) -> float:
+        """Normal displacement per worm-side relative angle, r1 cos(alphaN) sin(gamma) in m/rad, eq. (5)."""
+        return self.r1 * math.cos(self.alphaN) * math.sin(self.gamma)
+
+    def NormalDisplacement(self, deltaPhi):
+        """Relative normal displacement Delta s = r1 cos(alphaN) sin(gamma) Delta phi in m, eq. (5)."""
+        return self.normalLever * deltaPhi
+
+    def RelativeAngle(self, phi1, phi2):
+        """Relative angle Delta phi = phi1 - u phi2 in rad (worm side), eq. (4)."""
+        return phi1 - self.ratio * phi2
+
+    def LeverArms(self, S, ops=math):
+        """Torque per unit normal force on worm and wheel, (c2, c4) of eqs. (10), (12), in m.
+
+        ``S`` may be +-1 or, for the regularized friction of the connector, any value in [-1, 1]
+        (0 = frictionless); ``ops`` supplies ``sin``/``cos`` (``math``, ``numpy`` or Exudyn symbolic).
+        """
+        k = math.cos(self.alphaN) / math.cos(self.rho)
+        arg = self.gamma + self.rho * S
+        return self.r1 * k * ops.sin(arg), self.r2 * k * ops.cos(arg)
+
+    def Coefficients(self, S, ops=math):
+        """Mesh coefficients (c1, c2, c3, c4) of eqs. (9)-(12) for contact parameter ``S``.
+
+        c1 = c2 * normalLever and c3 = c4 * normalLever: the normal force acts on the worm through
+        the lever c2 and on the wheel through c4.
+        """
+        c2, c4 = self.LeverArms(S, ops)
+        return c2 * self.normalLever, c2, c4 * self.normalLever, c4
+
+    @property
+    def efficiencyWormDriving(self) -> float:
+        """Efficiency with the worm driving (S = +1): c4 / (u c2) = tan(gamma)/tan(gamma + rho)."""
+        c2, c4 = self.LeverArms(+1)
+        return c4 / (self.ratio * c2)
+
+    @property
+    def efficiencyWheelDriving(self) -> float:
+        """Efficiency with the wheel driving (S = -1): u c2 / c4 = tan(gamma - rho)/tan(gamma); <= 0: self-locking."""
+        c2, c4 = self.LeverArms(-1)
+        return self.ratio * c2 / c4
+
+    def Replace(self, **changes) -> 'WormGear':
+        """Return a copy with some parameters changed (``mu`` or ``rho`` given alone replaces both)."""
+        if 'mu' in changes and 'rho' not in changes:
+            changes['rho'] = None
+        if 'rho' in changes and 'mu' not in changes:
+            changes['mu'] = None
+        return replace(self, **changes)

@@ -1,0 +1,225 @@
+"""Analytical stability of the elastic worm drive: eqs. (14)-(21) of the paper.
+
+Everything here is computed from :class:`~exudyn_worm.drive.ElasticDrive` and the coefficients of
+:meth:`~exudyn_worm.gear.WormGear.Coefficients`; no formula is repeated elsewhere.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Dict, List, Sequence
+
+import numpy as np
+
+from .drive import ElasticDrive
+
+__all__ = ['CharacteristicCoefficients', 'HurwitzConditions', 'HurwitzStable', 'LinearMatrices',
+           'StateMatrix', 'EigenvaluesFromPolynomial', 'EigenvaluesFromStateMatrix', 'FuesgenLimit',
+           'FirstCriterionLimit', 'ContactStability', 'StabilityAnalysis', 'AnalyzeStability']
+
+CONTACT_STATES = (+1, -1)
+
+
+def _CheckS(S):
+    if S not in CONTACT_STATES:
+        raise ValueError(f"stability: contact parameter 'S' must be +1 or -1, got {S!r}")
+
+
+def CharacteristicCoefficients(drive: ElasticDrive, S: int) -> np.ndarray:
+    """Coefficients b1..b4 of the characteristic polynomial (15), eq. (16), in s^-1 .. s^-4."""
+    _CheckS(S)
+    g = drive.gear
+    c1, _, c3, _ = g.Coefficients(S)
+    u, J1, J2, kT, dT, kV, dV = g.ratio, drive.J1, drive.J2, drive.kT, drive.dT, g.kV, g.dV
+    b1 = (dT + c1 * dV) / J1 + u * c3 * dV / J2
+    b2 = (kT + c1 * kV) / J1 + u * c3 * kV / J2 + u * c3 * dT * dV / (J1 * J2)
+    b3 = u * c3 * (dT * kV + dV * kT) / (J1 * J2)
+    b4 = u * c3 * kT * kV / (J1 * J2)
+    return np.array([b1, b2, b3, b4])
+
+
+def HurwitzConditions(b: Sequence[float]) -> np.ndarray:
+    """Left-hand sides of the Routh-Hurwitz conditions (17), (18), (19); all > 0 for stability."""
+    b1, b2, b3, b4 = b
+    return np.array([b1, b1 * b2 - b3, (b1 * b2 - b3) * b3 - b1**2 * b4])
+
+
+def HurwitzStable(b: Sequence[float]) -> bool:
+    """Routh-Hurwitz classification of the quartic (15): b1, b3, b4 > 0 and (18), (19) > 0."""
+    return bool(b[0] > 0 and b[2] > 0 and b[3] > 0 and np.all(HurwitzConditions(b) > 0))
+
+
+def LinearMatrices(drive: ElasticDrive, S: int):
+    """Mass, damping and stiffness matrices (M, D, K) of the linear system (1)-(2) in [phi1, phi2]."""
+    _CheckS(S)
+    g = drive.gear
+    c1, _, c3, _ = g.Coefficients(S)
+    u = g.ratio
+    M = np.diag([drive.J1, drive.J2])
+    D = np.array([[drive.dT + g.dV * c1, -g.dV * c1 * u], [-g.dV * c3, g.dV * c3 * u]])
+    K = np.array([[drive.kT + g.kV * c1, -g.kV * c1 * u], [-g.kV * c3, g.kV * c3 * u]])
+    return M, D, K
+
+
+def StateMatrix(drive: ElasticDrive, S: int) -> np.ndarray:
+    """First-order state matrix A of x = [phi1, phi2, phi1', phi2'], with x' = A x."""
+    M, D, K = LinearMatrices(drive, S)
+    Minv = np.linalg.inv(M)
+    return np.block([[np.zeros((2, 2)), np.eye(2)], [-Minv @ K, -Minv @ D]])
+
+
+def _SortEigenvalues(lam) -> np.ndarray:
+    """Order as the paper does: conjugate pairs (+Im first), pairs by increasing |Im|, then real part."""
+    lam = np.asarray(lam, dtype=complex)
+    return lam[np.lexsort((-np.sign(lam.imag), lam.real, np.round(np.abs(lam.imag), 9)))]
+
+
+def EigenvaluesFromPolynomial(b: Sequence[float]) -> np.ndarray:
+    """The four roots of P(lambda) = lambda^4 + b1 lambda^3 + b2 lambda^2 + b3 lambda + b4, eq. (15)."""
+    return _SortEigenvalues(np.roots(np.concatenate([[1.], np.asarray(b, dtype=float)])))
+
+
+def EigenvaluesFromStateMatrix(drive: ElasticDrive, S: int) -> np.ndarray:
+    """Eigenvalues of :func:`StateMatrix` (must agree with :func:`EigenvaluesFromPolynomial`)."""
+    return _SortEigenvalues(np.linalg.eigvals(StateMatrix(drive, S)))
+
+
+def FuesgenLimit(drive: ElasticDrive) -> float:
+    """Fuesgen / VDI 2158 limit of J1/J2, eq. (21): chatter is possible if J1/J2 is below it.
+
+    Negative for a gear that is not self-locking (no chatter of this kind possible).
+    """
+    g = drive.gear
+    return math.tan(g.rho - g.gamma) / (g.ratio**2 * math.tan(g.gamma))
+
+
+def FirstCriterionLimit(drive: ElasticDrive) -> float:
+    """Limit of J1/J2 of the first instability condition (20) (b1 < 0 for S = -1).
+
+    J1/J2 below this value makes b1 negative. ``-inf`` if dV = 0 (b1 is then always positive).
+    """
+    g = drive.gear
+    c1, _, c3, _ = g.Coefficients(-1)
+    u = g.ratio
+    if g.dV == 0:
+        return -math.inf
+    return -c1 / (u * c3) - drive.dT / (g.dV * u * c3)
+
+
+def _Finite(x):
+    """JSON has no inf/nan: non-finite values become None."""
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+@dataclass(frozen=True)
+class ContactStability:
+    """Linear stability for one contact state S: coefficients, Hurwitz values, eigenvalues.
+
+    Build it with :meth:`FromCoefficients` (analytical) or :meth:`FromEigenvalues` (e.g. from an
+    Exudyn linearization); the other quantities are derived the same way in both cases.
+    """
+    S: int
+    b: np.ndarray
+    eigenvalues: np.ndarray
+
+    @classmethod
+    def FromCoefficients(cls, S: int, b) -> 'ContactStability':
+        """From the coefficients b1..b4; eigenvalues are the polynomial roots."""
+        b = np.asarray(b, dtype=float)
+        return cls(S, b, EigenvaluesFromPolynomial(b))
+
+    @classmethod
+    def FromEigenvalues(cls, S: int, eigenvalues) -> 'ContactStability':
+        """From four eigenvalues; b1..b4 are the coefficients of prod(lambda - lambda_i)."""
+        lam = _SortEigenvalues(eigenvalues)
+        if lam.size != 4:
+            raise ValueError(f"ContactStability.FromEigenvalues: expected 4 eigenvalues, got {lam.size}")
+        return cls(S, np.real(np.poly(lam))[1:], lam)
+
+    @property
+    def hurwitz(self) -> np.ndarray:
+        """Left-hand sides of (17), (18), (19)."""
+        return HurwitzConditions(self.b)
+
+    @property
+    def oscillating(self) -> np.ndarray:
+        """The eigenvalue of each mode with Im >= 0, ordered by frequency (two modes)."""
+        return self.eigenvalues[::2]
+
+    @property
+    def frequenciesHz(self) -> np.ndarray:
+        """Damped natural frequencies f_i = omega_i / (2 pi) in Hz (section 3.1)."""
+        return np.abs(self.oscillating.imag) / (2 * math.pi)
+
+    @property
+    def lehrDamping(self) -> np.ndarray:
+        """Lehr damping D_i = -delta_i / omega_i as the paper defines it (section 3.1); negative: growing."""
+        lam = self.oscillating
+        with np.errstate(divide='ignore', invalid='ignore'):
+            return np.where(lam.imag != 0, -lam.real / np.abs(lam.imag), np.inf * -np.sign(lam.real))
+
+    @property
+    def stable(self) -> bool:
+        """True iff every eigenvalue has a negative real part."""
+        return bool(np.all(self.eigenvalues.real < 0))
+
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary (see the ``exudyn-worm stability --json`` schema)."""
+        return {'b': [float(x) for x in self.b],
+                'hurwitz': [float(x) for x in self.hurwitz],
+                'eigenvalues': [[float(l.real), float(l.imag)] for l in self.eigenvalues],
+                'frequenciesHz': [float(x) for x in self.frequenciesHz],
+                'lehrDamping': [_Finite(x) for x in self.lehrDamping],
+                'stable': self.stable}
+
+
+@dataclass(frozen=True)
+class StabilityAnalysis:
+    """Stability of an elastic worm drive for both contact states, plus the classic criteria."""
+    drive: ElasticDrive
+    contact: Dict[int, ContactStability]
+
+    @property
+    def stable(self) -> bool:
+        """Stable iff both contact states S = +1 and S = -1 are stable."""
+        return all(c.stable for c in self.contact.values())
+
+    @property
+    def fuesgenLimit(self) -> float:
+        """J1/J2 limit of eq. (21)."""
+        return FuesgenLimit(self.drive)
+
+    @property
+    def firstCriterionLimit(self) -> float:
+        """J1/J2 limit of eq. (20)."""
+        return FirstCriterionLimit(self.drive)
+
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary in the schema of ``exudyn-worm stability --json``."""
+        g = self.drive.gear
+        return {'ratio': g.ratio, 'frictionAngle': g.frictionAngle, 'selfLocking': g.selfLocking,
+                'efficiency': {'wormDriving': g.efficiencyWormDriving, 'wheelDriving': g.efficiencyWheelDriving},
+                'S': {f'{S:+d}': self.contact[S].ToDict() for S in CONTACT_STATES},
+                'fuesgenLimit': _Finite(self.fuesgenLimit), 'firstCriterionLimit': _Finite(self.firstCriterionLimit),
+                'stable': self.stable}
+
+
+def AnalyzeStability(drive: ElasticDrive) -> StabilityAnalysis:
+    """Analytical stability of ``drive`` for S = +1 and S = -1 from eqs. (15)-(16).
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The 2-DOF drive of Figure 2.
+
+    Returns
+    -------
+    StabilityAnalysis
+        Coefficients, Hurwitz values, eigenvalues, frequencies, Lehr damping, the limits of (20)
+        and (21) and the overall verdict.
+    """
+    if not isinstance(drive, ElasticDrive):
+        raise TypeError(f"AnalyzeStability: 'drive' must be an ElasticDrive, got {type(drive).__name__}")
+    return StabilityAnalysis(drive, {S: ContactStability.FromCoefficients(S, CharacteristicCoefficients(drive, S))
+                                     for S in CONTACT_STATES})
