@@ -1,0 +1,135 @@
+"""The worm-gear contact law: the one place where mesh forces are computed.
+
+The same function :func:`MeshContact` is evaluated
+- recorded as an Exudyn symbolic expression (C++) inside the connector,
+- with plain Python floats in the debugging variant of the connector and the scipy reference,
+- with numpy arrays to post-process a simulated time series.
+The arithmetic backend is passed as ``ops`` (:data:`MATH_OPS`, :data:`NUMPY_OPS`, :func:`SymbolicOps`).
+
+Law (paper eqs. (1)-(2), (4)-(5), (8)-(12)), with ``lever = r1 cos(alphaN) sin(gamma)``:
+
+- relative normal displacement ``Delta s = lever * (phi1 - u phi2)`` and its rate;
+- flank in contact ``sigma = sign(Delta s)``; penetration ``p = |Delta s| - delta/2``;
+- normal force on that flank ``Fn = kV p + dV sigma d(Delta s)/dt`` if ``p > 0``, else 0; the mesh cannot
+  pull, so ``Fn`` is clipped at 0 unless ``dampingCanPull`` (the paper's linear law) is set;
+- sliding state ``sf = sat(phi1' / frictionSpeed)`` in [-1, 1] (regularized ``sign(phi1')``;
+  ``frictionSpeed = 0`` gives the exact sign), contact parameter ``S = sigma * sf`` (eq. (8));
+- torques: worm ``-c2(S) sigma Fn``, wheel ``+c4(S) sigma Fn`` with c2, c4 of eqs. (10), (12).
+
+With S fixed to +-1 (``fixedS``), zero backlash and ``dampingCanPull`` the law is exactly linear and
+reproduces eqs. (1)-(2); this is what the linearization test checks.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from types import SimpleNamespace
+from typing import Any, Optional
+
+import numpy as np
+
+from .gear import WormGear
+
+__all__ = ['MATH_OPS', 'NUMPY_OPS', 'SymbolicOps', 'MeshState', 'MeshContact', 'ContactOptions']
+
+
+def _Sign(x):
+    return float((x > 0) - (x < 0))
+
+
+#: plain-Python backend (floats)
+MATH_OPS = SimpleNamespace(sin=math.sin, cos=math.cos, abs=abs, sign=_Sign, max=max, min=min,
+                           where=lambda c, a, b: a if c else b)
+#: numpy backend (arrays, element-wise)
+NUMPY_OPS = SimpleNamespace(sin=np.sin, cos=np.cos, abs=np.abs, sign=np.sign, max=np.maximum, min=np.minimum,
+                            where=np.where)
+
+
+def SymbolicOps():
+    """Exudyn symbolic backend (``exudyn.symbolic``): records an expression evaluated in C++."""
+    import exudyn
+    esym = exudyn.symbolic
+    return SimpleNamespace(sin=esym.sin, cos=esym.cos, abs=esym.abs, sign=esym.sign, max=esym.max, min=esym.min,
+                           where=esym.IfThenElse)
+
+
+@dataclass(frozen=True)
+class ContactOptions:
+    """Numerical and modelling options of the contact law.
+
+    Parameters
+    ----------
+    frictionSpeed : float
+        Worm speed in rad/s below which the flank friction is regularized linearly
+        (``sf = phi1'/frictionSpeed``); 0 gives the discontinuous sign law. Default 0.05 rad/s
+        (0.1 % of the reel changer's worm speed).
+    dampingCanPull : bool
+        If True, use the paper's linear law in which the damping force may make the normal force
+        negative (the mesh pulls). Default False: the normal force is clipped at zero.
+    fixedS : int or None
+        Hold the contact parameter S at +1 or -1 (full flank contact, for linearization); None: S
+        follows eq. (8).
+    """
+    frictionSpeed: float = 0.05
+    dampingCanPull: bool = False
+    fixedS: Optional[int] = None
+
+    def __post_init__(self):
+        from ._checks import CheckNonNegative
+        object.__setattr__(self, 'frictionSpeed', CheckNonNegative('ContactOptions', 'frictionSpeed',
+                                                                   self.frictionSpeed, 'rad/s'))
+        if self.fixedS not in (None, 1, -1):
+            raise ValueError(f"ContactOptions: 'fixedS' must be None, +1 or -1, got {self.fixedS!r}")
+
+
+@dataclass
+class MeshState:
+    """Mesh quantities of one evaluation of the contact law (scalars, arrays or symbolic)."""
+    deltaPhi: Any          #: relative angle phi1 - u phi2, eq. (4), rad
+    deltaS: Any            #: relative normal displacement, eq. (5), m
+    normalForce: Any       #: signed normal force sigma*Fn, N (> 0: flank of the driving worm)
+    S: Any                 #: contact parameter, eq. (8) (regularized: in [-1, 1])
+    sf: Any                #: friction state, regularized sign of phi1' in [-1, 1]
+    wormTorque: Any        #: mesh torque on the worm, N*m
+    wheelTorque: Any       #: mesh torque on the wheel, N*m
+
+
+def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOptions = ContactOptions(),
+                ops=MATH_OPS) -> MeshState:
+    """Evaluate the contact law for worm/wheel angles ``phi1, phi2`` and speeds ``omega1, omega2``.
+
+    Parameters
+    ----------
+    gear : WormGear
+        Geometry, stiffness, damping, backlash and friction of the mesh.
+    phi1, phi2, omega1, omega2 : float, ndarray or symbolic
+        Worm and wheel rotation angles (rad) and speeds (rad/s).
+    options : ContactOptions
+        Regularization and model options.
+    ops : namespace
+        Arithmetic backend: :data:`MATH_OPS`, :data:`NUMPY_OPS` or :func:`SymbolicOps`.
+
+    Returns
+    -------
+    MeshState
+    """
+    u, lever = gear.ratio, gear.normalLever
+    deltaPhi = phi1 - u * phi2
+    deltaS = lever * deltaPhi
+    deltaSRate = lever * (omega1 - u * omega2)
+    sigma = ops.sign(deltaS)
+    penetration = ops.abs(deltaS) - 0.5 * gear.backlash
+    fn = gear.kV * penetration + gear.dV * sigma * deltaSRate
+    if not options.dampingCanPull:
+        fn = ops.max(fn, 0.)
+    if gear.backlash > 0:                        # inside the backlash there is no force at all
+        fn = ops.where(penetration > 0., fn, 0.)
+    if options.frictionSpeed > 0:
+        sf = ops.max(-1., ops.min(1., omega1 * (1. / options.frictionSpeed)))
+    else:
+        sf = ops.sign(omega1)
+    S = sigma * sf if options.fixedS is None else float(options.fixedS)
+    c2, c4 = gear.LeverArms(S, ops)
+    normalForce = sigma * fn
+    return MeshState(deltaPhi=deltaPhi, deltaS=deltaS, normalForce=normalForce, S=S, sf=sf,
+                     wormTorque=-c2 * normalForce, wheelTorque=c4 * normalForce)

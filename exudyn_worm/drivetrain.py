@@ -1,0 +1,121 @@
+"""Drivetrain builders: rotors, shafts, prescribed motion, motor, load and bearing torques.
+
+Everything here is an ordinary Exudyn item (``Node1D`` + ``ObjectRotationalMass1D``,
+``CoordinateSpringDamper``, ``CoordinateConstraint``, ``ObjectGenericODE2``), so users can mix these
+builders with their own items. Torque laws come from :mod:`exudyn_worm.profiles` (or any object with
+a ``Torque(phi, omega, t, ops)`` method) and run as symbolic (C++) user functions by default.
+"""
+from __future__ import annotations
+
+from typing import Any, Dict
+
+from ._checks import CheckNonNegative, CheckPositive, CheckReal
+from ._userfunctions import AddGenericForce, SetOffsetFunction
+
+__all__ = ['CreateRotor', 'CreateShaft', 'CreatePrescribedRotation', 'CreateTorque']
+
+
+def _Marker(rotor, where, name):
+    if not isinstance(rotor, dict) or 'markerNumber' not in rotor:
+        raise TypeError(f"{where}: '{name}' must be a rotor returned by CreateRotor, got {type(rotor).__name__}")
+    return rotor['markerNumber']
+
+
+def CreateRotor(mbs, inertia: float, initialAngle: float = 0., initialSpeed: float = 0., name: str = '') -> Dict[str, Any]:
+    """Add a rotor: ``Node1D`` + ``ObjectRotationalMass1D`` + coordinate marker.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    inertia : float
+        Moment of inertia in kg*m^2, > 0.
+    initialAngle, initialSpeed : float
+        Initial rotation in rad and speed in rad/s.
+    name : str
+
+    Returns
+    -------
+    dict
+        ``nodeNumber``, ``objectNumber``, ``markerNumber``.
+    """
+    from exudyn.itemInterface import MarkerNodeCoordinate, Node1D, ObjectRotationalMass1D
+    w = 'CreateRotor'
+    inertia = CheckPositive(w, 'inertia', inertia, 'kg*m^2')
+    nNode = mbs.AddNode(Node1D(referenceCoordinates=[0.], initialCoordinates=[CheckReal(w, 'initialAngle', initialAngle, 'rad')],
+                               initialVelocities=[CheckReal(w, 'initialSpeed', initialSpeed, 'rad/s')], name=name))
+    oBody = mbs.AddObject(ObjectRotationalMass1D(nodeNumber=nNode, inertia=inertia, name=name))
+    mNode = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nNode, coordinate=0))
+    return {'nodeNumber': nNode, 'objectNumber': oBody, 'markerNumber': mNode}
+
+
+def CreateShaft(mbs, rotors, stiffness: float, damping: float = 0., name: str = '') -> Dict[str, Any]:
+    """Torsional spring-damper (``CoordinateSpringDamper``) between two rotors.
+
+    Parameters
+    ----------
+    rotors : [rotor0, rotor1]
+        Rotors from :func:`CreateRotor`.
+    stiffness : float
+        Torsional stiffness in N*m/rad, > 0.
+    damping : float
+        Torsional damping in N*m*s/rad, >= 0.
+
+    Returns
+    -------
+    dict
+        ``objectNumber``.
+    """
+    from exudyn.itemInterface import CoordinateSpringDamper
+    w = 'CreateShaft'
+    if len(rotors) != 2:
+        raise ValueError(f"{w}: 'rotors' must hold two rotors, got {len(rotors)}")
+    markers = [_Marker(r, w, f'rotors[{i}]') for i, r in enumerate(rotors)]
+    o = mbs.AddObject(CoordinateSpringDamper(markerNumbers=markers, stiffness=CheckPositive(w, 'stiffness', stiffness, 'N*m/rad'),
+                                             damping=CheckNonNegative(w, 'damping', damping, 'N*m*s/rad'), name=name))
+    return {'objectNumber': o}
+
+
+def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: bool = True) -> Dict[str, Any]:
+    """Prescribe the rotation of ``rotor`` to ``profile`` (e.g. :class:`~exudyn_worm.profiles.ConstantSpeed`).
+
+    Uses a ``CoordinateConstraint`` to ground with an offset user function, which the implicit
+    solvers (generalized-alpha, trapezoidal index 2) honour. Explicit solvers ignore it (they pin the
+    coordinate to 0): use an implicit solver, or a stiff shaft to a driven rotor.
+
+    Returns
+    -------
+    dict
+        ``objectNumber``, ``groundNodeNumber``.
+    """
+    from exudyn.itemInterface import CoordinateConstraint, MarkerNodeCoordinate, NodePointGround
+    w = 'CreatePrescribedRotation'
+    marker = _Marker(rotor, w, 'rotor')
+    if not hasattr(profile, 'AngleAndSpeed'):
+        raise TypeError(f"{w}: 'profile' must have AngleAndSpeed(t, ops) (e.g. ConstantSpeed), got {type(profile).__name__}")
+    nGround = mbs.AddNode(NodePointGround())
+    mGround = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nGround, coordinate=0))
+    o = mbs.AddObject(CoordinateConstraint(markerNumbers=[mGround, marker], name=name))
+    SetOffsetFunction(mbs, o, profile.AngleAndSpeed, useSymbolic=useSymbolic)
+    return {'objectNumber': o, 'groundNodeNumber': nGround}
+
+
+def CreateTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True) -> Dict[str, Any]:
+    """Apply a torque ``law.Torque(phi, omega, t, ops)`` to ``rotor``.
+
+    Use it for the reel changer's load (:class:`~exudyn_worm.profiles.GravityLeverTorque`), a motor
+    characteristic (:class:`~exudyn_worm.profiles.LinearMotorCharacteristic`) or bearing friction
+    (:class:`~exudyn_worm.profiles.CoulombViscousFriction`). Implemented as a one-node
+    ``ObjectGenericODE2`` so the torque may depend on angle, speed and time.
+
+    Returns
+    -------
+    dict
+        ``objectNumber``.
+    """
+    w = 'CreateTorque'
+    if not hasattr(law, 'Torque'):
+        raise TypeError(f"{w}: 'law' must have Torque(phi, omega, t, ops), got {type(law).__name__}")
+    node = mbs.GetMarker(_Marker(rotor, w, 'rotor'))['nodeNumber']
+    o, _ = AddGenericForce(mbs, [node], lambda t, q, q_t, ops: [law.Torque(q[0], q_t[0], t, ops)],
+                           name=name, useSymbolic=useSymbolic)
+    return {'objectNumber': o}

@@ -1,0 +1,207 @@
+"""The paper's paper-reel changer (section 3.2): model building and simulation.
+
+Motor (prescribed rotation phi0) -- elastic shaft kT, dT -- worm J1 -- worm-gear mesh -- wheel and
+frame J2 -- load torque of the reel, M2 = -m2 g l2 cos(phi2) (eq. (27)). The frame is horizontal at
+t = 0 and is lifted first; one full rotation of the wheel takes 2 pi u / motorSpeed (8 s in the paper).
+"""
+from __future__ import annotations
+
+import math
+import time as _time
+from dataclasses import dataclass
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .connector import CreateWormGear, WormGearConnector
+from .contact import MATH_OPS, ContactOptions, MeshContact
+from .drive import ElasticDrive
+from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateTorque
+from .presets import DriveFromParameters
+from .profiles import ConstantSpeed, GravityLeverTorque
+from .results import SimulationResult
+from ._checks import CheckPositive
+
+__all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
+           'SteadyInitialState', 'DEFAULT_STEP_SIZE']
+
+#: default time step in s (the P1/P7 amplitudes change < 1 % when it is halved, see validation/REPORT.md)
+DEFAULT_STEP_SIZE = 5e-4
+_MOTOR_INERTIA = 1e-3   # kg*m^2; the motor node is prescribed, its inertia does not matter
+
+
+def RotationPeriod(parameters: Mapping[str, float]) -> float:
+    """Duration in s of one full wheel rotation: 2 pi u / motorSpeed."""
+    drive = DriveFromParameters(parameters)
+    speed = CheckPositive('RotationPeriod', 'motorSpeed', parameters.get('motorSpeed', math.nan), 'rad/s')
+    return 2 * math.pi * drive.gear.ratio / speed
+
+
+def DefaultWindows(parameters: Mapping[str, float]) -> List[Tuple[float, float]]:
+    """Lift / lower / lift phases of one rotation: [0, T/4], [T/4, 3T/4], [3T/4, T]."""
+    T = RotationPeriod(parameters)
+    return [(0., T / 4), (T / 4, 3 * T / 4), (3 * T / 4, T)]
+
+
+def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed: float,
+                       options: ContactOptions = ContactOptions()) -> Dict[str, float]:
+    """Static equilibrium at t = 0 under the initial load, moving at the nominal speed.
+
+    Solves the wheel balance (mesh torque = -load torque) for Delta s with the contact law itself and
+    the worm balance (shaft torque = mesh torque) for the shaft twist, so a run starts without a
+    spurious transient. Returns phi1, phi2, omega1, omega2.
+    """
+    g = drive.gear
+    u = g.ratio
+    omega1, omega2 = motorSpeed, motorSpeed / u
+    phi2 = 0.
+    for _ in range(3):                                   # load depends weakly on phi2
+        loadTorque = load.Torque(phi2, omega2, 0., MATH_OPS)
+
+        def WheelBalance(deltaS):
+            deltaPhi = deltaS / g.normalLever
+            return MeshContact(g, deltaPhi, 0., omega1, omega2, options, MATH_OPS).wheelTorque + loadTorque
+
+        span = 0.5 * g.backlash + 10 * (abs(loadTorque) / g.r2 + 1.) / g.kV
+        deltaS = brentq(WheelBalance, -span, span, xtol=1e-15) if loadTorque != 0 else 0.
+        deltaPhi = deltaS / g.normalLever
+        wormTorque = MeshContact(g, deltaPhi, 0., omega1, omega2, options, MATH_OPS).wormTorque
+        phi1 = wormTorque / drive.kT                      # kT (phi0 - phi1) + wormTorque = 0, phi0(0) = 0
+        phi2 = (phi1 - deltaPhi) / u
+    return {'phi1': phi1, 'phi2': phi2, 'omega1': omega1, 'omega2': omega2}
+
+
+@dataclass
+class ReelChangerModel:
+    """The Exudyn system of the reel changer and what is needed to read its results."""
+    systemContainer: Any
+    mbs: Any
+    drive: ElasticDrive
+    load: GravityLeverTorque
+    motorSpeed: float
+    connector: WormGearConnector
+    rotors: Dict[str, Dict]
+    sensors: Dict[str, Any]
+
+
+def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
+                     useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None) -> ReelChangerModel:
+    """Build the reel changer of section 3.2 in a new Exudyn system.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (see :mod:`exudyn_worm.presets`), including ``loadMass`` (kg), ``leverArm`` (m)
+        and ``motorSpeed`` (rad/s).
+    contactOptions : ContactOptions
+        Options of the worm-gear contact law.
+    useSymbolic : bool
+        C++ symbolic user functions (default) or plain Python.
+    startFromEquilibrium : bool
+        Start in the static equilibrium under the initial load at nominal speed (default); otherwise
+        all rotors start at rest with zero angles.
+    profile : optional
+        Motor motion (default :class:`ConstantSpeed` at ``motorSpeed``).
+
+    Returns
+    -------
+    ReelChangerModel
+    """
+    import exudyn as exu
+    from exudyn.itemInterface import SensorNode
+
+    w = 'BuildReelChanger'
+    drive = DriveFromParameters(parameters)
+    for key in ('loadMass', 'leverArm', 'motorSpeed'):
+        if key not in parameters:
+            raise ValueError(f"{w}: missing parameter '{key}' of the reel changer")
+    motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
+    load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
+    profile = profile if profile is not None else ConstantSpeed(motorSpeed)
+
+    if startFromEquilibrium:
+        init = SteadyInitialState(drive, load, motorSpeed, contactOptions)
+        init0 = profile.AngleAndSpeed(0., MATH_OPS)
+    else:
+        init, init0 = {'phi1': 0., 'phi2': 0., 'omega1': 0., 'omega2': 0.}, (0., 0.)
+
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    motor = CreateRotor(mbs, _MOTOR_INERTIA, initialAngle=init0[0], initialSpeed=init0[1], name='motor')
+    worm = CreateRotor(mbs, drive.J1, initialAngle=init['phi1'], initialSpeed=init['omega1'], name='worm')
+    wheel = CreateRotor(mbs, drive.J2, initialAngle=init['phi2'], initialSpeed=init['omega2'], name='wheel')
+    CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+    CreateShaft(mbs, [motor, worm], stiffness=drive.kT, damping=drive.dT, name='driveShaft')
+    connector = CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='wormGear',
+                               contactOptions=contactOptions, useSymbolic=useSymbolic)
+    CreateTorque(mbs, wheel, load, name='reelLoad', useSymbolic=useSymbolic)
+
+    sensors = {}
+    OVT = exu.OutputVariableType
+    for rotorName, rotor, idx in (('motor', motor, '0'), ('worm', worm, '1'), ('wheel', wheel, '2')):
+        for prefix, ovt in (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t), ('alpha', OVT.Coordinates_tt)):
+            if rotorName == 'motor' and prefix == 'alpha':
+                continue
+            sensors[prefix + idx] = mbs.AddSensor(SensorNode(nodeNumber=rotor['nodeNumber'], outputVariableType=ovt,
+                                                             storeInternal=True, writeToFile=False))
+    return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector,
+                            {'motor': motor, 'worm': worm, 'wheel': wheel}, sensors)
+
+
+def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float] = None,
+                        stepSize: float = DEFAULT_STEP_SIZE, contactOptions: ContactOptions = ContactOptions(),
+                        useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None) -> SimulationResult:
+    """Build and simulate the reel changer with Exudyn's generalized-alpha solver.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (e.g. ``GetPreset('reel-P1')``).
+    endTime : float, optional
+        Simulated time in s (default: one full rotation, 8 s for the paper's speed).
+    stepSize : float
+        Time step in s, > 0 (default :data:`DEFAULT_STEP_SIZE`).
+    contactOptions, useSymbolic, startFromEquilibrium, profile
+        See :func:`BuildReelChanger`.
+
+    Returns
+    -------
+    SimulationResult
+        Nothing is written to disk.
+    """
+    import exudyn as exu
+    w = 'SimulateReelChanger'
+    endTime = RotationPeriod(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
+    stepSize = CheckPositive(w, 'stepSize', stepSize, 's')
+    if stepSize > endTime:
+        raise ValueError(f"{w}: 'stepSize' must be <= endTime = {endTime:g} s, got {stepSize:g} s")
+    model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
+    mbs = model.mbs
+    mbs.Assemble()
+    steps = int(round(endTime / stepSize))
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False                 # never litter the user's current directory
+    ss.solution.sensors.writePeriod = stepSize
+    ss.timeIntegration.endTime = endTime
+    ss.timeIntegration.numberOfSteps = steps
+    ss.timeIntegration.verboseMode = 0
+    ss.timeIntegration.newton.useModifiedNewton = True
+    t0 = _time.perf_counter()
+    mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+    solveSeconds = _time.perf_counter() - t0
+
+    data = {k: mbs.GetSensorStoredData(s) for k, s in model.sensors.items()}
+    time = data['phi1'][:, 0]
+    series = {k: v[:, 1] for k, v in data.items()}
+    mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'])
+    drive = model.drive
+    series.update(deltaPhi=mesh.deltaPhi, deltaS=mesh.deltaS, normalForce=mesh.normalForce, S=mesh.S, sf=mesh.sf,
+                  wormTorque=mesh.wormTorque, wheelTorque=mesh.wheelTorque,
+                  # eq. (6): torque in the drive shaft; eq. (7): tangential force at the wheel
+                  driveTorque=drive.kT * (series['phi1'] - series['phi0']) + drive.dT * (series['omega1'] - series['omega0']),
+                  tangentialForce=mesh.wheelTorque / drive.gear.r2)
+    return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
+                            steps=steps, info={'stepSize': stepSize, 'maxLoadTorque': model.load.maximum,
+                                               'frictionSpeed': contactOptions.frictionSpeed,
+                                               'useSymbolic': useSymbolic})

@@ -1,0 +1,119 @@
+"""Simulation results of a worm drive: time series, mesh quantities, window metrics, saving.
+
+Mesh quantities are post-processed from the stored node states with the same contact law the
+connector uses (:func:`exudyn_worm.contact.MeshContact` on numpy arrays).
+"""
+from __future__ import annotations
+
+import csv
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Dict, List, Sequence, Tuple
+
+import numpy as np
+
+__all__ = ['SimulationResult', 'CHATTER_TORQUE_FRACTION']
+
+#: chatter criterion: wheel inertia torque J2*|phi2''| in the second half of a window above this
+#: fraction of the largest mesh torque on the wheel in the window
+CHATTER_TORQUE_FRACTION = 0.1
+
+
+@dataclass
+class SimulationResult:
+    """Time series of one simulation (SI units) plus the metadata needed to judge chatter.
+
+    Attributes hold arrays over ``time``: motor angle/speed ``phi0, omega0``; worm and wheel angles,
+    speeds, accelerations ``phi1, omega1, alpha1, phi2, omega2, alpha2``; mesh quantities
+    ``deltaPhi, deltaS, normalForce`` (signed), ``S``, ``sf``, ``wormTorque, wheelTorque``;
+    ``driveTorque`` M_an (eq. (6)) and ``tangentialForce`` F_V (eq. (7)).
+    """
+    time: np.ndarray
+    series: Dict[str, np.ndarray]
+    J2: float
+    r2: float
+    solveSeconds: float = 0.
+    steps: int = 0
+    info: Dict = field(default_factory=dict)
+
+    def __getattr__(self, name):
+        series = self.__dict__.get('series', {})
+        if name in series:
+            return series[name]
+        raise AttributeError(name)
+
+    @property
+    def endTime(self) -> float:
+        return float(self.time[-1])
+
+    @property
+    def normalForceFlanks(self) -> Tuple[np.ndarray, np.ndarray]:
+        """Normal force on the flank pushed by a leading worm (Delta s > 0) and on the other flank, both >= 0."""
+        F = self.series['normalForce']
+        return np.maximum(F, 0.), np.maximum(-F, 0.)
+
+    def _Window(self, t0, t1):
+        return (self.time >= t0) & (self.time <= t1)
+
+    def DominantFrequency(self, t0: float, t1: float, signal: str = 'alpha2') -> float:
+        """Frequency in Hz of the largest spectral peak of ``signal`` in [t0, t1] (mean removed, Hann window)."""
+        m = self._Window(t0, t1)
+        x = self.series[signal][m]
+        if x.size < 8:
+            return 0.
+        dt = float(np.mean(np.diff(self.time[m])))
+        x = (x - x.mean()) * np.hanning(x.size)
+        spectrum = np.abs(np.fft.rfft(x, n=4 * x.size))
+        freq = np.fft.rfftfreq(4 * x.size, dt)
+        return float(freq[1:][np.argmax(spectrum[1:])])
+
+    def Chatter(self, t0: float, t1: float) -> bool:
+        """Chatter in [t0, t1]: in the window's second half the wheel inertia torque J2*max|phi2''| exceeds
+        :data:`CHATTER_TORQUE_FRACTION` of the largest mesh torque on the wheel in the window (a decaying
+        transient after a load reversal does not count; a self-excited vibration does)."""
+        m = self._Window(t0, t1)
+        late = self._Window(0.5 * (t0 + t1), t1)
+        meshTorque = np.max(np.abs(self.series['wheelTorque'][m])) if m.any() else 0.
+        inertiaTorque = self.J2 * np.max(np.abs(self.series['alpha2'][late])) if late.any() else 0.
+        return bool(meshTorque > 0 and inertiaTorque > CHATTER_TORQUE_FRACTION * meshTorque)
+
+    def WindowMetrics(self, windows: Sequence[Tuple[float, float]]) -> List[Dict]:
+        """Per window: t0, t1, maxAbsWheelAcceleration (rad/s^2), maxNormalForce (N), dominantFrequencyHz,
+        fractionSNegative, minWormSpeed (rad/s), chatter."""
+        out = []
+        for t0, t1 in windows:
+            m = self._Window(t0, t1)
+            if not m.any():
+                raise ValueError(f"window {t0:g}:{t1:g} s holds no output time (simulated 0:{self.endTime:g} s)")
+            out.append({'t0': float(t0), 't1': float(t1),
+                        'maxAbsWheelAcceleration': float(np.max(np.abs(self.series['alpha2'][m]))),
+                        'maxNormalForce': float(np.max(np.abs(self.series['normalForce'][m]))),
+                        'dominantFrequencyHz': self.DominantFrequency(t0, t1),
+                        'fractionSNegative': float(np.mean(self.series['S'][m] < 0)),
+                        'minWormSpeed': float(np.min(self.series['omega1'][m])),
+                        'chatter': self.Chatter(t0, t1)})
+        return out
+
+    def ToCsv(self, path) -> Path:
+        """Write all time series to a CSV file (header with SI units). Returns the path."""
+        path = Path(path)
+        names = list(self.series)
+        units = _UNITS
+        with path.open('w', newline='') as f:
+            w = csv.writer(f)
+            w.writerow(['time [s]'] + [f'{n} [{units.get(n, "-")}]' for n in names])
+            data = np.column_stack([self.time] + [self.series[n] for n in names])
+            w.writerows(data.tolist())
+        return path
+
+    def Plot(self, kind: str = 'overview', **kwargs):
+        """Plot with :mod:`exudyn_worm.plot` (matplotlib is imported only here)."""
+        from . import plot
+        return plot.PlotSimulation(self, kind=kind, **kwargs)
+
+
+_UNITS = {'phi0': 'rad', 'omega0': 'rad/s', 'phi1': 'rad', 'omega1': 'rad/s', 'alpha1': 'rad/s^2',
+          'phi2': 'rad', 'omega2': 'rad/s', 'alpha2': 'rad/s^2', 'deltaPhi': 'rad', 'deltaS': 'm',
+          'normalForce': 'N', 'S': '-', 'sf': '-', 'wormTorque': 'N*m', 'wheelTorque': 'N*m',
+          'driveTorque': 'N*m', 'tangentialForce': 'N'}
