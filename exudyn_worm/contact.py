@@ -49,8 +49,12 @@ def SymbolicOps():
     """Exudyn symbolic backend (``exudyn.symbolic``): records an expression evaluated in C++."""
     import exudyn
     esym = exudyn.symbolic
+
+    def Where(condition, a, b):  # IfThenElse takes symbolic operands only
+        return esym.IfThenElse(condition, *(x if isinstance(x, esym.Real) else esym.Real(float(x)) for x in (a, b)))
+
     return SimpleNamespace(sin=esym.sin, cos=esym.cos, abs=esym.abs, sign=esym.sign, max=esym.max, min=esym.min,
-                           where=esym.IfThenElse)
+                           where=Where)
 
 
 @dataclass(frozen=True)
