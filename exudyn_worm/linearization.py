@@ -14,7 +14,7 @@ from .contact import ContactOptions
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft
 from .profiles import ConstantSpeed
-from .stability import CONTACT_STATES, ContactStability, StabilityAnalysis
+from .stability import CONTACT_STATES, ContactStability, StabilityAnalysis, _SortEigenvalues
 
 __all__ = ['BuildLinearizationModel', 'ExudynEigenvalues', 'AnalyzeStabilityExudyn']
 
@@ -47,7 +47,7 @@ def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> 
     """Complex eigenvalues (1/s) of the Exudyn model linearized about the pre-deflected state."""
     SC, mbs = BuildLinearizationModel(drive, S, useSymbolic)
     values, _ = mbs.ComputeODE2Eigenvalues(computeComplexEigenvalues=True, useAbsoluteValues=False)
-    return np.asarray(values, dtype=complex)
+    return _SortEigenvalues(np.asarray(values, dtype=complex))
 
 
 def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True) -> StabilityAnalysis:
