@@ -1,0 +1,368 @@
+"""Parameter values with units, TOML config files and the resolution of a parameter set.
+
+A parameter set is the flat dictionary of :mod:`exudyn_worm.presets` (SI, angles in rad). It is
+resolved in three layers, each applied with :func:`~exudyn_worm.presets.ApplyOverrides` (so a value
+replaces its alternative forms: ``mu`` drops ``rho``, ``dT`` drops ``DT``/``DTV``, ``DV`` drops ``dV``):
+
+1. a preset (default ``'reel-P1'``; a config file's ``preset`` replaces the default, an explicit
+   ``preset`` argument replaces the config file's);
+2. the ``[parameters]`` table of a TOML config file;
+3. ``KEY=VALUE`` overrides (the CLI's ``--set``).
+
+A value is a plain SI number (angles in rad, ``motorSpeed`` in rad/s) or a string with units parsed by
+pint, e.g. ``'0.5 mm'``, ``'8 deg'``, ``'7 kN*m'``, ``'472.5 rpm'``. The target unit of every key is
+:data:`~exudyn_worm.presets.PARAMETER_UNITS`.
+
+Example config file::
+
+    preset = "reel-P1"          # optional
+
+    [parameters]
+    J1 = "0.2 kg*m^2"
+    kT = 12000                  # SI: N*m/rad
+    DTV = 2
+    backlash = "0.25 mm"
+
+This module holds no command-line code; :mod:`exudyn_worm.cli` uses it.
+"""
+from __future__ import annotations
+
+import functools
+import math
+import os
+import re
+import sys
+from numbers import Real
+from typing import Dict, Iterable, Mapping, Optional, Tuple, Union
+
+from .presets import PARAMETER_UNITS, PRESETS, ApplyOverrides, GetPreset
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+__all__ = ['DEFAULT_PRESET', 'CONFIG_KEYS', 'ParseQuantity', 'ParseSetOption', 'LoadConfig',
+           'ResolveParameters']
+
+#: preset used when neither an explicit preset nor a config file names one
+DEFAULT_PRESET = 'reel-P1'
+
+#: top-level keys a config file may contain
+CONFIG_KEYS = ('preset', 'parameters')
+
+# a number (no inf/nan) followed by an optional unit expression
+_NUMBER_UNIT = re.compile(r'^\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$')
+
+# human form of each target unit for messages
+_UNIT_TEXT = {'': 'a dimensionless number (plain, or e.g. "1.4 %")',
+              'rad': 'an angle in rad (plain numbers are rad; or e.g. "8 deg")',
+              'N*m/rad': 'in N*m/rad (N*m is accepted; e.g. "7 kN*m")',
+              'N*m*s/rad': 'in N*m*s/rad (N*m*s is accepted)',
+              'rad/s': 'an angular speed in rad/s (plain numbers are rad/s; or e.g. "472.5 rpm")'}
+
+
+@functools.lru_cache(maxsize=None)
+def _UnitRegistry():
+    """The pint registry, built on first use only (it takes about half a second)."""
+    import pint
+    return pint.UnitRegistry()
+
+
+def _PintErrors() -> tuple:
+    """Exceptions pint's unit parser raises for malformed text."""
+    import tokenize
+    import pint
+    return (pint.errors.PintError, ValueError, TypeError, AttributeError, AssertionError, SyntaxError,
+            ZeroDivisionError, OverflowError, tokenize.TokenError)
+
+
+def _RadianExponent(units) -> float:
+    """Power of radian in ``units`` expressed in base units (pint treats rad as dimensionless)."""
+    ureg = _UnitRegistry()
+    return dict(ureg.Quantity(1., units).to_base_units().unit_items()).get('radian', 0)
+
+
+def _ExpectedText(key: str) -> str:
+    unit = PARAMETER_UNITS[key]
+    return _UNIT_TEXT.get(unit, f'in {unit} (plain numbers are SI)')
+
+
+def _CheckKey(where: str, key) -> str:
+    if not isinstance(key, str) or key not in PARAMETER_UNITS:
+        raise ValueError(f"{where}: unknown parameter {key!r}; expected one of: {' '.join(PARAMETER_UNITS)}")
+    return key
+
+
+def ParseQuantity(key: str, text: Union[str, float]) -> float:
+    """Parse the value of parameter ``key`` into a float in its SI unit.
+
+    Parameters
+    ----------
+    key : str
+        A parameter name of :data:`~exudyn_worm.presets.PARAMETER_UNITS`, e.g. ``'kT'``.
+    text : str or float
+        A plain number, taken as SI (angles in rad, speeds in rad/s), or a number followed by a unit
+        that pint understands, e.g. ``'0.5 mm'``, ``'8 deg'``, ``'7 kN*m'``, ``'472.5 rpm'``,
+        ``'1.4 %'``. Numbers (int or float, not bool) are accepted as they are.
+
+    Returns
+    -------
+    float
+        The value in the unit of ``PARAMETER_UNITS[key]``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown key, malformed text, an unknown unit, a wrong dimension (the message names the
+        key, the expected unit and what was received) or a non-finite value.
+    TypeError
+        If ``text`` is neither a string nor a real number.
+
+    Notes
+    -----
+    pint treats rad as dimensionless, so an angle unit could silently convert into a plain ratio
+    (``mu = "8 deg"``) and ``Hz`` into ``rad/s`` without the factor 2 pi. To prevent that, the power of
+    rad must match the target unit; the one exception is a torque per angle (``kT``, ``dT``), where
+    ``N*m`` stands for ``N*m/rad`` as is customary.
+
+    Examples
+    --------
+    >>> ParseQuantity('backlash', '0.5 mm')
+    0.0005
+    >>> ParseQuantity('kT', '7 kN*m')
+    7000.0
+    >>> round(ParseQuantity('motorSpeed', '472.5 rpm'), 4)
+    49.4801
+    """
+    return _ParseQuantity(key, text, 'ParseQuantity')
+
+
+def _DimensionText(ureg, units, radians) -> str:
+    """Dimension of ``units`` for messages, with the angle that pint drops shown as [angle]."""
+    dim = ureg.Quantity(1., units).dimensionality
+    parts = [] if not dim else [str(dim)]
+    if radians:
+        parts.insert(0, '[angle]' if radians == 1 else f'[angle] ** {radians:g}')
+    return ' * '.join(parts) or 'dimensionless'
+
+
+def _ParseQuantity(key, text, where: str) -> float:
+    key = _CheckKey(where, key)
+    if isinstance(text, bool) or not isinstance(text, (str, Real)):
+        raise TypeError(f"{where}: value of '{key}' must be a number or a string such as '0.5 mm', "
+                        f"got {type(text).__name__} {text!r}")
+    if isinstance(text, Real):
+        value = float(text)
+        if not math.isfinite(value):
+            raise ValueError(f"{where}: '{key}' must be finite, got {value}")
+        return value
+    try:  # plain SI number: no unit registry needed
+        value = float(text)
+    except ValueError:
+        pass
+    else:
+        if not math.isfinite(value):
+            raise ValueError(f"{where}: '{key}' must be finite, got {text!r}")
+        return value
+    match = _NUMBER_UNIT.match(text)
+    if match is None:
+        first = text.split()[0] if text.split() else ''
+        try:
+            nonFinite = not math.isfinite(float(first))
+        except ValueError:
+            nonFinite = False
+        if nonFinite:
+            raise ValueError(f"{where}: '{key}' must be finite, got {text!r}")
+        raise ValueError(f"{where}: '{key}' must be a number optionally followed by a unit, "
+                         f"{_ExpectedText(key)}, got {text!r}")
+    number, unitText = float(match.group(1)), match.group(2)
+    if not math.isfinite(number):
+        raise ValueError(f"{where}: '{key}' must be finite, got {text!r}")
+    ureg = _UnitRegistry()
+    try:
+        units = ureg.parse_units(unitText)
+    except _PintErrors() as err:
+        detail = str(err).strip() or 'not a unit expression'
+        raise ValueError(f"{where}: '{key}': cannot read the unit {unitText!r} in {text!r} ({detail}); "
+                         f"expected {_ExpectedText(key)}") from None
+    target = PARAMETER_UNITS[key]
+    targetUnits = ureg.parse_units(target) if target else ureg.dimensionless
+    radTarget, radReceived = _RadianExponent(targetUnits), _RadianExponent(units)
+    wrong = (f"{where}: '{key}' must be {_ExpectedText(key)}, got {text!r} "
+             f"(unit {units:~}, dimension {_DimensionText(ureg, units, radReceived)})")
+    if radReceived != radTarget and not (radTarget < 0 and radReceived == 0):
+        raise ValueError(wrong)
+    try:
+        value = float(ureg.Quantity(number, units).to(targetUnits).magnitude)
+    except _PintErrors():
+        raise ValueError(wrong) from None
+    if not math.isfinite(value):
+        raise ValueError(f"{where}: '{key}' must be finite, got {text!r}")
+    return value
+
+
+def ParseSetOption(text: str) -> Tuple[str, float]:
+    """Parse one ``KEY=VALUE`` override (the CLI's ``--set``).
+
+    Parameters
+    ----------
+    text : str
+        ``KEY=VALUE`` with a key of :data:`~exudyn_worm.presets.PARAMETER_UNITS` and a value as
+        :func:`ParseQuantity` accepts, e.g. ``'backlash=0.5 mm'`` or ``'J1=0.3'``.
+
+    Returns
+    -------
+    (str, float)
+        The key and its value in SI units.
+
+    Raises
+    ------
+    ValueError
+        If there is no ``=``, the key is unknown (the message lists the allowed keys) or the value is
+        invalid.
+    """
+    where = 'ParseSetOption'
+    if not isinstance(text, str):
+        raise TypeError(f"{where}: expected a string 'KEY=VALUE', got {type(text).__name__} {text!r}")
+    key, sep, value = text.partition('=')
+    key = key.strip()
+    if not sep or not key:
+        raise ValueError(f"{where}: expected KEY=VALUE (e.g. 'J1=0.3' or 'backlash=0.5 mm'), got {text!r}")
+    _CheckKey(where, key)
+    return key, _ParseQuantity(key, value.strip(), f"{where}: {text!r}")
+
+
+def _RejectAlternatives(values: Mapping[str, float], where: str) -> None:
+    """Raise if ``values`` gives two forms of one quantity (e.g. ``mu`` and ``rho``)."""
+    for key, value in values.items():
+        dropped = sorted(set(values) - set(ApplyOverrides(values, {key: value})))
+        if dropped:
+            others = ' and '.join(f"'{k}'" for k in dropped)
+            raise ValueError(f"{where}: both '{key}' and {others} are given, which describe the same quantity; "
+                             f"give only one of them")
+
+
+def _ConfigFromData(data: Mapping, where: str) -> Dict:
+    """Check the content of a config file and parse its parameter values."""
+    if not isinstance(data, Mapping):
+        raise TypeError(f"{where}: a config must be a mapping, got {type(data).__name__}")
+    unknown = [k for k in data if k not in CONFIG_KEYS]
+    if unknown:
+        raise ValueError(f"{where}: unknown top-level key(s) {', '.join(map(repr, unknown))}; "
+                         f"expected: {', '.join(CONFIG_KEYS)} (parameters go in a [parameters] table)")
+    preset = data.get('preset')
+    if preset is not None:
+        if not isinstance(preset, str):
+            raise ValueError(f"{where}: 'preset' must be a string, got {type(preset).__name__} {preset!r}")
+        if preset not in PRESETS:
+            raise ValueError(f"{where}: unknown preset '{preset}'; expected one of: {', '.join(PRESETS)}")
+    table = data.get('parameters', {})
+    if not isinstance(table, Mapping):
+        raise ValueError(f"{where}: 'parameters' must be a table ([parameters]), got {type(table).__name__}")
+    parameters = {}
+    for key, value in table.items():
+        if key not in PARAMETER_UNITS:
+            raise ValueError(f"{where}: [parameters]: unknown parameter {key!r}; expected one of: "
+                             f"{' '.join(PARAMETER_UNITS)}")
+        if isinstance(value, bool) or not isinstance(value, (str, Real)):
+            raise ValueError(f"{where}: [parameters] {key} must be a number (SI) or a string with units, "
+                             f"got {type(value).__name__} {value!r}")
+        parameters[key] = _ParseQuantity(key, value, f"{where}: [parameters]")
+    _RejectAlternatives(parameters, f"{where}: [parameters]")
+    return {'preset': preset, 'parameters': parameters}
+
+
+def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
+    """Read a TOML config file.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A TOML file with an optional ``preset = "NAME"`` and an optional ``[parameters]`` table whose
+        values are numbers (SI, angles in rad) or strings with units (see :func:`ParseQuantity`).
+
+    Returns
+    -------
+    dict
+        ``{'preset': str or None, 'parameters': {key: float in SI}}``.
+
+    Raises
+    ------
+    ValueError
+        If the file cannot be read, is not valid TOML, has unknown keys, an unknown preset, an invalid
+        value, or gives two forms of one quantity (e.g. both ``mu`` and ``rho``). The message names
+        the file.
+    """
+    where = f"LoadConfig: '{path}'"
+    try:
+        with open(path, 'rb') as file:
+            data = tomllib.load(file)
+    except OSError as err:
+        raise ValueError(f"{where}: cannot read it: {err.strerror or err}") from None
+    except tomllib.TOMLDecodeError as err:
+        raise ValueError(f"{where}: not valid TOML: {err}") from None
+    except UnicodeDecodeError as err:
+        raise ValueError(f"{where}: not valid TOML (not UTF-8 text: {err.reason})") from None
+    return _ConfigFromData(data, where)
+
+
+def ResolveParameters(preset: Optional[str] = None,
+                      config: Union[None, str, os.PathLike, Mapping] = None,
+                      sets: Iterable[Union[str, Tuple[str, float]]] = ()) -> Dict[str, float]:
+    """Resolve a parameter set from a preset, a config file and ``KEY=VALUE`` overrides.
+
+    Parameters
+    ----------
+    preset : str, optional
+        Preset name (see :data:`~exudyn_worm.presets.PRESETS`); overrides the config's preset.
+        Default: the config's preset, else :data:`DEFAULT_PRESET`.
+    config : str, path-like or dict, optional
+        A TOML file (read with :func:`LoadConfig`) or a dict of the form :func:`LoadConfig` returns.
+    sets : iterable of str or (str, float)
+        Overrides ``'KEY=VALUE'`` (parsed with :func:`ParseSetOption`) or ``(key, value)`` pairs,
+        applied last, in order (the last value of a repeated key wins).
+
+    Returns
+    -------
+    dict
+        The flat parameter dictionary (SI) for :func:`~exudyn_worm.presets.DriveFromParameters`.
+
+    Raises
+    ------
+    ValueError
+        For an unknown preset or key, an invalid value, an unreadable config file, or overrides giving
+        two forms of one quantity (e.g. ``dT`` and ``DT``).
+
+    Examples
+    --------
+    >>> p = ResolveParameters('reel-P6', sets=['DV=0.056'])
+    >>> p['DV'], p['J1'], p['DTV']
+    (0.056, 0.2, 2.0)
+    """
+    if config is None:
+        cfg = {'preset': None, 'parameters': {}}
+    elif isinstance(config, Mapping):
+        cfg = _ConfigFromData(config, 'ResolveParameters: config')
+    elif isinstance(config, (str, os.PathLike)):
+        cfg = LoadConfig(config)
+    else:
+        raise TypeError(f"ResolveParameters: 'config' must be a path or a dict, got {type(config).__name__}")
+    if preset is not None and not isinstance(preset, str):
+        raise TypeError(f"ResolveParameters: 'preset' must be a string, got {type(preset).__name__}")
+    name = preset or cfg['preset'] or DEFAULT_PRESET
+    parameters = ApplyOverrides(GetPreset(name), cfg['parameters'])
+    if isinstance(sets, (str, bytes)):
+        raise TypeError("ResolveParameters: 'sets' must be a list of 'KEY=VALUE' strings, got a single string")
+    overrides: Dict[str, float] = {}
+    for item in sets:
+        if isinstance(item, str):
+            key, value = ParseSetOption(item)
+        elif isinstance(item, tuple) and len(item) == 2:
+            key, value = _CheckKey('ResolveParameters', item[0]), _ParseQuantity(item[0], item[1], 'ResolveParameters')
+        else:
+            raise TypeError(f"ResolveParameters: each of 'sets' must be 'KEY=VALUE' or (key, value), got {item!r}")
+        overrides.pop(key, None)      # a repeated key: the last one wins, in its new position
+        overrides[key] = value
+    _RejectAlternatives(overrides, 'ResolveParameters: the overrides (--set)')
+    return ApplyOverrides(parameters, overrides)
