@@ -55,7 +55,13 @@ class UsageError(Exception):
 
 @contextlib.contextmanager
 def BadInput() -> Iterator[None]:
-    """Turn a ``ValueError``/``TypeError`` raised inside the block into a :class:`UsageError`."""
+    """Context manager: a ``ValueError``/``TypeError`` raised inside the block becomes a :class:`UsageError`.
+
+    Raises
+    ------
+    UsageError
+        With the message of the original error (chained).
+    """
     try:
         yield
     except (ValueError, TypeError) as err:
@@ -96,8 +102,12 @@ class Subcommand:
 def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
     """Add the options shared by every subcommand that works on a parameter set.
 
-    ``--preset NAME``, ``--config FILE.toml``, ``--set KEY=VALUE`` (repeatable) and ``--json``; read
-    them back with :func:`ParametersFromArgs` / :func:`DriveFromArgs`.
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The subcommand's parser; it gets ``--preset NAME``, ``--config FILE.toml``, ``--set KEY=VALUE``
+        (repeatable, stored as the list ``args.set``) and ``--json``. Read them back with
+        :func:`ParametersFromArgs` / :func:`DriveFromArgs`.
     """
     group = parser.add_argument_group('parameter set (preset, then config file, then --set)')
     group.add_argument('--preset', metavar='NAME', default=None,
@@ -113,13 +123,45 @@ def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
 
 
 def ParametersFromArgs(args: argparse.Namespace) -> Dict[str, float]:
-    """Resolve the parameter set of the shared options; bad input raises :class:`UsageError`."""
+    """Resolve the parameter set of the shared options with :func:`~exudyn_worm.config.ResolveParameters`.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments of a subcommand with :func:`AddParameterOptions`.
+
+    Returns
+    -------
+    dict
+        Flat parameter dictionary, SI.
+
+    Raises
+    ------
+    UsageError
+        For any bad input (unknown preset or key, malformed value, wrong unit, bad config file).
+    """
     with BadInput():
         return ResolveParameters(preset=args.preset, config=args.config, sets=args.set)
 
 
 def DriveFromArgs(args: argparse.Namespace) -> Tuple[Dict[str, float], ElasticDrive]:
-    """Resolve the parameter set and build its :class:`ElasticDrive`; bad input raises :class:`UsageError`."""
+    """Resolve the parameter set and build its :class:`ElasticDrive`.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments of a subcommand with :func:`AddParameterOptions`.
+
+    Returns
+    -------
+    (dict, ElasticDrive)
+        The flat parameter dictionary and the drive built from it.
+
+    Raises
+    ------
+    UsageError
+        For bad input or parameters the model rejects (its ``ValueError``/``TypeError``).
+    """
     parameters = ParametersFromArgs(args)
     with BadInput():
         return parameters, DriveFromParameters(parameters)
@@ -381,7 +423,13 @@ SUBCOMMANDS: List[Subcommand] = [
 
 
 def BuildParser() -> argparse.ArgumentParser:
-    """The argument parser with one subparser per entry of :data:`SUBCOMMANDS`."""
+    """Build the argument parser: one subparser per entry of :data:`SUBCOMMANDS`.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        Parse errors raise :class:`UsageError` instead of printing usage and exiting.
+    """
     from . import __version__
     parser = _Parser(prog=PROG, description='Chatter analysis of self-locking worm gears with Exudyn.')
     parser.add_argument('--version', action='version', version=f'%(prog)s {__version__}')
