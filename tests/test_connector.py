@@ -69,7 +69,7 @@ def test_connector_rejects_bad_input():
     nPoint = mbs.AddNode(NodePoint())
     with pytest.raises(ValueError, match="one rotation coordinate"):
         CreateWormGear(mbs, [nodes[0], nPoint], gear=gear)
-    with pytest.raises(TypeError, match="CreateShaft: 'rotors\[1\]' must be a rotor"):
+    with pytest.raises(TypeError, match=r"CreateShaft: 'rotors\[1\]' must be a rotor"):
         from exudyn_worm.drivetrain import CreateShaft
         CreateShaft(mbs, [worm, 3], stiffness=1.)
     with pytest.raises(ValueError, match="CreateRotor: 'inertia' must be > 0 kg\\*m\\^2, got -1"):
