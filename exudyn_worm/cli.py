@@ -552,5 +552,8 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
         message = ' '.join(str(err).split())
         print(f"{PROG}: error: {message}", file=sys.stderr)
         return 2
+    except BrokenPipeError:            # output piped into e.g. `head`: stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
     except SystemExit as err:          # --help, --version
         return err.code if isinstance(err.code, int) else 0 if err.code is None else 2

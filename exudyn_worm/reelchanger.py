@@ -187,13 +187,14 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     ss.timeIntegration.numberOfSteps = steps
     ss.timeIntegration.verboseMode = 0
     ss.timeIntegration.newton.useModifiedNewton = True
-    exu.SetWriteToConsole(False)      # silences Exudyn's note on ObjectGenericODE2 allocations per step
+    printing = exu.config.printToConsole
+    exu.config.printToConsole = False   # silences Exudyn's note on ObjectGenericODE2 allocations per step
     try:
         t0 = _time.perf_counter()
         success = mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
         solveSeconds = _time.perf_counter() - t0
     finally:
-        exu.SetWriteToConsole(True)
+        exu.config.printToConsole = printing
     if not success:
         raise RuntimeError(f"{w}: the Exudyn solver failed (stepSize = {stepSize:g} s); try a smaller stepSize")
 
