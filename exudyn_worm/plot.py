@@ -1,0 +1,409 @@
+"""Plots of worm-drive simulations: the time functions of the paper's Figures 8-18.
+
+This is the only module of the package that uses matplotlib, and it imports it inside the functions,
+so ``import exudyn_worm`` never pulls matplotlib in.
+
+Figures are created with the object-oriented API (:class:`matplotlib.figure.Figure`), which needs no
+GUI and no backend choice: :func:`SaveFigure` writes them anywhere, also on a machine without a
+display. If the caller already works with ``matplotlib.pyplot`` (it is imported), the figure is
+created through pyplot instead, so it shows up with ``plt.show()`` and in notebooks as usual; the
+user's backend is never changed.
+
+=========================  ============================================================  ===========
+``PlotSimulation`` kind    content                                                       paper
+=========================  ============================================================  ===========
+``'acceleration'``         wheel acceleration phi2'' over time                           Fig. 8, 13
+``'zoom'``                 phi2'' and contact parameter S (twin axis) over ``tZoom``     Fig. 9, 14, 16
+``'speed'``                worm speed phi1' and friction state sf (panel below)          Fig. 10, 15
+``'normalForce'``          normal force on the two tooth flanks                          Fig. 11
+``'driveTorque'``          drive-shaft torque M_an (eq. (6)) and S (twin axis)           Fig. 18
+``'overview'``             2 x 2 panels: acceleration, speed, normal force, drive torque
+=========================  ============================================================  ===========
+
+:func:`PlotComparison` stacks one panel per simulation (Fig. 12 and 17: normal force for three backlashes).
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Any, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+__all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'PlotSimulation', 'PlotComparison', 'SaveFigure']
+
+#: the kinds :func:`PlotSimulation` draws
+PLOT_KINDS = ('overview', 'acceleration', 'zoom', 'speed', 'normalForce', 'driveTorque')
+#: named quantities of :func:`PlotComparison` (any key of ``result.series`` works too)
+COMPARISON_QUANTITIES = ('normalForce', 'acceleration', 'speed', 'driveTorque')
+
+# series name -> (axis label, unit shown, factor from SI to the unit shown)
+_AXES = {
+    'alpha2': (r'wheel acceleration $\ddot\varphi_2$', 'rad/s²', 1.),
+    'alpha1': (r'worm acceleration $\ddot\varphi_1$', 'rad/s²', 1.),
+    'omega1': (r'worm speed $\dot\varphi_1$', 'rad/s', 1.),
+    'omega2': (r'wheel speed $\dot\varphi_2$', 'rad/s', 1.),
+    'normalForce': (r'normal force $F_n$', 'kN', 1e-3),
+    'driveTorque': (r'drive shaft torque $M_{an}$ (eq. 6)', 'N·m', 1.),
+    'wormTorque': (r'mesh torque on worm', 'N·m', 1.),
+    'wheelTorque': (r'mesh torque on wheel', 'N·m', 1.),
+    'tangentialForce': (r'tangential force $F_V$', 'kN', 1e-3),
+    'deltaS': (r'normal displacement $\Delta s$', 'µm', 1e6),
+    'deltaPhi': (r'relative angle $\Delta\varphi$', 'mrad', 1e3),
+    'S': ('contact parameter $S$', '–', 1.),
+    'sf': ('friction state $s_f$', '–', 1.),
+}
+_QUANTITY_SERIES = {'acceleration': 'alpha2', 'speed': 'omega1', 'driveTorque': 'driveTorque',
+                    'normalForce': 'normalForce'}
+_DEFAULT_TITLES = {'acceleration': r'Wheel acceleration $\ddot\varphi_2$',
+                   'zoom': r'Wheel acceleration $\ddot\varphi_2$ and contact parameter $S$',
+                   'speed': r'Worm speed $\dot\varphi_1$ and flank friction state $s_f$',
+                   'normalForce': 'Normal force on the tooth flanks',
+                   'driveTorque': r'Drive shaft torque $M_{an}$ and contact parameter $S$',
+                   'overview': 'Simulation overview'}
+_PHASE_COLORS = {'lift': '#dcebf7', 'lower': '#fbe6cf'}
+_C_MAIN, _C_SECOND, _C_FLANK1, _C_FLANK2 = '#1f4e79', '#c0392b', '#1f77b4', '#d62728'
+_LINE_WIDTH = 0.6
+
+
+# ----------------------------------------------------------------------------------------- helpers
+
+def _Label(name: str) -> str:
+    if name in _AXES:
+        text, unit, _ = _AXES[name]
+        return f'{text} [{unit}]'
+    from .results import _UNITS
+    return f"{name} [{_UNITS.get(name, '–')}]"
+
+
+def _Factor(name: str) -> float:
+    return _AXES[name][2] if name in _AXES else 1.
+
+
+def _NewFigure(nrows: int = 1, ncols: int = 1, figsize=(8., 4.2), sharex: bool = False, sharey: bool = False,
+               heightRatios=None):
+    """A figure with a grid of axes: through pyplot if the caller uses pyplot, else a plain Figure."""
+    if 'matplotlib.pyplot' in sys.modules:
+        import matplotlib.pyplot as plt
+        fig = plt.figure(figsize=figsize, layout='constrained')
+    else:
+        from matplotlib.figure import Figure
+        fig = Figure(figsize=figsize, layout='constrained')
+    axes = fig.subplots(nrows, ncols, sharex=sharex, sharey=sharey, squeeze=False,
+                        gridspec_kw=None if heightRatios is None else {'height_ratios': heightRatios})
+    return fig, axes
+
+
+def _CheckResult(where: str, result, names: Sequence[str]):
+    series = getattr(result, 'series', None)
+    if not isinstance(series, Mapping) or not hasattr(result, 'time'):
+        raise TypeError(f"{where}: 'result' must be a SimulationResult, got {type(result).__name__}")
+    missing = [n for n in names if n not in series]
+    if missing:
+        raise ValueError(f"{where}: the result has no series {', '.join(missing)}; "
+                         f"available: {', '.join(series)}")
+
+
+def _Interval(where: str, result, tZoom) -> Tuple[np.ndarray, Tuple[float, float]]:
+    """Mask of the output times in ``tZoom`` (whole record if None) and the interval itself."""
+    t = np.asarray(result.time)
+    if tZoom is None:
+        return np.ones(t.shape, bool), (float(t[0]), float(t[-1]))
+    try:
+        t0, t1 = (float(v) for v in tZoom)
+    except (TypeError, ValueError):
+        raise TypeError(f"{where}: 'tZoom' must be a pair (t0, t1) of times in s, got {tZoom!r}") from None
+    if not t0 < t1:
+        raise ValueError(f"{where}: 'tZoom' must satisfy t0 < t1, got ({t0:g}, {t1:g}) s")
+    mask = (t >= t0) & (t <= t1)
+    if mask.sum() < 2:
+        raise ValueError(f"{where}: 'tZoom' = ({t0:g}, {t1:g}) s holds fewer than 2 output times "
+                         f"(simulated {t[0]:g} to {t[-1]:g} s)")
+    return mask, (t0, t1)
+
+
+def _Phases(result) -> list:
+    """Lift / lower intervals of a reel-changer run: the load torque -m g l cos(phi2) opposes the wheel's
+    motion while lifting (cos(phi2) * sign(omega2) > 0). Empty for other simulations."""
+    if 'maxLoadTorque' not in getattr(result, 'info', {}) or 'phi2' not in result.series:
+        return []
+    t = np.asarray(result.time)
+    direction = np.sign(np.mean(result.series['omega2'])) or 1.
+    lifting = np.cos(result.series['phi2']) * direction > 0
+    edges = np.flatnonzero(np.diff(lifting.astype(np.int8))) + 1
+    bounds = np.concatenate([[0], edges, [t.size]])
+    return [(float(t[a]), float(t[min(b, t.size - 1)]), 'lift' if lifting[a] else 'lower')
+            for a, b in zip(bounds[:-1], bounds[1:])]
+
+
+def _ShadePhases(ax, phases, interval, labels: bool = True):
+    """Shade lift / lower phases inside ``interval``; name them at the top if there is room."""
+    import matplotlib.transforms as mtransforms
+    t0, t1 = interval
+    span = t1 - t0
+    trans = mtransforms.blended_transform_factory(ax.transData, ax.transAxes)
+    for a, b, kind in phases:
+        a, b = max(a, t0), min(b, t1)
+        if b <= a:
+            continue
+        ax.axvspan(a, b, color=_PHASE_COLORS[kind], alpha=0.6, lw=0, zorder=0)
+        if labels and (b - a) > 0.08 * span:
+            ax.text(0.5 * (a + b), 0.98, kind, transform=trans, ha='center', va='top', fontsize=8,
+                    color='0.35', zorder=1)
+
+
+def _Decorate(ax, interval):
+    ax.grid(True, color='0.85', lw=0.5)
+    ax.set_xlim(*interval)
+    ax.margins(y=0.08)
+
+
+def _TwinStep(ax, t, values, label: str, color: str, limits=(-1.6, 1.6)):
+    """Draw a contact/friction state on a twin y axis with ticks at -1, 0, 1."""
+    twin = ax.twinx()
+    twin.plot(t, values, color=color, lw=0.9, label=label)
+    twin.set_ylim(*limits)
+    twin.set_yticks([-1, 0, 1])
+    twin.set_ylabel(label, color=color)
+    twin.tick_params(axis='y', colors=color)
+    return twin
+
+
+def _DrawSeries(ax, result, name, mask, color=_C_MAIN, label=None, lw=_LINE_WIDTH):
+    t = np.asarray(result.time)[mask]
+    return ax.plot(t, np.asarray(result.series[name])[mask] * _Factor(name), color=color, lw=lw, label=label)
+
+
+def _DrawNormalForce(ax, result, mask, legend=True):
+    t = np.asarray(result.time)[mask]
+    f1, f2 = (np.asarray(f)[mask] * 1e-3 for f in result.normalForceFlanks)
+    ax.plot(t, f1, color=_C_FLANK1, lw=_LINE_WIDTH, label=r'flank 1 ($\Delta s > 0$, worm drives)')
+    ax.plot(t, f2, color=_C_FLANK2, lw=_LINE_WIDTH, label=r'flank 2 ($\Delta s < 0$)')
+    ax.set_ylabel(_Label('normalForce'))
+    if legend:                                 # below the phase names at the top
+        ax.legend(loc='upper left', bbox_to_anchor=(0., 0.92), fontsize=8, framealpha=0.9)
+
+
+def _Draw(kind, ax, result, mask, interval, phases, twin: bool = True):
+    """Draw one panel of ``kind`` on ``ax``."""
+    t = np.asarray(result.time)[mask]
+    if phases:
+        _ShadePhases(ax, phases, interval, labels=(kind != 'sf'))
+    if kind in ('acceleration', 'zoom'):
+        _DrawSeries(ax, result, 'alpha2', mask)
+        ax.set_ylabel(_Label('alpha2'), color=_C_MAIN if kind == 'zoom' and twin else 'black')
+        if kind == 'zoom' and twin:
+            _TwinStep(ax, t, result.series['S'][mask], 'contact parameter $S$', _C_SECOND)
+    elif kind == 'speed':
+        omega = np.asarray(result.series['omega1'])[mask]
+        _DrawSeries(ax, result, 'omega1', mask)
+        ax.set_ylabel(_Label('omega1'))
+        if omega.min() < 0.25 * max(omega.max(), 0.):          # near standstill: show the zero line
+            ax.axhline(0., color='0.4', lw=0.6)
+    elif kind == 'sf':
+        ax.plot(t, np.asarray(result.series['sf'])[mask], color=_C_SECOND, lw=0.9)
+        ax.set_ylim(-1.3, 1.3)
+        ax.set_yticks([-1, 0, 1])
+        ax.set_ylabel('$s_f$ [–]')
+    elif kind == 'normalForce':
+        _DrawNormalForce(ax, result, mask)
+    elif kind == 'driveTorque':
+        _DrawSeries(ax, result, 'driveTorque', mask)
+        ax.set_ylabel(_Label('driveTorque'), color=_C_MAIN)
+        ax.axhline(0., color='0.4', lw=0.6)
+        if twin:
+            _TwinStep(ax, t, result.series['S'][mask], 'contact parameter $S$', _C_SECOND)
+    else:                                                             # any series by name
+        _DrawSeries(ax, result, kind, mask)
+        ax.set_ylabel(_Label(kind))
+    _Decorate(ax, interval)
+    ax.set_xlabel('time $t$ [s]')
+
+
+_REQUIRED = {'acceleration': ('alpha2',), 'zoom': ('alpha2', 'S'), 'speed': ('omega1', 'sf'),
+             'normalForce': ('normalForce',), 'driveTorque': ('driveTorque', 'S'),
+             'overview': ('alpha2', 'omega1', 'normalForce', 'driveTorque')}
+
+
+# ---------------------------------------------------------------------------------- public functions
+
+def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, float]] = None,
+                   title: Optional[str] = None, phases: Union[bool, Sequence] = True, figsize=None):
+    """Plot the time functions of one simulation (the paper's Figures 8-11, 13-16, 18).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        Result of e.g. :func:`exudyn_worm.reelchanger.SimulateReelChanger`.
+    kind : str
+        One of :data:`PLOT_KINDS`: ``'acceleration'`` (Fig. 8/13), ``'zoom'`` (phi2'' and S, Fig. 9/14/16),
+        ``'speed'`` (phi1' and sf, Fig. 10/15), ``'normalForce'`` (both flanks, Fig. 11),
+        ``'driveTorque'`` (M_an and S, Fig. 18) or ``'overview'`` (2 x 2 panels).
+    tZoom : (float, float), optional
+        Time interval in s to show. Default: the whole record, except for ``'zoom'``, which shows
+        0.1 s in the middle of the record.
+    title : str, optional
+        Figure title (e.g. with the paper's figure number); default: a description of ``kind``.
+    phases : bool or sequence of (t0, t1, 'lift' | 'lower')
+        Shade the lift / lower phases. True (default): derived from phi2 for a reel-changer result
+        (none for other simulations); False: no shading; or give the intervals explicitly.
+    figsize : (float, float), optional
+        Figure size in inches.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``kind``, a ``tZoom`` outside the record or a result without the needed series.
+    TypeError
+        If ``result`` is not a simulation result or ``tZoom`` is not a pair of numbers.
+    """
+    w = 'PlotSimulation'
+    if kind not in PLOT_KINDS:
+        raise ValueError(f"{w}: 'kind' must be one of {', '.join(map(repr, PLOT_KINDS))}, got {kind!r}")
+    _CheckResult(w, result, _REQUIRED[kind])
+    if kind == 'zoom' and tZoom is None:
+        tm = 0.5 * (float(result.time[0]) + float(result.time[-1]))
+        tZoom = (tm, min(tm + 0.1, float(result.time[-1])))
+    mask, interval = _Interval(w, result, tZoom)
+    if phases is True:
+        phases = _Phases(result)
+    elif phases is False or phases is None:
+        phases = []
+    else:
+        phases = [(float(a), float(b), str(k)) for a, b, k in phases]
+        bad = [k for _, _, k in phases if k not in _PHASE_COLORS]
+        if bad:
+            raise ValueError(f"{w}: phase names must be 'lift' or 'lower', got {bad[0]!r}")
+    title = _DEFAULT_TITLES[kind] if title is None else str(title)
+
+    if kind == 'overview':
+        fig, axes = _NewFigure(2, 2, figsize=figsize or (12., 7.), sharex=True)
+        for ax, k in zip(axes.flat, ('acceleration', 'speed', 'normalForce', 'driveTorque')):
+            _Draw(k, ax, result, mask, interval, phases, twin=False)
+            ax.set_title(_DEFAULT_TITLES[k].split(' and ')[0], fontsize=10)
+        for ax in axes[0]:
+            ax.set_xlabel('')
+        fig.suptitle(title)
+        return fig
+
+    if kind == 'speed':                    # speed on top, friction state below: both stay readable
+        fig, axes = _NewFigure(2, 1, figsize=figsize or (8., 5.), sharex=True, heightRatios=(3, 1))
+        _Draw('speed', axes[0, 0], result, mask, interval, phases)
+        _Draw('sf', axes[1, 0], result, mask, interval, phases)
+        axes[0, 0].set_xlabel('')
+        axes[1, 0].set_title(r'friction state $s_f$ (±1 sliding, |$s_f$| < 1 sticking)', loc='left', fontsize=9)
+        axes[0, 0].set_title(title, fontsize=11)
+        return fig
+    fig, axes = _NewFigure(1, 1, figsize=figsize or (8., 4.2))
+    ax = axes[0, 0]
+    _Draw(kind, ax, result, mask, interval, phases)
+    ax.set_title(title, fontsize=11)
+    return fig
+
+
+def PlotComparison(results: Mapping[str, Any], quantity: str = 'normalForce',
+                   tZoom: Optional[Tuple[float, float]] = None, title: Optional[str] = None,
+                   sharey: bool = True, phases: bool = True, figsize=None):
+    """Stacked panels of one quantity for several simulations, top to bottom in the mapping's order
+    (Fig. 12 and 17: normal force for the backlashes 0.25, 0.5 and 0.75 mm).
+
+    Parameters
+    ----------
+    results : mapping of str to SimulationResult
+        Panel label -> result.
+    quantity : str
+        ``'normalForce'`` (both flanks), ``'acceleration'`` (phi2''), ``'speed'`` (phi1'),
+        ``'driveTorque'`` (M_an), or any key of ``result.series``.
+    tZoom : (float, float), optional
+        Time interval in s (default: the whole record of each result).
+    title : str, optional
+        Figure title.
+    sharey : bool
+        Same y scale in all panels (default), so amplitudes compare at a glance.
+    phases : bool
+        Shade lift / lower phases of reel-changer results.
+    figsize : (float, float), optional
+        Figure size in inches (default: 8 wide, 2.3 per panel).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ValueError
+        For an empty ``results``, an unknown ``quantity`` or a ``tZoom`` outside a record.
+    TypeError
+        If ``results`` is not a mapping of results.
+    """
+    w = 'PlotComparison'
+    if not isinstance(results, Mapping):
+        raise TypeError(f"{w}: 'results' must be a dict of label -> SimulationResult, got {type(results).__name__}")
+    if not results:
+        raise ValueError(f"{w}: 'results' is empty")
+    series = _QUANTITY_SERIES.get(quantity, quantity)
+    for label, result in results.items():
+        _CheckResult(w, result, (series,))
+    n = len(results)
+    fig, axes = _NewFigure(n, 1, figsize=figsize or (8., 1.2 + 2.3 * n), sharex=True, sharey=sharey)
+    for i, (ax, (label, result)) in enumerate(zip(axes[:, 0], results.items())):
+        mask, interval = _Interval(w, result, tZoom)
+        if phases:
+            _ShadePhases(ax, _Phases(result), interval, labels=(i == 0))
+        if series == 'normalForce':
+            _DrawNormalForce(ax, result, mask, legend=False)
+            ax.set_ylabel('$F_n$ [kN]')
+            if i == 0:
+                fig.legend(*ax.get_legend_handles_labels(), loc='outside lower center', ncols=2, fontsize=9,
+                           frameon=False)
+        else:
+            _DrawSeries(ax, result, series, mask)
+            ax.set_ylabel(_Label(series) if n == 1 else f"[{_Label(series).rsplit('[', 1)[-1]}")
+        _Decorate(ax, interval)
+        m = np.max(np.abs(np.asarray(result.series[series])[mask])) * _Factor(series)
+        unit = _Label(series).rsplit('[', 1)[-1].rstrip(']')
+        ax.set_title(str(label), loc='left', fontsize=10, fontweight='bold')
+        ax.set_title(f'max |{series if series not in _AXES else _AXES[series][0].split(" ")[-1]}| = {m:.4g} {unit}',
+                     loc='right', fontsize=9)
+    axes[-1, 0].set_xlabel('time $t$ [s]')
+    if title is None:
+        title = _DEFAULT_TITLES.get(quantity, _Label(series))
+    fig.suptitle(title)
+    return fig
+
+
+def SaveFigure(fig, path, dpi: int = 150) -> Path:
+    """Save ``fig`` to ``path`` (format from the suffix, e.g. ``.png``, ``.pdf``), creating the folder.
+
+    Works without a display: a plain :class:`~matplotlib.figure.Figure` renders with Agg.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        Figure to save (e.g. from :func:`PlotSimulation`).
+    path : str or Path
+        Output file.
+    dpi : int
+        Resolution in dots per inch (default 150).
+
+    Returns
+    -------
+    Path
+        The path written.
+
+    Raises
+    ------
+    TypeError
+        If ``fig`` is not a matplotlib figure.
+    """
+    from matplotlib.figure import Figure
+    if not isinstance(fig, Figure):
+        raise TypeError(f"SaveFigure: 'fig' must be a matplotlib Figure, got {type(fig).__name__}")
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=dpi)
+    return path
