@@ -12,7 +12,7 @@ from typing import Any, Dict
 from ._checks import CheckNonNegative, CheckPositive, CheckReal
 from ._userfunctions import AddGenericForce, SetOffsetFunction
 
-__all__ = ['CreateRotor', 'CreateShaft', 'CreatePrescribedRotation', 'CreateTorque']
+__all__ = ['CreateRotor', 'CreateShaft', 'CreatePrescribedRotation', 'CreateRotorTorque']
 
 
 def _Marker(rotor, where, name):
@@ -99,7 +99,7 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
     return {'objectNumber': o, 'groundNodeNumber': nGround}
 
 
-def CreateTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True) -> Dict[str, Any]:
+def CreateRotorTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True) -> Dict[str, Any]:
     """Apply a torque ``law.Torque(phi, omega, t, ops)`` to ``rotor``.
 
     Use it for the reel changer's load (:class:`~exudyn_worm.profiles.GravityLeverTorque`), a motor
@@ -112,7 +112,7 @@ def CreateTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True) -> D
     dict
         ``objectNumber``.
     """
-    w = 'CreateTorque'
+    w = 'CreateRotorTorque'
     if not hasattr(law, 'Torque'):
         raise TypeError(f"{w}: 'law' must have Torque(phi, omega, t, ops), got {type(law).__name__}")
     node = mbs.GetMarker(_Marker(rotor, w, 'rotor'))['nodeNumber']

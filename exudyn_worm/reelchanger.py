@@ -17,7 +17,7 @@ from scipy.optimize import brentq
 from .connector import CreateWormGear, WormGearConnector
 from .contact import MATH_OPS, ContactOptions, MeshContact
 from .drive import ElasticDrive
-from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateTorque
+from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
 from .presets import DriveFromParameters
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
@@ -135,7 +135,7 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     CreateShaft(mbs, [motor, worm], stiffness=drive.kT, damping=drive.dT, name='driveShaft')
     connector = CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='wormGear',
                                contactOptions=contactOptions, useSymbolic=useSymbolic)
-    CreateTorque(mbs, wheel, load, name='reelLoad', useSymbolic=useSymbolic)
+    CreateRotorTorque(mbs, wheel, load, name='reelLoad', useSymbolic=useSymbolic)
 
     sensors = {}
     OVT = exu.OutputVariableType

@@ -1,0 +1,120 @@
+"""Drivetrain builders and motion/load laws: ordinary Exudyn items around the connector."""
+import math
+
+import numpy as np
+import pytest
+
+import exudyn as exu
+import exudyn_worm as ew
+from exudyn_worm.contact import MATH_OPS, NUMPY_OPS
+from exudyn_worm.profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque,
+                                  LinearMotorCharacteristic, StartStopProfile)
+
+
+def test_start_stop_profile_is_smooth_and_consistent():
+    p = StartStopProfile(speed=10., rampTime=1., brakeTime=5.)
+    t = np.linspace(0, 7, 70001)
+    angle, speed = p.AngleAndSpeed(t, NUMPY_OPS)
+    np.testing.assert_allclose(np.gradient(angle, t), speed, atol=1e-3)     # speed is the angle's rate
+    assert speed[0] == 0 and speed[-1] == pytest.approx(0, abs=1e-12)
+    assert angle[-1] == pytest.approx(10. * 5.)                            # 0.5 s lost in each ramp
+    assert np.all(np.diff(angle) >= -1e-12)
+    with pytest.raises(ValueError, match="'brakeTime' must be >= rampTime = 1 s, got 0.5 s"):
+        StartStopProfile(speed=1., rampTime=1., brakeTime=0.5)
+
+
+def test_torque_laws():
+    assert GravityLeverTorque(175., 1.2).maximum == pytest.approx(2060., abs=1.)   # paper: M2 = 2060 N*m
+    assert GravityLeverTorque(175., 1.2).Torque(0., 0., 0., MATH_OPS) == pytest.approx(-2060., abs=1.)
+    motor = LinearMotorCharacteristic(stallTorque=10., noLoadSpeed=100.)
+    assert motor.Torque(0., 50., 0., MATH_OPS) == pytest.approx(5.)
+    assert motor.Torque(0., 150., 0., MATH_OPS) == 0.
+    friction = CoulombViscousFriction(coulombTorque=2., viscous=0.1, regularizationSpeed=0.1)
+    assert friction.Torque(0., 10., 0., MATH_OPS) == pytest.approx(-3.)
+    assert friction.Torque(0., -0.05, 0., MATH_OPS) == pytest.approx(1. + 0.005)
+    with pytest.raises(ValueError, match="'mass' must be >= 0 kg, got -1 kg"):
+        GravityLeverTorque(-1., 1.)
+
+
+def _Solve(mbs, endTime, h=1e-3):
+    mbs.Assemble()
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False
+    ss.timeIntegration.endTime = endTime
+    ss.timeIntegration.numberOfSteps = int(endTime / h)
+    ss.timeIntegration.verboseMode = 0
+    mbs.SolveDynamic(ss)
+
+
+@pytest.mark.parametrize('useSymbolic', [True, False])
+def test_prescribed_start_up_drives_the_worm(useSymbolic, tmp_path, monkeypatch):
+    """Start from rest with a smooth start-up; the worm follows the motor through the shaft."""
+    monkeypatch.chdir(tmp_path)
+    drive = ew.DriveFromParameters(ew.GetPreset('reel-P2'))
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    motor = ew.CreateRotor(mbs, 1e-3)
+    worm = ew.CreateRotor(mbs, drive.J1)
+    wheel = ew.CreateRotor(mbs, drive.J2)
+    ew.CreatePrescribedRotation(mbs, motor, StartStopProfile(speed=20., rampTime=0.5), useSymbolic=useSymbolic)
+    ew.CreateShaft(mbs, [motor, worm], stiffness=drive.kT, damping=drive.dT)
+    ew.CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, useSymbolic=useSymbolic)
+    ew.CreateRotorTorque(mbs, wheel, CoulombViscousFriction(coulombTorque=50., regularizationSpeed=0.01),
+                         useSymbolic=useSymbolic)
+    _Solve(mbs, 1.)
+    omega1 = mbs.GetNodeOutput(worm['nodeNumber'], exu.OutputVariableType.Coordinates_t)
+    omega2 = mbs.GetNodeOutput(wheel['nodeNumber'], exu.OutputVariableType.Coordinates_t)
+    assert omega1 == pytest.approx(20., rel=1e-2)
+    assert omega2 == pytest.approx(20. / drive.gear.ratio, rel=1e-2)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_motor_characteristic_reaches_its_operating_point():
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    rotor = ew.CreateRotor(mbs, 0.01)
+    ew.CreateRotorTorque(mbs, rotor, LinearMotorCharacteristic(stallTorque=2., noLoadSpeed=100.))
+    ew.CreateRotorTorque(mbs, rotor, CoulombViscousFriction(coulombTorque=1.))
+    _Solve(mbs, 6.)                                        # time constant 0.01/0.02 = 0.5 s
+    omega = mbs.GetNodeOutput(rotor['nodeNumber'], exu.OutputVariableType.Coordinates_t)
+    assert omega == pytest.approx(50., rel=1e-3)          # 2 (1 - w/100) = 1
+
+
+def test_neighbouring_inertia_adds_a_mode():
+    """Figure 19: an extra inertia on the drive side is just another rotor and shaft; the linearized
+    system then has three modes."""
+    drive = ew.DriveFromParameters(ew.GetPreset('reel-P1'))
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    motor, inertia4 = ew.CreateRotor(mbs, 1e-3), ew.CreateRotor(mbs, 0.05)
+    worm, wheel = ew.CreateRotor(mbs, drive.J1, initialAngle=1e-3), ew.CreateRotor(mbs, drive.J2)
+    ew.CreatePrescribedRotation(mbs, motor, ConstantSpeed(0.))
+    ew.CreateShaft(mbs, [motor, inertia4], stiffness=2e4, damping=1.)
+    ew.CreateShaft(mbs, [inertia4, worm], stiffness=drive.kT, damping=drive.dT)
+    ew.CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear,
+                      contactOptions=ew.ContactOptions(fixedS=1, dampingCanPull=True))
+    mbs.Assemble()
+    values, _ = mbs.ComputeODE2Eigenvalues(computeComplexEigenvalues=True, useAbsoluteValues=False)
+    assert np.count_nonzero(np.asarray(values).imag > 1.) == 3
+
+
+def test_builders_validate_arguments():
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    rotor = ew.CreateRotor(mbs, 1.)
+    with pytest.raises(ValueError, match="CreateShaft: 'stiffness' must be > 0 N\\*m/rad, got 0 N\\*m/rad"):
+        ew.CreateShaft(mbs, [rotor, ew.CreateRotor(mbs, 1.)], stiffness=0.)
+    with pytest.raises(TypeError, match="CreatePrescribedRotation: 'profile' must have AngleAndSpeed"):
+        ew.CreatePrescribedRotation(mbs, rotor, 3.)
+    with pytest.raises(TypeError, match="CreateRotorTorque: 'law' must have Torque"):
+        ew.CreateRotorTorque(mbs, rotor, lambda x: x)
+    with pytest.raises(TypeError, match="CreateRotor: 'initialSpeed' must be a real number"):
+        ew.CreateRotor(mbs, 1., initialSpeed='fast')
+
+
+def test_main_system_methods_are_explicit():
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    ew.AddMainSystemMethods()
+    assert mbs.CreateRotor(inertia=0.1)['nodeNumber'] is not None
+    assert exu.MainSystem.CreateTorque is not ew.CreateRotorTorque        # Exudyn's own builder untouched
