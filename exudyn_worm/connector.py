@@ -12,7 +12,7 @@ are not supported: their rotation parameters wrap at +-pi (see docs/exudyn notes
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, List, Sequence
+from typing import Any, Dict, List, Sequence
 
 import numpy as np
 
@@ -25,19 +25,55 @@ __all__ = ['WormGearConnector', 'CreateWormGear']
 
 @dataclass
 class WormGearConnector:
-    """What :func:`CreateWormGear` created, and the law to post-process its results."""
+    """What :func:`CreateWormGear` created, and the law to post-process its results.
+
+    Use :meth:`AddSensors` before ``mbs.Assemble()`` to record the worm and wheel states, then
+    :meth:`StoredMeshState` after the solve for every mesh quantity over time.
+    """
     objectNumber: Any
     nodeNumbers: List[Any]
     gear: WormGear
     options: ContactOptions
     name: str = ''
     userFunction: Any = field(default=None, repr=False)
+    referenceAngles: List[float] = field(default_factory=lambda: [0., 0.])
+    sensors: Dict[str, Any] = field(default_factory=dict)
 
     def Evaluate(self, phi1, phi2, omega1, omega2) -> MeshState:
-        """Mesh quantities (normal force, S, sf, torques, ...) for arrays of worm/wheel states."""
-        return MeshContact(self.gear, np.asarray(phi1, dtype=float), np.asarray(phi2, dtype=float),
+        """Mesh quantities (normal force, S, sf, torques, ...) for arrays of worm/wheel states.
+
+        ``phi1, phi2`` are the node coordinates (the node reference angles are added here).
+        """
+        return MeshContact(self.gear, np.asarray(phi1, dtype=float) + self.referenceAngles[0],
+                           np.asarray(phi2, dtype=float) + self.referenceAngles[1],
                            np.asarray(omega1, dtype=float), np.asarray(omega2, dtype=float),
                            self.options, NUMPY_OPS)
+
+    def AddSensors(self, mbs) -> Dict[str, Any]:
+        """Add internally stored node sensors for the worm (1) and wheel (2): ``phi1, omega1, alpha1,
+        phi2, omega2, alpha2``. Nothing is written to files. Returns the sensor numbers."""
+        import exudyn as exu
+        from exudyn.itemInterface import SensorNode
+        OVT = exu.OutputVariableType
+        for index, node in zip('12', self.nodeNumbers):
+            for prefix, ovt in (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t), ('alpha', OVT.Coordinates_tt)):
+                self.sensors[prefix + index] = mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=ovt,
+                                                                        storeInternal=True, writeToFile=False))
+        return self.sensors
+
+    def StoredStates(self, mbs) -> Dict[str, np.ndarray]:
+        """Stored sensor data after a solve: ``time`` and the arrays of :meth:`AddSensors`."""
+        if not self.sensors:
+            raise ValueError(f"WormGearConnector '{self.name}': call AddSensors(mbs) before mbs.Assemble()")
+        data = {k: mbs.GetSensorStoredData(s) for k, s in self.sensors.items()}
+        out = {'time': data['phi1'][:, 0]}
+        out.update({k: v[:, 1] for k, v in data.items()})
+        return out
+
+    def StoredMeshState(self, mbs) -> MeshState:
+        """Mesh quantities over the stored time steps (requires :meth:`AddSensors`)."""
+        s = self.StoredStates(mbs)
+        return self.Evaluate(s['phi1'], s['phi2'], s['omega1'], s['omega2'])
 
 
 def _CheckNode(mbs, n, name):
@@ -102,4 +138,5 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
 
     oItem, userFunction = AddGenericForce(mbs, nodeNumbers, WormGearLaw, name=name, useSymbolic=useSymbolic)
     return WormGearConnector(objectNumber=oItem, nodeNumbers=list(nodeNumbers), gear=gear,
-                             options=contactOptions, name=name, userFunction=userFunction)
+                             options=contactOptions, name=name, userFunction=userFunction,
+                             referenceAngles=[ref1, ref2])

@@ -137,14 +137,10 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
                                contactOptions=contactOptions, useSymbolic=useSymbolic)
     CreateRotorTorque(mbs, wheel, load, name='reelLoad', useSymbolic=useSymbolic)
 
-    sensors = {}
-    OVT = exu.OutputVariableType
-    for rotorName, rotor, idx in (('motor', motor, '0'), ('worm', worm, '1'), ('wheel', wheel, '2')):
-        for prefix, ovt in (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t), ('alpha', OVT.Coordinates_tt)):
-            if rotorName == 'motor' and prefix == 'alpha':
-                continue
-            sensors[prefix + idx] = mbs.AddSensor(SensorNode(nodeNumber=rotor['nodeNumber'], outputVariableType=ovt,
-                                                             storeInternal=True, writeToFile=False))
+    sensors = dict(connector.AddSensors(mbs))
+    for prefix, ovt in (('phi0', exu.OutputVariableType.Coordinates), ('omega0', exu.OutputVariableType.Coordinates_t)):
+        sensors[prefix] = mbs.AddSensor(SensorNode(nodeNumber=motor['nodeNumber'], outputVariableType=ovt,
+                                                   storeInternal=True, writeToFile=False))
     return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector,
                             {'motor': motor, 'worm': worm, 'wheel': wheel}, sensors)
 
@@ -198,9 +194,10 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     if not success:
         raise RuntimeError(f"{w}: the Exudyn solver failed (stepSize = {stepSize:g} s); try a smaller stepSize")
 
-    data = {k: mbs.GetSensorStoredData(s) for k, s in model.sensors.items()}
-    time = data['phi1'][:, 0]
-    series = {k: v[:, 1] for k, v in data.items()}
+    series = model.connector.StoredStates(mbs)
+    time = series.pop('time')
+    for key in ('phi0', 'omega0'):
+        series[key] = mbs.GetSensorStoredData(model.sensors[key])[:, 1]
     mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'])
     drive = model.drive
     series.update(deltaPhi=mesh.deltaPhi, deltaS=mesh.deltaS, normalForce=mesh.normalForce, S=mesh.S, sf=mesh.sf,

@@ -118,3 +118,33 @@ def test_main_system_methods_are_explicit():
     ew.AddMainSystemMethods()
     assert mbs.CreateRotor(inertia=0.1)['nodeNumber'] is not None
     assert exu.MainSystem.CreateTorque is not ew.CreateRotorTorque        # Exudyn's own builder untouched
+
+
+def test_connector_with_explicit_solver_and_sensors(tmp_path, monkeypatch):
+    """Explicit solvers work when the drive has no constraint (here a motor characteristic), and the
+    connector's sensors give the mesh quantities over time."""
+    monkeypatch.chdir(tmp_path)
+    drive = ew.DriveFromParameters(ew.GetPreset('reel-P2'))
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    motor = ew.CreateRotor(mbs, 0.05, initialSpeed=40.)
+    worm = ew.CreateRotor(mbs, drive.J1, initialSpeed=40.)
+    wheel = ew.CreateRotor(mbs, drive.J2, initialSpeed=40. / drive.gear.ratio)
+    ew.CreateRotorTorque(mbs, motor, LinearMotorCharacteristic(stallTorque=400., noLoadSpeed=50.))
+    ew.CreateShaft(mbs, [motor, worm], stiffness=drive.kT, damping=drive.dT)
+    mesh = ew.CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear)
+    ew.CreateRotorTorque(mbs, wheel, GravityLeverTorque(100., 1.))
+    mesh.AddSensors(mbs)
+    mbs.Assemble()
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False
+    ss.timeIntegration.endTime = 0.5
+    ss.timeIntegration.numberOfSteps = 5000
+    ss.timeIntegration.verboseMode = 0
+    mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.RK44)
+    state = mesh.StoredMeshState(mbs)
+    assert np.all(state.S[10:] == 1.)                  # worm drives, lifting: S = +1 throughout
+    # quasi-static end state: the wheel torque balances the load 100*9.81*cos(phi2)
+    phi2 = mesh.StoredStates(mbs)['phi2'][-1]
+    assert state.wheelTorque[-1] == pytest.approx(981. * math.cos(phi2), rel=0.05)
+    assert list(tmp_path.iterdir()) == []
