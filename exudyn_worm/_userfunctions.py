@@ -17,10 +17,28 @@ __all__ = ['AddGenericForce', 'SetOffsetFunction']
 _KEEP_ALIVE = 'exudynWorm.symbolicUserFunctions'   # mbs.variables key: expression trees must outlive the solve
 
 
-def _Record(mbs, fnDict, userFunctionName, itemIndex):
+def _RecordSymbolic(mbs, itemIndex, userFunctionName: str, arguments, returnType: str, build: Callable):
+    """Record ``build(args, ops)`` as an Exudyn symbolic user function of ``itemIndex``.
+
+    ``arguments`` lists ``(name, type, size)`` after the leading MainSystem, with Exudyn's type names
+    (``'Real'``, ``'Index'``, ``'StdVector'``); the returned expression has type ``returnType``.
+    """
     import exudyn as exu
-    uf = exu.symbolic.UserFunction()
-    uf.SetUserFunctionFromDict(mbs, fnDict, userFunctionName, itemIndex, 'None')
+    esym = exu.symbolic
+    recording = esym.GetRecording()
+    esym.SetRecording(True)
+    try:
+        args = [mbs] + [esym.Vector(name, [0.] * size) if typ == 'StdVector' else esym.Real(name, 0.)
+                        for name, typ, size in arguments]
+        value = build(args, SymbolicOps())
+        fnDict = {'functionName': userFunctionName, 'argList': args,
+                  'argTypeList': ['MainSystem'] + [typ for _, typ, _ in arguments],
+                  'returnValue': esym.Vector(list(value)) if returnType == 'StdVector' else value,
+                  'returnType': returnType}
+        uf = esym.UserFunction()
+        uf.SetUserFunctionFromDict(mbs, fnDict, userFunctionName, itemIndex, 'None')
+    finally:
+        esym.SetRecording(recording)
     mbs.variables.setdefault(_KEEP_ALIVE, []).append((uf, fnDict))
     return uf
 
@@ -31,27 +49,16 @@ def AddGenericForce(mbs, nodeNumbers: Sequence[Any], law: Callable, name: str = 
 
     Returns ``(objectNumber, userFunction)``.
     """
-    import exudyn as exu
     from exudyn.itemInterface import ObjectGenericODE2
     n = len(nodeNumbers)
     zeros = np.zeros((n, n))
     oItem = mbs.AddObject(ObjectGenericODE2(nodeNumbers=list(nodeNumbers), massMatrix=zeros,
                                             stiffnessMatrix=zeros, dampingMatrix=zeros, name=name))
     if useSymbolic:
-        esym = exu.symbolic
-        ops = SymbolicOps()
-        recording = esym.GetRecording()
-        esym.SetRecording(True)
-        try:
-            args = [mbs, esym.Real('t', 0.), esym.Real('itemNumber', 0), esym.Vector('q', [0.] * n),
-                    esym.Vector('q_t', [0.] * n)]
-            forces = law(args[1], args[3], args[4], ops)
-            fnDict = {'functionName': 'GenericForce', 'argList': args,
-                      'argTypeList': ['MainSystem', 'Real', 'Index', 'StdVector', 'StdVector'],
-                      'returnValue': esym.Vector(list(forces)), 'returnType': 'StdVector'}
-            userFunction = _Record(mbs, fnDict, 'forceUserFunction', oItem)
-        finally:
-            esym.SetRecording(recording)
+        userFunction = _RecordSymbolic(mbs, oItem, 'forceUserFunction',
+                                       [('t', 'Real', 1), ('itemNumber', 'Index', 1), ('q', 'StdVector', n),
+                                        ('q_t', 'StdVector', n)], 'StdVector',
+                                       lambda args, ops: law(args[1], args[3], args[4], ops))
     else:
         def userFunction(mbs, t, itemNumber, q, q_t):
             return list(law(t, q, q_t, MATH_OPS))
@@ -62,23 +69,11 @@ def AddGenericForce(mbs, nodeNumbers: Sequence[Any], law: Callable, name: str = 
 def SetOffsetFunction(mbs, objectNumber, law: Callable, useSymbolic: bool = True):
     """Set ``offsetUserFunction`` (and ``offsetUserFunction_t`` for index-2 solvers) of a
     coordinate constraint from ``law(t, ops) -> (offset, offsetRate)``."""
-    import exudyn as exu
     if useSymbolic:
-        esym = exu.symbolic
-        ops = SymbolicOps()
-        recording = esym.GetRecording()
-        esym.SetRecording(True)
-        try:
-            ufs = []
-            for k, ufName in enumerate(('offsetUserFunction', 'offsetUserFunction_t')):
-                args = [mbs, esym.Real('t', 0.), esym.Real('itemNumber', 0), esym.Real('lOffset', 0.)]
-                value = law(args[1], ops)[k]
-                fnDict = {'functionName': 'Offset', 'argList': args,
-                          'argTypeList': ['MainSystem', 'Real', 'Index', 'Real'],
-                          'returnValue': value, 'returnType': 'Real'}
-                ufs.append(_Record(mbs, fnDict, ufName, objectNumber))
-        finally:
-            esym.SetRecording(recording)
+        ufs = [_RecordSymbolic(mbs, objectNumber, ufName,
+                               [('t', 'Real', 1), ('itemNumber', 'Index', 1), ('lOffset', 'Real', 1)], 'Real',
+                               lambda args, ops, k=k: law(args[1], ops)[k])
+               for k, ufName in enumerate(('offsetUserFunction', 'offsetUserFunction_t'))]
     else:
         ufs = [lambda mbs, t, itemNumber, lOffset: law(t, MATH_OPS)[0],
                lambda mbs, t, itemNumber, lOffset: law(t, MATH_OPS)[1]]
