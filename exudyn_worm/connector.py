@@ -3,7 +3,8 @@
 :func:`CreateWormGear` adds an ``ObjectGenericODE2`` on the worm and wheel nodes whose force user
 function is the contact law of :mod:`exudyn_worm.contact`. By default the law is recorded as an
 Exudyn symbolic user function and evaluated in C++; ``useSymbolic=False`` gives a plain-Python user
-function for debugging (same law, same results, about 5-10 times slower).
+function for debugging (same law, same results, about 3 times slower on the reel changer;
+see benchmarks/README.md).
 
 Supported nodes: nodes with exactly one ODE2 coordinate that is a rotation angle, i.e. ``Node1D``
 (with ``ObjectRotationalMass1D``) and ``NodeGenericODE2`` with one coordinate. 3D rigid-body nodes

@@ -34,7 +34,7 @@ __all__ = ['MATH_OPS', 'NUMPY_OPS', 'SymbolicOps', 'MeshState', 'MeshContact', '
 
 
 def _Sign(x):
-    return float((x > 0) - (x < 0))
+    return float(x > 0) - float(x < 0)      # also for numpy scalars (their bools do not subtract)
 
 
 #: plain-Python backend (floats)

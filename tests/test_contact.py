@@ -99,3 +99,9 @@ def test_options_are_validated():
         ContactOptions(frictionSpeed=-1.)
     with pytest.raises(ValueError, match="'fixedS'"):
         ContactOptions(fixedS=0)
+
+
+def test_python_backend_accepts_numpy_scalars():
+    s = MeshContact(GEAR, np.float64(1e-3), np.float64(0.), np.float64(50.), np.float64(50. / GEAR.ratio),
+                    ContactOptions(), MATH_OPS)
+    assert s.S == 1. and s.normalForce > 0
