@@ -37,16 +37,17 @@ _ALTERNATIVES = {'mu': ('rho',), 'rho': ('mu',), 'dT': ('DT', 'DTV'), 'DT': ('dT
 _deg = math.radians
 _RPM = 2 * math.pi / 60
 
-#: gear of parameter set (28); rho = 8 deg (not mu = 0.134): the printed b-coefficients and the
-#: value of (19) follow from rho = 8 deg (see validation/REPORT.md)
-_REEL_P1 = {'alphaN': _deg(20), 'gamma': _deg(5.3228), 'rho': _deg(8), 'r1': 18.05e-3, 'r2': 105.95e-3,
+#: gear of parameter set (28) with mu = 0.132 (rho = 7.996 deg, printed "8 deg"): only this friction
+#: reproduces all printed b-coefficients and the value of (19); the mu = 0.134 printed with (28) does not
+#: (see validation/REPORT.md, "Which friction the paper used")
+_REEL_P1 = {'alphaN': _deg(20), 'gamma': _deg(5.3228), 'mu': 0.132, 'r1': 18.05e-3, 'r2': 105.95e-3,
             'J2': 33., 'kV': 2e8, 'DV': 0.014, 'J1': 0.1, 'kT': 7000., 'DT': 0.014, 'backlash': 0.,
             'loadMass': 175., 'leverArm': 1.2, 'motorSpeed': 472.5 * _RPM}
 
 #: every preset, with its source in the paper
 PRESETS: Dict[str, Dict[str, float]] = {
-    # set (25), section 2.3 (dV = 1250 N*s/m printed; D_V = 0.028): the chart sweeps J1 and kT
-    'chart': {'alphaN': _deg(20), 'gamma': _deg(5.3228), 'rho': _deg(8), 'r1': 3.235e-3, 'r2': 18.98e-3,
+    # set (25), section 2.3 (mu = 0.132 (rho = 8 deg); dV = 1250 N*s/m printed, D_V = 0.028): the chart sweeps J1 and kT
+    'chart': {'alphaN': _deg(20), 'gamma': _deg(5.3228), 'mu': 0.132, 'r1': 3.235e-3, 'r2': 18.98e-3,
               'J2': 0.1, 'kV': 1.7728e6, 'dV': 1250., 'backlash': 0.},
     'reel-P1': dict(_REEL_P1),                                   # set (28), section 3.1
     'reel-P2': {**_REEL_P1, 'J1': 0.3},                          # section 3.2.4

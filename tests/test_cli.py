@@ -95,7 +95,7 @@ def test_p6_with_higher_mesh_damping_is_stable(capsys):
     assert RunJson(capsys, '--preset', 'reel-P6', '--set', 'DV=0.056')['stable'] is True
 
 
-@pytest.mark.parametrize('option', ['kT=7 kN*m', 'kT=7000 N*m/rad', 'gamma=5.3228 deg', 'rho=8 deg',
+@pytest.mark.parametrize('option', ['kT=7 kN*m', 'kT=7000 N*m/rad', 'gamma=5.3228 deg', 'mu=0.132',
                                     'alphaN=20 deg', 'J1=100 g*m^2', 'r1=18.05 mm', 'DV=1.4 %'])
 def test_units_reproduce_the_preset(capsys, option):
     a, b = RunJson(capsys, '--set', option), RunJson(capsys)

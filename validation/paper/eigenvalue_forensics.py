@@ -103,8 +103,7 @@ def P7Parameters(**overrides) -> Dict[str, float]:
 def WheelCircumferenceFactor(drive: ElasticDrive) -> float:
     """Factor 1/(cos(alphaN) cos(gamma))^2 between a mesh spring acting along the wheel circumference
     (the worm axis) and one acting along the tooth normal, for the same spring constant."""
-    g = drive.gear
-    return 1. / (math.cos(g.alphaN) * math.cos(g.gamma))**2
+    return drive.gear.wheelCircumferenceFactor
 
 
 def ScaleMesh(drive: ElasticDrive, stiffnessFactor: float, dampingFactor: Optional[float] = None) -> ElasticDrive:
