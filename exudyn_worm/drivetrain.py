@@ -100,22 +100,42 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
 
 
 def CreateRotorTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True) -> Dict[str, Any]:
-    """Apply a torque ``law.Torque(phi, omega, t, ops)`` to ``rotor``.
+    """Apply a torque M(phi, omega, t) to ``rotor``.
 
     Use it for the reel changer's load (:class:`~exudyn_worm.profiles.GravityLeverTorque`), a motor
-    characteristic (:class:`~exudyn_worm.profiles.LinearMotorCharacteristic`) or bearing friction
-    (:class:`~exudyn_worm.profiles.CoulombViscousFriction`). Implemented as a one-node
+    characteristic (:class:`~exudyn_worm.profiles.LinearMotorCharacteristic`), bearing friction
+    (:class:`~exudyn_worm.profiles.CoulombViscousFriction`) or your own law. Implemented as a one-node
     ``ObjectGenericODE2`` so the torque may depend on angle, speed and time.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    rotor : dict
+        Rotor from :func:`CreateRotor`.
+    law : object with ``Torque(phi, omega, t, ops)``, or a callable ``law(phi, omega, t, ops)``
+        Torque in N*m. Write it with the functions of ``ops`` (``ops.sin``, ``ops.max``, ``ops.where`` ...)
+        instead of ``math``/``if`` so that it can be recorded as a C++ symbolic user function.
+    name : str
+    useSymbolic : bool
+        Symbolic (C++) user function (default) or plain Python.
 
     Returns
     -------
     dict
         ``objectNumber``.
+
+    Examples
+    --------
+    A torque ramp of 10 N*m/s, capped at 50 N*m::
+
+        CreateRotorTorque(mbs, wheel, lambda phi, omega, t, ops: ops.min(10. * t, 50.))
     """
     w = 'CreateRotorTorque'
-    if not hasattr(law, 'Torque'):
-        raise TypeError(f"{w}: 'law' must have Torque(phi, omega, t, ops), got {type(law).__name__}")
+    torque = law.Torque if hasattr(law, 'Torque') else law
+    if not callable(torque):
+        raise TypeError(f"{w}: 'law' must have Torque(phi, omega, t, ops) or be a callable (phi, omega, t, ops), "
+                        f"got {type(law).__name__}")
     node = mbs.GetMarker(_Marker(rotor, w, 'rotor'))['nodeNumber']
-    o, _ = AddGenericForce(mbs, [node], lambda t, q, q_t, ops: [law.Torque(q[0], q_t[0], t, ops)],
+    o, _ = AddGenericForce(mbs, [node], lambda t, q, q_t, ops: [torque(q[0], q_t[0], t, ops)],
                            name=name, useSymbolic=useSymbolic)
     return {'objectNumber': o}

@@ -107,7 +107,7 @@ def test_builders_validate_arguments():
     with pytest.raises(TypeError, match="CreatePrescribedRotation: 'profile' must have AngleAndSpeed"):
         ew.CreatePrescribedRotation(mbs, rotor, 3.)
     with pytest.raises(TypeError, match="CreateRotorTorque: 'law' must have Torque"):
-        ew.CreateRotorTorque(mbs, rotor, lambda x: x)
+        ew.CreateRotorTorque(mbs, rotor, 3.)
     with pytest.raises(TypeError, match="CreateRotor: 'initialSpeed' must be a real number"):
         ew.CreateRotor(mbs, 1., initialSpeed='fast')
 
@@ -148,3 +148,14 @@ def test_connector_with_explicit_solver_and_sensors(tmp_path, monkeypatch):
     phi2 = mesh.StoredStates(mbs)['phi2'][-1]
     assert state.wheelTorque[-1] == pytest.approx(981. * math.cos(phi2), rel=0.05)
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize('useSymbolic', [True, False])
+def test_custom_torque_law_as_callable(useSymbolic):
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    rotor = ew.CreateRotor(mbs, 2.)
+    ew.CreateRotorTorque(mbs, rotor, lambda phi, omega, t, ops: ops.min(10. * t, 5.), useSymbolic=useSymbolic)
+    _Solve(mbs, 1.)
+    omega = mbs.GetNodeOutput(rotor['nodeNumber'], exu.OutputVariableType.Coordinates_t)
+    assert omega == pytest.approx((0.5 * 10. * 0.5**2 + 5. * 0.5) / 2., rel=1e-3)   # ramp to 5 N*m at 0.5 s
