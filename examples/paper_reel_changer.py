@@ -31,7 +31,7 @@ import argparse
 import math
 import sys
 from pathlib import Path
-from typing import Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
+from typing import Dict, Iterable, List, Mapping, Optional, Sequence
 
 from exudyn_worm.presets import REEL_KEYS, ApplyOverrides, DriveFromParameters, GetPreset
 from exudyn_worm.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SimulateReelChanger

@@ -9,9 +9,8 @@ from __future__ import annotations
 import math
 import time as _time
 from dataclasses import dataclass
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Tuple
 
-import numpy as np
 from scipy.optimize import brentq
 
 from .connector import CreateWormGear, WormGearConnector

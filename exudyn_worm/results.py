@@ -6,7 +6,6 @@ connector uses (:func:`exudyn_worm.contact.MeshContact` on numpy arrays).
 from __future__ import annotations
 
 import csv
-import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Sequence, Tuple

@@ -1,12 +1,10 @@
 """The contact law: backlash, no pull, friction state, the linear law of eqs. (1)-(2), and backend identity."""
-import math
 
 import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
 import exudyn as exu
-from exudyn_worm import WormGear
 from exudyn_worm.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact, SymbolicOps
 from exudyn_worm.presets import DriveFromParameters, GetPreset
 

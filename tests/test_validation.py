@@ -155,7 +155,7 @@ def test_group_errors_fail_its_rows(tmp_path):
 
 def test_register_check_group(monkeypatch):
     monkeypatch.setattr(validation, 'CHECK_GROUPS', list(validation.CHECK_GROUPS))
-    g = RegisterCheckGroup('example', 'exudyn_worm.validation:_AnalyticalChecks', slow=True, title='Example')
+    g = RegisterCheckGroup('example', 'exudyn_worm.validation_analytical:AnalyticalChecks', slow=True, title='Example')
     assert validation.CHECK_GROUPS[-1] is g and callable(g.Resolve())
     with pytest.raises(ValueError, match=r"RegisterCheckGroup: a group 'example' exists; pass replace=True"):
         RegisterCheckGroup('example', _SimulationGroup)
