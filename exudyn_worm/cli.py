@@ -35,11 +35,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
-import numpy as np
-
 from .config import DEFAULT_PRESET, ResolveParameters
+from .design import StabilizingChanges
 from .drive import ElasticDrive
-from .presets import PRESETS, ApplyOverrides, DriveFromParameters
+from .presets import PRESETS, DriveFromParameters
 from .stability import CONTACT_STATES, AnalyzeStability, StabilityAnalysis
 
 __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'SUBCOMMANDS', 'AddParameterOptions',
@@ -316,34 +315,9 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability') -> Li
     return lines
 
 
-def _Stable(parameters: Dict[str, float], key: str, value: float) -> bool:
-    return AnalyzeStability(DriveFromParameters(ApplyOverrides(parameters, {key: value}))).stable
-
-
-def _NearestStable(parameters: Dict[str, float], key: str, direction: int,
-                   span: float = 100., steps: int = 80) -> Optional[float]:
-    """Smallest (direction +1) / largest (-1) stable value of ``key`` beyond the given one, within ``span``."""
-    base = parameters[key]
-    factors = np.geomspace(1., span ** direction, steps + 1)
-    last = 1.
-    for f in factors[1:]:
-        if _Stable(parameters, key, base * f):
-            lo, hi = math.log(last), math.log(f)        # unstable at lo, stable at hi
-            for _ in range(40):
-                mid = 0.5 * (lo + hi)
-                lo, hi = (lo, mid) if _Stable(parameters, key, base * math.exp(mid)) else (mid, hi)
-            return base * math.exp(hi)
-        last = f
-    return None
-
-
 def StabilityHint(parameters: Dict[str, float], span: float = 100.) -> str:
-    """One-line design hint for an unstable drive: nearest stable J1 and kT, other parameters as given.
-
-    Scans J1 and kT separately over ``1/span`` to ``span`` times the given value (geometric steps of
-    about 6 %, then bisection) with the analytical model and reports the nearest value on each side
-    that makes both contact states stable. Damping given as a measure (D_T, D_TV) is kept as a
-    measure, as in the paper's charts; damping given as dT is kept as dT.
+    """One-line design hint for an unstable drive: the nearest stable J1 and kT
+    (:func:`~exudyn_worm.design.StabilizingChanges`), other parameters as given.
 
     Parameters
     ----------
@@ -357,19 +331,12 @@ def StabilityHint(parameters: Dict[str, float], span: float = 100.) -> str:
     str
         One line starting with ``Hint:``.
     """
-    drive = DriveFromParameters(parameters)
-    scale = {'J1': (1. / drive.J2, 'J1/J2', 'kg*m^2'), 'kT': (1. / (drive.gear.kV * drive.gear.r1**2),
-                                                              'kT/(kV r1^2)', 'N*m/rad')}
     parts = []
-    for key in ('J1', 'kT'):
-        factor, ratioName, unit = scale[key]
-        below, above = _NearestStable(parameters, key, -1, span), _NearestStable(parameters, key, +1, span)
-        options = [f"{key} {op} {value:.3g} {unit} ({ratioName} {op} {value * factor:.3g})"
-                   for op, value in (('<=', below), ('>=', above)) if value is not None]
-        if options:
-            parts.append(' or '.join(options))
-        else:
-            parts.append(f"no {key} within 1/{span:g} to {span:g} times the given value")
+    for r in StabilizingChanges(parameters, span):
+        options = [f"{r.key} {op} {value:.3g} {r.unit} ({r.ratioName} {op} {value * r.ratioScale:.3g})"
+                   for op, value in (('<=', r.below), ('>=', r.above)) if value is not None]
+        parts.append(' or '.join(options) if options else
+                     f"no {r.key} within 1/{span:g} to {span:g} times the given value")
     return ('Hint: with all other parameters as given, the analytical model is stable for '
             + '; or for '.join(parts) + ' (nearest stable values found by a scan)')
 
@@ -377,12 +344,6 @@ def StabilityHint(parameters: Dict[str, float], span: float = 100.) -> str:
 # ---------------------------------------------------------------------------------------------------
 # validate
 # ---------------------------------------------------------------------------------------------------
-def _DefaultReportPath() -> Optional[Path]:
-    """validation/REPORT.md of the source tree, or None for an installed (non-source) package."""
-    folder = Path(__file__).resolve().parents[1] / 'validation'
-    return folder / 'REPORT.md' if folder.is_dir() else None
-
-
 def _AddValidateArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--report', metavar='PATH', default=None,
                         help='write the Markdown report here (default: validation/REPORT.md of the source tree)')
@@ -392,7 +353,7 @@ def _AddValidateArguments(parser: argparse.ArgumentParser) -> None:
 
 def _RunValidate(args: argparse.Namespace) -> int:
     try:
-        from .validation import RunValidation
+        from .validation import DEFAULT_REPORT_PATH, RunValidation
     except ImportError as err:
         raise UsageError(f"validate is not available: cannot import exudyn_worm.validation.RunValidation "
                          f"({err})") from err
@@ -403,7 +364,7 @@ def _RunValidate(args: argparse.Namespace) -> int:
     elif args.report:
         report = Path(args.report)
     else:
-        report = _DefaultReportPath()
+        report = DEFAULT_REPORT_PATH if DEFAULT_REPORT_PATH.parent.is_dir() else None
         if report is None:
             print(f"{PROG}: note: no source tree found; no report written (use --report PATH)", file=sys.stderr)
     summary = RunValidation(reportPath=report, quick=args.quick)
@@ -412,7 +373,6 @@ def _RunValidate(args: argparse.Namespace) -> int:
     return 0 if summary.passed else 1
 
 
-#: the subcommand registry, in the order of ``exudyn-worm --help``
 # ---------------------------------------------------------------------------------------------------
 # simulate
 # ---------------------------------------------------------------------------------------------------
@@ -500,6 +460,7 @@ def _RunSimulate(args: argparse.Namespace) -> int:
     return 0
 
 
+#: the subcommand registry, in the order of ``exudyn-worm --help``
 SUBCOMMANDS: List[Subcommand] = [
     Subcommand('stability', 'linear stability (chatter) analysis of a parameter set',
                _AddStabilityArguments, _RunStability),

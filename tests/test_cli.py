@@ -276,6 +276,8 @@ def test_exudyn_method_real(capsys):
 
 # --- validate --------------------------------------------------------------------------------------
 class _FakeValidation:
+    DEFAULT_REPORT_PATH = Path(exudyn_worm.__file__).resolve().parents[1] / 'validation' / 'REPORT.md'
+
     def __init__(self, passed):
         self.passed, self.calls = passed, []
 
