@@ -12,7 +12,17 @@ __all__ = ['ElasticDrive', 'TorsionalDampingFromMeasure', 'TorsionalDampingMeasu
 
 
 def TorsionalDampingFromMeasure(DT: float, kT: float, J1: float) -> float:
-    """Shaft damping dT = 2 D_T sqrt(kT J1) in N*m*s/rad, eq. (22)."""
+    """Shaft damping dT = 2 D_T sqrt(kT J1) in N*m*s/rad, eq. (22).
+
+    Parameters
+    ----------
+    DT : float
+        Torsional damping measure D_T, >= 0.
+    kT : float
+        Shaft stiffness in N*m/rad, > 0.
+    J1 : float
+        Worm-side inertia in kg*m^2, > 0.
+    """
     w = 'TorsionalDampingFromMeasure'
     return 2. * CheckNonNegative(w, 'DT', DT) * math.sqrt(CheckPositive(w, 'kT', kT, 'N*m/rad')
                                                            * CheckPositive(w, 'J1', J1, 'kg*m^2'))
@@ -26,7 +36,19 @@ def TorsionalDampingMeasure(dT: float, kT: float, J1: float) -> float:
 
 
 def MeshDampingFromMeasure(DV: float, kV: float, r2: float, J2: float) -> float:
-    """Mesh damping dV from dV r2^2 = 2 D_V sqrt(kV r2^2 J2), eq. (23), in N*s/m."""
+    """Mesh damping dV from dV r2^2 = 2 D_V sqrt(kV r2^2 J2), eq. (23), in N*s/m.
+
+    Parameters
+    ----------
+    DV : float
+        Mesh damping measure D_V, >= 0.
+    kV : float
+        Mesh stiffness in N/m, > 0.
+    r2 : float
+        Wheel radius in m, > 0.
+    J2 : float
+        Wheel-side inertia in kg*m^2, > 0.
+    """
     w = 'MeshDampingFromMeasure'
     kV = CheckPositive(w, 'kV', kV, 'N/m')
     r2 = CheckPositive(w, 'r2', r2, 'm')

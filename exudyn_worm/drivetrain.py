@@ -60,6 +60,9 @@ def CreateShaft(mbs, rotors, stiffness: float, damping: float = 0., name: str = 
     damping : float
         Torsional damping in N*m*s/rad, >= 0.
 
+    name : str
+        Name of the Exudyn object.
+
     Returns
     -------
     dict
@@ -81,6 +84,18 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
     Uses a ``CoordinateConstraint`` to ground with an offset user function, which the implicit
     solvers (generalized-alpha, trapezoidal index 2) honour. Explicit solvers ignore it (they pin the
     coordinate to 0): use an implicit solver, or a stiff shaft to a driven rotor.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    rotor : dict
+        Rotor from :func:`CreateRotor`.
+    profile : object with ``AngleAndSpeed(t, ops)``
+        E.g. :class:`~exudyn_worm.profiles.ConstantSpeed` or :class:`~exudyn_worm.profiles.StartStopProfile`.
+    name : str
+        Name of the constraint.
+    useSymbolic : bool
+        Symbolic (C++) offset user functions (default) or plain Python.
 
     Returns
     -------

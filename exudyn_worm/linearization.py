@@ -24,7 +24,17 @@ _PRELOAD = 1e-6
 
 
 def BuildLinearizationModel(drive: ElasticDrive, S: int, useSymbolic: bool = True):
-    """Exudyn system of Figure 2 (motor held still) with S held at ``S``; returns ``(SC, mbs)``, assembled."""
+    """Exudyn system of Figure 2 (motor held still) with S held at ``S``; returns ``(SC, mbs)``, assembled.
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The 2-DOF drive of Figure 2.
+    S : int
+        Contact parameter held during the linearization, +1 or -1.
+    useSymbolic : bool
+        Symbolic (C++) or Python user function for the connector.
+    """
     import exudyn as exu
     if S not in CONTACT_STATES:
         raise ValueError(f"BuildLinearizationModel: 'S' must be +1 or -1, got {S!r}")
@@ -44,7 +54,17 @@ def BuildLinearizationModel(drive: ElasticDrive, S: int, useSymbolic: bool = Tru
 
 
 def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> np.ndarray:
-    """Complex eigenvalues (1/s) of the Exudyn model linearized about the pre-deflected state."""
+    """Complex eigenvalues (1/s) of the Exudyn model linearized about the pre-deflected state.
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The 2-DOF drive of Figure 2.
+    S : int
+        Contact parameter held during the linearization, +1 or -1.
+    useSymbolic : bool
+        Symbolic (C++) or Python user function for the connector.
+    """
     SC, mbs = BuildLinearizationModel(drive, S, useSymbolic)
     values, _ = mbs.ComputeODE2Eigenvalues(computeComplexEigenvalues=True, useAbsoluteValues=False)
     return _SortEigenvalues(np.asarray(values, dtype=complex))

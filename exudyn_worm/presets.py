@@ -98,6 +98,15 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     Damping: ``dT`` if given, else ``DT``, else ``DTV * DV`` (eq. (24)); ``dV`` if given, else ``DV``.
     Friction: ``mu`` or ``rho`` (eq. (13)).
 
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary with the keys of :data:`PARAMETER_UNITS` (SI).
+
+    Returns
+    -------
+    ElasticDrive
+
     Raises
     ------
     ValueError

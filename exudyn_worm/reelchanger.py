@@ -31,14 +31,26 @@ _MOTOR_INERTIA = 1e-3   # kg*m^2; the motor node is prescribed, its inertia does
 
 
 def RotationPeriod(parameters: Mapping[str, float]) -> float:
-    """Duration in s of one full wheel rotation: 2 pi u / motorSpeed."""
+    """Duration in s of one full wheel rotation: 2 pi u / motorSpeed.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set including ``motorSpeed`` in rad/s.
+    """
     drive = DriveFromParameters(parameters)
     speed = CheckPositive('RotationPeriod', 'motorSpeed', parameters.get('motorSpeed', math.nan), 'rad/s')
     return 2 * math.pi * drive.gear.ratio / speed
 
 
 def DefaultWindows(parameters: Mapping[str, float]) -> List[Tuple[float, float]]:
-    """Lift / lower / lift phases of one rotation: [0, T/4], [T/4, 3T/4], [3T/4, T]."""
+    """Lift / lower / lift phases of one rotation: [0, T/4], [T/4, 3T/4], [3T/4, T].
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set including ``motorSpeed`` in rad/s.
+    """
     T = RotationPeriod(parameters)
     return [(0., T / 4), (T / 4, 3 * T / 4), (3 * T / 4, T)]
 
@@ -49,7 +61,23 @@ def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed
 
     Solves the wheel balance (mesh torque = -load torque) for Delta s with the contact law itself and
     the worm balance (shaft torque = mesh torque) for the shaft twist, so a run starts without a
-    spurious transient. Returns phi1, phi2, omega1, omega2.
+    spurious transient.
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The drive (gear, J1, J2, kT, dT).
+    load : GravityLeverTorque
+        The reel's load torque.
+    motorSpeed : float
+        Motor speed in rad/s (phi0(0) = 0).
+    options : ContactOptions
+        Options of the contact law.
+
+    Returns
+    -------
+    dict
+        ``phi1, phi2`` in rad and ``omega1, omega2`` in rad/s.
     """
     g = drive.gear
     u = g.ratio

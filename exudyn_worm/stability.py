@@ -26,7 +26,15 @@ def _CheckS(S):
 
 
 def CharacteristicCoefficients(drive: ElasticDrive, S: int) -> np.ndarray:
-    """Coefficients b1..b4 of the characteristic polynomial (15), eq. (16), in s^-1 .. s^-4."""
+    """Coefficients b1..b4 of the characteristic polynomial (15), eq. (16), in s^-1 .. s^-4.
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The 2-DOF drive of Figure 2.
+    S : int
+        Contact parameter, +1 or -1 (eq. (8)).
+    """
     _CheckS(S)
     g = drive.gear
     c1, _, c3, _ = g.Coefficients(S)
@@ -50,7 +58,15 @@ def HurwitzStable(b: Sequence[float]) -> bool:
 
 
 def LinearMatrices(drive: ElasticDrive, S: int):
-    """Mass, damping and stiffness matrices (M, D, K) of the linear system (1)-(2) in [phi1, phi2]."""
+    """Mass, damping and stiffness matrices (M, D, K) of the linear system (1)-(2) in [phi1, phi2].
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The 2-DOF drive of Figure 2.
+    S : int
+        Contact parameter, +1 or -1 (eq. (8)).
+    """
     _CheckS(S)
     g = drive.gear
     c1, _, c3, _ = g.Coefficients(S)
@@ -62,7 +78,15 @@ def LinearMatrices(drive: ElasticDrive, S: int):
 
 
 def StateMatrix(drive: ElasticDrive, S: int) -> np.ndarray:
-    """First-order state matrix A of x = [phi1, phi2, phi1', phi2'], with x' = A x."""
+    """First-order state matrix A of x = [phi1, phi2, phi1', phi2'], with x' = A x.
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The 2-DOF drive of Figure 2.
+    S : int
+        Contact parameter, +1 or -1 (eq. (8)).
+    """
     M, D, K = LinearMatrices(drive, S)
     Minv = np.linalg.inv(M)
     return np.block([[np.zeros((2, 2)), np.eye(2)], [-Minv @ K, -Minv @ D]])
@@ -80,7 +104,15 @@ def EigenvaluesFromPolynomial(b: Sequence[float]) -> np.ndarray:
 
 
 def EigenvaluesFromStateMatrix(drive: ElasticDrive, S: int) -> np.ndarray:
-    """Eigenvalues of :func:`StateMatrix` (must agree with :func:`EigenvaluesFromPolynomial`)."""
+    """Eigenvalues of :func:`StateMatrix` (must agree with :func:`EigenvaluesFromPolynomial`).
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The 2-DOF drive of Figure 2.
+    S : int
+        Contact parameter, +1 or -1 (eq. (8)).
+    """
     return _SortEigenvalues(np.linalg.eigvals(StateMatrix(drive, S)))
 
 
@@ -88,6 +120,11 @@ def FuesgenLimit(drive: ElasticDrive) -> float:
     """Fuesgen / VDI 2158 limit of J1/J2, eq. (21): chatter is possible if J1/J2 is below it.
 
     Negative for a gear that is not self-locking (no chatter of this kind possible).
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The 2-DOF drive of Figure 2.
     """
     g = drive.gear
     return math.tan(g.rho - g.gamma) / (g.ratio**2 * math.tan(g.gamma))
@@ -97,6 +134,11 @@ def FirstCriterionLimit(drive: ElasticDrive) -> float:
     """Limit of J1/J2 of the first instability condition (20) (b1 < 0 for S = -1).
 
     J1/J2 below this value makes b1 negative. ``-inf`` if dV = 0 (b1 is then always positive).
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The 2-DOF drive of Figure 2.
     """
     g = drive.gear
     c1, _, c3, _ = g.Coefficients(-1)

@@ -70,10 +70,17 @@ def Hurwitz19Tolerance(parameters: Dict[str, float], publishedText: str) -> Tupl
     (linear worst case). The design values J1, J2, kT, kV, alphaN, D_T, D_V and the friction are
     taken as exact: they are round numbers and the printed b1..b4 pin them (D_T to 1e-6).
 
+    Parameters
+    ----------
+    parameters : dict
+        Flat parameter set of (28) (as in :func:`exudyn_worm.presets.DriveFromParameters`).
+    publishedText : str
+        The printed value of (19), e.g. ``'-2.607e10'``, whose last digit sets the first part.
+
     Returns
     -------
     (float, dict)
-        The tolerance in 1/s^6 and its contributions by name.
+        Total tolerance in 1/s^6 and its contributions by name.
     """
     parts = {'printed result': HalfUnit(publishedText)}
     for name, h in _GEOMETRY_HALF_UNITS.items():
@@ -86,6 +93,7 @@ def Hurwitz19Tolerance(parameters: Dict[str, float], publishedText: str) -> Tupl
 # --- group: analytical model ----------------------------------------------------------------------------
 
 def AnalyticalChecks(ctx: ValidationContext) -> List[Check]:
+    """Group ``analytical``: b1..b4 and (19) of set (28), the friction readings, damping measures, u, chart point P1 and the stability of the presets."""
     chart, p28 = GetPreset('chart'), _Set28()
     drive28 = DriveFromParameters(p28)
     g28 = drive28.gear
@@ -217,6 +225,7 @@ def _PrintedEigenvalues(ctx: ValidationContext, S: int) -> np.ndarray:
 
 
 def EigenvalueChecks(ctx: ValidationContext) -> List[Check]:
+    """Group ``eigenvalues``: the printed eigenvalues, frequencies and Lehr dampings of section 3.1 beside ours (reported, not gated)."""
     checks = []
 
     def add(rowId, value):
@@ -268,6 +277,7 @@ def _Forensics(ctx: ValidationContext) -> ModuleType:
 
 
 def ForensicsChecks(ctx: ValidationContext) -> List[Check]:
+    """Group ``forensics``: the identified mesh convention (wheel circumference) against the printed frequencies of P1 and P7."""
     fx = _Forensics(ctx)
     printed = {S: _PrintedEigenvalues(ctx, S)[:2] for S in (+1, -1)}
     circ = {name: fx.ScaleMesh(d, fx.WheelCircumferenceFactor(d))
@@ -365,6 +375,7 @@ rounding) but matches the paper model ({oursD2:.4f}). The paper cites "condition
 
 
 def ForensicsSlowChecks(ctx: ValidationContext) -> List[Check]:
+    """Group ``forensics-slow``: the worm-side friction bound of the reduced model (an optimization, skipped by quick runs)."""
     fx = _Forensics(ctx)
     printed = {S: _PrintedEigenvalues(ctx, S)[:2] for S in (+1, -1)}
     bound = _WormSideBound(fx, printed)

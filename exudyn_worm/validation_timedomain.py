@@ -26,7 +26,13 @@ _FRICTION_SPEED = ContactOptions().frictionSpeed
 def PaperMeshConvention(parameters):
     """Parameters with kV and dV referred to the wheel circumference, i.e. multiplied by
     1/(cos(alphaN) cos(gamma))^2: the mesh convention identified from the paper's printed eigenvalues
-    (validation/REPORT.md, eigenvalue forensics)."""
+    (validation/REPORT.md, eigenvalue forensics).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    """
     gear = DriveFromParameters(parameters).gear
     f = gear.wheelCircumferenceFactor
     return ApplyOverrides(parameters, {'kV': gear.kV * f, 'dV': gear.dV * f})
