@@ -3,8 +3,6 @@
 Three seconds of the reel changer P1: lifting (0 to T/4 = 2 s, quasi-static, no chatter) and the onset of
 the chatter after the load reverses at 2 s. Only results are compared, never wall-clock times.
 """
-import importlib.util
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,15 +10,13 @@ import pytest
 from exudyn_worm.presets import GetPreset
 from exudyn_worm.reelchanger import SimulateReelChanger
 
-_REFERENCE_PATH = Path(__file__).resolve().parents[1] / 'benchmarks' / 'scipy_reference.py'
+from conftest import LoadScript
+
 END_TIME = 3.
 
 
 def _LoadReference():
-    spec = importlib.util.spec_from_file_location('scipy_reference', _REFERENCE_PATH)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return LoadScript('benchmarks/scipy_reference.py', 'scipy_reference')
 
 
 @pytest.fixture(scope='module')

@@ -1,22 +1,20 @@
 """The paper's reel-changer example (examples/paper_reel_changer.py) as a test: its computing functions
 reproduce what section 3.2.2 of the paper states for P1, and its command line writes figures only
 into the requested folder and rejects bad input cleanly."""
-import importlib.util
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
+from conftest import LoadScript
+
 EXAMPLE = Path(__file__).resolve().parents[1] / 'examples' / 'paper_reel_changer.py'
 
 
 @pytest.fixture(scope='module')
 def example():
-    spec = importlib.util.spec_from_file_location('paper_reel_changer', EXAMPLE)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return LoadScript('examples/paper_reel_changer.py', 'paper_reel_changer')
 
 
 @pytest.fixture(scope='module')

@@ -1,7 +1,5 @@
 """Tests of the validation runner, the reference table and the eigenvalue forensics."""
-import importlib.util
 import math
-import sys
 
 import numpy as np
 import pytest
@@ -10,8 +8,9 @@ from numpy.testing import assert_allclose
 from exudyn_worm import validation
 from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
 from exudyn_worm.stability import CharacteristicCoefficients
-from exudyn_worm.validation import (KINDS, CheckGroup, HalfUnit, LoadReference, RegisterCheckGroup, RunValidation,
-                                    VALIDATION_DIR)
+from exudyn_worm.validation import KINDS, CheckGroup, HalfUnit, LoadReference, RegisterCheckGroup, RunValidation
+
+from conftest import LoadScript
 
 
 @pytest.fixture(scope='module')
@@ -22,13 +21,7 @@ def quickRun(tmp_path_factory):
 
 @pytest.fixture(scope='module')
 def forensics():
-    path = VALIDATION_DIR / 'paper' / 'eigenvalue_forensics.py'
-    name = 'test_eigenvalue_forensics'
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module
-    spec.loader.exec_module(module)
-    return module
+    return LoadScript('validation/paper/eigenvalue_forensics.py', 'test_eigenvalue_forensics')
 
 
 # --- the full run -------------------------------------------------------------------------------------------
