@@ -4,7 +4,8 @@ import os
 
 import pytest
 
-from exudyn_worm.cli import Main, ParseWindows
+from exudyn_worm.cli import Main
+from exudyn_worm.commands.simulate import ParseWindows
 
 WINDOW_KEYS = {'t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
                'fractionSNegative', 'minWormSpeed', 'chatter'}

@@ -1,0 +1,151 @@
+"""``exudyn-worm stability``: linear stability of a parameter set (eqs. (15)-(21)) with a design hint."""
+from __future__ import annotations
+
+import argparse
+import math
+from typing import Dict, List
+
+from ..cli import DriveFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+from ..design import StabilizingChanges
+from ..stability import CONTACT_STATES, AnalyzeStability, StabilityAnalysis
+
+__all__ = ['COMMAND', 'FormatStability', 'StabilityHint']
+
+
+def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--method', choices=('analytical', 'exudyn'), default='analytical',
+                        help='analytical: eqs. (15)-(19) of the paper (default); exudyn: eigenvalues of '
+                             'the linearized Exudyn model')
+
+
+def _Run(args: argparse.Namespace) -> int:
+    parameters, drive = DriveFromArgs(args)
+    if args.method == 'exudyn':
+        try:
+            from ..linearization import AnalyzeStabilityExudyn
+        except ImportError as err:
+            raise UsageError(f"--method exudyn is not available: cannot import "
+                             f"exudyn_worm.linearization.AnalyzeStabilityExudyn ({err})") from err
+        with StdoutToStderr(args.json):
+            analysis = AnalyzeStabilityExudyn(drive)
+    else:
+        analysis = AnalyzeStability(drive)
+    if args.json:
+        PrintJson(analysis.ToDict())
+        return 0
+    lines = FormatStability(analysis, title=f"exudyn-worm stability: {SourceText(args)}, method {args.method}")
+    if not analysis.stable:
+        lines.append(StabilityHint(parameters))
+    print('\n'.join(lines))
+    return 0
+
+
+def _G(x: float, digits: int = 5) -> str:
+    return 'n/a' if x is None else ('inf' if math.isinf(x) and x > 0 else '-inf' if math.isinf(x)
+                                    else f'{x:.{digits}g}')
+
+
+def _Complex(z: complex) -> str:
+    return f"{z.real:.3f} {'+' if z.imag >= 0 else '-'} {abs(z.imag):.3f}i"
+
+
+def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability') -> List[str]:
+    """Human-readable table of a :class:`StabilityAnalysis` (the ``stability`` subcommand's output).
+
+    Parameters
+    ----------
+    analysis : StabilityAnalysis
+        Result of :func:`~exudyn_worm.stability.AnalyzeStability` (or of the Exudyn linearization).
+    title : str, optional
+        First line.
+
+    Returns
+    -------
+    list of str
+        The lines, without trailing newlines.
+    """
+    d = analysis.drive
+    g = d.gear
+    w = 36
+    row = lambda label, *cells: f"  {label:<{w}}" + ''.join(f"{c:>22}" for c in cells)
+    lines = [title, '', 'Gear and drive']
+    lines += [row('transmission ratio u', _G(g.ratio)),
+              row('pitch angle gamma [deg]', _G(math.degrees(g.gamma))),
+              row('friction angle rho [deg]', _G(math.degrees(g.frictionAngle))),
+              row('friction coefficient mu', _G(g.mu)),
+              row('self-locking (gamma < rho)', 'yes' if g.selfLocking else 'no'),
+              row('efficiency, worm driving', _G(g.efficiencyWormDriving, 4)),
+              row('efficiency, wheel driving', _G(g.efficiencyWheelDriving, 4)),
+              row('J1, J2 [kg*m^2]', _G(d.J1), _G(d.J2)),
+              row('kT [N*m/rad], kV [N/m]', _G(d.kT), _G(g.kV)),
+              row('dT [N*m*s/rad], dV [N*s/m]', _G(d.dT), _G(g.dV)),
+              row('D_T, D_V, D_TV (eqs. 22-24)', _G(d.DT, 4), _G(d.DV, 4), _G(d.DTV, 4)),
+              row('J1/J2', _G(d.inertiaRatio, 4)),
+              row('kT/(kV r1^2)', _G(d.stiffnessRatio, 4))]
+    c = {S: analysis.contact[S] for S in CONTACT_STATES}
+    lines += ['', 'Linear stability per contact state S (eqs. (15)-(19))',
+              row('', *(f'S = {S:+d}' for S in CONTACT_STATES))]
+    for i, unit in enumerate(('1/s', '1/s^2', '1/s^3', '1/s^4')):
+        lines.append(row(f'b{i + 1} [{unit}]', *(_G(c[S].b[i]) for S in CONTACT_STATES)))
+    for label, i in (('(17) b1 > 0', 0), ('(18) b1 b2 - b3 > 0', 1), ('(19) (b1 b2 - b3) b3 - b1^2 b4 > 0', 2)):
+        lines.append(row(label, *(f"{_G(c[S].hurwitz[i], 4)} {'ok' if c[S].hurwitz[i] > 0 else 'NO'}"
+                                  for S in CONTACT_STATES)))
+    for i in range(4):
+        lines.append(row(f'eigenvalue {i + 1} [1/s]', *(_Complex(c[S].eigenvalues[i]) for S in CONTACT_STATES)))
+    for i in range(2):
+        lines.append(row(f'frequency f{i + 1} [Hz]', *(_G(c[S].frequenciesHz[i], 4) for S in CONTACT_STATES)))
+    for i in range(2):
+        lines.append(row(f'Lehr damping D{i + 1} = -delta/omega', *(_G(float(c[S].lehrDamping[i]), 3)
+                                                                    for S in CONTACT_STATES)))
+    lines.append(row('stable (all Re(lambda) < 0)', *('yes' if c[S].stable else 'NO' for S in CONTACT_STATES)))
+
+    ratio = d.inertiaRatio
+    fuesgen, first = analysis.fuesgenLimit, analysis.firstCriterionLimit
+    classicChatter = ratio < fuesgen or ratio < first
+    verdict = lambda limit: 'chatter predicted' if ratio < limit else 'no chatter predicted'
+    lines += ['', 'Classic criteria: chatter if J1/J2 is below the limit',
+              row('actual J1/J2', _G(ratio, 4)),
+              row('Fuesgen limit (21), d_T = 0', _G(fuesgen, 4), verdict(fuesgen)),
+              row('first criterion limit (20)', _G(first, 4), verdict(first)),
+              '']
+    if analysis.stable:
+        lines.append('Verdict: STABLE for S = +1 and S = -1 (no chatter predicted by the linear model)')
+    else:
+        bad = [f'S = {S:+d}' for S in CONTACT_STATES if not c[S].stable]
+        violated = sorted({n for S in CONTACT_STATES for n, v in zip(('(17)', '(18)', '(19)'), c[S].hurwitz)
+                           if v <= 0})
+        lines.append(f"Verdict: UNSTABLE for {' and '.join(bad)} (chatter expected); Hurwitz conditions violated: "
+                     f"{', '.join(violated) if violated else 'none of (17)-(19) (b3 or b4 <= 0)'}")
+        if not classicChatter:
+            lines.append('Note: the classic criteria (20) and (21) predict no chatter here; they alone are '
+                         'insufficient (paper section 3.1)')
+    return lines
+
+
+def StabilityHint(parameters: Dict[str, float], span: float = 100.) -> str:
+    """One-line design hint for an unstable drive: the nearest stable J1 and kT
+    (:func:`~exudyn_worm.design.StabilizingChanges`), other parameters as given.
+
+    Parameters
+    ----------
+    parameters : dict
+        Flat parameter dictionary (see :func:`~exudyn_worm.presets.DriveFromParameters`).
+    span : float, optional
+        Search range factor, > 1.
+
+    Returns
+    -------
+    str
+        One line starting with ``Hint:``.
+    """
+    parts = []
+    for r in StabilizingChanges(parameters, span):
+        options = [f"{r.key} {op} {value:.3g} {r.unit} ({r.ratioName} {op} {value * r.ratioScale:.3g})"
+                   for op, value in (('<=', r.below), ('>=', r.above)) if value is not None]
+        parts.append(' or '.join(options) if options else
+                     f"no {r.key} within 1/{span:g} to {span:g} times the given value")
+    return ('Hint: with all other parameters as given, the analytical model is stable for '
+            + '; or for '.join(parts) + ' (nearest stable values found by a scan)')
+
+
+COMMAND = Subcommand('stability', 'linear stability (chatter) analysis of a parameter set', _AddArguments, _Run)
