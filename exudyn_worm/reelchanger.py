@@ -11,6 +11,7 @@ import time as _time
 from dataclasses import dataclass
 from typing import Any, Dict, List, Mapping, Optional, Tuple
 
+import numpy as np
 from scipy.optimize import brentq
 
 from .connector import CreateWormGear, WormGearConnector
@@ -20,14 +21,77 @@ from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, Crea
 from .presets import DriveFromParameters
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
+from .solve import SolveDynamicInChunks, SolverDivergedError
 from ._checks import CheckPositive
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
-           'SteadyInitialState', 'DEFAULT_STEP_SIZE']
+           'SteadyInitialState', 'CheckRunSize', 'DEFAULT_STEP_SIZE', 'MAX_STEPS']
 
 #: default time step in s (the P1/P7 amplitudes change < 1 % when it is halved, see validation/REPORT.md)
 DEFAULT_STEP_SIZE = 5e-4
 _MOTOR_INERTIA = 1e-3   # kg*m^2; the motor node is prescribed, its inertia does not matter
+
+#: default limit of solver steps (= stored samples, one per step) of one run: 1e6 steps is 500 s simulated at
+#: the default step, about 0.4 GB of stored results and 15 s (P1) to 3.5 min (P7) of solving; raise it with
+#: ``maxSteps`` (``--max-steps``) for longer runs
+MAX_STEPS = 1_000_000
+#: solver time per step in s measured for the reel changer (P1 without chatter in most steps, P7 with the
+#: worm speed through zero), used to say how long a refused run would take
+_SECONDS_PER_STEP = (1.5e-5, 2e-4)
+#: memory per stored step in bytes (8 sensors of 2 doubles in Exudyn, about 20 post-processed series)
+_BYTES_PER_STEP = 400
+
+
+def _Duration(seconds: float) -> str:
+    for unit, size in (('h', 3600.), ('min', 60.), ('s', 1.)):
+        if seconds >= size:
+            return f"{seconds / size:.2g} {unit}"
+    return f"{seconds:.2g} s"
+
+
+def CheckRunSize(endTime: float, stepSize: float, maxSteps: int = MAX_STEPS, where: str = 'SimulateReelChanger',
+                 names=('endTime', 'stepSize', 'maxSteps')) -> int:
+    """Number of solver steps of a run; refuse runs longer than ``maxSteps`` before they start.
+
+    Parameters
+    ----------
+    endTime : float
+        Simulated time in s, > 0.
+    stepSize : float
+        Time step in s, > 0 and <= endTime.
+    maxSteps : int
+        Largest number of steps (and stored samples) allowed, >= 1 (default :data:`MAX_STEPS`).
+    where : str
+        Caller named in the messages.
+    names : (str, str, str)
+        How the caller calls end time, step size and step limit (``--end-time`` ... on the command line).
+
+    Returns
+    -------
+    int
+        ``round(endTime / stepSize)``.
+
+    Raises
+    ------
+    ValueError
+        For a bad value or a run above ``maxSteps``; the message says how long the run would take and how
+        much memory its results would need.
+    """
+    nEnd, nStep, nMax = names
+    endTime = CheckPositive(where, nEnd, endTime, 's')
+    stepSize = CheckPositive(where, nStep, stepSize, 's')
+    if isinstance(maxSteps, bool) or not isinstance(maxSteps, int) or maxSteps < 1:
+        raise ValueError(f"{where}: '{nMax}' must be an integer >= 1, got {maxSteps!r}")
+    if stepSize > endTime:
+        raise ValueError(f"{where}: '{nStep}' must be <= {nEnd} = {endTime:g} s, got {stepSize:g} s")
+    ratio = endTime / stepSize
+    if not ratio <= maxSteps:           # also catches an overflow to inf
+        fast, slow = (ratio * s for s in _SECONDS_PER_STEP)
+        raise ValueError(f"{where}: {nEnd} {endTime:g} s at {nStep} {stepSize:g} s needs {ratio:.3g} solver steps, "
+                         f"more than the limit {nMax} = {maxSteps:g}; it would take about {_Duration(fast)} to "
+                         f"{_Duration(slow)} and store about {ratio * _BYTES_PER_STEP / 1e9:.2g} GB of results. "
+                         f"Raise {nMax} to run it anyway")
+    return max(1, int(round(ratio)))
 
 
 def RotationPeriod(parameters: Mapping[str, float]) -> float:
@@ -43,16 +107,34 @@ def RotationPeriod(parameters: Mapping[str, float]) -> float:
     return 2 * math.pi * drive.gear.ratio / speed
 
 
-def DefaultWindows(parameters: Mapping[str, float]) -> List[Tuple[float, float]]:
-    """Lift / lower / lift phases of one rotation: [0, T/4], [T/4, 3T/4], [3T/4, T].
+def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = None,
+                   minLength: float = 0.) -> List[Tuple[float, float]]:
+    """Lift / lower / lift phases of every rotation up to ``endTime``: [kT, kT + T/4], [kT + T/4, kT + 3T/4],
+    [kT + 3T/4, (k+1)T] for k = 0, 1, ..., clipped to ``endTime``.
 
     Parameters
     ----------
     parameters : mapping
         Flat parameter set including ``motorSpeed`` in rad/s.
+    endTime : float, optional
+        Simulated time in s (default: one rotation T).
+    minLength : float
+        Windows shorter than this (in s, after clipping) are dropped; the first window is always kept.
+
+    Returns
+    -------
+    list of (float, float)
+        Windows in s, in time order.
     """
     T = RotationPeriod(parameters)
-    return [(0., T / 4), (T / 4, 3 * T / 4), (3 * T / 4, T)]
+    endTime = T if endTime is None else CheckPositive('DefaultWindows', 'endTime', endTime, 's')
+    windows = []
+    for k in range(int(math.ceil(endTime / T - 1e-12))):
+        for a, b in ((0., .25), (.25, .75), (.75, 1.)):
+            t0, t1 = (k + a) * T, min((k + b) * T, endTime)
+            if t0 < endTime and (not windows or t1 - t0 >= minLength):
+                windows.append((t0, t1))
+    return windows
 
 
 def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed: float,
@@ -172,9 +254,25 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
                             {'motor': motor, 'worm': worm, 'wheel': wheel}, sensors)
 
 
+def _LikelyCause(drive: ElasticDrive, stepSize: float) -> str:
+    """Why a run of ``drive`` at ``stepSize`` may have failed, from the linearized drive's fastest eigenvalue."""
+    from .stability import CharacteristicCoefficients, EigenvaluesFromPolynomial
+    rate = max(float(np.max(np.abs(EigenvaluesFromPolynomial(CharacteristicCoefficients(drive, S)))))
+               for S in (1, -1))
+    if stepSize * rate > 0.5:
+        return (f"likely cause: the stiffest mode of the linearized drive (|lambda|max = {rate:.3g} 1/s) is far "
+                f"faster than the step resolves (step * |lambda|max = {stepSize * rate:.2g}); resolving it needs a "
+                f"step below about {0.1 / rate:.2g} s; if that is unreasonably small, a parameter is out of a "
+                f"physical range (check values and units)")
+    return (f"likely cause: parameters out of a physical range or a contact too stiff for the step "
+            f"(step * |lambda|max = {stepSize * rate:.2g} of the linearized drive); check the parameters, "
+            f"then try a smaller step size")
+
+
 def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float] = None,
                         stepSize: float = DEFAULT_STEP_SIZE, contactOptions: ContactOptions = ContactOptions(),
-                        useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None) -> SimulationResult:
+                        useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
+                        maxSteps: int = MAX_STEPS, progress: Optional[bool] = None) -> SimulationResult:
     """Build and simulate the reel changer with Exudyn's generalized-alpha solver.
 
     Parameters
@@ -187,22 +285,32 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
         Time step in s, > 0 (default :data:`DEFAULT_STEP_SIZE`).
     contactOptions, useSymbolic, startFromEquilibrium, profile
         See :func:`BuildReelChanger`.
+    maxSteps : int
+        Refuse a run of more than this many steps (:func:`CheckRunSize`, default :data:`MAX_STEPS`).
+    progress : bool or None
+        Progress bar on stderr: True shown, False never, None (default) shown when stderr is a terminal
+        and the run takes longer than about 2 s (:func:`~exudyn_worm.solve.SolveDynamicInChunks`). The
+        numbers do not depend on it.
 
     Returns
     -------
     SimulationResult
         Nothing is written to disk.
+
+    Raises
+    ------
+    ValueError
+        For bad arguments or parameters, or a run above ``maxSteps``.
+    SolverDivergedError
+        If the solver fails; the message gives the simulated time reached and the likely cause.
     """
     import exudyn as exu
     w = 'SimulateReelChanger'
     endTime = RotationPeriod(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
-    stepSize = CheckPositive(w, 'stepSize', stepSize, 's')
-    if stepSize > endTime:
-        raise ValueError(f"{w}: 'stepSize' must be <= endTime = {endTime:g} s, got {stepSize:g} s")
+    steps = CheckRunSize(endTime, stepSize, maxSteps, w)
     model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
     mbs = model.mbs
     mbs.Assemble()
-    steps = int(round(endTime / stepSize))
     ss = exu.SimulationSettings()
     ss.solution.file.write = False                 # never litter the user's current directory
     ss.solution.sensors.writePeriod = stepSize
@@ -214,17 +322,22 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     exu.config.printToConsole = False   # silences Exudyn's note on ObjectGenericODE2 allocations per step
     try:
         t0 = _time.perf_counter()
-        success = mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+        SolveDynamicInChunks(mbs, ss, exu.DynamicSolverType.GeneralizedAlpha, progress=progress, desc=w)
         solveSeconds = _time.perf_counter() - t0
+    except SolverDivergedError as err:
+        raise SolverDivergedError(f"{w}: {err}; {_LikelyCause(model.drive, stepSize)}",
+                                  err.timeReached, err.endTime, err.stepSize) from err
     finally:
         exu.config.printToConsole = printing
-    if not success:
-        raise RuntimeError(f"{w}: the Exudyn solver failed (stepSize = {stepSize:g} s); try a smaller stepSize")
 
     series = model.connector.StoredStates(mbs)
     time = series.pop('time')
     for key in ('phi0', 'omega0'):
         series[key] = mbs.GetSensorStoredData(model.sensors[key])[:, 1]
+    # each chunk of the solve stores its start once more: keep one sample per time
+    keep = np.concatenate([[True], np.diff(time) > 1e-6 * stepSize])
+    time = time[keep]
+    series = {k: v[keep] for k, v in series.items()}
     mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'])
     drive = model.drive
     series.update(deltaPhi=mesh.deltaPhi, deltaS=mesh.deltaS, normalForce=mesh.normalForce, S=mesh.S, sf=mesh.sf,

@@ -3,9 +3,8 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
-from ..cli import PROG, Subcommand, UsageError
+from ..cli import PROG, CheckOutputPath, Subcommand, UsageError
 
 __all__ = ['COMMAND']
 
@@ -27,8 +26,8 @@ def _Run(args: argparse.Namespace) -> int:
         raise UsageError("give either --report PATH or --no-report, not both")
     if args.noReport:
         report = None
-    elif args.report:
-        report = Path(args.report)
+    elif args.report is not None:
+        report = CheckOutputPath(args.report, '--report')
     else:
         report = DEFAULT_REPORT_PATH if DEFAULT_REPORT_PATH.parent.is_dir() else None
         if report is None:
