@@ -119,6 +119,16 @@ class WormGear:
         """Normal displacement per worm-side relative angle, r1 cos(alphaN) sin(gamma) in m/rad, eq. (5)."""
         return self.r1 * math.cos(self.alphaN) * math.sin(self.gamma)
 
+    @property
+    def axialLever(self) -> float:
+        """Normal displacement per axial worm displacement, cos(alphaN) cos(gamma) (dimensionless).
+
+        An axial shift x of the worm moves its thread like a worm rotation of x / (r1 tan(gamma)), so the
+        normal displacement of eq. (5) grows by ``normalLever * x / (r1 tan(gamma)) = cos(alphaN) cos(gamma) x``
+        (see :func:`exudyn_worm.contact.MeshContact`).
+        """
+        return math.cos(self.alphaN) * math.cos(self.gamma)
+
     def NormalDisplacement(self, deltaPhi):
         """Relative normal displacement Delta s = r1 cos(alphaN) sin(gamma) Delta phi in m, eq. (5)."""
         return self.normalLever * deltaPhi

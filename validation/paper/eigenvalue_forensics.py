@@ -110,8 +110,7 @@ def WheelCircumferenceFactor(drive) -> float:
     drive : ElasticDrive or WormGear
         The drive (or its gear).
     """
-    g = getattr(drive, 'gear', drive)
-    return 1. / (math.cos(g.alphaN) * math.cos(g.gamma))**2
+    return 1. / getattr(drive, 'gear', drive).axialLever**2
 
 
 def ScaleMesh(drive: ElasticDrive, stiffnessFactor: float, dampingFactor: Optional[float] = None) -> ElasticDrive:
