@@ -18,7 +18,7 @@ _LAZY = {'WormGear': 'gear',
          **dict.fromkeys(('ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque', 'LinearMotorCharacteristic',
                           'StartStopProfile'), 'profiles'),
          **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'GetPreset', 'PRESETS'), 'presets'),
-         'AnalyzeStabilityExudyn': 'linearization',
+         **dict.fromkeys(('AnalyzeLinearStability', 'AnalyzeStabilityExudyn', 'LinearStability'), 'linearization'),
          **dict.fromkeys(('BuildReelChanger', 'SimulateReelChanger'), 'reelchanger'),
          'SimulationResult': 'results',
          **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'stepsize')}
@@ -44,8 +44,9 @@ __all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMea
            'CreateWormGear', 'WormGearConnector', 'AxialBearing', 'CreateWormAxialBearing', 'CreatePrescribedRotation', 'CreateRotor', 'CreateShaft',
            'CreateRotorTorque', 'ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque',
            'LinearMotorCharacteristic', 'StartStopProfile', 'ApplyOverrides', 'DriveFromParameters', 'GetPreset',
-           'PRESETS', 'AnalyzeStabilityExudyn', 'BuildReelChanger', 'SimulateReelChanger', 'SimulationResult',
-           'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods', '__version__']
+           'PRESETS', 'AnalyzeStabilityExudyn', 'AnalyzeLinearStability', 'LinearStability', 'BuildReelChanger',
+           'SimulateReelChanger', 'SimulationResult', 'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods',
+           '__version__']
 
 _MAIN_SYSTEM_METHODS = ('CreateWormGear', 'CreateWormAxialBearing', 'CreateRotor', 'CreateShaft',
                         'CreatePrescribedRotation', 'CreateRotorTorque')
