@@ -23,6 +23,7 @@ from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, Crea
 from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
+from .stepsize import CheckStepSize
 from ._checks import CheckPositive
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
@@ -218,9 +219,28 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain)
 
 
+def _ApplySolverOptions(ss, options: Mapping[str, Any], where: str):
+    """Set dotted ``SimulationSettings`` paths of ``options`` on ``ss``; return the solver type."""
+    import exudyn as exu
+    options = dict(options)
+    name = options.pop('solverType', 'GeneralizedAlpha')
+    if not hasattr(exu.DynamicSolverType, str(name)):
+        raise ValueError(f"{where}: solverOptions['solverType'] must name an exudyn.DynamicSolverType, got {name!r}")
+    for path, value in options.items():
+        *parents, leaf = path.split('.')
+        target = ss
+        for part in parents:
+            target = getattr(target, part, None)
+        if target is None or not hasattr(target, leaf):
+            raise ValueError(f"{where}: solverOptions key {path!r} is not a SimulationSettings path")
+        setattr(target, leaf, value)
+    return getattr(exu.DynamicSolverType, str(name))
+
+
 def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float] = None,
                         stepSize: float = DEFAULT_STEP_SIZE, contactOptions: ContactOptions = ContactOptions(),
-                        useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None) -> SimulationResult:
+                        useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
+                        solverOptions: Optional[Mapping[str, Any]] = None) -> SimulationResult:
     """Build and simulate the reel changer with Exudyn's generalized-alpha solver.
 
     Parameters
@@ -230,9 +250,14 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     endTime : float, optional
         Simulated time in s (default: one full rotation, 8 s for the paper's speed).
     stepSize : float
-        Time step in s, > 0 (default :data:`DEFAULT_STEP_SIZE`).
+        Time step in s, > 0 (default :data:`DEFAULT_STEP_SIZE`); refused above the hard limit and warned
+        about above the soft limit of :func:`exudyn_worm.stepsize.CheckStepSize`.
     contactOptions, useSymbolic, startFromEquilibrium, profile
         See :func:`BuildReelChanger`.
+    solverOptions : mapping, optional
+        Changes to the solver settings, keyed by their path in ``exudyn.SimulationSettings`` (e.g.
+        ``{'timeIntegration.newton.maxIterations': 10}``), and ``'solverType'`` (a name of
+        ``exudyn.DynamicSolverType``, default ``'GeneralizedAlpha'``). For benchmarks and studies.
 
     Returns
     -------
@@ -245,6 +270,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     stepSize = CheckPositive(w, 'stepSize', stepSize, 's')
     if stepSize > endTime:
         raise ValueError(f"{w}: 'stepSize' must be <= endTime = {endTime:g} s, got {stepSize:g} s")
+    CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
     model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
     mbs = model.mbs
     mbs.Assemble()
@@ -256,11 +282,12 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     ss.timeIntegration.numberOfSteps = steps
     ss.timeIntegration.verboseMode = 0
     ss.timeIntegration.newton.useModifiedNewton = True
+    solverType = _ApplySolverOptions(ss, solverOptions or {}, w)
     printing = exu.config.printToConsole
     exu.config.printToConsole = False   # silences Exudyn's note on ObjectGenericODE2 allocations per step
     try:
         t0 = _time.perf_counter()
-        success = mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+        success = mbs.SolveDynamic(ss, solverType=solverType)
         solveSeconds = _time.perf_counter() - t0
     finally:
         exu.config.printToConsole = printing
