@@ -41,6 +41,21 @@ class SolverDivergedError(RuntimeError):
         self.timeReached, self.endTime, self.stepSize = timeReached, endTime, stepSize
 
 
+def _SolveInOnePiece(mbs, ss, solverType):
+    """Explicit solvers: one ``mbs.SolveDynamic`` call (no chunks, no progress), failures as SolverDivergedError."""
+    import exudyn as exu
+    ti = ss.timeIntegration
+    try:
+        mbs.SolveDynamic(ss, solverType=solverType)
+    except exu.ExudynError as err:
+        solver = mbs.sys.get('dynamicSolver')
+        reached = solver.it.currentTime if solver is not None else ti.startTime
+        raise SolverDivergedError(f"the Exudyn solver ({solverType}) failed at t = {reached:.6g} s of "
+                                  f"{ti.endTime:g} s ({err})", reached, ti.endTime,
+                                  (ti.endTime - ti.startTime) / ti.numberOfSteps) from err
+    return mbs.sys['dynamicSolver']
+
+
 def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None, desc: str = 'simulate',
                          chunkSteps: int = CHUNK_STEPS):
     """Solve ``mbs`` dynamically like ``mbs.SolveDynamic``, in chunks, with an optional progress bar.
@@ -53,7 +68,8 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
         Settings of the run: ``timeIntegration.startTime``, ``endTime`` and ``numberOfSteps`` set the
         fixed step size. Not changed (the solver type is set for the run and restored).
     solverType : exudyn.DynamicSolverType, optional
-        ``GeneralizedAlpha`` (default) or ``TrapezoidalIndex2``.
+        Default ``GeneralizedAlpha``. The implicit ``GeneralizedAlpha`` and ``TrapezoidalIndex2`` run in
+        chunks; explicit solvers run in one ``mbs.SolveDynamic`` call, without progress.
     progress : bool or None
         Progress bar on stderr over simulated time: True shown, False never, None (default) shown when
         stderr is a terminal and the run takes longer than about 2 s.
@@ -64,28 +80,29 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
 
     Returns
     -------
-    exudyn.MainSolverImplicitSecondOrder
+    exudyn.MainSolverImplicitSecondOrder or exudyn.MainSolverExplicit
         The solver (also stored as ``mbs.sys['dynamicSolver']``); ``solver.it`` holds its statistics.
 
     Raises
     ------
     SolverDivergedError
         If the solver fails; the message gives the simulated time reached.
-    ValueError
-        For an explicit solver type or ``chunkSteps < 1``.
+    ValueError, TypeError
+        For ``chunkSteps < 1`` or a ``solverType`` that is not an ``exudyn.DynamicSolverType``.
     """
     import exudyn as exu
     w = 'SolveDynamicInChunks'
     DST = exu.DynamicSolverType
     solverType = DST.GeneralizedAlpha if solverType is None else solverType
-    if solverType not in (DST.GeneralizedAlpha, DST.TrapezoidalIndex2):
-        raise ValueError(f"{w}: 'solverType' must be GeneralizedAlpha or TrapezoidalIndex2 (implicit), "
-                         f"got {solverType}")
+    if not isinstance(solverType, DST):
+        raise TypeError(f"{w}: 'solverType' must be an exudyn.DynamicSolverType, got {solverType!r}")
     if not (isinstance(chunkSteps, int) and chunkSteps >= 1):
         raise ValueError(f"{w}: 'chunkSteps' must be an integer >= 1, got {chunkSteps!r}")
     if not mbs.systemIsConsistent:
         mbs.Assemble()
     ss = simulationSettings
+    if solverType not in (DST.GeneralizedAlpha, DST.TrapezoidalIndex2):
+        return _SolveInOnePiece(mbs, ss, solverType)
     ti, ga = ss.timeIntegration, ss.timeIntegration.generalizedAlpha
     saved = (ti.solverType, ga.useNewmark, ga.useIndex2Constraints)
     ti.solverType = solverType

@@ -69,7 +69,7 @@ BAD_INPUT = [
     (['--csv', '{tmp}/afile/x.csv'], 'is not a folder'),
     (['--plot', '{tmp}/afile'], 'is a file, expected a folder'),
     (['--plot', 'newdir/figs'], 'the folder newdir does not exist'),
-    (['--set', 'kT=1e16', '--end-time', '0.01'], 'simulation failed: the Exudyn solver failed at t = '),
+    (['--set', 'kT=1e16', '--end-time', '0.01'], 'simulate --step-size'),     # coarse-step rule (stepsize.py)
 ]
 
 
@@ -88,9 +88,22 @@ def test_simulate_bad_input(capsys, tmp_path, monkeypatch, argv, fragment):
     assert (tmp_path / 'afile').read_text() == 'keep'
 
 
+def test_simulate_divergence_is_one_line(capsys, monkeypatch):
+    import exudyn_worm.reelchanger as reelchanger
+    from exudyn_worm.solve import SolverDivergedError
+
+    def Fail(mbs, ss, *args, **kwargs):
+        raise SolverDivergedError('the Exudyn solver failed at t = 0.25 s of 1 s (step size 0.0005 s)', 0.25, 1., 5e-4)
+    monkeypatch.setattr(reelchanger, 'SolveDynamicInChunks', Fail)
+    status, out, err = _Run(capsys, 'simulate', '--end-time', '1')
+    assert status == 2 and out == '' and err.count('\n') == 1
+    assert err.startswith('exudyn-worm: error: simulation failed: the Exudyn solver failed at t = 0.25 s of 1 s')
+    assert 'likely cause' in err
+
+
 def test_validate_report_path_checked_first(capsys, tmp_path, monkeypatch):
-    import exudyn_worm.validation as validation
-    monkeypatch.setattr(validation, 'RunValidation', lambda **kw: pytest.fail('ran before the path check'))
+    import exudyn_worm.commands.validate as validate
+    monkeypatch.setattr(validate, 'FindSuite', lambda: pytest.fail('ran before the path check'))
     (tmp_path / 'afile').write_text('')
     for path, fragment in (('/nonexistent/dir/r.md', 'does not exist'), (str(tmp_path), 'is a folder'),
                            (str(tmp_path / 'afile' / 'r.md'), 'is not a folder')):
@@ -128,14 +141,6 @@ def test_run_size_limit_api():
     with pytest.raises(ValueError, match=r"SimulateReelChanger: endTime 10 s at stepSize 0.0005 s needs 2e\+04 "
                                          r"solver steps, more than the limit maxSteps = 1000"):
         SimulateReelChanger(GetPreset('reel-P1'), endTime=10., maxSteps=1000)
-
-
-def test_solver_divergence_api_reports_time_and_cause():
-    from exudyn_worm import ApplyOverrides, GetPreset, SimulateReelChanger
-    from exudyn_worm.solve import SolverDivergedError
-    with pytest.raises(SolverDivergedError, match=r'failed at t = .* s of 0\.01 s .*likely cause: the stiffest mode') as info:
-        SimulateReelChanger(ApplyOverrides(GetPreset('reel-P1'), {'kT': 1e16}), endTime=0.01, progress=False)
-    assert 0 <= info.value.timeReached < 0.01 and info.value.stepSize == 5e-4
 
 
 def test_simulate_states_its_source(capsys, tmp_path):

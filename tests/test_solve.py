@@ -61,8 +61,26 @@ def test_numbers_do_not_depend_on_the_progress_bar(capsys):
         assert np.array_equal(getattr(quiet, key), getattr(shown, key))
 
 
-def test_other_solver_types_refused():
+def test_bad_solver_type_refused():
     import exudyn as exu
     from exudyn_worm.solve import SolveDynamicInChunks
-    with pytest.raises(ValueError, match="'solverType' must be GeneralizedAlpha or TrapezoidalIndex2"):
-        SolveDynamicInChunks(None, exu.SimulationSettings(), exu.DynamicSolverType.RK44)
+    with pytest.raises(TypeError, match="'solverType' must be an exudyn.DynamicSolverType"):
+        SolveDynamicInChunks(None, exu.SimulationSettings(), 'RK44')
+
+
+def test_failure_reports_the_time_reached():
+    """A solve that cannot converge: one Newton iteration allowed, unreachable tolerance, no step reduction."""
+    from exudyn_worm.solve import SolverDivergedError
+    options = {'timeIntegration.newton.maxIterations': 1, 'timeIntegration.newton.useModifiedNewton': False,
+               'timeIntegration.adaptiveStep': False, 'timeIntegration.newton.relativeTolerance': 1e-30,
+               'timeIntegration.newton.absoluteTolerance': 1e-30}
+    with pytest.raises(SolverDivergedError, match=r'SimulateReelChanger: the Exudyn solver failed at t = 0.0005 s of '
+                                                  r'0.05 s \(step size 0.0005 s\).*likely cause') as info:
+        SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, solverOptions=options, progress=False)
+    assert info.value.timeReached == pytest.approx(5e-4) and info.value.endTime == pytest.approx(0.05)
+
+
+def test_explicit_solver_runs_in_one_piece():
+    result = SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, solverOptions={'solverType': 'RK44'},
+                                 progress=False)
+    assert result.time.size == 101 and np.all(np.diff(result.time) > 0)

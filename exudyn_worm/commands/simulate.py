@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import warnings
 from pathlib import Path
 from typing import List, Tuple
 
@@ -66,7 +67,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help="simulated time in s (default: one full rotation, 8 s at the paper's speed, or the "
                              "end of the last --windows)")
     parser.add_argument('--step-size', type=PositiveFloat('s'), default=None, metavar='S',
-                        help='time step in s (default 5e-4)')
+                        help='time step in s (default 5e-4); refused if it cannot resolve the drive\'s highest '
+                             'natural frequency (rule in exudyn_worm/stepsize.py)')
     parser.add_argument('--max-steps', type=PositiveInt('steps'), default=None, metavar='N',
                         help='refuse runs of more solver steps (= stored samples) than N (default 1e6: 500 s '
                              'simulated at the default step, about 0.4 GB of results)')
@@ -85,8 +87,14 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, int, List[Tuple[float, float]]]:
     """End time, step size, step limit and windows of a run, checked before anything is computed."""
     from ..reelchanger import DEFAULT_STEP_SIZE, MAX_STEPS, CheckRunSize, DefaultWindows, RotationPeriod
+    from ..stepsize import CheckStepSize, CoarseStepWarning
     stepSize = args.step_size if args.step_size is not None else DEFAULT_STEP_SIZE
     maxSteps = args.max_steps if args.max_steps is not None else MAX_STEPS
+    with BadInput(), warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter('always', CoarseStepWarning)
+        CheckStepSize(parameters, stepSize, 'simulate --step-size')
+    for warning in caught:
+        print(f"exudyn-worm: warning: {warning.message}", file=sys.stderr)
     with BadInput():
         userWindows = ParseWindows(args.windows) if args.windows is not None else None
         endTime = args.end_time
@@ -119,8 +127,10 @@ def _Run(args: argparse.Namespace) -> int:
     endTime, stepSize, maxSteps, windows = _RunSettings(args, parameters)
     from ..reelchanger import SimulateReelChanger
     from ..solve import SolverDivergedError
+    from ..stepsize import CoarseStepWarning
     try:
-        with StdoutToStderr(args.json):
+        with StdoutToStderr(args.json), warnings.catch_warnings():
+            warnings.simplefilter('ignore', CoarseStepWarning)      # reported above
             result = SimulateReelChanger(parameters, endTime=endTime, stepSize=stepSize, maxSteps=maxSteps,
                                          useSymbolic=not args.python_user_functions,
                                          progress=False if args.quiet else None)
