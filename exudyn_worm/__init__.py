@@ -14,7 +14,7 @@ from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, Crea
 from .profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque, LinearMotorCharacteristic,
                        StartStopProfile)
 from .presets import ApplyOverrides, DriveFromParameters, GetPreset, PRESETS
-from .linearization import AnalyzeStabilityExudyn
+from .linearization import AnalyzeLinearStability, AnalyzeStabilityExudyn, LinearStability
 from .reelchanger import BuildReelChanger, SimulateReelChanger
 from .results import SimulationResult
 
@@ -26,7 +26,7 @@ __all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMea
            'CreateWormGear', 'WormGearConnector', 'AxialBearing', 'CreateWormAxialBearing', 'CreatePrescribedRotation', 'CreateRotor', 'CreateShaft',
            'CreateRotorTorque', 'ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque',
            'LinearMotorCharacteristic', 'StartStopProfile', 'ApplyOverrides', 'DriveFromParameters', 'GetPreset',
-           'PRESETS', 'AnalyzeStabilityExudyn', 'BuildReelChanger', 'SimulateReelChanger', 'SimulationResult',
+           'PRESETS', 'AnalyzeStabilityExudyn', 'AnalyzeLinearStability', 'LinearStability', 'BuildReelChanger', 'SimulateReelChanger', 'SimulationResult',
            'AddMainSystemMethods', '__version__']
 
 _MAIN_SYSTEM_METHODS = {'CreateWormGear': CreateWormGear, 'CreateWormAxialBearing': CreateWormAxialBearing,

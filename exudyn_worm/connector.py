@@ -23,11 +23,14 @@ from typing import Any, Dict, List, Sequence
 import numpy as np
 
 from ._checks import CheckNonNegative, CheckPositive, CheckReal
-from ._userfunctions import AddGenericForce
+from ._userfunctions import AddGenericForce, SetGenericForceLaw
 from .contact import NUMPY_OPS, ContactOptions, MeshContact, MeshState
 from .gear import WormGear
 
-__all__ = ['WormGearConnector', 'CreateWormGear', 'AxialBearing', 'CreateWormAxialBearing']
+__all__ = ['WormGearConnector', 'CreateWormGear', 'AxialBearing', 'CreateWormAxialBearing', 'CONNECTORS_KEY']
+
+#: ``mbs.variables`` key of the list of worm-gear connectors built in a system (found by the linear analysis)
+CONNECTORS_KEY = 'exudynWorm.connectors'
 
 
 @dataclass(frozen=True)
@@ -112,6 +115,49 @@ class WormGearConnector:
     sensors: Dict[str, Any] = field(default_factory=dict)
     axialNodeNumber: Any = None
     axialReference: float = 0.
+    useSymbolic: bool = True
+
+    @property
+    def coordinateNodes(self) -> List[Any]:
+        """Nodes of the connector's coordinates: worm, wheel (and the worm's axial node if present)."""
+        return list(self.nodeNumbers) + ([] if self.axialNodeNumber is None else [self.axialNodeNumber])
+
+    def SetContactOptions(self, mbs, options: ContactOptions) -> None:
+        """Replace the contact options of the built connector (e.g. hold S for a linearization).
+
+        Re-records the connector's user function; call ``mbs.Assemble()`` (or let Exudyn's solvers
+        auto-assemble) before the next computation.
+
+        Parameters
+        ----------
+        mbs : exudyn.MainSystem
+            The system the connector belongs to.
+        options : ContactOptions
+            The new options.
+        """
+        if not isinstance(options, ContactOptions):
+            raise TypeError(f"WormGearConnector.SetContactOptions: 'options' must be a ContactOptions, got "
+                            f"{type(options).__name__}")
+        law = _WormGearLaw(self.gear, options, self.referenceAngles, self.axialNodeNumber is not None,
+                           self.axialReference)
+        self.userFunction = SetGenericForceLaw(mbs, self.objectNumber, len(self.coordinateNodes), law,
+                                               self.useSymbolic)
+        self.options = options
+
+    def InitialMeshState(self, mbs) -> MeshState:
+        """Mesh quantities at the system's initial state (node initial coordinates and velocities).
+
+        Parameters
+        ----------
+        mbs : exudyn.MainSystem
+            The system the connector belongs to.
+        """
+        values = []
+        for node in self.coordinateNodes:
+            info = mbs.GetNode(node)
+            values.append((float(np.ravel(info['initialCoordinates'])[0]), float(np.ravel(info['initialVelocities'])[0])))
+        axial = values[2] if len(values) == 3 else (None, None)
+        return self.Evaluate(values[0][0], values[1][0], values[0][1], values[1][1], *axial)
 
     def Evaluate(self, phi1, phi2, omega1, omega2, xA=None, vA=None) -> MeshState:
         """Mesh quantities (normal force, S, sf, torques, axial force, ...) for arrays of worm/wheel states.
@@ -220,23 +266,30 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
     ref1 = _CheckNode(mbs, nodeNumbers[0], 'nodeNumbers[0] (worm)')
     ref2 = _CheckNode(mbs, nodeNumbers[1], 'nodeNumbers[1] (wheel)')
 
-    if axialNodeNumber is None:
+    refA = 0. if axialNodeNumber is None else _CheckNode(mbs, axialNodeNumber, 'axialNodeNumber', 'axial displacement')
+    nodes = list(nodeNumbers) + ([] if axialNodeNumber is None else [axialNodeNumber])
+    law = _WormGearLaw(gear, contactOptions, [ref1, ref2], axialNodeNumber is not None, refA)
+    oItem, userFunction = AddGenericForce(mbs, nodes, law, name=name, useSymbolic=useSymbolic)
+    connector = WormGearConnector(objectNumber=oItem, nodeNumbers=list(nodeNumbers), gear=gear,
+                                  options=contactOptions, name=name, userFunction=userFunction,
+                                  referenceAngles=[ref1, ref2], axialNodeNumber=axialNodeNumber, axialReference=refA,
+                                  useSymbolic=useSymbolic)
+    mbs.variables.setdefault(CONNECTORS_KEY, []).append(connector)
+    return connector
+
+
+def _WormGearLaw(gear, options, referenceAngles, axial, axialReference):
+    """The connector's generalized forces as ``law(t, q, q_t, ops)`` for AddGenericForce."""
+    ref1, ref2 = referenceAngles
+    if not axial:
         def WormGearLaw(t, q, q_t, ops):
             """Generalized forces [worm torque, wheel torque] of the mesh."""
-            state = MeshContact(gear, q[0] + ref1, q[1] + ref2, q_t[0], q_t[1], contactOptions, ops)
+            state = MeshContact(gear, q[0] + ref1, q[1] + ref2, q_t[0], q_t[1], options, ops)
             return [state.wormTorque, state.wheelTorque]
-        nodes, refA = list(nodeNumbers), 0.
     else:
-        refA = _CheckNode(mbs, axialNodeNumber, 'axialNodeNumber', 'axial displacement')
-
         def WormGearLaw(t, q, q_t, ops):
             """Generalized forces [worm torque, wheel torque, worm axial force] of the mesh."""
-            state = MeshContact(gear, q[0] + ref1, q[1] + ref2, q_t[0], q_t[1], contactOptions, ops,
-                                axialDisplacement=q[2] + refA, axialSpeed=q_t[2])
+            state = MeshContact(gear, q[0] + ref1, q[1] + ref2, q_t[0], q_t[1], options, ops,
+                                axialDisplacement=q[2] + axialReference, axialSpeed=q_t[2])
             return [state.wormTorque, state.wheelTorque, state.axialForce]
-        nodes = list(nodeNumbers) + [axialNodeNumber]
-
-    oItem, userFunction = AddGenericForce(mbs, nodes, WormGearLaw, name=name, useSymbolic=useSymbolic)
-    return WormGearConnector(objectNumber=oItem, nodeNumbers=list(nodeNumbers), gear=gear,
-                             options=contactOptions, name=name, userFunction=userFunction,
-                             referenceAngles=[ref1, ref2], axialNodeNumber=axialNodeNumber, axialReference=refA)
+    return WormGearLaw
