@@ -23,6 +23,7 @@ sign is the Hurwitz verdict, interpolated linearly in log10 coordinates.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Sequence, Tuple
 
@@ -31,11 +32,12 @@ import numpy as np
 from ._checks import CheckArray, CheckRange
 from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from .gear import WormGear
-from .stability import CONTACT_STATES, HurwitzConditions, HurwitzStable, PolynomialCoefficients
+from .stability import CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, HurwitzStable, PolynomialCoefficients
 
 __all__ = ['StabilityChart', 'ComputeStabilityChart', 'ChartCoordinates', 'ChartCoefficients',
            'UnstableGrid', 'MaxRealPartGrid', 'MaxRealPart', 'ContourLines',
-           'DEFAULT_X_RANGE', 'DEFAULT_Y_RANGE', 'DEFAULT_RESOLUTION']
+           'PresetChartPoints', 'FirstCriterionCurves', 'FirstCriterionChart', 'DEFAULT_X_RANGE', 'DEFAULT_Y_RANGE',
+           'DEFAULT_RESOLUTION']
 
 #: default stiffness-ratio range kT/(kV r1^2) (validation/README.md fixes this chart domain)
 DEFAULT_X_RANGE = (1e-4, 1e2)
@@ -146,6 +148,24 @@ def ChartCoordinates(drive: ElasticDrive) -> Dict[str, float]:
         raise TypeError(f"ChartCoordinates: 'drive' must be an ElasticDrive, got {type(drive).__name__}")
     return {'x': float(drive.stiffnessRatio), 'y': float(drive.inertiaRatio), 'DV': float(drive.DV),
             'DTV': float(drive.DTV)}
+
+
+def PresetChartPoints(names: Sequence[str]) -> Dict[str, Dict[str, float]]:
+    """Chart coordinates of presets, e.g. the paper's points P1-P7 (presets 'reel-P1' ... 'reel-P7').
+
+    Parameters
+    ----------
+    names : sequence of str
+        Preset names (see :data:`~exudyn_worm.presets.PRESETS`); each needs a complete drive (J1, kT and
+        the damping). A 'reel-' prefix is dropped from the label.
+
+    Returns
+    -------
+    dict
+        ``{label: {'x', 'y', 'DV', 'DTV'}}`` in the order given.
+    """
+    from .presets import DriveFromParameters, GetPreset
+    return {name.replace('reel-', ''): ChartCoordinates(DriveFromParameters(GetPreset(name))) for name in names}
 
 
 # --- largest real part of the roots of the quartic --------------------------------------------------------------
@@ -616,3 +636,83 @@ def ComputeStabilityChart(gear: WormGear, J2: float, DV: float, DTV: float,
     b = ChartCoefficients(gear, J2, x[None, :], y[:, None], DV, DTV, S)
     unstable = ~HurwitzStable(b)
     return StabilityChart(gear=gear, J2=J2, DV=DV, DTV=DTV, S=S, x=x, y=y, unstable=unstable, margin=_Margin(b))
+
+
+# --- Figure 3: the first criterion (20) with dT = 0 -----------------------------------------------------------
+@dataclass(frozen=True)
+class FirstCriterionCurves:
+    """Limits of J1/J2 of the first instability condition (20) with dT = 0 (Figure 3).
+
+    Below a curve (J1/J2 smaller than the limit) the drive is unstable; where the limit is <= 0 (gamma >= rho,
+    not self-locking) there is no instability of this kind.
+
+    Parameters
+    ----------
+    gamma : ndarray
+        Pitch angles in rad, shape (n,).
+    rho : ndarray
+        Friction angles in rad, shape (m,).
+    ratio : float
+        Transmission ratio u, held fixed (r2 = u r1 tan(gamma)).
+    limit : ndarray
+        J1/J2 limit, shape (m, n); NaN where not self-locking.
+    """
+    gamma: np.ndarray
+    rho: np.ndarray
+    ratio: float
+    limit: np.ndarray
+
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary (angles in degrees, NaN as None)."""
+        return {'ratio': self.ratio, 'gammaDeg': np.degrees(self.gamma).tolist(),
+                'rhoDeg': np.degrees(self.rho).tolist(),
+                'limit': [[None if not np.isfinite(v) else float(v) for v in row] for row in self.limit]}
+
+    def plot(self, ax=None, **kwargs):
+        """Draw with :func:`exudyn_worm.plot_charts.PlotFirstCriterion` (imports matplotlib).
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw into (default: a new figure).
+        **kwargs
+            Passed on to :func:`~exudyn_worm.plot_charts.PlotFirstCriterion`.
+        """
+        from .plot_charts import PlotFirstCriterion
+        return PlotFirstCriterion(self, ax=ax, **kwargs)
+
+
+def FirstCriterionChart(gear: WormGear, gamma: Sequence[float], rho: Sequence[float]) -> FirstCriterionCurves:
+    """J1/J2 limit of the first instability condition (20) with dT = 0 over pitch and friction angles.
+
+    With dT = 0, (20) is Fuesgen's condition (21), tan(rho - gamma) / (u^2 tan(gamma)); it is evaluated by
+    :func:`~exudyn_worm.stability.FirstCriterionLimit` on gears that keep ``gear``'s transmission ratio u,
+    pressure angle and r1 (r2 = u r1 tan(gamma)) with the given gamma and rho.
+
+    Parameters
+    ----------
+    gear : WormGear
+        Template gear (e.g. set (25)): its ratio u, alphaN, r1 and kV are kept.
+    gamma : sequence of float
+        Pitch angles in rad, each in (0, pi/2).
+    rho : sequence of float
+        Friction angles in rad, each in [0, pi/2).
+
+    Returns
+    -------
+    FirstCriterionCurves
+    """
+    w = 'FirstCriterionChart'
+    if not isinstance(gear, WormGear):
+        raise TypeError(f"{w}: 'gear' must be a WormGear, got {type(gear).__name__}")
+    gamma = np.atleast_1d(np.asarray(gamma, dtype=float))
+    rho = np.atleast_1d(np.asarray(rho, dtype=float))
+    u = gear.ratio
+    limit = np.full((rho.size, gamma.size), np.nan)
+    for i, r in enumerate(rho):
+        for j, g in enumerate(gamma):
+            if g >= r:
+                continue
+            mesh = gear.Replace(gamma=g, rho=r, r2=u * gear.r1 * math.tan(g), dV=1.)
+            limit[i, j] = FirstCriterionLimit(ElasticDrive(mesh, J1=1., J2=1., kT=1., dT=0.))
+    return FirstCriterionCurves(gamma=gamma, rho=rho, ratio=u, limit=limit)
