@@ -129,13 +129,6 @@ class WormGear:
         """
         return math.cos(self.alphaN) * math.cos(self.gamma)
 
-    @property
-    def wheelCircumferenceFactor(self) -> float:
-        """1/(cos(alphaN) cos(gamma))^2: a mesh spring kV referred to the wheel circumference acts like a
-        normal spring kV times this factor (the convention identified from the paper's printed eigenvalues,
-        validation/REPORT.md)."""
-        return 1. / (math.cos(self.alphaN) * math.cos(self.gamma))**2
-
     def NormalDisplacement(self, deltaPhi):
         """Relative normal displacement Delta s = r1 cos(alphaN) sin(gamma) Delta phi in m, eq. (5)."""
         return self.normalLever * deltaPhi
