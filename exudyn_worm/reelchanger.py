@@ -24,20 +24,29 @@ from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideC
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
 from .solve import SolveDynamicInChunks, SolverDivergedError
-from .stepsize import CheckStepSize
+from .stepsize import CheckStepSize, RecommendedStepSize
 from ._checks import CheckPositive
 from ._roots import FindRoot
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
-           'SteadyInitialState', 'CheckRunSize', 'DEFAULT_STEP_SIZE', 'MAX_STEPS']
+           'SteadyInitialState', 'CheckRunSize', 'DEFAULT_STEP_SIZE', 'SOLVER_SETTINGS', 'MAX_STEPS']
 
-#: default time step in s (the P1/P7 amplitudes change < 1 % when it is halved, see validation/REPORT.md)
+#: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change
+#: < 1 % when it is halved, see validation/REPORT.md); SimulateReelChanger's default is the drive's own
+#: RecommendedStepSize
 DEFAULT_STEP_SIZE = 5e-4
+#: generalized-alpha settings of :func:`SimulateReelChanger` (paths in ``exudyn.SimulationSettings``), chosen by
+#: the lever measurements in benchmarks/README.md: modified Newton, at most 10 iterations before the Jacobian is
+#: renewed or the step halved (Exudyn's 25 let a stuck iteration run on), relative tolerance 1e-6, spectral
+#: radius 0.8 (damps the stiff friction-regularization mode; 0.9 made P1's peak 0.3 % high at 5e-4 s)
+SOLVER_SETTINGS = {'timeIntegration.newton.useModifiedNewton': True, 'timeIntegration.newton.maxIterations': 10,
+                   'timeIntegration.newton.relativeTolerance': 1e-6,
+                   'timeIntegration.generalizedAlpha.spectralRadius': 0.8}
 _MOTOR_INERTIA = 1e-3   # kg*m^2; the motor node is prescribed, its inertia does not matter
 
-#: default limit of solver steps (= stored samples, one per step) of one run: 1e6 steps is 500 s simulated at
-#: the default step, about 0.4 GB of stored results and 15 s (P1) to 3.5 min (P7) of solving; raise it with
-#: ``maxSteps`` (``--max-steps``) for longer runs
+#: default limit of solver steps (= stored samples, one per step) of one run: 1e6 steps is about 0.4 GB of
+#: stored results and 15 s (P1) to 3.5 min (P7) of solving (780 s simulated of P1 at its recommended step);
+#: raise it with ``maxSteps`` (``--max-steps``) for longer runs
 MAX_STEPS = 1_000_000
 #: solver time per step in s measured for the reel changer (P1 without chatter in most steps, P7 with the
 #: worm speed through zero), used to say how long a refused run would take
@@ -301,6 +310,14 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain)
 
 
+def _SolverCounters(mbs) -> Dict[str, Any]:
+    """Work counters of the last solve: steps taken, Newton iterations, Jacobians, rejected (halved) steps."""
+    it = mbs.sys['dynamicSolver'].it
+    return {'steps': int(it.currentStepIndex) - 1, 'newtonIterations': int(it.newtonStepsCount),
+            'jacobians': int(it.newtonJacobiCount), 'rejectedSteps': int(it.rejectedModifiedNewtonSteps),
+            'minStepSize': float(it.minStepSize)}
+
+
 def _ApplySolverOptions(ss, options: Mapping[str, Any], where: str):
     """Set dotted ``SimulationSettings`` paths of ``options`` on ``ss``; return the solver type."""
     import exudyn as exu
@@ -335,7 +352,7 @@ def _LikelyCause(drive: ElasticDrive, stepSize: float) -> str:
 
 
 def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float] = None,
-                        stepSize: float = DEFAULT_STEP_SIZE, contactOptions: ContactOptions = ContactOptions(),
+                        stepSize: Optional[float] = None, contactOptions: ContactOptions = ContactOptions(),
                         useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
                         solverOptions: Optional[Mapping[str, Any]] = None, maxSteps: int = MAX_STEPS,
                         progress: Optional[bool] = None) -> SimulationResult:
@@ -347,15 +364,17 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
         Flat parameter set (e.g. ``GetPreset('reel-P1')``).
     endTime : float, optional
         Simulated time in s (default: one full rotation, 8 s for the paper's speed).
-    stepSize : float
-        Time step in s, > 0 (default :data:`DEFAULT_STEP_SIZE`); refused above the hard limit and warned
-        about above the soft limit of :func:`exudyn_worm.stepsize.CheckStepSize`.
+    stepSize : float, optional
+        Time step in s, > 0; refused above the hard limit and warned about above the soft limit of
+        :func:`exudyn_worm.stepsize.CheckStepSize`. Default: the drive's own
+        :func:`~exudyn_worm.stepsize.RecommendedStepSize` (7.8e-4 s for P1, 5.1e-4 s for P7).
     contactOptions, useSymbolic, startFromEquilibrium, profile
         See :func:`BuildReelChanger`.
     solverOptions : mapping, optional
         Changes to the solver settings, keyed by their path in ``exudyn.SimulationSettings`` (e.g.
         ``{'timeIntegration.newton.maxIterations': 10}``), and ``'solverType'`` (a name of
-        ``exudyn.DynamicSolverType``, default ``'GeneralizedAlpha'``). For benchmarks and studies.
+        ``exudyn.DynamicSolverType``, default ``'GeneralizedAlpha'``), applied over :data:`SOLVER_SETTINGS`.
+        For benchmarks and studies.
     maxSteps : int
         Refuse a run of more than this many steps (:func:`CheckRunSize`, default :data:`MAX_STEPS`).
     progress : bool or None
@@ -378,6 +397,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     import exudyn as exu
     w = 'SimulateReelChanger'
     endTime = RotationPeriod(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
+    stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
     steps = CheckRunSize(endTime, stepSize, maxSteps, w)
     CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
     model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
@@ -389,14 +409,13 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     ss.timeIntegration.endTime = endTime
     ss.timeIntegration.numberOfSteps = steps
     ss.timeIntegration.verboseMode = 0
-    ss.timeIntegration.newton.useModifiedNewton = True
-    solverType = _ApplySolverOptions(ss, solverOptions or {}, w)
+    solverType = _ApplySolverOptions(ss, {**SOLVER_SETTINGS, **(solverOptions or {})}, w)
     printing = exu.config.printToConsole
     exu.config.printToConsole = False   # silences Exudyn's note on ObjectGenericODE2 allocations per step
     try:
-        t0 = _time.perf_counter()
+        t0, c0 = _time.perf_counter(), _time.process_time()
         SolveDynamicInChunks(mbs, ss, solverType, progress=progress, desc=w)
-        solveSeconds = _time.perf_counter() - t0
+        solveSeconds, solveCpuSeconds = _time.perf_counter() - t0, _time.process_time() - c0
     except SolverDivergedError as err:
         raise SolverDivergedError(f"{w}: {err}; {_LikelyCause(model.drive, stepSize)}",
                                   err.timeReached, err.endTime, err.stepSize) from err
@@ -426,4 +445,5 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
                             steps=steps, info={'stepSize': stepSize, 'maxLoadTorque': model.load.maximum,
                                                'frictionSpeed': contactOptions.frictionSpeed,
-                                               'useSymbolic': useSymbolic})
+                                               'useSymbolic': useSymbolic, 'solver': _SolverCounters(mbs),
+                                               'solveCpuSeconds': solveCpuSeconds})

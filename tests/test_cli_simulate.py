@@ -59,7 +59,7 @@ BAD_INPUT = [
     (['--step-size', '-1e-3'], "argument --step-size: must be > 0 s, got -1e-3 s"),
     (['--step-size', '1e-300'], "Raise --max-steps to run it anyway"),
     (['--end-time', '1e7'], "would take about"),
-    (['--end-time', '1e4'], "needs 2e+07 solver steps"),
+    (['--end-time', '1e4'], 'solver steps, more than the limit --max-steps = 1e+06'),
     (['--end-time', '0.1', '--max-steps', '10'], "more than the limit --max-steps = 10"),
     (['--max-steps', '1.5'], "argument --max-steps: expected an integer"),
     (['--csv', '/nonexistent/dir/x.csv'], 'the folder /nonexistent/dir does not exist'),
@@ -69,7 +69,8 @@ BAD_INPUT = [
     (['--csv', '{tmp}/afile/x.csv'], 'is not a folder'),
     (['--plot', '{tmp}/afile'], 'is a file, expected a folder'),
     (['--plot', 'newdir/figs'], 'the folder newdir does not exist'),
-    (['--set', 'kT=1e16', '--end-time', '0.01'], 'simulate --step-size'),     # coarse-step rule (stepsize.py)
+    (['--set', 'kT=1e16', '--end-time', '0.01'], 'at the recommended step size 7.76'),
+    (['--set', 'kT=1e16', '--end-time', '0.01', '--step-size', '1e-4'], 'simulate --step-size'),   # stepsize.py
 ]
 
 
@@ -140,7 +141,7 @@ def test_run_size_limit_api():
     from exudyn_worm import GetPreset, SimulateReelChanger
     with pytest.raises(ValueError, match=r"SimulateReelChanger: endTime 10 s at stepSize 0.0005 s needs 2e\+04 "
                                          r"solver steps, more than the limit maxSteps = 1000"):
-        SimulateReelChanger(GetPreset('reel-P1'), endTime=10., maxSteps=1000)
+        SimulateReelChanger(GetPreset('reel-P1'), endTime=10., stepSize=5e-4, maxSteps=1000)
 
 
 def test_simulate_states_its_source(capsys, tmp_path):

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from exudyn_worm import GetPreset, SimulateReelChanger
-from exudyn_worm.reelchanger import BuildReelChanger
+from exudyn_worm.reelchanger import SOLVER_SETTINGS, BuildReelChanger, _ApplySolverOptions
 
 
 def _Plain(parameters, endTime, stepSize):
@@ -19,33 +19,30 @@ def _Plain(parameters, endTime, stepSize):
     ss.timeIntegration.endTime = endTime
     ss.timeIntegration.numberOfSteps = int(round(endTime / stepSize))
     ss.timeIntegration.verboseMode = 0
-    ss.timeIntegration.newton.useModifiedNewton = True
+    solverType = _ApplySolverOptions(ss, SOLVER_SETTINGS, 'test')
     printing, exu.config.printToConsole = exu.config.printToConsole, False
     try:
-        mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+        mbs.SolveDynamic(ss, solverType=solverType)
     finally:
         exu.config.printToConsole = printing
     return model.connector.StoredStates(mbs)
 
 
-def test_chunks_agree_with_one_solve_p1():
-    p = GetPreset('reel-P1')
-    endTime, h = 3., 5e-4                 # 6000 steps: three chunks; P1 chatters from 2 s
-    result = SimulateReelChanger(p, endTime=endTime, stepSize=h, progress=False)
-    plain = _Plain(p, endTime, h)
-    np.testing.assert_allclose(result.time, plain['time'], rtol=0, atol=1e-9)   # one sample per step, no repeats
-    for key in ('phi1', 'omega1', 'phi2', 'omega2', 'alpha2'):
-        scale = np.max(np.abs(plain[key]))
-        np.testing.assert_allclose(getattr(result, key), plain[key], rtol=0, atol=1e-6 * scale, err_msg=key)
-
-
-def test_chunks_agree_with_one_solve_p7():
-    """P7 halves its step often (worm speed through zero): the chunk ends change where it does, so the
-    chattering trajectories differ by about 1 % pointwise; the peaks the metrics use agree to 0.1 %."""
-    p = GetPreset('reel-P7')
-    result = SimulateReelChanger(p, endTime=3., progress=False)
+@pytest.mark.parametrize('preset', ['reel-P1', 'reel-P7'])
+def test_chunks_agree_with_one_solve(preset):
+    """Chunks restart the modified-Newton Jacobian (and P7's step halvings move), so the trajectories agree
+    with one solve to the Newton tolerance (relativeTolerance 1e-6 of SOLVER_SETTINGS) until the chatter
+    amplifies it; the peaks the window metrics use agree to 0.1 %."""
+    p = GetPreset(preset)
+    result = SimulateReelChanger(p, endTime=3., stepSize=5e-4, progress=False)    # 6000 steps: three chunks
     plain = _Plain(p, 3., 5e-4)
-    assert np.all(np.diff(result.time) > 1e-9)
+    assert np.all(np.diff(result.time) > 1e-9)                                   # one sample per time
+    if preset == 'reel-P1':                                                      # fixed steps: the same grid
+        np.testing.assert_allclose(result.time, plain['time'], rtol=0, atol=1e-9)
+        early = plain['time'] < 2.                                               # lifting, no chatter
+        for key in ('phi1', 'omega1', 'phi2', 'omega2'):
+            np.testing.assert_allclose(getattr(result, key)[early], plain[key][early], rtol=0,
+                                       atol=1e-5 * np.max(np.abs(plain[key])), err_msg=key)
     for t0, t1 in ((0., 2.), (2., 3.)):
         m, mp = result._Window(t0, t1), (plain['time'] >= t0) & (plain['time'] <= t1)
         assert np.max(np.abs(result.alpha2[m])) == pytest.approx(np.max(np.abs(plain['alpha2'][mp])), rel=1e-3)
@@ -76,11 +73,12 @@ def test_failure_reports_the_time_reached():
                'timeIntegration.newton.absoluteTolerance': 1e-30}
     with pytest.raises(SolverDivergedError, match=r'SimulateReelChanger: the Exudyn solver failed at t = 0.0005 s of '
                                                   r'0.05 s \(step size 0.0005 s\).*likely cause') as info:
-        SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, solverOptions=options, progress=False)
+        SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, stepSize=5e-4, solverOptions=options,
+                            progress=False)
     assert info.value.timeReached == pytest.approx(5e-4) and info.value.endTime == pytest.approx(0.05)
 
 
 def test_explicit_solver_runs_in_one_piece():
-    result = SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, solverOptions={'solverType': 'RK44'},
-                                 progress=False)
+    result = SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, stepSize=5e-4,
+                                 solverOptions={'solverType': 'RK44'}, progress=False)
     assert result.time.size == 101 and np.all(np.diff(result.time) > 0)
