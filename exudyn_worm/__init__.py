@@ -9,12 +9,12 @@ from .drive import (ElasticDrive, MeshDampingFromMeasure, MeshDampingMeasure,
                     TorsionalDampingFromMeasure, TorsionalDampingMeasure)
 from .stability import AnalyzeStability, StabilityAnalysis, ContactStability
 from .contact import ContactOptions, MeshContact, MeshState
-from .connector import CreateWormGear, WormGearConnector
+from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
 from .profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque, LinearMotorCharacteristic,
                        StartStopProfile)
 from .presets import ApplyOverrides, DriveFromParameters, GetPreset, PRESETS
-from .linearization import AnalyzeStabilityExudyn
+from .linearization import AnalyzeLinearStability, AnalyzeStabilityExudyn, LinearStability
 from .reelchanger import BuildReelChanger, SimulateReelChanger
 from .results import SimulationResult
 
@@ -23,13 +23,14 @@ __version__ = '0.1.0'
 __all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMeasure',
            'TorsionalDampingFromMeasure', 'TorsionalDampingMeasure', 'AnalyzeStability',
            'StabilityAnalysis', 'ContactStability', 'ContactOptions', 'MeshContact', 'MeshState',
-           'CreateWormGear', 'WormGearConnector', 'CreatePrescribedRotation', 'CreateRotor', 'CreateShaft',
+           'CreateWormGear', 'WormGearConnector', 'AxialBearing', 'CreateWormAxialBearing', 'CreatePrescribedRotation', 'CreateRotor', 'CreateShaft',
            'CreateRotorTorque', 'ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque',
            'LinearMotorCharacteristic', 'StartStopProfile', 'ApplyOverrides', 'DriveFromParameters', 'GetPreset',
-           'PRESETS', 'AnalyzeStabilityExudyn', 'BuildReelChanger', 'SimulateReelChanger', 'SimulationResult',
+           'PRESETS', 'AnalyzeStabilityExudyn', 'AnalyzeLinearStability', 'LinearStability', 'BuildReelChanger', 'SimulateReelChanger', 'SimulationResult',
            'AddMainSystemMethods', '__version__']
 
-_MAIN_SYSTEM_METHODS = {'CreateWormGear': CreateWormGear, 'CreateRotor': CreateRotor, 'CreateShaft': CreateShaft,
+_MAIN_SYSTEM_METHODS = {'CreateWormGear': CreateWormGear, 'CreateWormAxialBearing': CreateWormAxialBearing,
+                        'CreateRotor': CreateRotor, 'CreateShaft': CreateShaft,
                         'CreatePrescribedRotation': CreatePrescribedRotation, 'CreateRotorTorque': CreateRotorTorque}
 
 

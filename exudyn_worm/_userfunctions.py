@@ -12,7 +12,7 @@ import numpy as np
 
 from .contact import MATH_OPS, SymbolicOps
 
-__all__ = ['AddGenericForce', 'SetOffsetFunction']
+__all__ = ['AddGenericForce', 'SetGenericForceLaw', 'SetOffsetFunction']
 
 _KEEP_ALIVE = 'exudynWorm.symbolicUserFunctions'   # mbs.variables key: expression trees must outlive the solve
 
@@ -54,6 +54,13 @@ def AddGenericForce(mbs, nodeNumbers: Sequence[Any], law: Callable, name: str = 
     zeros = np.zeros((n, n))
     oItem = mbs.AddObject(ObjectGenericODE2(nodeNumbers=list(nodeNumbers), massMatrix=zeros,
                                             stiffnessMatrix=zeros, dampingMatrix=zeros, name=name))
+    return oItem, SetGenericForceLaw(mbs, oItem, n, law, useSymbolic)
+
+
+def SetGenericForceLaw(mbs, objectNumber, n: int, law: Callable, useSymbolic: bool = True):
+    """(Re)set the ``forceUserFunction`` of an ``ObjectGenericODE2`` on ``n`` one-coordinate nodes to
+    ``law(t, q, q_t, ops)``; returns the user function."""
+    oItem = objectNumber
     if useSymbolic:
         userFunction = _RecordSymbolic(mbs, oItem, 'forceUserFunction',
                                        [('t', 'Real', 1), ('itemNumber', 'Index', 1), ('q', 'StdVector', n),
@@ -63,7 +70,7 @@ def AddGenericForce(mbs, nodeNumbers: Sequence[Any], law: Callable, name: str = 
         def userFunction(mbs, t, itemNumber, q, q_t):
             return list(law(t, q, q_t, MATH_OPS))
     mbs.SetObjectParameter(oItem, 'forceUserFunction', userFunction)
-    return oItem, userFunction
+    return userFunction
 
 
 def SetOffsetFunction(mbs, objectNumber, law: Callable, useSymbolic: bool = True):

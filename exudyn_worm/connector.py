@@ -9,6 +9,11 @@ see benchmarks/README.md).
 Supported nodes: nodes with exactly one ODE2 coordinate that is a rotation angle, i.e. ``Node1D``
 (with ``ObjectRotationalMass1D``) and ``NodeGenericODE2`` with one coordinate. 3D rigid-body nodes
 are not supported: their rotation parameters wrap at +-pi (see docs/exudyn notes).
+
+The worm's axial bearing (optional): :func:`CreateWormAxialBearing` adds the worm's axial degree of
+freedom (mass ``mA`` on a spring-damper ``kA, dA`` to ground); pass its node as ``axialNodeNumber`` to
+:func:`CreateWormGear` and the mesh displacement includes the worm's axial motion
+(:func:`exudyn_worm.contact.MeshContact` documents the kinematics).
 """
 from __future__ import annotations
 
@@ -17,11 +22,80 @@ from typing import Any, Dict, List, Sequence
 
 import numpy as np
 
-from ._userfunctions import AddGenericForce
+from ._checks import CheckNonNegative, CheckPositive, CheckReal
+from ._userfunctions import AddGenericForce, SetGenericForceLaw
 from .contact import NUMPY_OPS, ContactOptions, MeshContact, MeshState
 from .gear import WormGear
 
-__all__ = ['WormGearConnector', 'CreateWormGear']
+__all__ = ['WormGearConnector', 'CreateWormGear', 'AxialBearing', 'CreateWormAxialBearing', 'CONNECTORS_KEY']
+
+#: ``mbs.variables`` key of the list of worm-gear connectors built in a system (found by the linear analysis)
+CONNECTORS_KEY = 'exudynWorm.connectors'
+
+
+@dataclass(frozen=True)
+class AxialBearing:
+    """Axial bearing of the worm: the worm's axially moving mass on an axial spring-damper to the housing.
+
+    Parameters
+    ----------
+    stiffness : float
+        Axial stiffness kA in N/m, > 0.
+    damping : float
+        Axial damping dA in N*s/m, >= 0.
+    mass : float
+        Axially moving mass of the worm mA in kg, > 0 (worm, shaft and the bearing parts moving with it).
+    """
+    stiffness: float
+    damping: float
+    mass: float
+
+    def __post_init__(self):
+        w = 'AxialBearing'
+        object.__setattr__(self, 'stiffness', CheckPositive(w, 'stiffness', self.stiffness, 'N/m'))
+        object.__setattr__(self, 'damping', CheckNonNegative(w, 'damping', self.damping, 'N*s/m'))
+        object.__setattr__(self, 'mass', CheckPositive(w, 'mass', self.mass, 'kg'))
+
+
+def CreateWormAxialBearing(mbs, bearing: AxialBearing, initialDisplacement: float = 0., initialSpeed: float = 0.,
+                           name: str = 'wormAxial') -> Dict[str, Any]:
+    """Add the worm's axial degree of freedom: ``Node1D`` + ``ObjectMass1D`` + spring-damper to ground.
+
+    Pass the returned ``nodeNumber`` as ``axialNodeNumber`` to :func:`CreateWormGear`.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The system.
+    bearing : AxialBearing
+        Stiffness, damping and axially moving mass.
+    initialDisplacement : float
+        Initial axial displacement in m (positive where the thread advances for a positive worm rotation).
+    initialSpeed : float
+        Initial axial speed in m/s.
+    name : str
+        Name of the node, mass and spring-damper.
+
+    Returns
+    -------
+    dict
+        ``nodeNumber``, ``objectNumber`` (the mass), ``markerNumber``, ``springDamperNumber``.
+    """
+    from exudyn.itemInterface import (CoordinateSpringDamper, MarkerNodeCoordinate, Node1D, NodePointGround,
+                                      ObjectMass1D)
+    w = 'CreateWormAxialBearing'
+    if not isinstance(bearing, AxialBearing):
+        raise TypeError(f"{w}: 'bearing' must be an AxialBearing, got {type(bearing).__name__}")
+    nNode = mbs.AddNode(Node1D(referenceCoordinates=[0.],
+                               initialCoordinates=[CheckReal(w, 'initialDisplacement', initialDisplacement, 'm')],
+                               initialVelocities=[CheckReal(w, 'initialSpeed', initialSpeed, 'm/s')], name=name))
+    oMass = mbs.AddObject(ObjectMass1D(nodeNumber=nNode, mass=bearing.mass, name=name))
+    mNode = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nNode, coordinate=0))
+    nGround = mbs.AddNode(NodePointGround())
+    mGround = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nGround, coordinate=0))
+    oSpring = mbs.AddObject(CoordinateSpringDamper(markerNumbers=[mGround, mNode], stiffness=bearing.stiffness,
+                                                   damping=bearing.damping, name=name + 'Bearing'))
+    return {'nodeNumber': nNode, 'objectNumber': oMass, 'markerNumber': mNode, 'springDamperNumber': oSpring}
 
 
 @dataclass
@@ -39,27 +113,82 @@ class WormGearConnector:
     userFunction: Any = field(default=None, repr=False)
     referenceAngles: List[float] = field(default_factory=lambda: [0., 0.])
     sensors: Dict[str, Any] = field(default_factory=dict)
+    axialNodeNumber: Any = None
+    axialReference: float = 0.
+    useSymbolic: bool = True
 
-    def Evaluate(self, phi1, phi2, omega1, omega2) -> MeshState:
-        """Mesh quantities (normal force, S, sf, torques, ...) for arrays of worm/wheel states.
+    @property
+    def coordinateNodes(self) -> List[Any]:
+        """Nodes of the connector's coordinates: worm, wheel (and the worm's axial node if present)."""
+        return list(self.nodeNumbers) + ([] if self.axialNodeNumber is None else [self.axialNodeNumber])
 
-        ``phi1, phi2`` are the node coordinates (the node reference angles are added here).
+    def SetContactOptions(self, mbs, options: ContactOptions) -> None:
+        """Replace the contact options of the built connector (e.g. hold S for a linearization).
+
+        Re-records the connector's user function; call ``mbs.Assemble()`` (or let Exudyn's solvers
+        auto-assemble) before the next computation.
+
+        Parameters
+        ----------
+        mbs : exudyn.MainSystem
+            The system the connector belongs to.
+        options : ContactOptions
+            The new options.
         """
+        if not isinstance(options, ContactOptions):
+            raise TypeError(f"WormGearConnector.SetContactOptions: 'options' must be a ContactOptions, got "
+                            f"{type(options).__name__}")
+        law = _WormGearLaw(self.gear, options, self.referenceAngles, self.axialNodeNumber is not None,
+                           self.axialReference)
+        self.userFunction = SetGenericForceLaw(mbs, self.objectNumber, len(self.coordinateNodes), law,
+                                               self.useSymbolic)
+        self.options = options
+
+    def InitialMeshState(self, mbs) -> MeshState:
+        """Mesh quantities at the system's initial state (node initial coordinates and velocities).
+
+        Parameters
+        ----------
+        mbs : exudyn.MainSystem
+            The system the connector belongs to.
+        """
+        values = []
+        for node in self.coordinateNodes:
+            info = mbs.GetNode(node)
+            values.append((float(np.ravel(info['initialCoordinates'])[0]), float(np.ravel(info['initialVelocities'])[0])))
+        axial = values[2] if len(values) == 3 else (None, None)
+        return self.Evaluate(values[0][0], values[1][0], values[0][1], values[1][1], *axial)
+
+    def Evaluate(self, phi1, phi2, omega1, omega2, xA=None, vA=None) -> MeshState:
+        """Mesh quantities (normal force, S, sf, torques, axial force, ...) for arrays of worm/wheel states.
+
+        ``phi1, phi2`` (and ``xA``) are the node coordinates (the node reference values are added here);
+        ``xA, vA``: the worm's axial displacement and speed, required if the connector has an axial node.
+        """
+        if (self.axialNodeNumber is None) != (xA is None):
+            raise ValueError(f"WormGearConnector '{self.name}': give 'xA' (and 'vA') exactly when the connector has "
+                             f"an axial node (axialNodeNumber = {self.axialNodeNumber!r})")
+        axial = {} if xA is None else {'axialDisplacement': np.asarray(xA, dtype=float) + self.axialReference,
+                                       'axialSpeed': np.asarray(vA, dtype=float)}
         return MeshContact(self.gear, np.asarray(phi1, dtype=float) + self.referenceAngles[0],
                            np.asarray(phi2, dtype=float) + self.referenceAngles[1],
                            np.asarray(omega1, dtype=float), np.asarray(omega2, dtype=float),
-                           self.options, NUMPY_OPS)
+                           self.options, NUMPY_OPS, **axial)
 
     def AddSensors(self, mbs) -> Dict[str, Any]:
         """Add internally stored node sensors for the worm (1) and wheel (2): ``phi1, omega1, alpha1,
-        phi2, omega2, alpha2``. Nothing is written to files. Returns the sensor numbers."""
+        phi2, omega2, alpha2``, and with an axial node the worm's axial ``xA, vA, aA``. Nothing is written
+        to files. Returns the sensor numbers."""
         import exudyn as exu
         from exudyn.itemInterface import SensorNode
         OVT = exu.OutputVariableType
-        for index, node in zip('12', self.nodeNumbers):
-            for prefix, ovt in (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t), ('alpha', OVT.Coordinates_tt)):
-                self.sensors[prefix + index] = mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=ovt,
-                                                                        storeInternal=True, writeToFile=False))
+        nodes = [(('phi1', 'omega1', 'alpha1'), self.nodeNumbers[0]), (('phi2', 'omega2', 'alpha2'), self.nodeNumbers[1])]
+        if self.axialNodeNumber is not None:
+            nodes.append((('xA', 'vA', 'aA'), self.axialNodeNumber))
+        for names, node in nodes:
+            for key, ovt in zip(names, (OVT.Coordinates, OVT.Coordinates_t, OVT.Coordinates_tt)):
+                self.sensors[key] = mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=ovt,
+                                                             storeInternal=True, writeToFile=False))
         return self.sensors
 
     def StoredStates(self, mbs) -> Dict[str, np.ndarray]:
@@ -74,10 +203,10 @@ class WormGearConnector:
     def StoredMeshState(self, mbs) -> MeshState:
         """Mesh quantities over the stored time steps (requires :meth:`AddSensors`)."""
         s = self.StoredStates(mbs)
-        return self.Evaluate(s['phi1'], s['phi2'], s['omega1'], s['omega2'])
+        return self.Evaluate(s['phi1'], s['phi2'], s['omega1'], s['omega2'], s.get('xA'), s.get('vA'))
 
 
-def _CheckNode(mbs, n, name):
+def _CheckNode(mbs, n, name, what='rotation'):
     try:
         info = mbs.GetNode(n)
     except Exception as err:  # exudyn raises its own error type for an invalid index
@@ -85,14 +214,14 @@ def _CheckNode(mbs, n, name):
     nodeType = info.get('nodeType', '')
     nCoords = len(info.get('referenceCoordinates', [0.]))
     if nodeType not in ('1D', 'GenericODE2') or nCoords != 1:
-        raise ValueError(f"CreateWormGear: '{name}' must be a node with one rotation coordinate (Node1D or "
+        raise ValueError(f"CreateWormGear: '{name}' must be a node with one {what} coordinate (Node1D or "
                          f"NodeGenericODE2 with 1 coordinate), got node type '{nodeType}' with {nCoords} coordinates")
     return float(np.asarray(info['referenceCoordinates']).ravel()[0])
 
 
 def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = '',
-                   contactOptions: ContactOptions = ContactOptions(), useSymbolic: bool = True
-                   ) -> WormGearConnector:
+                   contactOptions: ContactOptions = ContactOptions(), useSymbolic: bool = True,
+                   axialNodeNumber: Any = None) -> WormGearConnector:
     """Add a worm-gear mesh between the rotation coordinates of a worm node and a wheel node.
 
     Parameters
@@ -111,6 +240,11 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
         Friction regularization, tension-free or linear law, fixed S for linearization.
     useSymbolic : bool
         True (default): C++-evaluated symbolic user function; False: plain Python user function.
+    axialNodeNumber : optional
+        Node of the worm's axial coordinate in m (e.g. from :func:`CreateWormAxialBearing`), positive in
+        the direction in which the thread advances for a positive worm rotation. The mesh displacement
+        then includes ``cos(alphaN) cos(gamma) xA`` and the mesh pushes this node with
+        ``-wheelTorque / r2``. None (default): the worm is rigid axially.
 
     Returns
     -------
@@ -132,12 +266,30 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
     ref1 = _CheckNode(mbs, nodeNumbers[0], 'nodeNumbers[0] (worm)')
     ref2 = _CheckNode(mbs, nodeNumbers[1], 'nodeNumbers[1] (wheel)')
 
-    def WormGearLaw(t, q, q_t, ops):
-        """Generalized forces [worm torque, wheel torque] of the mesh."""
-        state = MeshContact(gear, q[0] + ref1, q[1] + ref2, q_t[0], q_t[1], contactOptions, ops)
-        return [state.wormTorque, state.wheelTorque]
+    refA = 0. if axialNodeNumber is None else _CheckNode(mbs, axialNodeNumber, 'axialNodeNumber', 'axial displacement')
+    nodes = list(nodeNumbers) + ([] if axialNodeNumber is None else [axialNodeNumber])
+    law = _WormGearLaw(gear, contactOptions, [ref1, ref2], axialNodeNumber is not None, refA)
+    oItem, userFunction = AddGenericForce(mbs, nodes, law, name=name, useSymbolic=useSymbolic)
+    connector = WormGearConnector(objectNumber=oItem, nodeNumbers=list(nodeNumbers), gear=gear,
+                                  options=contactOptions, name=name, userFunction=userFunction,
+                                  referenceAngles=[ref1, ref2], axialNodeNumber=axialNodeNumber, axialReference=refA,
+                                  useSymbolic=useSymbolic)
+    mbs.variables.setdefault(CONNECTORS_KEY, []).append(connector)
+    return connector
 
-    oItem, userFunction = AddGenericForce(mbs, nodeNumbers, WormGearLaw, name=name, useSymbolic=useSymbolic)
-    return WormGearConnector(objectNumber=oItem, nodeNumbers=list(nodeNumbers), gear=gear,
-                             options=contactOptions, name=name, userFunction=userFunction,
-                             referenceAngles=[ref1, ref2])
+
+def _WormGearLaw(gear, options, referenceAngles, axial, axialReference):
+    """The connector's generalized forces as ``law(t, q, q_t, ops)`` for AddGenericForce."""
+    ref1, ref2 = referenceAngles
+    if not axial:
+        def WormGearLaw(t, q, q_t, ops):
+            """Generalized forces [worm torque, wheel torque] of the mesh."""
+            state = MeshContact(gear, q[0] + ref1, q[1] + ref2, q_t[0], q_t[1], options, ops)
+            return [state.wormTorque, state.wheelTorque]
+    else:
+        def WormGearLaw(t, q, q_t, ops):
+            """Generalized forces [worm torque, wheel torque, worm axial force] of the mesh."""
+            state = MeshContact(gear, q[0] + ref1, q[1] + ref2, q_t[0], q_t[1], options, ops,
+                                axialDisplacement=q[2] + axialReference, axialSpeed=q_t[2])
+            return [state.wormTorque, state.wheelTorque, state.axialForce]
+    return WormGearLaw

@@ -16,6 +16,10 @@ Law (paper eqs. (1)-(2), (4)-(5), (8)-(12)), with ``lever = r1 cos(alphaN) sin(g
   ``frictionSpeed = 0`` gives the exact sign), contact parameter ``S = sigma * sf`` (eq. (8));
 - torques: worm ``-c2(S) sigma Fn``, wheel ``+c4(S) sigma Fn`` with c2, c4 of eqs. (10), (12).
 
+Optional axial degree of freedom of the worm (its axial bearing, see :func:`MeshContact`): the worm's
+axial displacement ``xA`` adds ``cos(alphaN) cos(gamma) xA`` to ``Delta s`` and the mesh pushes the worm
+axially with ``-wheelTorque / r2``.
+
 With S fixed to +-1 (``fixedS``), zero backlash and ``dampingCanPull`` the law is exactly linear and
 reproduces eqs. (1)-(2); this is what the linearization test checks.
 """
@@ -89,17 +93,18 @@ class ContactOptions:
 @dataclass
 class MeshState:
     """Mesh quantities of one evaluation of the contact law (scalars, arrays or symbolic)."""
-    deltaPhi: Any          #: relative angle phi1 - u phi2, eq. (4), rad
+    deltaPhi: Any          #: relative angle phi1 - u phi2, eq. (4), rad (rotations only; deltaS adds the axial part)
     deltaS: Any            #: relative normal displacement, eq. (5), m
     normalForce: Any       #: signed normal force sigma*Fn, N (> 0: flank of the driving worm)
     S: Any                 #: contact parameter, eq. (8) (regularized: in [-1, 1])
     sf: Any                #: friction state, regularized sign of phi1' in [-1, 1]
     wormTorque: Any        #: mesh torque on the worm, N*m
     wheelTorque: Any       #: mesh torque on the wheel, N*m
+    axialForce: Any = 0.   #: mesh force on the worm along its axis (+ in the direction of xA), N
 
 
 def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOptions = ContactOptions(),
-                ops=MATH_OPS) -> MeshState:
+                ops=MATH_OPS, axialDisplacement=None, axialSpeed=None) -> MeshState:
     """Evaluate the contact law for worm/wheel angles ``phi1, phi2`` and speeds ``omega1, omega2``.
 
     Parameters
@@ -112,15 +117,47 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
         Regularization and model options.
     ops : namespace
         Arithmetic backend: :data:`MATH_OPS`, :data:`NUMPY_OPS` or :func:`SymbolicOps`.
+    axialDisplacement, axialSpeed : float, ndarray or symbolic, optional
+        Axial displacement ``xA`` (m) and speed (m/s) of the worm in its axial bearing, positive in the
+        direction in which the worm's thread advances when the worm turns positively. None (default):
+        rigid axial bearing, and the law is evaluated exactly as without this option.
 
     Returns
     -------
     MeshState
+
+    Notes
+    -----
+    Kinematics of the axial degree of freedom. The worm's thread is a helix of lead angle ``gamma`` on
+    the reference radius ``r1``: a worm rotation ``phi1`` advances it axially by ``r1 tan(gamma) phi1``,
+    and the wheel's reference circle moves along the worm axis by ``r2 phi2`` (so ``u = r2/(r1 tan gamma)``,
+    eq. (3)). An axial shift ``xA`` of the whole worm therefore moves the thread exactly like an extra
+    worm rotation ``xA / (r1 tan(gamma))``; eq. (4) becomes ``Delta phi = phi1 - u phi2 + xA/(r1 tan gamma)``
+    and eq. (5)
+
+        Delta s = r1 cos(alphaN) sin(gamma) (phi1 - u phi2) + cos(alphaN) cos(gamma) xA.
+
+    The same factor follows from projection: the flank normal has the component ``cos(alphaN)`` in the
+    pitch plane (pressure angle) and, within that plane, the component ``cos(gamma)`` along the worm
+    axis (pitch angle), so an axial displacement ``xA`` is seen by the normal spring as
+    ``cos(alphaN) cos(gamma) xA`` (:attr:`WormGear.axialLever`).
+
+    Force on the axial coordinate. The worm axis is the wheel's tangential direction at the mesh, so
+    the worm takes the reaction to the wheel's tangential force ``c4 sigma Fn / r2`` (eqs. (7), (12), with
+    friction): ``axialForce = -wheelTorque / r2``. Without friction (rho = 0) this is
+    ``-cos(alphaN) cos(gamma) sigma Fn`` = ``-dV/dxA`` of the mesh spring energy, consistent with the
+    kinematics above; with friction the coupling is non-conservative, as for the rotations (c2 vs. the
+    normal lever). The friction state keeps the paper's rule ``sf = sign(phi1')`` (eq. (8)): the axial
+    speed is not included in the sliding direction.
     """
     u, lever = gear.ratio, gear.normalLever
     deltaPhi = phi1 - u * phi2
     deltaS = lever * deltaPhi
     deltaSRate = lever * (omega1 - u * omega2)
+    if axialDisplacement is not None:
+        axialLever = gear.axialLever
+        deltaS = deltaS + axialLever * axialDisplacement
+        deltaSRate = deltaSRate + axialLever * (0. if axialSpeed is None else axialSpeed)
     sigma = ops.sign(deltaS)
     penetration = ops.abs(deltaS) - 0.5 * gear.backlash
     fn = gear.kV * penetration + gear.dV * sigma * deltaSRate
@@ -135,5 +172,7 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
     S = sigma * sf if options.fixedS is None else float(options.fixedS)
     c2, c4 = gear.LeverArms(S, ops)
     normalForce = sigma * fn
+    wheelTorque = c4 * normalForce
     return MeshState(deltaPhi=deltaPhi, deltaS=deltaS, normalForce=normalForce, S=S, sf=sf,
-                     wormTorque=-c2 * normalForce, wheelTorque=c4 * normalForce)
+                     wormTorque=-c2 * normalForce, wheelTorque=wheelTorque,
+                     axialForce=wheelTorque * (-1. / gear.r2))

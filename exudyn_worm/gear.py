@@ -120,11 +120,14 @@ class WormGear:
         return self.r1 * math.cos(self.alphaN) * math.sin(self.gamma)
 
     @property
-    def wheelCircumferenceFactor(self) -> float:
-        """1/(cos(alphaN) cos(gamma))^2: a mesh spring kV referred to the wheel circumference acts like a
-        normal spring kV times this factor (the convention identified from the paper's printed eigenvalues,
-        validation/REPORT.md)."""
-        return 1. / (math.cos(self.alphaN) * math.cos(self.gamma))**2
+    def axialLever(self) -> float:
+        """Normal displacement per axial worm displacement, cos(alphaN) cos(gamma) (dimensionless).
+
+        An axial shift x of the worm moves its thread like a worm rotation of x / (r1 tan(gamma)), so the
+        normal displacement of eq. (5) grows by ``normalLever * x / (r1 tan(gamma)) = cos(alphaN) cos(gamma) x``
+        (see :func:`exudyn_worm.contact.MeshContact`).
+        """
+        return math.cos(self.alphaN) * math.cos(self.gamma)
 
     def NormalDisplacement(self, deltaPhi):
         """Relative normal displacement Delta s = r1 cos(alphaN) sin(gamma) Delta phi in m, eq. (5)."""

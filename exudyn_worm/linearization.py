@@ -1,43 +1,336 @@
-"""Stability of the elastic worm drive from the Exudyn model itself (``--method exudyn``).
+"""Linearized stability of any Exudyn system that contains worm-gear connectors.
 
-The 2-DOF drive of Figure 2 is built from ordinary Exudyn items and the worm-gear connector with the
-contact parameter S held at +1 or -1 (full flank contact, the paper's linear law), then linearized
-with ``mbs.ComputeODE2Eigenvalues``. Agreement with :func:`exudyn_worm.stability.AnalyzeStability`
-shows that the connector implements eqs. (1)-(2).
+:func:`AnalyzeLinearStability` takes a system built with ordinary Exudyn items and one or more
+:func:`~exudyn_worm.connector.CreateWormGear` connectors (and, optionally, the worm's axial bearing). For every
+combination of contact states (S = +1 or -1 for each mesh; 2^n states for n meshes) it holds S in each
+connector (full flank contact, the paper's linear law: ``ContactOptions(fixedS=S, dampingCanPull=True)``),
+lets Exudyn linearize the system about its *initial* state (``mbs.ComputeLinearizedSystem``, constraints such
+as a prescribed motor projected out) and returns eigenvalues, damped natural frequencies, Lehr damping, the
+verdict and the mode shapes (which coordinates take part in each mode). The connectors' options are restored
+afterwards.
+
+The initial state must have every mesh in contact (|Delta s| beyond half the backlash), e.g. the static
+equilibrium under load that :func:`~exudyn_worm.reelchanger.BuildReelChanger` starts from. With S held and
+``dampingCanPull`` the mesh law is linear on either flank, so the result does not depend on how deep the
+pre-deflection is.
+
+For the 2-DOF drive of Figure 2, :func:`AnalyzeStabilityExudyn` builds the model and returns the same type
+as :func:`exudyn_worm.stability.AnalyzeStability`; the two agree to 1e-6 (tests/test_linearization.py).
 """
 from __future__ import annotations
 
+import itertools
+import math
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Sequence, Tuple
+
 import numpy as np
 
-from .connector import CreateWormGear
+from .connector import CONNECTORS_KEY, CreateWormGear, WormGearConnector
 from .contact import ContactOptions
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft
 from .profiles import ConstantSpeed
-from .stability import CONTACT_STATES, ContactStability, StabilityAnalysis, _SortEigenvalues
+from .stability import CONTACT_STATES, ContactStability, StabilityAnalysis, _Finite, _SortEigenvalues
 
-__all__ = ['BuildLinearizationModel', 'ExudynEigenvalues', 'AnalyzeStabilityExudyn']
+__all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
+           'BuildLinearizationModel', 'ExudynEigenvalues', 'AnalyzeStabilityExudyn']
 
-#: normal pre-deflection in m beyond half the backlash at which the model is linearized (any value > 0
+#: normal pre-deflection in m beyond half the backlash at which the 2-DOF model is linearized (any value > 0
 #: gives the same result: with S held the law is linear in the deflection)
 _PRELOAD = 1e-6
+#: smallest pre-deflection in m beyond half the backlash that AnalyzeLinearStability accepts: Exudyn's
+#: numerical differentiation must not cross the kink of the law at contact loss
+MINIMUM_PENETRATION = 1e-9
+#: eigenvalues with |lambda| below this fraction of the largest |lambda| count as rigid-body modes
+RIGID_BODY_TOLERANCE = 1e-9
+
+_NO_ODE2_NODE_TYPES = ('Ground', 'GenericData', 'GenericODE1', 'GenericAE')
 
 
-def BuildLinearizationModel(drive: ElasticDrive, S: int, useSymbolic: bool = True):
-    """Exudyn system of Figure 2 (motor held still) with S held at ``S``; returns ``(SC, mbs)``, assembled.
+@dataclass(frozen=True)
+class LinearMode:
+    """One mode of a linearized system: an oscillating pair (reported by its eigenvalue with Im > 0) or a
+    real eigenvalue (an overdamped or creeping motion).
+
+    Attributes
+    ----------
+    eigenvalue : complex
+        Eigenvalue in 1/s.
+    shape : dict
+        Magnitude of each coordinate in the mode shape (position part), divided by the largest one
+        (1 for the coordinate that moves most). Coordinates keep their units (rad, m), so compare
+        coordinates of one kind, or use ``energyShare``.
+    energyShare : dict
+        Share of each coordinate in the mode's kinetic energy, M_ii |x_i|^2 / sum_j M_jj |x_j|^2 (sums to 1;
+        unit-free, so rotations and axial displacements compare).
+    """
+    eigenvalue: complex
+    shape: Dict[str, float]
+    energyShare: Dict[str, float]
+
+    @property
+    def frequencyHz(self) -> float:
+        """Damped natural frequency |Im(lambda)| / (2 pi) in Hz (0 for a real eigenvalue)."""
+        return abs(self.eigenvalue.imag) / (2 * math.pi)
+
+    @property
+    def lehrDamping(self) -> float:
+        """Lehr damping -Re/|Im| as the paper defines it (section 3.1); negative: growing; +-inf if real."""
+        lam = self.eigenvalue
+        return -lam.real / abs(lam.imag) if lam.imag != 0 else math.copysign(math.inf, -lam.real)
+
+    @property
+    def stable(self) -> bool:
+        """True if the mode decays (Re(lambda) < 0)."""
+        return self.eigenvalue.real < 0
+
+    def Participants(self, threshold: float = 0.1) -> List[str]:
+        """Coordinates whose kinetic-energy share is at least ``threshold``, largest first.
+
+        Parameters
+        ----------
+        threshold : float
+            Smallest share in [0, 1].
+        """
+        return [k for k, v in sorted(self.energyShare.items(), key=lambda kv: -kv[1]) if v >= threshold]
+
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary."""
+        return {'eigenvalue': [float(self.eigenvalue.real), float(self.eigenvalue.imag)],
+                'frequencyHz': self.frequencyHz, 'lehrDamping': _Finite(self.lehrDamping), 'stable': self.stable,
+                'shape': dict(self.shape), 'energyShare': dict(self.energyShare)}
+
+
+@dataclass(frozen=True)
+class ContactStateLinearization:
+    """The linearized system for one combination of contact states (one S per mesh).
+
+    Attributes
+    ----------
+    S : tuple of int
+        Contact parameter of each mesh, in the order of the analysis' connectors.
+    eigenvalues : ndarray
+        All eigenvalues of the first-order system in 1/s (conjugate pairs, +Im first, by frequency).
+    modes : list of LinearMode
+        One per conjugate pair (by increasing frequency), then one per real eigenvalue; rigid-body
+        modes (lambda = 0) are left out.
+    rigidBodyModes : int
+        Number of eigenvalues with |lambda| below :data:`RIGID_BODY_TOLERANCE` times the largest (free
+        rotation of an undriven system); they do not enter the verdict.
+    massMatrix, stiffnessMatrix, dampingMatrix : ndarray
+        M, K, D of the linearized system in the independent coordinates (constraints projected out).
+    nullspace : ndarray
+        Rows map the independent coordinates onto all ODE2 coordinates: q = nullspace.T @ q_independent.
+    """
+    S: Tuple[int, ...]
+    eigenvalues: np.ndarray
+    modes: List[LinearMode]
+    rigidBodyModes: int
+    massMatrix: np.ndarray = field(repr=False)
+    stiffnessMatrix: np.ndarray = field(repr=False)
+    dampingMatrix: np.ndarray = field(repr=False)
+    nullspace: np.ndarray = field(repr=False)
+
+    @property
+    def stable(self) -> bool:
+        """True iff every (non-rigid-body) eigenvalue has a negative real part."""
+        return all(m.stable for m in self.modes)
+
+    @property
+    def maxRealPart(self) -> float:
+        """Largest real part of the (non-rigid-body) eigenvalues in 1/s; > 0: unstable."""
+        return max(m.eigenvalue.real for m in self.modes)
+
+    @property
+    def frequenciesHz(self) -> np.ndarray:
+        """Damped natural frequencies of the oscillating modes in Hz, increasing."""
+        return np.array([m.frequencyHz for m in self.modes if m.eigenvalue.imag != 0])
+
+    @property
+    def characteristicCoefficients(self) -> np.ndarray:
+        """Coefficients b1..b2n of the characteristic polynomial prod(lambda - lambda_i), all eigenvalues."""
+        return np.real(np.poly(self.eigenvalues))[1:]
+
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary."""
+        return {'S': list(self.S), 'stable': self.stable, 'maxRealPart': self.maxRealPart,
+                'eigenvalues': [[float(l.real), float(l.imag)] for l in self.eigenvalues],
+                'frequenciesHz': [float(f) for f in self.frequenciesHz], 'rigidBodyModes': self.rigidBodyModes,
+                'modes': [m.ToDict() for m in self.modes]}
+
+
+@dataclass(frozen=True)
+class LinearStability:
+    """Linear stability of a system with worm-gear meshes, for every combination of contact states.
+
+    Attributes
+    ----------
+    meshes : list of str
+        Names of the connectors (S tuples follow this order).
+    coordinates : list of str
+        Labels of the system's ODE2 coordinates (node names; ``name[j]`` for multi-coordinate nodes).
+    states : dict
+        ``{S tuple: ContactStateLinearization}``.
+    """
+    meshes: List[str]
+    coordinates: List[str]
+    states: Dict[Tuple[int, ...], ContactStateLinearization]
+
+    @property
+    def stable(self) -> bool:
+        """True iff the system is stable in every contact state."""
+        return all(s.stable for s in self.states.values())
+
+    def State(self, *S: int) -> ContactStateLinearization:
+        """The linearization for contact states ``S`` (one +-1 per mesh), e.g. ``State(-1)``.
+
+        Parameters
+        ----------
+        S : int
+            One contact parameter per mesh.
+        """
+        key = tuple(int(s) for s in S)
+        if key not in self.states:
+            raise ValueError(f"LinearStability.State: expected one of {sorted(self.states)}, got {key}")
+        return self.states[key]
+
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary: ``{"meshes", "coordinates", "stable", "states": [...]}``."""
+        return {'meshes': list(self.meshes), 'coordinates': list(self.coordinates), 'stable': self.stable,
+                'states': [s.ToDict() for s in self.states.values()]}
+
+
+def _CoordinateLabels(mbs, size: int) -> List[str]:
+    labels = [f'q{i}' for i in range(size)]
+    for n in range(mbs.systemData.NumberOfNodes()):
+        info = mbs.GetNode(n)
+        if any(t in info.get('nodeType', '') for t in _NO_ODE2_NODE_TYPES):
+            continue
+        count = len(np.ravel(info.get('referenceCoordinates', [])))
+        start = mbs.GetNodeODE2Index(n)
+        name = info.get('name') or f'node{n}'
+        for j in range(count):
+            if start + j < size:
+                labels[start + j] = name if count == 1 else f'{name}[{j}]'
+    return labels
+
+
+def _LinearizeState(mbs, S, labels) -> ContactStateLinearization:
+    M, K, D, _, N = mbs.ComputeLinearizedSystem(projectIntoConstraintNullspace=True, returnConstraintNullspace=True)
+    M, K, D, N = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (M, K, D, N))
+    n = M.shape[0]
+    Minv = np.linalg.inv(M)
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ D]])
+    values, vectors = np.linalg.eig(A)
+    scale = np.max(np.abs(values)) if values.size else 1.
+    massDiagonal = np.abs(np.diag(N.T @ M @ N)) if N.shape[0] == n else np.ones(len(labels))
+    modes, rigid = [], 0
+    for k in range(values.size):
+        lam = values[k]
+        if abs(lam) <= RIGID_BODY_TOLERANCE * scale:
+            rigid += 1
+            continue
+        if lam.imag < 0:
+            continue                                              # reported by its conjugate
+        x = np.abs(N.T @ vectors[:n, k])
+        energy = massDiagonal * x**2
+        modes.append(LinearMode(eigenvalue=complex(lam),
+                                shape={c: float(v) for c, v in zip(labels, x / np.max(x))},
+                                energyShare={c: float(v) for c, v in zip(labels, energy / np.sum(energy))}))
+    modes.sort(key=lambda m: (m.eigenvalue.imag == 0, m.frequencyHz, m.eigenvalue.real))
+    return ContactStateLinearization(S=tuple(S), eigenvalues=_SortEigenvalues(values), modes=modes,
+                                     rigidBodyModes=rigid, massMatrix=M, stiffnessMatrix=K, dampingMatrix=D,
+                                     nullspace=N)
+
+
+def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]] = None,
+                           contactStates: Optional[Sequence[Sequence[int]]] = None) -> LinearStability:
+    """Linearized stability of an Exudyn system with worm-gear meshes, for each combination of contact states.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The system, built with :func:`~exudyn_worm.connector.CreateWormGear` (and any Exudyn items). It is
+        linearized about its initial state, in which every mesh must be in contact.
+    connectors : sequence of WormGearConnector, optional
+        The meshes whose contact state is held; default: every connector built in ``mbs``.
+    contactStates : sequence of sequences of int, optional
+        The combinations to analyse, one +-1 per connector; default: all 2^n combinations,
+        ``(+1, ..., +1)`` first.
+
+    Returns
+    -------
+    LinearStability
+        Per state: eigenvalues, modes (frequency, Lehr damping, shape, energy shares), verdict.
+
+    Raises
+    ------
+    ValueError
+        If the system has no connector, a contact state is not +-1 per mesh, or a mesh is not in contact
+        (open backlash) at the initial state.
+
+    Examples
+    --------
+    >>> import exudyn_worm as ew
+    >>> from exudyn_worm.linearization import AnalyzeLinearStability
+    >>> model = ew.BuildReelChanger(ew.GetPreset('reel-P1'))
+    >>> analysis = AnalyzeLinearStability(model.mbs)
+    >>> [round(f, 1) for f in analysis.State(-1).frequenciesHz], analysis.State(-1).stable
+    ([40.3, 40.5], False)
+    """
+    w = 'AnalyzeLinearStability'
+    connectors = list(mbs.variables.get(CONNECTORS_KEY, [])) if connectors is None else list(connectors)
+    if not connectors:
+        raise ValueError(f"{w}: the system has no worm-gear connector (build one with CreateWormGear)")
+    for c in connectors:
+        if not isinstance(c, WormGearConnector):
+            raise TypeError(f"{w}: 'connectors' must hold WormGearConnector objects, got {type(c).__name__}")
+    n = len(connectors)
+    states = list(itertools.product(CONTACT_STATES, repeat=n)) if contactStates is None else \
+        [tuple(s) for s in contactStates]
+    for s in states:
+        if len(s) != n or any(x not in CONTACT_STATES for x in s):
+            raise ValueError(f"{w}: each contact state must be {n} value(s) of +1 or -1 (one per mesh), got {s!r}")
+    for c in connectors:
+        deltaS = float(c.InitialMeshState(mbs).deltaS)
+        if abs(deltaS) - 0.5 * c.gear.backlash < MINIMUM_PENETRATION:
+            raise ValueError(f"{w}: mesh '{c.name}' is not in contact at the initial state (|Delta s| = {abs(deltaS):.3g} m, "
+                             f"half backlash {0.5 * c.gear.backlash:.3g} m; need {MINIMUM_PENETRATION:g} m more): start "
+                             f"from a pre-deflected state, e.g. the static equilibrium under load")
+    original = [c.options for c in connectors]
+    results = {}
+    try:
+        for S in states:
+            for c, s, o in zip(connectors, S, original):
+                c.SetContactOptions(mbs, ContactOptions(frictionSpeed=o.frictionSpeed, dampingCanPull=True, fixedS=s))
+            mbs.Assemble()
+            labels = _CoordinateLabels(mbs, mbs.systemData.ODE2Size())
+            results[tuple(S)] = _LinearizeState(mbs, S, labels)
+    finally:
+        for c, o in zip(connectors, original):
+            c.SetContactOptions(mbs, o)
+        mbs.Assemble()
+    return LinearStability(meshes=[c.name or f'mesh{i}' for i, c in enumerate(connectors)], coordinates=labels,
+                           states=results)
+
+
+def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True):
+    """Exudyn system of Figure 2 (motor held still), worm pre-deflected into contact; returns ``(SC, mbs)``.
 
     Parameters
     ----------
     drive : ElasticDrive
         The 2-DOF drive of Figure 2.
-    S : int
-        Contact parameter held during the linearization, +1 or -1.
+    S : int, optional
+        Contact parameter held in the connector, +1 or -1; None: S follows eq. (8) (for
+        :func:`AnalyzeLinearStability`, which holds it itself).
     useSymbolic : bool
         Symbolic (C++) or Python user function for the connector.
     """
     import exudyn as exu
-    if S not in CONTACT_STATES:
-        raise ValueError(f"BuildLinearizationModel: 'S' must be +1 or -1, got {S!r}")
+    if S is not None and S not in CONTACT_STATES:
+        raise ValueError(f"BuildLinearizationModel: 'S' must be None, +1 or -1, got {S!r}")
     g = drive.gear
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -47,14 +340,15 @@ def BuildLinearizationModel(drive: ElasticDrive, S: int, useSymbolic: bool = Tru
     wheel = CreateRotor(mbs, drive.J2, name='wheel')
     CreatePrescribedRotation(mbs, motor, ConstantSpeed(0.), useSymbolic=useSymbolic)
     CreateShaft(mbs, [motor, worm], stiffness=drive.kT, damping=drive.dT)
+    options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
     CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=g, useSymbolic=useSymbolic,
-                   contactOptions=ContactOptions(fixedS=S, dampingCanPull=True))
+                   contactOptions=options, name='wormGear')
     mbs.Assemble()
     return SC, mbs
 
 
 def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> np.ndarray:
-    """Complex eigenvalues (1/s) of the Exudyn model linearized about the pre-deflected state.
+    """Complex eigenvalues (1/s) of the Exudyn model of Figure 2 linearized with S held.
 
     Parameters
     ----------
@@ -65,9 +359,10 @@ def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> 
     useSymbolic : bool
         Symbolic (C++) or Python user function for the connector.
     """
-    SC, mbs = BuildLinearizationModel(drive, S, useSymbolic)
-    values, _ = mbs.ComputeODE2Eigenvalues(computeComplexEigenvalues=True, useAbsoluteValues=False)
-    return _SortEigenvalues(np.asarray(values, dtype=complex))
+    if S not in CONTACT_STATES:
+        raise ValueError(f"ExudynEigenvalues: 'S' must be +1 or -1, got {S!r}")
+    SC, mbs = BuildLinearizationModel(drive, None, useSymbolic)
+    return AnalyzeLinearStability(mbs, contactStates=[(S,)]).State(S).eigenvalues
 
 
 def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True) -> StabilityAnalysis:
@@ -76,6 +371,7 @@ def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True) -> Sta
     Parameters
     ----------
     drive : ElasticDrive
+        The 2-DOF drive of Figure 2.
     useSymbolic : bool
         Evaluate the connector as symbolic (default) or Python user function.
 
@@ -86,5 +382,8 @@ def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True) -> Sta
     """
     if not isinstance(drive, ElasticDrive):
         raise TypeError(f"AnalyzeStabilityExudyn: 'drive' must be an ElasticDrive, got {type(drive).__name__}")
-    return StabilityAnalysis(drive, {S: ContactStability.FromEigenvalues(S, ExudynEigenvalues(drive, S, useSymbolic))
+    SC, mbs = BuildLinearizationModel(drive, None, useSymbolic)
+    linear = AnalyzeLinearStability(mbs)
+    return StabilityAnalysis(drive, {S: ContactStability.FromEigenvalues(S, linear.State(S).eigenvalues)
                                      for S in CONTACT_STATES})
+

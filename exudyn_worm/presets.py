@@ -6,17 +6,39 @@ reel changer, ``loadMass leverArm motorSpeed``. All values are SI, angles in rad
 
 Damping is held as the measures D_T, D_V of eqs. (22)-(23) (or D_TV = D_T/D_V), so a changed J1 or
 kT keeps the measure, as the paper's chart points assume; an explicit ``dT`` or ``dV`` overrides.
+
+Optional components beyond the two-mass drive (absent = the drive of Figure 2):
+
+- **Drive-side chain (Figure 19)**: ``J4`` (kg*m^2, *inertia4*), ``k4`` (N*m/rad) and ``d4`` (N*m*s/rad,
+  *spring-Damper4*), continued as ``J5, k5, d5``, ``J6, k6, d6``, ... Topology (worm first)::
+
+      worm J1 --(kT, dT)-- J4 --(k4, d4)-- J5 --(k5, d5)-- ... --(kn, dn)-- motor phi0(t)
+
+  i.e. spring-damper *i* sits on the motor side of inertia *i*, as *spring-Damper1* (the drive shaft
+  kT, dT) sits on the motor side of *inertia1* (the worm) in Figures 7 and 19. This is the reading of
+  section 3.2.5: inertia4 "increases the equivalent drive mass" and stabilizes "if the additional
+  inertia and the stiffness of spring-Damper1 are large enough and the stiffness of spring-Damper4 is
+  small enough", i.e. inertia4 is tied to the worm through spring-Damper1 and to the motor through
+  spring-Damper4. ``Ji`` needs ``ki`` > 0; ``di`` is optional (default 0); the chain has no gaps
+  (``J5`` needs ``J4``). See :func:`DriveSideChain`.
+- **Worm axial bearing**: ``kA`` (N/m), ``dA`` (N*s/m, default 0), ``mA`` (kg, the worm's axially moving
+  mass, required when ``kA`` > 0). Absent or ``kA = 0``: axially rigid worm. See
+  :func:`AxialBearingFromParameters` and :func:`exudyn_worm.contact.MeshContact` for the kinematics.
 """
 from __future__ import annotations
 
 import math
-from typing import Dict, Mapping
+import re
+from typing import TYPE_CHECKING, Dict, List, Mapping, Optional, Tuple
 
 from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from .gear import WormGear
 
-__all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset', 'ApplyOverrides',
-           'DriveFromParameters']
+if TYPE_CHECKING:
+    from .connector import AxialBearing
+
+__all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
+           'ApplyOverrides', 'DriveFromParameters', 'DriveSideChain', 'AxialBearingFromParameters']
 
 #: keys of the elastic drive (Figure 2)
 DRIVE_KEYS = ('alphaN', 'gamma', 'mu', 'rho', 'r1', 'r2', 'kV', 'dV', 'DV', 'backlash',
@@ -24,11 +46,36 @@ DRIVE_KEYS = ('alphaN', 'gamma', 'mu', 'rho', 'r1', 'r2', 'kV', 'dV', 'DV', 'bac
 #: keys of the paper-reel-changer load case (section 3.2)
 REEL_KEYS = ('loadMass', 'leverArm', 'motorSpeed')
 
-#: SI unit of every key (pint syntax), used to parse quantities such as ``8 deg`` or ``0.5 mm``
-PARAMETER_UNITS = {'alphaN': 'rad', 'gamma': 'rad', 'mu': '', 'rho': 'rad', 'r1': 'm', 'r2': 'm',
-                   'kV': 'N/m', 'dV': 'N*s/m', 'DV': '', 'backlash': 'm', 'J1': 'kg*m^2', 'J2': 'kg*m^2',
-                   'kT': 'N*m/rad', 'dT': 'N*m*s/rad', 'DT': '', 'DTV': '',
-                   'loadMass': 'kg', 'leverArm': 'm', 'motorSpeed': 'rad/s'}
+#: keys of the first element of the drive-side chain (Figure 19); J5/k5/d5, ... continue it
+CHAIN_KEYS = ('J4', 'k4', 'd4')
+#: keys of the worm's axial bearing
+AXIAL_KEYS = ('kA', 'dA', 'mA')
+
+_CHAIN_UNITS = {'J': 'kg*m^2', 'k': 'N*m/rad', 'd': 'N*m*s/rad'}
+_CHAIN_KEY = re.compile(r'^([Jkd])([4-9]|[1-9][0-9]+)$')
+
+
+class _ParameterUnits(dict):
+    """The unit table; besides its listed keys it knows every drive-side chain key J<i>, k<i>, d<i> (i >= 4)."""
+
+    def __contains__(self, key):
+        return dict.__contains__(self, key) or (isinstance(key, str) and _CHAIN_KEY.match(key) is not None)
+
+    def __missing__(self, key):
+        match = _CHAIN_KEY.match(key) if isinstance(key, str) else None
+        if match is None:
+            raise KeyError(key)
+        return _CHAIN_UNITS[match.group(1)]
+
+
+#: SI unit of every key (pint syntax), used to parse quantities such as ``8 deg`` or ``0.5 mm``; the
+#: chain keys J5, k5, d5, J6, ... are accepted too (``'J5' in PARAMETER_UNITS``), though only J4/k4/d4 are listed
+PARAMETER_UNITS = _ParameterUnits({'alphaN': 'rad', 'gamma': 'rad', 'mu': '', 'rho': 'rad', 'r1': 'm', 'r2': 'm',
+                                   'kV': 'N/m', 'dV': 'N*s/m', 'DV': '', 'backlash': 'm', 'J1': 'kg*m^2',
+                                   'J2': 'kg*m^2', 'kT': 'N*m/rad', 'dT': 'N*m*s/rad', 'DT': '', 'DTV': '',
+                                   'loadMass': 'kg', 'leverArm': 'm', 'motorSpeed': 'rad/s',
+                                   'J4': 'kg*m^2', 'k4': 'N*m/rad', 'd4': 'N*m*s/rad',
+                                   'kA': 'N/m', 'dA': 'N*s/m', 'mA': 'kg'})
 
 # keys that describe the same physical quantity: setting one removes the others
 _ALTERNATIVES = {'mu': ('rho',), 'rho': ('mu',), 'dT': ('DT', 'DTV'), 'DT': ('dT', 'DTV'), 'DTV': ('dT', 'DT'),
@@ -74,10 +121,9 @@ def GetPreset(name: str) -> Dict[str, float]:
 def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, float]) -> Dict[str, float]:
     """Return ``parameters`` updated by ``overrides``; an override removes its alternative forms
     (setting ``mu`` drops ``rho``, ``dT`` drops ``DT``/``DTV``, ``DV`` drops ``dV``, ...)."""
-    known = set(PARAMETER_UNITS)
     out = dict(parameters)
     for key, value in overrides.items():
-        if key not in known:
+        if key not in PARAMETER_UNITS:
             raise ValueError(f"unknown parameter '{key}'; expected one of: {' '.join(PARAMETER_UNITS)}")
         for alt in _ALTERNATIVES.get(key, ()):
             out.pop(alt, None)
@@ -135,3 +181,70 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
                              f"or the ratio 'DTV'")
         dT = TorsionalDampingFromMeasure(DT, p['kT'], p['J1'])
     return ElasticDrive(gear=gear, J1=p['J1'], J2=p['J2'], kT=p['kT'], dT=dT)
+
+
+def DriveSideChain(parameters: Mapping[str, float]) -> List[Tuple[float, float, float]]:
+    """The drive-side chain of Figure 19 as ``[(J4, k4, d4), (J5, k5, d5), ...]``, worm side first.
+
+    ``(Ji, ki, di)`` is inertia *i* in kg*m^2 and the spring-damper on its motor side in N*m/rad and
+    N*m*s/rad (topology in the module docstring); the last spring-damper ends at the motor. Empty if
+    no ``J4`` is given (the two-mass drive).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary (SI) with the chain keys ``J4, k4, d4, J5, ...`` (others are ignored).
+
+    Returns
+    -------
+    list of (float, float, float)
+
+    Raises
+    ------
+    ValueError
+        For a gap in the chain, a spring-damper without its inertia, or a value out of range.
+    """
+    from ._checks import CheckNonNegative, CheckPositive
+    w = 'DriveSideChain'
+    indices = sorted({int(m.group(2)) for m in (_CHAIN_KEY.match(k) for k in parameters if isinstance(k, str)) if m})
+    chain = []
+    for expected, i in enumerate(indices, start=4):
+        if i != expected or f'J{i}' not in parameters:
+            missing = f'J{expected}' if i != expected else f'J{i}'
+            raise ValueError(f"{w}: the drive-side chain must be J4, J5, ... without gaps, each with its spring "
+                             f"k<i>; got keys {', '.join(k for k in parameters if _CHAIN_KEY.match(str(k)))} "
+                             f"(missing '{missing}')")
+        if f'k{i}' not in parameters:
+            raise ValueError(f"{w}: 'J{i}' needs the stiffness 'k{i}' (N*m/rad) of the spring-damper on its motor side")
+        chain.append((CheckPositive(w, f'J{i}', parameters[f'J{i}'], 'kg*m^2'),
+                      CheckPositive(w, f'k{i}', parameters[f'k{i}'], 'N*m/rad'),
+                      CheckNonNegative(w, f'd{i}', parameters.get(f'd{i}', 0.), 'N*m*s/rad')))
+    return chain
+
+
+def AxialBearingFromParameters(parameters: Mapping[str, float]) -> Optional['AxialBearing']:
+    """The worm's :class:`~exudyn_worm.connector.AxialBearing` from ``kA, dA, mA``, or None (absent or kA = 0).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary (SI); reads ``kA`` (N/m), ``dA`` (N*s/m, default 0) and ``mA`` (kg).
+
+    Returns
+    -------
+    AxialBearing or None
+
+    Raises
+    ------
+    ValueError
+        If ``kA`` > 0 without ``mA`` or a value is out of range.
+    """
+    from ._checks import CheckNonNegative
+    from .connector import AxialBearing
+    w = 'AxialBearingFromParameters'
+    kA = CheckNonNegative(w, 'kA', parameters.get('kA', 0.), 'N/m')
+    if kA == 0.:
+        return None
+    if 'mA' not in parameters:
+        raise ValueError(f"{w}: 'kA' = {kA:g} N/m > 0 needs the worm's axially moving mass 'mA' (kg)")
+    return AxialBearing(stiffness=kA, damping=parameters.get('dA', 0.), mass=parameters['mA'])

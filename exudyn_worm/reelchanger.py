@@ -3,23 +3,27 @@
 Motor (prescribed rotation phi0) -- elastic shaft kT, dT -- worm J1 -- worm-gear mesh -- wheel and
 frame J2 -- load torque of the reel, M2 = -m2 g l2 cos(phi2) (eq. (27)). The frame is horizontal at
 t = 0 and is lifted first; one full rotation of the wheel takes 2 pi u / motorSpeed (8 s in the paper).
+
+Optional (see :mod:`exudyn_worm.presets`): the drive-side chain of Figure 19 (``J4, k4, d4, J5, ...``:
+worm --kT-- J4 --k4-- J5 ... -- motor) and the worm's axial bearing (``kA, dA, mA``).
 """
 from __future__ import annotations
 
 import math
 import time as _time
 from dataclasses import dataclass
-from typing import Any, Dict, List, Mapping, Optional, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from scipy.optimize import brentq
 
-from .connector import CreateWormGear, WormGearConnector
+from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from .contact import MATH_OPS, ContactOptions, MeshContact
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
-from .presets import DriveFromParameters
+from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
+from .stepsize import CheckStepSize
 from ._checks import CheckPositive
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
@@ -56,12 +60,15 @@ def DefaultWindows(parameters: Mapping[str, float]) -> List[Tuple[float, float]]
 
 
 def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed: float,
-                       options: ContactOptions = ContactOptions()) -> Dict[str, float]:
+                       options: ContactOptions = ContactOptions(), axialBearing: Optional[AxialBearing] = None,
+                       chain: Sequence[Tuple[float, float, float]] = ()) -> Dict[str, float]:
     """Static equilibrium at t = 0 under the initial load, moving at the nominal speed.
 
     Solves the wheel balance (mesh torque = -load torque) for Delta s with the contact law itself and
     the worm balance (shaft torque = mesh torque) for the shaft twist, so a run starts without a
-    spurious transient.
+    spurious transient. With a drive-side chain every spring-damper carries the same torque; with an
+    axial bearing the bearing carries the mesh's axial force and Delta s is split into the axial part
+    and the relative angle.
 
     Parameters
     ----------
@@ -73,11 +80,16 @@ def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed
         Motor speed in rad/s (phi0(0) = 0).
     options : ContactOptions
         Options of the contact law.
+    axialBearing : AxialBearing, optional
+        The worm's axial bearing (None: axially rigid worm).
+    chain : sequence of (J, k, d)
+        Drive-side chain, worm side first (:func:`~exudyn_worm.presets.DriveSideChain`).
 
     Returns
     -------
     dict
-        ``phi1, phi2`` in rad and ``omega1, omega2`` in rad/s.
+        ``phi1, phi2`` in rad and ``omega1, omega2`` in rad/s; with a chain ``phi4, omega4, ...``, with an
+        axial bearing ``xA`` in m and ``vA`` in m/s.
     """
     g = drive.gear
     u = g.ratio
@@ -92,11 +104,23 @@ def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed
 
         span = 0.5 * g.backlash + 10 * (abs(loadTorque) / g.r2 + 1.) / g.kV
         deltaS = brentq(WheelBalance, -span, span, xtol=1e-15) if loadTorque != 0 else 0.
-        deltaPhi = deltaS / g.normalLever
-        wormTorque = MeshContact(g, deltaPhi, 0., omega1, omega2, options, MATH_OPS).wormTorque
-        phi1 = wormTorque / drive.kT                      # kT (phi0 - phi1) + wormTorque = 0, phi0(0) = 0
+        mesh = MeshContact(g, deltaS / g.normalLever, 0., omega1, omega2, options, MATH_OPS)
+        wormTorque = mesh.wormTorque
+        xA = 0. if axialBearing is None else mesh.axialForce / axialBearing.stiffness   # kA xA = axial mesh force
+        deltaPhi = (deltaS - g.axialLever * xA) / g.normalLever
+        # every spring-damper between motor and worm carries -wormTorque: k (phi_motorSide - phi) + wormTorque = 0
+        angles, phi = [], 0.                               # phi0(0) = 0
+        for _, k, _ in reversed(chain):
+            phi += wormTorque / k
+            angles.append(phi)
+        phi1 = phi + wormTorque / drive.kT
         phi2 = (phi1 - deltaPhi) / u
-    return {'phi1': phi1, 'phi2': phi2, 'omega1': omega1, 'omega2': omega2}
+    state = {'phi1': phi1, 'phi2': phi2, 'omega1': omega1, 'omega2': omega2}
+    for i, angle in enumerate(reversed(angles), start=4):
+        state[f'phi{i}'], state[f'omega{i}'] = angle, omega1
+    if axialBearing is not None:
+        state.update(xA=xA, vA=0.)
+    return state
 
 
 @dataclass
@@ -110,6 +134,8 @@ class ReelChangerModel:
     connector: WormGearConnector
     rotors: Dict[str, Dict]
     sensors: Dict[str, Any]
+    axialBearing: Optional[Dict[str, Any]] = None
+    chain: Tuple[Tuple[float, float, float], ...] = ()
 
 
 def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
@@ -120,7 +146,8 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     ----------
     parameters : mapping
         Flat parameter set (see :mod:`exudyn_worm.presets`), including ``loadMass`` (kg), ``leverArm`` (m)
-        and ``motorSpeed`` (rad/s).
+        and ``motorSpeed`` (rad/s); optional drive-side chain ``J4, k4, d4, J5, ...`` (rotors ``inertia4``,
+        ... and shafts ``springDamper4``, ...) and axial bearing ``kA, dA, mA``.
     contactOptions : ContactOptions
         Options of the worm-gear contact law.
     useSymbolic : bool
@@ -146,35 +173,74 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
     profile = profile if profile is not None else ConstantSpeed(motorSpeed)
+    chain = tuple(DriveSideChain(parameters))
+    bearing = AxialBearingFromParameters(parameters)
 
     if startFromEquilibrium:
-        init = SteadyInitialState(drive, load, motorSpeed, contactOptions)
+        init = SteadyInitialState(drive, load, motorSpeed, contactOptions, bearing, chain)
         init0 = profile.AngleAndSpeed(0., MATH_OPS)
     else:
-        init, init0 = {'phi1': 0., 'phi2': 0., 'omega1': 0., 'omega2': 0.}, (0., 0.)
+        init, init0 = {}, (0., 0.)
 
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     motor = CreateRotor(mbs, _MOTOR_INERTIA, initialAngle=init0[0], initialSpeed=init0[1], name='motor')
-    worm = CreateRotor(mbs, drive.J1, initialAngle=init['phi1'], initialSpeed=init['omega1'], name='worm')
-    wheel = CreateRotor(mbs, drive.J2, initialAngle=init['phi2'], initialSpeed=init['omega2'], name='wheel')
+    worm = CreateRotor(mbs, drive.J1, initialAngle=init.get('phi1', 0.), initialSpeed=init.get('omega1', 0.),
+                       name='worm')
+    wheel = CreateRotor(mbs, drive.J2, initialAngle=init.get('phi2', 0.), initialSpeed=init.get('omega2', 0.),
+                        name='wheel')
     CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
-    CreateShaft(mbs, [motor, worm], stiffness=drive.kT, damping=drive.dT, name='driveShaft')
+    rotors = {'motor': motor, 'worm': worm, 'wheel': wheel}
+    # drive-side chain, worm side first: worm --kT-- inertia4 --k4-- inertia5 ... --kn-- motor
+    chainRotors = [CreateRotor(mbs, J, initialAngle=init.get(f'phi{i}', 0.), initialSpeed=init.get(f'omega{i}', 0.),
+                               name=f'inertia{i}') for i, (J, _, _) in enumerate(chain, start=4)]
+    rotors.update({f'inertia{i}': r for i, r in enumerate(chainRotors, start=4)})
+    CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT, name='driveShaft')
+    for i, (rotor, motorSide, (_, k, d)) in enumerate(zip(chainRotors, chainRotors[1:] + [motor], chain), start=4):
+        CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d, name=f'springDamper{i}')
+    axial = None
+    if bearing is not None:
+        axial = CreateWormAxialBearing(mbs, bearing, initialDisplacement=init.get('xA', 0.),
+                                       initialSpeed=init.get('vA', 0.), name='wormAxial')
     connector = CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='wormGear',
-                               contactOptions=contactOptions, useSymbolic=useSymbolic)
+                               contactOptions=contactOptions, useSymbolic=useSymbolic,
+                               axialNodeNumber=None if axial is None else axial['nodeNumber'])
     CreateRotorTorque(mbs, wheel, load, name='reelLoad', useSymbolic=useSymbolic)
 
     sensors = dict(connector.AddSensors(mbs))
-    for prefix, ovt in (('phi0', exu.OutputVariableType.Coordinates), ('omega0', exu.OutputVariableType.Coordinates_t)):
-        sensors[prefix] = mbs.AddSensor(SensorNode(nodeNumber=motor['nodeNumber'], outputVariableType=ovt,
-                                                   storeInternal=True, writeToFile=False))
-    return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector,
-                            {'motor': motor, 'worm': worm, 'wheel': wheel}, sensors)
+    OVT = exu.OutputVariableType
+    for index, rotor in [('0', motor)] + [(str(i), r) for i, r in enumerate(chainRotors, start=4)]:
+        quantities = (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t))
+        if index != '0':
+            quantities += (('alpha', OVT.Coordinates_tt),)
+        for prefix, ovt in quantities:
+            sensors[prefix + index] = mbs.AddSensor(SensorNode(nodeNumber=rotor['nodeNumber'], outputVariableType=ovt,
+                                                               storeInternal=True, writeToFile=False))
+    return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain)
+
+
+def _ApplySolverOptions(ss, options: Mapping[str, Any], where: str):
+    """Set dotted ``SimulationSettings`` paths of ``options`` on ``ss``; return the solver type."""
+    import exudyn as exu
+    options = dict(options)
+    name = options.pop('solverType', 'GeneralizedAlpha')
+    if not hasattr(exu.DynamicSolverType, str(name)):
+        raise ValueError(f"{where}: solverOptions['solverType'] must name an exudyn.DynamicSolverType, got {name!r}")
+    for path, value in options.items():
+        *parents, leaf = path.split('.')
+        target = ss
+        for part in parents:
+            target = getattr(target, part, None)
+        if target is None or not hasattr(target, leaf):
+            raise ValueError(f"{where}: solverOptions key {path!r} is not a SimulationSettings path")
+        setattr(target, leaf, value)
+    return getattr(exu.DynamicSolverType, str(name))
 
 
 def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float] = None,
                         stepSize: float = DEFAULT_STEP_SIZE, contactOptions: ContactOptions = ContactOptions(),
-                        useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None) -> SimulationResult:
+                        useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
+                        solverOptions: Optional[Mapping[str, Any]] = None) -> SimulationResult:
     """Build and simulate the reel changer with Exudyn's generalized-alpha solver.
 
     Parameters
@@ -184,9 +250,14 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     endTime : float, optional
         Simulated time in s (default: one full rotation, 8 s for the paper's speed).
     stepSize : float
-        Time step in s, > 0 (default :data:`DEFAULT_STEP_SIZE`).
+        Time step in s, > 0 (default :data:`DEFAULT_STEP_SIZE`); refused above the hard limit and warned
+        about above the soft limit of :func:`exudyn_worm.stepsize.CheckStepSize`.
     contactOptions, useSymbolic, startFromEquilibrium, profile
         See :func:`BuildReelChanger`.
+    solverOptions : mapping, optional
+        Changes to the solver settings, keyed by their path in ``exudyn.SimulationSettings`` (e.g.
+        ``{'timeIntegration.newton.maxIterations': 10}``), and ``'solverType'`` (a name of
+        ``exudyn.DynamicSolverType``, default ``'GeneralizedAlpha'``). For benchmarks and studies.
 
     Returns
     -------
@@ -199,6 +270,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     stepSize = CheckPositive(w, 'stepSize', stepSize, 's')
     if stepSize > endTime:
         raise ValueError(f"{w}: 'stepSize' must be <= endTime = {endTime:g} s, got {stepSize:g} s")
+    CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
     model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
     mbs = model.mbs
     mbs.Assemble()
@@ -210,11 +282,12 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     ss.timeIntegration.numberOfSteps = steps
     ss.timeIntegration.verboseMode = 0
     ss.timeIntegration.newton.useModifiedNewton = True
+    solverType = _ApplySolverOptions(ss, solverOptions or {}, w)
     printing = exu.config.printToConsole
     exu.config.printToConsole = False   # silences Exudyn's note on ObjectGenericODE2 allocations per step
     try:
         t0 = _time.perf_counter()
-        success = mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+        success = mbs.SolveDynamic(ss, solverType=solverType)
         solveSeconds = _time.perf_counter() - t0
     finally:
         exu.config.printToConsole = printing
@@ -223,15 +296,20 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
 
     series = model.connector.StoredStates(mbs)
     time = series.pop('time')
-    for key in ('phi0', 'omega0'):
+    for key in [k for k in model.sensors if k not in model.connector.sensors]:
         series[key] = mbs.GetSensorStoredData(model.sensors[key])[:, 1]
-    mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'])
+    mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'],
+                                    series.get('xA'), series.get('vA'))
     drive = model.drive
+    motorSide = '4' if model.chain else '0'            # the drive shaft (spring-Damper1) ends at inertia4 or the motor
     series.update(deltaPhi=mesh.deltaPhi, deltaS=mesh.deltaS, normalForce=mesh.normalForce, S=mesh.S, sf=mesh.sf,
                   wormTorque=mesh.wormTorque, wheelTorque=mesh.wheelTorque,
                   # eq. (6): torque in the drive shaft; eq. (7): tangential force at the wheel
-                  driveTorque=drive.kT * (series['phi1'] - series['phi0']) + drive.dT * (series['omega1'] - series['omega0']),
+                  driveTorque=drive.kT * (series['phi1'] - series['phi' + motorSide])
+                  + drive.dT * (series['omega1'] - series['omega' + motorSide]),
                   tangentialForce=mesh.wheelTorque / drive.gear.r2)
+    if model.axialBearing is not None:
+        series['axialForce'] = mesh.axialForce
     return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
                             steps=steps, info={'stepSize': stepSize, 'maxLoadTorque': model.load.maximum,
                                                'frictionSpeed': contactOptions.frictionSpeed,

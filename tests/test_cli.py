@@ -274,45 +274,44 @@ def test_exudyn_method_real(capsys):
         assert_allclose(exu['S']['-1']['b'], ana['S']['-1']['b'], rtol=1e-6)
 
 
-# --- validate --------------------------------------------------------------------------------------
-class _FakeValidation:
-    DEFAULT_REPORT_PATH = Path(exudyn_worm.__file__).resolve().parents[1] / 'validation' / 'REPORT.md'
+# --- validate (a thin entry to the suite of the checkout) -----------------------------------------
+class _FakeSuite:
+    """Stands for validation.cli: records the parsed options."""
 
-    def __init__(self, passed):
-        self.passed, self.calls = passed, []
+    def __init__(self, status):
+        self.status, self.calls = status, []
 
-    def RunValidation(self, reportPath, quick=False):
-        self.calls.append((reportPath, quick))
-        return types.SimpleNamespace(passed=self.passed, lines=['check 1 ok', 'check 2 ' +
-                                                                ('ok' if self.passed else 'FAILED')])
-
-
-@pytest.mark.parametrize('passed, status', [(True, 0), (False, 1)])
-def test_validate(capsys, monkeypatch, tmp_path, passed, status):
-    fake = _FakeValidation(passed)
-    monkeypatch.setitem(sys.modules, 'exudyn_worm.validation', fake)
-    report = tmp_path / 'report.md'
-    rc, out, err = Run(capsys, 'validate', '--report', str(report))
-    assert rc == status
-    assert out.splitlines() == ['check 1 ok', 'check 2 ' + ('ok' if passed else 'FAILED')]
-    assert fake.calls == [(report, False)]
-    Run(capsys, 'validate', '--no-report', '--quick')
-    assert fake.calls[-1] == (None, True)
+    def Run(self, args):
+        self.calls.append((args.report, args.quick))
+        if args.report == 'bad':
+            raise ValueError("--report: expected a file path in an existing directory, got 'bad'")
+        print('validation summary')
+        return self.status
 
 
-def test_validate_default_report_path(capsys, monkeypatch):
-    fake = _FakeValidation(True)
-    monkeypatch.setitem(sys.modules, 'exudyn_worm.validation', fake)
-    assert Run(capsys, 'validate')[0] == 0
-    sourceTree = Path(exudyn_worm.__file__).resolve().parents[1]
-    expected = sourceTree / 'validation' / 'REPORT.md' if (sourceTree / 'validation').is_dir() else None
-    assert fake.calls == [(expected, False)]
+@pytest.mark.parametrize('status', [0, 1])
+def test_validate_runs_the_suite_of_the_checkout(capsys, monkeypatch, status):
+    from exudyn_worm.commands import validate
+    fake = _FakeSuite(status)
+    monkeypatch.setattr(validate, '_Suite', lambda root: fake)
+    rc, out, err = Run(capsys, 'validate', '--quick', '--report', 'r.md')
+    assert (rc, out) == (status, 'validation summary\n') and fake.calls == [('r.md', True)]
+    rc, out, err = Run(capsys, 'validate', '--report', 'bad')
+    assert rc == 2 and err.startswith('exudyn-worm: error: --report') and err.count('\n') == 1
 
 
-def test_validate_unavailable(capsys, monkeypatch):
-    monkeypatch.setitem(sys.modules, 'exudyn_worm.validation', None)
-    rc, out, err = Run(capsys, 'validate')
-    assert rc == 2 and out == '' and err.count('\n') == 1 and err.startswith('exudyn-worm: error: validate')
+def test_validate_finds_the_checkout():
+    from exudyn_worm.commands import validate
+    assert validate.FindSuite() == Path(exudyn_worm.__file__).resolve().parents[1]
+
+
+@pytest.mark.parametrize('argv', [['validate'], ['validate', '--quick']])
+def test_validate_without_checkout(capsys, monkeypatch, argv):
+    from exudyn_worm.commands import validate
+    monkeypatch.setattr(validate, 'FindSuite', lambda: None)
+    rc, out, err = Run(capsys, *argv)
+    assert rc == 2 and out == '' and err.count('\n') == 1
+    assert err.startswith("exudyn-worm: error: validate: the validation suite is not installed") and 'python -m validation' in err
 
 
 # --- registry --------------------------------------------------------------------------------------

@@ -5,12 +5,11 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from exudyn_worm import validation
 from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
 from exudyn_worm.stability import CharacteristicCoefficients
-from exudyn_worm.validation import KINDS, CheckGroup, HalfUnit, LoadReference, RegisterCheckGroup, RunValidation
-
-from conftest import LoadScript
+from validation import runner as validation
+from validation.paper import eigenvalue_forensics
+from validation.runner import KINDS, CheckGroup, HalfUnit, LoadReference, RegisterCheckGroup, RunValidation
 
 
 @pytest.fixture(scope='module')
@@ -21,7 +20,7 @@ def quickRun(tmp_path_factory):
 
 @pytest.fixture(scope='module')
 def forensics():
-    return LoadScript('validation/paper/eigenvalue_forensics.py', 'test_eigenvalue_forensics')
+    return eigenvalue_forensics
 
 
 # --- the full run -------------------------------------------------------------------------------------------
@@ -148,7 +147,7 @@ def test_group_errors_fail_its_rows(tmp_path):
 
 def test_register_check_group(monkeypatch):
     monkeypatch.setattr(validation, 'CHECK_GROUPS', list(validation.CHECK_GROUPS))
-    g = RegisterCheckGroup('example', 'exudyn_worm.validation_analytical:AnalyticalChecks', slow=True, title='Example')
+    g = RegisterCheckGroup('example', 'validation.analytical:AnalyticalChecks', slow=True, title='Example')
     assert validation.CHECK_GROUPS[-1] is g and callable(g.Resolve())
     with pytest.raises(ValueError, match=r"RegisterCheckGroup: a group 'example' exists; pass replace=True"):
         RegisterCheckGroup('example', _SimulationGroup)

@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+import warnings
 from pathlib import Path
 from typing import List, Tuple
 
@@ -58,7 +59,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--end-time', type=float, default=None, metavar='S',
                         help='simulated time in s (default: one full rotation, 8 s at the paper\'s speed)')
     parser.add_argument('--step-size', type=float, default=None, metavar='S',
-                        help='time step in s (default 5e-4)')
+                        help='time step in s (default 5e-4); refused if it cannot resolve the drive\'s highest '
+                             'natural frequency (rule in exudyn_worm/stepsize.py)')
     parser.add_argument('--windows', default=None, metavar='T0:T1,...',
                         help='evaluation windows in s (default: the lift / lower / lift phases of one rotation)')
     parser.add_argument('--plot', default=None, metavar='DIR', help='write PNG figures into DIR')
@@ -69,14 +71,22 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _Run(args: argparse.Namespace) -> int:
     from ..reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
+    from ..stepsize import CheckStepSize, CoarseStepWarning
     parameters, drive = DriveFromArgs(args)
+    with BadInput(), warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter('always', CoarseStepWarning)
+        CheckStepSize(parameters, args.step_size if args.step_size is not None else DEFAULT_STEP_SIZE,
+                      'simulate --step-size')
+    for warning in caught:
+        print(f"exudyn-worm: warning: {warning.message}", file=sys.stderr)
     with BadInput():
         windows = ParseWindows(args.windows) if args.windows else DefaultWindows(parameters)
         endTime = args.end_time if args.end_time is not None else max(
             DefaultWindows(parameters)[-1][1], max(t1 for _, t1 in windows))
         if max(t1 for _, t1 in windows) > endTime:
             raise ValueError(f"--windows: a window ends after --end-time = {endTime:g} s")
-        with StdoutToStderr(args.json):
+        with StdoutToStderr(args.json), warnings.catch_warnings():
+            warnings.simplefilter('ignore', CoarseStepWarning)      # reported above
             result = SimulateReelChanger(parameters, endTime=endTime,
                                          stepSize=args.step_size if args.step_size is not None else DEFAULT_STEP_SIZE,
                                          useSymbolic=not args.python_user_functions)

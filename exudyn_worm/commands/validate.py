@@ -1,43 +1,71 @@
-"""``exudyn-worm validate``: the checks against the numbers published in the paper."""
+"""``exudyn-worm validate``: a thin entry to the validation suite of the source checkout.
+
+The suite (``validation/`` beside ``exudyn_worm/``, with the paper's reference data) is not part of the
+installed package. This command finds it next to the package (editable install of a checkout) or in the
+current directory and runs it exactly as ``python -m validation`` does; without a checkout it stops with
+one line on stderr and exit status 2.
+"""
 from __future__ import annotations
 
 import argparse
+import importlib
 import sys
 from pathlib import Path
+from types import ModuleType
+from typing import Optional
 
-from ..cli import PROG, Subcommand, UsageError
+from ..cli import Subcommand, UsageError
 
-__all__ = ['COMMAND']
+__all__ = ['COMMAND', 'FindSuite', 'AddValidationArguments']
 
 
-def _AddArguments(parser: argparse.ArgumentParser) -> None:
+def FindSuite() -> Optional[Path]:
+    """The repository root holding the validation suite, or None.
+
+    Returns
+    -------
+    Path or None
+        The directory containing ``validation/cli.py`` and ``validation/paper/reference.csv``: the
+        checkout the package was installed from (editable install), else the current directory.
+    """
+    import exudyn_worm
+    for root in (Path(exudyn_worm.__file__).resolve().parents[1], Path.cwd().resolve()):
+        if (root / 'validation' / 'cli.py').is_file() and (root / 'validation' / 'paper' / 'reference.csv').is_file():
+            return root
+    return None
+
+
+def _Suite(root: Path) -> ModuleType:
+    if str(root) not in sys.path:
+        sys.path.insert(0, str(root))
+    return importlib.import_module('validation.cli')
+
+
+def AddValidationArguments(parser: argparse.ArgumentParser) -> None:
+    """Add the options of the validation (shared by ``python -m validation`` and ``exudyn-worm validate``).
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        Gets ``--report PATH`` and ``--quick``.
+    """
     parser.add_argument('--report', metavar='PATH', default=None,
-                        help='write the Markdown report here (default: validation/REPORT.md of the source tree)')
-    parser.add_argument('--no-report', action='store_true', dest='noReport', help='write no report')
-    parser.add_argument('--quick', action='store_true', help='skip the slow checks')
+                        help='write the Markdown report to PATH (nothing is written without it)')
+    parser.add_argument('--quick', action='store_true', help='skip the slow check groups (time-domain simulations)')
 
 
 def _Run(args: argparse.Namespace) -> int:
+    root = FindSuite()
+    if root is None:
+        raise UsageError("validate: the validation suite is not installed with the package; run "
+                         "'python -m validation' from the root of a source checkout (or this command "
+                         "inside one)")
     try:
-        from ..validation import DEFAULT_REPORT_PATH, RunValidation
-    except ImportError as err:
-        raise UsageError(f"validate is not available: cannot import exudyn_worm.validation.RunValidation "
-                         f"({err})") from err
-    if args.noReport and args.report:
-        raise UsageError("give either --report PATH or --no-report, not both")
-    if args.noReport:
-        report = None
-    elif args.report:
-        report = Path(args.report)
-    else:
-        report = DEFAULT_REPORT_PATH if DEFAULT_REPORT_PATH.parent.is_dir() else None
-        if report is None:
-            print(f"{PROG}: note: no source tree found; no report written (use --report PATH)", file=sys.stderr)
-    summary = RunValidation(reportPath=report, quick=args.quick)
-    for line in summary.lines:
-        print(line)
-    return 0 if summary.passed else 1
+        return _Suite(root).Run(args)
+    except ValueError as err:
+        raise UsageError(str(err)) from err
 
 
-COMMAND = Subcommand('validate', 'check the implementation against the numbers published in the paper',
-                     _AddArguments, _Run, parameterOptions=False)
+COMMAND = Subcommand('validate', 'check the implementation against the numbers published in the paper '
+                     '(needs the source checkout; same as python -m validation)',
+                     AddValidationArguments, _Run, parameterOptions=False)

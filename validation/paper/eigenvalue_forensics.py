@@ -14,7 +14,7 @@ in ``tests/test_validation.py``)::
     b3 = a y (tauT + eta)
     b4 = a y
 
-Findings (reproduced by ``python validation/paper/eigenvalue_forensics.py``):
+Findings (reproduced by ``python -m validation.paper.eigenvalue_forensics``):
 
 * The best physical explanation is a mesh stiffness and damping referred to the wheel
   circumference (the worm's axial direction) instead of the tooth normal: every mesh term is
@@ -46,6 +46,9 @@ from exudyn_worm.drive import ElasticDrive
 from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
 from exudyn_worm.stability import CharacteristicCoefficients, ContactStability, EigenvaluesFromPolynomial
 
+# the friction coefficient the printed b1..b4 and (19) were computed with (see validation/REPORT.md)
+from ..runner import PAPER_MU
+
 __all__ = ['REFERENCE_CSV', 'PRINTED_DIGIT', 'HALF_DIGIT', 'PAPER_MU', 'EIGENVALUE_ROWS', 'PrintedEigenvalues',
            'BaseParameters', 'P7Parameters', 'WheelCircumferenceFactor', 'ScaleMesh', 'UpperEigenvalues',
            'EigenvalueDeviations', 'DriveDeviations', 'Hypothesis', 'HypothesisResult', 'Hypotheses',
@@ -59,8 +62,6 @@ REFERENCE_CSV = Path(__file__).with_name('reference.csv')
 PRINTED_DIGIT = 0.1
 #: rounding half-width of the printed eigenvalues, in 1/s
 HALF_DIGIT = 0.5 * PRINTED_DIGIT
-#: the friction coefficient the printed b1..b4 and (19) were computed with (see validation/REPORT.md)
-from exudyn_worm.validation import PAPER_MU  # noqa: E402  (mu of set (28) as computed by the paper)
 
 #: reference.csv ids of the printed eigenvalues: S -> ((Re, Im) of lambda_1/2, (Re, Im) of lambda_3/4)
 EIGENVALUE_ROWS = {+1: (('lam1_re_Sp', 'lam1_im_Sp'), ('lam2_re_Sp', 'lam2_im_Sp')),
@@ -100,10 +101,16 @@ def P7Parameters(**overrides) -> Dict[str, float]:
     return ApplyOverrides(GetPreset('reel-P7'), {'mu': PAPER_MU, **overrides})
 
 
-def WheelCircumferenceFactor(drive: ElasticDrive) -> float:
+def WheelCircumferenceFactor(drive) -> float:
     """Factor 1/(cos(alphaN) cos(gamma))^2 between a mesh spring acting along the wheel circumference
-    (the worm axis) and one acting along the tooth normal, for the same spring constant."""
-    return drive.gear.wheelCircumferenceFactor
+    (the worm axis) and one acting along the tooth normal, for the same spring constant.
+
+    Parameters
+    ----------
+    drive : ElasticDrive or WormGear
+        The drive (or its gear).
+    """
+    return 1. / getattr(drive, 'gear', drive).axialLever**2
 
 
 def ScaleMesh(drive: ElasticDrive, stiffnessFactor: float, dampingFactor: Optional[float] = None) -> ElasticDrive:

@@ -1,27 +1,24 @@
 """The analytical check groups of the validation: published numbers of sections 2-3.1 and the eigenvalue forensics.
 
 Groups ``analytical``, ``eigenvalues``, ``forensics`` and ``forensics-slow`` of
-:func:`exudyn_worm.validation.RunValidation`; each function takes the run's
-:class:`~exudyn_worm.validation.ValidationContext` and returns one
-:class:`~exudyn_worm.validation.Check` per row of its group in ``validation/paper/reference.csv``.
+:func:`validation.RunValidation`; each function takes the run's :class:`validation.runner.ValidationContext`
+and returns one :class:`validation.runner.Check` per row of its group in ``validation/paper/reference.csv``.
 """
 from __future__ import annotations
 
-import importlib.util
 import math
-import sys
-from pathlib import Path
 from types import ModuleType
 from typing import Dict, List, Tuple
 
 import numpy as np
 
-from .drive import (MeshDampingFromMeasure, MeshDampingMeasure, TorsionalDampingFromMeasure,
+from exudyn_worm.drive import (MeshDampingFromMeasure, MeshDampingMeasure, TorsionalDampingFromMeasure,
                     TorsionalDampingMeasure)
-from .gear import WormGear
-from .presets import ApplyOverrides, DriveFromParameters, GetPreset
-from .stability import AnalyzeStability, CharacteristicCoefficients, ContactStability, HurwitzConditions
-from .validation import PAPER_MU, Check, HalfUnit, ValidationContext
+from exudyn_worm.gear import WormGear
+from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.stability import AnalyzeStability, CharacteristicCoefficients, ContactStability, HurwitzConditions
+from .paper import eigenvalue_forensics
+from .runner import PAPER_MU, Check, HalfUnit, ValidationContext
 
 __all__ = ['Hurwitz19Tolerance', 'AnalyticalChecks', 'EigenvalueChecks', 'ForensicsChecks', 'ForensicsSlowChecks']
 
@@ -257,23 +254,9 @@ def EigenvalueChecks(ctx: ValidationContext) -> List[Check]:
 
 # --- group: eigenvalue forensics ------------------------------------------------------------------------
 
-_FORENSICS_SCRIPT = Path('paper') / 'eigenvalue_forensics.py'
-_forensicsModules: Dict[Path, ModuleType] = {}
-
-
 def _Forensics(ctx: ValidationContext) -> ModuleType:
-    """Import ``validation/paper/eigenvalue_forensics.py`` (a script beside the data, not a package module)."""
-    path = (next(iter(ctx.reference.values())).file.parents[1] / _FORENSICS_SCRIPT).resolve()
-    if path not in _forensicsModules:
-        if not path.is_file():
-            raise FileNotFoundError(f"eigenvalue forensics script not found: {path}")
-        name = 'exudyn_worm_validation_eigenvalue_forensics'
-        spec = importlib.util.spec_from_file_location(name, path)
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[name] = module  # dataclasses need the module registered while it executes
-        spec.loader.exec_module(module)
-        _forensicsModules[path] = module
-    return _forensicsModules[path]
+    """The eigenvalue forensics module (``validation/paper/eigenvalue_forensics.py``)."""
+    return eigenvalue_forensics
 
 
 def ForensicsChecks(ctx: ValidationContext) -> List[Check]:
@@ -352,7 +335,7 @@ x(S) = K1 (tan gamma + S tan rho) and y(S) = K2 (1 - S tan gamma tan rho), so a,
 K1, K2 and rho cover every choice of J1, J2, kT, kV, dT, dV, r1, r2, u, alphaN and rho. The best this
 six-parameter class can do (gamma = 5.3228 deg) is a max deviation of {cls.maxDeviation:.4f} 1/s, at
 rho = {cls.extra['rhoDeg']:.3f} deg (local minimax from the wheel-circumference point; differential evolution,
-`python validation/paper/eigenvalue_forensics.py --global`, finds the same optimum). The S-dependence is
+`python -m validation.paper.eigenvalue_forensics --global`, finds the same optimum). The S-dependence is
 what fails: b4(-1)/b4(+1) = cos(gamma - rho)/cos(gamma + rho) for every parameter choice, and the printed
 eigenvalues give {ratio[0]:.5f} in [{ratio[1]:.5f}, {ratio[2]:.5f}], i.e. rho between
 {math.degrees(rhoLo):.2f} and {math.degrees(rhoHi):.2f} deg on the wheel side, while the worm-side term

@@ -12,10 +12,12 @@ from typing import Callable, Dict, List, Tuple
 
 import numpy as np
 
-from .contact import ContactOptions
-from .presets import ApplyOverrides, DriveFromParameters, GetPreset
-from .reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
-from .stability import AnalyzeStability
+from exudyn_worm.contact import ContactOptions
+from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
+from exudyn_worm.stability import AnalyzeStability
+
+from .paper.eigenvalue_forensics import WheelCircumferenceFactor
 
 __all__ = ['TIME_DOMAIN_CHECKS', 'Simulate', 'PaperMeshConvention', 'SimulationChecks']
 
@@ -34,7 +36,7 @@ def PaperMeshConvention(parameters):
         Flat parameter set.
     """
     gear = DriveFromParameters(parameters).gear
-    f = gear.wheelCircumferenceFactor
+    f = WheelCircumferenceFactor(gear)
     return ApplyOverrides(parameters, {'kV': gear.kV * f, 'dV': gear.dV * f})
 
 
@@ -172,7 +174,7 @@ def _RobustnessTable() -> str:
 
 
 def SimulationChecks(ctx):
-    """Check group ``simulation`` of :func:`exudyn_worm.validation.RunValidation`."""
+    """Check group ``simulation`` of :func:`validation.RunValidation`."""
     checks = [ctx.Compare(row.id, TIME_DOMAIN_CHECKS[row.id]()) for row in ctx.Rows('simulation')]
     v = {c.id: c.computed for c in checks}
     peaks = _PeakNormalForces('reel-P7')

@@ -1,0 +1,216 @@
+"""Time step of a simulation chosen from the drive itself, and the rule that refuses a step too coarse.
+
+The reel changer is integrated with Exudyn's generalized-alpha method, a member of the Newmark /
+trapezoidal family. For a linear mode of frequency f it is stable at any step h, but it stretches the
+period by ``x / (2 atan(x/2)) - 1``, about ``x^2 / 12``, with ``x = 2 pi f h`` (the period error of the
+trapezoidal rule, :func:`PeriodError`). A step that
+is too coarse therefore does not fail: it reports a chatter frequency that is too low (28.8 Hz instead
+of 40.5 Hz for P1 at h = 0.01 s) or steps over the vibration and reports no chatter at all (h = 0.05 s),
+an answer that looks right. The rule below is written in terms of that period error of the highest
+natural frequency of the linearized drive (eqs. (1)-(2) with S = +1 and S = -1, :func:`StateMatrix`);
+it covers the chatter frequency, which is one of these modes:
+
+==============  =====================  ==================================================
+limit           period error of f_max  step
+==============  =====================  ==================================================
+recommended     0.5 %                  ``RECOMMENDED_CYCLES / f_max`` (0.039 / f_max)
+soft (warn)     2 %                    ``SOFT_CYCLES / f_max`` (0.079 / f_max)
+hard (refuse)   5 %                    ``HARD_CYCLES / f_max`` (0.126 / f_max)
+==============  =====================  ==================================================
+
+For the paper's P1 (f_max = 50.4 Hz) that is 7.8e-4 s, 1.6e-3 s and 2.5e-3 s; for P7 (77.2 Hz)
+5.1e-4 s, 1.0e-3 s and 1.6e-3 s. Measured on P1 (generalized-alpha, spectral radius 0.9): the
+chatter frequency is 40.3 Hz at h = 1e-3 s, 39.7 Hz at 2e-3 s, 37.5 Hz at 4e-3 s, 28.8 Hz at 0.01 s.
+
+The friction regularization (``sf = phi1'/frictionSpeed`` for ``|phi1'| < frictionSpeed``) acts on the
+worm like a viscous damper ``d = |dc2/dS| Fn / frictionSpeed``. Its time constant ``J1/d`` is about
+1e-5 s for P7 (it is returned by :func:`FrictionTimeConstant`), far below any affordable step; the
+implicit solver does not need to resolve it (the mode is damped, not oscillating) as long as the
+method damps stiff modes (spectral radius < 1), so it does not enter the step size. It matters for the
+Newton iteration instead (see benchmarks/README.md).
+"""
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Mapping
+
+import numpy as np
+
+from ._checks import CheckPositive
+
+__all__ = ['RECOMMENDED_CYCLES', 'SOFT_CYCLES', 'HARD_CYCLES', 'PeriodError', 'LinearizedFrequencies',
+           'RecommendedStepSize', 'StepSizeLimits', 'CheckStepSize', 'FrictionTimeConstant', 'CoarseStepWarning']
+
+
+def _PeriodError(x: float) -> float:
+    """Period elongation of the trapezoidal rule for a mode with omega*h = x: x / (2 atan(x/2)) - 1."""
+    return x / (2. * math.atan(0.5 * x)) - 1. if x > 0 else 0.
+
+
+def _CyclesForPeriodError(error: float) -> float:
+    """f*h at which the trapezoidal period error equals ``error`` (bisection; about sqrt(12 error)/(2 pi))."""
+    low, high = 0., 2 * math.pi
+    for _ in range(60):
+        mid = 0.5 * (low + high)
+        low, high = (mid, high) if _PeriodError(2 * math.pi * mid) < error else (low, mid)
+    return 0.5 * (low + high)
+
+
+#: f_max * h of the recommended step (0.5 % period error of the highest linearized mode)
+RECOMMENDED_CYCLES = _CyclesForPeriodError(0.005)
+#: f_max * h above which :func:`CheckStepSize` warns (2 % period error)
+SOFT_CYCLES = _CyclesForPeriodError(0.02)
+#: f_max * h above which :func:`CheckStepSize` raises (5 % period error)
+HARD_CYCLES = _CyclesForPeriodError(0.05)
+
+
+class CoarseStepWarning(UserWarning):
+    """The time step resolves the drive's highest natural frequency only coarsely (see :func:`CheckStepSize`)."""
+
+
+def PeriodError(frequency: float, stepSize: float) -> float:
+    """Relative period elongation of a mode of ``frequency`` Hz at step ``stepSize`` s.
+
+    The trapezoidal rule (generalized-alpha without numerical damping) turns a mode omega = 2 pi f into
+    one of 2 atan(omega h / 2) / h: the period grows by x / (2 atan(x/2)) - 1 with x = omega h, about
+    x^2 / 12 for small steps.
+
+    Parameters
+    ----------
+    frequency : float
+        Natural frequency in Hz.
+    stepSize : float
+        Time step in s.
+    """
+    return _PeriodError(2. * math.pi * frequency * stepSize)
+
+
+def LinearizedFrequencies(parameters: Mapping[str, float]) -> dict:
+    """Natural frequencies of the linearized drive (eqs. (1)-(2), S = +1 and S = -1).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (see :mod:`exudyn_worm.presets`).
+
+    Returns
+    -------
+    dict
+        ``maxHz``: the highest undamped natural frequency |lambda|/(2 pi) over both contact states;
+        ``chatterHz``: the highest damped frequency of a growing mode (None if the drive is stable).
+    """
+    from .presets import DriveFromParameters
+    from .stability import CONTACT_STATES, StateMatrix
+    drive = DriveFromParameters(parameters)
+    fMax, fChatter = 0., None
+    for S in CONTACT_STATES:
+        lam = np.linalg.eigvals(StateMatrix(drive, S))
+        fMax = max(fMax, float(np.max(np.abs(lam))) / (2 * math.pi))
+        growing = lam[lam.real > 0]
+        if growing.size:
+            f = float(np.max(np.abs(growing.imag))) / (2 * math.pi)
+            fChatter = f if fChatter is None else max(fChatter, f)
+    return {'maxHz': fMax, 'chatterHz': fChatter}
+
+
+def RecommendedStepSize(parameters: Mapping[str, float]) -> float:
+    """Time step in s for the drive: ``RECOMMENDED_CYCLES / f_max`` (0.5 % period error of its highest mode).
+
+    Parameters
+    ----------
+    parameters : mapping
+        The drive and load (as for :func:`LinearizedFrequencies`).
+
+    Returns
+    -------
+    float
+        Step size in s (7.8e-4 s for the paper's P1, 5.1e-4 s for P7).
+    """
+    return RECOMMENDED_CYCLES / LinearizedFrequencies(parameters)['maxHz']
+
+
+def StepSizeLimits(parameters: Mapping[str, float]) -> dict:
+    """The recommended step and the soft and hard limits of :func:`CheckStepSize`, in s.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+
+    Returns
+    -------
+    dict
+        ``recommended``, ``soft``, ``hard`` (s) and ``maxHz``, ``chatterHz`` of :func:`LinearizedFrequencies`.
+    """
+    f = LinearizedFrequencies(parameters)
+    return {'recommended': RECOMMENDED_CYCLES / f['maxHz'], 'soft': SOFT_CYCLES / f['maxHz'],
+            'hard': HARD_CYCLES / f['maxHz'], **f}
+
+
+def CheckStepSize(parameters: Mapping[str, float], stepSize: float, where: str = 'CheckStepSize') -> float:
+    """Refuse a step that cannot resolve the drive's highest natural frequency; warn for a coarse one.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    stepSize : float
+        Time step in s, > 0.
+    where : str
+        Name of the calling function for the messages.
+
+    Returns
+    -------
+    float
+        ``stepSize``.
+
+    Raises
+    ------
+    ValueError
+        If ``stepSize`` exceeds the hard limit ``HARD_CYCLES / f_max`` (period error of the highest mode
+        above 5 %: the chatter frequency and amplitude come out wrong, or the chatter is missed).
+
+    Warns
+    -----
+    CoarseStepWarning
+        If ``stepSize`` exceeds the soft limit ``SOFT_CYCLES / f_max`` (period error above 2 %).
+    """
+    stepSize = CheckPositive(where, 'stepSize', stepSize, 's')
+    lim = StepSizeLimits(parameters)
+    text = (f"the drive's highest natural frequency is {lim['maxHz']:.1f} Hz"
+            + (f" (chatter mode {lim['chatterHz']:.1f} Hz)" if lim['chatterHz'] else '')
+            + f"; at stepSize = {stepSize:g} s its period comes out about "
+              f"{100 * PeriodError(lim['maxHz'], stepSize):.1f} % too long")
+    if stepSize > lim['hard']:
+        raise ValueError(f"{where}: 'stepSize' must be <= {lim['hard']:.3g} s for this drive, got {stepSize:g} s: "
+                         f"{text} (frequencies and chatter verdicts would be wrong); recommended "
+                         f"{lim['recommended']:.3g} s")
+    if stepSize > lim['soft']:
+        warnings.warn(f"{where}: {text}; amplitudes and frequencies may be off by percents; recommended "
+                      f"stepSize <= {lim['recommended']:.3g} s", CoarseStepWarning, stacklevel=2)
+    return stepSize
+
+
+def FrictionTimeConstant(parameters: Mapping[str, float], frictionSpeed: float, normalForce: float) -> float:
+    """Time constant J1/d in s of the worm on the regularized friction law at normal force ``normalForce``.
+
+    ``d = |dc2/dS| normalForce / frictionSpeed`` is the damping of the regularized law
+    (``S = sigma phi1'/frictionSpeed``) on the worm (see the module text: it does not limit the step).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    frictionSpeed : float
+        Regularization speed in rad/s, > 0.
+    normalForce : float
+        Normal force in N, > 0.
+    """
+    from .presets import DriveFromParameters
+    drive = DriveFromParameters(parameters)
+    g = drive.gear
+    frictionSpeed = CheckPositive('FrictionTimeConstant', 'frictionSpeed', frictionSpeed, 'rad/s')
+    normalForce = CheckPositive('FrictionTimeConstant', 'normalForce', normalForce, 'N')
+    dc2dS = g.r1 * math.cos(g.alphaN) / math.cos(g.rho) * g.rho * math.cos(g.gamma)   # d/dS r1 k sin(gamma + rho S) at S = 0
+    return drive.J1 * frictionSpeed / (dc2dS * normalForce)

@@ -1,0 +1,73 @@
+"""Step size from the drive (exudyn_worm.stepsize) and the coarse-step refusal."""
+import math
+import warnings
+
+import pytest
+
+from exudyn_worm.presets import ApplyOverrides, GetPreset
+from exudyn_worm.stepsize import (HARD_CYCLES, RECOMMENDED_CYCLES, SOFT_CYCLES, CheckStepSize, CoarseStepWarning,
+                                  LinearizedFrequencies, PeriodError, RecommendedStepSize, StepSizeLimits)
+
+
+def test_frequencies_of_p1_are_those_of_the_linear_model():
+    f = LinearizedFrequencies(GetPreset('reel-P1'))
+    assert f['maxHz'] == pytest.approx(50.35, abs=0.05)          # S = +1, second mode (validation: 50.4 Hz)
+    assert f['chatterHz'] == pytest.approx(40.5, abs=0.1)        # the growing mode of S = -1
+    assert LinearizedFrequencies(GetPreset('reel-P2'))['chatterHz'] is None
+
+
+def test_period_error_is_the_trapezoidal_one():
+    assert PeriodError(40.5, 1e-4) == pytest.approx((2 * math.pi * 40.5e-4)**2 / 12, rel=1e-3)
+    # P1 at h = 0.01 s: 40.5 Hz comes out as 40.5 / 1.41 = 28.8 Hz (the measured frequency of issue 9)
+    assert 40.5 / (1 + PeriodError(40.5, 0.01)) == pytest.approx(28.8, abs=0.1)
+    for cycles, error in ((RECOMMENDED_CYCLES, 0.005), (SOFT_CYCLES, 0.02), (HARD_CYCLES, 0.05)):
+        assert PeriodError(1., cycles) == pytest.approx(error, rel=1e-9)
+
+
+def test_recommended_step_follows_the_stiffest_mode():
+    p1, p3 = GetPreset('reel-P1'), GetPreset('reel-P3')       # P3: J1 / 3 raises f_max from 50 to 81 Hz
+    assert RecommendedStepSize(p1) == pytest.approx(RECOMMENDED_CYCLES / 50.35, rel=1e-3)
+    assert RecommendedStepSize(p3) < RecommendedStepSize(p1)
+    stiff = ApplyOverrides(p1, {'kV': 4 * p1['kV'], 'kT': 4 * p1['kT']})
+    assert RecommendedStepSize(stiff) < RecommendedStepSize(p1)
+    limits = StepSizeLimits(p1)
+    assert limits['recommended'] < limits['soft'] < limits['hard']
+
+
+@pytest.mark.parametrize('stepSize', [0.05, 0.01, 3e-3])
+def test_coarse_step_of_issue_9_is_refused(stepSize):
+    with pytest.raises(ValueError, match=r"CheckStepSize: 'stepSize' must be <= 0.0025 s .* got "):
+        CheckStepSize(GetPreset('reel-P1'), stepSize)
+
+
+def test_soft_limit_warns_and_default_step_is_quiet():
+    with pytest.warns(CoarseStepWarning, match='50.4 Hz'):
+        assert CheckStepSize(GetPreset('reel-P1'), 2e-3) == 2e-3
+    with warnings.catch_warnings():
+        warnings.simplefilter('error')
+        for name in ('reel-P1', 'reel-P3', 'reel-P7'):
+            CheckStepSize(GetPreset(name), 5e-4)
+
+
+def test_simulate_refuses_before_computing():
+    from exudyn_worm.reelchanger import SimulateReelChanger
+    with pytest.raises(ValueError, match="SimulateReelChanger: 'stepSize' must be <="):
+        SimulateReelChanger(GetPreset('reel-P1'), stepSize=0.01)
+
+
+def test_cli_refuses_the_coarse_step_in_one_line(capsys, tmp_path, monkeypatch):
+    from exudyn_worm.cli import Main
+    monkeypatch.chdir(tmp_path)
+    status = Main(['simulate', '--preset', 'reel-P1', '--step-size', '0.05'])
+    out, err = capsys.readouterr()
+    assert status == 2 and out == ''
+    assert err.startswith('exudyn-worm: error: ') and err.count('\n') == 1 and '50.4 Hz' in err
+    assert 'Traceback' not in err and list(tmp_path.iterdir()) == []
+
+
+def test_cli_warns_for_a_coarse_step_and_runs(capsys):
+    from exudyn_worm.cli import Main
+    status = Main(['simulate', '--preset', 'reel-P1', '--step-size', '2e-3', '--end-time', '2', '--windows', '0:2'])
+    out, err = capsys.readouterr()
+    assert status == 0 and 'chatter' in out
+    assert err.startswith('exudyn-worm: warning: ') and 'recommended' in err

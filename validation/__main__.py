@@ -1,0 +1,4 @@
+"""``python -m validation`` (run from the repository root)."""
+from .cli import Main
+
+raise SystemExit(Main())

@@ -1,0 +1,1 @@
+"""Data and analyses of the paper: ``reference.csv`` (the published numbers) and the eigenvalue forensics."""
