@@ -4,19 +4,37 @@ Analytical theory (:func:`AnalyzeStability`), the Exudyn worm-gear connector (:f
 drivetrain builders, the paper's reel changer (:func:`SimulateReelChanger`) and presets. SI units,
 angles in rad. Plotting lives in :mod:`exudyn_worm.plot` (the only module importing matplotlib).
 """
-from .gear import WormGear
-from .drive import (ElasticDrive, MeshDampingFromMeasure, MeshDampingMeasure,
-                    TorsionalDampingFromMeasure, TorsionalDampingMeasure)
-from .stability import AnalyzeStability, StabilityAnalysis, ContactStability
-from .contact import ContactOptions, MeshContact, MeshState
-from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
-from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
-from .profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque, LinearMotorCharacteristic,
-                       StartStopProfile)
-from .presets import ApplyOverrides, DriveFromParameters, GetPreset, PRESETS
-from .linearization import AnalyzeLinearStability, AnalyzeStabilityExudyn, LinearStability
-from .reelchanger import BuildReelChanger, SimulateReelChanger
-from .results import SimulationResult
+import importlib
+
+#: public name -> submodule that defines it; imported on first access (PEP 562), so that
+#: ``import exudyn_worm.cli`` and light subcommands do not pay for exudyn, scipy, pint or matplotlib
+_LAZY = {'WormGear': 'gear',
+         **dict.fromkeys(('ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMeasure', 'TorsionalDampingFromMeasure',
+                          'TorsionalDampingMeasure'), 'drive'),
+         **dict.fromkeys(('AnalyzeStability', 'StabilityAnalysis', 'ContactStability'), 'stability'),
+         **dict.fromkeys(('ContactOptions', 'MeshContact', 'MeshState'), 'contact'),
+         **dict.fromkeys(('AxialBearing', 'CreateWormAxialBearing', 'CreateWormGear', 'WormGearConnector'), 'connector'),
+         **dict.fromkeys(('CreatePrescribedRotation', 'CreateRotor', 'CreateShaft', 'CreateRotorTorque'), 'drivetrain'),
+         **dict.fromkeys(('ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque', 'LinearMotorCharacteristic',
+                          'StartStopProfile'), 'profiles'),
+         **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'GetPreset', 'PRESETS'), 'presets'),
+         **dict.fromkeys(('AnalyzeLinearStability', 'AnalyzeStabilityExudyn', 'LinearStability'), 'linearization'),
+         **dict.fromkeys(('BuildReelChanger', 'SimulateReelChanger'), 'reelchanger'),
+         'SimulationResult': 'results',
+         **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'stepsize')}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f'.{_LAZY[name]}', __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
 
 __version__ = '0.1.0'
 
@@ -26,12 +44,12 @@ __all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMea
            'CreateWormGear', 'WormGearConnector', 'AxialBearing', 'CreateWormAxialBearing', 'CreatePrescribedRotation', 'CreateRotor', 'CreateShaft',
            'CreateRotorTorque', 'ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque',
            'LinearMotorCharacteristic', 'StartStopProfile', 'ApplyOverrides', 'DriveFromParameters', 'GetPreset',
-           'PRESETS', 'AnalyzeStabilityExudyn', 'AnalyzeLinearStability', 'LinearStability', 'BuildReelChanger', 'SimulateReelChanger', 'SimulationResult',
-           'AddMainSystemMethods', '__version__']
+           'PRESETS', 'AnalyzeStabilityExudyn', 'AnalyzeLinearStability', 'LinearStability', 'BuildReelChanger',
+           'SimulateReelChanger', 'SimulationResult', 'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods',
+           '__version__']
 
-_MAIN_SYSTEM_METHODS = {'CreateWormGear': CreateWormGear, 'CreateWormAxialBearing': CreateWormAxialBearing,
-                        'CreateRotor': CreateRotor, 'CreateShaft': CreateShaft,
-                        'CreatePrescribedRotation': CreatePrescribedRotation, 'CreateRotorTorque': CreateRotorTorque}
+_MAIN_SYSTEM_METHODS = ('CreateWormGear', 'CreateWormAxialBearing', 'CreateRotor', 'CreateShaft',
+                        'CreatePrescribedRotation', 'CreateRotorTorque')
 
 
 def AddMainSystemMethods() -> None:
@@ -46,7 +64,8 @@ def AddMainSystemMethods() -> None:
         If a different attribute of that name already exists on ``exudyn.MainSystem``.
     """
     import exudyn
-    for name, function in _MAIN_SYSTEM_METHODS.items():
+    for name in _MAIN_SYSTEM_METHODS:
+        function = __getattr__(name)
         existing = getattr(exudyn.MainSystem, name, None)
         if existing is not None and existing is not function:
             raise RuntimeError(f"AddMainSystemMethods: exudyn.MainSystem already has '{name}'")

@@ -14,8 +14,6 @@ import time as _time
 from dataclasses import dataclass
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
-from scipy.optimize import brentq
-
 from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from .contact import MATH_OPS, ContactOptions, MeshContact
 from .drive import ElasticDrive
@@ -25,6 +23,7 @@ from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
 from .stepsize import CheckStepSize
 from ._checks import CheckPositive
+from ._roots import FindRoot
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
            'SteadyInitialState', 'DEFAULT_STEP_SIZE']
@@ -103,7 +102,7 @@ def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed
             return MeshContact(g, deltaPhi, 0., omega1, omega2, options, MATH_OPS).wheelTorque + loadTorque
 
         span = 0.5 * g.backlash + 10 * (abs(loadTorque) / g.r2 + 1.) / g.kV
-        deltaS = brentq(WheelBalance, -span, span, xtol=1e-15) if loadTorque != 0 else 0.
+        deltaS = FindRoot(WheelBalance, -span, span, xtol=1e-15) if loadTorque != 0 else 0.
         mesh = MeshContact(g, deltaS / g.normalLever, 0., omega1, omega2, options, MATH_OPS)
         wormTorque = mesh.wormTorque
         xA = 0. if axialBearing is None else mesh.axialForce / axialBearing.stiffness   # kA xA = axial mesh force
