@@ -119,7 +119,8 @@ def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
                        help=f"parameter preset, one of: {', '.join(PRESETS)} "
                             f"(default: the config file's preset, else {DEFAULT_PRESET})")
     group.add_argument('--config', metavar='FILE.toml', default=None,
-                       help="TOML file with optional preset = \"NAME\" and a [parameters] table")
+                       help="whole-drive TOML file (docs/drive-files.md; examples/drives/) or one with a "
+                            "[parameters] table")
     group.add_argument('--set', metavar='KEY=VALUE', action='append', default=[], dest='set',
                        help="override one parameter; VALUE is SI (angles in rad) or has units, "
                             "e.g. --set 'backlash=0.5 mm' --set 'kT=7 kN*m' (repeatable)")
@@ -229,7 +230,7 @@ def SourceText(args: argparse.Namespace) -> str:
 
 
 #: built-in subcommands: modules of :mod:`exudyn_worm.commands`, in the order of ``exudyn-worm --help``
-COMMAND_MODULES: Tuple[str, ...] = ('stability', 'simulate', 'validate')
+COMMAND_MODULES: Tuple[str, ...] = ('stability', 'check', 'simulate', 'validate')
 #: further subcommands registered at run time (plugins, tests), after the built-in ones
 SUBCOMMANDS: List[Subcommand] = []
 

@@ -5,15 +5,18 @@ resolved in three layers, each applied with :func:`~exudyn_worm.presets.ApplyOve
 replaces its alternative forms: ``mu`` drops ``rho``, ``dT`` drops ``DT``/``DTV``, ``DV`` drops ``dV``):
 
 1. a preset (default ``'reel-P1'``; a config file's ``preset`` replaces the default, an explicit
-   ``preset`` argument replaces the config file's);
-2. the ``[parameters]`` table of a TOML config file;
+   ``preset`` argument replaces the config file's; a whole-drive file that names no preset starts from
+   nothing, so that what it leaves out is reported missing instead of taken from the reel changer);
+2. the values of a TOML config file: the component tables of a whole-drive file
+   (:mod:`exudyn_worm.drivefile`: ``[gear]``, ``[worm]``, ``[wheel]``, ``[driveShaft]``, ``[load]``,
+   ``[motor]``, ``[[driveSide]]``, ``[axialBearing]``) and/or the flat ``[parameters]`` table;
 3. ``KEY=VALUE`` overrides (the CLI's ``--set``).
 
 A value is a plain SI number (angles in rad, ``motorSpeed`` in rad/s) or a string with units parsed by
 pint, e.g. ``'0.5 mm'``, ``'8 deg'``, ``'7 kN*m'``, ``'472.5 rpm'``. The target unit of every key is
 :data:`~exudyn_worm.presets.PARAMETER_UNITS`.
 
-Example config file::
+Example config file (flat form; whole-drive files are described in :mod:`exudyn_worm.drivefile`)::
 
     preset = "reel-P1"          # optional
 
@@ -35,6 +38,7 @@ import sys
 from numbers import Real
 from typing import Dict, Iterable, Mapping, Optional, Tuple, Union
 
+from .drivefile import COMPONENT_TABLES, TOP_LEVEL_KEYS, FlattenDriveFile
 from .presets import PARAMETER_UNITS, PRESETS, ApplyOverrides, GetPreset
 
 if sys.version_info >= (3, 11):
@@ -48,8 +52,8 @@ __all__ = ['DEFAULT_PRESET', 'CONFIG_KEYS', 'ParseQuantity', 'ParseSetOption', '
 #: preset used when neither an explicit preset nor a config file names one
 DEFAULT_PRESET = 'reel-P1'
 
-#: top-level keys a config file may contain
-CONFIG_KEYS = ('preset', 'parameters')
+#: top-level keys of a config file besides the component tables of :mod:`exudyn_worm.drivefile`
+CONFIG_KEYS = TOP_LEVEL_KEYS
 
 # a number (no inf/nan) followed by an optional unit expression
 _NUMBER_UNIT = re.compile(r'^\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$')
@@ -233,44 +237,41 @@ def ParseSetOption(text: str) -> Tuple[str, float]:
     return key, _ParseQuantity(key, value.strip(), f"{where}: {text!r}")
 
 
-def _RejectAlternatives(values: Mapping[str, float], where: str) -> None:
-    """Raise if ``values`` gives two forms of one quantity (e.g. ``mu`` and ``rho``)."""
+def _RejectAlternatives(values: Mapping[str, float], where: str, locations: Optional[Mapping[str, str]] = None
+                        ) -> None:
+    """Raise if ``values`` gives two forms of one quantity (e.g. ``mu`` and ``rho``), naming where each is."""
     for key, value in values.items():
         dropped = sorted(set(values) - set(ApplyOverrides(values, {key: value})))
-        if dropped:
-            others = ' and '.join(f"'{k}'" for k in dropped)
-            raise ValueError(f"{where}: both '{key}' and {others} are given, which describe the same quantity; "
-                             f"give only one of them")
+        if not dropped:
+            continue
+        others = ' and '.join(f"'{k}'" for k in dropped)
+        if locations:
+            places = '; '.join(locations[k][len(where):].lstrip(',: ') for k in [key] + dropped)
+            raise ValueError(f"{where}: both '{key}' and {others} are given ({places}), which describe the same "
+                             f"quantity; give only one of them")
+        raise ValueError(f"{where}: both '{key}' and {others} are given, which describe the same quantity; "
+                         f"give only one of them")
 
 
-def _ConfigFromData(data: Mapping, where: str) -> Dict:
-    """Check the content of a config file and parse its parameter values."""
-    if not isinstance(data, Mapping):
-        raise TypeError(f"{where}: a config must be a mapping, got {type(data).__name__}")
-    unknown = [k for k in data if k not in CONFIG_KEYS]
-    if unknown:
-        raise ValueError(f"{where}: unknown top-level key(s) {', '.join(map(repr, unknown))}; "
-                         f"expected: {', '.join(CONFIG_KEYS)} (parameters go in a [parameters] table)")
-    preset = data.get('preset')
-    if preset is not None:
-        if not isinstance(preset, str):
-            raise ValueError(f"{where}: 'preset' must be a string, got {type(preset).__name__} {preset!r}")
-        if preset not in PRESETS:
-            raise ValueError(f"{where}: unknown preset '{preset}'; expected one of: {', '.join(PRESETS)}")
-    table = data.get('parameters', {})
-    if not isinstance(table, Mapping):
-        raise ValueError(f"{where}: 'parameters' must be a table ([parameters]), got {type(table).__name__}")
-    parameters = {}
-    for key, value in table.items():
+def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None) -> Dict:
+    """Check the content of a config (drive) file and parse its values (see :mod:`exudyn_worm.drivefile`)."""
+    preset, raw = FlattenDriveFile(data, where, text)
+    if preset is not None and preset not in PRESETS:
+        raise ValueError(f"{where}: unknown preset '{preset}'; expected one of: {', '.join(PRESETS)}")
+    parameters, locations = {}, {}
+    for key, value, location in raw:
         if key not in PARAMETER_UNITS:
-            raise ValueError(f"{where}: [parameters]: unknown parameter {key!r}; expected one of: "
+            raise ValueError(f"{location}: unknown parameter {key!r}; expected one of: "
                              f"{' '.join(PARAMETER_UNITS)}")
         if isinstance(value, bool) or not isinstance(value, (str, Real)):
-            raise ValueError(f"{where}: [parameters] {key} must be a number (SI) or a string with units, "
+            raise ValueError(f"{location}: must be a number (SI) or a string with units, "
                              f"got {type(value).__name__} {value!r}")
-        parameters[key] = _ParseQuantity(key, value, f"{where}: [parameters]")
-    _RejectAlternatives(parameters, f"{where}: [parameters]")
-    return {'preset': preset, 'parameters': parameters}
+        parameters[key] = _ParseQuantity(key, value, location)
+        locations[key] = location
+    _RejectAlternatives(parameters, where, locations)
+    # a file with component tables describes a whole drive: nothing is inherited unless it names a preset
+    wholeDrive = any(table in data for table in COMPONENT_TABLES)
+    return {'preset': preset, 'parameters': parameters, 'wholeDrive': wholeDrive}
 
 
 def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
@@ -279,32 +280,38 @@ def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
     Parameters
     ----------
     path : str or path-like
-        A TOML file with an optional ``preset = "NAME"`` and an optional ``[parameters]`` table whose
-        values are numbers (SI, angles in rad) or strings with units (see :func:`ParseQuantity`).
+        A TOML file: a whole-drive file with component tables (``[gear]``, ``[worm]``, ``[driveShaft]``, ...,
+        see :mod:`exudyn_worm.drivefile` and docs/drive-files.md) and/or a flat ``[parameters]`` table, and
+        an optional ``preset = "NAME"``. Values are numbers (SI, angles in rad) or strings with units (see
+        :func:`ParseQuantity`).
 
     Returns
     -------
     dict
-        ``{'preset': str or None, 'parameters': {key: float in SI}}``.
+        ``{'preset': str or None, 'parameters': {key: float in SI}, 'wholeDrive': bool}``; ``wholeDrive``
+        is True when the file has component tables (then :func:`ResolveParameters` inherits no preset
+        unless the file or the caller names one).
 
     Raises
     ------
     ValueError
         If the file cannot be read, is not valid TOML, has unknown keys, an unknown preset, an invalid
-        value, or gives two forms of one quantity (e.g. both ``mu`` and ``rho``). The message names
-        the file.
+        value, or gives one quantity twice or in two forms (e.g. both ``mu`` and ``rho``). The message
+        names the file, the line where it can be found, the table and key, and what was expected.
     """
     where = f"LoadConfig: '{path}'"
     try:
         with open(path, 'rb') as file:
-            data = tomllib.load(file)
+            raw = file.read()
+        text = raw.decode('utf-8')
+        data = tomllib.loads(text)
     except OSError as err:
         raise ValueError(f"{where}: cannot read it: {err.strerror or err}") from None
     except tomllib.TOMLDecodeError as err:
         raise ValueError(f"{where}: not valid TOML: {err}") from None
     except UnicodeDecodeError as err:
         raise ValueError(f"{where}: not valid TOML (not UTF-8 text: {err.reason})") from None
-    return _ConfigFromData(data, where)
+    return _ConfigFromData(data, where, text)
 
 
 def ResolveParameters(preset: Optional[str] = None,
@@ -316,7 +323,8 @@ def ResolveParameters(preset: Optional[str] = None,
     ----------
     preset : str, optional
         Preset name (see :data:`~exudyn_worm.presets.PRESETS`); overrides the config's preset.
-        Default: the config's preset, else :data:`DEFAULT_PRESET`.
+        Default: the config's preset, else none for a whole-drive file (one with component tables: it
+        describes the whole drive), else :data:`DEFAULT_PRESET`.
     config : str, path-like or dict, optional
         A TOML file (read with :func:`LoadConfig`) or a dict of the form :func:`LoadConfig` returns.
     sets : iterable of str or (str, float)
@@ -341,7 +349,7 @@ def ResolveParameters(preset: Optional[str] = None,
     (0.056, 0.2, 2.0)
     """
     if config is None:
-        cfg = {'preset': None, 'parameters': {}}
+        cfg = {'preset': None, 'parameters': {}, 'wholeDrive': False}
     elif isinstance(config, Mapping):
         cfg = _ConfigFromData(config, 'ResolveParameters: config')
     elif isinstance(config, (str, os.PathLike)):
@@ -350,8 +358,8 @@ def ResolveParameters(preset: Optional[str] = None,
         raise TypeError(f"ResolveParameters: 'config' must be a path or a dict, got {type(config).__name__}")
     if preset is not None and not isinstance(preset, str):
         raise TypeError(f"ResolveParameters: 'preset' must be a string, got {type(preset).__name__}")
-    name = preset or cfg['preset'] or DEFAULT_PRESET
-    parameters = ApplyOverrides(GetPreset(name), cfg['parameters'])
+    name = preset or cfg['preset'] or (None if cfg['wholeDrive'] else DEFAULT_PRESET)
+    parameters = ApplyOverrides(GetPreset(name) if name else {}, cfg['parameters'])
     if isinstance(sets, (str, bytes)):
         raise TypeError("ResolveParameters: 'sets' must be a list of 'KEY=VALUE' strings, got a single string")
     overrides: Dict[str, float] = {}

@@ -143,18 +143,18 @@ def test_load_config(tmp_path):
     assert cfg['preset'] == 'reel-P6'
     assert cfg['parameters'] == {'J1': 0.3, 'kT': 12000., 'backlash': pytest.approx(2.5e-4), 'DV': 0.056,
                                  'gamma': pytest.approx(math.radians(5.3228))}
-    assert LoadConfig(str(_Write(tmp_path, '', 'empty.toml'))) == {'preset': None, 'parameters': {}}
+    assert LoadConfig(str(_Write(tmp_path, '', 'empty.toml'))) == {'preset': None, 'parameters': {}, 'wholeDrive': False}
 
 
 @pytest.mark.parametrize('text, pattern', [
     ('preset = "reel-P1"\n[parameters\nJ1 = 1\n', 'not valid TOML'),
-    ('J1 = 0.1\n', "unknown top-level key.*'J1'.*preset, parameters"),
+    ('J1 = 0.1\n', "line 1: unknown top-level key or table 'J1'.*preset, description, parameters, gear"),
     ('preset = "nope"\n', "unknown preset 'nope'; expected one of: chart, reel-P1"),
     ('preset = 3\n', "'preset' must be a string"),
     ('parameters = 3\n', "'parameters' must be a table"),
     ('[parameters]\nfoo = 1\n', "unknown parameter 'foo'"),
-    ('[parameters]\nJ1 = true\n', 'J1 must be a number'),
-    ('[parameters]\nJ1 = [1, 2]\n', 'J1 must be a number'),
+    ('[parameters]\nJ1 = true\n', r'line 2: \[parameters\] J1: must be a number'),
+    ('[parameters]\nJ1 = [1, 2]\n', r'line 2: \[parameters\] J1: must be a number'),
     ('[parameters]\nJ1 = "0.1 kg"\n', r"'J1' must be in kg\*m\^2"),
     ('[parameters]\nJ1 = nan\n', "'J1' must be finite"),
     ('[parameters]\nmu = 0.134\nrho = "8 deg"\n', "both 'mu' and 'rho'"),

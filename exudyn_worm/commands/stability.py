@@ -9,7 +9,7 @@ from ..cli import DriveFromArgs, PrintJson, SourceText, StdoutToStderr, Subcomma
 from ..design import StabilizingChanges
 from ..stability import CONTACT_STATES, AnalyzeStability, StabilityAnalysis
 
-__all__ = ['COMMAND', 'FormatStability', 'StabilityHint']
+__all__ = ['COMMAND', 'FormatStability', 'StabilityHint', 'StabilityHintData']
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
@@ -30,12 +30,13 @@ def _Run(args: argparse.Namespace) -> int:
             analysis = AnalyzeStabilityExudyn(drive)
     else:
         analysis = AnalyzeStability(drive)
+    hint = None if analysis.stable else StabilityHintData(parameters)
     if args.json:
-        PrintJson(analysis.ToDict())
+        PrintJson({**analysis.ToDict(), 'hint': hint})
         return 0
     lines = FormatStability(analysis, title=f"exudyn-worm stability: {SourceText(args)}, method {args.method}")
-    if not analysis.stable:
-        lines.append(StabilityHint(parameters))
+    if hint is not None:
+        lines.append(hint['text'])
     print('\n'.join(lines))
     return 0
 
@@ -122,9 +123,40 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability') -> Li
     return lines
 
 
+def StabilityHintData(parameters: Dict[str, float], span: float = 100.) -> Dict:
+    """The design hint of an unstable drive as data: the nearest stable J1 and kT
+    (:func:`~exudyn_worm.design.StabilizingChanges`), other parameters as given; the table's hint line
+    and the ``--json`` key ``hint`` both come from here.
+
+    Parameters
+    ----------
+    parameters : dict
+        Flat parameter dictionary (see :func:`~exudyn_worm.presets.DriveFromParameters`).
+    span : float, optional
+        Search range factor, > 1.
+
+    Returns
+    -------
+    dict
+        ``text`` (the one-line hint), ``span`` and ``nearestStable``: per parameter ``parameter``,
+        ``given``, ``below``, ``above`` (None where there is none within the span), ``unit``, ``ratioName``,
+        ``ratioBelow``, ``ratioAbove``.
+    """
+    ranges = StabilizingChanges(parameters, span)
+    parts = []
+    for r in ranges:
+        options = [f"{r.key} {op} {value:.3g} {r.unit} ({r.ratioName} {op} {value * r.ratioScale:.3g})"
+                   for op, value in (('<=', r.below), ('>=', r.above)) if value is not None]
+        parts.append(' or '.join(options) if options else
+                     f"no {r.key} within 1/{span:g} to {span:g} times the given value")
+    text = ('Hint: with all other parameters as given, the analytical model is stable for '
+            + '; or for '.join(parts) + ' (nearest stable values found by a scan; '
+            'exudyn-worm check recommends changes with a margin)')
+    return {'text': text, 'span': span, 'nearestStable': [r.ToDict() for r in ranges]}
+
+
 def StabilityHint(parameters: Dict[str, float], span: float = 100.) -> str:
-    """One-line design hint for an unstable drive: the nearest stable J1 and kT
-    (:func:`~exudyn_worm.design.StabilizingChanges`), other parameters as given.
+    """One-line design hint for an unstable drive (the ``text`` of :func:`StabilityHintData`).
 
     Parameters
     ----------
@@ -138,14 +170,7 @@ def StabilityHint(parameters: Dict[str, float], span: float = 100.) -> str:
     str
         One line starting with ``Hint:``.
     """
-    parts = []
-    for r in StabilizingChanges(parameters, span):
-        options = [f"{r.key} {op} {value:.3g} {r.unit} ({r.ratioName} {op} {value * r.ratioScale:.3g})"
-                   for op, value in (('<=', r.below), ('>=', r.above)) if value is not None]
-        parts.append(' or '.join(options) if options else
-                     f"no {r.key} within 1/{span:g} to {span:g} times the given value")
-    return ('Hint: with all other parameters as given, the analytical model is stable for '
-            + '; or for '.join(parts) + ' (nearest stable values found by a scan)')
+    return StabilityHintData(parameters, span)['text']
 
 
 COMMAND = Subcommand('stability', 'linear stability (chatter) analysis of a parameter set', _AddArguments, _Run)

@@ -1,0 +1,172 @@
+"""``exudyn-worm check``: the design check. Stable or not, where the drive sits on its chart, and the smallest
+changes of J1, J2, kT and the damping that make it stable with a margin (:func:`exudyn_worm.design.DesignCheck`)."""
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+from pathlib import Path
+from typing import List
+
+from ..cli import BadInput, DriveFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+
+__all__ = ['COMMAND', 'FormatDesignCheck']
+
+_PLOT_SUFFIXES = ('.png', '.pdf', '.svg')
+
+
+def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    from ..design import DEFAULT_MARGIN, DEFAULT_SPAN
+    parser.add_argument('--margin', type=float, default=DEFAULT_MARGIN, metavar='DECADES',
+                        help=f'stability margin in decades of the changed parameter (default {DEFAULT_MARGIN:g}: '
+                             f'the drive stays stable if that parameter is off by a factor {10 ** DEFAULT_MARGIN:.2f})')
+    parser.add_argument('--span', type=float, default=DEFAULT_SPAN, metavar='FACTOR',
+                        help=f'search changes up to this factor in each direction (default {DEFAULT_SPAN:g})')
+    parser.add_argument('--plot', default=None, metavar='FILE.png',
+                        help='draw the drive\'s point, the stability boundary and the recommended moves into FILE')
+    parser.add_argument('--simulate', action='store_true',
+                        help='confirm each recommendation with the time-domain reel-changer simulation '
+                             '(chatter while lowering, as `exudyn-worm simulate` decides it); needs loadMass, '
+                             'leverArm and motorSpeed')
+    parser.add_argument('--step-size', type=float, default=None, metavar='S',
+                        help='time step of the --simulate runs in s (default: the simulation\'s default)')
+    try:
+        parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
+    except argparse.ArgumentError:      # a shared --quiet exists
+        pass
+
+
+def _CheckOutputFile(option: str, path: str) -> Path:
+    """Refuse an output path that cannot be written, before anything is computed."""
+    p = Path(path)
+    if p.suffix.lower() not in _PLOT_SUFFIXES:
+        raise UsageError(f"{option}: expected a file ending in {', '.join(_PLOT_SUFFIXES)}, got '{path}'")
+    if p.is_dir():
+        raise UsageError(f"{option}: '{path}' is a directory; give a file name such as {p / 'check.png'}")
+    folder = p.parent
+    while not folder.exists() and folder != folder.parent:
+        folder = folder.parent
+    if not folder.is_dir() or not os.access(folder, os.W_OK):
+        raise UsageError(f"{option}: cannot write into '{folder}' (not a writable directory)")
+    return p
+
+
+def _Factor(f: float) -> str:
+    return f'x{f:.3g}' if f >= 1 else f'/{1 / f:.3g}'
+
+
+def _G(x, digits: int = 4) -> str:
+    return 'n/a' if x is None or (isinstance(x, float) and math.isnan(x)) else \
+        'inf' if math.isinf(x) else f'{x:.{digits}g}'
+
+
+def _Simulated(chatter) -> str:
+    return '' if chatter is None else ('CHATTER' if chatter else 'no chatter')
+
+
+def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
+    """Human-readable report of a :class:`~exudyn_worm.design.DesignCheckResult` (the ``check`` output).
+
+    Parameters
+    ----------
+    result : DesignCheckResult
+        From :func:`~exudyn_worm.design.DesignCheck` (optionally :func:`~exudyn_worm.design.ConfirmBySimulation`).
+    title : str, optional
+        First line.
+
+    Returns
+    -------
+    list of str
+        The lines, without trailing newlines.
+    """
+    from ..stability import CONTACT_STATES
+    a = result.analysis
+    p = result.chartPoint
+    lines = [title, '']
+    states = '; '.join(f"S = {S:+d}: {'stable' if a.contact[S].stable else 'UNSTABLE'}, max Re(lambda) = "
+                       f"{max(a.contact[S].eigenvalues.real):.4g} 1/s" for S in CONTACT_STATES)
+    verdict = ('STABLE with margin' if result.stableWithMargin else
+               f"stable, but within the margin along {', '.join(result.marginShortBy)}" if result.stable else
+               'UNSTABLE (chatter expected)')
+    lines.append(f"Verdict: {verdict} ({states})")
+    if result.simulatedChatter is not None:
+        lines.append(f"Simulation (reel changer, lowering): {_Simulated(result.simulatedChatter)}")
+    distance = ('no boundary within 2 decades' if result.distanceToBoundary is None else
+                f"{result.distanceToBoundary:.3g} decades to the stability boundary (at x = "
+                f"{result.nearestBoundaryPoint['x']:.4g}, y = {result.nearestBoundaryPoint['y']:.4g})")
+    lines.append(f"Chart point: x = kT/(kV r1^2) = {p['x']:.4g}, y = J1/J2 = {p['y']:.4g}, D_V = {_G(p['DV'])}, "
+                 f"D_TV = {_G(p['DTV'])}; {distance}")
+    lines.append(f"Margin: {result.margin:g} decades (factor {10 ** result.margin:.3g}): a recommended drive stays "
+                 f"stable if the changed parameter is off by that factor either way")
+    held = [k for k in result.scans if k not in ('J1', 'J2', 'kT')]
+    if held:
+        lines.append(f"Held while J1, J2, kT change: {', '.join(held)} (as the parameter set gives them)")
+    lines += [f"Note: {n}" for n in result.notes]
+    if result.stableWithMargin:
+        lines += ['', 'No change needed.']
+        return lines
+    simulated = any(r.simulatedChatter is not None for r in result.recommendations)
+    header = f"  {'parameter':<10}{'change':>10}{'new value':>14}  {'unit':<10}{'max Re after [1/s]':>20}"
+    if simulated:
+        header += '  simulated'
+    if result.recommendations:
+        lines += ['', f"Smallest single changes that make the drive stable with margin (within a factor "
+                      f"{result.span:g}):", header]
+        for r in result.recommendations:
+            row = (f"  {r.parameter:<10}{_Factor(r.factor):>10}{r.newValue:>14.4g}  {r.unit:<10}"
+                   f"{r.maxRealPartAfter:>20.3g}")
+            lines.append(row + (f"  {_Simulated(r.simulatedChatter)}" if simulated else ''))
+    missing = result.Missing()
+    if missing and result.recommendations:
+        lines.append('No ' + ', '.join(f"{'increase' if d > 0 else 'decrease'} of {k}" for k, d in missing)
+                     + f" within a factor {result.span:g} gives stability with margin.")
+    if not result.recommendations:
+        lines += ['', f"No single parameter within a factor {result.span:g} makes the drive stable with margin."]
+        pair = result.bestPair
+        if pair is None:
+            lines.append('No pair of parameters does either.')
+        else:
+            changes = ' and '.join(f"{k} {_Factor(f)} (to {v:.4g} {u})" for k, f, v, u in
+                                   zip(pair.parameters, pair.factors, pair.newValues, pair.ToDict()['units']))
+            lines.append(f"Best pair: {changes}; max Re after = {pair.maxRealPartAfter:.3g} 1/s"
+                         + (f"; simulated: {_Simulated(pair.simulatedChatter)}" if pair.simulatedChatter is not None
+                            else ''))
+    return lines
+
+
+def _Run(args: argparse.Namespace) -> int:
+    from ..design import ConfirmBySimulation, DesignCheck
+    from ..presets import REEL_KEYS
+    plotPath = _CheckOutputFile('--plot', args.plot) if args.plot else None
+    parameters, _ = DriveFromArgs(args)
+    if args.simulate:
+        missing = [k for k in REEL_KEYS if k not in parameters]
+        if missing:
+            raise UsageError(f"--simulate needs the reel-changer keys {', '.join(REEL_KEYS)}; missing "
+                             f"{', '.join(missing)} (use a reel-P* preset or --set KEY=VALUE)")
+        if args.step_size is not None and not (args.step_size > 0 and math.isfinite(args.step_size)):
+            raise UsageError(f"--step-size must be > 0 s, got {args.step_size:g}")
+    with BadInput():
+        result = DesignCheck(parameters, margin=args.margin, span=args.span)
+    if args.simulate:
+        from ..progress import ProgressBar
+        runs = 1 + len(result.recommendations) + (result.bestPair is not None)
+        with ProgressBar(total=runs, desc='check --simulate', unit='run',
+                         quiet=True if getattr(args, 'quiet', False) else None) as bar:
+            with BadInput(), StdoutToStderr(args.json):
+                result = ConfirmBySimulation(result, stepSize=args.step_size, progress=bar.update)
+    if plotPath is not None:
+        from ..plot import SaveFigure
+        SaveFigure(result.plot(), plotPath)
+    if args.json:
+        PrintJson(result.ToDict())
+    else:
+        print('\n'.join(FormatDesignCheck(result, title=f"exudyn-worm check: {SourceText(args)}")))
+    if plotPath is not None:
+        print(f"wrote {plotPath.resolve()}", file=sys.stderr)
+    return 0
+
+
+COMMAND = Subcommand('check', 'design check: stable or not, distance to the stability boundary and the smallest '
+                     'changes that make the drive stable with a margin', _AddArguments, _Run)

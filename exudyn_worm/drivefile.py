@@ -1,0 +1,240 @@
+"""Whole-drive TOML files: one table per component of the drive, mapped onto the flat parameter keys.
+
+A drive file describes a whole drive in the words of a drive engineer; :data:`DRIVE_FILE_TABLES` is the one
+place that says which file key becomes which parameter key of :mod:`exudyn_worm.presets` (the keys that
+``--set`` takes and the solver receives). Every table and key is optional: what a file leaves out comes from
+its ``preset`` (default ``reel-P1``). Values are plain SI numbers (angles in rad, speeds in rad/s) or strings
+with units (``"18.05 mm"``, ``"8 deg"``, ``"472.5 rpm"``), read by :func:`exudyn_worm.config.ParseQuantity`.
+
+Example (the reel changer at P1, parameter set (28))::
+
+    description = "paper-reel changer, point P1"
+    preset = "reel-P1"                    # optional base; what is given below replaces it
+
+    [gear]                                # the worm-gear mesh, eqs. (3)-(13)
+    pressureAngle = "20 deg"              # alphaN
+    pitchAngle = "5.3228 deg"             # gamma
+    frictionCoefficient = 0.132           # mu   (or frictionAngle = "8 deg")
+    wormRadius = "18.05 mm"               # r1
+    wheelRadius = "105.95 mm"             # r2
+    meshStiffness = "2e8 N/m"             # kV
+    meshDampingMeasure = 0.014            # DV, eq. (23) (or meshDamping = "21.47 kN*s/m")
+    backlash = "0 mm"
+
+    [worm]
+    inertia = "0.1 kg*m^2"                # J1
+
+    [wheel]
+    inertia = "33 kg*m^2"                 # J2
+
+    [driveShaft]                          # motor to worm
+    stiffness = "7000 N*m/rad"            # kT
+    dampingMeasure = 0.014                # DT, eq. (22) (or damping = "... N*m*s/rad", or dampingMeasureRatio)
+
+    [load]                                # the reel's weight on a lever
+    mass = "175 kg"
+    leverArm = "1.2 m"
+
+    [motor]
+    speed = "472.5 rpm"
+
+    [[driveSide]]                         # Figure 19: extra inertias and shafts on the drive side, in order
+    inertia = "0.05 kg*m^2"               # J4
+    stiffness = "2000 N*m/rad"            # k4
+    damping = "0.1 N*m*s/rad"             # d4
+
+    [axialBearing]                        # the worm's axial bearing, in series with the mesh
+    stiffness = "1e8 N/m"                 # kA
+    damping = "1e3 N*s/m"                 # dA
+    mass = "3 kg"                         # mA
+
+The flat form of earlier versions, a ``[parameters]`` table keyed by the parameter names, is still read; a
+quantity given twice (in two tables, or as two forms such as ``frictionCoefficient`` and ``frictionAngle``)
+is an error. docs/drive-files.md documents the format for users.
+"""
+from __future__ import annotations
+
+import difflib
+import re
+from typing import Any, Dict, List, Mapping, Optional, Tuple
+
+__all__ = ['COMPONENT_TABLES', 'DRIVE_FILE_TABLES', 'DRIVE_SIDE_TABLE', 'DRIVE_SIDE_KEYS', 'TOP_LEVEL_KEYS', 'DriveSideKey',
+           'FlattenDriveFile']
+
+#: file table -> {file key: parameter key}; the single mapping from a drive file to the flat parameters
+DRIVE_FILE_TABLES: Dict[str, Dict[str, str]] = {
+    'gear': {'pressureAngle': 'alphaN', 'pitchAngle': 'gamma', 'frictionCoefficient': 'mu',
+             'frictionAngle': 'rho', 'wormRadius': 'r1', 'wheelRadius': 'r2', 'meshStiffness': 'kV',
+             'meshDamping': 'dV', 'meshDampingMeasure': 'DV', 'backlash': 'backlash'},
+    'worm': {'inertia': 'J1'},
+    'wheel': {'inertia': 'J2'},
+    'driveShaft': {'stiffness': 'kT', 'damping': 'dT', 'dampingMeasure': 'DT', 'dampingMeasureRatio': 'DTV'},
+    'load': {'mass': 'loadMass', 'leverArm': 'leverArm'},
+    'motor': {'speed': 'motorSpeed'},
+    'axialBearing': {'stiffness': 'kA', 'damping': 'dA', 'mass': 'mA'},
+}
+
+#: every component table of a whole-drive file
+COMPONENT_TABLES = tuple(DRIVE_FILE_TABLES) + ('driveSide',)
+
+#: the array of tables ``[[driveSide]]``: entry i (from 0) gives the keys with number 4 + i
+DRIVE_SIDE_TABLE = 'driveSide'
+#: file key -> letter of the numbered parameter key of a drive-side stage (J4, k4, d4, J5, ...)
+DRIVE_SIDE_KEYS = {'inertia': 'J', 'stiffness': 'k', 'damping': 'd'}
+
+#: keys allowed at the top of a file besides the tables
+TOP_LEVEL_KEYS = ('preset', 'description', 'parameters')
+
+
+def DriveSideKey(fileKey: str, index: int) -> str:
+    """Parameter key of ``fileKey`` in the drive-side stage ``index`` (0 for the first ``[[driveSide]]``).
+
+    Parameters
+    ----------
+    fileKey : str
+        One of :data:`DRIVE_SIDE_KEYS` (``inertia``, ``stiffness``, ``damping``).
+    index : int
+        Position of the stage in the file, >= 0.
+
+    Returns
+    -------
+    str
+        ``J4``, ``k4``, ``d4`` for the first stage (Figure 19's inertia4 and spring-Damper4), then 5, 6, ...
+
+    Examples
+    --------
+    >>> DriveSideKey('inertia', 0), DriveSideKey('stiffness', 1)
+    ('J4', 'k5')
+    """
+    if fileKey not in DRIVE_SIDE_KEYS:
+        raise ValueError(f"DriveSideKey: 'fileKey' must be one of {', '.join(DRIVE_SIDE_KEYS)}, got {fileKey!r}")
+    if isinstance(index, bool) or not isinstance(index, int) or index < 0:
+        raise ValueError(f"DriveSideKey: 'index' must be an integer >= 0, got {index!r}")
+    return f'{DRIVE_SIDE_KEYS[fileKey]}{4 + index}'
+
+
+def _Suggest(word: str, choices) -> str:
+    close = difflib.get_close_matches(str(word), list(choices), n=1, cutoff=0.75)
+    return f" (did you mean '{close[0]}'?)" if close else ''
+
+
+class _Lines:
+    """Finds the line of a key in the file's text, for messages (best effort: None where not found)."""
+
+    def __init__(self, text: Optional[str]):
+        self.lines = text.splitlines() if text else []
+
+    def _HeaderLines(self, header: str) -> List[int]:
+        pattern = re.compile(r'^\s*' + re.escape(header) + r'\s*(#.*)?$')
+        return [i for i, line in enumerate(self.lines) if pattern.match(line)]
+
+    def Header(self, table: str) -> Optional[int]:
+        """1-based line of the first ``[table]`` or ``[[table]]`` header, or None."""
+        found = self._HeaderLines(f'[{table}]') + self._HeaderLines(f'[[{table}]]')
+        return min(found) + 1 if found else None
+
+    def Find(self, table: Optional[str], key: str, index: int = 0, array: bool = False) -> Optional[int]:
+        """1-based line of ``key`` in ``[table]`` (or in the ``index``-th ``[[table]]``), or None."""
+        if table is None:
+            start, headers = 0, [0]
+        else:
+            headers = self._HeaderLines(f'[[{table}]]' if array else f'[{table}]')
+            if len(headers) <= index:
+                return None
+            start = headers[index] + 1
+        keyPattern = re.compile(r'^\s*["\']?' + re.escape(key) + r'["\']?\s*=')
+        for i in range(start, len(self.lines)):
+            line = self.lines[i]
+            if re.match(r'^\s*\[', line):       # the next table begins
+                break
+            if keyPattern.match(line):
+                return i + 1
+        return None
+
+
+def _Where(where: str, line: Optional[int], path: str) -> str:
+    return f"{where}, line {line}: {path}" if line else f"{where}: {path}"
+
+
+def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = None
+                     ) -> Tuple[Optional[str], List[Tuple[str, Any, str]]]:
+    """Map the tables of a drive file onto parameter keys, without parsing the values.
+
+    Parameters
+    ----------
+    data : mapping
+        The parsed TOML document (``tomllib.load``).
+    where : str
+        Prefix of error messages, e.g. ``"LoadConfig: 'drive.toml'"``.
+    text : str, optional
+        The file's text, used to name the line of a bad key in messages.
+
+    Returns
+    -------
+    (str or None, list of (str, value, str))
+        The ``preset`` named by the file, and for every value its parameter key, its raw value (number or
+        string) and the location to name in messages (``"LoadConfig: 'f.toml', line 7: [gear] wormRadius"``).
+
+    Raises
+    ------
+    ValueError
+        For an unknown table or key (with a suggestion for a near miss and the line where possible), a table
+        that is not a table, a ``preset`` or ``description`` that is not a string, or one parameter given twice.
+    """
+    if not isinstance(data, Mapping):
+        raise TypeError(f"{where}: a config must be a mapping, got {type(data).__name__}")
+    lines = _Lines(text)
+    known = list(TOP_LEVEL_KEYS) + list(DRIVE_FILE_TABLES) + [DRIVE_SIDE_TABLE]
+    for key in data:
+        if key not in known:
+            line = lines.Find(None, key) or lines.Header(key)
+            raise ValueError(f"{_Where(where, line, f'unknown top-level key or table {key!r}')}"
+                             f"{_Suggest(key, known)}; expected one of: {', '.join(known)}")
+    for key in ('preset', 'description'):
+        if key in data and not isinstance(data[key], str):
+            raise ValueError(f"{_Where(where, lines.Find(None, key), repr(key))} must be a string, "
+                             f"got {type(data[key]).__name__} {data[key]!r}")
+
+    values: List[Tuple[str, Any, str]] = []
+    # the flat [parameters] table of earlier versions: keys are parameter keys (checked by the parser)
+    flat = data.get('parameters', {})
+    if not isinstance(flat, Mapping):
+        raise ValueError(f"{where}: 'parameters' must be a table ([parameters]), got {type(flat).__name__}")
+    for key, value in flat.items():
+        values.append((key, value, _Where(where, lines.Find('parameters', key), f'[parameters] {key}')))
+
+    for table, keys in DRIVE_FILE_TABLES.items():
+        if table not in data:
+            continue
+        content = data[table]
+        if not isinstance(content, Mapping):
+            raise ValueError(f"{_Where(where, lines.Find(None, table), repr(table))} must be a table "
+                             f"([{table}]), got {type(content).__name__}")
+        for fileKey, value in content.items():
+            line = lines.Find(table, fileKey)
+            if fileKey not in keys:
+                raise ValueError(f"{_Where(where, line, f'[{table}]')}: unknown key {fileKey!r}"
+                                 f"{_Suggest(fileKey, keys)}; expected one of: {', '.join(keys)}")
+            values.append((keys[fileKey], value, _Where(where, line, f'[{table}] {fileKey}')))
+
+    stages = data.get(DRIVE_SIDE_TABLE, [])
+    if not isinstance(stages, list) or not all(isinstance(s, Mapping) for s in stages):
+        raise ValueError(f"{where}: '{DRIVE_SIDE_TABLE}' must be an array of tables ([[{DRIVE_SIDE_TABLE}]]), "
+                         f"got {type(stages).__name__}")
+    for index, stage in enumerate(stages):
+        for fileKey, value in stage.items():
+            line = lines.Find(DRIVE_SIDE_TABLE, fileKey, index, array=True)
+            label = f'[[{DRIVE_SIDE_TABLE}]] number {index + 1}'
+            if fileKey not in DRIVE_SIDE_KEYS:
+                raise ValueError(f"{_Where(where, line, label)}: unknown key {fileKey!r}"
+                                 f"{_Suggest(fileKey, DRIVE_SIDE_KEYS)}; expected one of: "
+                                 f"{', '.join(DRIVE_SIDE_KEYS)}")
+            values.append((DriveSideKey(fileKey, index), value, _Where(where, line, f'{label} {fileKey}')))
+
+    seen: Dict[str, str] = {}
+    for key, _, location in values:
+        if key in seen:
+            raise ValueError(f"{location}: '{key}' is given a second time (first at "
+                             f"{seen[key][len(where):].lstrip(',: ')}); give it once")
+        seen[key] = location
+    return data.get('preset'), values

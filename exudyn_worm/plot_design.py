@@ -1,0 +1,90 @@
+"""Plot of a design check: the drive's point on its stability chart, the boundary and the recommended moves.
+
+Imports matplotlib inside the function (as :mod:`exudyn_worm.plot`), so importing the package never pulls it in.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ['PlotDesignCheck']
+
+_C_UNSTABLE, _C_POINT, _C_MOVE, _C_PAIR = '#f4c7c3', '#1f4e79', '#2e7d32', '#8e24aa'
+
+
+def PlotDesignCheck(result, ax=None):
+    """Draw a :class:`~exudyn_worm.design.DesignCheckResult` on the chart plane (x = kT/(kV r1^2), y = J1/J2).
+
+    The unstable region (S = +1 or S = -1 unstable) at the drive's D_V and D_TV is shaded within 2 decades
+    of the drive's point (:func:`~exudyn_worm.design.ChartGrid`); recommended changes of J1, J2 and kT are
+    arrows to the changed drive's point; changes of the damping (which change the chart, not the point) and a
+    best pair are listed in the legend. Where the parameter set holds damping constants (dT, dV), a change
+    of J1, J2 or kT also changes D_TV, so the arrow's end lies on a slightly different chart.
+
+    Parameters
+    ----------
+    result : DesignCheckResult
+        From :func:`~exudyn_worm.design.DesignCheck`.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into (default: a new figure).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from .design import ChartGrid, DesignCheckResult
+    if not isinstance(result, DesignCheckResult):
+        raise TypeError(f"PlotDesignCheck: 'result' must be a DesignCheckResult, got {type(result).__name__}")
+    if ax is None:
+        from .plot import _NewFigure
+        fig, axes = _NewFigure(1, 1, figsize=(7.5, 6.))
+        ax = axes[0, 0]
+    else:
+        fig = ax.figure
+    x, y, stable = ChartGrid(result.parameters)
+    ax.contourf(x, y, (~stable).astype(float), levels=[0.5, 1.5], colors=[_C_UNSTABLE])
+    if stable.any() and (~stable).any():
+        ax.contour(x, y, stable.astype(float), levels=[0.5], colors='k', linewidths=1.)
+    ax.fill_between([], [], color=_C_UNSTABLE, label='unstable (S = +1 or S = -1)')
+    p = result.chartPoint
+    ax.plot(p['x'], p['y'], 'o', color=_C_POINT, ms=8, zorder=5,
+            label=f"drive ({'stable' if result.stable else 'unstable'})")
+    arrows = {}                  # J1 x f and J2 / f end at the same point: one arrow, one label
+    for r in result.recommendations:
+        q = r.chartPointAfter
+        factor = f'x{r.factor:.3g}' if r.factor >= 1 else f'/{1 / r.factor:.3g}'
+        if r.parameter in ('J1', 'J2', 'kT'):
+            end = (round(math.log10(q['x']), 6), round(math.log10(q['y']), 6))
+            arrows.setdefault(end, (q, []))[1].append(f'{r.parameter} {factor}')
+        else:
+            ax.plot([], [], ' ', label=f'{r.parameter} {factor} (changes the chart: D_V {_Fmt(q["DV"])}, '
+                                       f'D_TV {_Fmt(q["DTV"])})')
+    for q, labels in arrows.values():
+        ax.annotate('', xy=(q['x'], q['y']), xytext=(p['x'], p['y']),
+                    arrowprops=dict(arrowstyle='->', color=_C_MOVE, lw=1.5), zorder=4)
+        ax.plot(q['x'], q['y'], 's', color=_C_MOVE, ms=5, zorder=5)
+        ax.annotate(' = '.join(labels), xy=(q['x'], q['y']), xytext=(4, 4), textcoords='offset points',
+                    fontsize=8, color=_C_MOVE)
+    if result.bestPair is not None:
+        q = result.bestPair.chartPointAfter
+        ax.annotate('', xy=(q['x'], q['y']), xytext=(p['x'], p['y']),
+                    arrowprops=dict(arrowstyle='->', color=_C_PAIR, lw=1.5, ls='--'), zorder=4)
+        ax.plot(q['x'], q['y'], 'D', color=_C_PAIR, ms=5, zorder=5, label='best pair: ' + ', '.join(
+            f'{k} x{f:.3g}' if f >= 1 else f'{k} /{1 / f:.3g}'
+            for k, f in zip(result.bestPair.parameters, result.bestPair.factors)))
+    ax.set_xscale('log')
+    ax.set_yscale('log')
+    ax.set_xlim(x[0], x[-1])
+    ax.set_ylim(y[0], y[-1])
+    ax.set_xlabel(r'stiffness ratio $k_T/(k_V r_1^2)$')
+    ax.set_ylabel(r'inertia ratio $J_1/J_2$')
+    ax.set_title(f"Design check at D_V = {_Fmt(p['DV'])}, D_TV = {_Fmt(p['DTV'])} "
+                 f"(margin {result.margin:g} decades)", fontsize=10)
+    ax.grid(True, which='major', alpha=0.3)
+    ax.legend(fontsize=8, loc='lower right')
+    return fig
+
+
+def _Fmt(v) -> str:
+    return 'inf' if v is None or (isinstance(v, float) and math.isinf(v)) else f'{np.float64(v):.3g}'

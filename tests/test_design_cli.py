@@ -1,0 +1,116 @@
+"""``exudyn-worm check`` and the hint of ``exudyn-worm stability --json`` (run in-process with Main)."""
+import json
+
+import pytest
+
+from exudyn_worm import AnalyzeStability, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.cli import Main
+
+
+def Run(capsys, *argv):
+    rc = Main(list(argv))
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+def Json(capsys, *argv):
+    rc, out, err = Run(capsys, *argv, '--json')
+    assert rc == 0, err
+    return json.loads(out)
+
+
+@pytest.fixture(autouse=True)
+def _EmptyWorkingDirectory(tmp_path, monkeypatch):
+    """Nothing is written to the current directory."""
+    cwd = tmp_path / 'cwd'
+    cwd.mkdir()
+    monkeypatch.chdir(cwd)
+    yield
+    assert list(cwd.iterdir()) == []
+
+
+def test_check_p1_json(capsys):
+    data = Json(capsys, 'check', '--preset', 'reel-P1')
+    assert data['stable'] is False and data['maxRealPart'] > 0
+    assert data['S']['+1']['stable'] is True and data['S']['-1']['stable'] is False
+    assert {'x', 'y', 'DV', 'DTV', 'distanceToBoundary'} <= set(data['chartPoint'])
+    moves = {(r['parameter'], r['factor'] > 1) for r in data['recommendations']}
+    assert {('J1', True), ('J1', False), ('kT', True), ('kT', False), ('J2', True), ('J2', False),
+            ('DT', True), ('DV', True)} == moves
+    p1 = GetPreset('reel-P1')
+    for r in data['recommendations']:
+        assert set(r) >= {'parameter', 'factor', 'newValue', 'maxRealPartAfter'}
+        assert r['maxRealPartAfter'] < 0
+        assert AnalyzeStability(DriveFromParameters(ApplyOverrides(p1, {r['parameter']: r['newValue']}))).stable
+    assert data['margin']['decades'] == 0.1
+
+
+def test_check_stable_preset_and_set(capsys):
+    assert Json(capsys, 'check', '--preset', 'reel-P2')['recommendations'] == []
+    data = Json(capsys, 'check', '--preset', 'reel-P1', '--set', 'J1=0.3')      # = P2 via --set
+    assert data['stable'] is True and data['recommendations'] == []
+
+
+def test_check_table(capsys):
+    rc, out, err = Run(capsys, 'check', '--preset', 'reel-P1')
+    assert rc == 0 and err == ''
+    for text in ('Verdict: UNSTABLE', 'S = -1: UNSTABLE', 'Chart point: x = kT/(kV r1^2) = 0.1074', 'J1/J2 = 0.00303',
+                 'decades to the stability boundary', 'Margin: 0.1 decades', 'J1', 'x2.06', '/1.65', 'kT'):
+        assert text in out, text
+    rc, out, _ = Run(capsys, 'check', '--preset', 'reel-P2')
+    assert 'STABLE with margin' in out and 'No change needed.' in out
+    rc, out, _ = Run(capsys, 'check', '--preset', 'reel-P1', '--span', '1.5')
+    assert 'No single parameter within a factor 1.5' in out and 'Best pair: J1 /1.41' in out
+
+
+def test_check_plot(capsys, tmp_path):
+    path = tmp_path / 'out' / 'check.png'
+    rc, out, err = Run(capsys, 'check', '--preset', 'reel-P1', '--plot', str(path), '--json')
+    assert rc == 0 and json.loads(out)['stable'] is False
+    assert path.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
+    assert f'wrote {path}' in err
+
+
+@pytest.mark.parametrize('argv, message', [
+    (('--margin', '-1'), "DesignCheck: 'margin' must be in [0, 1] decades, got -1"),
+    (('--span', '1'), "DesignCheck: 'span' must be in (1, 10000], got 1"),
+    (('--margin', 'abc'), "argument --margin: invalid float value: 'abc'"),
+    (('--plot', 'chart.txt'), "--plot: expected a file ending in .png, .pdf, .svg, got 'chart.txt'"),
+    (('--set', 'J1=-1'), "'J1' must be > 0 kg*m^2, got -1"),
+    (('--preset', 'chart', '--set', 'J1=0.01', '--set', 'kT=10', '--set', 'DT=0.01', '--simulate'),
+     "--simulate needs the reel-changer keys loadMass, leverArm, motorSpeed; missing loadMass, leverArm, motorSpeed"),
+    (('--simulate', '--step-size', '0'), "--step-size must be > 0 s, got 0"),
+])
+def test_check_bad_input(capsys, argv, message):
+    rc, out, err = Run(capsys, 'check', *argv)
+    assert rc == 2 and out == ''
+    assert err.count('\n') == 1 and err.startswith('exudyn-worm: error: ') and message in err, err
+    assert 'Traceback' not in err
+
+
+def test_check_plot_path_is_checked_before_computing(capsys, tmp_path, monkeypatch):
+    from exudyn_worm import design
+    monkeypatch.setattr(design, 'DesignCheck', lambda *a, **k: pytest.fail('computed before the path check'))
+    (tmp_path / 'folder.png').mkdir()
+    rc, _, err = Run(capsys, 'check', '--plot', str(tmp_path / 'folder.png'))
+    assert rc == 2 and 'is a directory' in err
+
+
+def test_stability_json_has_the_tables_hint(capsys):
+    data = Json(capsys, 'stability', '--preset', 'reel-P1')
+    hint = data['hint']
+    assert [h['parameter'] for h in hint['nearestStable']] == ['J1', 'kT']
+    j1 = hint['nearestStable'][0]
+    assert 0.033 < j1['below'] < 0.1 < j1['above'] < 0.3 and j1['ratioName'] == 'J1/J2'
+    assert j1['ratioAbove'] == pytest.approx(j1['above'] / 33.)
+    rc, out, _ = Run(capsys, 'stability', '--preset', 'reel-P1')
+    assert hint['text'] in out.splitlines()                       # the table prints the same hint
+    assert Json(capsys, 'stability', '--preset', 'reel-P2')['hint'] is None
+
+
+@pytest.mark.slow
+def test_check_simulate(capsys):
+    data = Json(capsys, 'check', '--preset', 'reel-P1', '--span', '1.5', '--simulate')
+    # no single change within 1.5: the best pair is simulated (and the given drive)
+    assert data['simulatedChatterWhileLowering'] is True
+    assert data['bestPair']['simulatedChatterWhileLowering'] is False

@@ -1,0 +1,135 @@
+"""Tests of whole-drive TOML files (exudyn_worm.drivefile through exudyn_worm.config)."""
+import doctest
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from exudyn_worm import drivefile
+from exudyn_worm.config import LoadConfig, ResolveParameters
+from exudyn_worm.drivefile import DRIVE_FILE_TABLES, DRIVE_SIDE_KEYS, DriveSideKey
+from exudyn_worm.presets import PARAMETER_UNITS, PRESETS, GetPreset
+
+ROOT = Path(__file__).resolve().parents[1]
+DRIVES = ROOT / 'examples' / 'drives'
+
+
+def _Write(tmp_path, text, name='drive.toml'):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def test_doctests():
+    assert doctest.testmod(drivefile, raise_on_error=True).attempted > 0
+
+
+def test_every_file_key_maps_to_a_parameter_key():
+    for table, keys in DRIVE_FILE_TABLES.items():
+        for fileKey, key in keys.items():
+            if table not in ('axialBearing',):       # the bearing keys come with the axial bearing model
+                assert key in PARAMETER_UNITS, (table, fileKey, key)
+
+
+@pytest.mark.parametrize('name', sorted(PRESETS))
+def test_example_file_per_preset_gives_the_preset(name):
+    """examples/drives/NAME.toml describes the whole drive: it reproduces the preset without inheriting."""
+    path = DRIVES / f'{name}.toml'
+    cfg = LoadConfig(path)
+    assert cfg['wholeDrive'] and cfg['preset'] is None
+    expected = GetPreset(name)
+    assert set(cfg['parameters']) == set(expected)
+    for key, value in expected.items():
+        assert cfg['parameters'][key] == pytest.approx(value, rel=1e-12, abs=0.), key
+    assert ResolveParameters(config=path).keys() == expected.keys()
+
+
+def test_whole_drive_file_inherits_nothing_unless_it_names_a_preset(tmp_path):
+    path = _Write(tmp_path, '[worm]\ninertia = "0.3 kg*m^2"\n')
+    assert ResolveParameters(config=path) == {'J1': 0.3}
+    named = _Write(tmp_path, 'preset = "reel-P1"\n[worm]\ninertia = 0.3\n', 'named.toml')
+    assert ResolveParameters(config=named) == {**GetPreset('reel-P1'), 'J1': 0.3}
+    assert ResolveParameters('reel-P7', config=path) == {**GetPreset('reel-P7'), 'J1': 0.3}
+    flat = _Write(tmp_path, '[parameters]\nJ1 = 0.3\n', 'flat.toml')      # the flat form keeps its default
+    assert ResolveParameters(config=flat) == {**GetPreset('reel-P1'), 'J1': 0.3}
+
+
+def test_units_and_alternative_forms(tmp_path):
+    path = _Write(tmp_path, '[gear]\nfrictionAngle = "8 deg"\nmeshDamping = "21.47 kN*s/m"\n'
+                            '[driveShaft]\ndamping = "0.741 N*m*s"\n[motor]\nspeed = "472.5 rpm"\n')
+    p = LoadConfig(path)['parameters']
+    assert p == {'rho': pytest.approx(math.radians(8)), 'dV': pytest.approx(21470.), 'dT': pytest.approx(0.741),
+                 'motorSpeed': pytest.approx(472.5 * 2 * math.pi / 60)}
+
+
+def test_drive_side_keys_are_numbered_from_four():
+    assert [DriveSideKey(k, 0) for k in DRIVE_SIDE_KEYS] == ['J4', 'k4', 'd4']
+    assert DriveSideKey('damping', 2) == 'd6'
+    for bad in (-1, 1.5, True):
+        with pytest.raises(ValueError, match="'index'"):
+            DriveSideKey('inertia', bad)
+    with pytest.raises(ValueError, match="'fileKey'"):
+        DriveSideKey('mass', 0)
+
+
+@pytest.mark.parametrize('text, line, pattern', [
+    ('[gear]\nwormRadius = "18 mm"\nmeshStifness = 2e8\n', 3,
+     r"\[gear\]: unknown key 'meshStifness' \(did you mean 'meshStiffness'\?\); expected one of: pressureAngle"),
+    ('[gaer]\nwormRadius = 1\n', 1, r"unknown top-level key or table 'gaer' \(did you mean 'gear'\?\)"),
+    ('\n[worm]\ninertia = "0.1 kg"\n', 3, r"\[worm\] inertia: 'J1' must be in kg\*m\^2 \(plain numbers are SI\), got '0.1 kg'"),
+    ('[driveShaft]\n\nstiffness = "lots"\n', 3, r"\[driveShaft\] stiffness: 'kT' must be a number optionally"),
+    ('[load]\nmass = true\n', 2, r"\[load\] mass: must be a number \(SI\) or a string with units, got bool"),
+    ('[gear]\nfrictionCoefficient = 0.13\nfrictionAngle = "8 deg"\n', None,
+     r"both '(mu|rho)' and '(mu|rho)' are given \(line \d: \[gear\] \w+; line \d: \[gear\] \w+\)"),
+    ('[worm]\ninertia = 0.1\n[parameters]\nJ1 = 0.2\n', 2,
+     r"\[worm\] inertia: 'J1' is given a second time \(first at line 4: \[parameters\] J1\)"),
+    ('[[driveSide]]\ninertia = 1\n[[driveSide]]\ninertia = 1\nspring = 3\n', 5,
+     r"\[\[driveSide\]\] number 2: unknown key 'spring'; expected one of: inertia, stiffness, damping"),
+    ('driveSide = 3\n', None, r"'driveSide' must be an array of tables"),
+    ('worm = 3\n', 1, r"'worm' must be a table"),
+    ('description = 3\n', 1, r"'description' must be a string"),
+])
+def test_bad_drive_files_name_line_table_key_and_expectation(tmp_path, text, line, pattern):
+    path = _Write(tmp_path, text)
+    with pytest.raises(ValueError, match=pattern) as info:
+        LoadConfig(path)
+    message = str(info.value)
+    assert message.startswith(f"LoadConfig: '{path}'")
+    if line is not None:
+        assert f"line {line}:" in message
+    assert '\n' not in message
+
+
+def test_cli_bad_drive_file_one_line_exit_2(tmp_path):
+    path = _Write(tmp_path, '[gear]\nwormRadius = "18 kg"\n')
+    run = subprocess.run([sys.executable, '-m', 'exudyn_worm', 'stability', '--config', str(path)],
+                         capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 2
+    assert run.stdout == ''
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith('exudyn-worm: error: ') and 'line 2: [gear] wormRadius' in lines[0]
+    assert 'Traceback' not in run.stderr
+    assert list(tmp_path.iterdir()) == [path]
+
+
+def test_cli_runs_a_drive_file(tmp_path):
+    run = subprocess.run([sys.executable, '-m', 'exudyn_worm', 'stability', '--config',
+                          str(DRIVES / 'reel-P2.toml'), '--json'], capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    reference = subprocess.run([sys.executable, '-m', 'exudyn_worm', 'stability', '--preset', 'reel-P2', '--json'],
+                               capture_output=True, text=True, cwd=tmp_path)
+    a, b = json.loads(run.stdout), json.loads(reference.stdout)
+    assert a['S'] == b['S'] and a['ratio'] == b['ratio']
+
+
+def test_docs_list_every_file_key():
+    text = (ROOT / 'docs' / 'drive-files.md').read_text()
+    for table, keys in DRIVE_FILE_TABLES.items():
+        assert f'[{table}]' in text, table
+        for fileKey in keys:
+            assert f'`{fileKey}`' in text, (table, fileKey)
+    for fileKey in DRIVE_SIDE_KEYS:
+        assert f'`{fileKey}`' in text
