@@ -636,20 +636,29 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
     parameters : mapping
         Flat parameter set with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed``.
     stepSize : float, optional
-        Time step in s (default: the simulation's default).
+        Time step in s. Default: the simulation's default step, or the drive's
+        :func:`~exudyn_worm.stepsize.RecommendedStepSize` where that is smaller (a recommended drive can
+        have a higher natural frequency than the given one).
 
     Returns
     -------
     bool
+
+    Raises
+    ------
+    ValueError
+        For a parameter set without the reel-changer keys, or a ``stepSize`` the simulation refuses.
     """
     from .reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
+    from .stepsize import RecommendedStepSize
     missing = [k for k in REEL_KEYS if k not in parameters]
     if missing:
         raise ValueError(f"ChatterWhileLowering: the simulation needs the reel-changer keys "
                          f"{', '.join(REEL_KEYS)}; missing {', '.join(missing)} (use a reel-P* preset or --set)")
+    if stepSize is None:
+        stepSize = min(DEFAULT_STEP_SIZE, RecommendedStepSize(parameters))
     lift, lower, _ = DefaultWindows(parameters)
-    result = SimulateReelChanger(parameters, stepSize=DEFAULT_STEP_SIZE if stepSize is None else stepSize)
-    return result.Chatter(*lower)
+    return SimulateReelChanger(parameters, stepSize=stepSize).Chatter(*lower)
 
 
 def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = None,
@@ -661,7 +670,7 @@ def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = N
     result : DesignCheckResult
         From :func:`DesignCheck`; its parameter set must hold ``loadMass``, ``leverArm``, ``motorSpeed``.
     stepSize : float, optional
-        Time step in s (default: the simulation's default).
+        Time step in s (default: see :func:`ChatterWhileLowering`).
     progress : callable, optional
         Called with no argument after each simulation (e.g. a progress bar's ``update``).
 
