@@ -49,8 +49,8 @@ __all__ = ['Variation', 'ParseVariation', 'StudyPoints', 'Study', 'ParseShard', 
 WINDOW_METRICS = ('t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
                   'fractionSNegative', 'minWormSpeed', 'chatter', 'vibrationSeconds')
 #: per-run columns of the results table, before the varied parameters and the window metrics
-RUN_COLUMNS = ('run', 'status', 'error', 'seconds', 'solveSeconds', 'analyticStable', 'analyticStableLowering',
-               'loweringChatter')
+RUN_COLUMNS = ('run', 'status', 'error', 'seconds', 'solveSeconds', 'stepSize', 'analyticStable',
+               'analyticStableLowering', 'loweringChatter')
 #: execution engines of :func:`RunStudy`
 ENGINES = ('process', 'mpi')
 
@@ -208,7 +208,8 @@ class Study:
     endTime : float, optional
         Simulated time in s (default: one rotation of each point, at least up to the last window).
     stepSize : float, optional
-        Time step in s (default :data:`~exudyn_worm.reelchanger.DEFAULT_STEP_SIZE`).
+        Time step in s (default, per run: :data:`~exudyn_worm.reelchanger.DEFAULT_STEP_SIZE` or the drive's
+        :func:`~exudyn_worm.stepsize.RecommendedStepSize` where that is smaller, as ``check --simulate``).
     source : str, optional
         Where the base set came from (for the record).
     """
@@ -230,9 +231,6 @@ class Study:
                                 f"got {type(v).__name__}")
         if self.windows is not None:
             self.windows = [(float(a), float(b)) for a, b in self.windows]
-        if self.stepSize is None:
-            from .reelchanger import DEFAULT_STEP_SIZE
-            self.stepSize = DEFAULT_STEP_SIZE
         self.points = StudyPoints(self.variations, self.zipped)
         ApplyOverrides(self.base, self.points[0])          # unknown keys raise here
 
@@ -357,7 +355,8 @@ def RunPoint(task: Mapping) -> Dict:
     ----------
     task : mapping
         A work item of :meth:`Study.Task`: ``run`` (index), ``parameters`` (full set), ``varied``,
-        ``windows`` (None: default), ``endTime`` (None: one rotation), ``stepSize``.
+        ``windows`` (None: default), ``endTime`` (None: one rotation), ``stepSize`` (None: the default or the
+        drive's recommended step, whichever is smaller).
 
     Returns
     -------
@@ -367,12 +366,13 @@ def RunPoint(task: Mapping) -> Dict:
         failed before computing them).
     """
     from .presets import DriveFromParameters
-    from .reelchanger import DefaultWindows, RotationPeriod, SimulateReelChanger
+    from .reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, RotationPeriod, SimulateReelChanger
     from .stability import AnalyzeStability
+    from .stepsize import RecommendedStepSize
     start = time.perf_counter()
     p = dict(task['parameters'])
     row = {'run': int(task['run']), 'status': 'failed', 'error': '', 'seconds': None, 'solveSeconds': None,
-           'analyticStable': None, 'analyticStableLowering': None, 'loweringChatter': None}
+           'stepSize': None, 'analyticStable': None, 'analyticStableLowering': None, 'loweringChatter': None}
     row.update(task['varied'])
     try:
         analysis = AnalyzeStability(DriveFromParameters(p))
@@ -381,7 +381,9 @@ def RunPoint(task: Mapping) -> Dict:
         windows = task['windows'] if task['windows'] is not None else DefaultWindows(p)
         period = RotationPeriod(p)
         endTime = task['endTime'] if task['endTime'] is not None else max(period, max(t1 for _, t1 in windows))
-        result = SimulateReelChanger(p, endTime=endTime, stepSize=task['stepSize'])
+        stepSize = task['stepSize'] or min(DEFAULT_STEP_SIZE, RecommendedStepSize(p))
+        row['stepSize'] = stepSize
+        result = SimulateReelChanger(p, endTime=endTime, stepSize=stepSize)
         row['solveSeconds'] = result.solveSeconds
         if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
             raise FloatingPointError('diverged: non-finite state in the solution')
@@ -585,7 +587,7 @@ class StudyResult:
             windows.append({name: row[f'w{i}.{name}'] for name in WINDOW_METRICS})
         return {'run': row['run'], 'parameters': {k: row[k] for k in self.study.keys},
                 'status': row['status'], 'error': row['error'] or None, 'seconds': row['seconds'],
-                'solveSeconds': row['solveSeconds'], 'windows': windows,
+                'solveSeconds': row['solveSeconds'], 'stepSize': row['stepSize'], 'windows': windows,
                 'analyticStable': row['analyticStable'], 'analyticStableLowering': row['analyticStableLowering'],
                 'loweringChatter': row['loweringChatter']}
 
@@ -802,6 +804,8 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
         if onRow is not None:
             onRow(row)
 
+    if done and quiet is not True:
+        print(f"resuming: {len(done)} of {len(indices)} runs already in '{output}'", file=sys.stderr)
     previousHandler = None
     try:
         if todo:
@@ -814,8 +818,6 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
             try:
                 futures = [executor.submit(RunPoint, study.Task(i)) for i in todo]
                 from concurrent.futures import as_completed
-                if done and quiet is not True:
-                    print(f"resuming: {len(done)} of {len(indices)} runs already in '{output}'", file=sys.stderr)
                 with ProgressBar(total=len(todo), desc='sweep', unit='run', quiet=quiet) as bar:
                     for future in as_completed(futures):
                         Record(future.result())
