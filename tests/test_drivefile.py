@@ -150,3 +150,15 @@ def test_drive_side_chain_and_axial_bearing_reach_the_model(tmp_path):
     assert len(DriveSideChain(p)) == 2
     bearing = AxialBearingFromParameters(p)
     assert (bearing.stiffness, bearing.damping, bearing.mass) == (5e8, 1000., 5.)
+
+
+def test_figure19_file_is_the_drive_side_inertia_example():
+    """examples/drives/figure19.toml holds the values of examples/drive_side_inertia.py to its printed digits."""
+    from conftest import LoadScript
+    example = LoadScript('examples/drive_side_inertia.py', 'drive_side_inertia_for_files')
+    expected = example.DriveSideParameters()
+    p = ResolveParameters(config=DRIVES / 'figure19.toml')
+    assert set(p) == set(expected)
+    halfUnit = {'k4': 0.5, 'd4': 0.5e-4}      # the file prints k4 = 18.483 kN*m/rad and d4 = 0.8512 N*m*s/rad
+    for key in expected:
+        assert p[key] == pytest.approx(expected[key], rel=1e-12, abs=halfUnit.get(key, 0.)), key
