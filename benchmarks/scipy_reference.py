@@ -32,7 +32,7 @@ from exudyn_worm.profiles import ConstantSpeed, GravityLeverTorque
 from exudyn_worm.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SteadyInitialState
 from exudyn_worm.results import SimulationResult
 
-__all__ = ['ReelChangerOde', 'SolveReelChangerScipy']
+__all__ = ['ReelChangerOde', 'SolveReelChangerScipy', 'ResultFromStates']
 
 
 def ReelChangerOde(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions()
@@ -123,9 +123,37 @@ def SolveReelChangerScipy(parameters: Mapping[str, float], endTime: Optional[flo
         raise RuntimeError(f"SolveReelChangerScipy: solve_ivp({method}, rtol={rtol:g}, atol={atol:g}) failed: "
                            f"{sol.message}")
 
-    time = sol.t
-    phi1, phi2, omega1, omega2 = sol.y
-    accel = np.array([rhs(t, y)[2:] for t, y in zip(time, sol.y.T)])   # phi'' from the RHS at output points
+    accel = np.array([rhs(t, y)[2:] for t, y in zip(sol.t, sol.y.T)])   # phi'' from the RHS at output points
+    info = {'method': method, 'rtol': rtol, 'atol': atol, 'solveCpuSeconds': solveCpuSeconds, 'nfev': int(sol.nfev),
+            'njev': int(sol.njev), 'nlu': int(sol.nlu), 'outputStep': outputStep}
+    return ResultFromStates(sol.t, sol.y, accel, drive, motor, contactOptions, solveSeconds, info)
+
+
+def ResultFromStates(time, y, accel, drive: ElasticDrive, motor, contactOptions: ContactOptions, solveSeconds: float,
+                     info: dict) -> SimulationResult:
+    """The :class:`SimulationResult` of states ``y`` (4 x n: phi1, phi2, omega1, omega2) and accelerations
+    ``accel`` (n x 2) on ``time``: the series of :func:`SimulateReelChanger`, post-processed with the contact law.
+
+    Parameters
+    ----------
+    time : ndarray
+        Output times in s.
+    y : ndarray
+        States, shape (4, n).
+    accel : ndarray
+        Worm and wheel accelerations, shape (n, 2).
+    drive : ElasticDrive
+        The drive.
+    motor : ConstantSpeed
+        The motor motion.
+    contactOptions : ContactOptions
+        Options of the contact law.
+    solveSeconds : float
+        Wall time of the solve.
+    info : dict
+        Solver information (``frictionSpeed`` is added).
+    """
+    phi1, phi2, omega1, omega2 = y
     phi0, omega0 = motor.AngleAndSpeed(time, NUMPY_OPS)
     mesh = MeshContact(drive.gear, phi1, phi2, omega1, omega2, contactOptions, NUMPY_OPS)
     series = {'phi0': phi0, 'omega0': omega0, 'phi1': phi1, 'omega1': omega1, 'alpha1': accel[:, 0],
@@ -134,8 +162,5 @@ def SolveReelChangerScipy(parameters: Mapping[str, float], endTime: Optional[flo
               'sf': mesh.sf, 'wormTorque': mesh.wormTorque, 'wheelTorque': mesh.wheelTorque,
               'driveTorque': drive.kT * (phi1 - phi0) + drive.dT * (omega1 - omega0),
               'tangentialForce': mesh.wheelTorque / drive.gear.r2}
-    info = {'method': method, 'rtol': rtol, 'atol': atol, 'solveCpuSeconds': solveCpuSeconds, 'nfev': int(sol.nfev),
-            'njev': int(sol.njev), 'nlu': int(sol.nlu), 'outputStep': outputStep,
-            'frictionSpeed': contactOptions.frictionSpeed}
     return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
-                            steps=0, info=info)
+                            steps=0, info={**info, 'frictionSpeed': contactOptions.frictionSpeed})

@@ -7,7 +7,9 @@ function, the argument, the allowed range with its unit and the value received, 
 import math
 from numbers import Real
 
-__all__ = ['CheckReal', 'CheckPositive', 'CheckNonNegative', 'CheckAngle', 'CheckRange']
+import numpy as np
+
+__all__ = ['CheckReal', 'CheckPositive', 'CheckNonNegative', 'CheckAngle', 'CheckRange', 'CheckArray']
 
 
 def _Format(value) -> str:
@@ -60,3 +62,22 @@ def CheckAngle(where: str, name: str, value) -> float:
         raise ValueError(f"{where}: '{name}' must be in (0, pi/2) rad, i.e. (0, 90) deg, "
                          f"got {value:g} rad ({math.degrees(value):g} deg)")
     return value
+
+
+def CheckArray(where: str, name: str, value, low: float = 0., unit: str = '', lowOpen: bool = True):
+    """Scalar or array argument of a broadcasting function: a scalar goes through :func:`CheckRange` and
+    comes back as float; an array must be real, finite and ``> low`` (``>= low`` if not ``lowOpen``)
+    everywhere and comes back as a float ndarray. The message names the first offending value."""
+    if np.ndim(value) == 0 and not isinstance(value, np.ndarray):
+        return CheckRange(where, name, value, low=low, unit=unit, lowOpen=lowOpen)
+    array = np.asarray(value)
+    if array.dtype.kind not in 'iuf':
+        raise TypeError(f"{where}: '{name}' must be real numbers{' in ' + unit if unit else ''}, "
+                        f"got an array of dtype {array.dtype}")
+    array = array.astype(float, copy=False)
+    bad = ~np.isfinite(array) | ((array <= low) if lowOpen else (array < low))
+    if bad.any():
+        u = ' ' + unit if unit else ''
+        raise ValueError(f"{where}: '{name}' must be finite and {'>' if lowOpen else '>='} {_Format(float(low))}{u} "
+                         f"everywhere, got {_Format(float(array[bad].flat[0]))}{u}")
+    return array

@@ -281,15 +281,16 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
 def _WormGearLaw(gear, options, referenceAngles, axial, axialReference):
     """The connector's generalized forces as ``law(t, q, q_t, ops)`` for AddGenericForce."""
     ref1, ref2 = referenceAngles
+    Shifted = lambda x, ref: x + ref if ref != 0 else x      # no '+ 0' node in the recorded expression
     if not axial:
         def WormGearLaw(t, q, q_t, ops):
             """Generalized forces [worm torque, wheel torque] of the mesh."""
-            state = MeshContact(gear, q[0] + ref1, q[1] + ref2, q_t[0], q_t[1], options, ops)
+            state = MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops)
             return [state.wormTorque, state.wheelTorque]
     else:
         def WormGearLaw(t, q, q_t, ops):
             """Generalized forces [worm torque, wheel torque, worm axial force] of the mesh."""
-            state = MeshContact(gear, q[0] + ref1, q[1] + ref2, q_t[0], q_t[1], options, ops,
-                                axialDisplacement=q[2] + axialReference, axialSpeed=q_t[2])
+            state = MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
+                                axialDisplacement=Shifted(q[2], axialReference), axialSpeed=q_t[2])
             return [state.wormTorque, state.wheelTorque, state.axialForce]
     return WormGearLaw

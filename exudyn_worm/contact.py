@@ -150,21 +150,25 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
     normal lever). The friction state keeps the paper's rule ``sf = sign(phi1')`` (eq. (8)): the axial
     speed is not included in the sliding direction.
     """
+    # Written for a small recorded expression (the symbolic user function is a tree evaluated node by node,
+    # a subexpression used twice is evaluated twice): the relative displacement is kept in worm-angle units
+    # d = Delta s / lever, the constants are folded, and |d| = sigma d lets penetration and damping share sigma.
     u, lever = gear.ratio, gear.normalLever
     deltaPhi = phi1 - u * phi2
-    deltaS = lever * deltaPhi
-    deltaSRate = lever * (omega1 - u * omega2)
+    d, dRate = deltaPhi, omega1 - u * omega2
     if axialDisplacement is not None:
-        axialLever = gear.axialLever
-        deltaS = deltaS + axialLever * axialDisplacement
-        deltaSRate = deltaSRate + axialLever * (0. if axialSpeed is None else axialSpeed)
-    sigma = ops.sign(deltaS)
-    penetration = ops.abs(deltaS) - 0.5 * gear.backlash
-    fn = gear.kV * penetration + gear.dV * sigma * deltaSRate
+        axialFactor = gear.axialLever / lever
+        d = d + axialFactor * axialDisplacement
+        if axialSpeed is not None:
+            dRate = dRate + axialFactor * axialSpeed
+    sigma = ops.sign(d)
+    fn = sigma * ((gear.kV * lever) * d + (gear.dV * lever) * dRate)     # kV penetration + dV sigma d(Delta s)/dt
+    if gear.backlash > 0:
+        fn = fn - 0.5 * gear.kV * gear.backlash
     if not options.dampingCanPull:
         fn = ops.max(fn, 0.)
     if gear.backlash > 0:                        # inside the backlash there is no force at all
-        fn = ops.where(penetration > 0., fn, 0.)
+        fn = ops.where(ops.abs(d) > 0.5 * gear.backlash / lever, fn, 0.)
     if options.frictionSpeed > 0:
         sf = ops.max(-1., ops.min(1., omega1 * (1. / options.frictionSpeed)))
     else:
@@ -173,6 +177,5 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
     c2, c4 = gear.LeverArms(S, ops)
     normalForce = sigma * fn
     wheelTorque = c4 * normalForce
-    return MeshState(deltaPhi=deltaPhi, deltaS=deltaS, normalForce=normalForce, S=S, sf=sf,
-                     wormTorque=-c2 * normalForce, wheelTorque=wheelTorque,
-                     axialForce=wheelTorque * (-1. / gear.r2))
+    return MeshState(deltaPhi=deltaPhi, deltaS=lever * d, normalForce=normalForce, S=S, sf=sf,
+                     wormTorque=-(c2 * normalForce), wheelTorque=wheelTorque, axialForce=wheelTorque * (-1. / gear.r2))

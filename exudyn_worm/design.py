@@ -42,7 +42,7 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from ._checks import CheckRange
-from .presets import PARAMETER_UNITS, REEL_KEYS, ApplyOverrides, DriveFromParameters
+from .presets import PARAMETER_UNITS, REEL_KEYS, ApplyOverrides, DriveFromParameters, DriveSideChain
 from .stability import CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzConditions
 
 __all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'ChartPoint', 'ChartGrid',
@@ -591,12 +591,18 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
     Raises
     ------
     ValueError, TypeError
-        For a bad parameter set, margin or span.
+        For a bad parameter set, margin or span, or a parameter set with components the two-mass model
+        does not include (a drive-side chain J4, ... or a worm axial bearing kA > 0).
     """
     w = 'DesignCheck'
     margin = CheckRange(w, 'margin', margin, low=0., high=1., unit='decades')
     span = CheckRange(w, 'span', span, low=1., high=1e4, lowOpen=True)
     parameters = dict(parameters)
+    extra = (['a drive-side chain (J4, ...)'] if DriveSideChain(parameters) else []) + \
+        (['a worm axial bearing (kA > 0)'] if parameters.get('kA', 0.) > 0 else [])
+    if extra:
+        raise ValueError(f"{w}: the design check uses the two-mass model of Figure 2 (eqs. (15)-(19)); this "
+                         f"parameter set has {' and '.join(extra)}, which that model does not include")
     drive = DriveFromParameters(parameters)
     analysis = AnalyzeStability(drive)
     notes = []
@@ -636,20 +642,29 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
     parameters : mapping
         Flat parameter set with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed``.
     stepSize : float, optional
-        Time step in s (default: the simulation's default).
+        Time step in s. Default: the simulation's default step, or the drive's
+        :func:`~exudyn_worm.stepsize.RecommendedStepSize` where that is smaller (a recommended drive can
+        have a higher natural frequency than the given one).
 
     Returns
     -------
     bool
+
+    Raises
+    ------
+    ValueError
+        For a parameter set without the reel-changer keys, or a ``stepSize`` the simulation refuses.
     """
     from .reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
+    from .stepsize import RecommendedStepSize
     missing = [k for k in REEL_KEYS if k not in parameters]
     if missing:
         raise ValueError(f"ChatterWhileLowering: the simulation needs the reel-changer keys "
                          f"{', '.join(REEL_KEYS)}; missing {', '.join(missing)} (use a reel-P* preset or --set)")
+    if stepSize is None:
+        stepSize = min(DEFAULT_STEP_SIZE, RecommendedStepSize(parameters))
     lift, lower, _ = DefaultWindows(parameters)
-    result = SimulateReelChanger(parameters, stepSize=DEFAULT_STEP_SIZE if stepSize is None else stepSize)
-    return result.Chatter(*lower)
+    return SimulateReelChanger(parameters, stepSize=stepSize).Chatter(*lower)
 
 
 def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = None,
@@ -661,7 +676,7 @@ def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = N
     result : DesignCheckResult
         From :func:`DesignCheck`; its parameter set must hold ``loadMass``, ``leverArm``, ``motorSpeed``.
     stepSize : float, optional
-        Time step in s (default: the simulation's default).
+        Time step in s (default: see :func:`ChatterWhileLowering`).
     progress : callable, optional
         Called with no argument after each simulation (e.g. a progress bar's ``update``).
 

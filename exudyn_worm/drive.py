@@ -4,7 +4,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from ._checks import CheckNonNegative, CheckPositive
+import numpy as np
+
+from ._checks import CheckArray, CheckNonNegative, CheckPositive
 from .gear import WormGear
 
 __all__ = ['ElasticDrive', 'TorsionalDampingFromMeasure', 'TorsionalDampingMeasure',
@@ -22,10 +24,12 @@ def TorsionalDampingFromMeasure(DT: float, kT: float, J1: float) -> float:
         Shaft stiffness in N*m/rad, > 0.
     J1 : float
         Worm-side inertia in kg*m^2, > 0.
+
+    The arguments may be numpy arrays (broadcast together; the stability charts use that).
     """
     w = 'TorsionalDampingFromMeasure'
-    return 2. * CheckNonNegative(w, 'DT', DT) * math.sqrt(CheckPositive(w, 'kT', kT, 'N*m/rad')
-                                                           * CheckPositive(w, 'J1', J1, 'kg*m^2'))
+    return 2. * CheckArray(w, 'DT', DT, lowOpen=False) * np.sqrt(CheckArray(w, 'kT', kT, unit='N*m/rad')
+                                                                 * CheckArray(w, 'J1', J1, unit='kg*m^2'))
 
 
 def TorsionalDampingMeasure(dT: float, kT: float, J1: float) -> float:
@@ -48,11 +52,14 @@ def MeshDampingFromMeasure(DV: float, kV: float, r2: float, J2: float) -> float:
         Wheel radius in m, > 0.
     J2 : float
         Wheel-side inertia in kg*m^2, > 0.
+
+    ``DV`` and ``J2`` may be numpy arrays (broadcast together).
     """
     w = 'MeshDampingFromMeasure'
     kV = CheckPositive(w, 'kV', kV, 'N/m')
     r2 = CheckPositive(w, 'r2', r2, 'm')
-    return 2. * CheckNonNegative(w, 'DV', DV) * math.sqrt(kV * r2**2 * CheckPositive(w, 'J2', J2, 'kg*m^2')) / r2**2
+    return 2. * CheckArray(w, 'DV', DV, lowOpen=False) * np.sqrt(kV * r2**2 * CheckArray(w, 'J2', J2, unit='kg*m^2')
+                                                                 ) / r2**2
 
 
 def MeshDampingMeasure(dV: float, kV: float, r2: float, J2: float) -> float:

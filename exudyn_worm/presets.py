@@ -38,7 +38,7 @@ if TYPE_CHECKING:
     from .connector import AxialBearing
 
 __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
-           'ApplyOverrides', 'DriveFromParameters', 'DriveSideChain', 'AxialBearingFromParameters']
+           'ApplyOverrides', 'GearFromParameters', 'DriveFromParameters', 'DriveSideChain', 'AxialBearingFromParameters']
 
 #: keys of the elastic drive (Figure 2)
 DRIVE_KEYS = ('alphaN', 'gamma', 'mu', 'rho', 'r1', 'r2', 'kV', 'dV', 'DV', 'backlash',
@@ -138,6 +138,47 @@ def _Require(parameters, keys, what):
                          f"or in the config file")
 
 
+def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True,
+                       where: str = 'GearFromParameters') -> WormGear:
+    """Build the :class:`WormGear` of a flat parameter dictionary (no J1, kT or shaft damping needed).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary (SI) with ``alphaN gamma r1 r2 kV``, ``mu`` or ``rho`` and, if
+        ``meshDamping``, ``dV`` or ``DV`` (with ``J2``).
+    meshDamping : bool, optional
+        If False, the mesh damping is not required and the gear gets dV = 0 (for the stability charts,
+        which set dV from the swept D_V).
+    where : str, optional
+        Function name used in error messages.
+
+    Returns
+    -------
+    WormGear
+
+    Raises
+    ------
+    ValueError
+        For a missing or invalid parameter.
+    """
+    p = dict(parameters)
+    _Require(p, ('alphaN', 'gamma', 'r1', 'r2', 'kV'), where)
+    if 'mu' not in p and 'rho' not in p:
+        raise ValueError(f"{where}: give the friction as 'mu' or as the friction angle 'rho'")
+    if not meshDamping:
+        dV = 0.
+    elif 'dV' in p:
+        dV = p['dV']
+    elif 'DV' in p:
+        _Require(p, ('J2',), where)
+        dV = MeshDampingFromMeasure(p['DV'], p['kV'], p['r2'], p['J2'])
+    else:
+        raise ValueError(f"{where}: give the mesh damping as 'dV' (N*s/m) or as the measure 'DV'")
+    return WormGear(alphaN=p['alphaN'], gamma=p['gamma'], r1=p['r1'], r2=p['r2'], kV=p['kV'], dV=dV,
+                    backlash=p.get('backlash', 0.), mu=p.get('mu'), rho=p.get('rho'))
+
+
 def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     """Build the :class:`ElasticDrive` described by a flat parameter dictionary.
 
@@ -161,13 +202,7 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     p = dict(parameters)
     where = 'DriveFromParameters'
     _Require(p, ('alphaN', 'gamma', 'r1', 'r2', 'kV', 'J1', 'J2', 'kT'), where)
-    if 'dV' not in p and 'DV' not in p:
-        raise ValueError(f"{where}: give the mesh damping as 'dV' (N*s/m) or as the measure 'DV'")
-    if 'mu' not in p and 'rho' not in p:
-        raise ValueError(f"{where}: give the friction as 'mu' or as the friction angle 'rho'")
-    dV = p['dV'] if 'dV' in p else MeshDampingFromMeasure(p['DV'], p['kV'], p['r2'], p['J2'])
-    gear = WormGear(alphaN=p['alphaN'], gamma=p['gamma'], r1=p['r1'], r2=p['r2'], kV=p['kV'], dV=dV,
-                    backlash=p.get('backlash', 0.), mu=p.get('mu'), rho=p.get('rho'))
+    gear = GearFromParameters(p, where=where)
     if 'dT' in p:
         dT = p['dT']
     else:

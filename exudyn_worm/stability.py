@@ -13,7 +13,7 @@ import numpy as np
 
 from .drive import ElasticDrive
 
-__all__ = ['CharacteristicCoefficients', 'HurwitzConditions', 'HurwitzStable', 'LinearMatrices',
+__all__ = ['PolynomialCoefficients', 'CharacteristicCoefficients', 'HurwitzConditions', 'HurwitzStable', 'LinearMatrices',
            'StateMatrix', 'EigenvaluesFromPolynomial', 'EigenvaluesFromStateMatrix', 'FuesgenLimit',
            'FirstCriterionLimit', 'ContactStability', 'StabilityAnalysis', 'AnalyzeStability']
 
@@ -23,6 +23,43 @@ CONTACT_STATES = (+1, -1)
 def _CheckS(S):
     if S not in CONTACT_STATES:
         raise ValueError(f"stability: contact parameter 'S' must be +1 or -1, got {S!r}")
+
+
+def PolynomialCoefficients(gear, S: int, J1, J2, kT, dT, dV=None) -> np.ndarray:
+    """Coefficients b1..b4 of eq. (16) from the gear and the drive values; broadcasts over numpy arrays.
+
+    The one implementation of eq. (16): :func:`CharacteristicCoefficients` (one drive) and the stability
+    charts (:mod:`exudyn_worm.charts`, a whole grid at once) both call it.
+
+    Parameters
+    ----------
+    gear : WormGear
+        The mesh (geometry, friction, kV; its dV unless ``dV`` is given).
+    S : int
+        Contact parameter, +1 or -1 (eq. (8)).
+    J1, J2 : float or ndarray
+        Inertias in kg*m^2.
+    kT : float or ndarray
+        Shaft stiffness in N*m/rad.
+    dT : float or ndarray
+        Shaft damping in N*m*s/rad.
+    dV : float or ndarray, optional
+        Mesh damping in N*s/m (default ``gear.dV``).
+
+    Returns
+    -------
+    ndarray
+        Shape ``(4,) + broadcast shape`` of the arguments, in s^-1 .. s^-4.
+    """
+    _CheckS(S)
+    c1, _, c3, _ = gear.Coefficients(S)
+    u, kV = gear.ratio, gear.kV
+    dV = gear.dV if dV is None else dV
+    b1 = (dT + c1 * dV) / J1 + u * c3 * dV / J2
+    b2 = (kT + c1 * kV) / J1 + u * c3 * kV / J2 + u * c3 * dT * dV / (J1 * J2)
+    b3 = u * c3 * (dT * kV + dV * kT) / (J1 * J2)
+    b4 = u * c3 * kT * kV / (J1 * J2)
+    return np.array(np.broadcast_arrays(b1, b2, b3, b4), dtype=float)
 
 
 def CharacteristicCoefficients(drive: ElasticDrive, S: int) -> np.ndarray:
@@ -35,26 +72,26 @@ def CharacteristicCoefficients(drive: ElasticDrive, S: int) -> np.ndarray:
     S : int
         Contact parameter, +1 or -1 (eq. (8)).
     """
-    _CheckS(S)
-    g = drive.gear
-    c1, _, c3, _ = g.Coefficients(S)
-    u, J1, J2, kT, dT, kV, dV = g.ratio, drive.J1, drive.J2, drive.kT, drive.dT, g.kV, g.dV
-    b1 = (dT + c1 * dV) / J1 + u * c3 * dV / J2
-    b2 = (kT + c1 * kV) / J1 + u * c3 * kV / J2 + u * c3 * dT * dV / (J1 * J2)
-    b3 = u * c3 * (dT * kV + dV * kT) / (J1 * J2)
-    b4 = u * c3 * kT * kV / (J1 * J2)
-    return np.array([b1, b2, b3, b4])
+    return PolynomialCoefficients(drive.gear, S, drive.J1, drive.J2, drive.kT, drive.dT)
 
 
 def HurwitzConditions(b: Sequence[float]) -> np.ndarray:
-    """Left-hand sides of the Routh-Hurwitz conditions (17), (18), (19); all > 0 for stability."""
+    """Left-hand sides of the Routh-Hurwitz conditions (17), (18), (19); all > 0 for stability.
+
+    ``b`` may be an array of shape ``(4, ...)`` (the result has shape ``(3, ...)``).
+    """
     b1, b2, b3, b4 = b
     return np.array([b1, b1 * b2 - b3, (b1 * b2 - b3) * b3 - b1**2 * b4])
 
 
-def HurwitzStable(b: Sequence[float]) -> bool:
-    """Routh-Hurwitz classification of the quartic (15): b1, b3, b4 > 0 and (18), (19) > 0."""
-    return bool(b[0] > 0 and b[2] > 0 and b[3] > 0 and np.all(HurwitzConditions(b) > 0))
+def HurwitzStable(b: Sequence[float]):
+    """Routh-Hurwitz classification of the quartic (15): b1, b3, b4 > 0 and (18), (19) > 0.
+
+    Returns a bool for one polynomial; for ``b`` of shape ``(4, ...)`` a bool array of shape ``(...)``.
+    """
+    b = np.asarray(b, dtype=float)
+    stable = (b[0] > 0) & (b[2] > 0) & (b[3] > 0) & np.all(HurwitzConditions(b) > 0, axis=0)
+    return bool(stable) if b.ndim == 1 else stable
 
 
 def LinearMatrices(drive: ElasticDrive, S: int):

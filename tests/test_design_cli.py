@@ -80,6 +80,8 @@ def test_check_plot(capsys, tmp_path):
     (('--preset', 'chart', '--set', 'J1=0.01', '--set', 'kT=10', '--set', 'DT=0.01', '--simulate'),
      "--simulate needs the reel-changer keys loadMass, leverArm, motorSpeed; missing loadMass, leverArm, motorSpeed"),
     (('--simulate', '--step-size', '0'), "--step-size must be > 0 s, got 0"),
+    (('--set', 'J4=0.1', '--set', 'k4=1000'), "DesignCheck: the design check uses the two-mass model of Figure 2"),
+    (('--set', 'kA=1e8', '--set', 'mA=1'), "this parameter set has a worm axial bearing (kA > 0)"),
 ])
 def test_check_bad_input(capsys, argv, message):
     rc, out, err = Run(capsys, 'check', *argv)

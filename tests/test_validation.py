@@ -1,4 +1,6 @@
-"""Tests of the validation runner, the reference table and the eigenvalue forensics."""
+"""Tests of the validation suite (validation/): reading rules, the runner's verdicts, the pinned lists of
+failures and known differences, the report, and the eigenvalue forensics. The tests run the same checks as
+``python -m validation``."""
 import math
 
 import numpy as np
@@ -7,15 +9,32 @@ from numpy.testing import assert_allclose
 
 from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
 from exudyn_worm.stability import CharacteristicCoefficients
-from validation import runner as validation
+from validation import runner
 from validation.paper import eigenvalue_forensics
-from validation.runner import KINDS, CheckGroup, HalfUnit, LoadReference, RegisterCheckGroup, RunValidation
+from validation.runner import (KINDS, RULES, CheckGroup, HalfUnit, InputRounding, LoadKnownDifferences,
+                               LoadReference, ReadingInterval, RegisterCheckGroup, RunValidation)
+
+#: the checks that FAIL today, each stated with its reason in validation/REPORT.md. A new failure, or a fix,
+#: fails the test below: update this pin together with the report.
+#: - three exclusion rows whose rejected reading lies within the propagated rounding of the printed inputs
+#:   (issue 8, finding 2): the printed digits do not reject rho = 8 deg for mu = 0.134, dT = 0.741, u = 63.
+#: - six section 2.3 chart statements on the domain fixed in validation/README.md (every unstable set reaches the
+#:   domain's lower-left edges; the D_TV = 1 region ends at x = 5.0, not about 3).
+EXPECTED_FAILURES_QUICK = {'mu_28_from_rho', 'b1_28_dT0741', 'b4_28_u63',
+                           'chart_bound_DTV1', 'chart_DTV1_smallest', 'chart_broadens_bigger_DTV', 'chart_small_x_broadens',
+                           'chart_DV056_DTV25_vanishes', 'chart_DV056_DTV5_shorter'}
+#: the known, explained model differences (validation/paper/differences.csv), pinned here so that a new
+#: failure cannot silently become a DIFFERS by adding it to the list
+PINNED_KNOWN_DIFFERENCES = {
+    *(f'lam{k}_{p}_{s}' for k in (1, 2) for p in ('re', 'im') for s in ('Sp', 'Sm')),
+    'f1_Sp', 'f2_Sp', 'f1_Sm', 'f2_Sm', 'fnat1_P1', 'fnat2_P1', 'fnat2_P7', 'f1_Sm_printed_im', 'f2_Sm_printed_im',
+    'D2_Sp_printed', 'P1_max_acceleration',
+}
 
 
 @pytest.fixture(scope='module')
-def quickRun(tmp_path_factory):
-    report = tmp_path_factory.mktemp('validation') / 'REPORT.md'
-    return RunValidation(reportPath=report, quick=True), report
+def quickRun():
+    return RunValidation(quick=True, quiet=True)
 
 
 @pytest.fixture(scope='module')
@@ -23,80 +42,119 @@ def forensics():
     return eigenvalue_forensics
 
 
-# --- the full run -------------------------------------------------------------------------------------------
+# --- the quick run (analytical, eigenvalues, forensics, charts) -------------------------------------------
 
-def test_every_gated_check_passes(quickRun):
-    summary, _ = quickRun
-    failed = [c.Line() for c in summary.checks if c.failed]
-    assert not failed, '\n'.join(failed)
-    assert summary.passed
-    assert summary.skipped == ['forensics-slow', 'simulation']
-    assert summary.lines[0].startswith('validation PASSED')
+def test_quick_run_fails_exactly_the_pinned_checks(quickRun):
+    failed = {c.id for c in quickRun.checks if c.failed}
+    assert failed == EXPECTED_FAILURES_QUICK, '\n'.join(c.Line() for c in quickRun.checks if c.failed)
+    assert quickRun.passed == (not failed)
+    assert quickRun.skipped == ['simulation', 'forensics-slow'] and not quickRun.crashed
+    assert quickRun.lines[0].startswith('validation FAILED (quick mode)' if failed else 'validation PASSED')
 
 
 def test_every_reference_row_is_checked(quickRun):
-    summary, _ = quickRun
-    slow = set(summary.skipped)
-    assert {c.id for c in summary.checks} == {r.id for r in LoadReference().values() if r.group not in slow}
+    slow = set(quickRun.skipped)
+    assert {c.row.id for c in quickRun.checks} == {r.id for r in LoadReference().values() if r.group not in slow}
 
 
-def test_differs_only_for_eigenvalue_rows(quickRun):
-    summary, _ = quickRun
-    differs = [c for c in summary.checks if c.verdict == 'DIFFERS']
-    assert differs and all(c.row.kind in ('eigenvalue', 'difference') and not c.gated for c in differs)
-    # the published eigenvalues of section 3.1 are not those of eq. (16): all eight components differ
-    assert {c.id for c in differs} >= {f'lam{k}_{p}_{s}' for k in (1, 2) for p in ('re', 'im') for s in ('Sp', 'Sm')}
+def test_known_differences_are_pinned_and_not_stale(quickRun):
+    known = LoadKnownDifferences(reference=LoadReference())
+    assert set(known) == PINNED_KNOWN_DIFFERENCES
+    assert all(reason for reason in known.values())
+    ran = {c.id: c for c in quickRun.checks}
+    for checkId in known:
+        if checkId in ran:   # listed checks of groups that ran: each is a DIFFERS, none passes (stale)
+            assert ran[checkId].verdict == 'DIFFERS', ran[checkId].Line()
+    assert not quickRun.stale
+    differs = [c for c in quickRun.checks if c.verdict == 'DIFFERS']
+    assert differs and all(c.knownDifference and not c.holds for c in differs)
 
 
 def test_key_findings(quickRun):
-    checks = {c.id: c for c in quickRun[0].checks}
+    checks = {c.id: c for c in quickRun.checks}
     # mu = 0.132 reproduces b1..b4 and (19); mu = 0.134 and rho = 8.000 deg are rejected
     for rowId in ('b1_28', 'b2_28', 'b3_28', 'b4_28', 'hurwitz19_28', 'b1_28_mu134', 'hurwitz19_28_mu134',
-                  'hurwitz19_28_rho8', 'mu_28_from_rho', 'fnat2_P7_circ'):
+                  'hurwitz19_28_rho8', 'fnat1_P7_circ', 'fnat2_P7_circ'):
         assert checks[rowId].verdict == 'PASS', checks[rowId].Line()
-    assert 2.5e7 < checks['hurwitz19_28'].tolerance < 3.5e7
+    lo, hi = checks['hurwitz19_28'].interval
+    assert 2.5e7 < (hi - lo) / 2 < 3.5e7          # half a unit (5e6) + propagated geometry rounding
+    # in-sample: the numbers the hypotheses were identified from
+    assert checks['b1_28'].inSample and checks['fnat1_P1_circ'].inSample and not checks['fnat1_P7_circ'].inSample
 
 
-def test_report_is_written(quickRun):
-    summary, report = quickRun
-    text = report.read_text()
-    assert summary.reportPath == report
-    assert '| id | quantity | S | published | computed | difference | tolerance | verdict | kind | source |' in text
-    for needle in ('`hurwitz19_28`', 'DIFFERS', 'Tolerance of the value of (19)', 'Eigenvalue forensics',
-                   'Which friction the paper used', 'Skipped (slow) group(s): forensics-slow'):
-        assert needle in text
+def test_chart_statements_are_rows(quickRun):
+    charts = {c.id: c for c in quickRun.checks if c.row.group == 'charts'}
+    assert len(charts) == 11 and all(c.reading == '' and not c.inSample for c in charts.values())
+    assert charts['chart_no_unstable_Sp'].computed == 0                   # "no unstable regions for S = +1"
+    assert charts['chart_bound_DTV25'].verdict == 'PASS'                    # 0.215 for "bigger than 0.22"
 
 
-def test_time_domain_checks_pass():
-    """The slow group: the paper's statements of section 3.2 against our simulations (about 15 s)."""
-    group = next(g for g in validation.CHECK_GROUPS if g.name == 'simulation')
-    summary = RunValidation(groups=[group])
-    rows = [c for c in summary.checks if c.row.group == 'simulation']
-    assert len(rows) == len([r for r in LoadReference().values() if r.group == 'simulation'])
-    failed = [c.Line() for c in rows if c.failed]
-    assert not failed, '\n'.join(failed)
-    verdicts = {c.id: c.verdict for c in rows}
-    # the mesh convention identified from the printed eigenvalues reproduces P1's printed 110 rad/s^2 and 42 Hz
-    assert verdicts['P1_max_acceleration_circ'] == verdicts['P1_chatter_frequency_circ'] == 'PASS'
-    assert any('Numerical knobs' in title or 'Numerical knobs' in text for title, text in summary.sections)
+def test_report_is_generated_from_the_verdicts(quickRun, tmp_path):
+    from validation.report import Report
+    text = Report(quickRun, runner.CHECK_GROUPS, tmp_path)
+    assert quickRun.lines[0] in text
+    for c in quickRun.checks:
+        if c.failed:
+            assert f'`{c.id}`' in text.split('## Reading rules applied')[0]     # every FAIL is stated in the summary
+    assert 'Not run in this mode' in text and 'differential evolution finds' not in text
+    (tmp_path / 'STUDIES.md').write_text('# Studies\n\nstudy text\n')
+    withStudies = Report(quickRun, runner.CHECK_GROUPS, tmp_path)
+    assert withStudies.rstrip().endswith('study text') and '## Studies' in withStudies
 
 
-# --- the reference table -------------------------------------------------------------------------------------
+def test_run_writes_only_when_asked(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    group = CheckGroup('analytical', 'validation.analytical:AnalyticalChecks')
+    RunValidation(groups=[group], quiet=True, quick=True)
+    assert list(tmp_path.iterdir()) == []
+    with pytest.raises(ValueError, match="'reportPath' must be a file in an existing directory"):
+        RunValidation(reportPath=tmp_path / 'missing' / 'r.md', groups=[group], quiet=True)
+    with pytest.raises(ValueError, match="give 'quick' or 'full', not both"):
+        RunValidation(quick=True, full=True)
+
+
+# --- the time domain (default mode): both mesh readings ---------------------------------------------------
+
+#: time-domain checks that FAIL today (stated with their reasons in validation/REPORT.md); ``@paperMesh`` is the
+#: wheel-circumference mesh reading. A new failure, or a fix, fails the test: update the pin with the report.
+SIMULATION_FAILURES = {
+    *(f'{row}{reading}' for row in ('P1_force_factor', 'P1_backlash_0.25', 'P7_max_acceleration', 'P7_to_P1_ratio',
+                                    'P7_S_negative_lifting', 'P7_backlash_independence')
+      for reading in ('', '@paperMesh')),
+    'P1_backlash_0.5@paperMesh',
+}
+
+
+def test_time_domain_checks_under_both_readings():
+    """The slow group: the statements of section 3.2 under both mesh readings (about a minute)."""
+    group = next(g for g in runner.CHECK_GROUPS if g.name == 'simulation')
+    summary = RunValidation(groups=[group], quiet=True)
+    rows = [r for r in LoadReference().values() if r.group == 'simulation']
+    checks = {c.id: c for c in summary.checks if c.row.group == 'simulation'}
+    assert set(checks) == {r.id for r in rows} | {r.id + '@paperMesh' for r in rows}
+    assert all(math.isfinite(c.computed) for c in checks.values())
+    failed = {i for i, c in checks.items() if c.failed}
+    assert failed == SIMULATION_FAILURES, '\n'.join(c.Line() for c in checks.values() if c.failed)
+    assert not summary.stale
+    # the mesh convention identified from the printed eigenvalues reproduces P1's printed 110 rad/s^2
+    assert checks['P1_max_acceleration@paperMesh'].verdict == 'PASS'
+    assert any('both mesh readings' in title for title, _ in summary.sections)
+
+
+# --- reading rules ---------------------------------------------------------------------------------------
 
 def test_reference_table_rules():
     rows = LoadReference()
     assert len(rows) > 50
     for r in rows.values():
-        assert r.kind in KINDS and r.source and r.quantity and r.group
+        assert r.kind in KINDS and r.rule in RULES and r.source and r.quantity and r.group
         assert any(k in r.source for k in ('eq.', 'section', 'Figure', 'set', 'issue')), r.id
-        if r.tolerance is None:  # 'propagated': argued in the note
-            assert r.note and r.id.startswith('hurwitz19')
-        elif r.tolerance > HalfUnit(r.publishedText):  # wider than the printed digits: must be argued
-            assert r.note, f'{r.id}: tolerance {r.tolerance} wider than half a unit of {r.publishedText}'
+        assert r.identifies <= {'mu', 'circ'}
 
 
 @pytest.mark.parametrize('text, half', [('13.615', 5e-4), ('1.279e5', 50.), ('63', 0.5), ('-2.607e10', 5e6),
-                                        ('0.014', 5e-4), ('209.0', 0.05), ('21470', 0.5)])
+                                        ('0.014', 5e-4), ('209.0', 0.05), ('21470', 5.), ('110', 5.), ('2500', 50.),
+                                        ('0', 0.5), ('8', 0.5)])
 def test_half_unit(text, half):
     assert HalfUnit(text) == pytest.approx(half)
 
@@ -106,49 +164,111 @@ def test_half_unit_rejects_text():
         HalfUnit('abc')
 
 
-# --- registration of further check groups ---------------------------------------------------------------------
+@pytest.mark.parametrize('rule, text, interval', [
+    ('printed', '110', (105., 115.)),
+    ('about', '700', (630., 770.)),
+    ('about', '42', (37.8, 46.2)),
+    ('about', '3', (2.5, 3.5)),                      # half a unit wider than 10 %
+    ('virtually', '2', (1.8, 2.2)),
+    ('virtually', '0', (0., 0.1)),                   # "ceased to exist": at most 10 % of the reference
+    ('ratio', '2', (1.9, 2.1)),
+    ('range', '2-4', (2., 4.)),
+    ('many-times', 'many', (3., math.inf)),
+    ('chart-bound', '0.22', (0.22 / 10**0.05, 0.22 * 10**0.05)),
+    ('chart-bound', '3', (2.5, 3.5)),                # half a unit wider than the factor
+    ('comparison', '1', (1., 1.)),
+    ('none', '0', (0., 0.)),
+    ('yes-no', '1', (1., 1.)),
+    ('robustness', '0', (0., 3.)),
+])
+def test_reading_interval(rule, text, interval):
+    assert ReadingInterval(rule, text) == pytest.approx(interval)
 
-_CSV = """id,group,quantity,S,published,unit,source,tolerance,kind,inputs,note
-sim_a,sim,amplitude,,110,rad/s^2,section 3.2.2,0.5,value,,
-sim_b,sim,frequency,,42,Hz,section 3.2.2,0.5,value,,
-sim_c,sim,not computed,,1,-,section 3.2.2,0.5,value,,
-orphan,nobody,row of an unregistered group,,1,-,section 3.2.2,0.5,value,,
+
+def test_reading_interval_propagation_and_errors():
+    assert ReadingInterval('printed', '13.615', 0.002) == pytest.approx((13.6125, 13.6175))
+    with pytest.raises(ValueError, match="'rule' must be one of"):
+        ReadingInterval('roughly', '1')
+    with pytest.raises(ValueError, match="rule 'range' needs 'N-M'"):
+        ReadingInterval('range', '3')
+
+
+def test_input_rounding_is_the_linear_worst_case():
+    parts = InputRounding(lambda q: 3 * q['a'] - 2 * q['b'] + q['c'], {'a': 1.25, 'b': 0.5, 'c': 7.},
+                          {'a': ('1.25', 1.), 'b': ('500', 1e-3)})
+    assert parts == pytest.approx({'a': 3 * 0.005, 'b': 2 * 0.05})   # '500': the trailing zeros are placeholders
+    with pytest.raises(ValueError, match="parameter 'a' = 1.3 is not its printed value 1.25"):
+        InputRounding(lambda q: q['a'], {'a': 1.3}, {'a': ('1.25', 1.)})
+
+
+# --- the runner: every failure is a FAIL, DIFFERS only from the list -------------------------------------
+
+_CSV = """id,group,quantity,S,published,unit,source,rule,kind,inputs,identifies,note
+sim_a,sim,amplitude,,110,rad/s^2,section 3.2.2,printed,value,,,
+sim_b,sim,frequency,,42,Hz,section 3.2.2,printed,value,,,
+sim_c,sim,not computed,,1,-,section 3.2.2,yes-no,value,,,
+sim_d,sim,listed and non-finite,,1,-,section 3.2.2,printed,value,,,
+sim_e,sim,listed and passing,,1,-,section 3.2.2,printed,value,,,
+orphan,nobody,row of an unregistered group,,1,-,section 3.2.2,printed,value,,,
+"""
+_DIFFERENCES = """check,reason
+sim_b,a reason
+sim_d,another reason
+sim_e,a third reason
 """
 
 
 def _SimulationGroup(ctx):
-    return [ctx.Compare('sim_a', 110.2), ctx.Compare('sim_b', 40.)]
+    return [ctx.Compare('sim_a', 110.2), ctx.Compare('sim_b', 40.), ctx.Compare('sim_d', math.nan),
+            ctx.Compare('sim_e', 1.)]
 
 
-def test_registered_group_runs_and_unchecked_rows_fail(tmp_path):
+@pytest.fixture
+def table(tmp_path):
     (tmp_path / 'sim').mkdir()
     (tmp_path / 'sim' / 'reference.csv').write_text(_CSV)
-    summary = RunValidation(groups=[CheckGroup('sim', _SimulationGroup, slow=True)], validationDir=tmp_path)
+    (tmp_path / 'sim' / 'differences.csv').write_text(_DIFFERENCES)
+    return tmp_path
+
+
+def test_verdicts_of_the_runner(table):
+    summary = RunValidation(groups=[CheckGroup('sim', _SimulationGroup, level=1)], validationDir=table, quiet=True)
     verdicts = {c.id: (c.verdict, c.detail) for c in summary.checks}
-    assert verdicts['sim_a'][0] == 'PASS' and verdicts['sim_b'][0] == 'FAIL'
+    assert verdicts['sim_a'][0] == 'PASS'
+    assert verdicts['sim_b'][0] == 'DIFFERS'                                   # listed, with its reason
     assert verdicts['sim_c'] == ('FAIL', "group 'sim' computed no value")
-    assert verdicts['orphan'] == ('FAIL', "no check group 'nobody' is registered")
-    assert not summary.passed
-    quick = RunValidation(groups=[CheckGroup('sim', _SimulationGroup, slow=True)], validationDir=tmp_path, quick=True)
+    assert verdicts['sim_d'] == ('FAIL', 'non-finite result')                  # listed, but non-finite
+    assert verdicts['orphan'] == ('FAIL', 'no check group of this name is registered')
+    assert [c.id for c in summary.stale] == ['sim_e']                          # listed and passing: reported
+    assert sum(c.failed for c in summary.checks) == 3 and not summary.passed
+    quick = RunValidation(groups=[CheckGroup('sim', _SimulationGroup, level=1)], validationDir=table, quick=True,
+                          quiet=True)
     assert quick.skipped == ['sim'] and [c.id for c in quick.checks] == ['orphan']
 
 
-def test_group_errors_fail_its_rows(tmp_path):
-    (tmp_path / 'sim').mkdir()
-    (tmp_path / 'sim' / 'reference.csv').write_text(_CSV)
-
+def test_crashed_group_fails_its_rows(table):
     def Broken(ctx):
         raise RuntimeError('solver diverged')
     summary = RunValidation(groups=[CheckGroup('sim', Broken), CheckGroup('nobody', lambda ctx: [])],
-                            validationDir=tmp_path)
+                            validationDir=table, quiet=True)
+    assert summary.crashed == {'sim': 'RuntimeError: solver diverged'}
     assert any("raised RuntimeError: solver diverged" in line for line in summary.lines)
-    assert all(c.verdict == 'FAIL' for c in summary.checks)
+    assert all(c.verdict == 'FAIL' and c.failed for c in summary.checks)   # listed rows too: no DIFFERS
+    assert not summary.passed
+
+
+def test_known_differences_must_name_rows(tmp_path):
+    (tmp_path / 'sim').mkdir()
+    (tmp_path / 'sim' / 'reference.csv').write_text(_CSV)
+    (tmp_path / 'sim' / 'differences.csv').write_text('check,reason\nnope,why\n')
+    with pytest.raises(ValueError, match="'nope' .* names no reference row"):
+        RunValidation(groups=[], validationDir=tmp_path, quiet=True)
 
 
 def test_register_check_group(monkeypatch):
-    monkeypatch.setattr(validation, 'CHECK_GROUPS', list(validation.CHECK_GROUPS))
-    g = RegisterCheckGroup('example', 'validation.analytical:AnalyticalChecks', slow=True, title='Example')
-    assert validation.CHECK_GROUPS[-1] is g and callable(g.Resolve())
+    monkeypatch.setattr(runner, 'CHECK_GROUPS', list(runner.CHECK_GROUPS))
+    g = RegisterCheckGroup('example', 'validation.analytical:AnalyticalChecks', level=1, title='Example')
+    assert runner.CHECK_GROUPS[-1] is g and callable(g.Resolve())
     with pytest.raises(ValueError, match=r"RegisterCheckGroup: a group 'example' exists; pass replace=True"):
         RegisterCheckGroup('example', _SimulationGroup)
     assert RegisterCheckGroup('example', _SimulationGroup, replace=True).function is _SimulationGroup
@@ -156,14 +276,13 @@ def test_register_check_group(monkeypatch):
         CheckGroup('bad', 'no-colon').Resolve()
 
 
-def test_compare_tolerance_rules():
-    ctx = validation.ValidationContext(LoadReference())
-    with pytest.raises(ValueError, match="has a propagated tolerance; pass 'tolerance'"):
-        ctx.Compare('hurwitz19_28', -2.607e10)
-    with pytest.raises(ValueError, match="do not override it"):
-        ctx.Compare('b1_28', 13.615, tolerance=1.)
+def test_compare_rules():
+    ctx = runner.ValidationContext(LoadReference())
     with pytest.raises(KeyError, match="no reference row with id 'nope'"):
         ctx.Compare('nope', 1.)
+    with pytest.raises(ValueError, match="'reading' must be"):
+        ctx.Compare('b1_28', 13.615, reading='tangential')
+    assert ctx.Compare('P1_max_acceleration', 115.1, reading='paperMesh').id == 'P1_max_acceleration@paperMesh'
 
 
 # --- eigenvalue forensics -----------------------------------------------------------------------------------
@@ -184,11 +303,18 @@ def test_forensic_findings(forensics):
     assert best.hypothesis.key in ('circ', 'circ+rho-8') and best.maxDeviation < 0.12
     assert not any(r.withinRounding for r in results.values())
     assert_allclose(results['circ'].p7FrequenciesHz, [21, 81], atol=0.5)  # section 3.2.3
-    # no parameter set of (16) fits within +-0.05; the free 7-parameter family does
+    # no parameter set of (16) fits within +-0.05 (locally); the free 7-parameter family does
     assert forensics.ModelClassMinimax(printed).maxDeviation > forensics.HALF_DIGIT
     assert forensics.FreeFamilyMinimax(printed).maxDeviation <= forensics.HALF_DIGIT
     lo, hi = forensics.WheelSideFrictionBound(printed, math.radians(5.3228))
     assert math.degrees(hi) < math.atan(0.132 / math.cos(math.radians(20))) * 180 / math.pi
+
+
+def test_wheel_circumference_factor(forensics):
+    d = DriveFromParameters(GetPreset('reel-P1'))
+    assert forensics.WheelCircumferenceFactor(d) == pytest.approx(
+        1 / (math.cos(math.radians(20)) * math.cos(math.radians(5.3228)))**2, rel=1e-12)
+    assert forensics.WheelCircumferenceFactor(d.gear) == forensics.WheelCircumferenceFactor(d)
 
 
 def test_eigenvalue_deviation_pairing(forensics):

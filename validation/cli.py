@@ -32,7 +32,7 @@ def Run(args: argparse.Namespace) -> int:
     Parameters
     ----------
     args : argparse.Namespace
-        ``report`` (path or None) and ``quick``.
+        ``report`` (path or None), ``quick``, ``full`` and ``quiet``.
 
     Returns
     -------
@@ -46,9 +46,13 @@ def Run(args: argparse.Namespace) -> int:
     """
     from .runner import RunValidation
     report = _CheckReportPath(args.report)
-    summary = RunValidation(reportPath=report, quick=args.quick)
-    for line in summary.lines:
-        print(line)
+    summary = RunValidation(reportPath=report, quick=args.quick, full=getattr(args, 'full', False),
+                            quiet=getattr(args, 'quiet', None))
+    try:
+        for line in summary.lines:
+            print(line)
+    except BrokenPipeError:      # output piped into e.g. `head`
+        pass
     return 0 if summary.passed else 1
 
 

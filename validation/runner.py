@@ -1,28 +1,32 @@
 """The validation runner: the package against the numbers printed in the paper (``python -m validation``).
 
-Published values live in ``validation/<source>/reference.csv`` beside the scripts that analyse them,
-one row per number with its equation/section/figure and a tolerance set by the printed digits.
-:func:`RunValidation` computes our value for every row with the package's own functions, compares,
-and writes the Markdown report only when asked (``reportPath``).
+Published values live in ``validation/<source>/reference.csv`` beside the scripts that analyse them, one
+row per number or statement with its equation/section/figure, the phrase of the paper it checks (the
+``rule`` column: one reading rule per phrase, see :data:`RULES` and ``validation/README.md``) and the
+hypotheses its published number was used to identify (``identifies``). :func:`RunValidation` computes our
+value for every row with the package's own functions and compares it with the interval the rule gives,
+widened by the propagated rounding of the printed inputs (:func:`InputRounding`, the one function that
+does this for every row). It writes the Markdown report only when asked (``reportPath``).
 
 Checks come from *check groups*: a check group is a function ``Group(context) -> list[Check]`` that
-computes the rows of its group (the ``group`` column of the reference tables) and returns one
-:class:`Check` per row, made with :meth:`ValidationContext.Compare`; it may add prose sections to the
-report with :meth:`ValidationContext.AddSection`. Register a new group (e.g. the time-domain checks)
-with :func:`RegisterCheckGroup`, as a callable or lazily as ``'module:function'``; a group marked
-``slow`` is skipped by ``RunValidation(quick=True)``. Every row of a group that ran must receive a
-check, and every row must belong to a registered group, otherwise the row fails.
+computes the rows of its group (the ``group`` column) and returns one :class:`Check` per row (two for a
+time-domain row: one per mesh reading), made with :meth:`ValidationContext.Compare`; it may add prose
+sections to the report with :meth:`ValidationContext.AddSection`. Register a new group with
+:func:`RegisterCheckGroup`. A group has a level: 0 runs always, 1 (slow: the simulations) is skipped by
+``quick``, 2 (the slow forensic searches) runs only with ``full``. Every row of a group that ran must
+receive a check, and every row must belong to a registered group, otherwise the row fails.
 
 Verdicts
 --------
 PASS
-    The comparison holds (for an ``exclusion`` row: the rejected hypothesis is indeed outside tolerance).
+    The comparison holds (for an ``exclusion`` row: the rejected reading is indeed outside the interval).
 FAIL
-    A gated comparison does not hold; :attr:`ValidationSummary.passed` is then False.
+    The comparison does not hold, the value is not finite, or the group crashed or computed no value.
+    :attr:`ValidationSummary.passed` is then False.
 DIFFERS
-    Only for ``eigenvalue`` rows (published eigenvalues and the numbers derived from them, which the
-    paper computed inconsistently with its own eq. (16)) and ``difference`` rows (a statement of the
-    paper our model does not reproduce, discussed in the report): reported with an explanation, not gated.
+    The comparison does not hold, and the check is a known, explained model difference listed with its
+    reason in ``validation/<source>/differences.csv`` (the one list). A listed check that passes is
+    reported as stale (:attr:`ValidationSummary.stale`); a non-finite value is FAIL even when listed.
 """
 from __future__ import annotations
 
@@ -30,15 +34,17 @@ import csv
 import importlib
 import math
 import re
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Callable, Dict, FrozenSet, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 from exudyn_worm.presets import PRESETS
 
-__all__ = ['VALIDATION_DIR', 'COMMITTED_REPORT', 'PAPER_MU', 'KINDS', 'GATED_KINDS', 'VERDICTS',
+__all__ = ['VALIDATION_DIR', 'COMMITTED_REPORT', 'PAPER_MU', 'KINDS', 'RULES', 'READINGS', 'VERDICTS',
            'ReferenceRow', 'Check', 'ValidationContext', 'CheckGroup', 'ValidationSummary', 'CHECK_GROUPS',
-           'RegisterCheckGroup', 'LoadReference', 'HalfUnit', 'RunValidation']
+           'RegisterCheckGroup', 'LoadReference', 'LoadKnownDifferences', 'HalfUnit', 'ReadingInterval',
+           'InputRounding', 'RunValidation', 'HeadLine', 'Fmt']
 
 #: the validation data beside this module (``validation/<source>/reference.csv``)
 VALIDATION_DIR = Path(__file__).resolve().parent
@@ -49,27 +55,184 @@ COMMITTED_REPORT = VALIDATION_DIR / 'REPORT.md'
 #: with (25), mu = 0.132 (rho = 7.996 deg, printed as "8 deg"); the 0.134 printed in (28) is rejected
 PAPER_MU = PRESETS['reel-P1']['mu']
 
-#: how a row is compared: kind -> (gated, rule); rule 'match' passes within tolerance, 'exclude'
-#: passes outside tolerance (a rejected hypothesis), 'report' gives PASS or DIFFERS and is not gated
-KINDS = {'value': (True, 'match'), 'consistency': (True, 'match'), 'forensic': (True, 'match'),
-         'exclusion': (True, 'exclude'), 'eigenvalue': (False, 'report'), 'difference': (False, 'report')}
-#: kinds whose failure makes the validation fail
-GATED_KINDS = tuple(k for k, (gated, _) in KINDS.items() if gated)
+#: how a row is compared: kind -> 'match' (passes inside the interval) or 'exclude' (a rejected reading:
+#: passes outside). Kinds only describe what is compared; every kind is gated the same way.
+KINDS = {'value': 'match', 'consistency': 'match', 'forensic': 'match', 'eigenvalue': 'match',
+         'exclusion': 'exclude'}
+
+#: the reading rules of validation/README.md: rule -> the phrase of the paper it reads
+RULES = {
+    'printed': 'a printed number without qualifier: +- half a unit of the last printed digit',
+    'about': '"about X": +- 10 % of X, or half a unit of the last printed digit if wider',
+    'virtually': '"virtually <exact statement>": the exact value +- 10 % ("ceased to exist": at most 10 % of the '
+                 'reference size)',
+    'ratio': 'an unqualified ratio statement ("is also doubled", "do not depend on"): the exact ratio +- 5 %',
+    'range': '"N-M times": the closed interval [N, M]',
+    'many-times': '"many times": at least 3 times',
+    'chart-bound': 'a bound read off a chart: within a factor 10^0.05 of X, or half a unit of its last digit if wider',
+    'comparison': 'a comparison of regions ("smallest", "smaller", "broadens", "shorter"): the strict inequality '
+                  'holds (1) or not (0)',
+    'none': '"no unstable regions": zero unstable grid points',
+    'yes-no': 'a yes/no verdict or a count: exact',
+    'robustness': 'our own requirement (issue 3): a numerical knob changes the result by at most 3 %',
+}
+#: the two mesh readings of every time-domain row: tooth normal (eq. (5)) and wheel circumference
+READINGS = ('normal', 'paperMesh')
 #: possible verdicts
 VERDICTS = ('PASS', 'FAIL', 'DIFFERS')
 
-_COLUMNS = ('id', 'group', 'quantity', 'S', 'published', 'unit', 'source', 'tolerance', 'kind', 'inputs', 'note')
-_PROPAGATED = 'propagated'
+_COLUMNS = ('id', 'group', 'quantity', 'S', 'published', 'unit', 'source', 'rule', 'kind', 'inputs', 'identifies',
+            'note')
+_HYPOTHESES = ('mu', 'circ')
+_CHART_FACTOR = 10**0.05
+
+
+# --- reading rules -------------------------------------------------------------------------------------
+
+def HalfUnit(text: str) -> float:
+    """Half a unit of the last printed digit of a number given as text.
+
+    Trailing zeros of a number printed without a decimal point are placeholders, not digits: "110" and
+    "21470" are read to their last non-zero digit (the convention of ``validation/README.md``).
+
+    Parameters
+    ----------
+    text : str
+        The number as printed, e.g. ``'13.615'``, ``'1.279e5'``, ``'110'``.
+
+    Returns
+    -------
+    float
+        Half a unit of its last significant digit.
+
+    Raises
+    ------
+    ValueError
+        If ``text`` is not a decimal number.
+
+    Examples
+    --------
+    >>> HalfUnit('13.615'), HalfUnit('1.279e5'), HalfUnit('63'), HalfUnit('-2.607e10'), HalfUnit('110')
+    (0.0005, 50.0, 0.5, 5000000.0, 5.0)
+    """
+    m = re.fullmatch(r'\s*[-+]?(\d*)(?:(\.)(\d*))?(?:[eE]([-+]?\d+))?\s*', text)
+    if m is None or not (m.group(1) or m.group(3)):
+        raise ValueError(f"HalfUnit: 'text' must be a decimal number, got {text!r}")
+    exponent = int(m.group(4) or 0)
+    if m.group(2):
+        return 0.5 * 10.0**(exponent - len(m.group(3)))
+    digits = m.group(1)
+    zeros = len(digits) - len(digits.rstrip('0')) if digits.strip('0') else 0
+    return 0.5 * 10.0**(exponent + zeros)
+
+
+def ReadingInterval(rule: str, publishedText: str, propagated: float = 0.) -> Tuple[float, float]:
+    """The interval of values that agree with a published number or statement under its reading rule.
+
+    Parameters
+    ----------
+    rule : str
+        A key of :data:`RULES`.
+    publishedText : str
+        The published value as in ``reference.csv``: a number, ``'N-M'`` for ``range``, ``'many'`` for
+        ``many-times``.
+    propagated : float, optional
+        Propagated rounding of the printed inputs (:func:`InputRounding`), added on both sides.
+
+    Returns
+    -------
+    (float, float)
+        Closed interval (lo, hi); ``inf`` for an open end.
+
+    Raises
+    ------
+    ValueError
+        For an unknown rule or a published text the rule cannot read.
+    """
+    if rule not in RULES:
+        raise ValueError(f"ReadingInterval: 'rule' must be one of {', '.join(RULES)}, got {rule!r}")
+    if rule == 'range':
+        m = re.fullmatch(r'\s*([0-9.]+)\s*-\s*([0-9.]+)\s*', publishedText)
+        if m is None:
+            raise ValueError(f"ReadingInterval: rule 'range' needs 'N-M', got {publishedText!r}")
+        lo, hi = float(m.group(1)), float(m.group(2))
+    elif rule == 'many-times':
+        if publishedText.strip() != 'many':
+            raise ValueError(f"ReadingInterval: rule 'many-times' needs 'many', got {publishedText!r}")
+        lo, hi = 3., math.inf
+    elif rule == 'robustness':
+        lo, hi = 0., 3.
+    else:
+        x, h = float(publishedText), HalfUnit(publishedText)
+        if rule == 'printed':
+            w = h
+        elif rule == 'about':
+            w = max(0.1 * abs(x), h)
+        elif rule == 'virtually':
+            if x == 0:                      # "ceased to exist": at most 10 % of the reference size
+                return 0., 0.1 + propagated
+            w = 0.1 * abs(x)
+        elif rule == 'ratio':
+            w = 0.05 * abs(x)
+        elif rule == 'chart-bound':
+            if h >= x * (_CHART_FACTOR - 1):
+                w = h
+            else:
+                return x / _CHART_FACTOR - propagated, x * _CHART_FACTOR + propagated
+        else:                               # comparison, none, yes-no: exact
+            w = 0.
+        lo, hi = x - w, x + w
+    return lo - propagated, hi + propagated
+
+
+def InputRounding(compute: Callable[[Dict[str, float]], float], parameters: Mapping[str, float],
+                  printed: Mapping[str, Tuple[str, float]]) -> Dict[str, float]:
+    """Propagate the half-unit rounding of printed inputs into a computed quantity (linear worst case).
+
+    The one place where the printed digits of the inputs enter a tolerance: every analytical row, value
+    or exclusion alike, gets its contributions from here.
+
+    Parameters
+    ----------
+    compute : callable
+        ``compute(parameters) -> float``, the quantity of the row.
+    parameters : mapping
+        The parameter set the row is computed with.
+    printed : mapping
+        ``{name: (text, factor)}``: the printed text of each rounded input and the factor from its printed
+        unit to SI (e.g. ``('18.05', 1e-3)`` for r1 in mm); the parameter must equal ``float(text) * factor``.
+
+    Returns
+    -------
+    dict
+        ``{name: 0.5 |compute(p + h) - compute(p - h)|}`` with h half a unit of the printed digit.
+
+    Raises
+    ------
+    ValueError
+        If a parameter differs from its printed value (the rounding would be propagated around the
+        wrong point).
+    """
+    parts = {}
+    for name, (text, factor) in printed.items():
+        value = float(text) * factor
+        if not math.isclose(parameters[name], value, rel_tol=1e-12, abs_tol=1e-15):
+            raise ValueError(f"InputRounding: parameter '{name}' = {parameters[name]!r} is not its printed value "
+                             f"{text} (x {factor:g})")
+        h = HalfUnit(text) * factor
+        up, down = compute({**parameters, name: value + h}), compute({**parameters, name: value - h})
+        parts[name] = 0.5 * abs(up - down)
+    return parts
 
 
 # --- reference data ------------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
 class ReferenceRow:
-    """One published number (a row of a ``reference.csv``).
+    """One published number or statement (a row of a ``reference.csv``).
 
-    ``tolerance`` is None when the table says ``propagated``: the check group then computes it.
-    ``publishedText`` keeps the digits as printed.
+    ``publishedText`` keeps the value as printed; ``published`` is its nominal number (the midpoint of a
+    range, 3 for "many"); ``identifies`` the hypotheses ('mu', 'circ') this number was used to identify.
     """
     id: str
     group: str
@@ -79,27 +242,17 @@ class ReferenceRow:
     publishedText: str
     unit: str
     source: str
-    tolerance: Optional[float]
+    rule: str
     kind: str
     inputs: str
+    identifies: FrozenSet[str]
     note: str
     file: Path
 
 
-def HalfUnit(text: str) -> float:
-    """Half a unit of the last printed digit of a number given as text.
-
-    Examples
-    --------
-    >>> HalfUnit('13.615'), HalfUnit('1.279e5'), HalfUnit('63'), HalfUnit('-2.607e10')
-    (0.0005, 50.0, 0.5, 5000000.0)
-    """
-    m = re.fullmatch(r'\s*[-+]?(\d*)(?:\.(\d*))?(?:[eE]([-+]?\d+))?\s*', text)
-    if m is None or not (m.group(1) or m.group(2)):
-        raise ValueError(f"HalfUnit: 'text' must be a decimal number, got {text!r}")
-    decimals = len(m.group(2) or '')
-    exponent = int(m.group(3) or 0)
-    return 0.5 * 10.0**(exponent - decimals)
+def _Nominal(rule: str, text: str) -> float:
+    lo, hi = ReadingInterval(rule, text)
+    return lo if math.isinf(hi) else 0.5 * (lo + hi) if rule == 'range' else float(text)
 
 
 def LoadReference(validationDir: Optional[Path] = None) -> Dict[str, ReferenceRow]:
@@ -118,15 +271,14 @@ def LoadReference(validationDir: Optional[Path] = None) -> Dict[str, ReferenceRo
     Raises
     ------
     FileNotFoundError
-        If there is no reference table (e.g. the package is installed without its source tree).
+        If there is no reference table.
     ValueError
-        For a malformed table: missing column, duplicate id, unknown kind, bad number.
+        For a malformed table: missing column, duplicate id, unknown kind, rule or hypothesis, bad number.
     """
     validationDir = Path(VALIDATION_DIR if validationDir is None else validationDir)
     files = sorted(validationDir.glob('*/reference.csv'))
     if not files:
-        raise FileNotFoundError(f"LoadReference: no '*/reference.csv' under {validationDir}; the validation data "
-                                f"ship with the source tree (git checkout), not with the installed package")
+        raise FileNotFoundError(f"LoadReference: no '*/reference.csv' under {validationDir}")
     rows: Dict[str, ReferenceRow] = {}
     for path in files:
         with open(path, newline='') as f:
@@ -141,90 +293,161 @@ def LoadReference(validationDir: Optional[Path] = None) -> Dict[str, ReferenceRo
                 if r['kind'] not in KINDS:
                     raise ValueError(f"LoadReference: 'kind' must be one of {', '.join(KINDS)}, got "
                                      f"'{r['kind']}' in {where}")
-                tol = r['tolerance'].strip()
+                identifies = frozenset(r['identifies'].split())
+                if not identifies <= set(_HYPOTHESES):
+                    raise ValueError(f"LoadReference: 'identifies' must name hypotheses among "
+                                     f"{', '.join(_HYPOTHESES)}, got '{r['identifies']}' in {where}")
                 try:
-                    tolerance = None if tol == _PROPAGATED else float(tol)
-                    published = float(r['published'])
+                    published = _Nominal(r['rule'], r['published'])
                     S = int(r['S']) if r['S'].strip() else None
                 except ValueError as e:
-                    raise ValueError(f"LoadReference: bad number in {where}: {e}") from None
-                if tolerance is not None and not tolerance >= 0:
-                    raise ValueError(f"LoadReference: 'tolerance' must be >= 0 or '{_PROPAGATED}', got {tol} in {where}")
+                    raise ValueError(f"LoadReference: bad value in {where}: {e}") from None
                 rows[r['id']] = ReferenceRow(r['id'], r['group'], r['quantity'], S, published, r['published'].strip(),
-                                             r['unit'], r['source'], tolerance, r['kind'], r['inputs'], r['note'], path)
+                                             r['unit'], r['source'], r['rule'], r['kind'], r['inputs'], identifies,
+                                             r['note'], path)
     return rows
+
+
+def LoadKnownDifferences(validationDir: Optional[Path] = None,
+                         reference: Optional[Mapping[str, ReferenceRow]] = None) -> Dict[str, str]:
+    """Read the list of known, explained model differences (``<validationDir>/*/differences.csv``).
+
+    Parameters
+    ----------
+    validationDir : Path, optional
+        Default :data:`VALIDATION_DIR`.
+    reference : mapping, optional
+        The reference rows; every listed check must name one (``id`` or ``id@paperMesh``).
+
+    Returns
+    -------
+    dict
+        ``{check id: reason}``.
+
+    Raises
+    ------
+    ValueError
+        For a check naming no reference row, a duplicate, or an empty reason.
+    """
+    validationDir = Path(VALIDATION_DIR if validationDir is None else validationDir)
+    out: Dict[str, str] = {}
+    for path in sorted(validationDir.glob('*/differences.csv')):
+        with open(path, newline='') as f:
+            for n, r in enumerate(csv.DictReader(f), start=2):
+                checkId, reason = r['check'].strip(), r['reason'].strip()
+                rowId, _, reading = checkId.partition('@')
+                if reference is not None and rowId not in reference or reading not in ('', 'paperMesh'):
+                    raise ValueError(f"LoadKnownDifferences: '{checkId}' in {path}:{n} names no reference row")
+                if checkId in out or not reason:
+                    raise ValueError(f"LoadKnownDifferences: duplicate '{checkId}' or empty reason in {path}:{n}")
+                out[checkId] = reason
+    return out
 
 
 # --- checks --------------------------------------------------------------------------------------------
 
 @dataclass(frozen=True)
 class Check:
-    """The comparison of one reference row with our computed value."""
+    """The comparison of one reference row with our computed value (under one mesh reading).
+
+    ``holds`` is the bare comparison; ``verdict`` adds the known-differences list; ``uses`` names the
+    hypotheses the computation relies on ('mu': the friction 0.132 of set (28); 'circ': the mesh referred
+    to the wheel circumference), so that a check is in-sample when its row identified one of them.
+    """
     row: ReferenceRow
     computed: float
-    tolerance: float
+    interval: Tuple[float, float]
     verdict: str
+    holds: bool
     detail: str = ''
+    reading: str = ''
+    uses: FrozenSet[str] = frozenset()
+    knownDifference: str = ''
 
     @property
     def id(self) -> str:
-        """Row id."""
-        return self.row.id
-
-    @property
-    def gated(self) -> bool:
-        """True if a FAIL of this check fails the validation."""
-        return KINDS[self.row.kind][0]
-
-    @property
-    def difference(self) -> float:
-        """computed - published."""
-        return self.computed - self.row.published
+        """Check id: the row id, with ``@paperMesh`` for the wheel-circumference reading."""
+        return self.row.id + ('@paperMesh' if self.reading == 'paperMesh' else '')
 
     @property
     def failed(self) -> bool:
-        """True for a gated check that did not pass."""
-        return self.gated and self.verdict != 'PASS'
+        """True for a FAIL (including non-finite values and crashed groups)."""
+        return self.verdict == 'FAIL'
+
+    @property
+    def stale(self) -> bool:
+        """True for a check listed as a known difference that passes."""
+        return bool(self.knownDifference) and self.holds
+
+    @property
+    def inSample(self) -> bool:
+        """True if the row's published number was used to identify a hypothesis this check uses."""
+        return bool(self.row.identifies & self.uses)
+
+    @property
+    def difference(self) -> float:
+        """computed - published (nominal)."""
+        return self.computed - self.row.published
+
+    def IntervalText(self) -> str:
+        """The accepted interval as text (``outside [lo, hi]`` for an exclusion)."""
+        lo, hi = self.interval
+        like = self.row.publishedText if self.row.rule not in ('range', 'many-times') else '0.00'
+        text = (f'>= {Fmt(lo, like)}' if math.isinf(hi) else
+                f'{Fmt(lo, like)}' if lo == hi else f'[{Fmt(lo, like)}, {Fmt(hi, like)}]')
+        return ('outside ' if KINDS[self.row.kind] == 'exclude' else '') + text
 
     def Line(self) -> str:
         """One human-readable line."""
         r = self.row
         S = '' if r.S is None else f' (S = {r.S:+d})'
-        cmp = '>' if KINDS[r.kind][1] == 'exclude' else '<='
-        return (f'{self.verdict:<7s} {r.id}: {r.quantity}{S}: published {r.publishedText}, computed '
-                f'{_Fmt(self.computed, r.publishedText)}, diff {self.difference:+.3g}, |diff| {cmp} {self.tolerance:.3g} '
-                f'{_Unit(r.unit).strip()} [{r.source}]' + (f' -- {self.detail}' if self.detail else ''))
+        reading = f' [{self.reading}]' if self.reading else ''
+        return (f'{self.verdict:<7s} {self.id}: {r.quantity}{S}{reading}: published {r.publishedText}{_Unit(r.unit)} '
+                f'({r.rule}), computed {Fmt(self.computed, r.publishedText)}, accepted {self.IntervalText()}'
+                f' [{r.source}]' + (' (in-sample)' if self.inSample else '')
+                + (f' -- {self.detail}' if self.detail else '')
+                + (f' -- known difference: {self.knownDifference}' if self.verdict == 'DIFFERS' else '')
+                + (' -- STALE: listed as a known difference but passes' if self.stale else ''))
 
 
 def _Unit(unit: str) -> str:
     return '' if unit.strip() in ('', '-') else ' ' + unit.strip()
 
 
-def _Fmt(value: float, like: str) -> str:
-    """Format ``value`` with two more significant digits than the printed ``like``."""
+def Fmt(value: float, like: str) -> str:
+    """Format ``value`` with two more significant digits than the printed ``like``.
+
+    Parameters
+    ----------
+    value : float
+        The number.
+    like : str
+        A printed number whose significant digits set the precision.
+
+    Returns
+    -------
+    str
+    """
     if not math.isfinite(value):
         return str(value)
     digits = len(re.sub(r'[^0-9]', '', re.split(r'[eE]', like)[0]).lstrip('0')) or 1
     return f'{value:.{max(digits + 2, 5)}g}'
 
 
-def _Verdict(kind: str, difference: float, tolerance: float, published: float) -> str:
-    rule = KINDS[kind][1]
-    if not math.isfinite(difference):
-        return 'FAIL' if KINDS[kind][0] else 'DIFFERS'
-    within = abs(difference) <= tolerance + 1e-12 * abs(published)
-    if rule == 'match':
-        return 'PASS' if within else 'FAIL'
-    if rule == 'exclude':
-        return 'PASS' if not within else 'FAIL'
-    return 'PASS' if within else 'DIFFERS'
+def _Holds(kind: str, computed: float, interval: Tuple[float, float]) -> bool:
+    lo, hi = interval
+    eps = 1e-12 * max(abs(lo) if math.isfinite(lo) else 0., abs(hi) if math.isfinite(hi) else 0.)
+    within = lo - eps <= computed <= hi + eps
+    return within if KINDS[kind] == 'match' else not within
 
 
 @dataclass
 class ValidationContext:
-    """What a check group receives: the reference rows, the run options and the report under construction."""
+    """What a check group receives: the reference rows, the known differences, the run level and the report."""
     reference: Dict[str, ReferenceRow]
-    quick: bool = False
+    known: Dict[str, str] = field(default_factory=dict)
+    level: int = 1
+    quiet: Optional[bool] = None
     sections: List[Tuple[str, str]] = field(default_factory=list)
 
     def Rows(self, group: str) -> List[ReferenceRow]:
@@ -238,24 +461,49 @@ class ValidationContext:
         except KeyError:
             raise KeyError(f"no reference row with id '{rowId}'") from None
 
-    def Compare(self, rowId: str, computed: float, tolerance: Optional[float] = None, detail: str = '') -> Check:
+    def Compare(self, rowId: str, computed: float, propagated: Union[float, Mapping[str, float]] = 0.,
+                detail: str = '', reading: str = '', uses: Iterable[str] = ('mu',)) -> Check:
         """Build the :class:`Check` of row ``rowId`` for our ``computed`` value.
 
-        ``tolerance`` is required for a row whose table tolerance is ``propagated`` and must not be
-        given otherwise (the printed digits set it).
+        Parameters
+        ----------
+        rowId : str
+            Reference row.
+        computed : float
+            Our value (1/0 for a yes/no statement).
+        propagated : float or dict, optional
+            Propagated rounding of the printed inputs, or its parts from :func:`InputRounding` (summed and
+            listed in the detail).
+        detail : str, optional
+            Extra text for the report.
+        reading : str, optional
+            '' or one of :data:`READINGS` (time-domain rows).
+        uses : iterable of str, optional
+            Hypotheses the computation relies on (default: the friction mu = 0.132).
+
+        Returns
+        -------
+        Check
         """
         row = self.Row(rowId)
-        if row.tolerance is None:
-            if tolerance is None:
-                raise ValueError(f"Compare: row '{rowId}' has a propagated tolerance; pass 'tolerance'")
-        elif tolerance is not None:
-            raise ValueError(f"Compare: row '{rowId}' has the tabulated tolerance {row.tolerance:g}; "
-                             f"do not override it (got {tolerance:g})")
-        else:
-            tolerance = row.tolerance
+        if isinstance(propagated, Mapping):
+            if propagated:
+                detail = '; '.join(filter(None, [detail, 'input rounding: ' + ', '.join(
+                    f'{k} {v:.2g}' for k, v in propagated.items())]))
+            propagated = sum(propagated.values())
+        if reading not in ('',) + READINGS:
+            raise ValueError(f"Compare: 'reading' must be '' or one of {', '.join(READINGS)}, got {reading!r}")
         computed = float(computed)
-        return Check(row, computed, float(tolerance),
-                     _Verdict(row.kind, computed - row.published, float(tolerance), row.published), detail)
+        interval = ReadingInterval(row.rule, row.publishedText, float(propagated))
+        checkId = rowId + ('@paperMesh' if reading == 'paperMesh' else '')
+        known = self.known.get(checkId, '')
+        if not math.isfinite(computed):
+            holds, verdict = False, 'FAIL'
+            detail = '; '.join(filter(None, [detail, 'non-finite result']))
+        else:
+            holds = _Holds(row.kind, computed, interval)
+            verdict = 'PASS' if holds else 'DIFFERS' if known else 'FAIL'
+        return Check(row, computed, interval, verdict, holds, detail, reading, frozenset(uses), known)
 
     def AddSection(self, title: str, markdown: str) -> None:
         """Add a prose section to the report."""
@@ -270,11 +518,12 @@ class CheckGroup:
     """A named group of checks.
 
     ``function`` is a callable ``(context) -> list[Check]`` or a string ``'package.module:Function'``
-    imported when the group runs (so a group can live in a module that imports heavy dependencies).
+    imported when the group runs. ``level``: 0 always runs, 1 is skipped by quick runs, 2 runs only in
+    full runs.
     """
     name: str
     function: Union[GroupFunction, str]
-    slow: bool = False
+    level: int = 0
     title: str = ''
 
     def Resolve(self) -> GroupFunction:
@@ -295,16 +544,29 @@ class ValidationSummary:
     lines: List[str]
     skipped: List[str] = field(default_factory=list)
     sections: List[Tuple[str, str]] = field(default_factory=list)
+    crashed: Dict[str, str] = field(default_factory=dict)
+    mode: str = 'default'
+    seconds: float = 0.
     reportPath: Optional[Path] = None
 
     @property
     def passed(self) -> bool:
-        """True if no gated check failed."""
+        """True if no check failed."""
         return not any(c.failed for c in self.checks)
+
+    @property
+    def stale(self) -> List[Check]:
+        """Checks listed as known differences that pass (the list should drop them)."""
+        return [c for c in self.checks if c.stale]
 
     def Count(self, verdict: str) -> int:
         """Number of checks with ``verdict``."""
         return sum(c.verdict == verdict for c in self.checks)
+
+    def Checks(self, verdict: Optional[str] = None, group: Optional[str] = None) -> List[Check]:
+        """The checks with ``verdict`` (any if None) of ``group`` (any if None)."""
+        return [c for c in self.checks if (verdict is None or c.verdict == verdict)
+                and (group is None or c.row.group == group)]
 
 
 #: the check groups run by :func:`RunValidation`, in report order
@@ -312,13 +574,15 @@ CHECK_GROUPS: List[CheckGroup] = [
     CheckGroup('analytical', 'validation.analytical:AnalyticalChecks', title='Analytical model: eqs. (3), (13), (16)-(24), Figures 4-5'),
     CheckGroup('eigenvalues', 'validation.analytical:EigenvalueChecks', title='Published eigenvalues and frequencies (section 3.1)'),
     CheckGroup('forensics', 'validation.analytical:ForensicsChecks', title='Eigenvalue forensics'),
-    CheckGroup('forensics-slow', 'validation.analytical:ForensicsSlowChecks', slow=True, title='Eigenvalue forensics (slow)'),
-    CheckGroup('simulation', 'validation.timedomain:SimulationChecks', slow=True,
-               title='Time domain: statements of section 3.2 (reel changer simulations)'),
+    CheckGroup('charts', 'validation.charts:ChartChecks', title='Stability charts: the statements of section 2.3 (Figures 4 and 5)'),
+    CheckGroup('simulation', 'validation.timedomain:SimulationChecks', level=1,
+               title='Time domain: statements of section 3.2 (reel changer simulations), both mesh readings'),
+    CheckGroup('forensics-slow', 'validation.analytical:ForensicsSlowChecks', level=2,
+               title='Eigenvalue forensics: slow searches (full mode)'),
 ]
 
 
-def RegisterCheckGroup(name: str, function: Union[GroupFunction, str], slow: bool = False, title: str = '',
+def RegisterCheckGroup(name: str, function: Union[GroupFunction, str], level: int = 0, title: str = '',
                        replace: bool = False) -> CheckGroup:
     """Add a check group to :data:`CHECK_GROUPS`.
 
@@ -328,8 +592,8 @@ def RegisterCheckGroup(name: str, function: Union[GroupFunction, str], slow: boo
         Group name; the rows with this value in the ``group`` column belong to it.
     function : callable or str
         ``function(context) -> list[Check]`` or ``'module:function'`` (imported when run).
-    slow : bool, optional
-        Skipped by ``RunValidation(quick=True)``.
+    level : int, optional
+        0 always runs, 1 skipped by quick runs, 2 only in full runs.
     title : str, optional
         Heading in the report.
     replace : bool, optional
@@ -344,7 +608,7 @@ def RegisterCheckGroup(name: str, function: Union[GroupFunction, str], slow: boo
     ValueError
         If a group ``name`` exists and ``replace`` is False.
     """
-    group = CheckGroup(name, function, slow, title)
+    group = CheckGroup(name, function, level, title)
     for i, g in enumerate(CHECK_GROUPS):
         if g.name == name:
             if not replace:
@@ -355,118 +619,108 @@ def RegisterCheckGroup(name: str, function: Union[GroupFunction, str], slow: boo
     return group
 
 
-def RunValidation(reportPath: Optional[Union[str, Path]] = None, quick: bool = False,
+def _FailAll(rows: Iterable[ReferenceRow], detail: str) -> List[Check]:
+    return [Check(r, math.nan, (math.nan, math.nan), 'FAIL', False, detail) for r in rows]
+
+
+def RunValidation(reportPath: Optional[Union[str, Path]] = None, quick: bool = False, full: bool = False,
                   groups: Optional[Sequence[CheckGroup]] = None,
-                  validationDir: Optional[Union[str, Path]] = None) -> ValidationSummary:
-    """Check the package against every published number of the reference tables.
+                  validationDir: Optional[Union[str, Path]] = None, quiet: Optional[bool] = None) -> ValidationSummary:
+    """Check the package against every published number and statement of the reference tables.
 
     Parameters
     ----------
     reportPath : str or Path, optional
-        Write the Markdown report there. Nothing is written if None.
+        Write the Markdown report there (its directory must exist; checked before computing). Nothing is
+        written if None.
     quick : bool, optional
-        Skip the groups marked ``slow`` (their rows are listed as skipped, not failed).
+        Skip the slow groups (level 1: the simulations) and the full-mode groups.
+    full : bool, optional
+        Also run the full-mode groups (level 2: the slow forensic searches).
     groups : sequence of CheckGroup, optional
         Groups to run instead of :data:`CHECK_GROUPS`.
     validationDir : str or Path, optional
         Directory of the reference tables instead of :data:`VALIDATION_DIR`.
+    quiet : bool or None, optional
+        Progress on stderr: see :func:`exudyn_worm.progress.ProgressBar`.
 
     Returns
     -------
     ValidationSummary
-        ``passed`` (no gated check failed), ``checks`` and human-readable ``lines``.
+        ``passed`` (no check failed), ``checks`` and human-readable ``lines``.
 
     Raises
     ------
+    ValueError
+        If ``quick`` and ``full`` are both given, or ``reportPath`` is not a file in an existing directory.
     FileNotFoundError
         If the reference tables are missing.
     """
-    reference = LoadReference(None if validationDir is None else Path(validationDir))
+    from exudyn_worm.progress import ProgressBar
+    if quick and full:
+        raise ValueError("RunValidation: give 'quick' or 'full', not both")
+    if reportPath is not None:
+        reportPath = Path(reportPath)
+        if reportPath.is_dir() or not reportPath.parent.is_dir():
+            raise ValueError(f"RunValidation: 'reportPath' must be a file in an existing directory, got '{reportPath}'")
+    start = time.perf_counter()
+    validationDir = None if validationDir is None else Path(validationDir)
+    reference = LoadReference(validationDir)
+    known = LoadKnownDifferences(validationDir, reference)
     groups = list(CHECK_GROUPS if groups is None else groups)
-    ctx = ValidationContext(reference, quick)
+    level = 0 if quick else 2 if full else 1
+    ctx = ValidationContext(reference, known, level, quiet)
     checks: List[Check] = []
     skipped: List[str] = []
+    crashed: Dict[str, str] = {}
     groupLines: List[str] = []
     names = {g.name for g in groups}
-    for group in groups:
-        rows = ctx.Rows(group.name)
-        if group.slow and quick:
-            skipped.append(group.name)
-            groupLines.append(f"SKIPPED group '{group.name}' (slow; {len(rows)} row(s)): run without quick")
-            continue
-        try:
-            got = list(group.Resolve()(ctx))
-        except Exception as e:  # a broken group fails its rows instead of hiding the other groups
-            groupLines.append(f"FAIL    group '{group.name}' raised {type(e).__name__}: {e}")
-            got = [Check(r, math.nan, r.tolerance or 0., 'FAIL', f'group raised {type(e).__name__}: {e}')
-                   for r in rows]
-        done = {c.id for c in got}
-        for c in got:
-            if c.row.group != group.name:
-                groupLines.append(f"note    group '{group.name}' checked row '{c.id}' of group '{c.row.group}'")
-        checks += got
-        checks += [Check(r, math.nan, r.tolerance or 0., 'FAIL', f"group '{group.name}' computed no value")
-                   for r in rows if r.id not in done]
-    for r in reference.values():
-        if r.group not in names:
-            checks.append(Check(r, math.nan, r.tolerance or 0., 'FAIL', f"no check group '{r.group}' is registered"))
+    with ProgressBar(total=len(groups), desc='validation', unit='group', quiet=quiet) as bar:
+        for group in groups:
+            bar.set_postfix_str(group.name)
+            rows = ctx.Rows(group.name)
+            if group.level > level:
+                skipped.append(group.name)
+                groupLines.append(f"SKIPPED group '{group.name}' ({len(rows)} row(s)): "
+                                  + ('run without --quick' if group.level == 1 else 'run with --full'))
+                bar.update(1)
+                continue
+            try:
+                got = list(group.Resolve()(ctx))
+            except Exception as e:  # a broken group fails its rows instead of hiding the other groups
+                crashed[group.name] = f'{type(e).__name__}: {e}'
+                groupLines.append(f"FAIL    group '{group.name}' raised {type(e).__name__}: {e}")
+                got = _FailAll(rows, f'group raised {type(e).__name__}: {e}')
+            done = {c.row.id for c in got}
+            for c in got:
+                if c.row.group != group.name:
+                    groupLines.append(f"note    group '{group.name}' checked row '{c.id}' of group '{c.row.group}'")
+            checks += got
+            checks += _FailAll([r for r in rows if r.id not in done], f"group '{group.name}' computed no value")
+            bar.update(1)
+    checks += _FailAll([r for r in reference.values() if r.group not in names],
+                       'no check group of this name is registered')
     order = {rowId: i for i, rowId in enumerate(reference)}
-    checks.sort(key=lambda c: order.get(c.id, len(order)))
-    summary = ValidationSummary(checks, [], skipped, ctx.sections)
+    checks.sort(key=lambda c: (order.get(c.row.id, len(order)), c.reading == 'paperMesh'))
+    summary = ValidationSummary(checks, [], skipped, ctx.sections, crashed,
+                                'quick' if quick else 'full' if full else 'default')
+    summary.seconds = time.perf_counter() - start
     summary.lines = _Lines(summary, groupLines)
     if reportPath is not None:
-        summary.reportPath = Path(reportPath)
-        summary.reportPath.write_text(_Report(summary, groups, quick))
+        from .report import Report
+        summary.reportPath = reportPath
+        reportPath.write_text(Report(summary, groups, validationDir or VALIDATION_DIR))
     return summary
 
 
-def _Lines(summary: ValidationSummary, groupLines: List[str]) -> List[str]:
+def HeadLine(summary: ValidationSummary) -> str:
+    """The one-line summary of a run (first line of :attr:`ValidationSummary.lines`)."""
     n = len(summary.checks)
-    gated = sum(c.gated for c in summary.checks)
-    failed = sum(c.failed for c in summary.checks)
-    head = (f"validation {'PASSED' if summary.passed else 'FAILED'}: {n} checks, {summary.Count('PASS')} PASS, "
-            f"{summary.Count('FAIL')} FAIL, {summary.Count('DIFFERS')} DIFFERS (not gated); "
-            f"{failed} of {gated} gated checks failed"
+    return (f"validation {'PASSED' if summary.passed else 'FAILED'} ({summary.mode} mode): {n} checks, "
+            f"{summary.Count('PASS')} PASS, {summary.Count('FAIL')} FAIL, {summary.Count('DIFFERS')} DIFFERS "
+            f"(known differences)" + (f"; {len(summary.stale)} stale known difference(s)" if summary.stale else '')
             + (f"; skipped group(s): {', '.join(summary.skipped)}" if summary.skipped else ''))
-    return [head, *groupLines, *(c.Line() for c in summary.checks)]
 
 
-def _MdEscape(text: str) -> str:
-    return text.replace('|', '\\|')
-
-
-def _Report(summary: ValidationSummary, groups: Sequence[CheckGroup], quick: bool) -> str:
-    from exudyn_worm import __version__
-    out = ['# Validation report', '',
-           f'Generated by `validation.RunValidation` (exudyn-worm {__version__}'
-           f"{', quick: slow groups skipped' if quick else ''}); regenerate with the command in `validation/README.md`.",
-           'Do not edit by hand.', '', '## Summary', '', summary.lines[0], '']
-    if summary.skipped:
-        out += [f"Skipped (slow) group(s): {', '.join(summary.skipped)}.", '']
-    out += ['Verdicts: **PASS** the comparison holds (for an *exclusion* row: the rejected hypothesis is outside '
-            'tolerance); **FAIL** a gated comparison does not hold; **DIFFERS** a published eigenvalue (or a number '
-            'derived from it) that the paper computed inconsistently with its own eq. (16), or a time-domain '
-            'statement our model does not reproduce (kind *difference*): shown with the explanation below, not gated. Kinds: *value* our model vs. the paper, *consistency* the paper\'s own '
-            'arithmetic, *exclusion* a reading of the paper that must be rejected, *forensic* the identified '
-            'explanation of the printed eigenvalues, *eigenvalue* and *difference* reported only.', '']
-    titles = {g.name: g.title or g.name for g in groups}
-    for name in dict.fromkeys(c.row.group for c in summary.checks):
-        out += [f'## {titles.get(name, name)}', '',
-                '| id | quantity | S | published | computed | difference | tolerance | verdict | kind | source |',
-                '|---|---|---|---|---|---|---|---|---|---|']
-        for c in (c for c in summary.checks if c.row.group == name):
-            r = c.row
-            tol = ('> ' if KINDS[r.kind][1] == 'exclude' else '') + f'{c.tolerance:.3g}'
-            verdict = f'**{c.verdict}**' if c.verdict != 'PASS' else c.verdict
-            out.append(f'| `{r.id}` | {_MdEscape(r.quantity)} | {"" if r.S is None else f"{r.S:+d}"} | '
-                       f'{r.publishedText}{_Unit(r.unit)} | {_Fmt(c.computed, r.publishedText)} | {c.difference:+.3g} | '
-                       f'{tol} | {verdict} | {r.kind} | {_MdEscape(r.source)} |')
-        notes = [c for c in summary.checks if c.row.group == name and (c.row.note or c.detail or c.row.inputs)]
-        if notes:
-            out += ['', 'Inputs and notes:', '']
-            out += [f'- `{c.id}`: inputs: {c.row.inputs or "-"}' + (f'. {c.row.note}' if c.row.note else '')
-                    + (f' ({c.detail})' if c.detail else '') for c in notes]
-        out.append('')
-    for title, text in summary.sections:
-        out += [f'## {title}', '', text]
-    return '\n'.join(out).rstrip() + '\n'
+def _Lines(summary: ValidationSummary, groupLines: List[str]) -> List[str]:
+    return [HeadLine(summary), *groupLines, *(c.Line() for c in summary.checks)]

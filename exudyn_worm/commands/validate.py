@@ -47,11 +47,15 @@ def AddValidationArguments(parser: argparse.ArgumentParser) -> None:
     Parameters
     ----------
     parser : argparse.ArgumentParser
-        Gets ``--report PATH`` and ``--quick``.
+        Gets ``--report PATH``, ``--quick`` / ``--full`` and ``--quiet``.
     """
     parser.add_argument('--report', metavar='PATH', default=None,
                         help='write the Markdown report to PATH (nothing is written without it)')
-    parser.add_argument('--quick', action='store_true', help='skip the slow check groups (time-domain simulations)')
+    mode = parser.add_mutually_exclusive_group()
+    mode.add_argument('--quick', action='store_true', help='skip the time-domain simulations')
+    mode.add_argument('--full', action='store_true',
+                      help='also run the slow forensic searches (a few minutes; the committed report uses it)')
+    parser.add_argument('--quiet', action='store_true', default=None, help='no progress bar on stderr')
 
 
 def _Run(args: argparse.Namespace) -> int:

@@ -84,7 +84,8 @@ def PrintedEigenvalues(path: Path = REFERENCE_CSV) -> Dict[int, np.ndarray]:
         ``{S: array of the two eigenvalues with Im > 0}`` for S = +1 and S = -1, in 1/s.
     """
     with open(path, newline='') as f:
-        rows = {r['id']: float(r['published']) for r in csv.DictReader(f)}
+        wanted = {i for pairs in EIGENVALUE_ROWS.values() for pair in pairs for i in pair}
+        rows = {r['id']: float(r['published']) for r in csv.DictReader(f) if r['id'] in wanted}
     return {S: np.array([complex(rows[re], rows[im]) for re, im in pairs]) for S, pairs in EIGENVALUE_ROWS.items()}
 
 

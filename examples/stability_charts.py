@@ -1,0 +1,212 @@
+"""The paper's stability charts (section 2.3): Figures 3, 4 and 5 as PNG files.
+
+==========  ===================================================================  ==============================
+figure      content                                                              file
+==========  ===================================================================  ==============================
+3           first criterion (20) with dT = 0: J1/J2 limit against the pitch      fig03_first_criterion.png
+            angle gamma for friction angles rho = 4 ... 10 deg (u = 63, set (25))
+4           second criterion (17), (19), S = -1, D_V = 0.014, D_TV = 1, 5, 25    fig04_chart_DV0.014.png
+5           the same for D_V = 0.056                                             fig05_chart_DV0.056.png
+==========  ===================================================================  ==============================
+
+The charts use the gear of parameter set (25) (preset 'chart', J2 = 0.1 kg*m^2); x = kT/(kV r1^2) and
+y = J1/J2 are swept on log grids over the domain fixed in validation/README.md (1e-4..1e2, 1e-6..1), the
+damping follows eqs. (22)-(24). The points P1-P7 (presets reel-P1 ... reel-P7, set (28) and its
+variations) are marked at their chart coordinates: the chart is dimensionless, and sets (25) and (28)
+share angles and friction (their r2/r1 differ by 0.05 %). P1-P5 and P7 have D_TV = 1; P6 has D_TV = 2
+(section 3.2.4) and lies on a chart between the D_TV = 1 and 5 regions.
+
+Run ``python examples/stability_charts.py --out DIR`` (about 5 s). The computation (:func:`ComputeFigures`,
+:func:`Summary`) is importable and checked by ``tests/test_example_stability_charts.py``; only
+:func:`main` writes files.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+from typing import Dict, List, Optional, Sequence
+
+import numpy as np
+
+from exudyn_worm.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, PresetChartPoints,
+                                StabilityChart)
+from exudyn_worm.presets import GearFromParameters, GetPreset
+
+__all__ = ['CHART_PRESET', 'FIGURE_DV', 'DTV_VALUES', 'POINT_PRESETS', 'FIGURE3_RHO_DEG', 'ComputeFigures',
+           'Summary', 'FormatSummary', 'WriteFigures', 'CheckOutputFolder', 'main']
+
+#: the gear of parameter set (25)
+CHART_PRESET = 'chart'
+#: D_V of Figures 4 and 5
+FIGURE_DV = {4: 0.014, 5: 0.056}
+#: damping ratios drawn in Figures 4 and 5
+DTV_VALUES = (1., 5., 25.)
+#: presets marked as points P1-P7
+POINT_PRESETS = tuple(f'reel-P{k}' for k in range(1, 8))
+#: friction angles of Figure 3 in degrees (the paper does not list its values: a range around rho = 8 deg)
+FIGURE3_RHO_DEG = (4., 6., 8., 10.)
+#: default grid points per axis of Figures 4 and 5
+RESOLUTION = 600
+
+
+def ComputeFigures(resolution: int = RESOLUTION) -> Dict:
+    """Compute the data of Figures 3, 4 and 5.
+
+    Parameters
+    ----------
+    resolution : int, optional
+        Grid points per axis of the charts.
+
+    Returns
+    -------
+    dict
+        ``{3: FirstCriterionCurves, 4: [StabilityChart per D_TV], 5: [...], 'points': {label: coords}}``.
+    """
+    parameters = GetPreset(CHART_PRESET)
+    gear = GearFromParameters(parameters, meshDamping=False)
+    out: Dict = {3: FirstCriterionChart(gear, np.radians(np.linspace(0.1, 10., 400)), np.radians(FIGURE3_RHO_DEG))}
+    for figure, DV in FIGURE_DV.items():
+        out[figure] = [ComputeStabilityChart(gear, parameters['J2'], DV, DTV, resolution=resolution)
+                       for DTV in DTV_VALUES]
+    out['points'] = PresetChartPoints(POINT_PRESETS)
+    return out
+
+
+def Summary(figures: Dict) -> List[Dict]:
+    """One row per chart: D_V, D_TV, unstable x and y ranges, unstable fraction, clipped sides.
+
+    Parameters
+    ----------
+    figures : dict
+        From :func:`ComputeFigures`.
+    """
+    return [dict(figure=figure, **chart.ToDict()) for figure in FIGURE_DV for chart in figures[figure]]
+
+
+def FormatSummary(rows: Sequence[Dict]) -> str:
+    """The summary as a text table.
+
+    Parameters
+    ----------
+    rows : sequence of dict
+        From :func:`Summary`.
+    """
+    r = lambda t: 'none' if t is None else f'{t[0]:.3g} .. {t[1]:.3g}'
+    lines = [f"{'fig':>3} {'D_V':>6} {'D_TV':>5}  {'unstable kT/(kV r1^2)':>22}  {'unstable J1/J2':>22}  "
+             f"{'fraction':>8}  clipped at"]
+    for row in rows:
+        lines.append(f"{row['figure']:>3} {row['DV']:>6g} {row['DTV']:>5g}  {r(row['unstableXRange']):>22}  "
+                     f"{r(row['unstableYRange']):>22}  {row['unstableFraction']:>8.4f}  "
+                     f"{', '.join(row['clippedSides']) or '-'}")
+    return '\n'.join(lines)
+
+
+def WriteFigures(figures: Dict, outDir) -> List[Path]:
+    """Draw Figures 3, 4 and 5 and save them as PNG files in ``outDir``.
+
+    Parameters
+    ----------
+    figures : dict
+        From :func:`ComputeFigures`.
+    outDir : str or Path
+        Output folder (created if missing).
+
+    Returns
+    -------
+    list of Path
+        The files written.
+    """
+    from exudyn_worm.plot import SaveFigure
+    from exudyn_worm.plot_charts import PlotFirstCriterion, PlotStabilityCharts
+
+    outDir = Path(outDir)
+    curves: FirstCriterionCurves = figures[3]
+    gear = GearFromParameters(GetPreset(CHART_PRESET), meshDamping=False)
+    design = {'set (25)': (gear.gamma, curves.limit[list(np.degrees(curves.rho)).index(8.)][
+        np.argmin(np.abs(curves.gamma - gear.gamma))])} if 8. in FIGURE3_RHO_DEG else None
+    ax = PlotFirstCriterion(curves, mark=design,
+                            title=f'Fig. 3: first criterion (20) with $d_T$ = 0, $u$ = {curves.ratio:.4g} '
+                                  f'(set (25)): stable above the lines')
+    written = [SaveFigure(ax.figure, outDir / 'fig03_first_criterion.png')]
+    points = {label: c for label, c in figures['points'].items()}
+    note = ', '.join(f'{k}: $D_{{TV}}$ = {c["DTV"]:g}' for k, c in points.items() if not math.isclose(c['DTV'], 1.))
+    note = 'points P1-P7 (set (28)): $D_{TV}$ = 1' + (f'; except {note}' if note else '')
+    for figure, DV in FIGURE_DV.items():
+        charts: List[StabilityChart] = figures[figure]
+        ax = PlotStabilityCharts(charts, points={k: (c['x'], c['y']) for k, c in points.items()},
+                                 title=f'Fig. {figure}: stability chart for $D_V$ = {DV:g}, $S$ = -1, '
+                                       f'criteria (17) and (19), set (25)', note=note)
+        written.append(SaveFigure(ax.figure, outDir / f'fig{figure:02d}_chart_DV{DV:g}.png'))
+    return written
+
+
+def CheckOutputFolder(path) -> Path:
+    """Check that ``path`` can be the output folder (an existing folder or creatable), before computing.
+
+    Parameters
+    ----------
+    path : str or Path
+        The folder the user named.
+
+    Returns
+    -------
+    Path
+        The resolved folder.
+
+    Raises
+    ------
+    ValueError
+        If it is a file, or its nearest existing parent is not a writable folder.
+    """
+    import os
+    folder = Path(path).expanduser().resolve()
+    if folder.exists() and not folder.is_dir():
+        raise ValueError(f"--out: '{path}' exists and is not a folder")
+    parent = folder
+    while not parent.exists():
+        parent = parent.parent
+    if not parent.is_dir() or not os.access(parent, os.W_OK | os.X_OK):
+        raise ValueError(f"--out: cannot write into '{parent}' (to make '{folder}')")
+    return folder
+
+
+class _Parser1Line(argparse.ArgumentParser):
+    """Argument errors as one line on stderr (exit status 2), without the usage block."""
+
+    def error(self, message):
+        self.exit(2, f'{self.prog}: error: {message} (see --help)\n')
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Command line: compute the charts, print the summary, write the figures. Returns the exit status.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments (default: ``sys.argv[1:]``).
+    """
+    parser = _Parser1Line(prog='stability_charts.py', description=__doc__.split('\n\n')[0],
+                          formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    parser.add_argument('--out', required=True, metavar='DIR', help='folder for the PNG files (created if missing)')
+    parser.add_argument('--resolution', type=int, default=RESOLUTION, metavar='N',
+                        help='grid points per axis of Figures 4 and 5')
+    args = parser.parse_args(argv)
+    try:
+        folder = CheckOutputFolder(args.out)
+        if not 2 <= args.resolution <= 20000:
+            raise ValueError(f'--resolution must be in [2, 20000], got {args.resolution}')
+    except ValueError as error:
+        print(f'{parser.prog}: error: {error}', file=sys.stderr)
+        return 2
+    figures = ComputeFigures(args.resolution)
+    print(FormatSummary(Summary(figures)))
+    print(f'\nwriting figures to {folder}')
+    for path in WriteFigures(figures, folder):
+        print(f'  {path.name}')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,718 @@
+"""Stability charts of the elastic worm drive (paper section 2.3, Figures 4 and 5).
+
+A chart fixes the gear and J2 and sweeps the two dimensionless ratios of the paper on a log grid:
+
+- x = kT / (kV r1^2), the stiffness ratio (abscissa),
+- y = J1 / J2, the inertia ratio (ordinate),
+
+with the damping given by the measures D_V and D_T = D_TV D_V of eqs. (22)-(24), so that dT and dV follow
+the swept J1 and kT as in the paper. Each grid point is classified with the Routh-Hurwitz conditions
+(17)-(19) of the polynomial (15) (:func:`~exudyn_worm.stability.PolynomialCoefficients`,
+:func:`~exudyn_worm.stability.HurwitzStable`: the same code as the single-drive analysis, evaluated on the
+whole grid at once). The chart is dimensionless: scaling time by omega = (kV r1^2 / J1)^(1/2) makes the
+scaled b-coefficients depend only on (x, y, D_V, D_TV) and on the gear's angles and r2/r1, so J2 only
+scales :attr:`StabilityChart.maxRealPart` (in 1/s), never the verdict.
+
+The largest real part of the four eigenvalues per point is computed by a vectorized closed-form quartic
+solution (Ferrari, real arithmetic) on the scaled polynomial, polished by Newton steps; points whose
+residual stays large fall back to numpy's batched eigenvalues of the companion matrix (see
+:func:`MaxRealPart`).
+
+Boundaries are traced by marching squares (own code, no matplotlib) on a continuous margin field whose
+sign is the Hurwitz verdict, interpolated linearly in log10 coordinates.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Dict, List, Optional, Sequence, Tuple
+
+import numpy as np
+
+from ._checks import CheckArray, CheckRange
+from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
+from .gear import WormGear
+from .stability import CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, HurwitzStable, PolynomialCoefficients
+
+__all__ = ['StabilityChart', 'ComputeStabilityChart', 'ChartCoordinates', 'ChartCoefficients',
+           'UnstableGrid', 'MaxRealPartGrid', 'MaxRealPart', 'ContourLines',
+           'PresetChartPoints', 'FirstCriterionCurves', 'FirstCriterionChart', 'DEFAULT_X_RANGE', 'DEFAULT_Y_RANGE',
+           'DEFAULT_RESOLUTION']
+
+#: default stiffness-ratio range kT/(kV r1^2) (validation/README.md fixes this chart domain)
+DEFAULT_X_RANGE = (1e-4, 1e2)
+#: default inertia-ratio range J1/J2
+DEFAULT_Y_RANGE = (1e-6, 1.)
+#: default number of grid points per axis
+DEFAULT_RESOLUTION = 400
+
+#: relative residual above which a polished closed-form root is recomputed with numpy's eigvals
+_ROOT_RESIDUAL_TOL = 1e-10
+
+
+# --- evaluation at chart coordinates (broadcasting) ---------------------------------------------------------
+def _CheckGear(where, gear, J2):
+    if not isinstance(gear, WormGear):
+        raise TypeError(f"{where}: 'gear' must be a WormGear, got {type(gear).__name__}")
+    return CheckRange(where, 'J2', J2, low=0., unit='kg*m^2', lowOpen=True)
+
+
+def _CheckS(where, S):
+    if S not in CONTACT_STATES:
+        raise ValueError(f"{where}: contact parameter 'S' must be +1 or -1, got {S!r}")
+
+
+_GRID_PARAMETERS = """
+    Parameters
+    ----------
+    gear : WormGear
+        Geometry, friction and mesh stiffness; its own dV is not used.
+    J2 : float
+        Wheel-side inertia in kg*m^2, > 0.
+    x : float or ndarray
+        Stiffness ratio kT/(kV r1^2), > 0.
+    y : float or ndarray
+        Inertia ratio J1/J2, > 0.
+    DV : float or ndarray
+        Mesh damping measure D_V, >= 0 (eq. (23)).
+    DTV : float or ndarray
+        Damping ratio D_TV = D_T/D_V, >= 0 (eq. (24)).
+    S : int, optional
+        Contact parameter, -1 (default, load lowering) or +1.
+"""
+
+
+def _GridDoc(summary: str, returns: str):
+    """Decorator: a docstring made of ``summary``, the shared chart-coordinate parameters and ``returns``."""
+    def Decorate(function):
+        function.__doc__ = f"{summary}\n{_GRID_PARAMETERS}\n    Returns\n    -------\n{returns}"
+        return function
+    return Decorate
+
+
+@_GridDoc("""b1..b4 of eq. (16) at chart coordinates; broadcasts over numpy arrays.
+
+    J1 = y J2, kT = x kV r1^2, dV from D_V by eq. (23), dT from D_T = D_TV D_V by eq. (22).""",
+          """    ndarray
+        Shape ``(4,) + broadcast shape`` of the arguments, in s^-1 .. s^-4.
+""")
+def ChartCoefficients(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1) -> np.ndarray:
+    w = 'ChartCoefficients'
+    J2 = _CheckGear(w, gear, J2)
+    _CheckS(w, S)
+    x = CheckArray(w, 'x', x)
+    y = CheckArray(w, 'y', y)
+    DV = CheckArray(w, 'DV', DV, lowOpen=False)
+    DTV = CheckArray(w, 'DTV', DTV, lowOpen=False)
+    J1 = y * J2
+    kT = x * gear.kV * gear.r1**2
+    dT = TorsionalDampingFromMeasure(DTV * DV, kT, J1)                  # eq. (22)
+    dV = MeshDampingFromMeasure(DV, gear.kV, gear.r2, J2)               # eq. (23)
+    return PolynomialCoefficients(gear, S, J1, J2, kT, dT, dV)
+
+
+@_GridDoc("Hurwitz verdict (17)-(19) at chart coordinates: True where unstable; broadcasts over arrays.",
+          """    ndarray of bool
+        Broadcast shape of the arguments.
+""")
+def UnstableGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1) -> np.ndarray:
+    return ~np.asarray(HurwitzStable(ChartCoefficients(gear, J2, x, y, DV, DTV, S)), dtype=bool)
+
+
+@_GridDoc("""Largest real part of the four eigenvalues in 1/s at chart coordinates; broadcasts over arrays.
+
+    Positive: unstable (growth rate of the chatter), negative: stable (decay rate of the slowest mode).
+    See :func:`MaxRealPart` for the method.""",
+          """    ndarray
+        Broadcast shape of the arguments.
+""")
+def MaxRealPartGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1) -> np.ndarray:
+    return MaxRealPart(ChartCoefficients(gear, J2, x, y, DV, DTV, S))
+
+
+def ChartCoordinates(drive: ElasticDrive) -> Dict[str, float]:
+    """Where a drive lies on its stability chart.
+
+    Parameters
+    ----------
+    drive : ElasticDrive
+        The 2-DOF drive.
+
+    Returns
+    -------
+    dict
+        ``{'x': kT/(kV r1^2), 'y': J1/J2, 'DV': D_V, 'DTV': D_TV}`` (eqs. (22)-(24); D_TV is inf if
+        D_V = 0). ``ComputeStabilityChart(drive.gear, drive.J2, DV, DTV)`` is the chart the drive lies on.
+    """
+    if not isinstance(drive, ElasticDrive):
+        raise TypeError(f"ChartCoordinates: 'drive' must be an ElasticDrive, got {type(drive).__name__}")
+    return {'x': float(drive.stiffnessRatio), 'y': float(drive.inertiaRatio), 'DV': float(drive.DV),
+            'DTV': float(drive.DTV)}
+
+
+def PresetChartPoints(names: Sequence[str]) -> Dict[str, Dict[str, float]]:
+    """Chart coordinates of presets, e.g. the paper's points P1-P7 (presets 'reel-P1' ... 'reel-P7').
+
+    Parameters
+    ----------
+    names : sequence of str
+        Preset names (see :data:`~exudyn_worm.presets.PRESETS`); each needs a complete drive (J1, kT and
+        the damping). A 'reel-' prefix is dropped from the label.
+
+    Returns
+    -------
+    dict
+        ``{label: {'x', 'y', 'DV', 'DTV'}}`` in the order given.
+    """
+    from .presets import DriveFromParameters, GetPreset
+    return {name.replace('reel-', ''): ChartCoordinates(DriveFromParameters(GetPreset(name))) for name in names}
+
+
+# --- largest real part of the roots of the quartic --------------------------------------------------------------
+def _LargestCubicRoot(B, C, D):
+    """Largest real root of m^3 + B m^2 + C m + D (real arrays), trigonometric / Cardano form."""
+    # (numpy's power is slow for exponents other than 2: cubes are written as products)
+    B2 = B * B
+    P = C - B2 / 3.
+    Q = B * (2. * B2 / 27. - C / 3.) + D
+    delta = Q * Q / 4. + P * P * P / 27.
+    three = delta < 0                                                   # three real roots (then P < 0)
+    Pn = np.where(three, P, -1.)
+    arg = np.clip(1.5 * Q / Pn * np.sqrt(-3. / Pn), -1., 1.)
+    wThree = 2. * np.sqrt(-Pn / 3.) * np.cos(np.arccos(arg) / 3.)
+    u = np.cbrt(-Q / 2. - np.copysign(np.sqrt(np.where(three, 0., delta)), Q))
+    wOne = np.where(u != 0, u - P / (3. * np.where(u != 0, u, 1.)), 0.)
+    m = np.where(three, wThree, wOne) - B / 3.
+    for _ in range(2):                                                  # Newton polish of the real root
+        f = ((m + B) * m + C) * m + D
+        df = (3. * m + 2. * B) * m + C
+        m = m - np.where(df != 0, f / np.where(df != 0, df, 1.), 0.)
+    return m
+
+
+def _MaxRealPartScaled(a):
+    """Largest real part of the roots of t^4 + a0 t^3 + a1 t^2 + a2 t + a3 (real arrays (4, N)).
+
+    Ferrari with the resolvent's largest real root m (m > 0 whenever q != 0, since the resolvent is
+    -q^2/8 < 0 at m = 0), all in real arithmetic; the root of largest real part is then polished by three
+    complex Newton steps on the quartic. Returns (value, relative residual).
+    """
+    a0, a1, a2, a3 = a
+    sq = a0 * a0
+    p = a1 - 3. * sq / 8.
+    q = a2 - a0 * a1 / 2. + sq * a0 / 8.
+    r = a3 - a0 * a2 / 4. + sq * a1 / 16. - 3. * sq * sq / 256.
+    m = np.maximum(_LargestCubicRoot(p, p * p / 4. - r, -q * q / 8.), 0.)
+    s = np.sqrt(2. * m)
+    h = np.where(s > 0, q / (2. * np.where(s > 0, s, 1.)), 0.)
+    s2 = s * s
+    best_re = np.full(a0.shape, -np.inf)
+    best_im = np.zeros(a0.shape)
+    for sign in (+1., -1.):
+        # t^2 - sign s t + (p/2 + m + sign h) = 0: roots sign s/2 +- sqrt(disc)/2
+        disc = s2 - 4. * (p / 2. + m + sign * h)
+        root = np.sqrt(np.abs(disc)) / 2.
+        re = sign * s / 2. + np.where(disc >= 0, root, 0.)
+        im = np.where(disc >= 0, 0., root)
+        better = re > best_re
+        best_re = np.where(better, re, best_re)
+        best_im = np.where(better, im, best_im)
+    z = (best_re - a0 / 4.) + 1j * best_im
+    for _ in range(3):                                                  # Newton polish (Horner)
+        P = (((z + a0) * z + a1) * z + a2) * z + a3
+        dP = ((4. * z + 3. * a0) * z + 2. * a1) * z + a2
+        ok = dP != 0
+        z = z - np.where(ok, P / np.where(ok, dP, 1.), 0.)
+    P = (((z + a0) * z + a1) * z + a2) * z + a3
+    mag = np.abs(z)
+    scale = (((mag + np.abs(a0)) * mag + np.abs(a1)) * mag + np.abs(a2)) * mag + np.abs(a3)
+    with np.errstate(divide='ignore', invalid='ignore'):
+        residual = np.abs(P) / np.where(scale > 0, scale, 1.)
+    return z.real, np.where(np.isfinite(residual), residual, np.inf)
+
+
+def MaxRealPart(b, returnFallback: bool = False):
+    """Largest real part of the roots of the quartic (15) for many coefficient sets at once, in 1/s.
+
+    Time is scaled by omega = b4^(1/4) (the largest |b_k|^(1/k) if b4 <= 0), the scaled quartic is
+    solved in closed form (Ferrari, real arithmetic), the root of largest real part is polished by three
+    Newton steps, and where its relative residual stays above 1e-10 (or where a root of nearly equal real
+    part could have been missed) numpy's batched ``eigvals`` of the companion matrix is used instead.
+
+    Parameters
+    ----------
+    b : array_like
+        Coefficients b1..b4, shape ``(4, ...)``, finite.
+    returnFallback : bool, optional
+        Also return where the ``eigvals`` fallback was used.
+
+    Returns
+    -------
+    ndarray
+        Shape ``(...)``; with ``returnFallback`` a pair (values, bool array of the same shape).
+    """
+    b = np.asarray(b, dtype=float)
+    if b.shape[:1] != (4,):
+        raise ValueError(f"MaxRealPart: 'b' must have shape (4, ...), got {b.shape}")
+    if not np.all(np.isfinite(b)):
+        raise ValueError("MaxRealPart: 'b' must be finite")
+    shape = b.shape[1:]
+    bf = b.reshape(4, -1)
+    absb = np.abs(bf)
+    omega = np.sqrt(np.sqrt(absb[3]))
+    other = np.maximum(np.maximum(absb[0], np.sqrt(absb[1])), np.cbrt(absb[2]))
+    omega = np.where(bf[3] > 0, omega, np.maximum(omega, other))
+    omega = np.where(omega > 0, omega, 1.)
+    o2 = omega * omega
+    a = np.array([bf[0] / omega, bf[1] / o2, bf[2] / (o2 * omega), bf[3] / (o2 * o2)])   # scaled coefficients
+    value, residual = _MaxRealPartScaled(a)
+    bad = ~(residual <= _ROOT_RESIDUAL_TOL)
+    if bad.any():
+        idx = np.nonzero(bad)[0]
+        comp = np.zeros((idx.size, 4, 4))
+        comp[:, 0, :] = -a[:, idx].T
+        comp[:, 1, 0] = comp[:, 2, 1] = comp[:, 3, 2] = 1.
+        value[idx] = np.linalg.eigvals(comp).real.max(axis=1)
+    value = (value * omega).reshape(shape)
+    return (value, bad.reshape(shape)) if returnFallback else value
+
+
+def _Margin(b) -> np.ndarray:
+    """Continuous stability margin: min of b1 and of (19), each made dimensionless with omega = b4^(1/4).
+
+    Positive exactly where :func:`HurwitzStable` holds (b3, b4 > 0 on a chart; (18) follows from (19)).
+    """
+    omega = np.sqrt(np.sqrt(np.abs(b[3])))
+    omega = np.where(omega > 0, omega, 1.)
+    o2 = omega * omega
+    h = HurwitzConditions(b)
+    return np.minimum(h[0] / omega, h[2] / (o2 * o2 * o2))
+
+
+# --- contours ------------------------------------------------------------------------------------------------
+# marching squares: corners 0 (i, j), 1 (i, j+1), 2 (i+1, j+1), 3 (i+1, j) with bit k set if corner k is inside;
+# cell edges 0 bottom (0-1), 1 right (1-2), 2 top (3-2), 3 left (0-3); segments per case, saddles 5 and 10
+# listed for "centre inside" (they connect around the centre) and "centre outside"
+_SEGMENTS = {1: [(3, 0)], 2: [(0, 1)], 3: [(3, 1)], 4: [(1, 2)], 6: [(0, 2)], 7: [(3, 2)], 8: [(2, 3)],
+             9: [(2, 0)], 11: [(2, 1)], 12: [(1, 3)], 13: [(1, 0)], 14: [(0, 3)]}
+_SADDLE = {(5, True): [(3, 2), (1, 0)], (5, False): [(3, 0), (1, 2)],
+           (10, True): [(0, 3), (2, 1)], (10, False): [(0, 1), (2, 3)]}
+
+
+def ContourLines(u: np.ndarray, v: np.ndarray, field: np.ndarray, inside: Optional[np.ndarray] = None
+                 ) -> List[np.ndarray]:
+    """Zero level set of ``field`` on a rectilinear grid by marching squares, as polylines.
+
+    Parameters
+    ----------
+    u : ndarray
+        Grid abscissae, shape (nx,), increasing.
+    v : ndarray
+        Grid ordinates, shape (ny,), increasing.
+    field : ndarray
+        Shape (ny, nx); a point is inside where ``field <= 0``.
+    inside : ndarray of bool, optional
+        Overrides the inside test (the crossing is still placed by linear interpolation of ``field``,
+        clipped to the edge).
+
+    Returns
+    -------
+    list of ndarray
+        Each of shape (N, 2), columns (u, v); closed curves repeat their first point at the end, curves
+        that leave the grid are open.
+    """
+    field = np.asarray(field, dtype=float)
+    ny, nx = field.shape
+    ins = field <= 0 if inside is None else np.asarray(inside, dtype=bool)
+    if ny < 2 or nx < 2 or ins.all() or not ins.any():
+        return []
+    # crossing points on horizontal edges (i, j)-(i, j+1) and vertical edges (i, j)-(i+1, j)
+    def Crossing(f0, f1):
+        with np.errstate(divide='ignore', invalid='ignore'):
+            t = np.where(f0 != f1, f0 / (f0 - f1), 0.5)
+        return np.clip(np.nan_to_num(t, nan=0.5), 0., 1.)
+    th = Crossing(field[:, :-1], field[:, 1:])
+    tv = Crossing(field[:-1, :], field[1:, :])
+    hu = u[:-1][None, :] + th * np.diff(u)[None, :]                     # (ny, nx-1)
+    vv = v[:-1][:, None] + tv * np.diff(v)[:, None]                     # (ny-1, nx)
+    nh = ny * (nx - 1)
+
+    def EdgeId(i, j, e):
+        # global id of edge e of cell (i, j): horizontal ids first, then vertical
+        return np.choose(e, [i * (nx - 1) + j, nh + i * nx + j + 1, (i + 1) * (nx - 1) + j, nh + i * nx + j])
+
+    case = (ins[:-1, :-1].astype(np.int8) | (ins[:-1, 1:] << 1) | (ins[1:, 1:] << 2) | (ins[1:, :-1] << 3))
+    centre = (field[:-1, :-1] + field[:-1, 1:] + field[1:, 1:] + field[1:, :-1]) <= 0
+    segA, segB = [], []
+    for key, segments in list(_SEGMENTS.items()) + list(_SADDLE.items()):
+        cells = (case == key) if isinstance(key, int) else (case == key[0]) & (centre == key[1])
+        i, j = np.nonzero(cells)
+        for ea, eb in segments:
+            segA.append(EdgeId(i, j, np.full_like(i, ea)))
+            segB.append(EdgeId(i, j, np.full_like(i, eb)))
+    A = np.concatenate(segA)
+    B = np.concatenate(segB)
+
+    points = np.empty((nh + (ny - 1) * nx, 2))
+    ih, jh = np.divmod(np.arange(nh), nx - 1)
+    points[:nh, 0], points[:nh, 1] = hu.ravel(), v[ih]
+    iv, jv = np.divmod(np.arange((ny - 1) * nx), nx)
+    points[nh:, 0], points[nh:, 1] = u[jv], vv.ravel()
+
+    # join segments into polylines: each crossing point belongs to one or two segments
+    neighbours: Dict[int, List[int]] = {}
+    for a, b in zip(A.tolist(), B.tolist()):
+        neighbours.setdefault(a, []).append(b)
+        neighbours.setdefault(b, []).append(a)
+    lines = []
+    unvisited = set(neighbours)
+    # open curves start at an end (a crossing point with one neighbour), then the closed ones
+    starts = [p for p, n in neighbours.items() if len(n) == 1] + list(neighbours)
+    for start in starts:
+        if start not in unvisited:
+            continue
+        path = [start]
+        unvisited.discard(start)
+        previous, current = None, start
+        while True:
+            following = [n for n in neighbours[current] if n != previous and n in unvisited]
+            if not following:
+                if len(path) > 2 and start in neighbours[current] and previous is not None:
+                    path.append(start)                                  # closed curve
+                break
+            previous, current = current, following[0]
+            path.append(current)
+            unvisited.discard(current)
+        lines.append(points[path])
+    return lines
+
+
+# --- the chart ------------------------------------------------------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class StabilityChart:
+    """A stability chart: the Hurwitz verdict on a log grid of x = kT/(kV r1^2) and y = J1/J2.
+
+    Built by :func:`ComputeStabilityChart`. ``unstable[i, j]`` belongs to ``(x[j], y[i])``.
+
+    Parameters
+    ----------
+    gear : WormGear
+        The gear (its dV is replaced by the one of ``DV``).
+    J2 : float
+        Wheel-side inertia in kg*m^2.
+    DV : float
+        Mesh damping measure D_V.
+    DTV : float
+        Damping ratio D_TV = D_T/D_V.
+    S : int
+        Contact parameter of the chart.
+    x : ndarray
+        Stiffness ratios (log grid), shape (nx,).
+    y : ndarray
+        Inertia ratios (log grid), shape (ny,).
+    unstable : ndarray of bool
+        Shape (ny, nx).
+    margin : ndarray
+        Shape (ny, nx): a continuous field, > 0 exactly where stable (b1 and (19) made dimensionless,
+        their minimum); the boundaries are its zero level set.
+    """
+    gear: WormGear
+    J2: float
+    DV: float
+    DTV: float
+    S: int
+    x: np.ndarray
+    y: np.ndarray
+    unstable: np.ndarray
+    margin: np.ndarray
+    _cache: dict = field(default_factory=dict, repr=False)
+
+    def Coefficients(self) -> np.ndarray:
+        """b1..b4 of eq. (16) on the grid, shape (4, ny, nx)."""
+        return ChartCoefficients(self.gear, self.J2, self.x[None, :], self.y[:, None], self.DV, self.DTV, self.S)
+
+    @property
+    def maxRealPart(self) -> np.ndarray:
+        """Largest real part of the eigenvalues in 1/s on the grid, shape (ny, nx) (computed on first use)."""
+        if 'maxRealPart' not in self._cache:
+            self._cache['maxRealPart'] = MaxRealPart(self.Coefficients())
+        return self._cache['maxRealPart']
+
+    @property
+    def boundaries(self) -> List[np.ndarray]:
+        """Boundary curves between stable and unstable points: list of (N, 2) arrays of (x, y).
+
+        Marching squares on :attr:`margin` in log10 coordinates; curves end where they leave the domain.
+        """
+        if 'boundaries' not in self._cache:
+            lines = ContourLines(np.log10(self.x), np.log10(self.y), self.margin, self.unstable)
+            self._cache['boundaries'] = [10.**line for line in lines]
+        return self._cache['boundaries']
+
+    def _Range(self, axis: int) -> Optional[Tuple[float, float]]:
+        if not self.unstable.any():
+            return None
+        grid = (self.x, self.y)[axis]
+        cols = np.nonzero(self.unstable.any(axis=axis))[0]      # axis 0 collapses y: per-x
+        values = [grid[cols[0]], grid[cols[-1]]] + [c for line in self.boundaries for c in line[:, axis]]
+        return float(min(values)), float(max(values))
+
+    @property
+    def unstableXRange(self) -> Optional[Tuple[float, float]]:
+        """(min, max) stiffness ratio of the unstable set, None if there is none.
+
+        Extremes of the unstable grid points and of the interpolated boundary, so within the grid
+        spacing of the true edge (clipped at the domain: see :attr:`clippedSides`).
+        """
+        return self._Range(0)
+
+    @property
+    def unstableYRange(self) -> Optional[Tuple[float, float]]:
+        """(min, max) inertia ratio of the unstable set, None if there is none (as :attr:`unstableXRange`)."""
+        return self._Range(1)
+
+    @property
+    def unstableFraction(self) -> float:
+        """Fraction of grid points that are unstable (= fraction of the log-log chart area)."""
+        return float(self.unstable.mean())
+
+    @property
+    def unstableArea(self) -> float:
+        """Unstable area in log10-log10 coordinates (decades^2): the fraction times the domain's area."""
+        return self.unstableFraction * float(np.log10(self.x[-1] / self.x[0]) * np.log10(self.y[-1] / self.y[0]))
+
+    @property
+    def clippedSides(self) -> List[str]:
+        """Sides of the domain ('left', 'right', 'bottom', 'top') that unstable points touch: there the
+        unstable region continues beyond the chart and the ranges are clipped."""
+        u = self.unstable
+        return [side for side, edge in (('left', u[:, 0]), ('right', u[:, -1]), ('bottom', u[0, :]),
+                                        ('top', u[-1, :])) if edge.any()]
+
+    def UnstableYExtent(self) -> np.ndarray:
+        """Per grid column x[j]: the log10 extent (decades) of the unstable y values, 0 where none.
+
+        Extent = log10(max y / min y) over the unstable points of the column plus one grid step in
+        log10 y, so a single unstable point counts one grid step.
+        """
+        logy = np.log10(self.y)
+        step = float(np.mean(np.diff(logy))) if logy.size > 1 else 0.
+        any_ = self.unstable.any(axis=0)
+        masked = np.where(self.unstable, logy[:, None], np.nan)
+        with np.errstate(all='ignore'):
+            lo = np.nanmin(np.where(any_[None, :], masked, 0.), axis=0)
+            hi = np.nanmax(np.where(any_[None, :], masked, 0.), axis=0)
+        return np.where(any_, hi - lo + step, 0.)
+
+    def IsUnstable(self, x, y) -> np.ndarray:
+        """Hurwitz verdict at arbitrary (x, y) of this chart (exact, not read off the grid).
+
+        Parameters
+        ----------
+        x, y : float or ndarray
+            Stiffness and inertia ratios, > 0.
+        """
+        return UnstableGrid(self.gear, self.J2, x, y, self.DV, self.DTV, self.S)
+
+    def ToDict(self, boundaries: bool = False) -> Dict:
+        """JSON-ready summary (the entries of ``exudyn-worm chart --json``).
+
+        Parameters
+        ----------
+        boundaries : bool, optional
+            Also include the boundary curves as lists of [x, y] pairs.
+        """
+        r = lambda t: None if t is None else [t[0], t[1]]
+        d = {'DV': float(self.DV), 'DTV': float(self.DTV), 'S': int(self.S),
+             'unstableXRange': r(self.unstableXRange), 'unstableYRange': r(self.unstableYRange),
+             'unstableFraction': self.unstableFraction, 'unstableArea': self.unstableArea,
+             'clippedSides': self.clippedSides,
+             'xRange': [float(self.x[0]), float(self.x[-1])], 'yRange': [float(self.y[0]), float(self.y[-1])],
+             'resolution': [int(self.x.size), int(self.y.size)], 'J2': float(self.J2)}
+        if boundaries:
+            d['boundaries'] = [line.tolist() for line in self.boundaries]
+        return d
+
+    def plot(self, ax=None, points=None, **kwargs):
+        """Draw the chart with :func:`exudyn_worm.plot_charts.PlotStabilityChart` (imports matplotlib).
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw into (default: a new figure).
+        points : mapping, optional
+            ``{label: (x, y)}`` or ``{label: ElasticDrive}`` points to mark.
+        **kwargs
+            Passed on to :func:`~exudyn_worm.plot_charts.PlotStabilityChart`.
+
+        Returns
+        -------
+        matplotlib.axes.Axes
+        """
+        from .plot_charts import PlotStabilityChart
+        return PlotStabilityChart(self, ax=ax, points=points, **kwargs)
+
+
+def _Resolution(where, resolution) -> Tuple[int, int]:
+    values = resolution if isinstance(resolution, (tuple, list)) else (resolution, resolution)
+    if len(values) != 2:
+        raise ValueError(f"{where}: 'resolution' must be an int or a pair (nx, ny), got {resolution!r}")
+    out = []
+    for n in values:
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
+            raise TypeError(f"{where}: 'resolution' must be an integer number of grid points in [2, 20000], "
+                            f"got {n!r}")
+        if not 2 <= n <= 20000:
+            raise ValueError(f"{where}: 'resolution' must be in [2, 20000] grid points per axis, got {n}")
+        out.append(int(n))
+    return out[0], out[1]
+
+
+def _LogRange(where, name, rng) -> Tuple[float, float]:
+    try:
+        lo, hi = rng
+    except (TypeError, ValueError):
+        raise TypeError(f"{where}: '{name}' must be a pair (min, max), got {rng!r}") from None
+    lo = CheckRange(where, f'{name}[0]', lo, low=0., lowOpen=True)
+    hi = CheckRange(where, f'{name}[1]', hi, low=0., lowOpen=True)
+    if not hi > lo:
+        raise ValueError(f"{where}: '{name}' must have min < max, got ({lo:g}, {hi:g})")
+    return lo, hi
+
+
+def ComputeStabilityChart(gear: WormGear, J2: float, DV: float, DTV: float,
+                          xRange: Sequence[float] = DEFAULT_X_RANGE, yRange: Sequence[float] = DEFAULT_Y_RANGE,
+                          resolution=DEFAULT_RESOLUTION, S: int = -1) -> StabilityChart:
+    """Stability chart of Figures 4 and 5: the Hurwitz verdict on a log grid of the two ratios.
+
+    Parameters
+    ----------
+    gear : WormGear
+        Geometry, friction and mesh stiffness (e.g. the gear of preset 'chart', set (25)); its dV is not
+        used: the mesh damping follows from ``DV`` by eq. (23).
+    J2 : float
+        Wheel-side inertia in kg*m^2, > 0 (it scales time only: the verdict does not depend on it).
+    DV : float
+        Mesh damping measure D_V, >= 0, eq. (23).
+    DTV : float
+        Damping ratio D_TV = D_T/D_V, >= 0, eq. (24); dT = 2 D_TV D_V sqrt(kT J1), eq. (22).
+    xRange : (float, float), optional
+        Stiffness-ratio range kT/(kV r1^2), 0 < min < max.
+    yRange : (float, float), optional
+        Inertia-ratio range J1/J2, 0 < min < max.
+    resolution : int or (int, int), optional
+        Grid points per axis, or (nx, ny); each in [2, 20000].
+    S : int, optional
+        Contact parameter: -1 (default; self-locking lowering, the paper's charts) or +1.
+
+    Returns
+    -------
+    StabilityChart
+
+    Raises
+    ------
+    ValueError, TypeError
+        For out-of-range or wrongly typed arguments.
+
+    Examples
+    --------
+    >>> from exudyn_worm.presets import DriveFromParameters, GetPreset
+    >>> p = GetPreset('chart'); p.update(J1=1e-4, kT=1., DTV=1.)
+    >>> gear = DriveFromParameters(p).gear
+    >>> chart = ComputeStabilityChart(gear, 0.1, DV=0.014, DTV=1., resolution=50)
+    >>> chart.unstable.shape
+    (50, 50)
+    """
+    w = 'ComputeStabilityChart'
+    J2 = _CheckGear(w, gear, J2)
+    DV = CheckRange(w, 'DV', DV, low=0.)
+    DTV = CheckRange(w, 'DTV', DTV, low=0.)
+    _CheckS(w, S)
+    x0, x1 = _LogRange(w, 'xRange', xRange)
+    y0, y1 = _LogRange(w, 'yRange', yRange)
+    nx, ny = _Resolution(w, resolution)
+    x = np.geomspace(x0, x1, nx)
+    y = np.geomspace(y0, y1, ny)
+    b = ChartCoefficients(gear, J2, x[None, :], y[:, None], DV, DTV, S)
+    unstable = ~HurwitzStable(b)
+    return StabilityChart(gear=gear, J2=J2, DV=DV, DTV=DTV, S=S, x=x, y=y, unstable=unstable, margin=_Margin(b))
+
+
+# --- Figure 3: the first criterion (20) with dT = 0 -----------------------------------------------------------
+@dataclass(frozen=True)
+class FirstCriterionCurves:
+    """Limits of J1/J2 of the first instability condition (20) with dT = 0 (Figure 3).
+
+    Below a curve (J1/J2 smaller than the limit) the drive is unstable; where the limit is <= 0 (gamma >= rho,
+    not self-locking) there is no instability of this kind.
+
+    Parameters
+    ----------
+    gamma : ndarray
+        Pitch angles in rad, shape (n,).
+    rho : ndarray
+        Friction angles in rad, shape (m,).
+    ratio : float
+        Transmission ratio u, held fixed (r2 = u r1 tan(gamma)).
+    limit : ndarray
+        J1/J2 limit, shape (m, n); NaN where not self-locking.
+    """
+    gamma: np.ndarray
+    rho: np.ndarray
+    ratio: float
+    limit: np.ndarray
+
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary (angles in degrees, NaN as None)."""
+        return {'ratio': self.ratio, 'gammaDeg': np.degrees(self.gamma).tolist(),
+                'rhoDeg': np.degrees(self.rho).tolist(),
+                'limit': [[None if not np.isfinite(v) else float(v) for v in row] for row in self.limit]}
+
+    def plot(self, ax=None, **kwargs):
+        """Draw with :func:`exudyn_worm.plot_charts.PlotFirstCriterion` (imports matplotlib).
+
+        Parameters
+        ----------
+        ax : matplotlib.axes.Axes, optional
+            Axes to draw into (default: a new figure).
+        **kwargs
+            Passed on to :func:`~exudyn_worm.plot_charts.PlotFirstCriterion`.
+        """
+        from .plot_charts import PlotFirstCriterion
+        return PlotFirstCriterion(self, ax=ax, **kwargs)
+
+
+def FirstCriterionChart(gear: WormGear, gamma: Sequence[float], rho: Sequence[float]) -> FirstCriterionCurves:
+    """J1/J2 limit of the first instability condition (20) with dT = 0 over pitch and friction angles.
+
+    With dT = 0, (20) is Fuesgen's condition (21), tan(rho - gamma) / (u^2 tan(gamma)); it is evaluated by
+    :func:`~exudyn_worm.stability.FirstCriterionLimit` on gears that keep ``gear``'s transmission ratio u,
+    pressure angle and r1 (r2 = u r1 tan(gamma)) with the given gamma and rho.
+
+    Parameters
+    ----------
+    gear : WormGear
+        Template gear (e.g. set (25)): its ratio u, alphaN, r1 and kV are kept.
+    gamma : sequence of float
+        Pitch angles in rad, each in (0, pi/2).
+    rho : sequence of float
+        Friction angles in rad, each in [0, pi/2).
+
+    Returns
+    -------
+    FirstCriterionCurves
+    """
+    w = 'FirstCriterionChart'
+    if not isinstance(gear, WormGear):
+        raise TypeError(f"{w}: 'gear' must be a WormGear, got {type(gear).__name__}")
+    gamma = np.atleast_1d(np.asarray(gamma, dtype=float))
+    rho = np.atleast_1d(np.asarray(rho, dtype=float))
+    u = gear.ratio
+    limit = np.full((rho.size, gamma.size), np.nan)
+    for i, r in enumerate(rho):
+        for j, g in enumerate(gamma):
+            if g >= r:
+                continue
+            mesh = gear.Replace(gamma=g, rho=r, r2=u * gear.r1 * math.tan(g), dV=1.)
+            limit[i, j] = FirstCriterionLimit(ElasticDrive(mesh, J1=1., J2=1., kT=1., dT=0.))
+    return FirstCriterionCurves(gamma=gamma, rho=rho, ratio=u, limit=limit)

@@ -1,0 +1,218 @@
+"""The section 2.3 statements about the stability charts (Figures 4 and 5): the ``charts`` group of the validation.
+
+Domain and measures are fixed in ``validation/README.md`` (with the reading rules, before any chart result):
+set (25), x = kT/(kV r1^2) from 1e-4 to 1e2, y = J1/J2 from 1e-6 to 1, a 600 x 600 log grid; "smaller D_TV"
+than 1 means 0.2 and 0.5; an area is measured in log10-log10 coordinates, an extent in log10 decades.
+The charts come from :func:`exudyn_worm.charts.ComputeStabilityChart`.
+"""
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+from typing import Dict, List, Tuple
+
+import numpy as np
+
+from exudyn_worm.gear import WormGear
+from exudyn_worm.presets import GearFromParameters, GetPreset
+
+from .runner import Check, Fmt, ValidationContext
+
+__all__ = ['X_RANGE', 'Y_RANGE', 'RESOLUTION', 'DTV_VALUES', 'Chart', 'DisplayedDomain', 'Area', 'XExtent', 'SmallXYExtent',
+           'ChartChecks']
+
+#: chart domain of the section 2.3 rows (validation/README.md)
+X_RANGE = (1e-4, 1e2)
+Y_RANGE = (1e-6, 1.)
+RESOLUTION = 600
+#: the damping ratios D_TV compared at D_V = 0.014 (Figure 4 has 1, 5, 25; "smaller" means 0.2 and 0.5)
+DTV_VALUES = (0.2, 0.5, 1., 5., 25.)
+#: stiffness ratio below which the J1/J2 interval is compared ("small stiffness ratios (< 0.10)")
+SMALL_X = 0.10
+
+
+def _Set25() -> Tuple[WormGear, float]:
+    p = GetPreset('chart')
+    return GearFromParameters(p, meshDamping=False), p['J2']
+
+
+@lru_cache(maxsize=None)
+def Chart(DV: float, DTV: float, S: int = -1, displayed: bool = False):
+    """The stability chart of set (25) on the fixed domain (cached).
+
+    Parameters
+    ----------
+    DV : float
+        Mesh damping measure D_V.
+    DTV : float
+        Damping ratio D_TV = D_T / D_V.
+    S : int, optional
+        Contact state.
+    displayed : bool, optional
+        Use the area the paper displays (:func:`DisplayedDomain`) instead of the fixed domain of the rows
+        (for the report's information only).
+
+    Returns
+    -------
+    exudyn_worm.charts.StabilityChart
+    """
+    from exudyn_worm.charts import ComputeStabilityChart
+    gear, J2 = _Set25()
+    xRange, yRange = DisplayedDomain() if displayed else (X_RANGE, Y_RANGE)
+    return ComputeStabilityChart(gear, J2, DV, DTV, xRange=xRange, yRange=yRange, resolution=RESOLUTION, S=S)
+
+
+def DisplayedDomain() -> Tuple[Tuple[float, float], Tuple[float, float]]:
+    """The area of Figures 4 and 5 from the ranges section 2.3 states: J1 from 1e-6 to 1e-3 kg*m^2 and kT from
+    5e-3 to 5 N*m on set (25).
+
+    Returns
+    -------
+    ((float, float), (float, float))
+        x range kT/(kV r1^2) and y range J1/J2.
+    """
+    p = GetPreset('chart')
+    k = p['kV'] * p['r1']**2
+    return (5e-3 / k, 5. / k), (1e-6 / p['J2'], 1e-3 / p['J2'])
+
+
+def _Steps(chart) -> Tuple[float, float]:
+    return (float(np.mean(np.diff(np.log10(chart.x)))), float(np.mean(np.diff(np.log10(chart.y)))))
+
+
+def Area(chart) -> float:
+    """Unstable area in log10-log10 coordinates (decades^2): unstable grid cells times the cell size.
+
+    Parameters
+    ----------
+    chart : StabilityChart
+
+    Returns
+    -------
+    float
+    """
+    dx, dy = _Steps(chart)
+    return float(np.count_nonzero(chart.unstable)) * dx * dy
+
+
+def XExtent(chart) -> float:
+    """Extent of the unstable set along x in log10 decades.
+
+    Parameters
+    ----------
+    chart : StabilityChart
+        A chart of :func:`Chart`.
+
+    Returns
+    -------
+    float
+        log10(max x / min x) over the unstable points; 0 if nothing is unstable.
+    """
+    rng = chart.unstableXRange
+    return 0. if rng is None else math.log10(rng[1] / rng[0])
+
+
+def SmallXYExtent(chart, xMax: float = SMALL_X) -> float:
+    """Mean log10 extent of the unstable y (J1/J2) over the grid columns with x < ``xMax`` (empty columns count 0).
+
+    Parameters
+    ----------
+    chart : StabilityChart
+    xMax : float, optional
+        Column limit.
+
+    Returns
+    -------
+    float
+    """
+    logY = np.log10(chart.y)
+    extents = []
+    for j in np.nonzero(chart.x < xMax)[0]:
+        col = chart.unstable[:, j]
+        extents.append(float(logY[col].max() - logY[col].min()) if col.any() else 0.)
+    return float(np.mean(extents)) if extents else 0.
+
+
+def _Increasing(values: List[float]) -> bool:
+    return all(a < b for a, b in zip(values, values[1:]))
+
+
+def ChartChecks(ctx: ValidationContext) -> List[Check]:
+    """Group ``charts``: the statements of section 2.3 about Figures 4 (D_V = 0.014) and 5 (D_V = 0.056)."""
+    from exudyn_worm.progress import ProgressBar
+    todo = [(0.014, d, -1) for d in DTV_VALUES] + [(0.056, d, -1) for d in (1., 5., 25.)] \
+        + [(0.014, d, +1) for d in (1., 5., 25.)]
+    with ProgressBar(total=len(todo), desc='charts', unit='chart', quiet=ctx.quiet, leave=False) as bar:
+        for key in todo:
+            Chart(*key)
+            bar.update(1)
+    c14 = {d: Chart(0.014, d) for d in DTV_VALUES}
+    c56 = {d: Chart(0.056, d) for d in (1., 5., 25.)}
+    area14 = {d: Area(c) for d, c in c14.items()}
+    area56 = {d: Area(c) for d, c in c56.items()}
+    upper = lambda c: math.nan if c.unstableXRange is None else c.unstableXRange[1]
+    checks = []
+
+    def add(rowId, value, detail=''):
+        checks.append(ctx.Compare(rowId, value, detail=detail, uses=()))
+    add('chart_bound_DTV25', upper(c14[25.]))
+    add('chart_bound_DTV5', upper(c14[5.]))
+    add('chart_bound_DTV1', upper(c14[1.]))
+    areas = ', '.join(f'D_TV = {d:g}: {a:.3f}' for d, a in area14.items())
+    add('chart_DTV1_smallest', float(all(area14[1.] < a for d, a in area14.items() if d != 1.)), f'areas {areas}')
+    add('chart_broadens_smaller_DTV', float(_Increasing([area14[1.], area14[0.5], area14[0.2]])), f'areas {areas}')
+    add('chart_broadens_bigger_DTV', float(_Increasing([area14[1.], area14[5.], area14[25.]])), f'areas {areas}')
+    small = {d: SmallXYExtent(c14[d]) for d in (1., 5., 25.)}
+    add('chart_small_x_broadens', float(_Increasing([small[1.], small[5.], small[25.]])),
+        'mean log10 y-extent for x < 0.10: ' + ', '.join(f'D_TV = {d:g}: {e:.3f}' for d, e in small.items()))
+    add('chart_DV056_smaller', float(all(area56[d] < area14[d] for d in area56)),
+        'areas at D_V = 0.056 / 0.014: ' + ', '.join(f'D_TV = {d:g}: {area56[d]:.3f} / {area14[d]:.3f}' for d in area56))
+    add('chart_DV056_DTV25_vanishes', area56[25.] / area14[25.] if area14[25.] > 0 else math.nan,
+        f'areas {area56[25.]:.4f} / {area14[25.]:.4f}')
+    add('chart_DV056_DTV5_shorter', XExtent(c14[5.]) / XExtent(c56[5.]) if XExtent(c56[5.]) > 0 else math.inf,
+        f'x-extents {XExtent(c14[5.]):.3f} / {XExtent(c56[5.]):.3f} decades')
+    add('chart_no_unstable_Sp', float(sum(np.count_nonzero(Chart(0.014, d, +1).unstable) for d in (1., 5., 25.))))
+    _Section(ctx, checks, c14, c56, area14, area56, small)
+    return checks
+
+
+def _Range(rng, like='0.000') -> str:
+    return 'none' if rng is None else f'{Fmt(rng[0], like)} .. {Fmt(rng[1], like)}'
+
+
+def _MeasureTable(charts: Dict) -> List[str]:
+    rows = ['| D_V | D_TV | unstable x range | unstable J1/J2 range | area (decades^2) | x extent (decades) | '
+            'mean y extent, x < 0.10 | touches the domain edge |', '|---|---|---|---|---|---|---|---|']
+    for (DV, d), c in charts.items():
+        rows.append(f'| {DV} | {d:g} | {_Range(c.unstableXRange)} | {_Range(c.unstableYRange)} | {Area(c):.3f} | '
+                    f'{XExtent(c):.3f} | {SmallXYExtent(c):.3f} | {", ".join(c.clippedSides) or "no"} |')
+    return rows
+
+
+def _Section(ctx, checks, c14: Dict, c56: Dict, area14: Dict, area56: Dict, small: Dict) -> None:
+    fixed = {**{(0.014, d): c for d, c in c14.items()}, **{(0.056, d): c for d, c in c56.items()}}
+    shown = {key: Chart(*key, S=-1, displayed=True) for key in fixed}
+    (x0, x1), (y0, y1) = DisplayedDomain()
+    passed = [c for c in checks if c.verdict == 'PASS']
+    other = [c for c in checks if c.verdict != 'PASS']
+    clipped = [key for key, c in fixed.items() if c.clippedSides]
+    ctx.AddSection('Stability charts: what the section 2.3 rows measured', f"""
+Set (25) with mu = 0.132, x = kT/(kV r1^2) from 1e-4 to 1e2, y = J1/J2 from 1e-6 to 1, {RESOLUTION} x {RESOLUTION}
+log grid (0.01 decade per step), S = -1 unless stated, from `exudyn_worm.charts.ComputeStabilityChart` (the domain
+and the measures fixed in validation/README.md before the results):
+
+{chr(10).join(_MeasureTable(fixed))}
+
+Generated from the verdicts: {len(passed)} of {len(checks)} statements of section 2.3 hold under their reading
+rules ({', '.join(f'`{c.id}`' for c in passed) or 'none'}); {'none fails' if not other else 'not holding: ' +
+'; '.join(f'`{c.id}` ({c.verdict}: computed {Fmt(c.computed, c.row.publishedText)}, accepted {c.IntervalText()})' for c in other)}.
+{len(clipped)} of the {len(fixed)} unstable sets touch an edge of the fixed domain
+({', '.join(f'D_V = {DV}, D_TV = {d:g}' for DV, d in clipped) or 'none'}): there the region continues beyond the
+chart and the areas and extents are clipped.
+
+For information only (no verdict is taken from it: the rows use the domain above), the same measures on the area
+the paper displays, from the ranges section 2.3 states (J1 from 1e-6 to 1e-3 kg*m^2, kT from 5e-3 to 5 N*m):
+x from {x0:.3g} to {x1:.3g}, y from {y0:.3g} to {y1:.3g}:
+
+{chr(10).join(_MeasureTable(shown))}
+""")
