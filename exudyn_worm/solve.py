@@ -141,11 +141,13 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
                                     '[{elapsed}<{remaining}]') as bar:
             try:
                 ok = solver.InitializeSolver(mbs, ss)
+                mbs.sys['dynamicSolverSteps'] = 0        # steps taken in all chunks (it.currentStepIndex restarts)
                 for k in range(1, chunks + 1):
                     if not ok:
                         raise Diverged()
                     solver.it.endTime = T if k == chunks else t0 + h * round(n * k / chunks)
                     ok = solver.SolveSteps(mbs, ss)
+                    mbs.sys['dynamicSolverSteps'] += int(solver.it.currentStepIndex) - 1
                     bar.update(solver.it.currentTime - t0 - bar.n)
                 if not ok:
                     raise Diverged()
