@@ -48,7 +48,7 @@ from .presets import PRESETS, DriveFromParameters
 
 __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'SUBCOMMANDS', 'Subcommands',
            'AddParameterOptions', 'ParametersFromArgs', 'DriveFromArgs', 'SourceText', 'StdoutToStderr',
-           'PrintJson', 'BuildParser', 'Main']
+           'PrintJson', 'CheckOutputFile', 'BuildParser', 'Main']
 
 #: program name used in help and error messages
 PROG = 'exudyn-worm'
@@ -212,6 +212,46 @@ def PrintJson(data) -> None:
     print(json.dumps(data, indent=2, allow_nan=False))
 
 
+#: file suffixes the plotting options accept (matplotlib formats)
+PLOT_SUFFIXES = ('.png', '.pdf', '.svg')
+
+
+def CheckOutputFile(option: str, path: str, suffixes: Sequence[str] = PLOT_SUFFIXES) -> str:
+    """Refuse an output file that cannot be written, before anything is computed.
+
+    Parameters
+    ----------
+    option : str
+        The option that named the file (for the message), e.g. ``'--output'``.
+    path : str
+        The file name given.
+    suffixes : sequence of str, optional
+        Accepted suffixes (lower case, with the dot).
+
+    Returns
+    -------
+    str
+        ``path`` unchanged.
+
+    Raises
+    ------
+    UsageError
+        For a wrong suffix, a directory, or a folder that cannot be written (missing folders are fine if
+        they can be created).
+    """
+    p = os.path.abspath(path)
+    if os.path.splitext(p)[1].lower() not in suffixes:
+        raise UsageError(f"{option}: expected a file ending in {', '.join(suffixes)}, got '{path}'")
+    if os.path.isdir(p):
+        raise UsageError(f"{option}: '{path}' is a directory; give a file name inside it")
+    folder = os.path.dirname(p)                 # a missing folder is created when the file is saved
+    while not os.path.exists(folder) and os.path.dirname(folder) != folder:
+        folder = os.path.dirname(folder)
+    if not os.path.isdir(folder) or not os.access(folder, os.W_OK | os.X_OK):
+        raise UsageError(f"{option}: cannot write into '{folder}' (not a writable directory)")
+    return path
+
+
 def SourceText(args: argparse.Namespace) -> str:
     """Which parameter set a run used: preset, config file and ``--set`` overrides, as one phrase.
 
@@ -230,7 +270,7 @@ def SourceText(args: argparse.Namespace) -> str:
 
 
 #: built-in subcommands: modules of :mod:`exudyn_worm.commands`, in the order of ``exudyn-worm --help``
-COMMAND_MODULES: Tuple[str, ...] = ('stability', 'check', 'simulate', 'validate')
+COMMAND_MODULES: Tuple[str, ...] = ('stability', 'check', 'chart', 'simulate', 'validate')
 #: further subcommands registered at run time (plugins, tests), after the built-in ones
 SUBCOMMANDS: List[Subcommand] = []
 
