@@ -161,6 +161,92 @@ long solve(const double *y0, double endTime, double dtOut, long nOut, double rto
     return steps;
 }
 
+/* Generalized-alpha (Chung-Hulbert / Arnold-Bruels parameters from the spectral radius rho, as Exudyn's
+   solver) at the fixed step h with full Newton on the two accelerations (Jacobian by finite differences).
+   A step whose Newton iteration does not converge in 25 iterations is repeated as two half steps (down to
+   h / 2^20), as Exudyn's adaptive step does. Writes states and accelerations after every step of h;
+   returns the number of halved steps (-1: no convergence even at the smallest step). */
+typedef struct { double q[2], v[2], acc[2], a[2]; } GAState;
+static double gaAm, gaAf, gaGam, gaBet, gaRtol;
+
+static int gaStep(GAState *s, double t, double h)      /* 1: converged, state advanced to t + h */
+{
+    const double cq = h * h * gaBet * (1. - gaAf) / (1. - gaAm), cv = h * gaGam * (1. - gaAf) / (1. - gaAm);
+    double qb[2], vb[2], x[2] = {s->acc[0], s->acc[1]}, r[2], J[2][2], y[4], f[4];
+    int i, it;
+    for (i = 0; i < 2; ++i) {      /* the parts of q, v that do not depend on the new acceleration */
+        double aPart = (gaAf * s->acc[i] - gaAm * s->a[i]) / (1. - gaAm);
+        qb[i] = s->q[i] + h * s->v[i] + h * h * (0.5 - gaBet) * s->a[i] + h * h * gaBet * aPart;
+        vb[i] = s->v[i] + h * (1. - gaGam) * s->a[i] + h * gaGam * aPart;
+    }
+    for (it = 0; it < 25; ++it) {
+        int j;
+        double det, dx0, dx1;
+        for (i = 0; i < 2; ++i) { y[i] = qb[i] + cq * x[i]; y[2 + i] = vb[i] + cv * x[i]; }
+        rhs(t + h, y, f);
+        r[0] = x[0] - f[2]; r[1] = x[1] - f[3];
+        if (fabs(r[0]) + fabs(r[1]) <= gaRtol * (fabs(f[2]) + fabs(f[3]) + 1.)) {
+            for (i = 0; i < 2; ++i) {
+                s->a[i] = (gaAf * s->acc[i] + (1. - gaAf) * x[i] - gaAm * s->a[i]) / (1. - gaAm);
+                s->q[i] = qb[i] + cq * x[i];
+                s->v[i] = vb[i] + cv * x[i];
+                s->acc[i] = x[i];
+            }
+            return 1;
+        }
+        for (j = 0; j < 2; ++j) {      /* dR/dx by forward differences */
+            double xs[2] = {x[0], x[1]}, g[4], eps = 1e-7 * (fabs(x[j]) + 1.);
+            xs[j] += eps;
+            for (i = 0; i < 2; ++i) { y[i] = qb[i] + cq * xs[i]; y[2 + i] = vb[i] + cv * xs[i]; }
+            rhs(t + h, y, g);
+            J[0][j] = (xs[0] - g[2] - r[0]) / eps;
+            J[1][j] = (xs[1] - g[3] - r[1]) / eps;
+        }
+        det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+        dx0 = (J[1][1] * r[0] - J[0][1] * r[1]) / det;
+        dx1 = (J[0][0] * r[1] - J[1][0] * r[0]) / det;
+        x[0] -= dx0; x[1] -= dx1;
+    }
+    return 0;
+}
+
+static long gaAdvance(GAState *s, double t, double h, int depth)   /* halved steps, or -1 */
+{
+    GAState trial = *s;
+    long n1, n2;
+    if (gaStep(&trial, t, h)) { *s = trial; return 0; }
+    if (depth >= 20) return -1;
+    n1 = gaAdvance(s, t, 0.5 * h, depth + 1);
+    if (n1 < 0) return -1;
+    n2 = gaAdvance(s, t + 0.5 * h, 0.5 * h, depth + 1);
+    if (n2 < 0) return -1;
+    return 1 + n1 + n2;
+}
+
+long solveGA(const double *y0, double h, long nSteps, double rho, double rtol, double *out, double *alphaOut)
+{
+    GAState s;
+    double y[4], f[4];
+    long k, halved = 0;
+    int i;
+    gaAm = (2. * rho - 1.) / (rho + 1.); gaAf = rho / (rho + 1.);
+    gaGam = 0.5 + gaAf - gaAm; gaBet = 0.25 * (gaGam + 0.5) * (gaGam + 0.5); gaRtol = rtol;
+    for (i = 0; i < 4; ++i) y[i] = y0[i];
+    rhs(0., y, f);
+    s.q[0] = y0[0]; s.q[1] = y0[1]; s.v[0] = y0[2]; s.v[1] = y0[3];
+    s.acc[0] = s.a[0] = f[2]; s.acc[1] = s.a[1] = f[3];
+    for (i = 0; i < 4; ++i) out[i] = y[i];
+    alphaOut[0] = s.acc[0]; alphaOut[1] = s.acc[1];
+    for (k = 1; k <= nSteps; ++k) {
+        long n = gaAdvance(&s, (k - 1) * h, h, 0);
+        if (n < 0) return -1;
+        halved += n;
+        out[4 * k] = s.q[0]; out[4 * k + 1] = s.q[1]; out[4 * k + 2] = s.v[0]; out[4 * k + 3] = s.v[1];
+        alphaOut[2 * k] = s.acc[0]; alphaOut[2 * k + 1] = s.acc[1];
+    }
+    return halved;
+}
+
 void accelerations(const double *states, long n, double dtOut, double *alpha)
 {
     long k;
@@ -225,6 +311,8 @@ class CompiledReelChanger:
         self._lib.solve.restype = L
         self._lib.solve.argtypes = [D, ctypes.c_double, ctypes.c_double, L, ctypes.c_double, ctypes.c_double,
                                     ctypes.c_double, D, ctypes.POINTER(L)]
+        self._lib.solveGA.restype = L
+        self._lib.solveGA.argtypes = [D, ctypes.c_double, L, ctypes.c_double, ctypes.c_double, D, D]
         self._lib.accelerations.restype = None
         self._lib.accelerations.argtypes = [D, L, ctypes.c_double, D]
 
@@ -253,10 +341,10 @@ class CompiledReelChanger:
         rejected = ctypes.c_long(0)
         D = ctypes.POINTER(ctypes.c_double)
         y0 = np.ascontiguousarray(y0, dtype=float)
-        t0 = _time.perf_counter()
+        t0, c0 = _time.perf_counter(), _time.process_time()
         steps = self._lib.solve(y0.ctypes.data_as(D), endTime, outputStep, n, rtol, atol, 1e-5,
                                 out.ctypes.data_as(D), ctypes.byref(rejected))
-        solveSeconds = _time.perf_counter() - t0
+        solveSeconds, solveCpuSeconds = _time.perf_counter() - t0, _time.process_time() - c0
         if steps < 0:
             raise RuntimeError(f"CompiledReelChanger.Solve: the integration failed (code {steps})")
         alpha = np.zeros((n, 2))
@@ -264,7 +352,49 @@ class CompiledReelChanger:
         time = np.arange(n) * outputStep
         return ResultFromStates(time, out.T, alpha, drive, motor, self.contactOptions, solveSeconds,
                                 {'method': 'C DOPRI5', 'rtol': rtol, 'atol': atol, 'steps': int(steps),
-                                 'rejectedSteps': int(rejected.value), 'outputStep': outputStep})
+                                 'rejectedSteps': int(rejected.value), 'outputStep': outputStep,
+                                 'solveCpuSeconds': solveCpuSeconds})
+
+
+def _SolveGeneralizedAlpha(self, stepSize: float, endTime: Optional[float] = None, spectralRadius: float = 0.9,
+                           newtonTolerance: float = 1e-8) -> SimulationResult:
+    """Integrate with the compiled generalized-alpha method at a fixed step (full Newton per step).
+
+    Parameters
+    ----------
+    stepSize : float
+        Time step in s; the output holds every step.
+    endTime : float, optional
+        Simulated time in s (default one wheel rotation).
+    spectralRadius : float
+        Spectral radius at infinity (Exudyn's default 0.9).
+    newtonTolerance : float
+        Newton stops when the acceleration residual is below this fraction of the accelerations.
+
+    Returns
+    -------
+    SimulationResult
+        ``info`` holds the steps and the number of steps repeated as two halves (Newton not converged).
+    """
+    endTime = RotationPeriod(self.parameters) if endTime is None else float(endTime)
+    _, y0, drive, _, motor = ReelChangerOde(self.parameters, self.contactOptions)
+    nSteps = int(round(endTime / stepSize))
+    out, alpha = np.zeros((nSteps + 1, 4)), np.zeros((nSteps + 1, 2))
+    D = ctypes.POINTER(ctypes.c_double)
+    y0 = np.ascontiguousarray(y0, dtype=float)
+    t0, c0 = _time.perf_counter(), _time.process_time()
+    halved = self._lib.solveGA(y0.ctypes.data_as(D), stepSize, nSteps, spectralRadius, newtonTolerance,
+                                 out.ctypes.data_as(D), alpha.ctypes.data_as(D))
+    solveSeconds, solveCpuSeconds = _time.perf_counter() - t0, _time.process_time() - c0
+    if halved < 0:
+        raise RuntimeError("CompiledReelChanger.SolveGeneralizedAlpha: Newton did not converge at stepSize / 2^20")
+    time = np.arange(nSteps + 1) * stepSize
+    return ResultFromStates(time, out.T, alpha, drive, motor, self.contactOptions, solveSeconds,
+                            {'method': 'C generalized-alpha', 'stepSize': stepSize, 'spectralRadius': spectralRadius,
+                             'steps': nSteps, 'halvedSteps': int(halved), 'solveCpuSeconds': solveCpuSeconds})
+
+
+CompiledReelChanger.SolveGeneralizedAlpha = _SolveGeneralizedAlpha
 
 
 def SolveReelChangerCompiled(parameters: Mapping[str, float], endTime: Optional[float] = None, rtol: float = 1e-6,

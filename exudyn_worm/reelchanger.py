@@ -21,15 +21,24 @@ from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, Crea
 from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
-from .stepsize import CheckStepSize
+from .stepsize import CheckStepSize, RecommendedStepSize
 from ._checks import CheckPositive
 from ._roots import FindRoot
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
-           'SteadyInitialState', 'DEFAULT_STEP_SIZE']
+           'SteadyInitialState', 'DEFAULT_STEP_SIZE', 'SOLVER_SETTINGS']
 
-#: default time step in s (the P1/P7 amplitudes change < 1 % when it is halved, see validation/REPORT.md)
+#: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change
+#: < 1 % when it is halved, see validation/REPORT.md); SimulateReelChanger's default is the drive's own
+#: RecommendedStepSize
 DEFAULT_STEP_SIZE = 5e-4
+#: generalized-alpha settings of :func:`SimulateReelChanger` (paths in ``exudyn.SimulationSettings``), chosen by
+#: the lever measurements in benchmarks/README.md: modified Newton, at most 10 iterations before the Jacobian is
+#: renewed or the step halved (Exudyn's 25 let a stuck iteration run on), relative tolerance 1e-6, spectral
+#: radius 0.8 (damps the stiff friction-regularization mode; 0.9 made P1's peak 0.3 % high at 5e-4 s)
+SOLVER_SETTINGS = {'timeIntegration.newton.useModifiedNewton': True, 'timeIntegration.newton.maxIterations': 10,
+                   'timeIntegration.newton.relativeTolerance': 1e-6,
+                   'timeIntegration.generalizedAlpha.spectralRadius': 0.8}
 _MOTOR_INERTIA = 1e-3   # kg*m^2; the motor node is prescribed, its inertia does not matter
 
 
@@ -218,6 +227,14 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain)
 
 
+def _SolverCounters(mbs) -> Dict[str, Any]:
+    """Work counters of the last solve: steps taken, Newton iterations, Jacobians, rejected (halved) steps."""
+    it = mbs.sys['dynamicSolver'].it
+    return {'steps': int(it.currentStepIndex) - 1, 'newtonIterations': int(it.newtonStepsCount),
+            'jacobians': int(it.newtonJacobiCount), 'rejectedSteps': int(it.rejectedModifiedNewtonSteps),
+            'minStepSize': float(it.minStepSize)}
+
+
 def _ApplySolverOptions(ss, options: Mapping[str, Any], where: str):
     """Set dotted ``SimulationSettings`` paths of ``options`` on ``ss``; return the solver type."""
     import exudyn as exu
@@ -237,7 +254,7 @@ def _ApplySolverOptions(ss, options: Mapping[str, Any], where: str):
 
 
 def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float] = None,
-                        stepSize: float = DEFAULT_STEP_SIZE, contactOptions: ContactOptions = ContactOptions(),
+                        stepSize: Optional[float] = None, contactOptions: ContactOptions = ContactOptions(),
                         useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
                         solverOptions: Optional[Mapping[str, Any]] = None) -> SimulationResult:
     """Build and simulate the reel changer with Exudyn's generalized-alpha solver.
@@ -248,15 +265,17 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
         Flat parameter set (e.g. ``GetPreset('reel-P1')``).
     endTime : float, optional
         Simulated time in s (default: one full rotation, 8 s for the paper's speed).
-    stepSize : float
-        Time step in s, > 0 (default :data:`DEFAULT_STEP_SIZE`); refused above the hard limit and warned
-        about above the soft limit of :func:`exudyn_worm.stepsize.CheckStepSize`.
+    stepSize : float, optional
+        Time step in s, > 0; refused above the hard limit and warned about above the soft limit of
+        :func:`exudyn_worm.stepsize.CheckStepSize`. Default: the drive's own
+        :func:`~exudyn_worm.stepsize.RecommendedStepSize` (7.8e-4 s for P1, 5.1e-4 s for P7).
     contactOptions, useSymbolic, startFromEquilibrium, profile
         See :func:`BuildReelChanger`.
     solverOptions : mapping, optional
         Changes to the solver settings, keyed by their path in ``exudyn.SimulationSettings`` (e.g.
         ``{'timeIntegration.newton.maxIterations': 10}``), and ``'solverType'`` (a name of
-        ``exudyn.DynamicSolverType``, default ``'GeneralizedAlpha'``). For benchmarks and studies.
+        ``exudyn.DynamicSolverType``, default ``'GeneralizedAlpha'``), applied over :data:`SOLVER_SETTINGS`.
+        For benchmarks and studies.
 
     Returns
     -------
@@ -266,7 +285,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     import exudyn as exu
     w = 'SimulateReelChanger'
     endTime = RotationPeriod(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
-    stepSize = CheckPositive(w, 'stepSize', stepSize, 's')
+    stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
     if stepSize > endTime:
         raise ValueError(f"{w}: 'stepSize' must be <= endTime = {endTime:g} s, got {stepSize:g} s")
     CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
@@ -280,14 +299,13 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     ss.timeIntegration.endTime = endTime
     ss.timeIntegration.numberOfSteps = steps
     ss.timeIntegration.verboseMode = 0
-    ss.timeIntegration.newton.useModifiedNewton = True
-    solverType = _ApplySolverOptions(ss, solverOptions or {}, w)
+    solverType = _ApplySolverOptions(ss, {**SOLVER_SETTINGS, **(solverOptions or {})}, w)
     printing = exu.config.printToConsole
     exu.config.printToConsole = False   # silences Exudyn's note on ObjectGenericODE2 allocations per step
     try:
-        t0 = _time.perf_counter()
+        t0, c0 = _time.perf_counter(), _time.process_time()
         success = mbs.SolveDynamic(ss, solverType=solverType)
-        solveSeconds = _time.perf_counter() - t0
+        solveSeconds, solveCpuSeconds = _time.perf_counter() - t0, _time.process_time() - c0
     finally:
         exu.config.printToConsole = printing
     if not success:
@@ -312,4 +330,5 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
                             steps=steps, info={'stepSize': stepSize, 'maxLoadTorque': model.load.maximum,
                                                'frictionSpeed': contactOptions.frictionSpeed,
-                                               'useSymbolic': useSymbolic})
+                                               'useSymbolic': useSymbolic, 'solver': _SolverCounters(mbs),
+                                               'solveCpuSeconds': solveCpuSeconds})

@@ -59,8 +59,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--end-time', type=float, default=None, metavar='S',
                         help='simulated time in s (default: one full rotation, 8 s at the paper\'s speed)')
     parser.add_argument('--step-size', type=float, default=None, metavar='S',
-                        help='time step in s (default 5e-4); refused if it cannot resolve the drive\'s highest '
-                             'natural frequency (rule in exudyn_worm/stepsize.py)')
+                        help='time step in s (default: from the drive, 0.039 / its highest natural frequency); refused '
+                             'if it cannot resolve that frequency (rule in exudyn_worm/stepsize.py)')
     parser.add_argument('--windows', default=None, metavar='T0:T1,...',
                         help='evaluation windows in s (default: the lift / lower / lift phases of one rotation)')
     parser.add_argument('--plot', default=None, metavar='DIR', help='write PNG figures into DIR')
@@ -70,13 +70,13 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _Run(args: argparse.Namespace) -> int:
-    from ..reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
+    from ..reelchanger import DefaultWindows, SimulateReelChanger
     from ..stepsize import CheckStepSize, CoarseStepWarning
     parameters, drive = DriveFromArgs(args)
     with BadInput(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter('always', CoarseStepWarning)
-        CheckStepSize(parameters, args.step_size if args.step_size is not None else DEFAULT_STEP_SIZE,
-                      'simulate --step-size')
+        if args.step_size is not None:
+            CheckStepSize(parameters, args.step_size, 'simulate --step-size')
     for warning in caught:
         print(f"exudyn-worm: warning: {warning.message}", file=sys.stderr)
     with BadInput():
@@ -88,7 +88,7 @@ def _Run(args: argparse.Namespace) -> int:
         with StdoutToStderr(args.json), warnings.catch_warnings():
             warnings.simplefilter('ignore', CoarseStepWarning)      # reported above
             result = SimulateReelChanger(parameters, endTime=endTime,
-                                         stepSize=args.step_size if args.step_size is not None else DEFAULT_STEP_SIZE,
+                                         stepSize=args.step_size,
                                          useSymbolic=not args.python_user_functions)
         metrics = result.WindowMetrics(windows)
     written = []
