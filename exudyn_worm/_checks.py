@@ -5,11 +5,13 @@ function, the argument, the allowed range with its unit and the value received, 
 ``WormGear: 'backlash' must be >= 0 m, got -0.001``.
 """
 import math
+from pathlib import Path
 from numbers import Real
 
 import numpy as np
 
-__all__ = ['CheckReal', 'CheckPositive', 'CheckNonNegative', 'CheckAngle', 'CheckRange', 'CheckArray']
+__all__ = ['CheckReal', 'CheckPositive', 'CheckNonNegative', 'CheckAngle', 'CheckRange', 'CheckArray',
+           'CheckOutputFolder']
 
 
 def _Format(value) -> str:
@@ -81,3 +83,19 @@ def CheckArray(where: str, name: str, value, low: float = 0., unit: str = '', lo
         raise ValueError(f"{where}: '{name}' must be finite and {'>' if lowOpen else '>='} {_Format(float(low))}{u} "
                          f"everywhere, got {_Format(float(array[bad].flat[0]))}{u}")
     return array
+
+
+def CheckOutputFolder(where: str, name: str, path) -> Path:
+    """Create folder ``path`` if missing and check that it is writable, before any computation.
+
+    Returns the resolved ``pathlib.Path``; raises ``ValueError`` with one line naming ``where`` and ``name``.
+    """
+    folder = Path(path).resolve()
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        probe = folder / '.write-test'
+        probe.touch()
+        probe.unlink()
+    except OSError as error:
+        raise ValueError(f"{where}: cannot write to {name} {str(path)!r}: {error.strerror or error}") from None
+    return folder

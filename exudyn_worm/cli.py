@@ -37,9 +37,12 @@ import argparse
 import contextlib
 import importlib
 import json
+import math
 import os
+import re
 import sys
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
 from .config import DEFAULT_PRESET, ResolveParameters
@@ -47,8 +50,8 @@ from .drive import ElasticDrive
 from .presets import PRESETS, DriveFromParameters
 
 __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'SUBCOMMANDS', 'Subcommands',
-           'AddParameterOptions', 'ParametersFromArgs', 'DriveFromArgs', 'SourceText', 'StdoutToStderr',
-           'PrintJson', 'CheckOutputFile', 'BuildParser', 'Main']
+           'AddParameterOptions', 'ParametersFromArgs', 'DriveFromArgs', 'SourceText', 'SourceInfo',
+           'StdoutToStderr', 'PrintJson', 'CheckOutputPath', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
 
 #: program name used in help and error messages
 PROG = 'exudyn-worm'
@@ -74,10 +77,122 @@ def BadInput() -> Iterator[None]:
 
 
 class _Parser(argparse.ArgumentParser):
-    """ArgumentParser whose errors become one-line :class:`UsageError` instead of usage + exit."""
+    """ArgumentParser whose errors become one-line :class:`UsageError` instead of usage + exit.
+
+    Negative numbers in any float notation (``-1e-3``, ``-.5``, ``-inf``) are read as values, not as
+    options, so that ``--step-size -1e-3`` reaches the range check instead of "expected one argument".
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r'^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-inf(inity)?$',
+                                                   re.IGNORECASE)
 
     def error(self, message: str):
         raise UsageError(f"{message} (see '{self.prog} --help')")
+
+
+def _NumberType(kind, unit: str, low: float, lowOpen: bool):
+    name = 'an integer' if kind is int else 'a finite number'
+    bound = f"{'>' if lowOpen else '>='} {low:g}{' ' + unit if unit else ''}"
+
+    def Parse(text: str):
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not math.isfinite(value) or (kind is int and not value.is_integer()):
+            raise argparse.ArgumentTypeError(f"expected {name}{' in ' + unit if unit else ''}, got '{text}'")
+        if value < low or (lowOpen and value == low):
+            raise argparse.ArgumentTypeError(f"must be {bound}, got {text}{' ' + unit if unit else ''}")
+        return kind(value)
+    Parse.__name__ = f'{kind.__name__} {bound}'
+    return Parse
+
+
+def PositiveFloat(unit: str = ''):
+    """An ``argparse`` type: a finite float > 0 (``--step-size``, ``--end-time``).
+
+    Parameters
+    ----------
+    unit : str
+        Unit named in the error message, e.g. ``'s'``.
+
+    Returns
+    -------
+    callable
+        ``type=`` argument of ``add_argument``; a bad value gives one line such as
+        ``argument --step-size: must be > 0 s, got -1e-3 s``.
+    """
+    return _NumberType(float, unit, 0., True)
+
+
+def PositiveInt(unit: str = ''):
+    """An ``argparse`` type: an integer >= 1, also written as ``1e7``.
+
+    Parameters
+    ----------
+    unit : str
+        Unit named in the error message, e.g. ``'steps'``.
+
+    Returns
+    -------
+    callable
+        ``type=`` argument of ``add_argument``.
+    """
+    return _NumberType(int, unit, 1, False)
+
+
+def CheckOutputPath(path, option: str, kind: str = 'file') -> Path:
+    """Check, before any computation, that an output named on the command line can be written.
+
+    One rule for every subcommand: the output you name (a file, or a folder for ``kind='folder'``) is
+    created or overwritten; the folder that holds it must already exist. Nothing is created here.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The path given by the user.
+    option : str
+        The option that named it, for the message (e.g. ``'--csv'``).
+    kind : {'file', 'folder'}
+        What the path is to be.
+
+    Returns
+    -------
+    pathlib.Path
+        The path (unchanged).
+
+    Raises
+    ------
+    UsageError
+        If the path is empty, is a folder where a file is wanted or the other way round, its parent is
+        missing or not a folder, or it is not writable.
+    """
+    if kind not in ('file', 'folder'):
+        raise ValueError(f"CheckOutputPath: 'kind' must be 'file' or 'folder', got {kind!r}")
+    text = os.fspath(path)
+    p = Path(text)
+    if not text.strip():
+        raise UsageError(f"{option}: expected a {kind} name, got ''")
+    if p.exists():
+        if kind == 'file' and p.is_dir():
+            raise UsageError(f"{option} {text}: is a folder; give a file name (e.g. {Path(text) / 'out.csv'})"
+                             if option == '--csv' else f"{option} {text}: is a folder; give a file name")
+        if kind == 'folder' and not p.is_dir():
+            raise UsageError(f"{option} {text}: is a file, expected a folder (the figures are written into it)")
+        if not os.access(p, os.W_OK):
+            raise UsageError(f"{option} {text}: not writable")
+        return p
+    parent = p.parent
+    if not parent.exists():
+        raise UsageError(f"{option} {text}: the folder {parent} does not exist (create it first; "
+                         f"{PROG} creates only the {kind} you name)")
+    if not parent.is_dir():
+        raise UsageError(f"{option} {text}: {parent} is not a folder")
+    if not os.access(parent, os.W_OK):
+        raise UsageError(f"{option} {text}: cannot write into the folder {parent} (permission denied)")
+    return p
 
 
 @dataclass(frozen=True)
@@ -212,44 +327,32 @@ def PrintJson(data) -> None:
     print(json.dumps(data, indent=2, allow_nan=False))
 
 
-#: file suffixes the plotting options accept (matplotlib formats)
-PLOT_SUFFIXES = ('.png', '.pdf', '.svg')
-
-
-def CheckOutputFile(option: str, path: str, suffixes: Sequence[str] = PLOT_SUFFIXES) -> str:
-    """Refuse an output file that cannot be written, before anything is computed.
+def SourceInfo(args: argparse.Namespace) -> Dict:
+    """Which parameter set a run used, for JSON output: the preset, the config file and the overrides.
 
     Parameters
     ----------
-    option : str
-        The option that named the file (for the message), e.g. ``'--output'``.
-    path : str
-        The file name given.
-    suffixes : sequence of str, optional
-        Accepted suffixes (lower case, with the dot).
+    args : argparse.Namespace
+        Parsed arguments of a subcommand with :func:`AddParameterOptions` (already resolved once, so
+        the config file is known to be valid).
 
     Returns
     -------
-    str
-        ``path`` unchanged.
-
-    Raises
-    ------
-    UsageError
-        For a wrong suffix, a directory, or a folder that cannot be written (missing folders are fine if
-        they can be created).
+    dict
+        ``preset`` (the name used), ``presetFrom`` (``'--preset'``, ``'config'`` or ``'default'``),
+        ``config`` (path or None) and ``overrides`` (the ``--set`` texts, in order).
     """
-    p = os.path.abspath(path)
-    if os.path.splitext(p)[1].lower() not in suffixes:
-        raise UsageError(f"{option}: expected a file ending in {', '.join(suffixes)}, got '{path}'")
-    if os.path.isdir(p):
-        raise UsageError(f"{option}: '{path}' is a directory; give a file name inside it")
-    folder = os.path.dirname(p)                 # a missing folder is created when the file is saved
-    while not os.path.exists(folder) and os.path.dirname(folder) != folder:
-        folder = os.path.dirname(folder)
-    if not os.path.isdir(folder) or not os.access(folder, os.W_OK | os.X_OK):
-        raise UsageError(f"{option}: cannot write into '{folder}' (not a writable directory)")
-    return path
+    if args.preset:
+        preset, source = args.preset, '--preset'
+    else:
+        preset = None
+        if args.config:
+            from .config import LoadConfig
+            with BadInput():
+                preset = LoadConfig(args.config)['preset']
+        preset, source = (preset, 'config') if preset else (DEFAULT_PRESET, 'default')
+    return {'preset': preset, 'presetFrom': source, 'config': os.fspath(args.config) if args.config else None,
+            'overrides': list(args.set)}
 
 
 def SourceText(args: argparse.Namespace) -> str:
@@ -259,18 +362,22 @@ def SourceText(args: argparse.Namespace) -> str:
     ----------
     args : argparse.Namespace
         Parsed arguments of a subcommand with :func:`AddParameterOptions`.
+
+    Returns
+    -------
+    str
+        E.g. ``preset reel-P1 (default), --set J1=0.3``.
     """
-    parts = [f"preset {args.preset}" if args.preset else None,
-             f"config {args.config}" if args.config else None,
-             f"--set {' '.join(args.set)}" if args.set else None]
-    parts = [p for p in parts if p]
-    if not args.preset and not args.config:
-        parts.insert(0, f"preset {DEFAULT_PRESET} (default)")
-    return ', '.join(parts)
+    info = SourceInfo(args)
+    parts = [f"preset {info['preset']}" + {'--preset': '', 'config': ' (from the config)',
+                                           'default': ' (default)'}[info['presetFrom']],
+             f"config {info['config']}" if info['config'] else None,
+             f"--set {' '.join(info['overrides'])}" if info['overrides'] else None]
+    return ', '.join(p for p in parts if p)
 
 
 #: built-in subcommands: modules of :mod:`exudyn_worm.commands`, in the order of ``exudyn-worm --help``
-COMMAND_MODULES: Tuple[str, ...] = ('stability', 'check', 'chart', 'simulate', 'validate')
+COMMAND_MODULES: Tuple[str, ...] = ('stability', 'check', 'chart', 'simulate', 'sweep', 'validate')
 #: further subcommands registered at run time (plugins, tests), after the built-in ones
 SUBCOMMANDS: List[Subcommand] = []
 

@@ -43,7 +43,7 @@ import numpy as np
 
 from ._checks import CheckRange
 from .presets import PARAMETER_UNITS, REEL_KEYS, ApplyOverrides, DriveFromParameters, DriveSideChain
-from .stability import CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzConditions
+from .stability import CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzConditions, HurwitzStable
 
 __all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'ChartPoint', 'ChartGrid',
            'AxisScan', 'ScanParameter', 'Recommendation', 'PairRecommendation', 'DesignCheckResult',
@@ -119,7 +119,10 @@ def _Scaled(parameters: Mapping[str, float], changes: Mapping[str, float]) -> Di
 
 
 def _StableAt(parameters, changes) -> bool:
-    return AnalyzeStability(DriveFromParameters(_Scaled(parameters, changes))).stable
+    # Routh-Hurwitz on (16) is the same verdict as AnalyzeStability(...).stable without the polynomial roots
+    # (10x faster; the stability command's hint evaluates about 100 drives at start-up)
+    drive = DriveFromParameters(_Scaled(parameters, changes))
+    return all(HurwitzStable(CharacteristicCoefficients(drive, S)) for S in CONTACT_STATES)
 
 
 class _ScaledDrives:

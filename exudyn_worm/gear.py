@@ -37,7 +37,8 @@ class WormGear:
     dV : float
         Mesh damping in the normal direction in N*s/m, >= 0.
     backlash : float, optional
-        Total normal backlash delta in m, >= 0 (no force while ``|Delta s| <= delta/2``).
+        Total normal backlash delta in m, in [0, r1] (no force while ``|Delta s| <= delta/2``); a value
+        above the worm radius is rejected as a unit mistake (mm given as m).
     mu : float, optional
         Flank friction coefficient, >= 0. Give ``mu`` or ``rho`` (or both, consistent via eq. (13)).
     rho : float, optional
@@ -78,6 +79,11 @@ class WormGear:
         set_('kV', CheckPositive(w, 'kV', self.kV, 'N/m'))
         set_('dV', CheckNonNegative(w, 'dV', self.dV, 'N*s/m'))
         set_('backlash', CheckNonNegative(w, 'backlash', self.backlash, 'm'))
+        if self.backlash > self.r1:       # a gap wider than the worm radius cannot exist: a unit mistake
+            b = self.backlash
+            raise ValueError(f"{w}: 'backlash' must be <= the worm radius r1 = {self.r1:g} m, got {b:g} m; "
+                             f"backlash is in m: for {b:g} mm give {b * 1e-3:g} (on the command line "
+                             f"--set 'backlash={b:g} mm')")
         if self.mu is None and self.rho is None:
             raise ValueError(f"{w}: give the friction as 'mu' (>= 0) or as 'rho' (in [0, pi/2) rad), got neither")
         cosA = math.cos(self.alphaN)

@@ -22,11 +22,11 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .connector import CONNECTORS_KEY, CreateWormGear, WormGearConnector
+from .connector import CONNECTORS_KEY, AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from .contact import ContactOptions
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft
@@ -34,7 +34,7 @@ from .profiles import ConstantSpeed
 from .stability import CONTACT_STATES, ContactStability, StabilityAnalysis, _Finite, _SortEigenvalues
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
-           'BuildLinearizationModel', 'ExudynEigenvalues', 'AnalyzeStabilityExudyn']
+           'BuildLinearizationModel', 'LinearStabilityFromParameters', 'ExudynEigenvalues', 'AnalyzeStabilityExudyn']
 
 #: normal pre-deflection in m beyond half the backlash at which the 2-DOF model is linearized (any value > 0
 #: gives the same result: with S held the law is linear in the deflection)
@@ -315,8 +315,14 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
                            states=results)
 
 
-def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True):
+def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True,
+                            axialBearing: Optional[AxialBearing] = None,
+                            chain: Sequence[Tuple[float, float, float]] = ()):
     """Exudyn system of Figure 2 (motor held still), worm pre-deflected into contact; returns ``(SC, mbs)``.
+
+    With ``axialBearing`` the worm has its axial coordinate (node ``wormAxial``): the 3-DOF problem in
+    (phi1, phi2, xA). With ``chain`` the drive-side chain of Figure 19 sits between worm and motor
+    (rotors ``inertia4``, ...; topology in :mod:`exudyn_worm.presets`).
 
     Parameters
     ----------
@@ -327,6 +333,10 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
         :func:`AnalyzeLinearStability`, which holds it itself).
     useSymbolic : bool
         Symbolic (C++) or Python user function for the connector.
+    axialBearing : AxialBearing, optional
+        The worm's axial bearing (None: axially rigid worm).
+    chain : sequence of (J, k, d)
+        Drive-side chain, worm side first (:func:`~exudyn_worm.presets.DriveSideChain`).
     """
     import exudyn as exu
     if S is not None and S not in CONTACT_STATES:
@@ -339,12 +349,38 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
     worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, name='worm')
     wheel = CreateRotor(mbs, drive.J2, name='wheel')
     CreatePrescribedRotation(mbs, motor, ConstantSpeed(0.), useSymbolic=useSymbolic)
-    CreateShaft(mbs, [motor, worm], stiffness=drive.kT, damping=drive.dT)
+    chainRotors = [CreateRotor(mbs, J, name=f'inertia{i}') for i, (J, _, _) in enumerate(chain, start=4)]
+    CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT)
+    for rotor, motorSide, (_, k, d) in zip(chainRotors, chainRotors[1:] + [motor], chain):
+        CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d)
+    axialNode = None if axialBearing is None else CreateWormAxialBearing(mbs, axialBearing)['nodeNumber']
     options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
     CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=g, useSymbolic=useSymbolic,
-                   contactOptions=options, name='wormGear')
+                   contactOptions=options, name='wormGear', axialNodeNumber=axialNode)
     mbs.Assemble()
     return SC, mbs
+
+
+def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: bool = True) -> LinearStability:
+    """:func:`AnalyzeLinearStability` of the drive a flat parameter set describes, including the drive-side
+    chain (``J4, k4, d4, ...``) and the worm's axial bearing (``kA, dA, mA``) when given; no load.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (see :mod:`exudyn_worm.presets`).
+    useSymbolic : bool
+        Symbolic (C++) or Python user function for the connector.
+
+    Returns
+    -------
+    LinearStability
+        For S = +1 and S = -1; coordinates ``motor, worm, wheel`` (+ ``inertia4``, ..., ``wormAxial``).
+    """
+    from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
+    SC, mbs = BuildLinearizationModel(DriveFromParameters(parameters), None, useSymbolic,
+                                      AxialBearingFromParameters(parameters), DriveSideChain(parameters))
+    return AnalyzeLinearStability(mbs)
 
 
 def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> np.ndarray:

@@ -31,6 +31,9 @@ import math
 import re
 from typing import TYPE_CHECKING, Dict, List, Mapping, Optional, Tuple
 
+import numpy as np
+
+from ._checks import CheckAngle, CheckNonNegative, CheckPositive, CheckRange, CheckReal
 from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from .gear import WormGear
 
@@ -38,7 +41,8 @@ if TYPE_CHECKING:
     from .connector import AxialBearing
 
 __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
-           'ApplyOverrides', 'GearFromParameters', 'DriveFromParameters', 'DriveSideChain', 'AxialBearingFromParameters']
+           'ApplyOverrides', 'CheckParameters', 'GearFromParameters', 'DriveFromParameters', 'DriveSideChain',
+           'AxialBearingFromParameters', 'MAX_RATE']
 
 #: keys of the elastic drive (Figure 2)
 DRIVE_KEYS = ('alphaN', 'gamma', 'mu', 'rho', 'r1', 'r2', 'kV', 'dV', 'DV', 'backlash',
@@ -138,6 +142,67 @@ def _Require(parameters, keys, what):
                          f"or in the config file")
 
 
+_POSITIVE_KEYS = ('r1', 'r2', 'kV', 'J1', 'J2', 'kT', 'motorSpeed')
+_NON_NEGATIVE_KEYS = ('mu', 'dV', 'DV', 'dT', 'DT', 'DTV', 'backlash', 'loadMass', 'leverArm')
+
+
+def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set') -> None:
+    """Check the range of every known key of a flat parameter dictionary, naming the key as the user wrote it.
+
+    Positive: ``r1 r2 kV J1 J2 kT motorSpeed``; non-negative: ``mu dV DV dT DT DTV backlash loadMass leverArm``;
+    ``alphaN``, ``gamma`` in (0, pi/2) rad; ``rho`` in [0, pi/2) rad; every other key finite. The plausibility
+    of values against each other (backlash against the worm radius, overflow of the model's coefficients)
+    is checked by :class:`~exudyn_worm.gear.WormGear` and :func:`DriveFromParameters`.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary (SI).
+    where : str
+        Prefix of the error messages.
+
+    Raises
+    ------
+    ValueError, TypeError
+        E.g. ``parameter set: 'kT' must be > 0 N*m/rad, got -5 N*m/rad``.
+    """
+    for key, value in parameters.items():
+        unit = PARAMETER_UNITS.get(key, '')
+        if key in _POSITIVE_KEYS:
+            CheckPositive(where, key, value, unit)
+        elif key in _NON_NEGATIVE_KEYS:
+            CheckNonNegative(where, key, value, unit)
+        elif key in ('alphaN', 'gamma'):
+            CheckAngle(where, key, value)
+        elif key == 'rho':
+            CheckRange(where, key, value, 0., 0.5 * math.pi, 'rad', highOpen=True)
+        else:
+            CheckReal(where, key, value, unit)
+
+
+#: largest rate |b_i|^(1/i) of eq. (16), 1/s, that a parameter set may reach: no mechanical drive comes near it,
+#: so a drive above it has a value or unit off by orders of magnitude (and kT = 1e300 would overflow the analysis)
+MAX_RATE = 1e12
+
+
+def _CheckScale(drive: ElasticDrive, where: str) -> None:
+    """The rates of the characteristic polynomial (eq. (16)) must be finite and below :data:`MAX_RATE`."""
+    from .stability import CharacteristicCoefficients
+    with np.errstate(over='ignore', invalid='ignore'):
+        rates = [abs(b) ** (1. / (i + 1)) for S in (1, -1)
+                 for i, b in enumerate(CharacteristicCoefficients(drive, S))]
+    rate = max(rates)
+    if math.isfinite(rate) and rate <= MAX_RATE:
+        return
+    g = drive.gear
+    values = ', '.join(f"{k} = {v:g} {PARAMETER_UNITS[k]}" for k, v in
+                       (('J1', drive.J1), ('J2', drive.J2), ('kT', drive.kT), ('dT', drive.dT), ('kV', g.kV),
+                        ('dV', g.dV), ('r1', g.r1), ('r2', g.r2)))
+    raise ValueError(f"{where}: out of range: the drive's rates |b_i|^(1/i) of eq. (16) reach "
+                     f"{rate:.3g} 1/s (a mechanical drive stays far below {MAX_RATE:g} 1/s) with {values}; "
+                     f"check these values and their units")
+
+
 def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True,
                        where: str = 'GearFromParameters') -> WormGear:
     """Build the :class:`WormGear` of a flat parameter dictionary (no J1, kT or shaft damping needed).
@@ -163,6 +228,7 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
         For a missing or invalid parameter.
     """
     p = dict(parameters)
+    CheckParameters(p)
     _Require(p, ('alphaN', 'gamma', 'r1', 'r2', 'kV'), where)
     if 'mu' not in p and 'rho' not in p:
         raise ValueError(f"{where}: give the friction as 'mu' or as the friction angle 'rho'")
@@ -197,7 +263,8 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     Raises
     ------
     ValueError
-        For a missing or invalid parameter.
+        For a missing or invalid parameter (see :func:`CheckParameters`) or parameters whose model
+        coefficients overflow.
     """
     p = dict(parameters)
     where = 'DriveFromParameters'
@@ -215,7 +282,9 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
             raise ValueError(f"{where}: give the shaft damping as 'dT' (N*m*s/rad), the measure 'DT' "
                              f"or the ratio 'DTV'")
         dT = TorsionalDampingFromMeasure(DT, p['kT'], p['J1'])
-    return ElasticDrive(gear=gear, J1=p['J1'], J2=p['J2'], kT=p['kT'], dT=dT)
+    drive = ElasticDrive(gear=gear, J1=p['J1'], J2=p['J2'], kT=p['kT'], dT=dT)
+    _CheckScale(drive, 'parameter set')
+    return drive
 
 
 def DriveSideChain(parameters: Mapping[str, float]) -> List[Tuple[float, float, float]]:

@@ -5,8 +5,6 @@ through :func:`ProgressBar`, so that ``--quiet`` and a non-terminal stderr silen
 """
 import sys
 
-from tqdm import tqdm
-
 __all__ = ['ProgressBar', 'ProgressEnabled']
 
 
@@ -61,6 +59,7 @@ def ProgressBar(total=None, desc='', unit='it', quiet=None, **kwargs):
     ...     for _ in range(3):
     ...         bar.update(1)
     """
+    from tqdm import tqdm         # imported when a bar is made: `import exudyn_worm` stays light
     kwargs.setdefault('file', sys.stderr)
     kwargs.setdefault('dynamic_ncols', True)
     return tqdm(total=total, desc=desc, unit=unit, disable=not ProgressEnabled(quiet), **kwargs)

@@ -14,6 +14,8 @@ import time as _time
 from dataclasses import dataclass
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
+import numpy as np
+
 from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from .contact import MATH_OPS, ContactOptions, MeshContact
 from .drive import ElasticDrive
@@ -21,12 +23,13 @@ from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, Crea
 from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
+from .solve import SolveDynamicInChunks, SolverDivergedError
 from .stepsize import CheckStepSize, RecommendedStepSize
 from ._checks import CheckPositive
 from ._roots import FindRoot
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
-           'SteadyInitialState', 'DEFAULT_STEP_SIZE', 'SOLVER_SETTINGS']
+           'SteadyInitialState', 'CheckRunSize', 'DEFAULT_STEP_SIZE', 'SOLVER_SETTINGS', 'MAX_STEPS']
 
 #: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change
 #: < 1 % when it is halved, see validation/REPORT.md); SimulateReelChanger's default is the drive's own
@@ -40,6 +43,68 @@ SOLVER_SETTINGS = {'timeIntegration.newton.useModifiedNewton': True, 'timeIntegr
                    'timeIntegration.newton.relativeTolerance': 1e-6,
                    'timeIntegration.generalizedAlpha.spectralRadius': 0.8}
 _MOTOR_INERTIA = 1e-3   # kg*m^2; the motor node is prescribed, its inertia does not matter
+
+#: default limit of solver steps (= stored samples, one per step) of one run: 1e6 steps is about 0.4 GB of
+#: stored results and 15 s (P1) to 3.5 min (P7) of solving (780 s simulated of P1 at its recommended step);
+#: raise it with ``maxSteps`` (``--max-steps``) for longer runs
+MAX_STEPS = 1_000_000
+#: solver time per step in s measured for the reel changer (P1 without chatter in most steps, P7 with the
+#: worm speed through zero), used to say how long a refused run would take
+_SECONDS_PER_STEP = (1.5e-5, 2e-4)
+#: memory per stored step in bytes (8 sensors of 2 doubles in Exudyn, about 20 post-processed series)
+_BYTES_PER_STEP = 400
+
+
+def _Duration(seconds: float) -> str:
+    for unit, size in (('h', 3600.), ('min', 60.), ('s', 1.)):
+        if seconds >= size:
+            return f"{seconds / size:.2g} {unit}"
+    return f"{seconds:.2g} s"
+
+
+def CheckRunSize(endTime: float, stepSize: float, maxSteps: int = MAX_STEPS, where: str = 'SimulateReelChanger',
+                 names=('endTime', 'stepSize', 'maxSteps')) -> int:
+    """Number of solver steps of a run; refuse runs longer than ``maxSteps`` before they start.
+
+    Parameters
+    ----------
+    endTime : float
+        Simulated time in s, > 0.
+    stepSize : float
+        Time step in s, > 0 and <= endTime.
+    maxSteps : int
+        Largest number of steps (and stored samples) allowed, >= 1 (default :data:`MAX_STEPS`).
+    where : str
+        Caller named in the messages.
+    names : (str, str, str)
+        How the caller calls end time, step size and step limit (``--end-time`` ... on the command line).
+
+    Returns
+    -------
+    int
+        ``round(endTime / stepSize)``.
+
+    Raises
+    ------
+    ValueError
+        For a bad value or a run above ``maxSteps``; the message says how long the run would take and how
+        much memory its results would need.
+    """
+    nEnd, nStep, nMax = names
+    endTime = CheckPositive(where, nEnd, endTime, 's')
+    stepSize = CheckPositive(where, nStep, stepSize, 's')
+    if isinstance(maxSteps, bool) or not isinstance(maxSteps, int) or maxSteps < 1:
+        raise ValueError(f"{where}: '{nMax}' must be an integer >= 1, got {maxSteps!r}")
+    if stepSize > endTime:
+        raise ValueError(f"{where}: '{nStep}' must be <= {nEnd} = {endTime:g} s, got {stepSize:g} s")
+    ratio = endTime / stepSize
+    if not ratio <= maxSteps:           # also catches an overflow to inf
+        fast, slow = (ratio * s for s in _SECONDS_PER_STEP)
+        raise ValueError(f"{where}: {nEnd} {endTime:g} s at {nStep} {stepSize:g} s needs {ratio:.3g} solver steps, "
+                         f"more than the limit {nMax} = {maxSteps:g}; it would take about {_Duration(fast)} to "
+                         f"{_Duration(slow)} and store about {ratio * _BYTES_PER_STEP / 1e9:.2g} GB of results. "
+                         f"Raise {nMax} to run it anyway")
+    return max(1, int(round(ratio)))
 
 
 def RotationPeriod(parameters: Mapping[str, float]) -> float:
@@ -55,16 +120,34 @@ def RotationPeriod(parameters: Mapping[str, float]) -> float:
     return 2 * math.pi * drive.gear.ratio / speed
 
 
-def DefaultWindows(parameters: Mapping[str, float]) -> List[Tuple[float, float]]:
-    """Lift / lower / lift phases of one rotation: [0, T/4], [T/4, 3T/4], [3T/4, T].
+def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = None,
+                   minLength: float = 0.) -> List[Tuple[float, float]]:
+    """Lift / lower / lift phases of every rotation up to ``endTime``: [kT, kT + T/4], [kT + T/4, kT + 3T/4],
+    [kT + 3T/4, (k+1)T] for k = 0, 1, ..., clipped to ``endTime``.
 
     Parameters
     ----------
     parameters : mapping
         Flat parameter set including ``motorSpeed`` in rad/s.
+    endTime : float, optional
+        Simulated time in s (default: one rotation T).
+    minLength : float
+        Windows shorter than this (in s, after clipping) are dropped; the first window is always kept.
+
+    Returns
+    -------
+    list of (float, float)
+        Windows in s, in time order.
     """
     T = RotationPeriod(parameters)
-    return [(0., T / 4), (T / 4, 3 * T / 4), (3 * T / 4, T)]
+    endTime = T if endTime is None else CheckPositive('DefaultWindows', 'endTime', endTime, 's')
+    windows = []
+    for k in range(int(math.ceil(endTime / T - 1e-12))):
+        for a, b in ((0., .25), (.25, .75), (.75, 1.)):
+            t0, t1 = (k + a) * T, min((k + b) * T, endTime)
+            if t0 < endTime and (not windows or t1 - t0 >= minLength):
+                windows.append((t0, t1))
+    return windows
 
 
 def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed: float,
@@ -253,10 +336,26 @@ def _ApplySolverOptions(ss, options: Mapping[str, Any], where: str):
     return getattr(exu.DynamicSolverType, str(name))
 
 
+def _LikelyCause(drive: ElasticDrive, stepSize: float) -> str:
+    """Why a run of ``drive`` at ``stepSize`` may have failed, from the linearized drive's fastest eigenvalue."""
+    from .stability import CharacteristicCoefficients, EigenvaluesFromPolynomial
+    rate = max(float(np.max(np.abs(EigenvaluesFromPolynomial(CharacteristicCoefficients(drive, S)))))
+               for S in (1, -1))
+    if stepSize * rate > 0.5:
+        return (f"likely cause: the stiffest mode of the linearized drive (|lambda|max = {rate:.3g} 1/s) is far "
+                f"faster than the step resolves (step * |lambda|max = {stepSize * rate:.2g}); resolving it needs a "
+                f"step below about {0.1 / rate:.2g} s; if that is unreasonably small, a parameter is out of a "
+                f"physical range (check values and units)")
+    return (f"likely cause: parameters out of a physical range or a contact too stiff for the step "
+            f"(step * |lambda|max = {stepSize * rate:.2g} of the linearized drive); check the parameters, "
+            f"then try a smaller step size")
+
+
 def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float] = None,
                         stepSize: Optional[float] = None, contactOptions: ContactOptions = ContactOptions(),
                         useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
-                        solverOptions: Optional[Mapping[str, Any]] = None) -> SimulationResult:
+                        solverOptions: Optional[Mapping[str, Any]] = None, maxSteps: int = MAX_STEPS,
+                        progress: Optional[bool] = None) -> SimulationResult:
     """Build and simulate the reel changer with Exudyn's generalized-alpha solver.
 
     Parameters
@@ -276,23 +375,34 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
         ``{'timeIntegration.newton.maxIterations': 10}``), and ``'solverType'`` (a name of
         ``exudyn.DynamicSolverType``, default ``'GeneralizedAlpha'``), applied over :data:`SOLVER_SETTINGS`.
         For benchmarks and studies.
+    maxSteps : int
+        Refuse a run of more than this many steps (:func:`CheckRunSize`, default :data:`MAX_STEPS`).
+    progress : bool or None
+        Progress bar on stderr: True shown, False never, None (default) shown when stderr is a terminal
+        and the run takes longer than about 2 s (:func:`~exudyn_worm.solve.SolveDynamicInChunks`). The
+        numbers do not depend on it.
 
     Returns
     -------
     SimulationResult
         Nothing is written to disk.
+
+    Raises
+    ------
+    ValueError
+        For bad arguments or parameters, or a run above ``maxSteps``.
+    SolverDivergedError
+        If the solver fails; the message gives the simulated time reached and the likely cause.
     """
     import exudyn as exu
     w = 'SimulateReelChanger'
     endTime = RotationPeriod(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
     stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
-    if stepSize > endTime:
-        raise ValueError(f"{w}: 'stepSize' must be <= endTime = {endTime:g} s, got {stepSize:g} s")
+    steps = CheckRunSize(endTime, stepSize, maxSteps, w)
     CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
     model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
     mbs = model.mbs
     mbs.Assemble()
-    steps = int(round(endTime / stepSize))
     ss = exu.SimulationSettings()
     ss.solution.file.write = False                 # never litter the user's current directory
     ss.solution.sensors.writePeriod = stepSize
@@ -304,17 +414,22 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     exu.config.printToConsole = False   # silences Exudyn's note on ObjectGenericODE2 allocations per step
     try:
         t0, c0 = _time.perf_counter(), _time.process_time()
-        success = mbs.SolveDynamic(ss, solverType=solverType)
+        SolveDynamicInChunks(mbs, ss, solverType, progress=progress, desc=w)
         solveSeconds, solveCpuSeconds = _time.perf_counter() - t0, _time.process_time() - c0
+    except SolverDivergedError as err:
+        raise SolverDivergedError(f"{w}: {err}; {_LikelyCause(model.drive, stepSize)}",
+                                  err.timeReached, err.endTime, err.stepSize) from err
     finally:
         exu.config.printToConsole = printing
-    if not success:
-        raise RuntimeError(f"{w}: the Exudyn solver failed (stepSize = {stepSize:g} s); try a smaller stepSize")
 
     series = model.connector.StoredStates(mbs)
     time = series.pop('time')
     for key in [k for k in model.sensors if k not in model.connector.sensors]:
         series[key] = mbs.GetSensorStoredData(model.sensors[key])[:, 1]
+    # each chunk of the solve stores its start once more: keep one sample per time
+    keep = np.concatenate([[True], np.diff(time) > 1e-6 * stepSize])
+    time = time[keep]
+    series = {k: v[keep] for k, v in series.items()}
     mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'],
                                     series.get('xA'), series.get('vA'))
     drive = model.drive

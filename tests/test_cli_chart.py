@@ -65,7 +65,7 @@ def test_points_and_table(capsys):
 
 
 def test_output_png(capsys, tmp_path):
-    target = tmp_path / 'sub' / 'chart.png'
+    target = tmp_path / 'chart.png'
     status, out, err = _Run(capsys, 'chart', '--preset', 'chart', '--DV', '0.014', '--resolution', '40',
                             '--points', 'P1', '--output', str(target))
     assert status == 0 and target.read_bytes()[:4] == b'\x89PNG' and 'wrote' in err
@@ -93,8 +93,9 @@ def test_output_checked_before_computing(capsys, tmp_path, monkeypatch):
     import exudyn_worm.charts as charts
     monkeypatch.setattr(charts, 'ComputeStabilityChart', lambda *a, **k: pytest.fail('computed'))
     (tmp_path / 'adir.png').mkdir()
-    for path, message in ((tmp_path / 'adir.png', 'is a directory'),
-                          (tmp_path / 'nofolder' / 'x.txt', 'expected a file ending in')):
+    for path, message in ((tmp_path / 'adir.png', 'is a folder'),
+                          (tmp_path / 'nofolder' / 'x.png', 'does not exist'),
+                          (tmp_path / 'x.txt', 'expected a file ending in')):
         status, _, err = _Run(capsys, 'chart', '--preset', 'chart', '--output', str(path))
         assert status == 2 and message in err
 

@@ -123,3 +123,15 @@ def test_linear_analysis_rejects_bad_input():
         AnalyzeLinearStability(mbs, contactStates=[(1, 1)])
     with pytest.raises(TypeError, match="'connectors' must hold WormGearConnector objects"):
         AnalyzeLinearStability(mbs, connectors=[3])
+
+
+def test_linear_stability_from_parameters_with_chain_and_axial_bearing():
+    from exudyn_worm.linearization import LinearStabilityFromParameters
+    p = GetPreset('reel-P1')
+    plain = LinearStabilityFromParameters(p)
+    analytical = ew.AnalyzeStability(DriveFromParameters(p))
+    np.testing.assert_allclose(plain.State(-1).eigenvalues, analytical.contact[-1].eigenvalues, rtol=1e-6)
+    full = LinearStabilityFromParameters(ApplyOverrides(p, {'J4': 0.05, 'k4': 2e4, 'd4': 1., 'J5': 0.02, 'k5': 1e5,
+                                                            'kA': 5e8, 'mA': 5.}))
+    assert full.coordinates == ['motor', 'worm', 'wheel', 'inertia4', 'inertia5', 'wormAxial']
+    assert all(len(s.frequenciesHz) == 5 for s in full.states.values())

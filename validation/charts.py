@@ -14,11 +14,11 @@ from typing import Dict, List, Tuple
 import numpy as np
 
 from exudyn_worm.gear import WormGear
-from exudyn_worm.presets import GetPreset
+from exudyn_worm.presets import GearFromParameters, GetPreset
 
 from .runner import Check, Fmt, ValidationContext
 
-__all__ = ['X_RANGE', 'Y_RANGE', 'RESOLUTION', 'DTV_VALUES', 'Chart', 'Area', 'XExtent', 'SmallXYExtent',
+__all__ = ['X_RANGE', 'Y_RANGE', 'RESOLUTION', 'DTV_VALUES', 'Chart', 'DisplayedDomain', 'Area', 'XExtent', 'SmallXYExtent',
            'ChartChecks']
 
 #: chart domain of the section 2.3 rows (validation/README.md)
@@ -33,12 +33,11 @@ SMALL_X = 0.10
 
 def _Set25() -> Tuple[WormGear, float]:
     p = GetPreset('chart')
-    gear = WormGear(alphaN=p['alphaN'], gamma=p['gamma'], r1=p['r1'], r2=p['r2'], kV=p['kV'], dV=p['dV'], mu=p['mu'])
-    return gear, p['J2']
+    return GearFromParameters(p, meshDamping=False), p['J2']
 
 
 @lru_cache(maxsize=None)
-def Chart(DV: float, DTV: float, S: int = -1):
+def Chart(DV: float, DTV: float, S: int = -1, displayed: bool = False):
     """The stability chart of set (25) on the fixed domain (cached).
 
     Parameters
@@ -49,6 +48,9 @@ def Chart(DV: float, DTV: float, S: int = -1):
         Damping ratio D_TV = D_T / D_V.
     S : int, optional
         Contact state.
+    displayed : bool, optional
+        Use the area the paper displays (:func:`DisplayedDomain`) instead of the fixed domain of the rows
+        (for the report's information only).
 
     Returns
     -------
@@ -56,7 +58,22 @@ def Chart(DV: float, DTV: float, S: int = -1):
     """
     from exudyn_worm.charts import ComputeStabilityChart
     gear, J2 = _Set25()
-    return ComputeStabilityChart(gear, J2, DV, DTV, xRange=X_RANGE, yRange=Y_RANGE, resolution=RESOLUTION, S=S)
+    xRange, yRange = DisplayedDomain() if displayed else (X_RANGE, Y_RANGE)
+    return ComputeStabilityChart(gear, J2, DV, DTV, xRange=xRange, yRange=yRange, resolution=RESOLUTION, S=S)
+
+
+def DisplayedDomain() -> Tuple[Tuple[float, float], Tuple[float, float]]:
+    """The area of Figures 4 and 5 from the ranges section 2.3 states: J1 from 1e-6 to 1e-3 kg*m^2 and kT from
+    5e-3 to 5 N*m on set (25).
+
+    Returns
+    -------
+    ((float, float), (float, float))
+        x range kT/(kV r1^2) and y range J1/J2.
+    """
+    p = GetPreset('chart')
+    k = p['kV'] * p['r1']**2
+    return (5e-3 / k, 5. / k), (1e-6 / p['J2'], 1e-3 / p['J2'])
 
 
 def _Steps(chart) -> Tuple[float, float]:
@@ -163,22 +180,39 @@ def _Range(rng, like='0.000') -> str:
     return 'none' if rng is None else f'{Fmt(rng[0], like)} .. {Fmt(rng[1], like)}'
 
 
-def _Section(ctx, checks, c14: Dict, c56: Dict, area14: Dict, area56: Dict, small: Dict) -> None:
+def _MeasureTable(charts: Dict) -> List[str]:
     rows = ['| D_V | D_TV | unstable x range | unstable J1/J2 range | area (decades^2) | x extent (decades) | '
-            'mean y extent, x < 0.10 |', '|---|---|---|---|---|---|---|']
-    for DV, charts, areas in ((0.014, c14, area14), (0.056, c56, area56)):
-        for d, c in charts.items():
-            rows.append(f'| {DV} | {d:g} | {_Range(c.unstableXRange)} | {_Range(c.unstableYRange)} | {areas[d]:.3f} | '
-                        f'{XExtent(c):.3f} | {SmallXYExtent(c):.3f} |')
+            'mean y extent, x < 0.10 | touches the domain edge |', '|---|---|---|---|---|---|---|---|']
+    for (DV, d), c in charts.items():
+        rows.append(f'| {DV} | {d:g} | {_Range(c.unstableXRange)} | {_Range(c.unstableYRange)} | {Area(c):.3f} | '
+                    f'{XExtent(c):.3f} | {SmallXYExtent(c):.3f} | {", ".join(c.clippedSides) or "no"} |')
+    return rows
+
+
+def _Section(ctx, checks, c14: Dict, c56: Dict, area14: Dict, area56: Dict, small: Dict) -> None:
+    fixed = {**{(0.014, d): c for d, c in c14.items()}, **{(0.056, d): c for d, c in c56.items()}}
+    shown = {key: Chart(*key, S=-1, displayed=True) for key in fixed}
+    (x0, x1), (y0, y1) = DisplayedDomain()
     passed = [c for c in checks if c.verdict == 'PASS']
     other = [c for c in checks if c.verdict != 'PASS']
+    clipped = [key for key, c in fixed.items() if c.clippedSides]
     ctx.AddSection('Stability charts: what the section 2.3 rows measured', f"""
 Set (25) with mu = 0.132, x = kT/(kV r1^2) from 1e-4 to 1e2, y = J1/J2 from 1e-6 to 1, {RESOLUTION} x {RESOLUTION}
-log grid (0.01 decade per step), S = -1 unless stated, from `exudyn_worm.charts.ComputeStabilityChart`:
+log grid (0.01 decade per step), S = -1 unless stated, from `exudyn_worm.charts.ComputeStabilityChart` (the domain
+and the measures fixed in validation/README.md before the results):
 
-{chr(10).join(rows)}
+{chr(10).join(_MeasureTable(fixed))}
 
 Generated from the verdicts: {len(passed)} of {len(checks)} statements of section 2.3 hold under their reading
 rules ({', '.join(f'`{c.id}`' for c in passed) or 'none'}); {'none fails' if not other else 'not holding: ' +
 '; '.join(f'`{c.id}` ({c.verdict}: computed {Fmt(c.computed, c.row.publishedText)}, accepted {c.IntervalText()})' for c in other)}.
+{len(clipped)} of the {len(fixed)} unstable sets touch an edge of the fixed domain
+({', '.join(f'D_V = {DV}, D_TV = {d:g}' for DV, d in clipped) or 'none'}): there the region continues beyond the
+chart and the areas and extents are clipped.
+
+For information only (no verdict is taken from it: the rows use the domain above), the same measures on the area
+the paper displays, from the ranges section 2.3 states (J1 from 1e-6 to 1e-3 kg*m^2, kT from 5e-3 to 5 N*m):
+x from {x0:.3g} to {x1:.3g}, y from {y0:.3g} to {y1:.3g}:
+
+{chr(10).join(_MeasureTable(shown))}
 """)

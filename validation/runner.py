@@ -574,6 +574,7 @@ CHECK_GROUPS: List[CheckGroup] = [
     CheckGroup('analytical', 'validation.analytical:AnalyticalChecks', title='Analytical model: eqs. (3), (13), (16)-(24), Figures 4-5'),
     CheckGroup('eigenvalues', 'validation.analytical:EigenvalueChecks', title='Published eigenvalues and frequencies (section 3.1)'),
     CheckGroup('forensics', 'validation.analytical:ForensicsChecks', title='Eigenvalue forensics'),
+    CheckGroup('charts', 'validation.charts:ChartChecks', title='Stability charts: the statements of section 2.3 (Figures 4 and 5)'),
     CheckGroup('simulation', 'validation.timedomain:SimulationChecks', level=1,
                title='Time domain: statements of section 3.2 (reel changer simulations), both mesh readings'),
     CheckGroup('forensics-slow', 'validation.analytical:ForensicsSlowChecks', level=2,

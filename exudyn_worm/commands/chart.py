@@ -6,10 +6,11 @@ constants are what the chart sweeps (x = kT/(kV r1^2), y = J1/J2, D_T = D_TV D_V
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from typing import Dict, List
 
-from ..cli import (BadInput, CheckOutputFile, ParametersFromArgs, PrintJson, SourceText, Subcommand,
+from ..cli import (BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, Subcommand,
                    UsageError)
 
 __all__ = ['COMMAND', 'PAPER_DTV']
@@ -50,6 +51,17 @@ def _PresetName(name: str) -> str:
                      f"(or P1 ... P7 for reel-P1 ... reel-P7)")
 
 
+#: file formats --output accepts
+_PLOT_SUFFIXES = ('.png', '.pdf', '.svg')
+
+
+def _CheckOutput(path: str):
+    """The shared output rule (:func:`~exudyn_worm.cli.CheckOutputPath`) plus a figure format."""
+    if os.path.splitext(path)[1].lower() not in _PLOT_SUFFIXES:
+        raise UsageError(f"--output: expected a file ending in {', '.join(_PLOT_SUFFIXES)}, got '{path}'")
+    return CheckOutputPath(path, '--output')
+
+
 def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
     from ..drive import MeshDampingMeasure
     if 'DV' in parameters:
@@ -63,7 +75,7 @@ def _Run(args: argparse.Namespace) -> int:
     from ..charts import ComputeStabilityChart, FormatChartTable, PresetChartPoints
     from ..presets import GearFromParameters
     from ..progress import ProgressBar
-    output = CheckOutputFile('--output', args.output) if args.output else None
+    output = _CheckOutput(args.output) if args.output else None
     parameters = ParametersFromArgs(args)
     with BadInput():
         gear = GearFromParameters(parameters, meshDamping=False, where='chart')

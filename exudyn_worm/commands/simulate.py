@@ -8,7 +8,8 @@ import warnings
 from pathlib import Path
 from typing import List, Tuple
 
-from ..cli import BadInput, DriveFromArgs, PrintJson, StdoutToStderr, Subcommand
+from ..cli import (BadInput, CheckOutputPath, DriveFromArgs, PositiveFloat, PositiveInt, PrintJson, SourceInfo,
+                   SourceText, StdoutToStderr, Subcommand, UsageError)
 
 __all__ = ['COMMAND', 'ParseWindows']
 
@@ -27,6 +28,8 @@ def ParseWindows(text: str) -> List[Tuple[float, float]]:
         For a malformed list or a window with t1 <= t0 or t0 < 0.
     """
     windows = []
+    if not text.strip():
+        raise ValueError("--windows: expected T0:T1[,T0:T1...] in s, e.g. 0:2,2:6,6:8, got ''")
     for part in text.split(','):
         try:
             t0, t1 = (float(x) for x in part.split(':'))
@@ -43,36 +46,51 @@ _SIMULATE_HEADER = '{:>12} {:>20} {:>10} {:>7} {:>6} {:>16}  chatter'.format(
 _SIMULATE_FIGURES = ('overview', 'acceleration', 'speed', 'normalForce', 'driveTorque')
 
 
-def _SaveFigures(result, folder: Path) -> List[Path]:
-    """Write the standard figures of a simulation as PNG files into ``folder``."""
+def _SaveFigures(result, folder: Path, quiet=None) -> List[Path]:
+    """Write the standard figures of a simulation as PNG files into ``folder`` (created if missing;
+    its parent was checked by :func:`~exudyn_worm.cli.CheckOutputPath`)."""
     from .. import plot
-    folder.mkdir(parents=True, exist_ok=True)
+    from ..progress import ProgressBar
+    folder.mkdir(exist_ok=True)
     paths = []
-    for kind in _SIMULATE_FIGURES:
-        path = folder / f'{kind}.png'
-        plot.SaveFigure(plot.PlotSimulation(result, kind=kind), path)
-        paths.append(path)
+    with ProgressBar(total=len(_SIMULATE_FIGURES), desc='figures', unit='figure', quiet=quiet, delay=2.) as bar:
+        for kind in _SIMULATE_FIGURES:
+            path = folder / f'{kind}.png'
+            plot.SaveFigure(plot.PlotSimulation(result, kind=kind), path)
+            paths.append(path)
+            bar.update(1)
     return paths
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument('--end-time', type=float, default=None, metavar='S',
-                        help='simulated time in s (default: one full rotation, 8 s at the paper\'s speed)')
-    parser.add_argument('--step-size', type=float, default=None, metavar='S',
+    parser.add_argument('--end-time', type=PositiveFloat('s'), default=None, metavar='S',
+                        help="simulated time in s (default: one full rotation, 8 s at the paper's speed, or the "
+                             "end of the last --windows)")
+    parser.add_argument('--step-size', type=PositiveFloat('s'), default=None, metavar='S',
                         help='time step in s (default: from the drive, 0.039 / its highest natural frequency); refused '
                              'if it cannot resolve that frequency (rule in exudyn_worm/stepsize.py)')
+    parser.add_argument('--max-steps', type=PositiveInt('steps'), default=None, metavar='N',
+                        help='refuse runs of more solver steps (= stored samples) than N (default 1e6, about 0.4 GB '
+                             'of results; 780 s simulated of P1 at its default step)')
     parser.add_argument('--windows', default=None, metavar='T0:T1,...',
-                        help='evaluation windows in s (default: the lift / lower / lift phases of one rotation)')
-    parser.add_argument('--plot', default=None, metavar='DIR', help='write PNG figures into DIR')
-    parser.add_argument('--csv', default=None, metavar='FILE', help='write the time series to FILE (CSV)')
+                        help='evaluation windows in s (default: the lift / lower / lift phases of every '
+                             'rotation simulated, the last one clipped to the end time)')
+    parser.add_argument('--plot', default=None, metavar='DIR',
+                        help='write PNG figures into the folder DIR (created if missing; its parent must exist)')
+    parser.add_argument('--csv', default=None, metavar='FILE',
+                        help='write the time series to FILE (CSV; its folder must exist)')
+    parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
     parser.add_argument('--python-user-functions', action='store_true',
                         help='evaluate the connector in Python instead of C++ (debugging; same results, slower)')
 
 
-def _Run(args: argparse.Namespace) -> int:
-    from ..reelchanger import DefaultWindows, SimulateReelChanger
-    from ..stepsize import CheckStepSize, CoarseStepWarning
-    parameters, drive = DriveFromArgs(args)
+def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, int, List[Tuple[float, float]]]:
+    """End time, step size, step limit and windows of a run, checked before anything is computed."""
+    from ..reelchanger import MAX_STEPS, CheckRunSize, DefaultWindows, RotationPeriod
+    from ..stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
+    with BadInput():
+        stepSize = args.step_size if args.step_size is not None else RecommendedStepSize(parameters)
+    maxSteps = args.max_steps if args.max_steps is not None else MAX_STEPS
     with BadInput(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter('always', CoarseStepWarning)
         if args.step_size is not None:
@@ -80,32 +98,68 @@ def _Run(args: argparse.Namespace) -> int:
     for warning in caught:
         print(f"exudyn-worm: warning: {warning.message}", file=sys.stderr)
     with BadInput():
-        windows = ParseWindows(args.windows) if args.windows else DefaultWindows(parameters)
-        endTime = args.end_time if args.end_time is not None else max(
-            DefaultWindows(parameters)[-1][1], max(t1 for _, t1 in windows))
-        if max(t1 for _, t1 in windows) > endTime:
-            raise ValueError(f"--windows: a window ends after --end-time = {endTime:g} s")
+        userWindows = ParseWindows(args.windows) if args.windows is not None else None
+        endTime = args.end_time
+        if endTime is None:
+            endTime = max([RotationPeriod(parameters)] + [t1 for _, t1 in userWindows or []])
+        CheckRunSize(endTime, stepSize, maxSteps, 'simulate',
+                     ('--end-time', '--step-size' if args.step_size is not None else 'the recommended step size',
+                      '--max-steps'))
+        if userWindows is None:
+            return endTime, stepSize, maxSteps, DefaultWindows(parameters, endTime, minLength=2 * stepSize)
+    for t0, t1 in userWindows:
+        if t1 > endTime * (1 + 1e-12):
+            raise UsageError(f"--windows: the window {t0:g}:{t1:g} ends after --end-time = {endTime:g} s")
+        if t1 - t0 < 2 * stepSize:
+            raise UsageError(f"--windows: the window {t0:g}:{t1:g} is shorter than two steps "
+                             f"(2 x --step-size = {2 * stepSize:g} s)")
+    return endTime, stepSize, maxSteps, userWindows
+
+
+def _Write(what: str, path, write):
+    try:
+        return write()
+    except OSError as err:
+        raise UsageError(f"{what} {path}: cannot write: {err.strerror or err} (the results above are complete)") \
+            from err
+
+
+def _Run(args: argparse.Namespace) -> int:
+    parameters, drive = DriveFromArgs(args)
+    csv = CheckOutputPath(args.csv, '--csv') if args.csv is not None else None
+    plots = CheckOutputPath(args.plot, '--plot', 'folder') if args.plot is not None else None
+    endTime, stepSize, maxSteps, windows = _RunSettings(args, parameters)
+    from ..reelchanger import SimulateReelChanger
+    from ..solve import SolverDivergedError
+    from ..stepsize import CoarseStepWarning
+    try:
         with StdoutToStderr(args.json), warnings.catch_warnings():
             warnings.simplefilter('ignore', CoarseStepWarning)      # reported above
-            result = SimulateReelChanger(parameters, endTime=endTime,
-                                         stepSize=args.step_size,
-                                         useSymbolic=not args.python_user_functions)
-        metrics = result.WindowMetrics(windows)
-    written = []
-    if args.csv:
-        written.append(result.ToCsv(args.csv))
-    if args.plot:
-        written += _SaveFigures(result, Path(args.plot))
+            result = SimulateReelChanger(parameters, endTime=endTime, stepSize=stepSize, maxSteps=maxSteps,
+                                         useSymbolic=not args.python_user_functions,
+                                         progress=False if args.quiet else None)
+    except SolverDivergedError as err:
+        raise UsageError(f"simulation failed: {str(err).removeprefix('SimulateReelChanger: ')}") from err
+    metrics = result.WindowMetrics(windows)
+    source = SourceText(args)
     if args.json:
-        PrintJson({'endTime': result.endTime, 'steps': result.steps, 'solveSeconds': result.solveSeconds,
-                    'windows': metrics})
+        PrintJson({'source': SourceInfo(args), 'endTime': result.endTime, 'stepSize': stepSize, 'steps': result.steps,
+                   'solveSeconds': result.solveSeconds, 'windows': metrics})
     else:
-        print(f"simulated {result.endTime:g} s in {result.steps} steps, solver time {result.solveSeconds:.3f} s")
+        print(f"exudyn-worm simulate: {source}")
+        print(f"simulated {result.endTime:g} s in {result.steps} steps of {stepSize:g} s, "
+              f"solver time {result.solveSeconds:.3f} s")
         print(_SIMULATE_HEADER)
         for m in metrics:
             print(f"{m['t0']:>5.2f} - {m['t1']:<5.2f}{m['maxAbsWheelAcceleration']:>20.1f} {m['maxNormalForce'] / 1e3:>10.1f} "
                   f"{m['dominantFrequencyHz']:>7.1f} {100 * m['fractionSNegative']:>6.0f} {m['minWormSpeed']:>16.2f}  "
                   f"{'YES' if m['chatter'] else 'no'}")
+        sys.stdout.flush()
+    written = []
+    if csv is not None:
+        written.append(_Write('--csv', csv, lambda: result.ToCsv(csv)))
+    if plots is not None:
+        written += _Write('--plot', plots, lambda: _SaveFigures(result, plots, quiet=True if args.quiet else None))
     for path in written:
         print(f"wrote {Path(path).resolve()}", file=sys.stderr)
     return 0

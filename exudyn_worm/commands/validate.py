@@ -14,7 +14,7 @@ from pathlib import Path
 from types import ModuleType
 from typing import Optional
 
-from ..cli import Subcommand, UsageError
+from ..cli import CheckOutputPath, Subcommand, UsageError
 
 __all__ = ['COMMAND', 'FindSuite', 'AddValidationArguments']
 
@@ -59,6 +59,8 @@ def AddValidationArguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _Run(args: argparse.Namespace) -> int:
+    if args.report is not None:
+        CheckOutputPath(args.report, '--report')          # before anything is computed
     root = FindSuite()
     if root is None:
         raise UsageError("validate: the validation suite is not installed with the package; run "

@@ -1,0 +1,151 @@
+"""``exudyn-worm sweep``: a parameter study of the reel changer on every core, on an MPI cluster or as a job array."""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import List
+
+from ..cli import BadInput, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+
+__all__ = ['COMMAND', 'FormatStudy']
+
+_DEFAULT_METRIC = 'w1.maxAbsWheelAcceleration'
+
+
+def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--vary', action='append', default=[], metavar='KEY=SPEC', required=True,
+                        help="vary one parameter: a grid KEY=START:STOP:COUNT (e.g. J1=0.01:0.4:8) or a list "
+                             "with units (e.g. 'backlash=0,0.25mm,0.5mm'); repeatable: full factorial")
+    parser.add_argument('--log', action='store_true', help='log spacing for the grids (or append :log to one grid)')
+    parser.add_argument('--zip', action='store_true', help='pair the --vary values instead of the full factorial')
+    parser.add_argument('--output', metavar='FILE.csv', default=None,
+                        help='results table, one row per run, written as runs finish, with the sidecar '
+                             'FILE.study.json; an existing one of the same study is resumed')
+    parser.add_argument('--overwrite', action='store_true', help='start --output afresh instead of resuming it')
+    parser.add_argument('--workers', type=int, default=None, metavar='N',
+                        help='worker processes (default: every available CPU)')
+    parser.add_argument('--engine', choices=('process', 'mpi'), default='process',
+                        help="process: a pool on this machine (default); mpi: mpi4py.futures.MPIPoolExecutor, run "
+                             "under 'mpiexec -n N python -m mpi4py.futures -m exudyn_worm sweep ...'")
+    parser.add_argument('--shard', metavar='i/N', default=None,
+                        help='run only the runs i, i+N, i+2N, ... (0 <= i < N), e.g. one task of a job array')
+    parser.add_argument('--end-time', type=float, default=None, metavar='S',
+                        help='simulated time in s (default: one rotation of each run)')
+    parser.add_argument('--step-size', type=float, default=None, metavar='S', help="time step in s (default: 5e-4 or the drive's recommended step, whichever is smaller)")
+    parser.add_argument('--windows', default=None, metavar='T0:T1,...',
+                        help='evaluation windows in s (default: the lift / lower / lift phases of each run)')
+    parser.add_argument('--plot', default=None, metavar='FILE.png',
+                        help='one varied key: --metric against it; two: the chatter map over them')
+    parser.add_argument('--metric', default=_DEFAULT_METRIC, metavar='COLUMN',
+                        help=f"column plotted against one varied key (default {_DEFAULT_METRIC}: the largest "
+                             f"|phi2''| in window 1, the lowering)")
+    parser.add_argument('--quiet', action='store_true', help='no progress bar')
+
+
+def _Study(args: argparse.Namespace):
+    from ..study import ParseVariation, Study
+    from .simulate import ParseWindows
+    parameters = ParametersFromArgs(args)
+    with BadInput():
+        variations = [ParseVariation(text, log=args.log) for text in args.vary]
+        windows = ParseWindows(args.windows) if args.windows else None
+        for name in ('end_time', 'step_size'):
+            value = getattr(args, name)
+            if value is not None and not value > 0:
+                raise ValueError(f"--{name.replace('_', '-')} must be > 0 s, got {value:g}")
+        if windows and args.end_time is not None and max(t1 for _, t1 in windows) > args.end_time:
+            raise ValueError(f"--windows: a window ends after --end-time = {args.end_time:g} s")
+        return Study(parameters, variations, zipped=args.zip, windows=windows, endTime=args.end_time,
+                     stepSize=args.step_size, source=SourceText(args))
+
+
+def _CheckPlot(args, study) -> None:
+    if not args.plot:
+        return
+    path = Path(args.plot)
+    if path.suffix.lower() not in ('.png', '.pdf', '.svg'):
+        raise UsageError(f"--plot: expected a .png, .pdf or .svg file, got '{path}'")
+    if not path.parent.is_dir():
+        raise UsageError(f"--plot: the folder '{path.parent}' does not exist")
+    if len(study.keys) not in (1, 2):
+        raise UsageError(f"--plot needs one or two varied keys, got {len(study.keys)}")
+    from ..study import RUN_COLUMNS, WINDOW_METRICS
+    if len(study.keys) == 1:
+        names = [f'w{i}.{m}' for i in range(study.numberOfWindows) for m in WINDOW_METRICS] + list(RUN_COLUMNS[3:6])
+        if args.metric not in names:
+            raise UsageError(f"--metric: unknown column '{args.metric}'; expected one of: {' '.join(names)}")
+
+
+def _Run(args: argparse.Namespace) -> int:
+    from ..study import RunStudy, StudySidecarPath
+    study = _Study(args)
+    _CheckPlot(args, study)
+    if args.workers is not None and args.workers < 1:
+        raise UsageError(f"--workers must be >= 1, got {args.workers}")
+    try:
+        with BadInput(), StdoutToStderr(args.json):
+            result = RunStudy(study, output=args.output, workers=args.workers, engine=args.engine,
+                              shard=args.shard, quiet=True if args.quiet else None, overwrite=args.overwrite)
+    except KeyboardInterrupt:
+        where = f" in '{args.output}'; run the same command again to resume" if args.output else ''
+        print(f"{'exudyn-worm'}: interrupted: finished runs are saved{where}", file=sys.stderr)
+        return 130
+    written = []
+    if args.output:
+        written += [Path(args.output), StudySidecarPath(args.output)]
+    if args.plot:
+        from .. import plot
+        figure = (result.Plot(study.keys[0], metric=args.metric) if len(study.keys) == 1
+                  else result.Plot(study.keys[0], study.keys[1]))
+        plot.SaveFigure(figure, args.plot)
+        written.append(Path(args.plot))
+    if args.json:
+        PrintJson(result.ToDict())
+    else:
+        print('\n'.join(FormatStudy(result, title=f"exudyn-worm sweep: {SourceText(args)}")))
+    for path in written:
+        print(f"wrote {path.resolve()}", file=sys.stderr)
+    return 0
+
+
+def FormatStudy(result, title: str = 'Study') -> List[str]:
+    """Human-readable table of a study: one line per run (varied values, status, chatter per window,
+    analytical verdict, time) and a summary with the agreement.
+
+    Parameters
+    ----------
+    result : StudyResult
+        Result of :func:`~exudyn_worm.study.RunStudy`.
+    title : str, optional
+        First line.
+
+    Returns
+    -------
+    list of str
+        The lines, without trailing newlines.
+    """
+    from ..presets import PARAMETER_UNITS
+    keys = result.study.keys
+    n = result.study.numberOfWindows
+    heads = [f"{k} [{PARAMETER_UNITS[k] or '-'}]" for k in keys]
+    widths = [max(12, len(h)) for h in heads]
+    lines = [title, '', '  '.join(['run'.rjust(5)] + [h.rjust(w) for h, w in zip(heads, widths)]
+                                  + ['status', 'chatter per window'.ljust(max(18, 4 * n)), 'S=-1 analytic',
+                                     'seconds'])]
+    for r in result.rows:
+        chatter = ' '.join('-' if r.get(f'w{i}.chatter') is None else 'YES' if r[f'w{i}.chatter'] else 'no'
+                           for i in range(n))
+        verdict = {None: '-', True: 'stable', False: 'UNSTABLE'}[r['analyticStableLowering']]
+        cells = [f"{r['run']:>5d}"] + [f"{r[k]:>{w}.5g}" for k, w in zip(keys, widths)]
+        cells += [f"{r['status']:<6}", chatter.ljust(max(18, 4 * n)), f"{verdict:<13}", f"{r['seconds']:7.2f}"]
+        lines.append('  '.join(cells) + (f"  {r['error']}" if r['error'] else ''))
+    agreement = result.agreement
+    lines += ['', f"{len(result.rows)} runs: {len(result.finished)} ok, {len(result.failed)} failed; "
+                  f"agreement of chatter while lowering with the analytical S = -1 verdict: "
+                  + ('n/a (no lowering window)' if agreement is None else f"{100 * agreement:.0f} %")]
+    return lines
+
+
+COMMAND = Subcommand('sweep', 'parameter study: many simulations over a grid, on every core or an MPI cluster',
+                     _AddArguments, _Run)

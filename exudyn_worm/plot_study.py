@@ -1,0 +1,224 @@
+"""Plots of parameter studies (:mod:`exudyn_worm.study`): a metric against one parameter, and the chatter
+map over two parameters drawn over the analytical stability boundary.
+
+matplotlib is imported inside the functions only (through :mod:`exudyn_worm.plot`).
+"""
+from __future__ import annotations
+
+import itertools
+from typing import Dict, Mapping, Optional, Tuple
+
+import numpy as np
+
+__all__ = ['PlotMetric', 'PlotChatterMap', 'AnalyticalMap', 'AxisLabel']
+
+_C_CHATTER, _C_QUIET, _C_FAILED, _C_BOUNDARY = '#c0392b', '#1f4e79', '#7f7f7f', '#2c2c2c'
+_METRIC_LABELS = {'maxAbsWheelAcceleration': (r"max $|\ddot\varphi_2|$", 'rad/s²', 1.),
+                  'maxNormalForce': (r'max $F_n$', 'kN', 1e-3),
+                  'dominantFrequencyHz': ('dominant frequency', 'Hz', 1.),
+                  'fractionSNegative': ('share of S = -1', '–', 1.),
+                  'minWormSpeed': (r"min $\dot\varphi_1$", 'rad/s', 1.),
+                  'vibrationSeconds': ('vibration lasts', 's', 1.),
+                  'seconds': ('run time', 's', 1.), 'solveSeconds': ('solve time', 's', 1.)}
+
+
+def AxisLabel(column: str) -> Tuple[str, float]:
+    """Axis label and the factor from SI to the unit shown, for a parameter or a results column.
+
+    Parameters
+    ----------
+    column : str
+        A parameter key (``'J1'``) or a column of the results table (``'w1.maxNormalForce'``).
+
+    Returns
+    -------
+    (str, float)
+    """
+    from .presets import PARAMETER_UNITS
+    if column in PARAMETER_UNITS:
+        if column == 'backlash':
+            return 'backlash [mm]', 1e3
+        return f"{column} [{PARAMETER_UNITS[column] or '–'}]", 1.
+    window, _, name = column.rpartition('.')
+    text, unit, factor = _METRIC_LABELS.get(name, (name, '', 1.))
+    where = f', window {window[1:]}' if window.startswith('w') else ''
+    return f'{text}{where} [{unit}]', factor
+
+
+def _IsLog(values) -> bool:
+    v = np.unique(np.asarray(values, float))
+    if v.size < 3 or np.any(v <= 0):
+        return False
+    ratios = v[1:] / v[:-1]
+    return bool(np.allclose(ratios, ratios[0], rtol=1e-6) and not np.allclose(np.diff(v), np.diff(v)[0], rtol=1e-6))
+
+
+def _Axes(ax, figsize):
+    from .plot import _NewFigure
+    if ax is not None:
+        return ax.figure, ax
+    fig, axes = _NewFigure(figsize=figsize)
+    return fig, axes[0, 0]
+
+
+def PlotMetric(result, x: str, metric: str = 'w1.maxAbsWheelAcceleration', ax=None, title: Optional[str] = None,
+               label: Optional[str] = None):
+    """A metric of every run against one varied parameter; one line per combination of the other varied
+    parameters; filled markers where the metric's window chatters, open ones where it does not.
+
+    Parameters
+    ----------
+    result : StudyResult
+        Result of :func:`~exudyn_worm.study.RunStudy`.
+    x : str
+        Varied key on the horizontal axis.
+    metric : str, optional
+        Results column, e.g. ``'w1.maxNormalForce'`` (default: the largest wheel acceleration in window 1).
+    ax : matplotlib.axes.Axes, optional
+        Draw into these axes (default: a new figure).
+    title : str, optional
+        Axes title.
+    label : str, optional
+        Legend label of the study (prefixed to the values of the other varied keys).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    keys = result.study.keys
+    if x not in keys:
+        raise ValueError(f"PlotMetric: 'x' must be a varied key ({', '.join(keys)}), got {x!r}")
+    fig, ax = _Axes(ax, (7., 4.2))
+    xLabel, xFactor = AxisLabel(x)
+    yLabel, yFactor = AxisLabel(metric)
+    others = [k for k in keys if k != x]
+    window = metric.split('.')[0] if metric.startswith('w') and '.' in metric else None
+    groups: Dict[tuple, list] = {}
+    for r in result.rows:
+        groups.setdefault(tuple(r[k] for k in others), []).append(r)
+    for group, rows in sorted(groups.items(), key=lambda kv: kv[0]):
+        rows = sorted((r for r in rows if r['status'] == 'ok' and r.get(metric) is not None), key=lambda r: r[x])
+        if not rows:
+            continue
+        xs = np.array([r[x] for r in rows]) * xFactor
+        ys = np.array([r[metric] for r in rows], float) * yFactor
+        text = ', '.join([label] * bool(label) + [f'{k} = {v:.3g}' for k, v in zip(others, group)]) or None
+        color = f'C{len(ax.lines) // 3 % 10}'
+        ax.plot(xs, ys, '-', color=color, lw=1., label=text)
+        chatter = np.array([bool(r.get(f'{window}.chatter')) for r in rows]) if window else np.zeros(len(rows), bool)
+        ax.plot(xs[chatter], ys[chatter], 'o', color=color, ms=5)
+        ax.plot(xs[~chatter], ys[~chatter], 'o', mfc='white', color=color, ms=5)
+    if _IsLog([r[x] for r in result.rows]):
+        ax.set_xscale('log')
+    ax.set_xlabel(xLabel)
+    ax.set_ylabel(yLabel)
+    ax.grid(True, alpha=0.3)
+    if others or label:
+        ax.legend(fontsize='small')
+    ax.set_title(title or f'{metric} against {x} (filled: chatter in {window or "the window"})', fontsize='medium')
+    return fig
+
+
+def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -> np.ndarray:
+    """Largest real part (1/s) of the S = -1 eigenvalues of the linear model (eqs. (15)-(16)) over a grid of
+    two parameters, the others as in ``base``: > 0 means chatter predicted while lowering.
+
+    Parameters
+    ----------
+    base : mapping
+        Flat parameter set.
+    x, y : str
+        Parameter keys.
+    xValues, yValues : array_like
+        Grid values (SI).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (len(yValues), len(xValues)).
+    """
+    from .presets import ApplyOverrides, DriveFromParameters
+    from .stability import AnalyzeStability
+    out = np.empty((len(yValues), len(xValues)))
+    for (i, yv), (j, xv) in itertools.product(enumerate(yValues), enumerate(xValues)):
+        drive = DriveFromParameters(ApplyOverrides(base, {x: float(xv), y: float(yv)}))
+        out[i, j] = float(np.max(AnalyzeStability(drive).contact[-1].eigenvalues.real))
+    return out
+
+
+def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str, Tuple[float, float]]] = None,
+                   resolution: int = 80, title: Optional[str] = None):
+    """Chatter while lowering of every run over two varied parameters, over the analytical S = -1 region.
+
+    The shaded region and its boundary line are where the linear model (eqs. (15)-(16), S = -1) predicts
+    chatter, computed on a finer grid (:func:`AnalyticalMap`); red filled dots: the simulation chatters
+    while lowering; blue open circles: it does not; grey crosses: failed runs. Runs whose simulated verdict
+    differs from the analytical one are ringed.
+
+    Parameters
+    ----------
+    result : StudyResult
+        Result of :func:`~exudyn_worm.study.RunStudy` with a lowering window.
+    x, y : str
+        Varied keys on the horizontal and vertical axis.
+    ax : matplotlib.axes.Axes, optional
+        Draw into these axes (default: a new figure).
+    labels : mapping, optional
+        Named points to mark, ``{'P1': (xValue, yValue), ...}`` (SI).
+    resolution : int, optional
+        Points per axis of the analytical grid.
+    title : str, optional
+        Axes title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    keys = result.study.keys
+    for name, key in (('x', x), ('y', y)):
+        if key not in keys:
+            raise ValueError(f"PlotChatterMap: '{name}' must be a varied key ({', '.join(keys)}), got {key!r}")
+    fig, ax = _Axes(ax, (6.4, 5.2))
+    xs, ys = result.Values(x), result.Values(y)
+    logX, logY = _IsLog(xs), _IsLog(ys)
+    def grid(v, log):
+        lo, hi = np.nanmin(v), np.nanmax(v)
+        if lo == hi:                                    # one value only: show a factor 2 around it
+            lo, hi = (lo / 2, hi * 2) if lo > 0 else (lo - 1, hi + 1)
+        return np.geomspace(lo, hi, resolution) if log or (lo > 0 and hi / lo > 50) else np.linspace(lo, hi, resolution)
+
+    gx, gy = grid(xs, logX), grid(ys, logY)
+    (xLabel, xf), (yLabel, yf) = AxisLabel(x), AxisLabel(y)
+    growth = AnalyticalMap(result.study.base, x, gx, y, gy)
+    ax.contourf(gx * xf, gy * yf, (growth > 0).astype(float), levels=[0.5, 1.5], colors=['#f6d5d1'])
+    if np.any(growth > 0) and np.any(growth <= 0):
+        ax.contour(gx * xf, gy * yf, growth, levels=[0.], colors=[_C_BOUNDARY], linewidths=1.2)
+    ok = [r for r in result.rows if r['status'] == 'ok' and r['loweringChatter'] is not None]
+    chatter = [r for r in ok if r['loweringChatter']]
+    quiet = [r for r in ok if not r['loweringChatter']]
+    failed = [r for r in result.rows if r not in ok]
+    differ = [r for r in ok if r['analyticStableLowering'] is not None
+              and r['loweringChatter'] == r['analyticStableLowering']]
+    pts = lambda rows: (np.array([r[x] for r in rows]) * xf, np.array([r[y] for r in rows]) * yf)
+    ax.plot(*pts(chatter), 'o', color=_C_CHATTER, ms=5, label='simulation: chatter while lowering')
+    ax.plot(*pts(quiet), 'o', mfc='white', color=_C_QUIET, ms=5, label='simulation: no chatter')
+    if failed:
+        ax.plot(*pts(failed), 'x', color=_C_FAILED, ms=6, label='failed run')
+    if differ:
+        ax.plot(*pts(differ), 'o', mfc='none', color='black', ms=11, mew=1.2, label='differs from analytical')
+    ax.plot([], [], color=_C_BOUNDARY, lw=1.2, label='analytical S = -1 boundary (shaded: unstable)')
+    for name, (px, py) in (labels or {}).items():
+        ax.plot(px * xf, py * yf, '*', color='#e69f00', ms=11, mec='black', mew=0.5)
+        ax.annotate(name, (px * xf, py * yf), xytext=(4, 4), textcoords='offset points', fontsize='small')
+    if logX:
+        ax.set_xscale('log')
+    if logY:
+        ax.set_yscale('log')
+    ax.set_xlabel(xLabel)
+    ax.set_ylabel(yLabel)
+    agreement = result.agreement
+    ax.set_title(title or ('Chatter while lowering: simulation over the analytical chart'
+                           + ('' if agreement is None else f' (agreement {100 * agreement:.0f} %)')),
+                 fontsize='medium')
+    ax.legend(fontsize='x-small', loc='best')
+    return fig

@@ -1,0 +1,143 @@
+"""Exudyn's implicit dynamic solver run in chunks of simulated time, with progress and clear failures.
+
+:func:`SolveDynamicInChunks` does what ``mbs.SolveDynamic`` does for the implicit second-order solvers
+(generalized-alpha, trapezoidal index 2), but advances the solver in chunks of :data:`CHUNK_STEPS` steps
+so that a progress bar (:func:`exudyn_worm.progress.ProgressBar`) can follow a long run without a
+per-step Python callback, and turns a solver failure into :class:`SolverDivergedError` carrying the
+simulated time reached. The chunks depend only on the number of steps, never on whether progress is
+shown, so a run gives the same numbers with and without the bar.
+
+Chunking restarts the modified-Newton Jacobian at each chunk start (a few extra Jacobians per run): the
+results agree with one ``mbs.SolveDynamic`` call to the Newton tolerance, not bit for bit.
+"""
+from __future__ import annotations
+
+import math
+
+from .progress import ProgressBar
+
+__all__ = ['SolverDivergedError', 'SolveDynamicInChunks', 'CHUNK_STEPS']
+
+#: solver steps per chunk: small enough for a live progress bar (a chunk of the slowest reel-changer run,
+#: P7, takes about 0.3 s), large enough that the per-chunk restart costs nothing measurable
+CHUNK_STEPS = 2000
+
+
+class SolverDivergedError(RuntimeError):
+    """The dynamic solver failed (Newton did not converge even with reduced steps).
+
+    Attributes
+    ----------
+    timeReached : float
+        Simulated time in s reached before the failure.
+    endTime : float
+        Simulated time in s that was asked for.
+    stepSize : float
+        Nominal time step in s.
+    """
+
+    def __init__(self, message: str, timeReached: float, endTime: float, stepSize: float):
+        super().__init__(message)
+        self.timeReached, self.endTime, self.stepSize = timeReached, endTime, stepSize
+
+
+def _SolveInOnePiece(mbs, ss, solverType):
+    """Explicit solvers: one ``mbs.SolveDynamic`` call (no chunks, no progress), failures as SolverDivergedError."""
+    import exudyn as exu
+    ti = ss.timeIntegration
+    try:
+        mbs.SolveDynamic(ss, solverType=solverType)
+    except exu.ExudynError as err:
+        solver = mbs.sys.get('dynamicSolver')
+        reached = solver.it.currentTime if solver is not None else ti.startTime
+        raise SolverDivergedError(f"the Exudyn solver ({solverType}) failed at t = {reached:.6g} s of "
+                                  f"{ti.endTime:g} s ({err})", reached, ti.endTime,
+                                  (ti.endTime - ti.startTime) / ti.numberOfSteps) from err
+    return mbs.sys['dynamicSolver']
+
+
+def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None, desc: str = 'simulate',
+                         chunkSteps: int = CHUNK_STEPS):
+    """Solve ``mbs`` dynamically like ``mbs.SolveDynamic``, in chunks, with an optional progress bar.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The system (assembled here if it is not).
+    simulationSettings : exudyn.SimulationSettings
+        Settings of the run: ``timeIntegration.startTime``, ``endTime`` and ``numberOfSteps`` set the
+        fixed step size. Not changed (the solver type is set for the run and restored).
+    solverType : exudyn.DynamicSolverType, optional
+        Default ``GeneralizedAlpha``. The implicit ``GeneralizedAlpha`` and ``TrapezoidalIndex2`` run in
+        chunks; explicit solvers run in one ``mbs.SolveDynamic`` call, without progress.
+    progress : bool or None
+        Progress bar on stderr over simulated time: True shown, False never, None (default) shown when
+        stderr is a terminal and the run takes longer than about 2 s.
+    desc : str
+        Label of the progress bar.
+    chunkSteps : int
+        Solver steps per chunk, >= 1.
+
+    Returns
+    -------
+    exudyn.MainSolverImplicitSecondOrder or exudyn.MainSolverExplicit
+        The solver (also stored as ``mbs.sys['dynamicSolver']``); ``solver.it`` holds its statistics.
+
+    Raises
+    ------
+    SolverDivergedError
+        If the solver fails; the message gives the simulated time reached.
+    ValueError, TypeError
+        For ``chunkSteps < 1`` or a ``solverType`` that is not an ``exudyn.DynamicSolverType``.
+    """
+    import exudyn as exu
+    w = 'SolveDynamicInChunks'
+    DST = exu.DynamicSolverType
+    solverType = DST.GeneralizedAlpha if solverType is None else solverType
+    if not isinstance(solverType, DST):
+        raise TypeError(f"{w}: 'solverType' must be an exudyn.DynamicSolverType, got {solverType!r}")
+    if not (isinstance(chunkSteps, int) and chunkSteps >= 1):
+        raise ValueError(f"{w}: 'chunkSteps' must be an integer >= 1, got {chunkSteps!r}")
+    if not mbs.systemIsConsistent:
+        mbs.Assemble()
+    ss = simulationSettings
+    if solverType not in (DST.GeneralizedAlpha, DST.TrapezoidalIndex2):
+        return _SolveInOnePiece(mbs, ss, solverType)
+    ti, ga = ss.timeIntegration, ss.timeIntegration.generalizedAlpha
+    saved = (ti.solverType, ga.useNewmark, ga.useIndex2Constraints)
+    ti.solverType = solverType
+    if solverType == DST.TrapezoidalIndex2:              # as mbs.SolveDynamic does
+        ga.useNewmark, ga.useIndex2Constraints = True, True
+    t0, T, n = ti.startTime, ti.endTime, ti.numberOfSteps
+    h = (T - t0) / n
+    chunks = max(1, math.ceil(n / chunkSteps))
+    solver = exu.MainSolverImplicitSecondOrder()
+    mbs.sys['dynamicSolver'] = solver
+
+    def Diverged(err=None):
+        reached = solver.it.currentTime
+        detail = f" ({err})" if err is not None and str(err) else ''
+        return SolverDivergedError(f"the Exudyn solver failed at t = {reached:.6g} s of {T:g} s (step size "
+                                   f"{h:g} s): Newton did not converge even with reduced steps{detail}",
+                                   reached, T, h)
+    try:
+        with ProgressBar(total=T - t0, desc=desc, unit='s', quiet=None if progress is None else not progress,
+                         delay=2. if progress is None else 0.,
+                         bar_format='{desc}: {percentage:3.0f}%|{bar}| {n:.3g}/{total:.3g} s simulated '
+                                    '[{elapsed}<{remaining}]') as bar:
+            try:
+                ok = solver.InitializeSolver(mbs, ss)
+                for k in range(1, chunks + 1):
+                    if not ok:
+                        raise Diverged()
+                    solver.it.endTime = T if k == chunks else t0 + h * round(n * k / chunks)
+                    ok = solver.SolveSteps(mbs, ss)
+                    bar.update(solver.it.currentTime - t0 - bar.n)
+                if not ok:
+                    raise Diverged()
+            except exu.ExudynError as err:    # SolverError and others raised by the C++ solver
+                raise Diverged(err) from err
+            solver.FinalizeSolver(mbs, ss)
+    finally:
+        ti.solverType, ga.useNewmark, ga.useIndex2Constraints = saved
+    return solver

@@ -1,0 +1,842 @@
+"""Parameter studies: many reel-changer simulations over a grid of parameters, on every core or a cluster.
+
+A :class:`Study` varies keys of a flat parameter set (any key of
+:data:`~exudyn_worm.presets.PARAMETER_UNITS`, e.g. ``J1``, ``kT``, ``backlash``, ``motorSpeed``,
+``loadMass``) over grids or lists (:func:`ParseVariation`), as a full factorial or zipped. For every
+point, :func:`RunPoint` runs :func:`~exudyn_worm.reelchanger.SimulateReelChanger`, takes the window
+metrics and chatter verdicts of ``exudyn-worm simulate``
+(:meth:`~exudyn_worm.results.SimulationResult.WindowMetrics`), adds the analytical verdict of the same
+parameter set (:func:`~exudyn_worm.stability.AnalyzeStability`) and the run's times.
+
+:func:`RunStudy` executes the points with an executor of the standard ``concurrent.futures`` interface:
+a process pool on every core (Exudyn holds the GIL, threads do not help; each worker builds its own
+model from a parameter dictionary, since symbolic user functions cannot be pickled) or
+``mpi4py.futures.MPIPoolExecutor`` on a cluster. Results are handled as they finish (unordered) and
+appended to a CSV file at once, so a failed run (recorded with its reason) never stops the others and an
+interrupted study resumes with the same call without redoing finished runs. ``shard=(i, N)`` runs only
+every N-th point, for job arrays that need no MPI.
+
+Exudyn's ``ParameterVariation`` is not used: it aborts the whole study when one point raises, keeps no
+partial results and cannot resume.
+
+No matplotlib here: plots are in :mod:`exudyn_worm.plot_study`.
+"""
+from __future__ import annotations
+
+import csv
+import itertools
+import json
+import math
+import os
+import platform
+import signal
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+import numpy as np
+
+from .config import ParseQuantity
+from .presets import PARAMETER_UNITS, ApplyOverrides
+
+__all__ = ['Variation', 'ParseVariation', 'StudyPoints', 'Study', 'ParseShard', 'ShardIndices', 'RunPoint',
+           'StudyResult', 'RunStudy', 'ReadResults', 'StudySidecarPath', 'VibrationSeconds', 'WINDOW_METRICS',
+           'RUN_COLUMNS', 'ENGINES', 'DefaultWorkers']
+
+#: metrics written per window (those of ``SimulationResult.WindowMetrics`` plus ``vibrationSeconds``)
+WINDOW_METRICS = ('t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
+                  'fractionSNegative', 'minWormSpeed', 'chatter', 'vibrationSeconds')
+#: per-run columns of the results table, before the varied parameters and the window metrics
+RUN_COLUMNS = ('run', 'status', 'error', 'seconds', 'solveSeconds', 'stepSize', 'analyticStable',
+               'analyticStableLowering', 'loweringChatter')
+#: execution engines of :func:`RunStudy`
+ENGINES = ('process', 'mpi')
+
+_BOOL_COLUMNS = {'analyticStable', 'analyticStableLowering', 'loweringChatter', 'chatter'}
+_NUMBER_OF_DEFAULT_WINDOWS = 3          # DefaultWindows: lift, lower, lift
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# study definition
+
+@dataclass(frozen=True)
+class Variation:
+    """The values one parameter takes in a study.
+
+    Attributes
+    ----------
+    key : str
+        Parameter name (a key of :data:`~exudyn_worm.presets.PARAMETER_UNITS`).
+    values : tuple of float
+        Values in SI units, in study order.
+    text : str
+        The specification as given (for the record).
+    """
+    key: str
+    values: Tuple[float, ...]
+    text: str = ''
+
+    def ToDict(self) -> Dict:
+        """JSON-ready ``{'key', 'unit', 'values', 'text'}``."""
+        return {'key': self.key, 'unit': PARAMETER_UNITS[self.key], 'values': list(self.values), 'text': self.text}
+
+
+def ParseVariation(text: str, log: bool = False) -> Variation:
+    """Parse one ``--vary`` specification.
+
+    Parameters
+    ----------
+    text : str
+        ``KEY=START:STOP:COUNT`` for a grid of COUNT values from START to STOP (both included; optional
+        fourth field ``lin`` or ``log``), or ``KEY=V1,V2,...`` for a list. Every value is a plain SI number
+        or has units, as ``--set`` accepts (:func:`~exudyn_worm.config.ParseQuantity`), e.g.
+        ``'J1=0.01:0.4:8'``, ``'kT=700:14000:12:log'``, ``'backlash=0,0.25mm,0.5 mm'``,
+        ``'backlash=0:1mm:9'``.
+    log : bool, optional
+        Space a grid logarithmically (default linear; a fourth field ``lin``/``log`` wins).
+
+    Returns
+    -------
+    Variation
+
+    Raises
+    ------
+    ValueError
+        For a malformed specification, an unknown key, a bad value or unit, COUNT < 1, a grid with
+        COUNT > 1 and START = STOP, or a log grid with START or STOP <= 0.
+    """
+    where = 'ParseVariation'
+    if not isinstance(text, str):
+        raise TypeError(f"{where}: expected a string 'KEY=START:STOP:COUNT' or 'KEY=V1,V2,...', "
+                        f"got {type(text).__name__} {text!r}")
+    key, sep, spec = text.partition('=')
+    key, spec = key.strip(), spec.strip()
+    if not sep or not key or not spec:
+        raise ValueError(f"{where}: expected KEY=START:STOP:COUNT or KEY=V1,V2,... "
+                         f"(e.g. 'J1=0.01:0.4:8' or 'backlash=0,0.25mm,0.5mm'), got {text!r}")
+    if key not in PARAMETER_UNITS:
+        raise ValueError(f"{where}: unknown parameter {key!r} in {text!r}; expected one of: "
+                         f"{' '.join(PARAMETER_UNITS)}")
+    context = f"{where}: {text!r}"
+    if ':' in spec:
+        fields = [f.strip() for f in spec.split(':')]
+        if len(fields) == 4 and fields[3].lower() in ('lin', 'log'):
+            log = fields[3].lower() == 'log'
+            fields = fields[:3]
+        if len(fields) != 3:
+            raise ValueError(f"{context}: a grid is START:STOP:COUNT[:lin|log], e.g. 'J1=0.01:0.4:8'")
+        start, stop = (ParseQuantity(key, f) if f else _Raise(context, 'START and STOP must be given')
+                       for f in fields[:2])
+        try:
+            count = int(fields[2])
+        except ValueError:
+            raise ValueError(f"{context}: COUNT must be a whole number >= 1, got {fields[2]!r}") from None
+        if count < 1:
+            raise ValueError(f"{context}: COUNT must be >= 1, got {count}")
+        if count > 1 and start == stop:
+            raise ValueError(f"{context}: START and STOP must differ for COUNT > 1")
+        if log:
+            if start <= 0 or stop <= 0:
+                raise ValueError(f"{context}: a log grid needs START and STOP > 0 "
+                                 f"(in {PARAMETER_UNITS[key] or 'SI'}), got {start:g} and {stop:g}")
+            values = np.geomspace(start, stop, count) if count > 1 else np.array([start])
+        else:
+            values = np.linspace(start, stop, count)
+        values = [float(v) for v in values]
+        values[0] = start                                  # exact ends, no rounding from exp/log
+        values[-1] = stop if count > 1 else start
+    else:
+        items = [item.strip() for item in spec.split(',')]
+        if any(not item for item in items):
+            raise ValueError(f"{context}: empty value in the list (V1,V2,...)")
+        values = [ParseQuantity(key, item) for item in items]
+    return Variation(key, tuple(values), text)
+
+
+def _Raise(context, message):
+    raise ValueError(f"{context}: {message}")
+
+
+def StudyPoints(variations: Sequence[Variation], zipped: bool = False) -> List[Dict[str, float]]:
+    """The points of a study: the full factorial of the variations (the first varies slowest), or zipped.
+
+    Parameters
+    ----------
+    variations : sequence of Variation
+        One per varied key; keys must be distinct.
+    zipped : bool, optional
+        Pair the i-th values of all variations (they must have equal lengths) instead of the full factorial.
+
+    Returns
+    -------
+    list of dict
+        One ``{key: value}`` per point; ``[{}]`` for no variation (one run of the base set).
+
+    Raises
+    ------
+    ValueError
+        For a key varied twice, or zipped variations of different lengths.
+    """
+    keys = [v.key for v in variations]
+    repeated = sorted({k for k in keys if keys.count(k) > 1})
+    if repeated:
+        raise ValueError(f"StudyPoints: parameter(s) {', '.join(repeated)} varied more than once")
+    if zipped and len({len(v.values) for v in variations}) > 1:
+        lengths = ', '.join(f"{v.key}: {len(v.values)}" for v in variations)
+        raise ValueError(f"StudyPoints: zipped variations need equal numbers of values, got {lengths}")
+    combos = zip(*(v.values for v in variations)) if zipped else itertools.product(*(v.values for v in variations))
+    return [dict(zip(keys, combo)) for combo in combos]
+
+
+@dataclass
+class Study:
+    """A parameter study of the reel changer.
+
+    Parameters
+    ----------
+    base : mapping
+        The flat parameter set every point starts from (e.g. :func:`~exudyn_worm.config.ResolveParameters`).
+    variations : sequence of Variation
+        The varied parameters (:func:`ParseVariation`).
+    zipped : bool, optional
+        Pair the variations instead of the full factorial.
+    windows : sequence of (float, float), optional
+        Evaluation windows in s (default: the lift / lower / lift phases of each point,
+        :func:`~exudyn_worm.reelchanger.DefaultWindows`).
+    endTime : float, optional
+        Simulated time in s (default: one rotation of each point, at least up to the last window).
+    stepSize : float, optional
+        Time step in s (default, per run: :data:`~exudyn_worm.reelchanger.DEFAULT_STEP_SIZE` or the drive's
+        :func:`~exudyn_worm.stepsize.RecommendedStepSize` where that is smaller, as ``check --simulate``).
+    source : str, optional
+        Where the base set came from (for the record).
+    """
+    base: Mapping[str, float]
+    variations: Sequence[Variation] = ()
+    zipped: bool = False
+    windows: Optional[Sequence[Tuple[float, float]]] = None
+    endTime: Optional[float] = None
+    stepSize: Optional[float] = None
+    source: str = ''
+    points: List[Dict[str, float]] = field(init=False, repr=False)
+
+    def __post_init__(self):
+        self.base = dict(self.base)
+        self.variations = list(self.variations)
+        for v in self.variations:
+            if not isinstance(v, Variation):
+                raise TypeError(f"Study: 'variations' must hold Variation objects (ParseVariation), "
+                                f"got {type(v).__name__}")
+        if self.windows is not None:
+            self.windows = [(float(a), float(b)) for a, b in self.windows]
+        self.points = StudyPoints(self.variations, self.zipped)
+        ApplyOverrides(self.base, self.points[0])          # unknown keys raise here
+
+    @property
+    def keys(self) -> List[str]:
+        """The varied keys, in order."""
+        return [v.key for v in self.variations]
+
+    @property
+    def numberOfWindows(self) -> int:
+        """Windows evaluated per run."""
+        return _NUMBER_OF_DEFAULT_WINDOWS if self.windows is None else len(self.windows)
+
+    def Parameters(self, run: int) -> Dict[str, float]:
+        """The full parameter set of point ``run`` (0-based)."""
+        return ApplyOverrides(self.base, self.points[run])
+
+    def Task(self, run: int) -> Dict:
+        """The picklable work item of point ``run`` for :func:`RunPoint` (plain data only)."""
+        return {'run': run, 'parameters': self.Parameters(run), 'varied': dict(self.points[run]),
+                'windows': self.windows, 'endTime': self.endTime, 'stepSize': self.stepSize}
+
+    def ToDict(self) -> Dict:
+        """JSON-ready definition: base set, variations, pairing, windows, times, number of runs."""
+        return {'base': dict(self.base), 'source': self.source,
+                'variations': [v.ToDict() for v in self.variations], 'zipped': self.zipped,
+                'windows': None if self.windows is None else [list(w) for w in self.windows],
+                'endTime': self.endTime, 'stepSize': self.stepSize, 'runs': len(self.points)}
+
+    def Identity(self) -> Dict:
+        """What must match for a results file to be resumed: the definition without its free-text parts."""
+        d = self.ToDict()
+        d.pop('source')
+        for v in d['variations']:
+            v.pop('text')
+        return d
+
+
+def ParseShard(text: Union[str, Tuple[int, int], None]) -> Optional[Tuple[int, int]]:
+    """Parse ``'i/N'`` (0 <= i < N), e.g. ``'$SLURM_ARRAY_TASK_ID/4'`` expanded to ``'2/4'``.
+
+    Parameters
+    ----------
+    text : str, (int, int) or None
+        The shard; None means the whole study.
+
+    Returns
+    -------
+    (int, int) or None
+
+    Raises
+    ------
+    ValueError
+        Unless 0 <= i < N.
+    """
+    if text is None:
+        return None
+    if isinstance(text, str):
+        i, sep, n = text.partition('/')
+        try:
+            i, n = int(i), int(n)
+        except ValueError:
+            raise ValueError(f"ParseShard: expected 'i/N' with whole numbers 0 <= i < N (e.g. '0/4'), "
+                             f"got {text!r}") from None
+    else:
+        i, n = text
+    if not (isinstance(i, int) and isinstance(n, int) and 0 <= i < n):
+        raise ValueError(f"ParseShard: a shard i/N needs whole numbers 0 <= i < N, got {text!r}")
+    return i, n
+
+
+def ShardIndices(numberOfRuns: int, shard: Optional[Tuple[int, int]]) -> List[int]:
+    """Run indices of one shard: every N-th run starting at i (round robin, so shards get similar mixes).
+
+    Parameters
+    ----------
+    numberOfRuns : int
+        Runs in the whole study.
+    shard : (int, int) or None
+        ``(i, N)`` from :func:`ParseShard`; None for all runs.
+    """
+    if shard is None:
+        return list(range(numberOfRuns))
+    i, n = shard
+    return list(range(i, numberOfRuns, n))
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# one run (executed in a worker process)
+
+def VibrationSeconds(result, t0: float, t1: float) -> float:
+    """How long into window [t0, t1] the wheel vibrates: the time after t0 of the last instant at which the
+    wheel inertia torque J2*|phi2''| exceeds the chatter threshold of
+    :meth:`~exudyn_worm.results.SimulationResult.Chatter` (a fraction
+    :data:`~exudyn_worm.results.CHATTER_TORQUE_FRACTION` of the largest mesh torque in the window); 0 if never.
+
+    Parameters
+    ----------
+    result : SimulationResult
+        A simulation.
+    t0, t1 : float
+        The window in s.
+    """
+    from .results import CHATTER_TORQUE_FRACTION
+    t = result.time
+    m = (t >= t0) & (t <= t1)
+    if not m.any():
+        return 0.
+    threshold = CHATTER_TORQUE_FRACTION * np.max(np.abs(result.series['wheelTorque'][m]))
+    above = np.nonzero(result.J2 * np.abs(result.series['alpha2'][m]) > threshold)[0]
+    return float(t[m][above[-1]] - t0) if above.size else 0.
+
+
+def _OneLine(err: BaseException) -> str:
+    return ' '.join(f"{type(err).__name__}: {err}".split())
+
+
+def RunPoint(task: Mapping) -> Dict:
+    """Run one point of a study; never raises for a failing run (it is recorded as failed with its reason).
+
+    Parameters
+    ----------
+    task : mapping
+        A work item of :meth:`Study.Task`: ``run`` (index), ``parameters`` (full set), ``varied``,
+        ``windows`` (None: default), ``endTime`` (None: one rotation), ``stepSize`` (None: the default or the
+        drive's recommended step, whichever is smaller).
+
+    Returns
+    -------
+    dict
+        A flat row of the results table: the columns :data:`RUN_COLUMNS`, the varied keys and
+        ``w{i}.{metric}`` for each window i and each metric of :data:`WINDOW_METRICS` (None where a run
+        failed before computing them).
+    """
+    from .presets import DriveFromParameters
+    from .reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, RotationPeriod, SimulateReelChanger
+    from .stability import AnalyzeStability
+    from .stepsize import RecommendedStepSize
+    start = time.perf_counter()
+    p = dict(task['parameters'])
+    row = {'run': int(task['run']), 'status': 'failed', 'error': '', 'seconds': None, 'solveSeconds': None,
+           'stepSize': None, 'analyticStable': None, 'analyticStableLowering': None, 'loweringChatter': None}
+    row.update(task['varied'])
+    try:
+        analysis = AnalyzeStability(DriveFromParameters(p))
+        row['analyticStable'] = analysis.stable
+        row['analyticStableLowering'] = analysis.contact[-1].stable
+        windows = task['windows'] if task['windows'] is not None else DefaultWindows(p)
+        period = RotationPeriod(p)
+        endTime = task['endTime'] if task['endTime'] is not None else max(period, max(t1 for _, t1 in windows))
+        stepSize = task['stepSize'] or min(DEFAULT_STEP_SIZE, RecommendedStepSize(p))
+        row['stepSize'] = stepSize
+        result = SimulateReelChanger(p, endTime=endTime, stepSize=stepSize)
+        row['solveSeconds'] = result.solveSeconds
+        if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
+            raise FloatingPointError('diverged: non-finite state in the solution')
+        metrics = result.WindowMetrics(windows)
+        for i, (m, (t0, t1)) in enumerate(zip(metrics, windows)):
+            m = dict(m, vibrationSeconds=VibrationSeconds(result, t0, t1))
+            for name in WINDOW_METRICS:
+                value = m[name]
+                if not isinstance(value, bool) and not math.isfinite(value):
+                    raise FloatingPointError(f"diverged: window {i} metric {name} = {value}")
+                row[f'w{i}.{name}'] = value
+        lowering = [i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1]
+        row['loweringChatter'] = bool(metrics[lowering[0]]['chatter']) if lowering else None
+        row['status'] = 'ok'
+    except Exception as err:            # a failing run is a result, not the end of the study
+        row['error'] = _OneLine(err)
+        for key in [k for k in row if k.startswith('w') and '.' in k]:
+            del row[key]
+    row['seconds'] = time.perf_counter() - start
+    return row
+
+
+def _WorkerInit() -> None:
+    """Worker start: stdout goes to stderr (stdout may carry the study's JSON); Ctrl-C is left to the parent."""
+    try:
+        os.dup2(2, 1)
+    except OSError:
+        pass
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+    except (ValueError, OSError):
+        pass
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# results table
+
+def _Columns(study: Study) -> List[str]:
+    return list(RUN_COLUMNS) + study.keys + [f'w{i}.{name}' for i in range(study.numberOfWindows)
+                                             for name in WINDOW_METRICS]
+
+
+def _CsvText(value) -> str:
+    if value is None:
+        return ''
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+def _FromCsv(column: str, text: str):
+    if column in ('status', 'error'):
+        return text
+    if text == '':
+        return None
+    if column == 'run':
+        return int(text)
+    if column in _BOOL_COLUMNS or column.endswith('.chatter'):
+        if text not in ('True', 'False'):
+            raise ValueError(f"column {column}: expected True or False, got {text!r}")
+        return text == 'True'
+    return float(text)
+
+
+def StudySidecarPath(output: Union[str, os.PathLike]) -> Path:
+    """The JSON sidecar of a results file: ``runs.csv`` -> ``runs.study.json``.
+
+    Parameters
+    ----------
+    output : str or path-like
+        The CSV results file.
+    """
+    output = Path(output)
+    return output.with_name(output.stem + '.study.json')
+
+
+def _ReadCsv(path: Path, repair: bool = False) -> Tuple[List[str], List[Dict]]:
+    """Rows of a results file; a last line cut off by a killed job is dropped (and removed with ``repair``)."""
+    with path.open(newline='') as f:
+        text = f.read()
+    lines = text.splitlines(keepends=True)
+    if lines and not lines[-1].endswith('\n'):
+        lines = lines[:-1]                                # partial last line of a killed job
+    reader = csv.reader(lines)
+    header = next(reader, None)
+    if header is None:
+        return [], []
+    rows, good = [], len(lines)
+    for n, values in enumerate(reader, start=1):
+        if len(values) != len(header):
+            good = n
+            break
+        try:
+            rows.append({c: _FromCsv(c, v) for c, v in zip(header, values)})
+        except ValueError:
+            good = n
+            break
+    if repair and (good < len(lines) or ''.join(lines) != text):
+        with path.open('w', newline='') as f:
+            f.write(''.join(lines[:good]))
+    return header, rows
+
+
+def ReadResults(*paths: Union[str, os.PathLike]) -> 'StudyResult':
+    """Read one or more results files of one study (e.g. the shards of a job array) into one result.
+
+    Parameters
+    ----------
+    *paths : str or path-like
+        CSV files written by :func:`RunStudy`, each with its JSON sidecar (:func:`StudySidecarPath`).
+
+    Returns
+    -------
+    StudyResult
+        The runs of all files, by run index (a run present twice is taken once, the last read).
+
+    Raises
+    ------
+    ValueError
+        If a file or sidecar is missing or the files belong to different studies.
+    """
+    if not paths:
+        raise ValueError("ReadResults: give at least one results file")
+    definition, rows = None, {}
+    for path in map(Path, paths):
+        sidecar = StudySidecarPath(path)
+        if not path.is_file() or not sidecar.is_file():
+            raise ValueError(f"ReadResults: '{path}' and its sidecar '{sidecar}' must both exist")
+        meta = json.loads(sidecar.read_text())
+        if definition is None:
+            definition = meta['study']
+        elif _Identity(meta['study']) != _Identity(definition):
+            raise ValueError(f"ReadResults: '{path}' belongs to a different study than '{paths[0]}'")
+        for row in _ReadCsv(path)[1]:
+            rows[row['run']] = row
+    study = _StudyFromDict(definition)
+    return StudyResult(study, [rows[k] for k in sorted(rows)])
+
+
+def _Identity(definition: Mapping) -> Dict:
+    d = json.loads(json.dumps(definition))
+    d.pop('source', None)
+    for v in d.get('variations', []):
+        v.pop('text', None)
+    return d
+
+
+def _StudyFromDict(d: Mapping) -> Study:
+    return Study(base=d['base'], variations=[Variation(v['key'], tuple(v['values']), v.get('text', ''))
+                                             for v in d['variations']],
+                 zipped=d['zipped'], windows=d['windows'], endTime=d['endTime'], stepSize=d['stepSize'],
+                 source=d.get('source', ''))
+
+
+@dataclass
+class StudyResult:
+    """The runs of a study, ordered by run index.
+
+    Attributes
+    ----------
+    study : Study
+        The definition.
+    rows : list of dict
+        Flat rows as in the CSV file (see :func:`RunPoint`).
+    """
+    study: Study
+    rows: List[Dict]
+
+    @property
+    def finished(self) -> List[Dict]:
+        """The rows of runs that succeeded (status ``ok``)."""
+        return [r for r in self.rows if r['status'] == 'ok']
+
+    @property
+    def failed(self) -> List[Dict]:
+        """The rows of failed runs."""
+        return [r for r in self.rows if r['status'] != 'ok']
+
+    @property
+    def agreement(self) -> Optional[float]:
+        """Fraction of finished runs whose chatter while lowering matches the analytical S = -1 verdict
+        (chatter iff unstable); None if no finished run has a lowering window."""
+        judged = [r for r in self.finished if r['loweringChatter'] is not None
+                  and r['analyticStableLowering'] is not None]
+        if not judged:
+            return None
+        return sum(r['loweringChatter'] == (not r['analyticStableLowering']) for r in judged) / len(judged)
+
+    def Run(self, row: Mapping) -> Dict:
+        """One row in the JSON form of ``exudyn-worm sweep --json``.
+
+        Parameters
+        ----------
+        row : mapping
+            A flat row of :attr:`rows`.
+        """
+        windows = []
+        for i in range(self.study.numberOfWindows):
+            if row.get(f'w{i}.t0') is None:
+                break
+            windows.append({name: row[f'w{i}.{name}'] for name in WINDOW_METRICS})
+        return {'run': row['run'], 'parameters': {k: row[k] for k in self.study.keys},
+                'status': row['status'], 'error': row['error'] or None, 'seconds': row['seconds'],
+                'solveSeconds': row['solveSeconds'], 'stepSize': row['stepSize'], 'windows': windows,
+                'analyticStable': row['analyticStable'], 'analyticStableLowering': row['analyticStableLowering'],
+                'loweringChatter': row['loweringChatter']}
+
+    def ToDict(self) -> Dict:
+        """``{"runs": [...], "agreement": float or None}`` (the schema of ``exudyn-worm sweep --json``)."""
+        return {'runs': [self.Run(r) for r in self.rows], 'agreement': self.agreement}
+
+    def Values(self, column: str) -> np.ndarray:
+        """One column over all rows as a float array (NaN where missing), e.g. ``'J1'`` or
+        ``'w1.maxNormalForce'``.
+
+        Parameters
+        ----------
+        column : str
+            A column of the results table.
+        """
+        return np.array([np.nan if r.get(column) is None else float(r[column]) for r in self.rows])
+
+    def Plot(self, x: str, y: Optional[str] = None, metric: str = 'w1.maxAbsWheelAcceleration', **kwargs):
+        """Plot with :mod:`exudyn_worm.plot_study` (matplotlib is imported only there): ``metric`` against
+        parameter ``x``, or, with ``y``, the chatter map over ``x`` and ``y``.
+
+        Parameters
+        ----------
+        x : str
+            Varied key on the horizontal axis.
+        y : str, optional
+            Second varied key: draw the 2-D chatter map.
+        metric : str, optional
+            Column for the 1-D plot.
+        **kwargs
+            Passed on to the plotting function.
+        """
+        from . import plot_study
+        if y is None:
+            return plot_study.PlotMetric(self, x, metric, **kwargs)
+        return plot_study.PlotChatterMap(self, x, y, **kwargs)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# execution
+
+def DefaultWorkers() -> int:
+    """CPUs this process may use (``os.sched_getaffinity`` where available, so a SLURM allocation counts)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:                    # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def _Versions(engine: str) -> Dict[str, str]:
+    from importlib import metadata
+    versions = {'python': platform.python_version(), 'platform': platform.platform()}
+    for name in ('exudyn-worm', 'exudyn', 'numpy', 'scipy') + (('mpi4py',) if engine == 'mpi' else ()):
+        try:
+            versions[name] = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            versions[name] = None
+    return versions
+
+
+def _Executor(engine: str, workers: int):
+    if engine == 'mpi':
+        try:
+            from mpi4py.futures import MPIPoolExecutor
+        except ImportError as err:
+            raise ValueError(f"RunStudy: engine 'mpi' needs mpi4py and an MPI runtime "
+                             f"(pip install 'exudyn-worm[mpi]'): {err}") from None
+        return MPIPoolExecutor(max_workers=workers, initializer=_WorkerInit)
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+    import importlib
+    for module in ('exudyn', f'{__package__}.reelchanger'):   # imported once here, inherited by forked workers
+        importlib.import_module(module)
+    if sys.platform.startswith('linux'):
+        # fork: workers inherit the imported modules (no start-up per worker) and scripts need no
+        # ``if __name__ == '__main__'`` guard; the pool is created before any thread of ours
+        context = multiprocessing.get_context('fork')
+    else:                                               # pragma: no cover - macOS, Windows
+        context = multiprocessing.get_context('spawn')
+    return ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_WorkerInit)
+
+
+class _Terminated(KeyboardInterrupt):
+    """SIGTERM (e.g. a job scheduler's time limit) handled like Ctrl-C."""
+
+
+def _CheckOutput(output: Path, study: Study, shard, overwrite: bool) -> List[Dict]:
+    """Check the results file before computing; return the rows of a study to resume (else [])."""
+    where = 'RunStudy'
+    sidecar = StudySidecarPath(output)
+    if output.suffix.lower() != '.csv':
+        raise ValueError(f"{where}: 'output' must be a .csv file, got '{output}'")
+    if output.is_dir():
+        raise ValueError(f"{where}: 'output' is a directory: '{output}'")
+    if not output.parent.is_dir():
+        raise ValueError(f"{where}: the folder of 'output' does not exist: '{output.parent}'")
+    if not os.access(output.parent, os.W_OK):
+        raise ValueError(f"{where}: cannot write into '{output.parent}'")
+    if overwrite or not output.exists():
+        for p in (output, sidecar):
+            if p.exists():
+                p.unlink()
+        return []
+    if not sidecar.is_file():
+        raise ValueError(f"{where}: '{output}' exists without its sidecar '{sidecar.name}', so it cannot be "
+                         f"resumed; choose another output file or overwrite it")
+    try:
+        meta = json.loads(sidecar.read_text())
+        same = (_Identity(meta['study']) == _Identity(study.ToDict())
+                and (meta.get('shard') and tuple(meta['shard'])) == (shard and tuple(shard)))
+    except (ValueError, KeyError, TypeError):
+        same = False
+    if not same:
+        raise ValueError(f"{where}: '{output}' holds results of a different study (definition or shard differ); "
+                         f"choose another output file or overwrite it")
+    header, rows = _ReadCsv(output, repair=True)
+    if header and header != _Columns(study):
+        raise ValueError(f"{where}: '{output}' has other columns than this study; choose another output file")
+    return rows
+
+
+def _WriteSidecar(path: Path, study: Study, shard, engine, workers, started, counts=None) -> None:
+    meta = {'study': study.ToDict(), 'shard': list(shard) if shard else None, 'engine': engine, 'workers': workers,
+            'versions': _Versions(engine),
+            'units': {k: PARAMETER_UNITS[k] for k in study.keys},
+            'windowMetricUnits': {'t0': 's', 't1': 's', 'maxAbsWheelAcceleration': 'rad/s^2', 'maxNormalForce': 'N',
+                                  'dominantFrequencyHz': 'Hz', 'fractionSNegative': '-', 'minWormSpeed': 'rad/s',
+                                  'chatter': 'bool', 'vibrationSeconds': 's'},
+            'columns': _Columns(study), 'started': started, 'updated': time.strftime('%Y-%m-%dT%H:%M:%S%z'),
+            'counts': counts}
+    tmp = path.with_name(path.name + '.tmp')
+    tmp.write_text(json.dumps(meta, indent=2, allow_nan=False))
+    os.replace(tmp, path)
+
+
+def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers: Optional[int] = None,
+             engine: str = 'process', shard: Union[str, Tuple[int, int], None] = None, quiet: Optional[bool] = None,
+             overwrite: bool = False, onRow: Optional[Callable[[Dict], None]] = None) -> StudyResult:
+    """Run a study in parallel; write each run to ``output`` as it finishes; resume a study cut short.
+
+    Parameters
+    ----------
+    study : Study
+        The study.
+    output : str or path-like, optional
+        CSV results file (one row per run, written as runs finish) with a JSON sidecar
+        (:func:`StudySidecarPath`: definition, versions, units). If it exists with the sidecar of the same
+        study (and shard), its finished runs are kept and only the others are run. Checked before computing.
+    workers : int, optional
+        Worker processes, >= 1 (default: every CPU available, :func:`DefaultWorkers`). For ``'mpi'`` under
+        ``mpiexec -n N python -m mpi4py.futures`` the N - 1 worker ranks are used.
+    engine : {'process', 'mpi'}
+        ``concurrent.futures.ProcessPoolExecutor`` (default) or ``mpi4py.futures.MPIPoolExecutor``.
+    shard : str or (int, int), optional
+        ``'i/N'``: run only the runs i, i + N, i + 2N, ... (:func:`ShardIndices`), for job arrays.
+    quiet : bool, optional
+        No progress bar (default: a bar on stderr if it is a terminal).
+    overwrite : bool, optional
+        Delete an existing ``output`` (and sidecar) instead of resuming it.
+    onRow : callable, optional
+        Called with each new row (flat dict) as it arrives.
+
+    Returns
+    -------
+    StudyResult
+        All runs of the study (or shard), including those of a resumed file, ordered by run index.
+
+    Raises
+    ------
+    ValueError
+        For bad arguments or an output file that cannot be written or belongs to another study.
+    KeyboardInterrupt
+        On Ctrl-C or SIGTERM, after the finished runs are saved (rerun the same call to resume).
+    """
+    where = 'RunStudy'
+    if not isinstance(study, Study):
+        raise TypeError(f"{where}: 'study' must be a Study, got {type(study).__name__}")
+    if engine not in ENGINES:
+        raise ValueError(f"{where}: 'engine' must be one of {', '.join(ENGINES)}, got {engine!r}")
+    shard = ParseShard(shard)
+    if workers is None:
+        workers = DefaultWorkers()
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise ValueError(f"{where}: 'workers' must be a whole number >= 1, got {workers!r}")
+    output = Path(output) if output is not None else None
+    indices = ShardIndices(len(study.points), shard)
+    previous = _CheckOutput(output, study, shard, overwrite) if output is not None else []
+    done = {r['run']: r for r in previous if r['run'] in set(indices)}
+    todo = [i for i in indices if i not in done]
+    started = time.strftime('%Y-%m-%dT%H:%M:%S%z')
+    columns = _Columns(study)
+    rows = dict(done)
+    failed = sum(r['status'] != 'ok' for r in done.values())
+
+    csvFile = writer = None
+    if output is not None:
+        _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started)
+        new = not output.exists() or output.stat().st_size == 0
+        csvFile = output.open('a', newline='')
+        writer = csv.writer(csvFile)
+        if new:
+            writer.writerow(columns)
+            csvFile.flush()
+
+    def Record(row):
+        nonlocal failed
+        row = {c: row.get(c) for c in columns}          # the same keys as a row read back from the file
+        rows[row['run']] = row
+        failed += row['status'] != 'ok'
+        if writer is not None:
+            writer.writerow([_CsvText(row.get(c)) for c in columns])
+            csvFile.flush()
+        if onRow is not None:
+            onRow(row)
+
+    if done and quiet is not True:
+        print(f"resuming: {len(done)} of {len(indices)} runs already in '{output}'", file=sys.stderr)
+    previousHandler = None
+    try:
+        if todo:
+            from .progress import ProgressBar
+            try:
+                previousHandler = signal.signal(signal.SIGTERM, _RaiseTerminated)
+            except ValueError:                        # not the main thread
+                previousHandler = None
+            executor = _Executor(engine, min(workers, len(todo)))
+            try:
+                futures = [executor.submit(RunPoint, study.Task(i)) for i in todo]
+                from concurrent.futures import as_completed
+                with ProgressBar(total=len(todo), desc='sweep', unit='run', quiet=quiet) as bar:
+                    for future in as_completed(futures):
+                        Record(future.result())
+                        bar.set_postfix(failed=failed, refresh=False)
+                        bar.update(1)
+            except BaseException:
+                executor.shutdown(wait=False, cancel_futures=True)
+                raise
+            else:
+                executor.shutdown(wait=True)
+    finally:
+        if previousHandler is not None:
+            signal.signal(signal.SIGTERM, previousHandler)
+        if csvFile is not None:
+            csvFile.close()
+            _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started,
+                          counts={'runs': len(indices), 'done': len(rows), 'failed': failed})
+    return StudyResult(study, [rows[i] for i in sorted(rows)])
+
+
+def _RaiseTerminated(signum, frame):
+    raise _Terminated()

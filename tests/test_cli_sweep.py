@@ -1,0 +1,75 @@
+"""``exudyn-worm sweep``: options, errors, JSON, table, resume, plots."""
+import json
+
+import pytest
+
+from exudyn_worm.cli import Main
+from exudyn_worm.study import ReadResults
+
+SHORT = ['--windows', '0:0.5,0.5:1', '--end-time', '1', '--quiet']
+
+
+def _Error(capsys, argv, text):
+    assert Main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith('exudyn-worm: error:') and text in err[0], err
+
+
+@pytest.mark.parametrize('argv, text', [
+    (['sweep'], '--vary'),
+    (['sweep', '--vary', 'J1=0.1:0.2'], 'START:STOP:COUNT'),
+    (['sweep', '--vary', 'nope=1,2'], "unknown parameter 'nope'"),
+    (['sweep', '--vary', 'J1=0.1,0.2', '--vary', 'kT=1,2,3', '--zip'], 'equal numbers'),
+    (['sweep', '--vary', 'J1=0.1', '--shard', '2/2'], 'i/N'),
+    (['sweep', '--vary', 'J1=0.1', '--workers', '0'], '--workers'),
+    (['sweep', '--vary', 'J1=0.1', '--engine', 'dask'], 'invalid choice'),
+    (['sweep', '--vary', 'J1=0.1', '--windows', '0:9', '--end-time', '8'], 'after --end-time'),
+    (['sweep', '--vary', 'J1=0.1', '--plot', 'x.txt'], '--plot'),
+    (['sweep', '--vary', 'J1=0.1', '--plot', 'x.png', '--metric', 'w7.nothing'], '--metric'),
+    (['sweep', '--vary', 'J1=0.1', '--set', 'J2=1 m'], "'J2'"),
+])
+def test_bad_input(capsys, argv, text):
+    _Error(capsys, argv, text)
+
+
+def test_output_checked_before_computing(capsys, tmp_path):
+    _Error(capsys, ['sweep', '--vary', 'J1=0.1', '--output', str(tmp_path / 'no' / 'a.csv')] + SHORT, 'does not exist')
+    (tmp_path / 'other.csv').write_text('x\n')
+    _Error(capsys, ['sweep', '--vary', 'J1=0.1', '--output', str(tmp_path / 'other.csv')] + SHORT, 'sidecar')
+
+
+def test_json_and_files(capsys, tmp_path):
+    out = tmp_path / 'runs.csv'
+    argv = ['sweep', '--vary', 'J1=0.05,0.1', '--vary', 'loadMass=175,1e9', '--workers', '2',
+            '--output', str(out), '--json'] + SHORT
+    assert Main(argv) == 0
+    captured = capsys.readouterr()
+    data = json.loads(captured.out)
+    assert set(data) == {'runs', 'agreement'} and data['agreement'] is None
+    assert [r['parameters'] for r in data['runs']] == [{'J1': 0.05, 'loadMass': 175.}, {'J1': 0.05, 'loadMass': 1e9},
+                                                        {'J1': 0.1, 'loadMass': 175.}, {'J1': 0.1, 'loadMass': 1e9}]
+    assert [r['status'] for r in data['runs']] == ['ok', 'failed', 'ok', 'failed']
+    assert data['runs'][1]['error'] and data['runs'][1]['windows'] == []
+    assert [len(r['windows']) for r in data['runs']] == [2, 0, 2, 0]
+    assert set(data['runs'][0]['windows'][0]) >= {'t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'chatter'}
+    assert isinstance(data['runs'][0]['analyticStable'], bool)
+    assert ReadResults(out).ToDict() == data
+    assert 'wrote' in captured.err
+    # the same command again: everything is resumed from the file (nothing recomputed), same JSON
+    table = out.read_text()
+    assert Main(argv) == 0
+    assert json.loads(capsys.readouterr().out) == data and out.read_text() == table
+    assert Main(argv[:-1]) == 0                     # without --quiet: says that it resumes
+    assert 'resuming: 4 of 4' in capsys.readouterr().err
+
+
+def test_table_agreement_and_plots(capsys, tmp_path):
+    # one rotation, so the lowering window exists: the agreement is judged
+    assert Main(['sweep', '--vary', 'J1=0.1', '--vary', 'kT=700,7000', '--quiet', '--workers', '2',
+                 '--plot', str(tmp_path / 'map.png')]) == 0
+    text = capsys.readouterr().out
+    assert 'agreement of chatter while lowering' in text and '2 runs: 2 ok, 0 failed' in text
+    assert (tmp_path / 'map.png').stat().st_size > 1000
+    assert Main(['sweep', '--vary', 'backlash=0,0.5mm', '--plot', str(tmp_path / 'b.png'), '--metric',
+                 'w0.maxNormalForce'] + SHORT) == 0
+    assert (tmp_path / 'b.png').stat().st_size > 1000

@@ -1,0 +1,84 @@
+"""Chunked solving: same numbers as one Exudyn solve (to the Newton tolerance), independent of the progress
+bar, one sample per time, a bar on stderr when asked, and failures with the time reached."""
+import numpy as np
+import pytest
+
+from exudyn_worm import GetPreset, SimulateReelChanger
+from exudyn_worm.reelchanger import SOLVER_SETTINGS, BuildReelChanger, _ApplySolverOptions
+
+
+def _Plain(parameters, endTime, stepSize):
+    """The reference: one mbs.SolveDynamic call with SimulateReelChanger's settings."""
+    import exudyn as exu
+    model = BuildReelChanger(parameters)
+    mbs = model.mbs
+    mbs.Assemble()
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False
+    ss.solution.sensors.writePeriod = stepSize
+    ss.timeIntegration.endTime = endTime
+    ss.timeIntegration.numberOfSteps = int(round(endTime / stepSize))
+    ss.timeIntegration.verboseMode = 0
+    solverType = _ApplySolverOptions(ss, SOLVER_SETTINGS, 'test')
+    printing, exu.config.printToConsole = exu.config.printToConsole, False
+    try:
+        mbs.SolveDynamic(ss, solverType=solverType)
+    finally:
+        exu.config.printToConsole = printing
+    return model.connector.StoredStates(mbs)
+
+
+@pytest.mark.parametrize('preset', ['reel-P1', 'reel-P7'])
+def test_chunks_agree_with_one_solve(preset):
+    """Chunks restart the modified-Newton Jacobian (and P7's step halvings move), so the trajectories agree
+    with one solve to the Newton tolerance (relativeTolerance 1e-6 of SOLVER_SETTINGS) until the chatter
+    amplifies it; the peaks the window metrics use agree to 0.1 %."""
+    p = GetPreset(preset)
+    result = SimulateReelChanger(p, endTime=3., stepSize=5e-4, progress=False)    # 6000 steps: three chunks
+    plain = _Plain(p, 3., 5e-4)
+    assert np.all(np.diff(result.time) > 1e-9)                                   # one sample per time
+    if preset == 'reel-P1':                                                      # fixed steps: the same grid
+        np.testing.assert_allclose(result.time, plain['time'], rtol=0, atol=1e-9)
+        early = plain['time'] < 2.                                               # lifting, no chatter
+        for key in ('phi1', 'omega1', 'phi2', 'omega2'):
+            np.testing.assert_allclose(getattr(result, key)[early], plain[key][early], rtol=0,
+                                       atol=1e-5 * np.max(np.abs(plain[key])), err_msg=key)
+    for t0, t1 in ((0., 2.), (2., 3.)):
+        m, mp = result._Window(t0, t1), (plain['time'] >= t0) & (plain['time'] <= t1)
+        assert np.max(np.abs(result.alpha2[m])) == pytest.approx(np.max(np.abs(plain['alpha2'][mp])), rel=1e-3)
+
+
+def test_numbers_do_not_depend_on_the_progress_bar(capsys):
+    p = GetPreset('reel-P1')
+    quiet = SimulateReelChanger(p, endTime=2.5, progress=False)
+    shown = SimulateReelChanger(p, endTime=2.5, progress=True)
+    err = capsys.readouterr().err
+    assert 's simulated' in err and '100%' in err
+    for key in ('alpha2', 'normalForce', 'S'):
+        assert np.array_equal(getattr(quiet, key), getattr(shown, key))
+
+
+def test_bad_solver_type_refused():
+    import exudyn as exu
+    from exudyn_worm.solve import SolveDynamicInChunks
+    with pytest.raises(TypeError, match="'solverType' must be an exudyn.DynamicSolverType"):
+        SolveDynamicInChunks(None, exu.SimulationSettings(), 'RK44')
+
+
+def test_failure_reports_the_time_reached():
+    """A solve that cannot converge: one Newton iteration allowed, unreachable tolerance, no step reduction."""
+    from exudyn_worm.solve import SolverDivergedError
+    options = {'timeIntegration.newton.maxIterations': 1, 'timeIntegration.newton.useModifiedNewton': False,
+               'timeIntegration.adaptiveStep': False, 'timeIntegration.newton.relativeTolerance': 1e-30,
+               'timeIntegration.newton.absoluteTolerance': 1e-30}
+    with pytest.raises(SolverDivergedError, match=r'SimulateReelChanger: the Exudyn solver failed at t = 0.0005 s of '
+                                                  r'0.05 s \(step size 0.0005 s\).*likely cause') as info:
+        SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, stepSize=5e-4, solverOptions=options,
+                            progress=False)
+    assert info.value.timeReached == pytest.approx(5e-4) and info.value.endTime == pytest.approx(0.05)
+
+
+def test_explicit_solver_runs_in_one_piece():
+    result = SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, stepSize=5e-4,
+                                 solverOptions={'solverType': 'RK44'}, progress=False)
+    assert result.time.size == 101 and np.all(np.diff(result.time) > 0)

@@ -1,0 +1,220 @@
+"""Parameter studies (exudyn_worm.study): parsing, points, shards, failed runs, results files, resume."""
+import csv
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import time
+
+import numpy as np
+import pytest
+from hypothesis import given, strategies as st
+
+from exudyn_worm.config import ResolveParameters
+from exudyn_worm.study import (RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunStudy,
+                               ShardIndices, Study, StudyPoints, StudyResult, StudySidecarPath, Variation)
+
+# short runs: 1 s of the reel changer (lifting), two windows
+SHORT = dict(windows=[(0., 0.5), (0.5, 1.)], endTime=1.)
+
+
+def test_grid_linear_and_log():
+    v = ParseVariation('J1=0.01:0.4:8')
+    assert v.key == 'J1' and len(v.values) == 8
+    np.testing.assert_allclose(v.values, np.linspace(0.01, 0.4, 8))
+    v = ParseVariation('J1=0.01:0.4:8', log=True)
+    np.testing.assert_allclose(v.values, np.geomspace(0.01, 0.4, 8))
+    assert v.values[0] == 0.01 and v.values[-1] == 0.4            # exact ends
+    np.testing.assert_allclose(np.diff(np.log(v.values)), np.log(40) / 7)
+    # the fourth field overrides the flag
+    np.testing.assert_allclose(ParseVariation('kT=700:14000:3:log').values, [700, 700 * 20 ** 0.5, 14000])
+    np.testing.assert_allclose(ParseVariation('kT=700:14000:3:lin', log=True).values, [700, 7350, 14000])
+    assert ParseVariation('J1=0.1:0.1:1').values == (0.1,)
+
+
+def test_list_and_grid_with_units():
+    np.testing.assert_allclose(ParseVariation('backlash=0,0.25mm,0.5 mm,0.75mm').values, [0, 2.5e-4, 5e-4, 7.5e-4])
+    np.testing.assert_allclose(ParseVariation('backlash=0:1mm:5').values, [0, 2.5e-4, 5e-4, 7.5e-4, 1e-3])
+    np.testing.assert_allclose(ParseVariation('motorSpeed=472.5rpm,945 rpm').values,
+                               [472.5 * np.pi / 30, 945 * np.pi / 30])
+    np.testing.assert_allclose(ParseVariation('kT=7 kN*m,14kN*m').values, [7000, 14000])
+
+
+@pytest.mark.parametrize('text, message', [
+    ('J1', 'expected KEY='), ('J1=', 'expected KEY='), ('nope=1,2', "unknown parameter 'nope'"),
+    ('J1=0.01:0.4', 'START:STOP:COUNT'), ('J1=0.01:0.4:0', 'COUNT must be >= 1'),
+    ('J1=0.01:0.4:x', 'COUNT must be a whole number'), ('J1=0:0.4:5:log', 'log grid needs START and STOP > 0'),
+    ('J1=0.1:0.1:3', 'must differ'), ('backlash=0,,1mm', 'empty value'), ('backlash=0,1 kg', "'backlash' must be"),
+])
+def test_bad_variations(text, message):
+    with pytest.raises(ValueError, match=message):
+        ParseVariation(text)
+
+
+def test_factorial_and_zip():
+    a, b = Variation('J1', (1., 2., 3.)), Variation('kT', (10., 20., 30.))
+    points = StudyPoints([a, b])
+    assert len(points) == 9
+    assert points[:4] == [{'J1': 1., 'kT': 10.}, {'J1': 1., 'kT': 20.}, {'J1': 1., 'kT': 30.}, {'J1': 2., 'kT': 10.}]
+    assert len({tuple(p.items()) for p in points}) == 9
+    assert StudyPoints([a, b], zipped=True) == [{'J1': 1., 'kT': 10.}, {'J1': 2., 'kT': 20.}, {'J1': 3., 'kT': 30.}]
+    assert StudyPoints([]) == [{}]
+    with pytest.raises(ValueError, match='equal numbers'):
+        StudyPoints([a, Variation('kT', (1., 2.))], zipped=True)
+    with pytest.raises(ValueError, match='more than once'):
+        StudyPoints([a, Variation('J1', (5.,))])
+
+
+def test_shard_parsing():
+    assert ParseShard('0/4') == (0, 4) and ParseShard('3/4') == (3, 4) and ParseShard(None) is None
+    for bad in ('4/4', '-1/4', '1', 'a/b', '1/0'):
+        with pytest.raises(ValueError, match='i/N'):
+            ParseShard(bad)
+
+
+@given(st.integers(0, 300), st.integers(1, 20))
+def test_shards_cover_every_point_once(runs, n):
+    seen = sorted(i for k in range(n) for i in ShardIndices(runs, (k, n)))
+    assert seen == list(range(runs))
+    sizes = [len(ShardIndices(runs, (k, n))) for k in range(n)]
+    assert max(sizes) - min(sizes) <= 1
+
+
+def _Study(*vary, **kw):
+    return Study(ResolveParameters('reel-P1'), [ParseVariation(v) for v in vary], **{**SHORT, **kw})
+
+
+def test_failed_run_is_recorded_and_others_finish(tmp_path):
+    # loadMass = 1e9 kg: the Exudyn solver fails; J1 < 0: the model refuses it; 175 kg: fine
+    study = _Study('loadMass=175,1e9')
+    study2 = Study(study.base, [ParseVariation('J1=0.1,-0.1')], **SHORT)
+    r = RunStudy(study, tmp_path / 'a.csv', workers=2, quiet=True)
+    assert [row['status'] for row in r.rows] == ['ok', 'failed']
+    assert 'Solve' in r.rows[1]['error'] and r.rows[1]['w0.t0'] is None
+    assert r.rows[0]['error'] == '' and r.rows[0]['w1.t1'] == 1.
+    r2 = RunStudy(study2, tmp_path / 'b.csv', workers=1, quiet=True)
+    assert [row['status'] for row in r2.rows] == ['ok', 'failed']
+    assert "'J1' must be > 0" in r2.rows[1]['error']
+    runs = r2.ToDict()['runs']
+    assert runs[1]['windows'] == [] and runs[1]['analyticStable'] is None
+    assert len(runs[0]['windows']) == 2
+
+
+def test_csv_json_and_read_back(tmp_path):
+    study = _Study('J1=0.01,0.1', 'backlash=0,0.5mm', source='preset reel-P1')
+    out = tmp_path / 'runs.csv'
+    result = RunStudy(study, out, workers=2, quiet=True)
+    with out.open(newline='') as f:
+        table = list(csv.DictReader(f))
+    columns = list(RUN_COLUMNS) + ['J1', 'backlash'] + [f'w{i}.{m}' for i in range(2) for m in WINDOW_METRICS]
+    assert list(table[0]) == columns
+    assert sorted(int(r['run']) for r in table) == [0, 1, 2, 3]
+    assert {(float(r['J1']), float(r['backlash'])) for r in table} == {(0.01, 0.), (0.01, 5e-4), (0.1, 0.), (0.1, 5e-4)}
+    assert all(r['status'] == 'ok' and float(r['seconds']) >= float(r['solveSeconds']) > 0 for r in table)
+    meta = json.loads(StudySidecarPath(out).read_text())
+    assert meta['study']['variations'][1] == {'key': 'backlash', 'unit': 'm', 'values': [0., 5e-4],
+                                              'text': 'backlash=0,0.5mm'}
+    assert meta['study']['base']['J2'] == 33. and meta['study']['windows'] == [[0., 0.5], [0.5, 1.]]
+    assert meta['versions']['exudyn'] and meta['versions']['python']
+    assert meta['counts'] == {'runs': 4, 'done': 4, 'failed': 0}
+    d = result.ToDict()
+    assert set(d) == {'runs', 'agreement'}
+    assert d['runs'][1]['parameters'] == {'J1': 0.01, 'backlash': 5e-4}
+    assert set(d['runs'][0]['windows'][0]) == set(WINDOW_METRICS)
+    # the file holds exactly what the study returned (floats round-trip)
+    assert ReadResults(out).ToDict() == d
+    json.dumps(d, allow_nan=False)
+    # no lowering window in [0, 1] s: no agreement can be judged
+    assert d['agreement'] is None and all(r['loweringChatter'] is None for r in d['runs'])
+
+
+def test_agreement_counts_finished_runs_only():
+    study = Study(ResolveParameters('reel-P1'), [Variation('J1', (1., 2., 3., 4.))])
+    row = lambda run, status, chatter, stable: {'run': run, 'status': status, 'loweringChatter': chatter,
+                                                 'analyticStableLowering': stable}
+    rows = [row(0, 'ok', True, False), row(1, 'ok', False, False), row(2, 'ok', False, True),
+            row(3, 'failed', None, True)]
+    assert StudyResult(study, rows).agreement == pytest.approx(2 / 3)
+
+
+def test_output_checked_before_computing(tmp_path):
+    study = _Study('J1=0.1')
+    with pytest.raises(ValueError, match='does not exist'):
+        RunStudy(study, tmp_path / 'missing' / 'a.csv', quiet=True)
+    with pytest.raises(ValueError, match='.csv'):
+        RunStudy(study, tmp_path / 'a.txt', quiet=True)
+    (tmp_path / 'b.csv').write_text('something else\n')
+    with pytest.raises(ValueError, match='without its sidecar'):
+        RunStudy(study, tmp_path / 'b.csv', quiet=True)
+    RunStudy(study, tmp_path / 'c.csv', quiet=True, workers=1)
+    with pytest.raises(ValueError, match='different study'):
+        RunStudy(_Study('J1=0.2'), tmp_path / 'c.csv', quiet=True)
+    with pytest.raises(ValueError, match='different study'):
+        RunStudy(study, tmp_path / 'c.csv', quiet=True, shard='0/2')
+    assert len(RunStudy(_Study('J1=0.2'), tmp_path / 'c.csv', quiet=True, overwrite=True, workers=1).rows) == 1
+    for bad in (0, -1, 1.5, True):
+        with pytest.raises(ValueError, match="'workers'"):
+            RunStudy(study, workers=bad, quiet=True)
+    with pytest.raises(ValueError, match="'engine'"):
+        RunStudy(study, engine='dask', quiet=True)
+
+
+def test_shards_together_give_the_whole_study(tmp_path):
+    study = _Study('J1=0.05,0.1,0.2')
+    whole = RunStudy(study, tmp_path / 'all.csv', workers=2, quiet=True)
+    parts = [RunStudy(study, tmp_path / f's{k}.csv', workers=1, quiet=True, shard=f'{k}/2') for k in range(2)]
+    assert [r['run'] for r in parts[0].rows] == [0, 2] and [r['run'] for r in parts[1].rows] == [1]
+    merged = ReadResults(tmp_path / 's0.csv', tmp_path / 's1.csv')
+    strip = lambda runs: [{k: v for k, v in r.items() if 'econds' not in k} for r in runs]
+    assert strip(merged.ToDict()['runs']) == strip(whole.ToDict()['runs'])
+
+
+_KILLABLE = textwrap.dedent('''
+    import sys
+    from exudyn_worm.config import ResolveParameters
+    from exudyn_worm.study import ParseVariation, RunStudy, Study
+    study = Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.02:0.3:12:log')],
+                  windows=[(0., 0.5), (0.5, 1.)], endTime=1.)
+    RunStudy(study, sys.argv[1], workers=1, quiet=True)
+''')
+
+
+def test_resume_after_kill(tmp_path):
+    out = tmp_path / 'runs.csv'
+    script = tmp_path / 'study.py'
+    script.write_text(_KILLABLE)
+    proc = subprocess.Popen([sys.executable, str(script), str(out)], start_new_session=True,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    try:
+        deadline = time.time() + 240
+        while time.time() < deadline and proc.poll() is None:
+            if out.exists() and out.read_text().count('\n') >= 3:      # header + 2 runs
+                break
+            time.sleep(0.05)
+        assert proc.poll() is None, proc.stderr.read().decode()
+    finally:
+        os.killpg(proc.pid, signal.SIGKILL)                # the study and its worker, like a killed job
+        proc.wait()
+    before = out.read_text()
+    doneRuns = {int(line.split(',')[0]) for line in _Complete(before)}
+    assert 2 <= len(doneRuns) < 12
+    newRows = []
+    study = Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.02:0.3:12:log')], **SHORT)
+    result = RunStudy(study, out, workers=2, quiet=True, onRow=newRows.append)
+    assert [r['run'] for r in result.rows] == list(range(12))
+    assert all(r['status'] == 'ok' for r in result.rows)
+    # finished runs were not redone: only the others were computed, the old lines stay as they were
+    assert sorted(r['run'] for r in newRows) == sorted(set(range(12)) - doneRuns)
+    after = out.read_text()
+    assert after.startswith(''.join(_Complete(before, header=True)))
+    assert sorted(int(line.split(',')[0]) for line in after.splitlines()[1:]) == list(range(12))
+
+
+def _Complete(text, header=False):
+    """Complete lines of a CSV text (a killed writer may leave a partial last line)."""
+    lines = text.splitlines(keepends=True)
+    if lines and not lines[-1].endswith('\n'):
+        lines = lines[:-1]
+    return lines if header else lines[1:]
