@@ -32,10 +32,11 @@ import numpy as np
 
 from exudyn_worm.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, FormatChartTable,
                                 PresetChartPoints, StabilityChart)
+from exudyn_worm._checks import CheckOutputFolder
 from exudyn_worm.presets import GearFromParameters, GetPreset
 
 __all__ = ['CHART_PRESET', 'FIGURE_DV', 'DTV_VALUES', 'POINT_PRESETS', 'FIGURE3_RHO_DEG', 'ComputeFigures',
-           'Summary', 'FormatSummary', 'WriteFigures', 'CheckOutputFolder', 'main']
+           'Summary', 'FormatSummary', 'WriteFigures', 'main']
 
 #: the gear of parameter set (25)
 CHART_PRESET = 'chart'
@@ -148,36 +149,6 @@ def WriteFigures(figures: Dict, outDir) -> List[Path]:
     return written
 
 
-def CheckOutputFolder(path) -> Path:
-    """Check that ``path`` can be the output folder (an existing folder or creatable), before computing.
-
-    Parameters
-    ----------
-    path : str or Path
-        The folder the user named.
-
-    Returns
-    -------
-    Path
-        The resolved folder.
-
-    Raises
-    ------
-    ValueError
-        If it is a file, or its nearest existing parent is not a writable folder.
-    """
-    import os
-    folder = Path(path).expanduser().resolve()
-    if folder.exists() and not folder.is_dir():
-        raise ValueError(f"--out: '{path}' exists and is not a folder")
-    parent = folder
-    while not parent.exists():
-        parent = parent.parent
-    if not parent.is_dir() or not os.access(parent, os.W_OK | os.X_OK):
-        raise ValueError(f"--out: cannot write into '{parent}' (to make '{folder}')")
-    return folder
-
-
 class _Parser1Line(argparse.ArgumentParser):
     """Argument errors as one line on stderr (exit status 2), without the usage block."""
 
@@ -200,9 +171,9 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                         help='grid points per axis of Figures 4 and 5')
     args = parser.parse_args(argv)
     try:
-        folder = CheckOutputFolder(args.out)
         if not 2 <= args.resolution <= 20000:
             raise ValueError(f'--resolution must be in [2, 20000], got {args.resolution}')
+        folder = CheckOutputFolder(parser.prog, '--out', args.out)      # created here, before computing
     except ValueError as error:
         print(f'{parser.prog}: error: {error}', file=sys.stderr)
         return 2

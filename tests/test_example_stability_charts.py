@@ -54,7 +54,7 @@ def test_output_folder_is_checked_before_computing(tmp_path, capsys, monkeypatch
     afile = tmp_path / 'file.png'
     afile.write_text('x')
     assert example.main(['--out', str(afile)]) == 2
-    assert 'exists and is not a folder' in capsys.readouterr().err
+    assert "cannot write to --out" in capsys.readouterr().err
     assert example.main(['--out', str(tmp_path / 'new'), '--resolution', '1']) == 2
     assert '--resolution must be in [2, 20000]' in capsys.readouterr().err
 
