@@ -12,7 +12,8 @@ import numpy as np
 
 from .contact import MATH_OPS, SymbolicOps
 
-__all__ = ['AddGenericForce', 'SetGenericForceLaw', 'SetOffsetFunction']
+__all__ = ['AddGenericForce', 'SetGenericForceLaw', 'SetOffsetFunction', 'CheckSymbolicLaw', 'CheckForceLaw',
+           'CheckOffsetLaw']
 
 _KEEP_ALIVE = 'exudynWorm.symbolicUserFunctions'   # mbs.variables key: expression trees must outlive the solve
 
@@ -43,28 +44,124 @@ def _RecordSymbolic(mbs, itemIndex, userFunctionName: str, arguments, returnType
     return uf
 
 
+#: sample states (t in s, coordinate, speed) at which a recorded law is compared with plain Python: away from
+#: 0 (the value the arguments have while recording), both signs, several magnitudes
+_SAMPLES = ((0.137, -2.1, 0.61), (1.73, 0.35, -31.3), (11.3, 7.9, 52.7), (97.1, -130.3, -0.043))
+_FORCE_ARGUMENTS = lambda n: [('t', 'Real', 1), ('itemNumber', 'Index', 1), ('q', 'StdVector', n),
+                              ('q_t', 'StdVector', n)]
+_OFFSET_ARGUMENTS = [('t', 'Real', 1), ('itemNumber', 'Index', 1), ('lOffset', 'Real', 1)]
+
+
+def _Flat(value):
+    items = list(value) if isinstance(value, (list, tuple)) else [value]
+    return [float(x.Evaluate()) if hasattr(x, 'Evaluate') else float(x) for x in items]
+
+
+def CheckSymbolicLaw(where: str, arguments, build: Callable) -> None:
+    """Check that ``build(args, ops)`` records as the same function in C++ as it computes in Python.
+
+    A law written with a Python ``if``, ``and``/``or``, the built-in ``min``/``max`` or ``math`` functions
+    on its arguments is evaluated once while it is recorded (with the arguments at 0) and becomes a
+    constant in the symbolic user function, without any error. This records the law, evaluates the
+    recording at a few sample states (:data:`_SAMPLES`) and compares with the law evaluated in plain
+    Python (``MATH_OPS``) there.
+
+    Parameters
+    ----------
+    where : str
+        The builder that received the law (named in the messages).
+    arguments : list of (name, type, size)
+        The user function's arguments after the MainSystem (as for ``_RecordSymbolic``).
+    build : callable
+        ``build(args, ops)`` with ``args[0]`` the MainSystem (None here).
+
+    Raises
+    ------
+    ValueError
+        If recording and Python differ at a sample state; the message names the likely cause.
+    TypeError
+        If the law cannot be recorded at all (e.g. a numpy function applied to a symbolic argument).
+    """
+    import exudyn as exu
+    esym = exu.symbolic
+    recording = esym.GetRecording()
+    esym.SetRecording(True)
+    try:
+        args = [None] + [esym.Vector(name, [0.] * size) if typ == 'StdVector' else esym.Real(name, 0.)
+                         for name, typ, size in arguments]
+        try:
+            value = build(args, SymbolicOps())
+        except TypeError as err:
+            raise TypeError(f"{where}: the law cannot be recorded as a symbolic (C++) user function ({err}); write "
+                            f"it with the functions of 'ops' (ops.sin, ops.cos, ops.where, ops.min, ...) instead of "
+                            f"math or numpy, or pass useSymbolic=False") from err
+        for t, x, v in _SAMPLES:
+            plain = [None]
+            for (name, typ, size), arg in zip(arguments, args[1:]):
+                if typ == 'StdVector':
+                    sample = [(x if name == 'q' else v) * (1. + 0.29 * k) for k in range(size)]
+                    arg.SetVector(sample)
+                else:
+                    sample = t if name == 't' else 0.
+                    arg.SetValue(sample)
+                plain.append(sample)
+            try:
+                expected = _Flat(build(plain, MATH_OPS))
+            except (ArithmeticError, ValueError):            # the law is not defined there: no comparison
+                continue
+            got = _Flat(value)
+            if any(not np.isclose(g, e, rtol=1e-9, atol=1e-12) and not (np.isnan(g) and np.isnan(e))
+                   for g, e in zip(got, expected)):
+                state = ', '.join(f"{name} = {p:g}" if not isinstance(p, list) else
+                                  f"{name} = [{', '.join(f'{c:g}' for c in p)}]"
+                                  for (name, typ, _), p in zip(arguments, plain[1:]) if typ != 'Index'
+                                  and name != 'lOffset')
+                raise ValueError(
+                    f"{where}: the law gives {got if len(got) > 1 else got[0]} when recorded as a symbolic (C++) "
+                    f"user function but {expected if len(expected) > 1 else expected[0]} in Python at {state}. "
+                    f"Likely cause: a Python 'if', 'and'/'or', built-in min/max or a math function applied to the "
+                    f"law's arguments: it is evaluated once while recording and gives a constant. Write the law "
+                    f"with ops.where(condition, a, b), ops.min, ops.max, ops.cos, ... or pass useSymbolic=False")
+    finally:
+        esym.SetRecording(recording)
+
+
+def CheckForceLaw(where: str, n: int, law: Callable) -> None:
+    """:func:`CheckSymbolicLaw` for a generalized-force law ``law(t, q, q_t, ops)`` on ``n`` coordinates."""
+    CheckSymbolicLaw(where, _FORCE_ARGUMENTS(n), lambda args, ops: law(args[1], args[3], args[4], ops))
+
+
+def CheckOffsetLaw(where: str, law: Callable) -> None:
+    """:func:`CheckSymbolicLaw` for a constraint-offset law ``law(t, ops) -> (offset, offsetRate)``."""
+    CheckSymbolicLaw(where, _OFFSET_ARGUMENTS, lambda args, ops: list(law(args[1], ops))[:2])
+
+
 def AddGenericForce(mbs, nodeNumbers: Sequence[Any], law: Callable, name: str = '',
-                    useSymbolic: bool = True) -> Tuple[Any, Any]:
+                    useSymbolic: bool = True, where: str = 'AddGenericForce') -> Tuple[Any, Any]:
     """Add an ``ObjectGenericODE2`` on one-coordinate nodes whose forces are ``law(t, q, q_t, ops)``.
 
-    Returns ``(objectNumber, userFunction)``.
+    With ``useSymbolic`` the law is first checked with :func:`CheckSymbolicLaw` (errors name ``where``),
+    so that nothing is added for a law that would be recorded wrongly. Returns ``(objectNumber, userFunction)``.
     """
     from exudyn.itemInterface import ObjectGenericODE2
     n = len(nodeNumbers)
+    if useSymbolic:
+        CheckForceLaw(where, n, law)
     zeros = np.zeros((n, n))
     oItem = mbs.AddObject(ObjectGenericODE2(nodeNumbers=list(nodeNumbers), massMatrix=zeros,
                                             stiffnessMatrix=zeros, dampingMatrix=zeros, name=name))
-    return oItem, SetGenericForceLaw(mbs, oItem, n, law, useSymbolic)
+    return oItem, SetGenericForceLaw(mbs, oItem, n, law, useSymbolic, check=False)
 
 
-def SetGenericForceLaw(mbs, objectNumber, n: int, law: Callable, useSymbolic: bool = True):
+def SetGenericForceLaw(mbs, objectNumber, n: int, law: Callable, useSymbolic: bool = True, check: bool = True,
+                       where: str = 'SetGenericForceLaw'):
     """(Re)set the ``forceUserFunction`` of an ``ObjectGenericODE2`` on ``n`` one-coordinate nodes to
-    ``law(t, q, q_t, ops)``; returns the user function."""
+    ``law(t, q, q_t, ops)`` (checked with :func:`CheckSymbolicLaw` if ``check``); returns the user function."""
     oItem = objectNumber
     if useSymbolic:
-        userFunction = _RecordSymbolic(mbs, oItem, 'forceUserFunction',
-                                       [('t', 'Real', 1), ('itemNumber', 'Index', 1), ('q', 'StdVector', n),
-                                        ('q_t', 'StdVector', n)], 'StdVector',
+        if check:
+            CheckForceLaw(where, n, law)
+        userFunction = _RecordSymbolic(mbs, oItem, 'forceUserFunction', _FORCE_ARGUMENTS(n), 'StdVector',
                                        lambda args, ops: law(args[1], args[3], args[4], ops))
     else:
         def userFunction(mbs, t, itemNumber, q, q_t):
@@ -73,12 +170,15 @@ def SetGenericForceLaw(mbs, objectNumber, n: int, law: Callable, useSymbolic: bo
     return userFunction
 
 
-def SetOffsetFunction(mbs, objectNumber, law: Callable, useSymbolic: bool = True):
+def SetOffsetFunction(mbs, objectNumber, law: Callable, useSymbolic: bool = True, check: bool = True,
+                      where: str = 'SetOffsetFunction'):
     """Set ``offsetUserFunction`` (and ``offsetUserFunction_t`` for index-2 solvers) of a
-    coordinate constraint from ``law(t, ops) -> (offset, offsetRate)``."""
+    coordinate constraint from ``law(t, ops) -> (offset, offsetRate)`` (checked with :func:`CheckOffsetLaw`
+    if ``check``)."""
     if useSymbolic:
-        ufs = [_RecordSymbolic(mbs, objectNumber, ufName,
-                               [('t', 'Real', 1), ('itemNumber', 'Index', 1), ('lOffset', 'Real', 1)], 'Real',
+        if check:
+            CheckOffsetLaw(where, law)
+        ufs = [_RecordSymbolic(mbs, objectNumber, ufName, _OFFSET_ARGUMENTS, 'Real',
                                lambda args, ops, k=k: law(args[1], ops)[k])
                for k, ufName in enumerate(('offsetUserFunction', 'offsetUserFunction_t'))]
     else:

@@ -268,8 +268,12 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
 
     refA = 0. if axialNodeNumber is None else _CheckNode(mbs, axialNodeNumber, 'axialNodeNumber', 'axial displacement')
     nodes = list(nodeNumbers) + ([] if axialNodeNumber is None else [axialNodeNumber])
+    if len({int(n) for n in nodes}) < len(nodes):     # nodes checked above
+        raise ValueError(f"CreateWormGear: worm, wheel (and axial) nodes must be different nodes, got nodeNumbers = "
+                         f"{list(nodeNumbers)!r}" + ('' if axialNodeNumber is None else
+                                                    f", axialNodeNumber = {axialNodeNumber!r}"))
     law = _WormGearLaw(gear, contactOptions, [ref1, ref2], axialNodeNumber is not None, refA)
-    oItem, userFunction = AddGenericForce(mbs, nodes, law, name=name, useSymbolic=useSymbolic)
+    oItem, userFunction = AddGenericForce(mbs, nodes, law, name=name, useSymbolic=useSymbolic, where='CreateWormGear')
     connector = WormGearConnector(objectNumber=oItem, nodeNumbers=list(nodeNumbers), gear=gear,
                                   options=contactOptions, name=name, userFunction=userFunction,
                                   referenceAngles=[ref1, ref2], axialNodeNumber=axialNodeNumber, axialReference=refA,

@@ -10,7 +10,7 @@ from __future__ import annotations
 from typing import Any, Dict
 
 from ._checks import CheckNonNegative, CheckPositive, CheckReal
-from ._userfunctions import AddGenericForce, SetOffsetFunction
+from ._userfunctions import AddGenericForce, CheckOffsetLaw, SetOffsetFunction
 
 __all__ = ['CreateRotor', 'CreateShaft', 'CreatePrescribedRotation', 'CreateRotorTorque']
 
@@ -101,16 +101,24 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
     -------
     dict
         ``objectNumber``, ``groundNodeNumber``.
+
+    Raises
+    ------
+    ValueError
+        With ``useSymbolic``, if the recorded profile differs from the profile evaluated in Python at a few
+        sample times (a Python ``if`` or ``math`` function on ``t`` records a constant); nothing is added then.
     """
     from exudyn.itemInterface import CoordinateConstraint, MarkerNodeCoordinate, NodePointGround
     w = 'CreatePrescribedRotation'
     marker = _Marker(rotor, w, 'rotor')
     if not hasattr(profile, 'AngleAndSpeed'):
         raise TypeError(f"{w}: 'profile' must have AngleAndSpeed(t, ops) (e.g. ConstantSpeed), got {type(profile).__name__}")
+    if useSymbolic:                    # before anything is added: a law recorded wrongly is refused
+        CheckOffsetLaw(w, profile.AngleAndSpeed)
     nGround = mbs.AddNode(NodePointGround())
     mGround = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nGround, coordinate=0))
     o = mbs.AddObject(CoordinateConstraint(markerNumbers=[mGround, marker], name=name))
-    SetOffsetFunction(mbs, o, profile.AngleAndSpeed, useSymbolic=useSymbolic)
+    SetOffsetFunction(mbs, o, profile.AngleAndSpeed, useSymbolic=useSymbolic, check=False)
     return {'objectNumber': o, 'groundNodeNumber': nGround}
 
 
@@ -139,6 +147,14 @@ def CreateRotorTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True)
     dict
         ``objectNumber``.
 
+    Raises
+    ------
+    ValueError
+        With ``useSymbolic``, if the recorded law differs from the law evaluated in Python at a few sample
+        states (a Python ``if`` or ``math.cos`` on the arguments records a constant); nothing is added then.
+    TypeError
+        If ``law`` is not a torque law, or cannot be recorded (e.g. numpy functions on the arguments).
+
     Examples
     --------
     A torque ramp of 10 N*m/s, capped at 50 N*m::
@@ -152,5 +168,5 @@ def CreateRotorTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True)
                         f"got {type(law).__name__}")
     node = mbs.GetMarker(_Marker(rotor, w, 'rotor'))['nodeNumber']
     o, _ = AddGenericForce(mbs, [node], lambda t, q, q_t, ops: [torque(q[0], q_t[0], t, ops)],
-                           name=name, useSymbolic=useSymbolic)
+                           name=name, useSymbolic=useSymbolic, where=w)
     return {'objectNumber': o}

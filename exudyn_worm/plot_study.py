@@ -146,12 +146,36 @@ def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -
     return out
 
 
+def _Chart(base, x, xValues, y, yValues, resolution):
+    """The stability chart (:func:`~exudyn_worm.charts.ComputeStabilityChart`) over a J1-kT map, in the map's
+    coordinates: ``(xGrid, yGrid, unstable, [(xLine, yLine), ...])``; None unless the map's keys are J1 and kT
+    and the damping is given as measures (D_T or D_TV, D_V), which is what a chart holds fixed."""
+    if {x, y} != {'J1', 'kT'} or 'dT' in base or 'dV' in base:
+        return None
+    from .charts import ChartCoordinates, ComputeStabilityChart
+    from .presets import DriveFromParameters
+    drive = DriveFromParameters(base)
+    c = ChartCoordinates(drive)
+    g = drive.gear
+    scale = {'kT': g.kV * g.r1**2, 'J1': drive.J2}             # x = kT/(kV r1^2), y = J1/J2
+    kT, J1 = (xValues, yValues) if x == 'kT' else (yValues, xValues)
+    chart = ComputeStabilityChart(g, drive.J2, c['DV'], c['DTV'], xRange=(kT[0] / scale['kT'], kT[-1] / scale['kT']),
+                                  yRange=(J1[0] / scale['J1'], J1[-1] / scale['J1']), resolution=resolution, S=-1)
+    kTGrid, J1Grid = np.asarray(chart.x) * scale['kT'], np.asarray(chart.y) * scale['J1']
+    lines = [(line[:, 0] * scale['kT'], line[:, 1] * scale['J1']) for line in chart.boundaries]
+    unstable = np.asarray(chart.unstable)                      # shape (len(y), len(x)) of the chart
+    if x == 'kT':
+        return kTGrid, J1Grid, unstable, lines
+    return J1Grid, kTGrid, unstable.T, [(b, a) for a, b in lines]
+
+
 def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str, Tuple[float, float]]] = None,
-                   resolution: int = 80, title: Optional[str] = None):
+                   resolution: int = 60, title: Optional[str] = None):
     """Chatter while lowering of every run over two varied parameters, over the analytical S = -1 region.
 
     The shaded region and its boundary line are where the linear model (eqs. (15)-(16), S = -1) predicts
-    chatter, computed on a finer grid (:func:`AnalyticalMap`); red filled dots: the simulation chatters
+    chatter: for a map of J1 and kT at fixed damping measures the stability chart of
+    :func:`~exudyn_worm.charts.ComputeStabilityChart`, else :func:`AnalyticalMap` on a finer grid; red filled dots: the simulation chatters
     while lowering; blue open circles: it does not; grey crosses: failed runs. Runs whose simulated verdict
     differs from the analytical one are ringed.
 
@@ -166,7 +190,7 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
     labels : mapping, optional
         Named points to mark, ``{'P1': (xValue, yValue), ...}`` (SI).
     resolution : int, optional
-        Points per axis of the analytical grid.
+        Points per axis of the analytical grid (the stability chart is vectorized and gets at least 300).
     title : str, optional
         Axes title.
 
@@ -178,7 +202,7 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
     for name, key in (('x', x), ('y', y)):
         if key not in keys:
             raise ValueError(f"PlotChatterMap: '{name}' must be a varied key ({', '.join(keys)}), got {key!r}")
-    fig, ax = _Axes(ax, (6.4, 5.2))
+    fig, ax = _Axes(ax, (6.4, 6.))
     xs, ys = result.Values(x), result.Values(y)
     logX, logY = _IsLog(xs), _IsLog(ys)
     def grid(v, log):
@@ -189,10 +213,19 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
 
     gx, gy = grid(xs, logX), grid(ys, logY)
     (xLabel, xf), (yLabel, yf) = AxisLabel(x), AxisLabel(y)
-    growth = AnalyticalMap(result.study.base, x, gx, y, gy)
-    ax.contourf(gx * xf, gy * yf, (growth > 0).astype(float), levels=[0.5, 1.5], colors=['#f6d5d1'])
-    if np.any(growth > 0) and np.any(growth <= 0):
-        ax.contour(gx * xf, gy * yf, growth, levels=[0.], colors=[_C_BOUNDARY], linewidths=1.2)
+    chart = _Chart(result.study.base, x, gx, y, gy, max(resolution, 300))
+    if chart is not None:                   # J1 and kT at fixed damping measures: the stability chart itself
+        cx, cy, unstable, lines = chart
+        ax.contourf(cx * xf, cy * yf, unstable.astype(float), levels=[0.5, 1.5], colors=['#f6d5d1'])
+        for lx, ly in lines:
+            ax.plot(lx * xf, ly * yf, color=_C_BOUNDARY, lw=1.2)
+        source = 'stability chart'
+    else:
+        growth = AnalyticalMap(result.study.base, x, gx, y, gy)
+        ax.contourf(gx * xf, gy * yf, (growth > 0).astype(float), levels=[0.5, 1.5], colors=['#f6d5d1'])
+        if np.any(growth > 0) and np.any(growth <= 0):
+            ax.contour(gx * xf, gy * yf, growth, levels=[0.], colors=[_C_BOUNDARY], linewidths=1.2)
+        source = 'linear model'
     ok = [r for r in result.rows if r['status'] == 'ok' and r['loweringChatter'] is not None]
     chatter = [r for r in ok if r['loweringChatter']]
     quiet = [r for r in ok if not r['loweringChatter']]
@@ -206,7 +239,7 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
         ax.plot(*pts(failed), 'x', color=_C_FAILED, ms=6, label='failed run')
     if differ:
         ax.plot(*pts(differ), 'o', mfc='none', color='black', ms=11, mew=1.2, label='differs from analytical')
-    ax.plot([], [], color=_C_BOUNDARY, lw=1.2, label='analytical S = -1 boundary (shaded: unstable)')
+    ax.plot([], [], color=_C_BOUNDARY, lw=1.2, label=f'analytical S = -1 boundary, {source} (shaded: unstable)')
     for name, (px, py) in (labels or {}).items():
         ax.plot(px * xf, py * yf, '*', color='#e69f00', ms=11, mec='black', mew=0.5)
         ax.annotate(name, (px * xf, py * yf), xytext=(4, 4), textcoords='offset points', fontsize='small')
@@ -217,8 +250,8 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
     ax.set_xlabel(xLabel)
     ax.set_ylabel(yLabel)
     agreement = result.agreement
-    ax.set_title(title or ('Chatter while lowering: simulation over the analytical chart'
+    ax.set_title(title or ('Chatter while lowering: simulation over the analytical chart\n'
                            + ('' if agreement is None else f' (agreement {100 * agreement:.0f} %)')),
                  fontsize='medium')
-    ax.legend(fontsize='x-small', loc='best')
+    ax.legend(fontsize='x-small', loc='upper center', bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
     return fig

@@ -710,7 +710,8 @@ def _CheckOutput(output: Path, study: Study, shard, overwrite: bool) -> List[Dic
     return rows
 
 
-def _WriteSidecar(path: Path, study: Study, shard, engine, workers, started, counts=None) -> None:
+def _WriteSidecar(path: Path, study: Study, shard, engine, workers, started, counts=None,
+                  wallSeconds=None) -> None:
     meta = {'study': study.ToDict(), 'shard': list(shard) if shard else None, 'engine': engine, 'workers': workers,
             'versions': _Versions(engine),
             'units': {k: PARAMETER_UNITS[k] for k in study.keys},
@@ -718,7 +719,7 @@ def _WriteSidecar(path: Path, study: Study, shard, engine, workers, started, cou
                                   'dominantFrequencyHz': 'Hz', 'fractionSNegative': '-', 'minWormSpeed': 'rad/s',
                                   'chatter': 'bool', 'vibrationSeconds': 's'},
             'columns': _Columns(study), 'started': started, 'updated': time.strftime('%Y-%m-%dT%H:%M:%S%z'),
-            'counts': counts}
+            'counts': counts, 'wallSeconds': wallSeconds}
     tmp = path.with_name(path.name + '.tmp')
     tmp.write_text(json.dumps(meta, indent=2, allow_nan=False))
     os.replace(tmp, path)
@@ -735,7 +736,8 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
         The study.
     output : str or path-like, optional
         CSV results file (one row per run, written as runs finish) with a JSON sidecar
-        (:func:`StudySidecarPath`: definition, versions, units). If it exists with the sidecar of the same
+        (:func:`StudySidecarPath`: definition, versions, units, counts, ``wallSeconds`` summed over the
+        invocations that computed it). If it exists with the sidecar of the same
         study (and shard), its finished runs are kept and only the others are run. Checked before computing.
     workers : int, optional
         Worker processes, >= 1 (default: every CPU available, :func:`DefaultWorkers`). For ``'mpi'`` under
@@ -777,8 +779,16 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     indices = ShardIndices(len(study.points), shard)
     previous = _CheckOutput(output, study, shard, overwrite) if output is not None else []
     done = {r['run']: r for r in previous if r['run'] in set(indices)}
-    todo = [i for i in indices if i not in done]
+    startTime = time.perf_counter()
     started = time.strftime('%Y-%m-%dT%H:%M:%S%z')
+    wallBefore = 0.
+    if previous:                                          # resumed: keep the start and add up the wall time
+        try:
+            meta = json.loads(StudySidecarPath(output).read_text())
+            started, wallBefore = meta.get('started') or started, float(meta.get('wallSeconds') or 0.)
+        except (OSError, ValueError, TypeError, AttributeError):
+            pass
+    todo = [i for i in indices if i not in done]
     columns = _Columns(study)
     rows = dict(done)
     failed = sum(r['status'] != 'ok' for r in done.values())
@@ -834,7 +844,8 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
         if csvFile is not None:
             csvFile.close()
             _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started,
-                          counts={'runs': len(indices), 'done': len(rows), 'failed': failed})
+                          counts={'runs': len(indices), 'done': len(rows), 'failed': failed},
+                          wallSeconds=wallBefore + time.perf_counter() - startTime)
     return StudyResult(study, [rows[i] for i in sorted(rows)])
 
 

@@ -30,8 +30,10 @@ def test_doctests():
 def test_every_file_key_maps_to_a_parameter_key():
     for table, keys in DRIVE_FILE_TABLES.items():
         for fileKey, key in keys.items():
-            if table not in ('axialBearing',):       # the bearing keys come with the axial bearing model
-                assert key in PARAMETER_UNITS, (table, fileKey, key)
+            assert key in PARAMETER_UNITS, (table, fileKey, key)
+    for index in range(3):
+        for fileKey in DRIVE_SIDE_KEYS:
+            assert DriveSideKey(fileKey, index) in PARAMETER_UNITS
 
 
 @pytest.mark.parametrize('name', sorted(PRESETS))
@@ -133,3 +135,30 @@ def test_docs_list_every_file_key():
             assert f'`{fileKey}`' in text, (table, fileKey)
     for fileKey in DRIVE_SIDE_KEYS:
         assert f'`{fileKey}`' in text
+
+
+def test_drive_side_chain_and_axial_bearing_reach_the_model(tmp_path):
+    """[[driveSide]] and [axialBearing] become the model's chain and bearing (presets.DriveSideChain, ...)."""
+    from exudyn_worm.presets import AxialBearingFromParameters, DriveSideChain
+    path = _Write(tmp_path, 'preset = "reel-P1"\n'
+                            '[[driveSide]]\ninertia = "0.05 kg*m^2"\nstiffness = "2 kN*m"\ndamping = 0.1\n'
+                            '[[driveSide]]\ninertia = 0.2\nstiffness = 500\n'
+                            '[axialBearing]\nstiffness = "500 kN/mm"\ndamping = "1 kN*s/m"\nmass = "5 kg"\n')
+    p = ResolveParameters(config=path)
+    assert (p['J4'], p['k4'], p['d4'], p['J5'], p['k5']) == (0.05, 2000., 0.1, 0.2, 500.)
+    assert [tuple(stage) for stage in DriveSideChain(p)][0] == (0.05, 2000., 0.1)
+    assert len(DriveSideChain(p)) == 2
+    bearing = AxialBearingFromParameters(p)
+    assert (bearing.stiffness, bearing.damping, bearing.mass) == (5e8, 1000., 5.)
+
+
+def test_figure19_file_is_the_drive_side_inertia_example():
+    """examples/drives/figure19.toml holds the values of examples/drive_side_inertia.py to its printed digits."""
+    from conftest import LoadScript
+    example = LoadScript('examples/drive_side_inertia.py', 'drive_side_inertia_for_files')
+    expected = example.DriveSideParameters()
+    p = ResolveParameters(config=DRIVES / 'figure19.toml')
+    assert set(p) == set(expected)
+    halfUnit = {'k4': 0.5, 'd4': 0.5e-4}      # the file prints k4 = 18.483 kN*m/rad and d4 = 0.8512 N*m*s/rad
+    for key in expected:
+        assert p[key] == pytest.approx(expected[key], rel=1e-12, abs=halfUnit.get(key, 0.)), key

@@ -184,6 +184,7 @@ Further readings, each a row (verdict in the table above): {'; '.join(f'{text} (
     half = HalfUnit(c19.row.publishedText)
     b1, b2, b3, b4 = _B(p28)
     within = lambda key: abs(_H19(ApplyOverrides(p28, cases[key][1])) - c19.row.published)
+    total = c19.interval[1] - c19.row.published
     ctx.AddSection('Tolerance of the value of (19)', f"""
 (19) = b1 b2 b3 - b1^2 b4 - b3^2 is the difference of terms of {b1 * b2 * b3:.2g}, {b1**2 * b4:.2g} and
 {b3**2:.2g} 1/s^6, so its fourth digit depends on digits of the inputs the paper does not print. Like every
@@ -195,10 +196,11 @@ r2 = 105.95 mm (+-0.005 mm); the design values are exact (validation/README.md).
 |---|---|
 | printed result | {half:.3g} |
 {partsTable}
-| **total** | **{c19.interval[1] - c19.row.published:.3g}** |
+| **total** | **{total:.3g}** |
 
-mu = {PAPER_MU} is {within('mu0.132') / half:.1f} half-units of the printed digit away, rho = 8.000 deg
-{within('rho8') / half:.1f}, mu = {_MU_28_PRINTED} {within('mu0.134') / half:.0f}.
+Distance from the printed value in units of this half-width: mu = {PAPER_MU}: {within('mu0.132') / total:.2f},
+rho = 8.000 deg: {within('rho8') / total:.2f}, mu = {_MU_28_PRINTED}: {within('mu0.134') / total:.1f} (within the
+interval below 1).
 """)
 
 
