@@ -30,7 +30,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                              '(chatter while lowering, as `exudyn-worm simulate` decides it); needs loadMass, '
                              'leverArm and motorSpeed')
     parser.add_argument('--step-size', type=float, default=None, metavar='S',
-                        help='time step of the --simulate runs in s (default: the simulation\'s default)')
+                        help='time step of the --simulate runs in s (default: each drive\'s recommended step, as simulate)')
     try:
         parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
     except argparse.ArgumentError:      # a shared --quiet exists
