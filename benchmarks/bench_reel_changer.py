@@ -52,6 +52,8 @@ from exudyn_worm.reelchanger import (SOLVER_SETTINGS, BuildReelChanger, DefaultW
 from exudyn_worm.stepsize import RecommendedStepSize  # noqa: E402
 from scipy_reference import SolveReelChangerScipy    # noqa: E402
 from compiled_reference import CompiledReelChanger   # noqa: E402
+from torque_driven import SimulateTorqueDriven       # noqa: E402
+from exudyn_worm.contact import ContactOptions       # noqa: E402
 
 __all__ = ['SCIPY_SETTINGS', 'REFERENCE_SETTINGS', 'TARGETS', 'EnvironmentInfo', 'RunBenchmark',
            'ScanTolerances', 'ProfileExudyn', 'FormatReport', 'Main']
@@ -282,6 +284,74 @@ def RunBenchmark(repeat: int = 5, repeatP7: int = 3, scipySettings: Optional[Dic
             'runs': res, 'ratios': ratios, 'startup': startup, 'targets': targets}
 
 
+#: SimulateReelChanger's settings before issue 10 (Exudyn's Newton defaults, spectral radius 0.9, h = 5e-4 s)
+OLD_SETTINGS = {'timeIntegration.newton.maxIterations': 25, 'timeIntegration.newton.relativeTolerance': 1e-8,
+                'timeIntegration.generalizedAlpha.spectralRadius': 0.9}
+_N10 = {'timeIntegration.newton.maxIterations': 10, 'timeIntegration.newton.relativeTolerance': 1e-6}
+
+
+def _Levers(p, h):
+    """(label, run) of every lever of ``--levers`` for parameter set ``p`` with our default step ``h``."""
+    rho = lambda r: {**_N10, 'timeIntegration.generalizedAlpha.spectralRadius': r}
+    Sim = lambda **kw: (lambda: SimulateReelChanger(p, **kw))
+    return [
+        ('before issue 10: h 5e-4, rho 0.9, Newton 25 it. rtol 1e-8', Sim(stepSize=5e-4, solverOptions=OLD_SETTINGS)),
+        ('Newton 10 it., rtol 1e-6 (h 5e-4, rho 0.9)', Sim(stepSize=5e-4, solverOptions=rho(0.9))),
+        ('full Newton (10 it., rtol 1e-6, rho 0.9)', Sim(stepSize=5e-4, solverOptions={
+            **rho(0.9), 'timeIntegration.newton.useModifiedNewton': False})),
+        ('Newton rtol 1e-4 (10 it., rho 0.8)', Sim(stepSize=5e-4, solverOptions={
+            **rho(0.8), 'timeIntegration.newton.relativeTolerance': 1e-4})),
+        ('spectral radius 1.0 (h 5e-4)', Sim(stepSize=5e-4, solverOptions=rho(1.))),
+        ('spectral radius 0.8 (h 5e-4)', Sim(stepSize=5e-4, solverOptions=rho(0.8))),
+        ('spectral radius 0.6 (h 5e-4)', Sim(stepSize=5e-4, solverOptions=rho(0.6))),
+        (f'NEW DEFAULT: step from the drive h {h:.3g}, rho 0.8, Newton 10/1e-6', Sim()),
+        ('step 1e-3 (new settings)', Sim(stepSize=1e-3)),
+        ('sensors every 10th step (new default)', Sim(solverOptions={'solution.sensors.writePeriod': 10 * h})),
+        ('frictionSpeed 0.2 rad/s instead of 0.05 (law change)', Sim(contactOptions=ContactOptions(frictionSpeed=0.2))),
+        ('torque-driven worm, generalized-alpha (new settings)', lambda: SimulateTorqueDriven(p, h)),
+        ('torque-driven worm, explicit RK44 h 2e-3', lambda: SimulateTorqueDriven(p, 2e-3, solverType='RK44')),
+        ('torque-driven worm, explicit RK44 h 1e-3', lambda: SimulateTorqueDriven(p, 1e-3, solverType='RK44')),
+    ]
+
+
+def RunLevers(references: Dict[str, Dict], repeat: int = 2, log: Callable[[str], None] = print) -> List[Dict]:
+    """Each lever on P1 and P7: solve CPU seconds (best of ``repeat``), work counters and peak errors against
+    the converged references (``references['reel-P1']``, ``['reel-P7']``: peak dicts of :func:`_Peaks2`)."""
+    rows = []
+    for name in ('reel-P1', 'reel-P7'):
+        p = GetPreset(name)
+        h = RecommendedStepSize(p)
+        with _QuietExudyn():
+            for label, run in _Levers(p, h):
+                ts = [_Timed(run) for _ in range(repeat if name == 'reel-P1' else 1)]
+                r = ts[-1]['result']
+                peaks = _Peaks2(r, p)
+                err = {q: _RelDiff(peaks[q], references[name][q]) for q in _PEAK_KEYS}
+                keys = _PEAK_KEYS if name == 'reel-P7' else _PEAK_KEYS[:2]
+                row = {'preset': name, 'lever': label, 'cpuSecondsBest': min(t['solveCpu'] for t in ts),
+                       'solveSecondsBest': min(t['solve'] for t in ts), 'solver': r.info.get('solver', {}),
+                       'relErrToReference': err, 'worstPeakError': max(abs(err[q]) for q in keys)}
+                rows.append(row)
+                log(f"  {name} {label:58s} {row['cpuSecondsBest']:7.3f} s CPU, worst peak error "
+                    f"{row['worstPeakError']:.3%}, steps {row['solver'].get('steps', '-')}")
+    return rows
+
+
+def FormatLevers(rows: List[Dict]) -> str:
+    """Markdown table of :func:`RunLevers`."""
+    lines = ["| preset | lever | CPU s | x before | steps | Newton it. | rejected | err max\\|phi2''\\| | err max Fn "
+             "| worst |", '| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |']
+    before = {}
+    for r in rows:
+        before.setdefault(r['preset'], r['cpuSecondsBest'])
+        c, e = r['solver'], r['relErrToReference']
+        lines.append(f"| {r['preset'][5:]} | {r['lever']} | {r['cpuSecondsBest']:.3f} | "
+                     f"{r['cpuSecondsBest'] / before[r['preset']]:.2f} | {c.get('steps', '-')} | "
+                     f"{c.get('newtonIterations', '-')} | {c.get('rejectedSteps', '-')} | {_Pct(e['maxAbsAlpha2'])} | "
+                     f"{_Pct(e['maxNormalForce'])} | {r['worstPeakError']:.2%} |")
+    return '\n'.join(lines)
+
+
 def ScanTolerances(exudynPeaks: Dict[str, float], reference: Dict[str, float], methods: Sequence[str] = SCAN_METHODS,
                    rtols: Sequence[float] = SCAN_RTOLS, atol: float = SCAN_ATOL, repeat: int = 2,
                    log: Callable[[str], None] = print) -> Dict:
@@ -481,12 +551,14 @@ def Main(argv: Optional[Sequence[str]] = None) -> Dict:
     parser.add_argument('--scan', action='store_true',
                         help='also scan solve_ivp methods and tolerances (about 2 min; needs the reference)')
     parser.add_argument('--profile', action='store_true', help="also print Exudyn's timers and Newton counters")
+    parser.add_argument('--levers', action='store_true',
+                        help='also measure each solver/model lever on P1 and P7 (about 1 min CPU; needs the reference)')
     parser.add_argument('--json', metavar='FILE', help='save all results to FILE (JSON)')
     args = parser.parse_args(argv)
     if args.repeat < 1 or args.repeat_p7 < 1:
         parser.error('--repeat and --repeat-p7 must be >= 1')
-    if args.scan and args.no_reference:
-        parser.error('--scan needs the reference; drop --no-reference')
+    if (args.scan or args.levers) and args.no_reference:
+        parser.error('--scan and --levers need the reference; drop --no-reference')
 
     log = lambda msg: print(msg, flush=True)
     log('running the benchmark ...')
@@ -495,11 +567,19 @@ def Main(argv: Optional[Sequence[str]] = None) -> Dict:
     if args.scan:
         log('tolerance scan ...')
         data['scan'] = ScanTolerances(data['runs']['exudynSymbolic'], data['runs']['reference'], log=log)
+    if args.levers:
+        log('levers ...')
+        data['levers'] = RunLevers({'reel-P1': data['runs']['reference'], 'reel-P7': data['runs']['p7Reference']},
+                                   log=log)
     if args.profile:
         data['profile'] = [ProfileExudyn(name) for name in ('reel-P1', 'reel-P7')]
     data['environment']['loadAverage'] = EnvironmentInfo()['loadAverage']
     print()
     print(FormatReport(data))
+    if args.levers:
+        print('\nlevers (CPU seconds of the solve; errors against the converged reference; worst: lowering '
+              "|phi2''| and Fn, for P7 also the lifting Fn):")
+        print(FormatLevers(data['levers']))
     if args.json:
         path = Path(args.json).resolve()
         path.write_text(json.dumps(data, indent=2))

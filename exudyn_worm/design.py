@@ -36,16 +36,17 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from itertools import combinations
-from types import SimpleNamespace
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
 from ._checks import CheckRange
 from .presets import PARAMETER_UNITS, REEL_KEYS, ApplyOverrides, DriveFromParameters, DriveSideChain
-from .stability import CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzConditions, HurwitzStable
+from .charts import ChartCoordinates, ComputeStabilityChart
+from .stability import (CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzStable,
+                        PolynomialCoefficients)
 
-__all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'ChartPoint', 'ChartGrid',
+__all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'LocalCharts', 'ChartGrid',
            'AxisScan', 'ScanParameter', 'Recommendation', 'PairRecommendation', 'DesignCheckResult',
            'DesignCheck', 'ChatterWhileLowering', 'ConfirmBySimulation',
            'StableRange', 'NearestStableValue', 'StabilizingChanges']
@@ -97,22 +98,6 @@ def _Finite(x):
     return x if math.isfinite(x) else None
 
 
-def ChartPoint(drive) -> Dict[str, float]:
-    """The drive's point on its stability chart (Figures 4 and 5).
-
-    Parameters
-    ----------
-    drive : ElasticDrive
-        The 2-DOF drive.
-
-    Returns
-    -------
-    dict
-        ``x`` = kT/(kV r1^2), ``y`` = J1/J2, ``DV`` and ``DTV`` (eqs. (22)-(24)).
-    """
-    return {'x': drive.stiffnessRatio, 'y': drive.inertiaRatio, 'DV': drive.DV, 'DTV': drive.DTV}
-
-
 def _Scaled(parameters: Mapping[str, float], changes: Mapping[str, float]) -> Dict[str, float]:
     """Parameters with ``key`` multiplied by 10**logFactor for each item of ``changes``."""
     return ApplyOverrides(parameters, {k: parameters[k] * 10. ** t for k, t in changes.items()})
@@ -155,25 +140,15 @@ class _ScaledDrives:
         q = [self.q0[i] * 10. ** (np.zeros(shape) + sum(self.exponents[k][i] * np.asarray(t)
                                                          for k, t in logFactors.items()))
              for i in range(len(_QUANTITIES))]
-        g = self.drive.gear
-        drives = SimpleNamespace(J1=q[0], J2=q[1], kT=q[2], dT=q[3],
-                                 gear=SimpleNamespace(ratio=g.ratio, kV=g.kV, dV=q[4], Coefficients=g.Coefficients))
         stable = np.ones(shape, dtype=bool)
         for S in CONTACT_STATES:
-            b = CharacteristicCoefficients(drives, S)
-            h = HurwitzConditions(b)
-            stable &= (b[0] > 0) & (b[2] > 0) & (b[3] > 0) & (h[1] > 0) & (h[2] > 0)
+            stable &= HurwitzStable(PolynomialCoefficients(self.drive.gear, S, *q))
         return stable
 
 
-def _MeasureForm(parameters: Mapping[str, float]) -> Dict[str, float]:
-    """The same drive with its damping given as the measures D_T, D_V (the chart's view)."""
-    drive = DriveFromParameters(parameters)
-    return ApplyOverrides(parameters, {'DT': drive.DT, 'DV': drive.DV})
-
-
-def ChartGrid(parameters: Mapping[str, float], decades: float = _CHART_DECADES, step: float = _CHART_STEP):
-    """Stability on a log grid of the chart plane around the drive's point, at the drive's D_V and D_TV.
+def LocalCharts(parameters: Mapping[str, float], decades: float = _CHART_DECADES, step: float = _CHART_STEP):
+    """The drive's stability charts (:func:`~exudyn_worm.charts.ComputeStabilityChart`, S = +1 and S = -1)
+    on a log grid of +-``decades`` around its chart point, at its D_V and D_TV.
 
     Parameters
     ----------
@@ -182,20 +157,44 @@ def ChartGrid(parameters: Mapping[str, float], decades: float = _CHART_DECADES, 
     decades : float, optional
         Half-width of the grid in decades of x and y, > 0.
     step : float, optional
-        Grid step in decades, > 0.
+        Grid step in decades, in (0, decades].
+
+    Returns
+    -------
+    dict
+        ``{S: StabilityChart}`` for S = +1 and -1, on the same grid with the drive's point at its centre.
+    """
+    CheckRange('LocalCharts', 'decades', decades, low=0., lowOpen=True)
+    CheckRange('LocalCharts', 'step', step, low=0., high=decades, lowOpen=True)
+    drive = DriveFromParameters(parameters)
+    p = ChartCoordinates(drive)
+    n = 2 * int(math.ceil(decades / step)) + 1
+    span = 10. ** decades
+    return {S: ComputeStabilityChart(drive.gear, drive.J2, p['DV'], p['DTV'], xRange=(p['x'] / span, p['x'] * span),
+                                     yRange=(p['y'] / span, p['y'] * span), resolution=n, S=S)
+            for S in CONTACT_STATES}
+
+
+def ChartGrid(parameters: Mapping[str, float], decades: float = _CHART_DECADES, step: float = _CHART_STEP):
+    """Stability (S = +1 and S = -1) on the grid of :func:`LocalCharts` around the drive's chart point.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    decades : float, optional
+        Half-width of the grid in decades of x and y, > 0.
+    step : float, optional
+        Grid step in decades, in (0, decades].
 
     Returns
     -------
     x, y, stable : numpy.ndarray
-        1-D grids of x = kT/(kV r1^2) and y = J1/J2 and the boolean stability (S = +1 and S = -1) of shape
-        ``(len(y), len(x))``.
+        1-D grids of x = kT/(kV r1^2) and y = J1/J2 and the boolean stability of shape ``(len(y), len(x))``.
     """
-    CheckRange('ChartGrid', 'decades', decades, low=0., lowOpen=True)
-    CheckRange('ChartGrid', 'step', step, low=0., high=decades, lowOpen=True)
-    t = _SymmetricGrid(decades, step)
-    scaled = _ScaledDrives(_MeasureForm(parameters), ('kT', 'J1'))
-    point = ChartPoint(scaled.drive)
-    return point['x'] * 10. ** t, point['y'] * 10. ** t, scaled.Stable({'kT': t[None, :], 'J1': t[:, None]})
+    charts = LocalCharts(parameters, decades, step)
+    c = charts[-1]
+    return c.x, c.y, ~(charts[-1].unstable | charts[+1].unstable)
 
 
 def _SymmetricGrid(limit, step):
@@ -204,8 +203,11 @@ def _SymmetricGrid(limit, step):
 
 
 def _ChartDistance(parameters) -> Tuple[Optional[float], Optional[Dict[str, float]]]:
-    """Distance in decades from the drive's point to the nearest point of opposite verdict in the chart plane."""
-    x, y, stable = ChartGrid(parameters)
+    """Distance in decades from the drive's point to the nearest point of opposite verdict in the chart plane
+    (grid of :func:`LocalCharts`, then refined along the ray to that point with the charts' exact verdict)."""
+    charts = LocalCharts(parameters)
+    x, y = charts[-1].x, charts[-1].y
+    stable = ~(charts[-1].unstable | charts[+1].unstable)
     t = np.log10(x / x[x.size // 2])
     c = t.size // 2
     other = stable != stable[c, c]
@@ -216,8 +218,8 @@ def _ChartDistance(parameters) -> Tuple[Optional[float], Optional[Dict[str, floa
     length = math.sqrt(d2[iy, ix])
     direction = np.array([t[ix], t[iy]]) / length            # (log x, log y)
     r = np.linspace(0., length, 4001)
-    scaled = _ScaledDrives(_MeasureForm(parameters), ('kT', 'J1'))
-    ray = scaled.Stable({'kT': r * direction[0], 'J1': r * direction[1]})
+    rx, ry = x[c] * 10. ** (r * direction[0]), y[c] * 10. ** (r * direction[1])
+    ray = ~(charts[-1].IsUnstable(rx, ry) | charts[+1].IsUnstable(rx, ry))
     first = int(np.argmax(ray != ray[0]))
     distance = float(r[first]) if first > 0 else length
     return distance, {'x': float(x[c] * 10. ** (distance * direction[0])),
@@ -341,7 +343,7 @@ class Recommendation:
     maxRealPartAfter : float
         Largest real part of the eigenvalues (S = +1 and -1) of the changed drive in 1/s (< 0: stable).
     chartPointAfter : dict
-        The changed drive's chart point (:func:`ChartPoint`).
+        The changed drive's chart point (:func:`~exudyn_worm.charts.ChartCoordinates`).
     simulatedChatter : bool or None
         Chatter while lowering in the reel-changer simulation (:func:`ConfirmBySimulation`), None if
         not simulated.
@@ -432,7 +434,7 @@ class DesignCheckResult:
     analysis : StabilityAnalysis
         Analytical stability of the given drive.
     chartPoint : dict
-        :func:`ChartPoint` of the drive.
+        :func:`~exudyn_worm.charts.ChartCoordinates` of the drive.
     distanceToBoundary : float or None
         Decades from the chart point to the stability boundary (Euclidean in log10 x, log10 y at the
         drive's D_V and D_TV); None if there is none within 2 decades.
@@ -540,7 +542,7 @@ class DesignCheckResult:
 
 def _Changed(parameters, changes):
     drive = DriveFromParameters(_Scaled(parameters, changes))
-    return _MaxRealPart(AnalyzeStability(drive)), ChartPoint(drive)
+    return _MaxRealPart(AnalyzeStability(drive)), ChartCoordinates(drive)
 
 
 def _BestPair(parameters, keys, margin, span) -> Optional[PairRecommendation]:
@@ -629,7 +631,7 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
     if short and not recommendations and len(keys) >= 2:
         bestPair = _BestPair(parameters, keys, margin, span)
     distance, boundaryPoint = _ChartDistance(parameters)
-    return DesignCheckResult(parameters, margin, span, analysis, ChartPoint(drive), distance, boundaryPoint,
+    return DesignCheckResult(parameters, margin, span, analysis, ChartCoordinates(drive), distance, boundaryPoint,
                              scans, short, recommendations, bestPair, notes)
 
 
@@ -645,9 +647,9 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
     parameters : mapping
         Flat parameter set with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed``.
     stepSize : float, optional
-        Time step in s. Default: the simulation's default step, or the drive's
-        :func:`~exudyn_worm.stepsize.RecommendedStepSize` where that is smaller (a recommended drive can
-        have a higher natural frequency than the given one).
+        Time step in s. Default: the simulation's default, the drive's own
+        :func:`~exudyn_worm.stepsize.RecommendedStepSize` (a recommended drive can have a higher natural
+        frequency than the given one).
 
     Returns
     -------
@@ -658,14 +660,11 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
     ValueError
         For a parameter set without the reel-changer keys, or a ``stepSize`` the simulation refuses.
     """
-    from .reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
-    from .stepsize import RecommendedStepSize
+    from .reelchanger import DefaultWindows, SimulateReelChanger
     missing = [k for k in REEL_KEYS if k not in parameters]
     if missing:
         raise ValueError(f"ChatterWhileLowering: the simulation needs the reel-changer keys "
                          f"{', '.join(REEL_KEYS)}; missing {', '.join(missing)} (use a reel-P* preset or --set)")
-    if stepSize is None:
-        stepSize = min(DEFAULT_STEP_SIZE, RecommendedStepSize(parameters))
     lift, lower, _ = DefaultWindows(parameters)
     return SimulateReelChanger(parameters, stepSize=stepSize).Chatter(*lower)
 

@@ -10,14 +10,15 @@ import numpy as np
 
 __all__ = ['PlotDesignCheck']
 
-_C_UNSTABLE, _C_POINT, _C_MOVE, _C_PAIR = '#f4c7c3', '#1f4e79', '#2e7d32', '#8e24aa'
+_C_PLUS, _C_POINT, _C_MOVE, _C_PAIR = '#b9770e', '#1f4e79', '#2e7d32', '#8e24aa'
 
 
 def PlotDesignCheck(result, ax=None):
     """Draw a :class:`~exudyn_worm.design.DesignCheckResult` on the chart plane (x = kT/(kV r1^2), y = J1/J2).
 
-    The unstable region (S = +1 or S = -1 unstable) at the drive's D_V and D_TV is shaded within 2 decades
-    of the drive's point (:func:`~exudyn_worm.design.ChartGrid`); recommended changes of J1, J2 and kT are
+    The drive's stability charts at its D_V and D_TV (:func:`~exudyn_worm.design.LocalCharts`, drawn with
+    :func:`~exudyn_worm.plot_charts.PlotStabilityChart`; S = +1 only where it has an unstable point) within
+    2 decades of the drive's point; recommended changes of J1, J2 and kT are
     arrows to the changed drive's point; changes of the damping (which change the chart, not the point) and a
     best pair are listed in the legend. Where the parameter set holds damping constants (dT, dV), a change
     of J1, J2 or kT also changes D_TV, so the arrow's end lies on a slightly different chart.
@@ -33,20 +34,15 @@ def PlotDesignCheck(result, ax=None):
     -------
     matplotlib.figure.Figure
     """
-    from .design import ChartGrid, DesignCheckResult
+    from .design import DesignCheckResult, LocalCharts
+    from .plot_charts import PlotStabilityChart
     if not isinstance(result, DesignCheckResult):
         raise TypeError(f"PlotDesignCheck: 'result' must be a DesignCheckResult, got {type(result).__name__}")
-    if ax is None:
-        from .plot import _NewFigure
-        fig, axes = _NewFigure(1, 1, figsize=(7.5, 6.))
-        ax = axes[0, 0]
-    else:
-        fig = ax.figure
-    x, y, stable = ChartGrid(result.parameters)
-    ax.contourf(x, y, (~stable).astype(float), levels=[0.5, 1.5], colors=[_C_UNSTABLE])
-    if stable.any() and (~stable).any():
-        ax.contour(x, y, stable.astype(float), levels=[0.5], colors='k', linewidths=1.)
-    ax.fill_between([], [], color=_C_UNSTABLE, label='unstable (S = +1 or S = -1)')
+    charts = LocalCharts(result.parameters)
+    ax = PlotStabilityChart(charts[-1], ax=ax, label='boundary, S = -1')
+    if charts[+1].unstable.any():
+        PlotStabilityChart(charts[+1], ax=ax, color=_C_PLUS, label='boundary, S = +1')
+    fig = ax.figure
     p = result.chartPoint
     ax.plot(p['x'], p['y'], 'o', color=_C_POINT, ms=8, zorder=5,
             label=f"drive ({'stable' if result.stable else 'unstable'})")
@@ -73,15 +69,8 @@ def PlotDesignCheck(result, ax=None):
         ax.plot(q['x'], q['y'], 'D', color=_C_PAIR, ms=5, zorder=5, label='best pair: ' + ', '.join(
             f'{k} x{f:.3g}' if f >= 1 else f'{k} /{1 / f:.3g}'
             for k, f in zip(result.bestPair.parameters, result.bestPair.factors)))
-    ax.set_xscale('log')
-    ax.set_yscale('log')
-    ax.set_xlim(x[0], x[-1])
-    ax.set_ylim(y[0], y[-1])
-    ax.set_xlabel(r'stiffness ratio $k_T/(k_V r_1^2)$')
-    ax.set_ylabel(r'inertia ratio $J_1/J_2$')
     ax.set_title(f"Design check at D_V = {_Fmt(p['DV'])}, D_TV = {_Fmt(p['DTV'])} "
                  f"(margin {result.margin:g} decades)", fontsize=10)
-    ax.grid(True, which='major', alpha=0.3)
     ax.legend(fontsize=8, loc='lower right')
     return fig
 

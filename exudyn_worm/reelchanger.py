@@ -313,7 +313,8 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
 def _SolverCounters(mbs) -> Dict[str, Any]:
     """Work counters of the last solve: steps taken, Newton iterations, Jacobians, rejected (halved) steps."""
     it = mbs.sys['dynamicSolver'].it
-    return {'steps': int(it.currentStepIndex) - 1, 'newtonIterations': int(it.newtonStepsCount),
+    steps = mbs.sys['dynamicSolverSteps'] if 'dynamicSolverSteps' in mbs.sys else int(it.currentStepIndex) - 1
+    return {'steps': steps, 'newtonIterations': int(it.newtonStepsCount),
             'jacobians': int(it.newtonJacobiCount), 'rejectedSteps': int(it.rejectedModifiedNewtonSteps),
             'minStepSize': float(it.minStepSize)}
 
