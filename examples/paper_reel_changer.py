@@ -169,8 +169,8 @@ def CaseParameters(preset: str = 'reel-P1', backlash: float = 0., motorSpeed: Op
 
 def RunPaperCases(preset: str = 'reel-P1', backlash: float = 0., motorSpeed: Optional[float] = None,
                   loadMass: Optional[float] = None, figures: Optional[Iterable[int]] = None,
-                  endTime: Optional[float] = None,
-                  stepSize: float = DEFAULT_STEP_SIZE) -> Dict[str, SimulationResult]:
+                  endTime: Optional[float] = None, stepSize: float = DEFAULT_STEP_SIZE,
+                  progress: Optional[bool] = None) -> Dict[str, SimulationResult]:
     """Simulate the reel-changer cases of the paper's Figures 8-18.
 
     Parameters
@@ -182,6 +182,9 @@ def RunPaperCases(preset: str = 'reel-P1', backlash: float = 0., motorSpeed: Opt
         1.25 rotations, 10 s, for P7, see :func:`CaseParameters`).
     stepSize : float
         Time step in s.
+    progress : bool or None
+        Progress bar over the cases on stderr: True shown, False never, None (default) when stderr is a
+        terminal and the cases take longer than about 2 s.
 
     Returns
     -------
@@ -195,16 +198,23 @@ def RunPaperCases(preset: str = 'reel-P1', backlash: float = 0., motorSpeed: Opt
     ValueError, TypeError
         For bad input (see :func:`CaseParameters`, :func:`SimulateReelChanger`).
     """
+    from exudyn_worm.progress import ProgressBar
     results = {}
-    for label, case in CaseParameters(preset, backlash, motorSpeed, loadMass, figures).items():
+    cases = CaseParameters(preset, backlash, motorSpeed, loadMass, figures)
+    bar = ProgressBar(total=len(cases), desc='paper cases', unit='case', delay=2.,
+                      quiet=None if progress is None else not progress)
+    for label, case in cases.items():
+        bar.set_postfix_str(label)
         params = {k: v for k, v in case.items() if k != 'rotations'}
         period = RotationPeriod(params)
         result = SimulateReelChanger(params, endTime=case['rotations'] * period if endTime is None else endTime,
-                                     stepSize=stepSize)
+                                     stepSize=stepSize, progress=False)
+        bar.update(1)
         edges = (0., period / 4, 3 * period / 4, 5 * period / 4)
         windows = [(a, min(b, result.endTime)) for a, b in zip(edges[:-1], edges[1:]) if a < result.endTime]
         result.info.update(parameters=params, windows=windows)
         results[label] = result
+    bar.close()
     return results
 
 
@@ -322,6 +332,7 @@ def _Parser() -> argparse.ArgumentParser:
                    help='folder for the PNG files (created if missing)')
     p.add_argument('--figures', type=_ParseFigures, default=None, metavar='LIST',
                        help="paper figures to draw, e.g. '8,9,12' or 'all' (default: all, 8-18)")
+    p.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
     p.add_argument('--no-figures', action='store_true',
                        help='only simulate and print the summary (cases of all figures or of --figures)')
     return p
@@ -350,7 +361,7 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     try:
         results = RunPaperCases(args.preset, args.backlash * 1e-3,
                                 None if args.speed is None else args.speed * RPM, args.load, figures,
-                                endTime=args.end_time)
+                                endTime=args.end_time, progress=False if args.quiet else None)
     except ValueError as error:
         print(f"{prog}: error: {error}", file=sys.stderr)
         return 2

@@ -30,12 +30,13 @@ from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 
-from exudyn_worm.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, PresetChartPoints,
-                                StabilityChart)
+from exudyn_worm.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, FormatChartTable,
+                                PresetChartPoints, StabilityChart)
+from exudyn_worm._checks import CheckOutputFolder
 from exudyn_worm.presets import GearFromParameters, GetPreset
 
 __all__ = ['CHART_PRESET', 'FIGURE_DV', 'DTV_VALUES', 'POINT_PRESETS', 'FIGURE3_RHO_DEG', 'ComputeFigures',
-           'Summary', 'FormatSummary', 'WriteFigures', 'CheckOutputFolder', 'main']
+           'Summary', 'FormatSummary', 'WriteFigures', 'main']
 
 #: the gear of parameter set (25)
 CHART_PRESET = 'chart'
@@ -62,7 +63,8 @@ def ComputeFigures(resolution: int = RESOLUTION) -> Dict:
     Returns
     -------
     dict
-        ``{3: FirstCriterionCurves, 4: [StabilityChart per D_TV], 5: [...], 'points': {label: coords}}``.
+        ``{3: FirstCriterionCurves, 4: [StabilityChart per D_TV], 5: [...], 'points': {label: coords},
+        'P6': {4: chart, 5: chart}}`` (the charts of P6's own D_TV = 2).
     """
     parameters = GetPreset(CHART_PRESET)
     gear = GearFromParameters(parameters, meshDamping=False)
@@ -71,6 +73,9 @@ def ComputeFigures(resolution: int = RESOLUTION) -> Dict:
         out[figure] = [ComputeStabilityChart(gear, parameters['J2'], DV, DTV, resolution=resolution)
                        for DTV in DTV_VALUES]
     out['points'] = PresetChartPoints(POINT_PRESETS)
+    # P6 has D_TV = 2 (section 3.2.4): its own boundary is drawn dashed in both figures
+    out['P6'] = {figure: ComputeStabilityChart(gear, parameters['J2'], DV, out['points']['P6']['DTV'],
+                                               resolution=resolution) for figure, DV in FIGURE_DV.items()}
     return out
 
 
@@ -85,22 +90,16 @@ def Summary(figures: Dict) -> List[Dict]:
     return [dict(figure=figure, **chart.ToDict()) for figure in FIGURE_DV for chart in figures[figure]]
 
 
-def FormatSummary(rows: Sequence[Dict]) -> str:
-    """The summary as a text table.
+def FormatSummary(figures: Dict) -> str:
+    """The charts of Figures 4 and 5 as a text table, with the verdict at P1-P7 (U unstable, s stable).
 
     Parameters
     ----------
-    rows : sequence of dict
-        From :func:`Summary`.
+    figures : dict
+        From :func:`ComputeFigures`.
     """
-    r = lambda t: 'none' if t is None else f'{t[0]:.3g} .. {t[1]:.3g}'
-    lines = [f"{'fig':>3} {'D_V':>6} {'D_TV':>5}  {'unstable kT/(kV r1^2)':>22}  {'unstable J1/J2':>22}  "
-             f"{'fraction':>8}  clipped at"]
-    for row in rows:
-        lines.append(f"{row['figure']:>3} {row['DV']:>6g} {row['DTV']:>5g}  {r(row['unstableXRange']):>22}  "
-                     f"{r(row['unstableYRange']):>22}  {row['unstableFraction']:>8.4f}  "
-                     f"{', '.join(row['clippedSides']) or '-'}")
-    return '\n'.join(lines)
+    charts = [chart for figure in FIGURE_DV for chart in figures[figure]]
+    return '\n'.join(FormatChartTable(charts, figures['points']))
 
 
 def WriteFigures(figures: Dict, outDir) -> List[Path]:
@@ -132,44 +131,22 @@ def WriteFigures(figures: Dict, outDir) -> List[Path]:
     written = [SaveFigure(ax.figure, outDir / 'fig03_first_criterion.png')]
     points = {label: c for label, c in figures['points'].items()}
     note = ', '.join(f'{k}: $D_{{TV}}$ = {c["DTV"]:g}' for k, c in points.items() if not math.isclose(c['DTV'], 1.))
-    note = 'points P1-P7 (set (28)): $D_{TV}$ = 1' + (f'; except {note}' if note else '')
+    note = 'points P1-P7 at their (x, y) (set (28)): $D_{TV}$ = 1' + (f'; {note}' if note else '')
     for figure, DV in FIGURE_DV.items():
         charts: List[StabilityChart] = figures[figure]
         ax = PlotStabilityCharts(charts, points={k: (c['x'], c['y']) for k, c in points.items()},
                                  title=f'Fig. {figure}: stability chart for $D_V$ = {DV:g}, $S$ = -1, '
                                        f'criteria (17) and (19), set (25)', note=note)
+        p6 = figures['P6'][figure]
+        for k, line in enumerate(p6.boundaries):
+            ax.plot(line[:, 0], line[:, 1], color='0.35', lw=1., ls='--',
+                    label=fr'$D_{{TV}}$ = {p6.DTV:g} (P6), boundary only' if k == 0 else None)
+        handles, labels = ax.get_legend_handles_labels()
+        legend = ax.get_legend()
+        ax.add_artist(legend)
+        ax.legend(handles[-1:], labels[-1:], loc='lower left', fontsize=9)
         written.append(SaveFigure(ax.figure, outDir / f'fig{figure:02d}_chart_DV{DV:g}.png'))
     return written
-
-
-def CheckOutputFolder(path) -> Path:
-    """Check that ``path`` can be the output folder (an existing folder or creatable), before computing.
-
-    Parameters
-    ----------
-    path : str or Path
-        The folder the user named.
-
-    Returns
-    -------
-    Path
-        The resolved folder.
-
-    Raises
-    ------
-    ValueError
-        If it is a file, or its nearest existing parent is not a writable folder.
-    """
-    import os
-    folder = Path(path).expanduser().resolve()
-    if folder.exists() and not folder.is_dir():
-        raise ValueError(f"--out: '{path}' exists and is not a folder")
-    parent = folder
-    while not parent.exists():
-        parent = parent.parent
-    if not parent.is_dir() or not os.access(parent, os.W_OK | os.X_OK):
-        raise ValueError(f"--out: cannot write into '{parent}' (to make '{folder}')")
-    return folder
 
 
 class _Parser1Line(argparse.ArgumentParser):
@@ -194,14 +171,14 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
                         help='grid points per axis of Figures 4 and 5')
     args = parser.parse_args(argv)
     try:
-        folder = CheckOutputFolder(args.out)
         if not 2 <= args.resolution <= 20000:
             raise ValueError(f'--resolution must be in [2, 20000], got {args.resolution}')
+        folder = CheckOutputFolder(parser.prog, '--out', args.out)      # created here, before computing
     except ValueError as error:
         print(f'{parser.prog}: error: {error}', file=sys.stderr)
         return 2
     figures = ComputeFigures(args.resolution)
-    print(FormatSummary(Summary(figures)))
+    print(FormatSummary(figures))
     print(f'\nwriting figures to {folder}')
     for path in WriteFigures(figures, folder):
         print(f'  {path.name}')

@@ -36,7 +36,7 @@ from .stability import CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, H
 
 __all__ = ['StabilityChart', 'ComputeStabilityChart', 'ChartCoordinates', 'ChartCoefficients',
            'UnstableGrid', 'MaxRealPartGrid', 'MaxRealPart', 'ContourLines',
-           'PresetChartPoints', 'FirstCriterionCurves', 'FirstCriterionChart', 'DEFAULT_X_RANGE', 'DEFAULT_Y_RANGE',
+           'PresetChartPoints', 'FormatChartTable', 'FirstCriterionCurves', 'FirstCriterionChart', 'DEFAULT_X_RANGE', 'DEFAULT_Y_RANGE',
            'DEFAULT_RESOLUTION']
 
 #: default stiffness-ratio range kT/(kV r1^2) (validation/README.md fixes this chart domain)
@@ -449,20 +449,75 @@ class StabilityChart:
             self._cache['boundaries'] = [10.**line for line in lines]
         return self._cache['boundaries']
 
+    def _MarginAt(self, x, y) -> np.ndarray:
+        """The margin field (see :attr:`margin`) at arbitrary chart coordinates (broadcasting)."""
+        return _Margin(ChartCoefficients(self.gear, self.J2, x, y, self.DV, self.DTV, self.S))
+
+    def _RidgeMin(self, axis: int, values: np.ndarray, coarse: Optional[np.ndarray] = None) -> np.ndarray:
+        """For each value of coordinate ``axis`` (0: x, 1: y): the minimum of the margin over the other
+        coordinate. Coarse minimum on the chart's grid (``coarse``: the margin there, shape (n, m), else
+        computed), then three passes of 41 points within +-1 step of the current minimum."""
+        other = self.y if axis == 0 else self.x
+        At = (lambda v, o: self._MarginAt(v, o)) if axis == 0 else (lambda v, o: self._MarginAt(o, v))
+        v = np.asarray(values, dtype=float)[:, None]
+        if coarse is None:
+            coarse = At(v, other[None, :])
+        j = np.argmin(coarse, axis=1)
+        lo = np.log10(other[np.maximum(j - 1, 0)])
+        hi = np.log10(other[np.minimum(j + 1, other.size - 1)])
+        best = coarse[np.arange(v.shape[0]), j]
+        t = np.linspace(0., 1., 41)[None, :]
+        for _ in range(3):
+            o = 10.**(lo[:, None] + (hi - lo)[:, None] * t)
+            m = At(v, o)
+            k = np.argmin(m, axis=1)
+            best = np.minimum(best, m[np.arange(v.shape[0]), k])
+            step = (hi - lo) / 40.
+            centre = lo + k * step
+            lo, hi = centre - step, centre + step
+        return best
+
+    def _End(self, axis: int, side: int) -> float:
+        """One end of the unstable set along ``axis`` (0: x, 1: y), ``side`` -1 (min) or +1 (max).
+
+        The unstable set can end in a thin tip (a needle thinner than a grid step), so the end is found on
+        the ridge: for each grid value of this coordinate the margin is minimized over the other coordinate
+        (coarse grid, then three refinements), the extreme value with a negative minimum is taken and the end
+        is bisected (40 steps, in log) between it and the next grid value. At a side of the domain that the
+        unstable set touches, the domain's end.
+        """
+        grid = self.x if axis == 0 else self.y
+        coarse = self.margin.T if axis == 0 else self.margin                 # (len(grid), len(other))
+        ridge = self._RidgeMin(axis, grid, coarse)
+        inside = (ridge <= 0) | (self.unstable.any(axis=0) if axis == 0 else self.unstable.any(axis=1))
+        idx = np.nonzero(inside)[0]
+        k = int(idx[-1] if side > 0 else idx[0])
+        if (side > 0 and k == grid.size - 1) or (side < 0 and k == 0):
+            return float(grid[k])
+        a, b = math.log10(grid[k]), math.log10(grid[k + side])               # a unstable, b stable
+        for _ in range(40):
+            mid = 0.5 * (a + b)
+            if self._RidgeMin(axis, np.array([10.**mid]))[0] <= 0:
+                a = mid
+            else:
+                b = mid
+        return float(10.**a)
+
     def _Range(self, axis: int) -> Optional[Tuple[float, float]]:
         if not self.unstable.any():
             return None
-        grid = (self.x, self.y)[axis]
-        cols = np.nonzero(self.unstable.any(axis=axis))[0]      # axis 0 collapses y: per-x
-        values = [grid[cols[0]], grid[cols[-1]]] + [c for line in self.boundaries for c in line[:, axis]]
-        return float(min(values)), float(max(values))
+        key = f'range{axis}'
+        if key not in self._cache:
+            self._cache[key] = (self._End(axis, -1), self._End(axis, +1))
+        return self._cache[key]
 
     @property
     def unstableXRange(self) -> Optional[Tuple[float, float]]:
         """(min, max) stiffness ratio of the unstable set, None if there is none.
 
-        Extremes of the unstable grid points and of the interpolated boundary, so within the grid
-        spacing of the true edge (clipped at the domain: see :attr:`clippedSides`).
+        Each end follows the ridge of the unstable set beyond the grid and is bisected with the exact margin
+        (see ``_End``), so a thin tip is not cut at the last grid column; where the unstable set touches the
+        domain's edge the end is the domain's (:attr:`clippedSides` says where).
         """
         return self._Range(0)
 
@@ -636,6 +691,36 @@ def ComputeStabilityChart(gear: WormGear, J2: float, DV: float, DTV: float,
     b = ChartCoefficients(gear, J2, x[None, :], y[:, None], DV, DTV, S)
     unstable = ~HurwitzStable(b)
     return StabilityChart(gear=gear, J2=J2, DV=DV, DTV=DTV, S=S, x=x, y=y, unstable=unstable, margin=_Margin(b))
+
+
+def FormatChartTable(charts: Sequence[StabilityChart], points: Optional[Dict[str, Dict[str, float]]] = None
+                     ) -> List[str]:
+    """Text table of charts: D_V, D_TV, unstable x and y ranges, unstable fraction, clipped sides, and the
+    verdict at each point.
+
+    Parameters
+    ----------
+    charts : sequence of StabilityChart
+        The charts, one row each.
+    points : dict, optional
+        ``{label: {'x', 'y', ...}}`` (e.g. :func:`PresetChartPoints`): each chart's exact verdict at the
+        point's (x, y) is listed (U unstable, s stable).
+
+    Returns
+    -------
+    list of str
+        The lines.
+    """
+    r = lambda t: 'none' if t is None else f'{t[0]:.4g} .. {t[1]:.4g}'
+    points = points or {}
+    head = (f"{'D_V':>7} {'D_TV':>6} {'S':>3}  {'unstable kT/(kV r1^2)':>22}  {'unstable J1/J2':>22}  "
+            f"{'fraction':>8}  {'clipped at':<12}" + ''.join(f' {k:>3}' for k in points))
+    lines = [head]
+    for c in charts:
+        marks = ''.join(f" {'U' if c.IsUnstable(p['x'], p['y']) else 's':>3}" for p in points.values())
+        lines.append(f"{c.DV:>7.4g} {c.DTV:>6g} {c.S:>+3d}  {r(c.unstableXRange):>22}  {r(c.unstableYRange):>22}  "
+                     f"{c.unstableFraction:>8.4f}  {', '.join(c.clippedSides) or '-':<12}" + marks)
+    return lines
 
 
 # --- Figure 3: the first criterion (20) with dT = 0 -----------------------------------------------------------

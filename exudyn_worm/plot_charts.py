@@ -60,7 +60,7 @@ def _DrawPoints(ax, points):
 def _DrawChart(ax, chart, color, shade, lineLabel):
     if shade and chart.unstable.any():
         lowest = float(np.min(chart.margin))
-        ax.contourf(chart.x, chart.y, chart.margin, levels=[lowest - 1., 0.], colors=[color], alpha=0.16)
+        ax.contourf(chart.x, chart.y, chart.margin, levels=[lowest - 1., 0.], colors=[color], alpha=0.13)
     for k, line in enumerate(chart.boundaries):
         ax.plot(line[:, 0], line[:, 1], color=color, lw=1.4, label=lineLabel if k == 0 else None)
 
@@ -195,7 +195,7 @@ def PlotFirstCriterion(curves, ax=None, title: Optional[str] = None, mark: Optio
             ax.plot([math.degrees(g)], [y], 'o', ms=4.5, mfc='white', mec='black', mew=1.1, zorder=5)
             ax.annotate(label, (math.degrees(g), y), xytext=(5, 4), textcoords='offset points', fontsize=8.5)
     ax.set_yscale('log')
-    ax.set_xlim(0., float(gdeg.max()))
+    ax.set_xlim(0., max(float(gdeg.max()), float(np.degrees(curves.rho).max())) * 1.04)
     ax.set_xlabel(r'pitch angle $\gamma$ [°]')
     ax.set_ylabel(INERTIA_RATIO_LABEL + ' (limit)')
     ax.grid(True, which='major', lw=0.4, alpha=0.5)

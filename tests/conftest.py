@@ -3,6 +3,8 @@ import importlib.util
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -14,3 +16,14 @@ def LoadScript(relativePath: str, name: str):
     sys.modules[name] = module          # dataclasses and pickling look the module up here
     spec.loader.exec_module(module)
     return module
+
+
+@pytest.fixture
+def emptyWorkingDirectory(tmp_path, monkeypatch):
+    """Run the test in an empty directory and check that nothing was written to it (use with
+    ``pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')``)."""
+    cwd = tmp_path / 'cwd'
+    cwd.mkdir()
+    monkeypatch.chdir(cwd)
+    yield cwd
+    assert sorted(p.name for p in cwd.iterdir()) == []

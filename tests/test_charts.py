@@ -213,15 +213,26 @@ def test_ranges_cover_the_unstable_points_and_the_boundary():
     i, j = np.nonzero(chart.unstable)
     assert x0 <= chart.x[j].min() and x1 >= chart.x[j].max()
     assert y0 <= chart.y[i].min() and y1 >= chart.y[i].max()
-    step = chart.x[1] / chart.x[0]
-    assert x1 <= chart.x[j].max() * step and y1 <= chart.y[i].max() * step   # within one grid step
-    # beyond the range the exact verdict is stable along the whole y axis
-    assert not chart.IsUnstable(x1 * 1.01, chart.y).any()
+    # beyond the range the exact verdict is stable along the whole y axis (dense scan), just inside it is not
+    dense = np.geomspace(chart.y[0], chart.y[-1], 200001)
+    assert not chart.IsUnstable(x1 * 1.001, dense).any() and chart.IsUnstable(x1 / 1.001, dense).any()
+    assert chart.clippedSides == ['left', 'bottom'] and x0 == chart.x[0] and y0 == chart.y[0]
     assert chart.unstableFraction == pytest.approx(chart.unstable.mean())
     assert chart.unstableArea == pytest.approx(chart.unstableFraction * 36.)
-    assert set(chart.clippedSides) <= {'left', 'right', 'bottom', 'top'}
     ext = chart.UnstableYExtent()
     assert ext.shape == chart.x.shape and (ext[~chart.unstable.any(axis=0)] == 0).all()
+
+
+@pytest.mark.parametrize('DV, DTV', [(0.014, 1.), (0.056, 5.)])
+def test_range_ends_do_not_depend_on_the_resolution(DV, DTV):
+    """At D_V = 0.014, D_TV = 1 the region ends in a needle thinner than a grid step of a 100 x 100 grid;
+    the ends follow it."""
+    ends = [ComputeStabilityChart(GEAR25, J2_25, DV, DTV, resolution=n) for n in (100, 400)]
+    assert_allclose(ends[0].unstableXRange, ends[1].unstableXRange, rtol=1e-6)
+    assert_allclose(ends[0].unstableYRange, ends[1].unstableYRange, rtol=1e-6)
+    dense = np.geomspace(1e-6, 1., 400001)
+    x1 = ends[0].unstableXRange[1]
+    assert not ends[0].IsUnstable(x1 * 1.001, dense).any() and ends[0].IsUnstable(x1 / 1.001, dense).any()
 
 
 def test_contour_lines_of_a_circle():

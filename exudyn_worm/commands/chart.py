@@ -1,0 +1,131 @@
+"""``exudyn-worm chart``: stability charts (Figures 4 and 5) of the gear of a parameter set.
+
+The gear (angles, friction, r1, r2, kV) and J2 come from the preset/config/``--set``; J1, kT and the damping
+constants are what the chart sweeps (x = kT/(kV r1^2), y = J1/J2, D_T = D_TV D_V), so they need not be given.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from typing import Dict, List
+
+from ..cli import (BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, Subcommand,
+                   UsageError)
+
+__all__ = ['COMMAND', 'PAPER_DTV']
+
+#: D_TV values of the paper's Figures 4 and 5 (the default of --DTV)
+PAPER_DTV = (1., 5., 25.)
+
+
+def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    from ..charts import DEFAULT_RESOLUTION, DEFAULT_X_RANGE, DEFAULT_Y_RANGE
+    parser.add_argument('--DV', type=float, default=None, metavar='D_V',
+                        help="mesh damping measure D_V of eq. (23) (default: the parameter set's, from DV or dV)")
+    parser.add_argument('--DTV', type=float, nargs='+', default=list(PAPER_DTV), metavar='D_TV',
+                        help='one or more damping ratios D_TV = D_T/D_V, one chart each (default: 1 5 25)')
+    parser.add_argument('--x-range', type=float, nargs=2, default=list(DEFAULT_X_RANGE), metavar=('MIN', 'MAX'),
+                        help='stiffness-ratio range kT/(kV r1^2) (default: %(default)s)')
+    parser.add_argument('--y-range', type=float, nargs=2, default=list(DEFAULT_Y_RANGE), metavar=('MIN', 'MAX'),
+                        help='inertia-ratio range J1/J2 (default: %(default)s)')
+    parser.add_argument('--resolution', type=int, default=DEFAULT_RESOLUTION, metavar='N',
+                        help='grid points per axis (default: %(default)s)')
+    parser.add_argument('--S', type=int, choices=(-1, 1), default=-1, dest='S',
+                        help='contact state: -1 (load lowering, the paper\'s charts; default) or +1')
+    parser.add_argument('--points', nargs='+', default=[], metavar='NAME',
+                        help='presets to mark at their chart coordinates, e.g. reel-P1 reel-P2 (or P1 P2); '
+                             'their verdict on each chart is listed')
+    parser.add_argument('--output', default=None, metavar='FILE.png',
+                        help='draw the charts (one axes, one region per D_TV) into FILE (.png, .pdf or .svg)')
+    parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
+
+
+def _PresetName(name: str) -> str:
+    from ..presets import PRESETS
+    if name in PRESETS:
+        return name
+    if f'reel-{name}' in PRESETS:
+        return f'reel-{name}'
+    raise UsageError(f"--points: unknown preset '{name}'; expected one of: {', '.join(PRESETS)} "
+                     f"(or P1 ... P7 for reel-P1 ... reel-P7)")
+
+
+#: file formats --output accepts
+_PLOT_SUFFIXES = ('.png', '.pdf', '.svg')
+
+
+def _CheckOutput(path: str):
+    """The shared output rule (:func:`~exudyn_worm.cli.CheckOutputPath`) plus a figure format."""
+    if os.path.splitext(path)[1].lower() not in _PLOT_SUFFIXES:
+        raise UsageError(f"--output: expected a file ending in {', '.join(_PLOT_SUFFIXES)}, got '{path}'")
+    return CheckOutputPath(path, '--output')
+
+
+def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
+    from ..drive import MeshDampingMeasure
+    if 'DV' in parameters:
+        return parameters['DV']
+    if 'dV' in parameters:
+        return MeshDampingMeasure(parameters['dV'], gear.kV, gear.r2, parameters['J2'])
+    raise UsageError("give --DV (the parameter set has neither 'DV' nor 'dV')")
+
+
+def _Run(args: argparse.Namespace) -> int:
+    from ..charts import ComputeStabilityChart, FormatChartTable, PresetChartPoints
+    from ..presets import GearFromParameters
+    from ..progress import ProgressBar
+    output = _CheckOutput(args.output) if args.output else None
+    parameters = ParametersFromArgs(args)
+    with BadInput():
+        gear = GearFromParameters(parameters, meshDamping=False, where='chart')
+        if 'J2' not in parameters:
+            raise ValueError("chart: missing parameter J2 (kg*m^2); give it with --set J2=VALUE or in the config file")
+        J2 = parameters['J2']
+        DV = args.DV if args.DV is not None else _MeshDampingMeasure(parameters, gear)
+        points = PresetChartPoints([_PresetName(n) for n in args.points])
+        # every argument is checked before the first chart is computed
+        ComputeStabilityChart(gear, J2, DV, args.DTV[0], xRange=args.x_range, yRange=args.y_range, resolution=2,
+                              S=args.S)
+        for DTV in args.DTV[1:]:
+            ComputeStabilityChart(gear, J2, DV, DTV, resolution=2, S=args.S)
+        if not 2 <= args.resolution <= 20000:
+            ComputeStabilityChart(gear, J2, DV, args.DTV[0], resolution=args.resolution)
+    charts = []
+    with ProgressBar(total=len(args.DTV), desc='charts', unit='chart', quiet=True if args.quiet else None) as bar:
+        for DTV in args.DTV:
+            charts.append(ComputeStabilityChart(gear, J2, DV, DTV, xRange=args.x_range, yRange=args.y_range,
+                                                resolution=args.resolution, S=args.S))
+            bar.update(1)
+    if output:
+        from ..plot import SaveFigure
+        from ..plot_charts import PlotStabilityCharts
+        ax = PlotStabilityCharts(charts, points={k: (p['x'], p['y']) for k, p in points.items()},
+                                 note=f'gear: {SourceText(args)}, J2 = {J2:g} kg*m^2')
+        path = SaveFigure(ax.figure, output)
+        print(f'wrote {path.resolve()}', file=sys.stderr)
+    if args.json:
+        entries: List[Dict] = []
+        for c in charts:
+            d = c.ToDict()
+            if points:
+                d['pointsUnstable'] = {k: bool(c.IsUnstable(p['x'], p['y'])) for k, p in points.items()}
+            entries.append(d)
+        data = {'charts': entries}
+        if points:
+            data['points'] = points
+        PrintJson(data)
+        return 0
+    print(f"exudyn-worm chart: {SourceText(args)}; J2 = {J2:g} kg*m^2, {args.resolution} x {args.resolution} log grid, "
+          f"x = kT/(kV r1^2) in [{args.x_range[0]:g}, {args.x_range[1]:g}], y = J1/J2 in "
+          f"[{args.y_range[0]:g}, {args.y_range[1]:g}]")
+    print('\n'.join(FormatChartTable(charts, points)))
+    if points:
+        print('points (U: unstable, s: stable on that chart, at the point\'s x and y): '
+              + ', '.join(f"{k} x = {p['x']:.4g}, y = {p['y']:.4g} (own D_V = {p['DV']:.4g}, D_TV = {p['DTV']:.4g})"
+                          for k, p in points.items()))
+    return 0
+
+
+COMMAND = Subcommand('chart', 'stability charts (Figures 4, 5): unstable region over kT/(kV r1^2) and J1/J2',
+                     _AddArguments, _Run)
