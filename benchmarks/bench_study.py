@@ -26,6 +26,7 @@ import csv
 import json
 import os
 import platform
+import resource
 import sys
 import tempfile
 import time
@@ -53,20 +54,37 @@ def _Load() -> str:
         return 'n/a'
 
 
+def _ChildCpu() -> float:
+    """CPU seconds of the finished child processes (the pool's workers, once shut down)."""
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def SpeedUp(repeat: int = 3) -> Dict:
     """Wall time of a 16-run study with 1 and with 2 workers (best of ``repeat``, interleaved)."""
     study = Study(ResolveParameters('reel-P1'), [ParseVariation(_STUDY16)])
     times = {1: [], 2: []}
+    cores = {1: [], 2: []}
+    inRun, solve, pool = [], [], []
     with tempfile.TemporaryDirectory() as folder:
         for k in range(repeat):
             for workers in (1, 2):
-                t0 = time.perf_counter()
+                t0, cpu0 = time.perf_counter(), _ChildCpu()
                 result = RunStudy(study, Path(folder) / f'w{workers}_{k}.csv', workers=workers, quiet=True)
-                times[workers].append(time.perf_counter() - t0)
+                wall = time.perf_counter() - t0
+                times[workers].append(wall)
+                cores[workers].append((_ChildCpu() - cpu0) / wall)     # CPUs the workers actually got
                 assert len(result.finished) == 16
+                if workers == 1:
+                    seconds = result.Values('seconds')
+                    solve.append(float(np.median(result.Values('solveSeconds'))))
+                    inRun.append(float(np.median(seconds - result.Values('solveSeconds'))))
+                    pool.append((wall - float(np.sum(seconds))) / 16)      # pool start, IPC, CSV, progress
     best = {w: min(t) for w, t in times.items()}
     return {'runs': 16, 'seconds1': best[1], 'seconds2': best[2], 'all1': times[1], 'all2': times[2],
-            'speedUp': best[1] / best[2]}
+            'speedUp': best[1] / best[2], 'coresUsed1': cores[1][int(np.argmin(times[1]))],
+            'coresUsed2': cores[2][int(np.argmin(times[2]))], 'medianSolve': min(solve), 'medianInRunOverhead': min(inRun),
+            'poolOverheadPerRun': min(pool)}
 
 
 def Overhead(repeat: int = 5) -> Dict:
@@ -127,6 +145,7 @@ def Overhead(repeat: int = 5) -> Dict:
                 f.flush()
                 stages['writeRow'].append(time.perf_counter() - t0)
     best = {k: min(v) for k, v in stages.items()}
+    best['buildSymbolicFirst'] = stages['buildSymbolic'][0]     # the first model of the process (a worker's first run)
     best['postProcess'] += min(metrics)
     best['symbolicRecording'] = best['buildSymbolic'] - best['buildPython']
     overhead = best['buildSymbolic'] + best['assemble'] + best['postProcess'] + best['writeRow']
@@ -146,6 +165,17 @@ def MapWallTime(workers=None) -> Dict:
             'workers': workers or os.cpu_count(), 'meanRunSeconds': float(np.mean([r['seconds'] for r in result.rows]))}
 
 
+def _ReportOverhead(out: Dict, repeat: int) -> None:
+    o = Overhead(max(repeat, 3))
+    out['overhead'] = o
+    s = o['stages']
+    print(f"(b) P1 run, best of {max(repeat, 3)}: solve {s['solve']:.3f} s; build {s['buildSymbolic']:.4f} s "
+          f"(of which symbolic recording {s['symbolicRecording']:.4f} s; the first model of a process "
+          f"{s['buildSymbolicFirst']:.4f} s), assemble+settings {s['assemble']:.4f} s, "
+          f"post-processing {s['postProcess']:.4f} s, CSV row {1e3 * s['writeRow']:.3f} ms -> overhead "
+          f"{o['overhead']:.4f} s = {o['overheadPercent']:.1f} % of the solve time")
+
+
 def Main(argv=None) -> int:
     """Command line; prints the report (and writes ``--json FILE``).
 
@@ -157,6 +187,7 @@ def Main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     parser.add_argument('--repeat', type=int, default=3)
     parser.add_argument('--no-map', action='store_true')
+    parser.add_argument('--only-speed-up', action='store_true', help='measure (a) only')
     parser.add_argument('--json', default=None)
     args = parser.parse_args(argv)
     import exudyn
@@ -164,18 +195,18 @@ def Main(argv=None) -> int:
            'python': platform.python_version(), 'exudyn': exudyn.__version__, 'loadBefore': _Load()}
     print(f"{out['date']}, {out['cpus']} CPUs, python {out['python']}, exudyn {out['exudyn']}, "
           f"load average before: {out['loadBefore']}")
-    o = Overhead(max(args.repeat, 3))
-    out['overhead'] = o
-    s = o['stages']
-    print(f"(b) P1 run, best of {max(args.repeat, 3)}: solve {s['solve']:.3f} s; build {s['buildSymbolic']:.4f} s "
-          f"(of which symbolic recording {s['symbolicRecording']:.4f} s), assemble+settings {s['assemble']:.4f} s, "
-          f"post-processing {s['postProcess']:.4f} s, CSV row {1e3 * s['writeRow']:.3f} ms -> overhead "
-          f"{o['overhead']:.4f} s = {o['overheadPercent']:.1f} % of the solve time")
+    if not args.only_speed_up:
+        _ReportOverhead(out, args.repeat)
     sp = SpeedUp(args.repeat)
     out['speedUp'] = sp
     print(f"(a) 16-run study: 1 worker {sp['seconds1']:.2f} s, 2 workers {sp['seconds2']:.2f} s (best of "
-          f"{args.repeat}) -> speed-up {sp['speedUp']:.2f}x")
-    if not args.no_map:
+          f"{args.repeat}) -> speed-up {sp['speedUp']:.2f}x; CPUs the workers got on average: "
+          f"{sp['coresUsed1']:.2f} (1 worker), {sp['coresUsed2']:.2f} (2 workers)")
+    print(f"    inside the study (1 worker): median solve {sp['medianSolve']:.3f} s, median run overhead (RunPoint "
+          f"time - solve) {sp['medianInRunOverhead']:.4f} s = {100 * sp['medianInRunOverhead'] / sp['medianSolve']:.1f} %, "
+          f"pool + result writing per run {sp['poolOverheadPerRun']:.4f} s = "
+          f"{100 * sp['poolOverheadPerRun'] / sp['medianSolve']:.1f} %")
+    if not (args.no_map or args.only_speed_up):
         m = MapWallTime()
         out['map'] = m
         print(f"(c) 144-point map: {m['seconds']:.1f} s wall with {m['workers']} workers, {m['failed']} failed, "

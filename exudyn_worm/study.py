@@ -646,10 +646,21 @@ def _Versions(engine: str) -> Dict[str, str]:
             versions[name] = metadata.version(name)
         except metadata.PackageNotFoundError:
             versions[name] = None
+    try:                                                  # a source checkout: which commit computed the table
+        import subprocess
+        git = ['git', '-C', str(Path(__file__).resolve().parent)]
+        head = subprocess.run(git + ['rev-parse', 'HEAD'], capture_output=True, text=True, timeout=10)
+        if head.returncode == 0:
+            dirty = subprocess.run(git + ['status', '--porcelain', '--untracked-files=no'], capture_output=True,
+                                   text=True, timeout=10)
+            versions['gitCommit'] = head.stdout.strip()
+            versions['gitModified'] = bool(dirty.stdout.strip())
+    except (OSError, ValueError, subprocess.SubprocessError):
+        pass
     return versions
 
 
-def _Executor(engine: str, workers: int):
+def _Executor(engine: str, workers: Optional[int]):
     if engine == 'mpi':
         try:
             from mpi4py.futures import MPIPoolExecutor
@@ -740,8 +751,9 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
         invocations that computed it). If it exists with the sidecar of the same
         study (and shard), its finished runs are kept and only the others are run. Checked before computing.
     workers : int, optional
-        Worker processes, >= 1 (default: every CPU available, :func:`DefaultWorkers`). For ``'mpi'`` under
-        ``mpiexec -n N python -m mpi4py.futures`` the N - 1 worker ranks are used.
+        Worker processes, >= 1 (default for ``'process'``: every CPU available, :func:`DefaultWorkers`; for
+        ``'mpi'``: left to mpi4py, which under ``mpiexec -n N python -m mpi4py.futures`` uses the N - 1 worker
+        ranks).
     engine : {'process', 'mpi'}
         ``concurrent.futures.ProcessPoolExecutor`` (default) or ``mpi4py.futures.MPIPoolExecutor``.
     shard : str or (int, int), optional
@@ -771,9 +783,9 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     if engine not in ENGINES:
         raise ValueError(f"{where}: 'engine' must be one of {', '.join(ENGINES)}, got {engine!r}")
     shard = ParseShard(shard)
-    if workers is None:
+    if workers is None and engine == 'process':
         workers = DefaultWorkers()
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ValueError(f"{where}: 'workers' must be a whole number >= 1, got {workers!r}")
     output = Path(output) if output is not None else None
     indices = ShardIndices(len(study.points), shard)
@@ -824,7 +836,7 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
                 previousHandler = signal.signal(signal.SIGTERM, _RaiseTerminated)
             except ValueError:                        # not the main thread
                 previousHandler = None
-            executor = _Executor(engine, min(workers, len(todo)))
+            executor = _Executor(engine, None if workers is None else min(workers, len(todo)))
             try:
                 futures = [executor.submit(RunPoint, study.Task(i)) for i in todo]
                 from concurrent.futures import as_completed

@@ -73,3 +73,27 @@ def test_table_agreement_and_plots(capsys, tmp_path):
     assert Main(['sweep', '--vary', 'backlash=0,0.5mm', '--plot', str(tmp_path / 'b.png'), '--metric',
                  'w0.maxNormalForce'] + SHORT) == 0
     assert (tmp_path / 'b.png').stat().st_size > 1000
+
+
+def test_sigterm_saves_and_says_how_to_resume(tmp_path):
+    # a job scheduler's time limit (SIGTERM) ends the study like Ctrl-C: exit 130, finished runs kept, hint on stderr
+    import signal
+    import subprocess
+    import sys
+    import time
+    out = tmp_path / 'runs.csv'
+    argv = [sys.executable, '-m', 'exudyn_worm', 'sweep', '--vary', 'J1=0.02:0.3:12:log', '--workers', '1',
+            '--output', str(out)] + SHORT
+    proc = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+    deadline = time.time() + 240
+    while time.time() < deadline and proc.poll() is None and not (out.exists() and out.read_text().count('\n') >= 2):
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGTERM)
+    stdout, stderr = proc.communicate(timeout=240)
+    assert proc.returncode == 130, stderr
+    assert 'interrupted' in stderr and 'run the same command again to resume' in stderr and stdout == ''
+    assert 'Traceback' not in stderr
+    done = out.read_text().count('\n') - 1
+    assert 1 <= done < 12
+    assert Main(argv[3:]) == 0                                   # the same command finishes the study
+    assert ReadResults(out).ToDict()['runs'][-1]['run'] == 11 and len(ReadResults(out).rows) == 12

@@ -64,7 +64,7 @@ def test_check_table(capsys):
 
 
 def test_check_plot(capsys, tmp_path):
-    path = tmp_path / 'out' / 'check.png'
+    path = tmp_path / 'check.png'
     rc, out, err = Run(capsys, 'check', '--preset', 'reel-P1', '--plot', str(path), '--json')
     assert rc == 0 and json.loads(out)['stable'] is False
     assert path.read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'
@@ -79,7 +79,8 @@ def test_check_plot(capsys, tmp_path):
     (('--set', 'J1=-1'), "'J1' must be > 0 kg*m^2, got -1"),
     (('--preset', 'chart', '--set', 'J1=0.01', '--set', 'kT=10', '--set', 'DT=0.01', '--simulate'),
      "--simulate needs the reel-changer keys loadMass, leverArm, motorSpeed; missing loadMass, leverArm, motorSpeed"),
-    (('--simulate', '--step-size', '0'), "--step-size must be > 0 s, got 0"),
+    (('--simulate', '--step-size', '0'), "argument --step-size: must be > 0 s, got 0 s"),
+    (('--plot', 'missing-folder/check.png'), "--plot missing-folder/check.png: the folder missing-folder does not exist"),
     (('--set', 'J4=0.1', '--set', 'k4=1000'), "DesignCheck: the design check uses the two-mass model of Figure 2"),
     (('--set', 'kA=1e8', '--set', 'mA=1'), "this parameter set has a worm axial bearing (kA > 0)"),
 ])
@@ -95,7 +96,7 @@ def test_check_plot_path_is_checked_before_computing(capsys, tmp_path, monkeypat
     monkeypatch.setattr(design, 'DesignCheck', lambda *a, **k: pytest.fail('computed before the path check'))
     (tmp_path / 'folder.png').mkdir()
     rc, _, err = Run(capsys, 'check', '--plot', str(tmp_path / 'folder.png'))
-    assert rc == 2 and 'is a directory' in err
+    assert rc == 2 and 'is a folder' in err
 
 
 def test_stability_json_has_the_tables_hint(capsys):

@@ -7,9 +7,11 @@ import pkgutil
 import pytest
 
 import exudyn_worm
+import validation
 
-MODULES = [importlib.import_module(m.name) for m in pkgutil.walk_packages(exudyn_worm.__path__, 'exudyn_worm.')
-           if not m.name.rsplit('.', 1)[-1].startswith('_')] + [exudyn_worm]
+MODULES = [importlib.import_module(m.name) for package in (exudyn_worm, validation)
+           for m in pkgutil.walk_packages(package.__path__, package.__name__ + '.')
+           if not m.name.rsplit('.', 1)[-1].startswith('_')] + [exudyn_worm, validation]
 PUBLIC = sorted({(f'{obj.__module__}.{name}', obj) for module in MODULES for name in getattr(module, '__all__', [])
                  for obj in [getattr(module, name)] if inspect.isfunction(obj) or inspect.isclass(obj)},
                 key=lambda item: item[0])

@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import argparse
 import math
-import os
 import sys
 from pathlib import Path
 from typing import List
 
-from ..cli import BadInput, DriveFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+from ..cli import (BadInput, CheckOutputPath, DriveFromArgs, PositiveFloat, PrintJson, SourceText, StdoutToStderr,
+                   Subcommand, UsageError)
 
 __all__ = ['COMMAND', 'FormatDesignCheck']
 
@@ -29,27 +29,17 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='confirm each recommendation with the time-domain reel-changer simulation '
                              '(chatter while lowering, as `exudyn-worm simulate` decides it); needs loadMass, '
                              'leverArm and motorSpeed')
-    parser.add_argument('--step-size', type=float, default=None, metavar='S',
+    parser.add_argument('--step-size', type=PositiveFloat('s'), default=None, metavar='S',
                         help='time step of the --simulate runs in s (default: each drive\'s recommended step, as simulate)')
-    try:
-        parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
-    except argparse.ArgumentError:      # a shared --quiet exists
-        pass
+    parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
 
 
-def _CheckOutputFile(option: str, path: str) -> Path:
-    """Refuse an output path that cannot be written, before anything is computed."""
-    p = Path(path)
-    if p.suffix.lower() not in _PLOT_SUFFIXES:
-        raise UsageError(f"{option}: expected a file ending in {', '.join(_PLOT_SUFFIXES)}, got '{path}'")
-    if p.is_dir():
-        raise UsageError(f"{option}: '{path}' is a directory; give a file name such as {p / 'check.png'}")
-    folder = p.parent
-    while not folder.exists() and folder != folder.parent:
-        folder = folder.parent
-    if not folder.is_dir() or not os.access(folder, os.W_OK):
-        raise UsageError(f"{option}: cannot write into '{folder}' (not a writable directory)")
-    return p
+def _CheckPlotPath(path: str) -> Path:
+    """Refuse a --plot path that cannot be written (the shared rule of CheckOutputPath) or is no figure format,
+    before anything is computed."""
+    if Path(path).suffix.lower() not in _PLOT_SUFFIXES:
+        raise UsageError(f"--plot: expected a file ending in {', '.join(_PLOT_SUFFIXES)}, got '{path}'")
+    return CheckOutputPath(path, '--plot')
 
 
 def _Factor(f: float) -> str:
@@ -138,15 +128,13 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
 def _Run(args: argparse.Namespace) -> int:
     from ..design import ConfirmBySimulation, DesignCheck
     from ..presets import REEL_KEYS
-    plotPath = _CheckOutputFile('--plot', args.plot) if args.plot else None
+    plotPath = _CheckPlotPath(args.plot) if args.plot is not None else None
     parameters, _ = DriveFromArgs(args)
     if args.simulate:
         missing = [k for k in REEL_KEYS if k not in parameters]
         if missing:
             raise UsageError(f"--simulate needs the reel-changer keys {', '.join(REEL_KEYS)}; missing "
                              f"{', '.join(missing)} (use a reel-P* preset or --set KEY=VALUE)")
-        if args.step_size is not None and not (args.step_size > 0 and math.isfinite(args.step_size)):
-            raise UsageError(f"--step-size must be > 0 s, got {args.step_size:g}")
     with BadInput():
         result = DesignCheck(parameters, margin=args.margin, span=args.span)
     if args.simulate:
@@ -158,7 +146,10 @@ def _Run(args: argparse.Namespace) -> int:
                 result = ConfirmBySimulation(result, stepSize=args.step_size, progress=bar.update)
     if plotPath is not None:
         from ..plot import SaveFigure
-        SaveFigure(result.plot(), plotPath)
+        try:
+            SaveFigure(result.plot(), plotPath)
+        except OSError as err:
+            raise UsageError(f"--plot {plotPath}: cannot write: {err.strerror or err}") from err
     if args.json:
         PrintJson(result.ToDict())
     else:

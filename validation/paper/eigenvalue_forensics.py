@@ -98,7 +98,8 @@ def BaseParameters(**overrides) -> Dict[str, float]:
 
 
 def P7Parameters(**overrides) -> Dict[str, float]:
-    """Parameter set P7 of section 3.2.3 (J1 and kT ten times smaller than (28)), mu = 0.132."""
+    """Parameter set P7 of section 3.2.3 (J1 and kT ten times smaller than (28)), mu = 0.132; ``overrides`` are
+    applied with :func:`exudyn_worm.presets.ApplyOverrides`."""
     return ApplyOverrides(GetPreset('reel-P7'), {'mu': PAPER_MU, **overrides})
 
 
@@ -115,7 +116,7 @@ def WheelCircumferenceFactor(drive) -> float:
 
 
 def ScaleMesh(drive: ElasticDrive, stiffnessFactor: float, dampingFactor: Optional[float] = None) -> ElasticDrive:
-    """Copy of ``drive`` with kV (and dV, by ``dampingFactor``, default the same factor) scaled."""
+    """Copy of ``drive`` with kV scaled by ``stiffnessFactor`` and dV by ``dampingFactor`` (default the same factor)."""
     dampingFactor = stiffnessFactor if dampingFactor is None else dampingFactor
     g = drive.gear
     return drive.Replace(gear=g.Replace(kV=g.kV * stiffnessFactor, dV=g.dV * dampingFactor))
@@ -129,7 +130,8 @@ def UpperEigenvalues(b: Sequence[float]) -> np.ndarray:
 
 
 def EigenvalueDeviations(eigenvalues: Mapping[int, np.ndarray], printed: Mapping[int, np.ndarray]) -> np.ndarray:
-    """Signed deviations computed - printed, ``[Re1, Im1, Re2, Im2]`` for S = +1 then S = -1 (8 values).
+    """Signed deviations of ``eigenvalues`` from ``printed`` (both ``{S: two eigenvalues with Im > 0}``),
+    ``[Re1, Im1, Re2, Im2]`` for S = +1 then S = -1 (8 values).
 
     Within each S the two computed modes are paired with the printed ones in the order that
     minimizes the total distance. A model without two oscillating modes gets deviations of 1e3.
@@ -148,7 +150,7 @@ def EigenvalueDeviations(eigenvalues: Mapping[int, np.ndarray], printed: Mapping
 
 
 def DriveDeviations(drive: ElasticDrive, printed: Mapping[int, np.ndarray]) -> np.ndarray:
-    """:func:`EigenvalueDeviations` of ``drive``, eigenvalues from the package's eq. (16)."""
+    """:func:`EigenvalueDeviations` of ``drive`` from ``printed``, eigenvalues from the package's eq. (16)."""
     return EigenvalueDeviations({S: UpperEigenvalues(CharacteristicCoefficients(drive, S)) for S in (+1, -1)},
                                 printed)
 
@@ -285,7 +287,8 @@ def EvaluateHypothesis(hypothesis: Hypothesis, printed: Optional[Mapping[int, np
 
 
 def EvaluateHypotheses(fitted: bool = True, printed: Optional[Mapping[int, np.ndarray]] = None) -> List[HypothesisResult]:
-    """:func:`EvaluateHypothesis` for every hypothesis (``fitted=False`` skips the fitted ones)."""
+    """:func:`EvaluateHypothesis` for every hypothesis against ``printed`` (default: the reference table;
+    ``fitted=False`` skips the fitted ones)."""
     printed = PrintedEigenvalues() if printed is None else printed
     return [EvaluateHypothesis(h, printed) for h in Hypotheses() if fitted or not h.fitted]
 
@@ -309,7 +312,8 @@ def ReducedParameters(drive: ElasticDrive) -> Dict[str, float]:
 
 
 def ImpliedCoefficients(printed: Mapping[int, np.ndarray], S: int) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """b1..b4 of the printed eigenvalues (nominal) and their range over the rounding box (+-0.05 1/s).
+    """b1..b4 of the printed eigenvalues of contact state ``S`` (nominal) and their range over the rounding box
+    (+-0.05 1/s).
 
     Each b is monotonic in every eigenvalue component over the box, so the range is attained at
     its corners.
@@ -336,7 +340,8 @@ def B4RatioInterval(printed: Mapping[int, np.ndarray]) -> Tuple[float, float, fl
 
 
 def WheelSideFrictionBound(printed: Mapping[int, np.ndarray], gamma: float) -> Tuple[float, float]:
-    """Interval of rho in rad for which cos(gamma - rho)/cos(gamma + rho) lies in :func:`B4RatioInterval`."""
+    """Interval of rho in rad for which cos(gamma - rho)/cos(gamma + rho) lies in :func:`B4RatioInterval` of
+    ``printed``."""
     _, lo, hi = B4RatioInterval(printed)
     tg = math.tan(gamma)
     rho = lambda R: math.atan((R - 1) / ((R + 1) * tg))  # (1 + tg t)/(1 - tg t) = R
@@ -383,7 +388,7 @@ def _ClassDeviations(q, tg, printed):
 
 def ModelClassMinimax(printed: Optional[Mapping[int, np.ndarray]] = None,
                       start: Optional[ElasticDrive] = None) -> FitResult:
-    """Best max deviation reachable by eq. (16) with any parameters and gamma fixed.
+    """Best max deviation from ``printed`` reachable by eq. (16) with any parameters and gamma fixed.
 
     In (16) with (9)-(12), x(S) = K1 (tan(gamma) + S tan(rho)) and y(S) = K2 (1 - S tan(gamma) tan(rho)),
     with K1 = kV r1^2 cos^2(alphaN) sin(gamma) cos(gamma)/J1 and K2 = u kV r1 r2 cos^2(alphaN) sin(gamma)
@@ -410,7 +415,7 @@ def _FreeDeviations(q, printed):
 
 def FreeFamilyMinimax(printed: Optional[Mapping[int, np.ndarray]] = None,
                       start: Optional[ElasticDrive] = None) -> FitResult:
-    """Minimax fit of the free 7-parameter family (a, tauT, eta, x+, y+, x-, y-), local from ``start``
+    """Minimax fit to ``printed`` of the free 7-parameter family (a, tauT, eta, x+, y+, x-, y-), local from ``start``
     (default: the wheel-circumference hypothesis); the mesh terms are not tied to one friction angle."""
     printed = PrintedEigenvalues() if printed is None else printed
     start = _Circ(_Drive(BaseParameters())) if start is None else start
@@ -423,8 +428,8 @@ def FreeFamilyMinimax(printed: Optional[Mapping[int, np.ndarray]] = None,
 
 def GlobalModelClassSearch(seeds: Sequence[int] = (0, 1, 2), printed: Optional[Mapping[int, np.ndarray]] = None
                            ) -> List[FitResult]:
-    """Differential evolution over the six parameters of :func:`ModelClassMinimax`, each within +-15 %
-    of the local optimum (slow: about a minute per seed)."""
+    """Differential evolution (one run per seed of ``seeds``) against ``printed`` over the six parameters of
+    :func:`ModelClassMinimax`, each within +-15 % of the local optimum (slow: minutes per seed)."""
     from scipy.optimize import differential_evolution
     printed = PrintedEigenvalues() if printed is None else printed
     start = _Circ(_Drive(BaseParameters()))
@@ -471,7 +476,7 @@ def DeviationTable(result: HypothesisResult, printed: Optional[Mapping[int, np.n
 
 
 def Main(argv: Optional[Sequence[str]] = None) -> int:
-    """Print the hypothesis table and the model-class fits (``--global`` adds the global search)."""
+    """Print the hypothesis table and the model-class fits (``--global`` in ``argv`` adds the global search)."""
     argv = list(sys.argv[1:] if argv is None else argv)
     printed = PrintedEigenvalues()
     np.set_printoptions(linewidth=140)
