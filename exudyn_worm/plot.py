@@ -216,8 +216,10 @@ def _DrawNormalForce(ax, result, mask, legend=True):
     t = np.asarray(result.time)[mask]
     f1, f2 = (np.asarray(f)[mask] * 1e-3 for f in result.normalForceFlanks)
     ax.plot(t, f1, color=_C_FLANK1, lw=_LINE_WIDTH, label=r'flank 1 ($\Delta s > 0$, worm drives)')
-    ax.plot(t, f2, color=_C_FLANK2, lw=_LINE_WIDTH, label=r'flank 2 ($\Delta s < 0$)')
-    ax.set_ylabel(_Label('normalForce'))
+    # the second flank is drawn downward so that the two dense traces do not cover each other
+    ax.plot(t, -f2, color=_C_FLANK2, lw=_LINE_WIDTH, label=r'flank 2 ($\Delta s < 0$), drawn downward')
+    ax.axhline(0., color='0.4', lw=0.6)
+    ax.set_ylabel('$F_n$ [kN] (flank 1 up, flank 2 down)')
     if legend:                                 # below the phase names at the top
         ax.legend(loc='upper left', bbox_to_anchor=(0., 0.92), fontsize=8, framealpha=0.9)
 
