@@ -339,18 +339,25 @@ def SourceInfo(args: argparse.Namespace) -> Dict:
     Returns
     -------
     dict
-        ``preset`` (the name used), ``presetFrom`` (``'--preset'``, ``'config'`` or ``'default'``),
-        ``config`` (path or None) and ``overrides`` (the ``--set`` texts, in order).
+        ``preset`` (the name used, None for a whole-drive file that names none), ``presetFrom``
+        (``'--preset'``, ``'config'``, ``'default'`` or None), ``config`` (path or None) and ``overrides``
+        (the ``--set`` texts, in order).
     """
     if args.preset:
         preset, source = args.preset, '--preset'
     else:
-        preset = None
+        preset, wholeDrive = None, False
         if args.config:
             from .config import LoadConfig
             with BadInput():
-                preset = LoadConfig(args.config)['preset']
-        preset, source = (preset, 'config') if preset else (DEFAULT_PRESET, 'default')
+                config = LoadConfig(args.config)
+            preset, wholeDrive = config['preset'], config['wholeDrive']
+        if preset:
+            source = 'config'
+        elif wholeDrive:                 # a whole-drive file inherits no preset
+            source = None
+        else:
+            preset, source = DEFAULT_PRESET, 'default'
     return {'preset': preset, 'presetFrom': source, 'config': os.fspath(args.config) if args.config else None,
             'overrides': list(args.set)}
 
@@ -369,7 +376,8 @@ def SourceText(args: argparse.Namespace) -> str:
         E.g. ``preset reel-P1 (default), --set J1=0.3``.
     """
     info = SourceInfo(args)
-    parts = [f"preset {info['preset']}" + {'--preset': '', 'config': ' (from the config)',
+    parts = [None if info['preset'] is None else
+             f"preset {info['preset']}" + {'--preset': '', 'config': ' (from the config)',
                                            'default': ' (default)'}[info['presetFrom']],
              f"config {info['config']}" if info['config'] else None,
              f"--set {' '.join(info['overrides'])}" if info['overrides'] else None]

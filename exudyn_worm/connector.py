@@ -201,9 +201,14 @@ class WormGearConnector:
         return out
 
     def StoredMeshState(self, mbs) -> MeshState:
-        """Mesh quantities over the stored time steps (requires :meth:`AddSensors`)."""
+        """Mesh quantities over the stored time steps (requires :meth:`AddSensors`), with their ``time`` in s.
+
+        ``normalForce`` is signed (see :class:`~exudyn_worm.contact.MeshState`); ``normalForceFlanks`` gives
+        the magnitudes on the two flanks."""
         s = self.StoredStates(mbs)
-        return self.Evaluate(s['phi1'], s['phi2'], s['omega1'], s['omega2'], s.get('xA'), s.get('vA'))
+        state = self.Evaluate(s['phi1'], s['phi2'], s['omega1'], s['omega2'], s.get('xA'), s.get('vA'))
+        state.time = s['time']
+        return state
 
 
 def _CheckNode(mbs, n, name, what='rotation'):

@@ -34,7 +34,8 @@ import numpy as np
 
 from .gear import WormGear
 
-__all__ = ['MATH_OPS', 'NUMPY_OPS', 'SymbolicOps', 'MeshState', 'MeshContact', 'ContactOptions']
+__all__ = ['MATH_OPS', 'NUMPY_OPS', 'SymbolicOps', 'MeshState', 'MeshContact', 'ContactOptions',
+           'NormalForceFlanks']
 
 
 def _Sign(x):
@@ -92,15 +93,69 @@ class ContactOptions:
 
 @dataclass
 class MeshState:
-    """Mesh quantities of one evaluation of the contact law (scalars, arrays or symbolic)."""
-    deltaPhi: Any          #: relative angle phi1 - u phi2, eq. (4), rad (rotations only; deltaS adds the axial part)
-    deltaS: Any            #: relative normal displacement, eq. (5), m
-    normalForce: Any       #: signed normal force sigma*Fn, N (> 0: flank of the driving worm)
-    S: Any                 #: contact parameter, eq. (8) (regularized: in [-1, 1])
-    sf: Any                #: friction state, regularized sign of phi1' in [-1, 1]
-    wormTorque: Any        #: mesh torque on the worm, N*m
-    wheelTorque: Any       #: mesh torque on the wheel, N*m
-    axialForce: Any = 0.   #: mesh force on the worm along its axis (+ in the direction of xA), N
+    """Mesh quantities of one evaluation of the contact law (scalars, arrays or symbolic), SI units.
+
+    Sign conventions: angles and speeds are positive in the direction in which a positive worm rotation
+    turns the wheel (:func:`~exudyn_worm.connector.CreateWormGear`); ``Delta s > 0`` means the worm leads
+    and presses the first flank, ``Delta s < 0`` the second flank.
+
+    Attributes
+    ----------
+    deltaPhi : float or ndarray
+        Relative angle phi1 - u phi2, eq. (4), in rad (rotations only; ``deltaS`` adds the axial part).
+    deltaS : float or ndarray
+        Relative normal displacement of the flanks, eq. (5), in m.
+    normalForce : float or ndarray
+        **Signed** normal force sigma*Fn in N: >= 0 on the first flank (Delta s > 0, the worm drives),
+        <= 0 on the second flank. Its minimum is the largest force on the second flank, not the smallest
+        force: use :attr:`normalForceFlanks` (or ``abs``) for magnitudes.
+    S : float or ndarray
+        Contact parameter of eq. (8), dimensionless: sigma * sf. The paper's S is +1 or -1; here sf is
+        regularized, so S takes values between -1 and +1 while the worm speed is within
+        ``ContactOptions.frictionSpeed`` of zero (sticking), and 0 inside the backlash (sigma = 0 at Delta s = 0).
+    sf : float or ndarray
+        Friction state, the regularized sign of phi1' in [-1, 1] (+-1 sliding, |sf| < 1 sticking).
+    wormTorque : float or ndarray
+        Mesh torque on the worm in N*m (positive in the worm's positive direction).
+    wheelTorque : float or ndarray
+        Mesh torque on the wheel in N*m (positive in the wheel's positive direction).
+    axialForce : float or ndarray
+        Mesh force on the worm along its axis in N (+ in the direction of xA); 0 without an axial bearing.
+    time : ndarray or None
+        Times in s of the states, when the state comes from a simulation
+        (:meth:`~exudyn_worm.connector.WormGearConnector.StoredMeshState`); None otherwise.
+    """
+    deltaPhi: Any
+    deltaS: Any
+    normalForce: Any
+    S: Any
+    sf: Any
+    wormTorque: Any
+    wheelTorque: Any
+    axialForce: Any = 0.
+    time: Any = None
+
+    @property
+    def normalForceFlanks(self):
+        """Normal force magnitudes (N, both >= 0) on the first flank (Delta s > 0) and on the second flank."""
+        return NormalForceFlanks(self.normalForce)
+
+
+def NormalForceFlanks(normalForce):
+    """Split a signed normal force (N) into the magnitudes on the first and on the second flank.
+
+    Parameters
+    ----------
+    normalForce : float or array_like
+        Signed normal force sigma*Fn (:attr:`MeshState.normalForce`).
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        ``max(F, 0)`` (first flank, Delta s > 0) and ``max(-F, 0)`` (second flank), both >= 0.
+    """
+    F = np.asarray(normalForce, dtype=float)
+    return np.maximum(F, 0.), np.maximum(-F, 0.)
 
 
 def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOptions = ContactOptions(),

@@ -41,7 +41,7 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from ._checks import CheckRange
-from .presets import PARAMETER_UNITS, REEL_KEYS, ApplyOverrides, DriveFromParameters, DriveSideChain
+from .presets import PARAMETER_UNITS, REEL_KEYS, ApplyOverrides, DriveFromParameters, ExtraComponents
 from .charts import ChartCoordinates, ComputeStabilityChart
 from .stability import (CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzStable,
                         PolynomialCoefficients)
@@ -603,8 +603,7 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
     margin = CheckRange(w, 'margin', margin, low=0., high=1., unit='decades')
     span = CheckRange(w, 'span', span, low=1., high=1e4, lowOpen=True)
     parameters = dict(parameters)
-    extra = (['a drive-side chain (J4, ...)'] if DriveSideChain(parameters) else []) + \
-        (['a worm axial bearing (kA > 0)'] if parameters.get('kA', 0.) > 0 else [])
+    extra = ExtraComponents(parameters)
     if extra:
         raise ValueError(f"{w}: the design check uses the two-mass model of Figure 2 (eqs. (15)-(19)); this "
                          f"parameter set has {' and '.join(extra)}, which that model does not include")

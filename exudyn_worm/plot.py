@@ -30,7 +30,7 @@ from typing import Any, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-__all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'PlotSimulation', 'PlotComparison', 'SaveFigure']
+__all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'MEAN_WINDOW', 'PlotSimulation', 'PlotComparison', 'SaveFigure']
 
 #: the kinds :func:`PlotSimulation` draws
 PLOT_KINDS = ('overview', 'acceleration', 'zoom', 'speed', 'normalForce', 'driveTorque')
@@ -158,10 +158,21 @@ def _Decorate(ax, interval):
     ax.margins(y=0.08)
 
 
+#: label of the contact state as drawn: the paper's S = +-1 (eq. (8)) is the sign of the regularized S
+_S_LABEL = r'contact state sign$(S)$'
+_S_NOTE = (r"$S = \sigma s_f$ is regularized (|S| < 1 while $|\dot\varphi_1|$ < frictionSpeed); "
+           r"drawn: its sign, the paper's $S = \pm 1$")
+
+
+def _ContactSign(result, mask):
+    """The paper's contact parameter S = +-1 (eq. (8)): the sign of the regularized S (0 inside the backlash)."""
+    return np.sign(np.asarray(result.series['S'])[mask])
+
+
 def _TwinStep(ax, t, values, label: str, color: str, limits=(-1.6, 1.6)):
     """Draw a contact/friction state on a twin y axis with ticks at -1, 0, 1."""
     twin = ax.twinx()
-    twin.plot(t, values, color=color, lw=0.9, label=label)
+    twin.plot(t, values, color=color, lw=0.9, label=label, drawstyle='steps-post')
     twin.set_ylim(*limits)
     twin.set_yticks([-1, 0, 1])
     twin.set_ylabel(label, color=color)
@@ -172,6 +183,33 @@ def _TwinStep(ax, t, values, label: str, color: str, limits=(-1.6, 1.6)):
 def _DrawSeries(ax, result, name, mask, color=_C_MAIN, label=None, lw=_LINE_WIDTH):
     t = np.asarray(result.time)[mask]
     return ax.plot(t, np.asarray(result.series[name])[mask] * _Factor(name), color=color, lw=lw, label=label)
+
+
+def _RunningMean(t, x, width: float):
+    """Centered moving average of ``x`` over ``width`` seconds (same length as ``x``)."""
+    if t.size < 3:
+        return x
+    n = max(1, int(round(width / max(float(np.median(np.diff(t))), 1e-12))))
+    kernel = np.ones(n) / n
+    pad = np.pad(x, (n // 2, n - 1 - n // 2), mode='edge')
+    return np.convolve(pad, kernel, mode='valid')
+
+
+#: averaging time in s of the mean normal force drawn with the flank forces (longer than a chatter period)
+MEAN_WINDOW = 0.25
+
+
+def _DrawFlank(ax, result, mask, flank: int):
+    """One flank's normal force (kN) with its running mean (the quasi-static level the chatter exceeds)."""
+    t = np.asarray(result.time)[mask]
+    f = np.asarray(result.normalForceFlanks[flank - 1])[mask] * 1e-3
+    color = _C_FLANK1 if flank == 1 else _C_FLANK2
+    text = r'flank 1 ($\Delta s > 0$, worm drives)' if flank == 1 else r'flank 2 ($\Delta s < 0$)'
+    ax.plot(t, f, color=color, lw=_LINE_WIDTH, label=text)
+    ax.plot(t, _RunningMean(t, f, MEAN_WINDOW), color='black', lw=1.2, ls='--',
+            label=f'mean over {MEAN_WINDOW:g} s')
+    ax.set_ylabel(f'flank {flank} $F_n$ [kN]')
+    ax.legend(loc='upper left', bbox_to_anchor=(0., 0.9), fontsize=8, framealpha=0.9)
 
 
 def _DrawNormalForce(ax, result, mask, legend=True):
@@ -188,18 +226,23 @@ def _Draw(kind, ax, result, mask, interval, phases, twin: bool = True):
     """Draw one panel of ``kind`` on ``ax``."""
     t = np.asarray(result.time)[mask]
     if phases:
-        _ShadePhases(ax, phases, interval, labels=(kind != 'sf'))
+        _ShadePhases(ax, phases, interval, labels=(kind not in ('sf', 'S')))
     if kind in ('acceleration', 'zoom'):
         _DrawSeries(ax, result, 'alpha2', mask)
         ax.set_ylabel(_Label('alpha2'), color=_C_MAIN if kind == 'zoom' and twin else 'black')
         if kind == 'zoom' and twin:
-            _TwinStep(ax, t, result.series['S'][mask], 'contact parameter $S$', _C_SECOND)
+            _TwinStep(ax, t, _ContactSign(result, mask), _S_LABEL, _C_SECOND)
     elif kind == 'speed':
         omega = np.asarray(result.series['omega1'])[mask]
         _DrawSeries(ax, result, 'omega1', mask)
         ax.set_ylabel(_Label('omega1'))
         if omega.min() < 0.25 * max(omega.max(), 0.):          # near standstill: show the zero line
             ax.axhline(0., color='0.4', lw=0.6)
+    elif kind == 'S':
+        ax.plot(t, _ContactSign(result, mask), color=_C_SECOND, lw=0.9, drawstyle='steps-post')
+        ax.set_ylim(-1.3, 1.3)
+        ax.set_yticks([-1, 0, 1])
+        ax.set_ylabel('sign$(S)$ [–]')
     elif kind == 'sf':
         ax.plot(t, np.asarray(result.series['sf'])[mask], color=_C_SECOND, lw=0.9)
         ax.set_ylim(-1.3, 1.3)
@@ -212,7 +255,7 @@ def _Draw(kind, ax, result, mask, interval, phases, twin: bool = True):
         ax.set_ylabel(_Label('driveTorque'), color=_C_MAIN)
         ax.axhline(0., color='0.4', lw=0.6)
         if twin:
-            _TwinStep(ax, t, result.series['S'][mask], 'contact parameter $S$', _C_SECOND)
+            _TwinStep(ax, t, _ContactSign(result, mask), _S_LABEL, _C_SECOND)
     else:                                                             # any series by name
         _DrawSeries(ax, result, kind, mask)
         ax.set_ylabel(_Label(kind))
@@ -228,8 +271,14 @@ _REQUIRED = {'acceleration': ('alpha2',), 'zoom': ('alpha2', 'S'), 'speed': ('om
 # ---------------------------------------------------------------------------------- public functions
 
 def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, float]] = None,
-                   title: Optional[str] = None, phases: Union[bool, Sequence] = True, figsize=None):
+                   title: Optional[str] = None, phases: Union[bool, Sequence] = True, figsize=None,
+                   subtitle: Optional[str] = None):
     """Plot the time functions of one simulation (the paper's Figures 8-11, 13-16, 18).
+
+    The contact parameter is drawn as the paper's S = +-1, the sign of the regularized S of the model
+    (|S| < 1 only while the worm speed is within the friction regularization speed of zero). Over a
+    whole run (``'driveTorque'``) it gets its own panel below the torque, so it never covers the torque;
+    the normal force shows each flank in its own panel with its running mean over :data:`MEAN_WINDOW`.
 
     Parameters
     ----------
@@ -249,6 +298,8 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
         (none for other simulations); False: no shading; or give the intervals explicitly.
     figsize : (float, float), optional
         Figure size in inches.
+    subtitle : str, optional
+        Second title line, e.g. the preset and overrides of the run.
 
     Returns
     -------
@@ -279,6 +330,8 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
         if bad:
             raise ValueError(f"{w}: phase names must be 'lift' or 'lower', got {bad[0]!r}")
     title = _DEFAULT_TITLES[kind] if title is None else str(title)
+    if subtitle:
+        title = f'{title}\n{subtitle}'
 
     if kind == 'overview':
         fig, axes = _NewFigure(2, 2, figsize=figsize or (12., 7.), sharex=True)
@@ -298,9 +351,29 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
         axes[1, 0].set_title(r'friction state $s_f$ (±1 sliding, |$s_f$| < 1 sticking)', loc='left', fontsize=9)
         axes[0, 0].set_title(title, fontsize=11)
         return fig
+    if kind == 'normalForce':              # one panel per flank: the dense second flank stays legible
+        fig, axes = _NewFigure(2, 1, figsize=figsize or (8., 5.6), sharex=True)
+        for flank, ax in ((1, axes[0, 0]), (2, axes[1, 0])):
+            if phases:
+                _ShadePhases(ax, phases, interval, labels=(flank == 1))
+            _DrawFlank(ax, result, mask, flank)
+            _Decorate(ax, interval)
+        axes[1, 0].set_xlabel('time $t$ [s]')
+        axes[0, 0].set_title(title, fontsize=11)
+        return fig
+    if kind == 'driveTorque' and tZoom is None:   # whole run: S in its own panel, never over the torque
+        fig, axes = _NewFigure(2, 1, figsize=figsize or (8., 5.), sharex=True, heightRatios=(3, 1))
+        _Draw('driveTorque', axes[0, 0], result, mask, interval, phases, twin=False)
+        _Draw('S', axes[1, 0], result, mask, interval, phases)
+        axes[0, 0].set_xlabel('')
+        axes[1, 0].set_title(_S_NOTE, loc='left', fontsize=8)
+        axes[0, 0].set_title(title, fontsize=11)
+        return fig
     fig, axes = _NewFigure(1, 1, figsize=figsize or (8., 4.2))
     ax = axes[0, 0]
     _Draw(kind, ax, result, mask, interval, phases)
+    if kind in ('zoom', 'driveTorque'):
+        ax.text(0.0, -0.2, _S_NOTE, transform=ax.transAxes, fontsize=7, color='0.3', va='top')
     ax.set_title(title, fontsize=11)
     return fig
 

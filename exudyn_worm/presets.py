@@ -41,6 +41,7 @@ if TYPE_CHECKING:
     from .connector import AxialBearing
 
 __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
+           'ExtraComponents',
            'ApplyOverrides', 'CheckParameters', 'GearFromParameters', 'DriveFromParameters', 'DriveSideChain',
            'AxialBearingFromParameters', 'MAX_RATE']
 
@@ -285,6 +286,32 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     drive = ElasticDrive(gear=gear, J1=p['J1'], J2=p['J2'], kT=p['kT'], dT=dT)
     _CheckScale(drive, 'parameter set')
     return drive
+
+
+def ExtraComponents(parameters: Mapping[str, float]) -> List[str]:
+    """Components of a parameter set beyond the two-mass drive of Figure 2 (which eqs. (15)-(21) describe).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary (SI).
+
+    Returns
+    -------
+    list of str
+        ``'a drive-side chain (J4, ...)'`` and/or ``'a worm axial bearing (kA > 0)'``; empty for the two-mass
+        drive. The analytical model and the design check do not include these; the linearized Exudyn model
+        (:func:`exudyn_worm.linearization.LinearStabilityFromParameters`) and the simulation do.
+
+    Examples
+    --------
+    >>> ExtraComponents(GetPreset('reel-P1'))
+    []
+    >>> ExtraComponents({**GetPreset('reel-P1'), 'J4': 0.05, 'k4': 2e4})
+    ['a drive-side chain (J4, ...)']
+    """
+    return ((['a drive-side chain (J4, ...)'] if DriveSideChain(parameters) else []) +
+            (['a worm axial bearing (kA > 0)'] if parameters.get('kA', 0.) > 0 else []))
 
 
 def DriveSideChain(parameters: Mapping[str, float]) -> List[Tuple[float, float, float]]:

@@ -23,10 +23,12 @@ CHATTER_TORQUE_FRACTION = 0.1
 class SimulationResult:
     """Time series of one simulation (SI units) plus the metadata needed to judge chatter.
 
-    Attributes hold arrays over ``time``: motor angle/speed ``phi0, omega0``; worm and wheel angles,
-    speeds, accelerations ``phi1, omega1, alpha1, phi2, omega2, alpha2``; mesh quantities
-    ``deltaPhi, deltaS, normalForce`` (signed), ``S``, ``sf``, ``wormTorque, wheelTorque``;
-    ``driveTorque`` M_an (eq. (6)) and ``tangentialForce`` F_V (eq. (7)).
+    Attributes hold arrays over ``time`` (s): motor angle/speed ``phi0, omega0`` (rad, rad/s); worm and wheel
+    angles, speeds, accelerations ``phi1, omega1, alpha1, phi2, omega2, alpha2`` (rad, rad/s, rad/s^2); mesh
+    quantities ``deltaPhi`` (rad), ``deltaS`` (m), ``normalForce`` (N, **signed**: < 0 on the second flank; use
+    :attr:`normalForceFlanks` for magnitudes), ``S``, ``sf`` (see :class:`~exudyn_worm.contact.MeshState`),
+    ``wormTorque, wheelTorque`` (N*m); ``driveTorque`` M_an (eq. (6), N*m) and ``tangentialForce`` F_V
+    (eq. (7), N). Units of every series: :meth:`ToCsv`'s header.
     """
     time: np.ndarray
     series: Dict[str, np.ndarray]
@@ -48,9 +50,10 @@ class SimulationResult:
 
     @property
     def normalForceFlanks(self) -> Tuple[np.ndarray, np.ndarray]:
-        """Normal force on the flank pushed by a leading worm (Delta s > 0) and on the other flank, both >= 0."""
-        F = self.series['normalForce']
-        return np.maximum(F, 0.), np.maximum(-F, 0.)
+        """Normal force magnitudes in N (both >= 0) on the flank pushed by a leading worm (Delta s > 0) and on
+        the other flank (:func:`~exudyn_worm.contact.NormalForceFlanks`); ``normalForce`` itself is signed."""
+        from .contact import NormalForceFlanks
+        return NormalForceFlanks(self.series['normalForce'])
 
     def _Window(self, t0, t1):
         return (self.time >= t0) & (self.time <= t1)

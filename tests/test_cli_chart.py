@@ -107,3 +107,11 @@ def test_mesh_damping_given_as_dV(capsys, dV, DV):
                             '--resolution', '20', '--json')
     assert status == 0, err
     assert json.loads(out)['charts'][0]['DV'] == pytest.approx(DV, abs=5e-4)
+
+
+def test_drive_side_chain_is_noted_not_used(capsys):
+    status, out, err = _Run(capsys, 'chart', '--preset', 'chart', '--DV', '0.014', '--DTV', '1', '--resolution', '30',
+                            '--set', 'J4=0.5', '--set', 'k4=1e4', '--set', 'd4=1', '--json')
+    plain = _Run(capsys, 'chart', '--preset', 'chart', '--DV', '0.014', '--DTV', '1', '--resolution', '30', '--json')
+    assert status == 0 and 'drive-side chain' in err and 'not in it' in err
+    assert json.loads(out) == json.loads(plain[1])

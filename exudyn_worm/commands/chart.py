@@ -73,7 +73,7 @@ def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
 
 def _Run(args: argparse.Namespace) -> int:
     from ..charts import ComputeStabilityChart, FormatChartTable, PresetChartPoints
-    from ..presets import GearFromParameters
+    from ..presets import DriveSideChain, GearFromParameters
     from ..progress import ProgressBar
     output = _CheckOutput(args.output) if args.output else None
     parameters = ParametersFromArgs(args)
@@ -91,6 +91,11 @@ def _Run(args: argparse.Namespace) -> int:
             ComputeStabilityChart(gear, J2, DV, DTV, resolution=2, S=args.S)
         if not 2 <= args.resolution <= 20000:
             ComputeStabilityChart(gear, J2, DV, args.DTV[0], resolution=args.resolution)
+    extra = (['a drive-side chain (J4, ...)'] if DriveSideChain(parameters) else []) + \
+        (['a worm axial bearing (kA > 0)'] if parameters.get('kA', 0.) > 0 else [])
+    if extra:
+        print(f"exudyn-worm chart: note: the chart is the two-mass drive of Figure 2 with this gear and J2; "
+              f"{' and '.join(extra)} of the parameter set is not in it", file=sys.stderr)
     charts = []
     with ProgressBar(total=len(args.DTV), desc='charts', unit='chart', quiet=True if args.quiet else None) as bar:
         for DTV in args.DTV:

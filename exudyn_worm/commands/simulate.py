@@ -46,7 +46,7 @@ _SIMULATE_HEADER = '{:>12} {:>20} {:>10} {:>7} {:>6} {:>16}  chatter'.format(
 _SIMULATE_FIGURES = ('overview', 'acceleration', 'speed', 'normalForce', 'driveTorque')
 
 
-def _SaveFigures(result, folder: Path, quiet=None) -> List[Path]:
+def _SaveFigures(result, folder: Path, subtitle: str = '', quiet=None) -> List[Path]:
     """Write the standard figures of a simulation as PNG files into ``folder`` (created if missing;
     its parent was checked by :func:`~exudyn_worm.cli.CheckOutputPath`)."""
     from .. import plot
@@ -56,7 +56,7 @@ def _SaveFigures(result, folder: Path, quiet=None) -> List[Path]:
     with ProgressBar(total=len(_SIMULATE_FIGURES), desc='figures', unit='figure', quiet=quiet, delay=2.) as bar:
         for kind in _SIMULATE_FIGURES:
             path = folder / f'{kind}.png'
-            plot.SaveFigure(plot.PlotSimulation(result, kind=kind), path)
+            plot.SaveFigure(plot.PlotSimulation(result, kind=kind, subtitle=subtitle), path)
             paths.append(path)
             bar.update(1)
     return paths
@@ -159,7 +159,8 @@ def _Run(args: argparse.Namespace) -> int:
     if csv is not None:
         written.append(_Write('--csv', csv, lambda: result.ToCsv(csv)))
     if plots is not None:
-        written += _Write('--plot', plots, lambda: _SaveFigures(result, plots, quiet=True if args.quiet else None))
+        written += _Write('--plot', plots, lambda: _SaveFigures(result, plots, subtitle=source,
+                                                                quiet=True if args.quiet else None))
     for path in written:
         print(f"wrote {Path(path).resolve()}", file=sys.stderr)
     return 0

@@ -5,20 +5,56 @@ import argparse
 import math
 from typing import Dict, List
 
-from ..cli import DriveFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+from ..cli import DriveFromArgs, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
 from ..design import StabilizingChanges
+from ..presets import ExtraComponents
 from ..stability import CONTACT_STATES, AnalyzeStability, StabilityAnalysis
 
 __all__ = ['COMMAND', 'FormatStability', 'StabilityHint', 'StabilityHintData']
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument('--method', choices=('analytical', 'exudyn'), default='analytical',
-                        help='analytical: eqs. (15)-(19) of the paper (default); exudyn: eigenvalues of '
-                             'the linearized Exudyn model')
+    parser.add_argument('--method', choices=('analytical', 'exudyn'), default=None,
+                        help='analytical: eqs. (15)-(19) of the paper (default for the two-mass drive); exudyn: '
+                             'eigenvalues of the linearized Exudyn model (default, and the only choice, for a '
+                             'drive with a drive-side chain J4, ... or a worm axial bearing kA)')
+
+
+def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra: List[str]) -> int:
+    """A drive beyond two masses: the linearized Exudyn model of the whole drive, every contact state."""
+    from ..cli import BadInput
+    from ..linearization import LinearStabilityFromParameters
+    with StdoutToStderr(args.json), BadInput():
+        analysis = LinearStabilityFromParameters(parameters)
+    if args.json:
+        PrintJson({**analysis.ToDict(), 'method': 'exudyn', 'components': extra})
+        return 0
+    lines = [f"exudyn-worm stability: {SourceText(args)}, method exudyn (linearized Exudyn model of the whole "
+             f"drive: it has {' and '.join(extra)})", '']
+    for state in analysis.states.values():
+        verdict = 'stable' if state.stable else 'UNSTABLE'
+        lines.append(f"S = {', '.join(f'{s:+d}' for s in state.S)}: {verdict}, largest real part "
+                     f"{state.maxRealPart:.4g} 1/s")
+        lines.append(f"  {'f (Hz)':>9} {'Lehr D':>9} {'Re (1/s)':>10}  coordinates taking part (kinetic energy share)")
+        for mode in state.modes:
+            parts = ', '.join(f"{k} {mode.energyShare[k]:.0%}" for k in mode.Participants())
+            lines.append(f"  {mode.frequencyHz:9.2f} {_G(mode.lehrDamping, 4):>9} {mode.eigenvalue.real:10.4g}  {parts}")
+    lines.append('')
+    lines.append('Stable in every contact state.' if analysis.stable else
+                 'Unstable: the drive chatters where the unstable contact state occurs (S = -1: lowering).')
+    print('\n'.join(lines))
+    return 0
 
 
 def _Run(args: argparse.Namespace) -> int:
+    parameters = ParametersFromArgs(args)
+    extra = ExtraComponents(parameters)
+    if extra:
+        if args.method == 'analytical':
+            raise UsageError(f"--method analytical: eqs. (15)-(19) describe the two-mass drive of Figure 2; this "
+                             f"drive has {' and '.join(extra)}; use --method exudyn (the default for such a drive)")
+        return _RunWholeDrive(args, parameters, extra)
+    args.method = args.method or 'analytical'
     parameters, drive = DriveFromArgs(args)
     if args.method == 'exudyn':
         try:

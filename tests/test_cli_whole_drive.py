@@ -1,0 +1,44 @@
+"""`exudyn-worm stability` on drives beyond two masses: the whole drive is linearized, never silently reduced."""
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from exudyn_worm.linearization import LinearStabilityFromParameters
+from exudyn_worm.config import ResolveParameters
+
+ROOT = Path(__file__).resolve().parents[1]
+FIGURE19 = ROOT / 'examples' / 'drives' / 'figure19.toml'
+
+
+def _Run(tmp_path, *args):
+    return subprocess.run([sys.executable, '-m', 'exudyn_worm', 'stability', *args], capture_output=True, text=True,
+                          cwd=tmp_path)
+
+
+def test_chain_uses_the_linearized_whole_drive(tmp_path):
+    run = _Run(tmp_path, '--config', str(FIGURE19), '--json')
+    assert run.returncode == 0, run.stderr
+    data = json.loads(run.stdout)
+    assert data['method'] == 'exudyn' and data['components'] == ['a drive-side chain (J4, ...)']
+    assert 'inertia4' in data['coordinates']
+    expected = LinearStabilityFromParameters(ResolveParameters(config=FIGURE19))
+    assert data['stable'] is expected.stable is False
+    byS = {tuple(s['S']): s for s in data['states']}
+    assert byS[(-1,)]['maxRealPart'] == pytest.approx(expected.State(-1).maxRealPart, rel=1e-12)
+    assert len(byS[(1,)]['frequenciesHz']) == 3           # the third mode of inertia4 is there
+    table = _Run(tmp_path, '--config', str(FIGURE19))
+    assert table.returncode == 0 and 'method exudyn' in table.stdout and 'inertia4' in table.stdout
+    assert 'preset' not in table.stdout.splitlines()[0]    # a whole-drive file inherits no preset
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize('sets', [['--set', 'J4=0.05', '--set', 'k4=2e4'], ['--set', 'kA=7e8', '--set', 'mA=5']])
+def test_analytical_method_refuses_components_it_does_not_model(tmp_path, sets):
+    run = _Run(tmp_path, '--preset', 'reel-P1', *sets, '--method', 'analytical')
+    assert run.returncode == 2 and run.stdout == ''
+    assert run.stderr.startswith('exudyn-worm: error: --method analytical: eqs. (15)-(19) describe the two-mass')
+    assert 'use --method exudyn' in run.stderr and 'Traceback' not in run.stderr
+    assert len(run.stderr.strip().splitlines()) == 1
