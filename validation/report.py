@@ -133,6 +133,16 @@ def _Findings(summary: ValidationSummary) -> List[str]:
     ]
 
 
+def _Demoted(markdown: str) -> str:
+    """``markdown`` with every heading one level lower (outside code fences), to sit under the report's title."""
+    out, fence = [], False
+    for line in markdown.splitlines():
+        if line.lstrip().startswith('```'):
+            fence = not fence
+        out.append('#' + line if not fence and line.startswith('#') else line)
+    return '\n'.join(out)
+
+
 def Report(summary: ValidationSummary, groups: Sequence[CheckGroup], validationDir: Path) -> str:
     """The Markdown report of ``summary``.
 
@@ -165,8 +175,5 @@ def Report(summary: ValidationSummary, groups: Sequence[CheckGroup], validationD
         out += [f'## {title}', '', text]
     studies = Path(validationDir) / STUDIES_FILE
     if studies.is_file():
-        text = studies.read_text().strip()
-        if text.startswith('# '):
-            text = '## ' + text[2:]
-        out += [text, '']
+        out += [_Demoted(studies.read_text().strip()), '']
     return '\n'.join(out).rstrip() + '\n'
