@@ -19,7 +19,7 @@ from validation.runner import (KINDS, RULES, CheckGroup, HalfUnit, InputRounding
 #: - three exclusion rows whose rejected reading lies within the propagated rounding of the printed inputs
 #:   (issue 8, finding 2): the printed digits do not reject rho = 8 deg for mu = 0.134, dT = 0.741, u = 63.
 #: - six section 2.3 chart statements on the domain fixed in validation/README.md (every unstable set reaches the
-#:   domain's lower-left edges; the D_TV = 1 region ends at x = 5.0, not about 3).
+#:   domain's lower-left edges; the D_TV = 1 region ends at x = 5.2, not about 3).
 EXPECTED_FAILURES_QUICK = {'mu_28_from_rho', 'b1_28_dT0741', 'b4_28_u63',
                            'chart_bound_DTV1', 'chart_DTV1_smallest', 'chart_broadens_bigger_DTV', 'chart_small_x_broadens',
                            'chart_DV056_DTV25_vanishes', 'chart_DV056_DTV5_shorter'}
