@@ -41,6 +41,7 @@ import math
 import os
 import re
 import sys
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple
@@ -422,6 +423,11 @@ def BuildParser() -> argparse.ArgumentParser:
     return parser
 
 
+def _ShowWarning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Print a Python warning as one line ``exudyn-worm: warning: ...`` on stderr (no source path)."""
+    print(f"{PROG}: warning: {' '.join(str(message).split())}", file=sys.stderr)
+
+
 def Main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line; return the exit status.
 
@@ -438,7 +444,9 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     """
     try:
         args = BuildParser().parse_args(argv)
-        return int(args.run(args) or 0)
+        with warnings.catch_warnings():
+            warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
+            return int(args.run(args) or 0)
     except UsageError as err:
         message = ' '.join(str(err).split())
         print(f"{PROG}: error: {message}", file=sys.stderr)

@@ -42,3 +42,19 @@ def test_analytical_method_refuses_components_it_does_not_model(tmp_path, sets):
     assert run.stderr.startswith('exudyn-worm: error: --method analytical: eqs. (15)-(19) describe the two-mass')
     assert 'use --method exudyn' in run.stderr and 'Traceback' not in run.stderr
     assert len(run.stderr.strip().splitlines()) == 1
+
+
+def test_warnings_of_any_subcommand_read_as_one_line(capsys):
+    """A Python warning raised inside a subcommand is printed as `exudyn-worm: warning: ...`, without a path."""
+    import warnings
+    from exudyn_worm import cli
+    command = cli.Subcommand(name='warn-test', help='emits a warning', addArguments=lambda parser: None,
+                             run=lambda args: warnings.warn('something\n to note', UserWarning) or 0,
+                             parameterOptions=False)
+    cli.SUBCOMMANDS.append(command)
+    try:
+        assert cli.Main(['warn-test']) == 0
+    finally:
+        cli.SUBCOMMANDS.remove(command)
+    err = capsys.readouterr().err
+    assert err == 'exudyn-worm: warning: something to note\n'
