@@ -20,7 +20,7 @@ def Solve(preset: str, mode: str):
     """CPU seconds and Newton statistics of one solve of ``preset`` in ``mode`` ('one', 'chunks', 'bar')."""
     import exudyn as exu
     from exudyn_worm import GetPreset
-    from exudyn_worm.reelchanger import SOLVER_SETTINGS, BuildReelChanger, RotationPeriod, _ApplySolverOptions
+    from exudyn_worm.reelchanger import BuildReelChanger, RotationPeriod, SolverSettings
     from exudyn_worm.solve import SolveDynamicInChunks
     from exudyn_worm.stepsize import RecommendedStepSize
     p = GetPreset(preset)
@@ -28,13 +28,7 @@ def Solve(preset: str, mode: str):
     model = BuildReelChanger(p)
     mbs = model.mbs
     mbs.Assemble()
-    ss = exu.SimulationSettings()
-    ss.solution.file.write = False
-    ss.solution.sensors.writePeriod = h
-    ss.timeIntegration.endTime = endTime
-    ss.timeIntegration.numberOfSteps = int(round(endTime / h))
-    ss.timeIntegration.verboseMode = 0
-    solverType = _ApplySolverOptions(ss, SOLVER_SETTINGS, 'bench')
+    ss, solverType = SolverSettings(endTime, h, where='bench')
     printing, exu.config.printToConsole = exu.config.printToConsole, False
     buffer = io.StringIO()
     try:

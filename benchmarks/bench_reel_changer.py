@@ -47,8 +47,8 @@ import scipy                                         # noqa: E402
 import exudyn as exu                                 # noqa: E402
 import exudyn_worm                                   # noqa: E402
 from exudyn_worm.presets import GetPreset            # noqa: E402
-from exudyn_worm.reelchanger import (SOLVER_SETTINGS, BuildReelChanger, DefaultWindows,  # noqa: E402
-                                     RotationPeriod, SimulateReelChanger, _ApplySolverOptions)
+from exudyn_worm.reelchanger import (BuildReelChanger, DefaultWindows, RotationPeriod,  # noqa: E402
+                                     SimulateReelChanger, SolverSettings)
 from exudyn_worm.stepsize import RecommendedStepSize  # noqa: E402
 from scipy_reference import SolveReelChangerScipy    # noqa: E402
 from compiled_reference import CompiledReelChanger   # noqa: E402
@@ -403,18 +403,11 @@ def ProfileExudyn(presetName: str) -> Dict:
     model = BuildReelChanger(p)
     mbs = model.mbs
     mbs.Assemble()
-    ss = exu.SimulationSettings()
-    ss.solution.file.write = False
-    stepSize = RecommendedStepSize(p)
-    ss.solution.sensors.writePeriod = stepSize
-    ss.timeIntegration.endTime = endTime
-    ss.timeIntegration.numberOfSteps = int(round(endTime / stepSize))
-    ss.timeIntegration.verboseMode = 0
-    _ApplySolverOptions(ss, SOLVER_SETTINGS, 'ProfileExudyn')
+    ss, solverType = SolverSettings(endTime, RecommendedStepSize(p), where='ProfileExudyn')
     ss.show.computationTime = True                    # fills solver.timer (and prints the CPU-time table)
     with _QuietExudyn():
         t0 = time.perf_counter()
-        mbs.SolveDynamic(ss, solverType=exu.DynamicSolverType.GeneralizedAlpha)
+        mbs.SolveDynamic(ss, solverType=solverType)
         seconds = time.perf_counter() - t0
         check = SimulateReelChanger(p)
     solver = mbs.sys['dynamicSolver']

@@ -18,7 +18,7 @@ from exudyn_worm.contact import MATH_OPS, ContactOptions
 from exudyn_worm.drivetrain import CreateRotor, CreateRotorTorque
 from exudyn_worm.presets import DriveFromParameters
 from exudyn_worm.profiles import ConstantSpeed, GravityLeverTorque
-from exudyn_worm.reelchanger import SOLVER_SETTINGS, RotationPeriod, SteadyInitialState, _ApplySolverOptions
+from exudyn_worm.reelchanger import RotationPeriod, SolverSettings, SteadyInitialState
 from exudyn_worm.results import SimulationResult
 
 __all__ = ['SimulateTorqueDriven']
@@ -75,14 +75,8 @@ def SimulateTorqueDriven(parameters: Mapping[str, float], stepSize: float, endTi
     connector.AddSensors(mbs)
     mbs.Assemble()
 
-    ss = exu.SimulationSettings()
-    ss.solution.file.write = False
-    ss.solution.sensors.writePeriod = stepSize
-    ss.timeIntegration.endTime = endTime
-    ss.timeIntegration.numberOfSteps = int(round(endTime / stepSize))
-    ss.timeIntegration.verboseMode = 0
-    solver = _ApplySolverOptions(ss, {**SOLVER_SETTINGS, **(solverOptions or {}), 'solverType': solverType},
-                                 'SimulateTorqueDriven')
+    ss, solver = SolverSettings(endTime, stepSize, {**(solverOptions or {}), 'solverType': solverType},
+                                'SimulateTorqueDriven')
     printing = exu.config.printToConsole
     exu.config.printToConsole = False
     try:

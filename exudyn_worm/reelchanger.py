@@ -29,7 +29,8 @@ from ._checks import CheckPositive
 from ._roots import FindRoot
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
-           'SteadyInitialState', 'CheckRunSize', 'DEFAULT_STEP_SIZE', 'SOLVER_SETTINGS', 'MAX_STEPS']
+           'SteadyInitialState', 'CheckRunSize', 'SolverSettings', 'DEFAULT_STEP_SIZE', 'SOLVER_SETTINGS',
+           'MAX_STEPS']
 
 #: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change
 #: < 1 % when it is halved, see validation/REPORT.md); SimulateReelChanger's default is the drive's own
@@ -337,6 +338,44 @@ def _ApplySolverOptions(ss, options: Mapping[str, Any], where: str):
     return getattr(exu.DynamicSolverType, str(name))
 
 
+def SolverSettings(endTime: float, stepSize: float, solverOptions: Optional[Mapping[str, Any]] = None,
+                   where: str = 'SolverSettings'):
+    """The ``exudyn.SimulationSettings`` of :func:`SimulateReelChanger`: one place for the run settings.
+
+    Nothing is written to disk, sensors store every step, Exudyn is silent, and :data:`SOLVER_SETTINGS`
+    (overridden by ``solverOptions``) is applied.
+
+    Parameters
+    ----------
+    endTime : float
+        Simulated time in s, > 0.
+    stepSize : float
+        Time step in s, > 0 (the number of steps is ``round(endTime / stepSize)``, at least 1).
+    solverOptions : mapping, optional
+        Dotted ``SimulationSettings`` paths and values, and optionally ``'solverType'`` (the name of an
+        ``exudyn.DynamicSolverType``), applied over :data:`SOLVER_SETTINGS`.
+    where : str, optional
+        Name used in error messages.
+
+    Returns
+    -------
+    (exudyn.SimulationSettings, exudyn.DynamicSolverType)
+
+    Raises
+    ------
+    ValueError
+        For a ``solverOptions`` key that is not a settings path or an unknown solver type.
+    """
+    import exudyn as exu
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False                 # never litter the user's current directory
+    ss.solution.sensors.writePeriod = stepSize
+    ss.timeIntegration.endTime = endTime
+    ss.timeIntegration.numberOfSteps = max(1, int(round(endTime / stepSize)))
+    ss.timeIntegration.verboseMode = 0
+    return ss, _ApplySolverOptions(ss, {**SOLVER_SETTINGS, **(solverOptions or {})}, where)
+
+
 def _LikelyCause(drive: ElasticDrive, stepSize: float) -> str:
     """Why a run of ``drive`` at ``stepSize`` may have failed, from the linearized drive's fastest eigenvalue."""
     from .stability import CharacteristicCoefficients, EigenvaluesFromPolynomial
@@ -404,13 +443,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
     mbs = model.mbs
     mbs.Assemble()
-    ss = exu.SimulationSettings()
-    ss.solution.file.write = False                 # never litter the user's current directory
-    ss.solution.sensors.writePeriod = stepSize
-    ss.timeIntegration.endTime = endTime
-    ss.timeIntegration.numberOfSteps = steps
-    ss.timeIntegration.verboseMode = 0
-    solverType = _ApplySolverOptions(ss, {**SOLVER_SETTINGS, **(solverOptions or {})}, w)
+    ss, solverType = SolverSettings(endTime, stepSize, solverOptions, w)
     printing = exu.config.printToConsole
     exu.config.printToConsole = False   # silences Exudyn's note on ObjectGenericODE2 allocations per step
     try:

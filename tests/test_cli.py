@@ -31,14 +31,8 @@ def RunJson(capsys, *argv):
     return json.loads(out)
 
 
-@pytest.fixture(autouse=True)
-def _EmptyWorkingDirectory(tmp_path, monkeypatch):
-    """Run every test in an empty directory and check that nothing was written to it."""
-    cwd = tmp_path / 'cwd'
-    cwd.mkdir()
-    monkeypatch.chdir(cwd)
-    yield
-    assert list(cwd.iterdir()) == []
+# every test runs in an empty directory and checks that nothing was written to it (conftest)
+pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
 
 # --- JSON output -----------------------------------------------------------------------------------

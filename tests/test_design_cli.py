@@ -19,14 +19,8 @@ def Json(capsys, *argv):
     return json.loads(out)
 
 
-@pytest.fixture(autouse=True)
-def _EmptyWorkingDirectory(tmp_path, monkeypatch):
-    """Nothing is written to the current directory."""
-    cwd = tmp_path / 'cwd'
-    cwd.mkdir()
-    monkeypatch.chdir(cwd)
-    yield
-    assert list(cwd.iterdir()) == []
+# every test runs in an empty directory and checks that nothing was written to it (conftest)
+pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
 
 def test_check_p1_json(capsys):

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from exudyn_worm import GetPreset, SimulateReelChanger
-from exudyn_worm.reelchanger import SOLVER_SETTINGS, BuildReelChanger, _ApplySolverOptions
+from exudyn_worm.reelchanger import BuildReelChanger, SolverSettings
 
 
 def _Plain(parameters, endTime, stepSize):
@@ -13,13 +13,7 @@ def _Plain(parameters, endTime, stepSize):
     model = BuildReelChanger(parameters)
     mbs = model.mbs
     mbs.Assemble()
-    ss = exu.SimulationSettings()
-    ss.solution.file.write = False
-    ss.solution.sensors.writePeriod = stepSize
-    ss.timeIntegration.endTime = endTime
-    ss.timeIntegration.numberOfSteps = int(round(endTime / stepSize))
-    ss.timeIntegration.verboseMode = 0
-    solverType = _ApplySolverOptions(ss, SOLVER_SETTINGS, 'test')
+    ss, solverType = SolverSettings(endTime, stepSize)
     printing, exu.config.printToConsole = exu.config.printToConsole, False
     try:
         mbs.SolveDynamic(ss, solverType=solverType)
