@@ -7,13 +7,13 @@ carrying the simulated time reached. When a progress bar is shown (:func:`exudyn
 so the bar follows a long run without a per-step Python callback; without a bar it runs Exudyn's own
 ``SolveSystem`` in one piece.
 
-Costs and differences (benchmarks/bench_chunked_solve.py, CPU seconds, min of 5, loaded 2-core machine):
-driving the solver from Python (``InitializeSolver``/``SolveSteps``/``FinalizeSolver``) costs 7-11 % more
-CPU than ``SolveSystem`` with identical Newton counts, whether in one chunk or six; the chunks themselves
-cost nothing measurable. So a run with a bar is about 10 % slower (not the 2 % aimed at), and a run without
-one is exactly as before. Chunking restarts the modified-Newton Jacobian at each chunk start: with a bar the
-results agree with the one-piece run to the Newton tolerance (P1 states 1e-5 relative before the chatter,
-window peaks of P1 and P7 within 0.1 %), not bit for bit.
+Costs and differences (benchmarks/bench_chunked_solve.py, CPU seconds, min of 5, idle 2-core machine):
+with a bar the solve costs 0.94x (P1) and 1.006x (P7) of one ``SolveSystem`` call. ``SolveSystem`` switches
+Exudyn's per-step solver timers off (unless ``displayComputationTime``); ``InitializeSolver`` leaves them on,
+which made a chunked run 7-16 % slower until the timers were switched off here as well. Chunking restarts the
+modified-Newton Jacobian at each chunk start: with a bar the results agree with the one-piece run to the
+Newton tolerance (P1 states 1e-5 relative before the chatter, window peaks of P1 and P7 within 0.1 %), not
+bit for bit; without a bar the run is exactly Exudyn's ``SolveSystem``.
 """
 from __future__ import annotations
 
@@ -78,7 +78,7 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
     progress : bool or None
         Progress bar on stderr over simulated time: True shown, False never, None (default) shown when
         stderr is a terminal and the run takes longer than about 2 s. With a bar the run is chunked
-        (about 10 % slower, results equal to the Newton tolerance); without one it is a single solve.
+        (as fast, results equal to the Newton tolerance); without one it is a single solve.
     desc : str
         Label of the progress bar.
     chunkSteps : int
@@ -128,7 +128,7 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
                                    reached, T, h)
     quiet = None if progress is None else not progress
     try:
-        if not ProgressEnabled(quiet):           # no bar: Exudyn's own loop, about 10 % faster than driving it
+        if not ProgressEnabled(quiet):           # no bar: Exudyn's own loop, bit for bit as before
             try:
                 ok = solver.SolveSystem(mbs, ss)
             except exu.ExudynError as err:
@@ -141,6 +141,11 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
                                     '[{elapsed}<{remaining}]') as bar:
             try:
                 ok = solver.InitializeSolver(mbs, ss)
+                # SolveSystem switches Exudyn's per-step timers off unless asked for; InitializeSolver leaves
+                # them on, and their clock reads made a chunked run 7-16 % slower
+                timer = solver.timer
+                timer.Reset(ss.displayComputationTime)
+                solver.timer = timer
                 mbs.sys['dynamicSolverSteps'] = 0        # steps taken in all chunks (it.currentStepIndex restarts)
                 for k in range(1, chunks + 1):
                     if not ok:
