@@ -290,6 +290,15 @@ OLD_SETTINGS = {'timeIntegration.newton.maxIterations': 25, 'timeIntegration.new
 _N10 = {'timeIntegration.newton.maxIterations': 10, 'timeIntegration.newton.relativeTolerance': 1e-6}
 
 
+class _MotorAngleByUserFunction:
+    """The default constant motor speed, but not a ConstantSpeed: prescribed on position level by symbolic
+    offset user functions (how the motor was driven before the velocity-level constraint)."""
+
+    def __init__(self, speed: float):
+        from exudyn_worm.profiles import ConstantSpeed
+        self.AngleAndSpeed = ConstantSpeed(speed).AngleAndSpeed
+
+
 def _Levers(p, h):
     """(label, run) of every lever of ``--levers`` for parameter set ``p`` with our default step ``h``."""
     rho = lambda r: {**_N10, 'timeIntegration.generalizedAlpha.spectralRadius': r}
@@ -305,6 +314,10 @@ def _Levers(p, h):
         ('spectral radius 0.8 (h 5e-4)', Sim(stepSize=5e-4, solverOptions=rho(0.8))),
         ('spectral radius 0.6 (h 5e-4)', Sim(stepSize=5e-4, solverOptions=rho(0.6))),
         (f'NEW DEFAULT: step from the drive h {h:.3g}, rho 0.8, Newton 10/1e-6', Sim()),
+        ('motor angle by offset user functions (before the velocity-level motor constraint)',
+         Sim(profile=_MotorAngleByUserFunction(p['motorSpeed']))),
+        ('Newton rtol 1e-5 (drive step, rho 0.8, 10 it.)', Sim(solverOptions={
+            'timeIntegration.newton.relativeTolerance': 1e-5})),
         ('step 1e-3 (new settings)', Sim(stepSize=1e-3)),
         ('sensors every 10th step (new default)', Sim(solverOptions={'solution.sensors.writePeriod': 10 * h})),
         ('frictionSpeed 0.2 rad/s instead of 0.05 (law change)', Sim(contactOptions=ContactOptions(frictionSpeed=0.2))),

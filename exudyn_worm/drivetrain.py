@@ -82,7 +82,9 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
     """Prescribe the rotation of ``rotor`` to ``profile`` (e.g. :class:`~exudyn_worm.profiles.ConstantSpeed`).
 
     Uses a ``CoordinateConstraint`` to ground with an offset user function, which the implicit
-    solvers (generalized-alpha, trapezoidal index 2) honour. Explicit solvers ignore it (they pin the
+    solvers (generalized-alpha, trapezoidal index 2) honour. A :class:`~exudyn_worm.profiles.ConstantSpeed`
+    whose initial angle and speed the rotor already has is prescribed on velocity level instead
+    (``velocityLevel=True``, ``offset`` = the speed): the same motion without a user function. Explicit solvers ignore it (they pin the
     coordinate to 0): use an implicit solver, or a stiff shaft to a driven rotor.
 
     Parameters
@@ -113,13 +115,31 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
     marker = _Marker(rotor, w, 'rotor')
     if not hasattr(profile, 'AngleAndSpeed'):
         raise TypeError(f"{w}: 'profile' must have AngleAndSpeed(t, ops) (e.g. ConstantSpeed), got {type(profile).__name__}")
-    if useSymbolic:                    # before anything is added: a law recorded wrongly is refused
+    constantSpeed = _ConstantSpeedFromStart(mbs, rotor, profile)
+    if useSymbolic and constantSpeed is None:   # before anything is added: a law recorded wrongly is refused
         CheckOffsetLaw(w, profile.AngleAndSpeed)
     nGround = mbs.AddNode(NodePointGround())
     mGround = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nGround, coordinate=0))
-    o = mbs.AddObject(CoordinateConstraint(markerNumbers=[mGround, marker], name=name))
-    SetOffsetFunction(mbs, o, profile.AngleAndSpeed, useSymbolic=useSymbolic, check=False)
+    if constantSpeed is not None:
+        # phi0' = speed with phi0(0) already right: the same motion without user functions, 5-7 % faster
+        # (benchmarks/README.md, lever 'velocity-level motor constraint')
+        o = mbs.AddObject(CoordinateConstraint(markerNumbers=[mGround, marker], velocityLevel=True,
+                                               offset=constantSpeed, name=name))
+    else:
+        o = mbs.AddObject(CoordinateConstraint(markerNumbers=[mGround, marker], name=name))
+        SetOffsetFunction(mbs, o, profile.AngleAndSpeed, useSymbolic=useSymbolic, check=False)
     return {'objectNumber': o, 'groundNodeNumber': nGround}
+
+
+def _ConstantSpeedFromStart(mbs, rotor, profile):
+    """The speed of a :class:`~exudyn_worm.profiles.ConstantSpeed` profile if the rotor starts exactly on it
+    (initial angle and speed equal the profile's), else None (then the angle is prescribed by a user function)."""
+    from .profiles import ConstantSpeed
+    if type(profile) is not ConstantSpeed:
+        return None
+    node = mbs.GetNode(rotor['nodeNumber'])
+    angle, speed = float(node['initialCoordinates'][0]), float(node['initialVelocities'][0])
+    return profile.speed if (angle, speed) == (profile.initialAngle, profile.speed) else None
 
 
 def CreateRotorTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True) -> Dict[str, Any]:

@@ -9,7 +9,7 @@ so the bar follows a long run without a per-step Python callback; without a bar 
 
 Costs and differences (benchmarks/bench_chunked_solve.py, CPU seconds, min of 5, idle 2-core machine):
 with a bar the solve costs 0.94x (P1) and 1.006x (P7) of one ``SolveSystem`` call. ``SolveSystem`` switches
-Exudyn's per-step solver timers off (unless ``displayComputationTime``); ``InitializeSolver`` leaves them on,
+Exudyn's per-step solver timers off (unless ``show.computationTime``); ``InitializeSolver`` leaves them on,
 which made a chunked run 7-16 % slower until the timers were switched off here as well. Chunking restarts the
 modified-Newton Jacobian at each chunk start: with a bar the results agree with the one-piece run to the
 Newton tolerance (P1 states 1e-5 relative before the chatter, window peaks of P1 and P7 within 0.1 %), not
@@ -144,7 +144,7 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
                 # SolveSystem switches Exudyn's per-step timers off unless asked for; InitializeSolver leaves
                 # them on, and their clock reads made a chunked run 7-16 % slower
                 timer = solver.timer
-                timer.Reset(ss.displayComputationTime)
+                timer.Reset(ss.show.computationTime)
                 solver.timer = timer
                 mbs.sys['dynamicSolverSteps'] = 0        # steps taken in all chunks (it.currentStepIndex restarts)
                 for k in range(1, chunks + 1):

@@ -159,3 +159,37 @@ def test_custom_torque_law_as_callable(useSymbolic):
     _Solve(mbs, 1.)
     omega = mbs.GetNodeOutput(rotor['nodeNumber'], exu.OutputVariableType.Coordinates_t)
     assert omega == pytest.approx((0.5 * 10. * 0.5**2 + 5. * 0.5) / 2., rel=1e-3)   # ramp to 5 N*m at 0.5 s
+
+
+class _SameLaw:
+    """A profile object with the law of ``profile`` that is not a ConstantSpeed."""
+
+    def __init__(self, profile):
+        self.AngleAndSpeed = profile.AngleAndSpeed
+
+
+@pytest.mark.parametrize('initialAngle, velocityLevel', [(0.3, True), (0., False)])
+def test_constant_speed_on_velocity_level_is_the_same_motion(initialAngle, velocityLevel):
+    """A ConstantSpeed whose initial state the rotor has is prescribed on velocity level, without a user
+    function; the worm then moves as with the angle prescribed by a user function. A rotor that does not
+    start on the profile keeps the angle constraint (which moves it onto the profile)."""
+    from exudyn_worm.drivetrain import _ConstantSpeedFromStart
+    drive = ew.DriveFromParameters(ew.GetPreset('reel-P1'))
+    speeds = []
+    for forceUserFunction in (False, True):
+        SC = exu.SystemContainer()
+        mbs = SC.AddSystem()
+        motor = ew.CreateRotor(mbs, 1e-3, initialAngle=initialAngle, initialSpeed=20.)
+        worm = ew.CreateRotor(mbs, drive.J1, initialAngle=initialAngle, initialSpeed=20.)
+        profile = ConstantSpeed(20., initialAngle=0.3)
+        if forceUserFunction:              # the same law, not a ConstantSpeed: prescribed by a user function
+            profile = _SameLaw(profile)
+        c = ew.CreatePrescribedRotation(mbs, motor, profile)
+        assert mbs.GetObject(c['objectNumber'])['velocityLevel'] is (velocityLevel and not forceUserFunction)
+        ew.CreateShaft(mbs, [motor, worm], stiffness=drive.kT, damping=drive.dT)
+        sensor = mbs.AddSensor(exu.itemInterface.SensorNode(nodeNumber=worm['nodeNumber'], storeInternal=True,
+                                                            outputVariableType=exu.OutputVariableType.Coordinates))
+        _Solve(mbs, 0.2)
+        speeds.append(mbs.GetSensorStoredData(sensor)[:, 1])
+    assert (_ConstantSpeedFromStart(mbs, motor, ConstantSpeed(20., initialAngle=0.3)) is not None) is velocityLevel
+    np.testing.assert_allclose(speeds[0], speeds[1], rtol=0, atol=1e-9 * np.max(np.abs(speeds[1])))

@@ -78,17 +78,17 @@ def test_explicit_solver_runs_in_one_piece():
     assert result.time.size == 101 and np.all(np.diff(result.time) > 0)
 
 
-@pytest.mark.parametrize('displayComputationTime', [False, True])
-def test_chunked_solve_switches_timers_as_solve_system_does(displayComputationTime, capsys):
+@pytest.mark.parametrize('computationTime', [False, True])
+def test_chunked_solve_switches_timers_as_solve_system_does(computationTime, capsys):
     """Exudyn's per-step timers made a chunked (progress bar) run 7-16 % slower: they are off in a chunked run
-    exactly when SolveSystem switches them off (displayComputationTime False)."""
+    exactly when SolveSystem switches them off (show.computationTime False)."""
     import exudyn as exu
     from exudyn_worm.solve import SolveDynamicInChunks
     timers = []
     for progress in (True, False):
         model = BuildReelChanger(GetPreset('reel-P1'))
         ss, solverType = SolverSettings(0.02, 5e-4)
-        ss.displayComputationTime = displayComputationTime
+        ss.show.computationTime = computationTime
         printing, exu.config.printToConsole = exu.config.printToConsole, False
         try:
             solver = SolveDynamicInChunks(model.mbs, ss, solverType, progress=progress, chunkSteps=10)
@@ -96,4 +96,4 @@ def test_chunked_solve_switches_timers_as_solve_system_does(displayComputationTi
             exu.config.printToConsole = printing
         timers.append(solver.timer.useTimer)
     capsys.readouterr()
-    assert timers == [displayComputationTime, displayComputationTime]
+    assert timers == [computationTime, computationTime]
