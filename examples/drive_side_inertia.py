@@ -414,6 +414,7 @@ def _WriteFigures(run: Dict[str, Any], outDir: Path) -> List[Path]:
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
+    from exudyn_worm.plot import S_SIGN_LABEL, S_SIGN_NOTE
     paths = []
     fig, ax = plt.subplots(figsize=(7, 4))
     for scan in run['scans']:
@@ -430,11 +431,17 @@ def _WriteFigures(run: Dict[str, Any], outDir: Path) -> List[Path]:
     m = (r.time >= ZOOM[0]) & (r.time <= ZOOM[1])
     fig, axes = plt.subplots(3, 1, sharex=True, figsize=(7, 6))
     for ax, key, label in ((axes[0], 'alpha1', r'$\ddot\varphi_1$ (worm) [rad/s²]'),
-                           (axes[1], 'alpha4', r'$\ddot\varphi_4$ (inertia4) [rad/s²]'), (axes[2], 'S', 'S')):
-        ax.plot(r.time[m], r.series[key][m], lw=1.8 if key == 'S' else 1.)
+                           (axes[1], 'alpha4', r'$\ddot\varphi_4$ (inertia4) [rad/s²]')):
+        ax.plot(r.time[m], r.series[key][m], lw=1.)
         ax.set_ylabel(label)
-    axes[-1].set_xlabel('time [s]')
-    axes[0].set_title('Figure 20: accelerations of inertia1, inertia4 and S (lowering)')
+    # the paper's S = +-1: the sign of the regularized S, as in Figures 9, 14 and 16
+    axes[2].plot(r.time[m], np.sign(r.series['S'][m]), color='tab:red', lw=1.2, drawstyle='steps-post')
+    axes[2].set(ylabel=S_SIGN_LABEL, yticks=[-1, 0, 1], ylim=(-1.4, 1.4), xlabel='time [s]')
+    axes[2].text(0., -0.45, S_SIGN_NOTE, transform=axes[2].transAxes, fontsize=7, color='0.3', va='top')
+    for ax in axes:
+        ax.grid(True, color='0.85', lw=0.5)
+    axes[0].set_title(f"Figure 20: worm, inertia4 and S while lowering (P1, J4 = {run['parameters']['J4']:g} kg·m², "
+                      f"k4 = {run['parameters']['k4'] / 1e3:.3g} kN·m/rad)", fontsize=10)
     paths.append(outDir / 'fig20_accelerations.png')
     fig.tight_layout(), fig.savefig(paths[-1], dpi=120), plt.close(fig)
 

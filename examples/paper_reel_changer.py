@@ -319,17 +319,16 @@ class _Parser1Line(argparse.ArgumentParser):
 
 
 def _Parser() -> argparse.ArgumentParser:
-    p = _Parser1Line(prog='paper_reel_changer.py', description=__doc__.split('\n\n')[0],
-                                formatter_class=argparse.ArgumentDefaultsHelpFormatter)
-    p.add_argument('--preset', default='reel-P1', help='parameter set of Figures 8-12 (reel-P1 ... reel-P7)')
+    p = _Parser1Line(prog='paper_reel_changer.py', description=__doc__.split('\n\n')[0])
+    p.add_argument('--preset', default='reel-P1', help='parameter set of Figures 8-12, reel-P1 ... reel-P7 (default: reel-P1)')
     p.add_argument('--backlash', type=float, default=0., metavar='MM',
-                   help='backlash in mm of the single-case figures (8-11, 13-16, 18)')
-    p.add_argument('--speed', type=float, default=None, metavar='RPM', help='motor speed in rpm (paper: 472.5)')
-    p.add_argument('--load', type=float, default=None, metavar='KG', help='reel mass in kg (paper: 175)')
+                   help='backlash in mm of the single-case figures 8-11, 13-16, 18 (default: 0)')
+    p.add_argument('--speed', type=float, default=None, metavar='RPM', help="motor speed in rpm (default: the preset's, the paper's 472.5)")
+    p.add_argument('--load', type=float, default=None, metavar='KG', help="reel mass in kg (default: the preset's, the paper's 175)")
     p.add_argument('--end-time', type=float, default=None, metavar='S',
                    help='simulated time in s (default: one full rotation)')
     p.add_argument('--out', default='reel_changer_output', metavar='DIR',
-                   help='folder for the PNG files (created if missing)')
+                   help='folder for the PNG files, created if missing (default: reel_changer_output)')
     p.add_argument('--figures', type=_ParseFigures, default=None, metavar='LIST',
                        help="paper figures to draw, e.g. '8,9,12' or 'all' (default: all, 8-18)")
     p.add_argument('--quiet', action='store_true', help='no progress bar on stderr')

@@ -164,11 +164,10 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     argv : sequence of str, optional
         Arguments (default: ``sys.argv[1:]``).
     """
-    parser = _Parser1Line(prog='stability_charts.py', description=__doc__.split('\n\n')[0],
-                          formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    parser = _Parser1Line(prog='stability_charts.py', description=__doc__.split('\n\n')[0])
     parser.add_argument('--out', required=True, metavar='DIR', help='folder for the PNG files (created if missing)')
     parser.add_argument('--resolution', type=int, default=RESOLUTION, metavar='N',
-                        help='grid points per axis of Figures 4 and 5')
+                        help=f'grid points per axis of Figures 4 and 5 (default: {RESOLUTION})')
     args = parser.parse_args(argv)
     try:
         if not 2 <= args.resolution <= 20000:

@@ -524,20 +524,22 @@ class DesignCheckResult:
             data['simulatedChatterWhileLowering'] = self.simulatedChatter
         return data
 
-    def plot(self, ax=None):
+    def plot(self, ax=None, title: str = ''):
         """Draw the drive's point, the stability boundary and the recommended moves on the chart.
 
         Parameters
         ----------
         ax : matplotlib.axes.Axes, optional
             Axes to draw into (default: a new figure).
+        title : str, optional
+            First title line, e.g. the drive's name.
 
         Returns
         -------
         matplotlib.figure.Figure
         """
         from .plot_design import PlotDesignCheck
-        return PlotDesignCheck(self, ax=ax)
+        return PlotDesignCheck(self, ax=ax, title=title)
 
 
 def _Changed(parameters, changes):

@@ -30,7 +30,8 @@ from typing import Any, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-__all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'MEAN_WINDOW', 'PlotSimulation', 'PlotComparison', 'SaveFigure']
+__all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'MEAN_WINDOW', 'S_SIGN_LABEL', 'S_SIGN_NOTE', 'PlotSimulation',
+           'PlotComparison', 'SaveFigure']
 
 #: the kinds :func:`PlotSimulation` draws
 PLOT_KINDS = ('overview', 'acceleration', 'zoom', 'speed', 'normalForce', 'driveTorque')
@@ -159,9 +160,10 @@ def _Decorate(ax, interval):
 
 
 #: label of the contact state as drawn: the paper's S = +-1 (eq. (8)) is the sign of the regularized S
-_S_LABEL = r'contact state sign$(S)$'
-_S_NOTE = (r"$S = \sigma s_f$ is regularized (|S| < 1 while $|\dot\varphi_1|$ < frictionSpeed); "
-           r"drawn: its sign, the paper's $S = \pm 1$")
+S_SIGN_LABEL = _S_LABEL = r'contact state sign$(S)$'
+#: the note under every figure that draws sign(S) (for your own figures of ``result.series['S']`` too)
+S_SIGN_NOTE = _S_NOTE = (r"$S = \sigma s_f$ is regularized (|S| < 1 while $|\dot\varphi_1|$ < frictionSpeed); "
+                         r"drawn: its sign, the paper's $S = \pm 1$")
 
 
 def _ContactSign(result, mask):

@@ -13,7 +13,7 @@ __all__ = ['PlotDesignCheck']
 _C_PLUS, _C_POINT, _C_MOVE, _C_PAIR = '#b9770e', '#1f4e79', '#2e7d32', '#8e24aa'
 
 
-def PlotDesignCheck(result, ax=None):
+def PlotDesignCheck(result, ax=None, title: str = ''):
     """Draw a :class:`~exudyn_worm.design.DesignCheckResult` on the chart plane (x = kT/(kV r1^2), y = J1/J2).
 
     The drive's stability charts at its D_V and D_TV (:func:`~exudyn_worm.design.LocalCharts`, drawn with
@@ -29,6 +29,8 @@ def PlotDesignCheck(result, ax=None):
         From :func:`~exudyn_worm.design.DesignCheck`.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into (default: a new figure).
+    title : str, optional
+        First title line, e.g. the drive's name (the check's D_V, D_TV and margin follow).
 
     Returns
     -------
@@ -60,8 +62,15 @@ def PlotDesignCheck(result, ax=None):
         ax.annotate('', xy=(q['x'], q['y']), xytext=(p['x'], p['y']),
                     arrowprops=dict(arrowstyle='->', color=_C_MOVE, lw=1.5), zorder=4)
         ax.plot(q['x'], q['y'], 's', color=_C_MOVE, ms=5, zorder=5)
-        ax.annotate(' = '.join(labels), xy=(q['x'], q['y']), xytext=(4, 4), textcoords='offset points',
-                    fontsize=8, color=_C_MOVE)
+        # the label beyond the arrow's end, away from the arrow, on a white ground (it may cross a boundary)
+        right = q['x'] >= p['x'] if abs(math.log10(q['x'] / p['x'])) > 1e-9 else True
+        up = q['y'] > p['y']
+        vertical = abs(math.log10(q['y'] / p['y'])) > abs(math.log10(q['x'] / p['x']))
+        offset = (8, 0) if vertical else ((8 if right else -8), 0)
+        ax.annotate(' = '.join(labels), xy=(q['x'], q['y']), xytext=offset, textcoords='offset points',
+                    fontsize=8, color=_C_MOVE, ha='left' if (vertical or right) else 'right',
+                    va=('bottom' if up else 'top') if vertical else 'center', zorder=6,
+                    bbox=dict(boxstyle='round,pad=0.15', fc='white', ec='none', alpha=0.85))
     if result.bestPair is not None:
         q = result.bestPair.chartPointAfter
         ax.annotate('', xy=(q['x'], q['y']), xytext=(p['x'], p['y']),
@@ -69,7 +78,7 @@ def PlotDesignCheck(result, ax=None):
         ax.plot(q['x'], q['y'], 'D', color=_C_PAIR, ms=5, zorder=5, label='best pair: ' + ', '.join(
             f'{k} x{f:.3g}' if f >= 1 else f'{k} /{1 / f:.3g}'
             for k, f in zip(result.bestPair.parameters, result.bestPair.factors)))
-    ax.set_title(f"Design check at D_V = {_Fmt(p['DV'])}, D_TV = {_Fmt(p['DTV'])} "
+    ax.set_title((f"{title}\n" if title else '') + f"Design check at D_V = {_Fmt(p['DV'])}, D_TV = {_Fmt(p['DTV'])} "
                  f"(margin {result.margin:g} decades)", fontsize=10)
     ax.legend(fontsize=8, loc='lower right')
     return fig

@@ -62,7 +62,7 @@ def _Axes(ax, figsize):
 
 
 def PlotMetric(result, x: str, metric: str = 'w1.maxAbsWheelAcceleration', ax=None, title: Optional[str] = None,
-               label: Optional[str] = None):
+               label: Optional[str] = None, subtitle: str = ''):
     """A metric of every run against one varied parameter; one line per combination of the other varied
     parameters; filled markers where the metric's window chatters, open ones where it does not.
 
@@ -80,6 +80,8 @@ def PlotMetric(result, x: str, metric: str = 'w1.maxAbsWheelAcceleration', ax=No
         Axes title.
     label : str, optional
         Legend label of the study (prefixed to the values of the other varied keys).
+    subtitle : str, optional
+        Second line of the default title, e.g. the study's preset and fixed keys.
 
     Returns
     -------
@@ -108,6 +110,9 @@ def PlotMetric(result, x: str, metric: str = 'w1.maxAbsWheelAcceleration', ax=No
         chatter = np.array([bool(r.get(f'{window}.chatter')) for r in rows]) if window else np.zeros(len(rows), bool)
         ax.plot(xs[chatter], ys[chatter], 'o', color=color, ms=5)
         ax.plot(xs[~chatter], ys[~chatter], 'o', mfc='white', color=color, ms=5)
+    if not ax.lines:                    # every run failed or lacks the metric: say so instead of empty axes
+        ax.text(0.5, 0.5, f'no successful run with a value of {metric}', transform=ax.transAxes,
+                ha='center', va='center', color='0.3')
     if _IsLog([r[x] for r in result.rows]):
         ax.set_xscale('log')
     ax.set_xlabel(xLabel)
@@ -115,7 +120,8 @@ def PlotMetric(result, x: str, metric: str = 'w1.maxAbsWheelAcceleration', ax=No
     ax.grid(True, alpha=0.3)
     if others or label:
         ax.legend(fontsize='small')
-    ax.set_title(title or f'{metric} against {x} (filled: chatter in {window or "the window"})', fontsize='medium')
+    ax.set_title(title or (f'{metric} against {x} (filled: chatter in {window or "the window"})'
+                           + (f'\n{subtitle}' if subtitle else '')), fontsize='medium')
     return fig
 
 
@@ -170,7 +176,7 @@ def _Chart(base, x, xValues, y, yValues, resolution):
 
 
 def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str, Tuple[float, float]]] = None,
-                   resolution: int = 60, title: Optional[str] = None):
+                   resolution: int = 60, title: Optional[str] = None, subtitle: str = ''):
     """Chatter while lowering of every run over two varied parameters, over the analytical S = -1 region.
 
     The shaded region and its boundary line are where the linear model (eqs. (15)-(16), S = -1) predicts
@@ -192,7 +198,9 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
     resolution : int, optional
         Points per axis of the analytical grid (the stability chart is vectorized and gets at least 300).
     title : str, optional
-        Axes title.
+        Axes title (default: what is drawn and the agreement).
+    subtitle : str, optional
+        Second line of the default title, e.g. the study's preset and fixed keys.
 
     Returns
     -------
@@ -207,9 +215,18 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
     logX, logY = _IsLog(xs), _IsLog(ys)
     def grid(v, log):
         lo, hi = np.nanmin(v), np.nanmax(v)
+        n = len(np.unique(np.asarray(v)[np.isfinite(v)]))
         if lo == hi:                                    # one value only: show a factor 2 around it
             lo, hi = (lo / 2, hi * 2) if lo > 0 else (lo - 1, hi + 1)
-        return np.geomspace(lo, hi, resolution) if log or (lo > 0 and hi / lo > 50) else np.linspace(lo, hi, resolution)
+        log = log or (lo > 0 and hi / lo > 50)
+        if n > 1:                                       # half a grid step beyond the outer runs: no clipped markers
+            if log:
+                pad = (hi / lo) ** (0.5 / (n - 1))
+                lo, hi = lo / pad, hi * pad
+            else:
+                pad = (hi - lo) / (2 * (n - 1))
+                lo, hi = (lo - pad if lo <= 0 or lo > pad else lo / 2), hi + pad   # a positive key stays positive
+        return np.geomspace(lo, hi, resolution) if log else np.linspace(lo, hi, resolution)
 
     gx, gy = grid(xs, logX), grid(ys, logY)
     (xLabel, xf), (yLabel, yf) = AxisLabel(x), AxisLabel(y)
@@ -247,11 +264,14 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
         ax.set_xscale('log')
     if logY:
         ax.set_yscale('log')
+    ax.set_xlim(gx[0] * xf, gx[-1] * xf)
+    ax.set_ylim(gy[0] * yf, gy[-1] * yf)
     ax.set_xlabel(xLabel)
     ax.set_ylabel(yLabel)
     agreement = result.agreement
-    ax.set_title(title or ('Chatter while lowering: simulation over the analytical chart\n'
-                           + ('' if agreement is None else f' (agreement {100 * agreement:.0f} %)')),
+    ax.set_title(title or ('Chatter while lowering: simulation over the analytical chart'
+                           + ('' if agreement is None else f' (agreement {100 * agreement:.0f} %)')
+                           + (f'\n{subtitle}' if subtitle else '')),
                  fontsize='medium')
     ax.legend(fontsize='x-small', loc='upper center', bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
     return fig

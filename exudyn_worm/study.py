@@ -203,8 +203,9 @@ class Study:
     zipped : bool, optional
         Pair the variations instead of the full factorial.
     windows : sequence of (float, float), optional
-        Evaluation windows in s (default: the lift / lower / lift phases of each point,
-        :func:`~exudyn_worm.reelchanger.DefaultWindows`).
+        Evaluation windows in s (default: the lift / lower / lift phases of each point's first rotation,
+        :func:`~exudyn_worm.reelchanger.DefaultWindows`, clipped to ``endTime`` when that is shorter; the
+        columns of a window that does not exist stay empty).
     endTime : float, optional
         Simulated time in s (default: one rotation of each point, at least up to the last window).
     stepSize : float, optional
@@ -378,8 +379,12 @@ def RunPoint(task: Mapping) -> Dict:
         analysis = AnalyzeStability(DriveFromParameters(p))
         row['analyticStable'] = analysis.stable
         row['analyticStableLowering'] = analysis.contact[-1].stable
-        windows = task['windows'] if task['windows'] is not None else DefaultWindows(p)
         period = RotationPeriod(p)
+        if task['windows'] is not None:
+            windows = task['windows']
+        else:        # the first rotation's lift / lower / lift, clipped to a shorter end time (fewer windows then)
+            windows = DefaultWindows(p, None if task['endTime'] is None else min(task['endTime'], period),
+                                     minLength=1e-3)
         endTime = task['endTime'] if task['endTime'] is not None else max(period, max(t1 for _, t1 in windows))
         stepSize = task['stepSize'] or min(DEFAULT_STEP_SIZE, RecommendedStepSize(p))
         row['stepSize'] = stepSize
@@ -395,7 +400,8 @@ def RunPoint(task: Mapping) -> Dict:
                 if not isinstance(value, bool) and not math.isfinite(value):
                     raise FloatingPointError(f"diverged: window {i} metric {name} = {value}")
                 row[f'w{i}.{name}'] = value
-        lowering = [i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1]
+        lowering = ([i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1] if task['windows'] is not None
+                    else [1][:len(windows) - 1])        # default windows: the second is the lowering phase
         row['loweringChatter'] = bool(metrics[lowering[0]]['chatter']) if lowering else None
         row['status'] = 'ok'
     except Exception as err:            # a failing run is a result, not the end of the study

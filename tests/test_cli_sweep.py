@@ -97,3 +97,24 @@ def test_sigterm_saves_and_says_how_to_resume(tmp_path):
     assert 1 <= done < 12
     assert Main(argv[3:]) == 0                                   # the same command finishes the study
     assert ReadResults(out).ToDict()['runs'][-1]['run'] == 11 and len(ReadResults(out).rows) == 12
+
+
+def test_default_windows_follow_a_short_end_time(capsys, tmp_path):
+    """Half a rotation (P1: 4 of 8 s): lift 0-2 s and the lowering 2-4 s are judged, the missing third window's
+    columns stay empty; before, every run failed on a window beyond the end."""
+    out = tmp_path / 'half.csv'
+    assert Main(['sweep', '--vary', 'backlash=0,0.5mm', '--end-time', '4', '--quiet', '--output', str(out),
+                 '--json']) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert [r['status'] for r in data['runs']] == ['ok', 'ok']
+    assert [[(w['t0'], w['t1']) for w in r['windows']] for r in data['runs']] == [[(0., 2.0000634476120305),
+                                                                                  (2.0000634476120305, 4.)]] * 2
+    assert [r['loweringChatter'] for r in data['runs']] == [True, True]          # P1 chatters while lowering
+
+
+def test_failed_runs_are_reported_and_all_failed_is_an_error(capsys):
+    assert Main(['sweep', '--vary', 'J1=0.1', '--vary', 'loadMass=175,1e9'] + SHORT) == 0
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err[-1].startswith('exudyn-worm: warning: 1 of 2 runs failed') and "'error' column" in err[-1]
+    assert Main(['sweep', '--vary', 'loadMass=1e9'] + SHORT) == 1
+    assert 'warning: 1 of 1 runs failed' in capsys.readouterr().err

@@ -147,7 +147,7 @@ def _Run(args: argparse.Namespace) -> int:
     if plotPath is not None:
         from ..plot import SaveFigure
         try:
-            SaveFigure(result.plot(), plotPath)
+            SaveFigure(result.plot(title=f'exudyn-worm check: {SourceText(args)}'), plotPath)
         except OSError as err:
             raise UsageError(f"--plot {plotPath}: cannot write: {err.strerror or err}") from err
     if args.json:

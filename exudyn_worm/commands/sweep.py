@@ -96,8 +96,9 @@ def _Run(args: argparse.Namespace) -> int:
         written += [Path(args.output), StudySidecarPath(args.output)]
     if args.plot:
         from .. import plot
-        figure = (result.Plot(study.keys[0], metric=args.metric) if len(study.keys) == 1
-                  else result.Plot(study.keys[0], study.keys[1]))
+        subtitle = f"exudyn-worm sweep: {SourceText(args)}"
+        figure = (result.Plot(study.keys[0], metric=args.metric, subtitle=subtitle) if len(study.keys) == 1
+                  else result.Plot(study.keys[0], study.keys[1], subtitle=subtitle))
         plot.SaveFigure(figure, args.plot)
         written.append(Path(args.plot))
     if args.json:
@@ -106,7 +107,12 @@ def _Run(args: argparse.Namespace) -> int:
         print('\n'.join(FormatStudy(result, title=f"exudyn-worm sweep: {SourceText(args)}")))
     for path in written:
         print(f"wrote {path.resolve()}", file=sys.stderr)
-    return 0
+    failed = sum(r['status'] != 'ok' for r in result.rows)
+    if failed:
+        print(f"exudyn-worm: warning: {failed} of {len(result.rows)} runs failed; their reason is in the "
+              f"'error' column{' of ' + repr(str(args.output)) if args.output else ' (--json or --output)'}",
+              file=sys.stderr)
+    return 1 if result.rows and failed == len(result.rows) else 0
 
 
 def FormatStudy(result, title: str = 'Study') -> List[str]:
