@@ -812,7 +812,9 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     failed = sum(r['status'] != 'ok' for r in done.values())
 
     csvFile = writer = None
-    if output is not None:
+    # a resumed study with nothing left to run keeps its record (engine, workers, versions, wall time of the runs)
+    record = output is not None and (bool(todo) or not previous or not StudySidecarPath(output).exists())
+    if record:
         _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started)
         new = not output.exists() or output.stat().st_size == 0
         csvFile = output.open('a', newline='')
@@ -861,6 +863,7 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
             signal.signal(signal.SIGTERM, previousHandler)
         if csvFile is not None:
             csvFile.close()
+        if record:
             _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started,
                           counts={'runs': len(indices), 'done': len(rows), 'failed': failed},
                           wallSeconds=wallBefore + time.perf_counter() - startTime)

@@ -161,6 +161,18 @@ def test_output_checked_before_computing(tmp_path):
         RunStudy(study, engine='dask', quiet=True)
 
 
+def test_finished_study_resumed_keeps_its_record(tmp_path):
+    """Reading a finished study again (e.g. to redraw its figures) with other workers leaves its sidecar alone:
+    it records how the runs were computed."""
+    from exudyn_worm.study import StudySidecarPath
+    study = _Study('J1=0.05,0.1')
+    RunStudy(study, tmp_path / 'a.csv', workers=2, quiet=True)
+    sidecar = StudySidecarPath(tmp_path / 'a.csv').read_text()
+    assert json.loads(sidecar)['workers'] == 2
+    assert len(RunStudy(study, tmp_path / 'a.csv', workers=1, quiet=True).rows) == 2
+    assert StudySidecarPath(tmp_path / 'a.csv').read_text() == sidecar
+
+
 def test_shards_together_give_the_whole_study(tmp_path):
     study = _Study('J1=0.05,0.1,0.2')
     whole = RunStudy(study, tmp_path / 'all.csv', workers=2, quiet=True)
