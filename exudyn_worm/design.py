@@ -122,11 +122,12 @@ class _ScaledDrives:
         self.drive = DriveFromParameters(parameters)
         self.q0 = self._Quantities(self.drive)
         self.exponents = {}
+        probe = 0.05       # decades: a small factor, so a drive at the edge of the allowed ranges is not refused
         for key in keys:
-            up, down = (self._Quantities(DriveFromParameters(_Scaled(parameters, {key: s}))) for s in (1., -1.))
+            up, down = (self._Quantities(DriveFromParameters(_Scaled(parameters, {key: s}))) for s in (probe, -probe))
             with np.errstate(divide='ignore', invalid='ignore'):
-                e = np.where(self.q0 > 0, np.log10(up / self.q0), 0.)
-            if not np.allclose(down, self.q0 * 10. ** -e, rtol=1e-9, atol=0.):
+                e = np.where(self.q0 > 0, np.log10(up / self.q0) / probe, 0.)
+            if not np.allclose(down, self.q0 * 10. ** (-e * probe), rtol=1e-9, atol=0.):
                 raise RuntimeError(f"design: the drive does not scale as a power of '{key}' (internal error)")
             self.exponents[key] = e
 

@@ -12,11 +12,14 @@ from typing import Dict, List, Sequence, Tuple
 
 import numpy as np
 
-__all__ = ['SimulationResult', 'CHATTER_TORQUE_FRACTION']
+__all__ = ['SimulationResult', 'CHATTER_TORQUE_FRACTION', 'CHATTER_MIN_MESH_TORQUE']
 
 #: chatter criterion: wheel inertia torque J2*|phi2''| in the second half of a window above this
 #: fraction of the largest mesh torque on the wheel in the window
 CHATTER_TORQUE_FRACTION = 0.1
+#: ... and only where the mesh carries a load: below this mesh torque on the wheel (N*m) a window has no load
+#: to chatter against; what moves there is round-off (about 1e-7 N*m in P1 without load, 1e-3 N*m is 1e4 times that)
+CHATTER_MIN_MESH_TORQUE = 1e-3
 
 
 @dataclass
@@ -73,12 +76,13 @@ class SimulationResult:
     def Chatter(self, t0: float, t1: float) -> bool:
         """Chatter in [t0, t1]: in the window's second half the wheel inertia torque J2*max|phi2''| exceeds
         :data:`CHATTER_TORQUE_FRACTION` of the largest mesh torque on the wheel in the window (a decaying
-        transient after a load reversal does not count; a self-excited vibration does)."""
+        transient after a load reversal does not count; a self-excited vibration does), and that mesh torque
+        exceeds :data:`CHATTER_MIN_MESH_TORQUE` (an unloaded mesh, e.g. ``loadMass = 0``, does not chatter)."""
         m = self._Window(t0, t1)
         late = self._Window(0.5 * (t0 + t1), t1)
         meshTorque = np.max(np.abs(self.series['wheelTorque'][m])) if m.any() else 0.
         inertiaTorque = self.J2 * np.max(np.abs(self.series['alpha2'][late])) if late.any() else 0.
-        return bool(meshTorque > 0 and inertiaTorque > CHATTER_TORQUE_FRACTION * meshTorque)
+        return bool(meshTorque > CHATTER_MIN_MESH_TORQUE and inertiaTorque > CHATTER_TORQUE_FRACTION * meshTorque)
 
     def WindowMetrics(self, windows: Sequence[Tuple[float, float]]) -> List[Dict]:
         """Per window: t0, t1, maxAbsWheelAcceleration (rad/s^2), maxNormalForce (N), dominantFrequencyHz,

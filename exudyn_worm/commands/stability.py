@@ -104,7 +104,7 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability') -> Li
     d = analysis.drive
     g = d.gear
     w = 36
-    row = lambda label, *cells: f"  {label:<{w}}" + ''.join(f"{c:>22}" for c in cells)
+    row = lambda label, *cells: f"  {label:<{w}}" + ''.join(f"{' ' + c:>22}" for c in cells)   # a wide cell keeps a gap
     lines = [title, '', 'Gear and drive']
     lines += [row('transmission ratio u', _G(g.ratio)),
               row('pitch angle gamma [deg]', _G(math.degrees(g.gamma))),
