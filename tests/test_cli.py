@@ -343,3 +343,19 @@ def test_python_m_exudyn_worm_error():
     result = _Subprocess('stability', '--set', 'kT=7 kg')
     assert result.returncode == 2 and result.stdout == ''
     assert result.stderr.startswith('exudyn-worm: error: ') and result.stderr.count('\n') == 1
+
+
+@pytest.mark.parametrize('command', ['stability', 'check'])
+def test_drive_at_the_edge_of_the_ranges_gets_an_answer(capsys, command):
+    """J1 = 1e-12 is accepted; the hint's and the check's scans probed J1 / 10 and ended in a traceback
+    (stability) or an error about J1 = 1e-13, a value the user never gave (check)."""
+    assert Main([command, '--set', 'J1=1e-12']) == 0
+    captured = capsys.readouterr()
+    assert 'Traceback' not in captured.err and '1e-13' not in captured.out + captured.err
+    assert ('Verdict: UNSTABLE' in captured.out) if command == 'stability' else ('No single parameter' in captured.out)
+
+
+def test_wide_table_cells_keep_a_gap(capsys):
+    assert Main(['stability', '--set', 'J1=1e-6']) == 0
+    rows = [line for line in capsys.readouterr().out.splitlines() if line.strip().startswith('eigenvalue 3')]
+    assert rows and 'i ' in rows[0].split('[1/s]')[1].strip()           # '... + 60344.930i 12322.547 + ...'
