@@ -41,7 +41,7 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from ._checks import CheckRange
-from .presets import PARAMETER_UNITS, REEL_KEYS, ApplyOverrides, DriveFromParameters, ExtraComponents
+from .presets import PARAMETER_UNITS, ApplyOverrides, DriveFromParameters, ExtraComponents
 from .charts import ChartCoordinates, ComputeStabilityChart
 from .stability import (CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzStable,
                         PolynomialCoefficients)
@@ -662,11 +662,8 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
     ValueError
         For a parameter set without the reel-changer keys, or a ``stepSize`` the simulation refuses.
     """
-    from .reelchanger import DefaultWindows, SimulateReelChanger
-    missing = [k for k in REEL_KEYS if k not in parameters]
-    if missing:
-        raise ValueError(f"ChatterWhileLowering: the simulation needs the reel-changer keys "
-                         f"{', '.join(REEL_KEYS)}; missing {', '.join(missing)} (use a reel-P* preset or --set)")
+    from .reelchanger import CheckReelChangerKeys, DefaultWindows, SimulateReelChanger
+    CheckReelChangerKeys(parameters, 'ChatterWhileLowering')
     lift, lower, _ = DefaultWindows(parameters)
     return SimulateReelChanger(parameters, stepSize=stepSize).Chatter(*lower)
 

@@ -212,19 +212,21 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
             raise ValueError(f"PlotChatterMap: '{name}' must be a varied key ({', '.join(keys)}), got {key!r}")
     fig, ax = _Axes(ax, (6.4, 6.))
     xs, ys = result.Values(x), result.Values(y)
-    logX, logY = _IsLog(xs), _IsLog(ys)
+    # log axes for log-spaced values or positive values spanning more than 50x (the grid and the axis alike)
+    logX, logY = (_IsLog(v) or bool(np.nanmin(v) > 0 and np.nanmax(v) / np.nanmin(v) > 50) for v in (xs, ys))
+
     def grid(v, log):
         lo, hi = np.nanmin(v), np.nanmax(v)
         n = len(np.unique(np.asarray(v)[np.isfinite(v)]))
         if lo == hi:                                    # one value only: show a factor 2 around it
             lo, hi = (lo / 2, hi * 2) if lo > 0 else (lo - 1, hi + 1)
-        log = log or (lo > 0 and hi / lo > 50)
-        if n > 1:                                       # half a grid step beyond the outer runs: no clipped markers
+        if n > 1:              # half a grid step (at most 15 % of the span) beyond the outer runs: no clipped markers
+            share = min(0.5 / (n - 1), 0.15)
             if log:
-                pad = (hi / lo) ** (0.5 / (n - 1))
+                pad = (hi / lo) ** share
                 lo, hi = lo / pad, hi * pad
             else:
-                pad = (hi - lo) / (2 * (n - 1))
+                pad = (hi - lo) * share
                 lo, hi = (lo - pad if lo <= 0 or lo > pad else lo / 2), hi + pad   # a positive key stays positive
         return np.geomspace(lo, hi, resolution) if log else np.linspace(lo, hi, resolution)
 

@@ -20,7 +20,7 @@ from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, Wor
 from .contact import MATH_OPS, ContactOptions, MeshContact
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
-from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
+from .presets import REEL_KEYS, AxialBearingFromParameters, DriveFromParameters, DriveSideChain
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
 from .solve import SolveDynamicInChunks, SolverDivergedError
@@ -29,8 +29,8 @@ from ._checks import CheckPositive
 from ._roots import FindRoot
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
-           'SteadyInitialState', 'CheckRunSize', 'SolverSettings', 'DEFAULT_STEP_SIZE', 'SOLVER_SETTINGS',
-           'MAX_STEPS']
+           'SteadyInitialState', 'CheckRunSize', 'CheckReelChangerKeys', 'SolverSettings', 'DEFAULT_STEP_SIZE',
+           'SOLVER_SETTINGS', 'MAX_STEPS']
 
 #: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change
 #: < 1 % when it is halved, see validation/REPORT.md); SimulateReelChanger's default is the drive's own
@@ -108,6 +108,29 @@ def CheckRunSize(endTime: float, stepSize: float, maxSteps: int = MAX_STEPS, whe
     return max(1, int(round(ratio)))
 
 
+def CheckReelChangerKeys(parameters: Mapping[str, float], where: str) -> None:
+    """Refuse a parameter set without the reel changer's own keys (``REEL_KEYS``: loadMass, leverArm,
+    motorSpeed), e.g. the ``chart`` preset, naming the missing ones and how to give them.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    where : str
+        Who needs them (function or command), first in the message.
+
+    Raises
+    ------
+    ValueError
+        If a key is missing.
+    """
+    missing = [k for k in REEL_KEYS if k not in parameters]
+    if missing:
+        raise ValueError(f"{where}: the reel-changer simulation needs {', '.join(REEL_KEYS)}; missing "
+                         f"{', '.join(missing)} (use a reel-P* preset or give them with --set KEY=VALUE or in the "
+                         f"config file)")
+
+
 def RotationPeriod(parameters: Mapping[str, float]) -> float:
     """Duration in s of one full wheel rotation: 2 pi u / motorSpeed.
 
@@ -117,7 +140,9 @@ def RotationPeriod(parameters: Mapping[str, float]) -> float:
         Flat parameter set including ``motorSpeed`` in rad/s.
     """
     drive = DriveFromParameters(parameters)
-    speed = CheckPositive('RotationPeriod', 'motorSpeed', parameters.get('motorSpeed', math.nan), 'rad/s')
+    if 'motorSpeed' not in parameters:
+        CheckReelChangerKeys(parameters, 'RotationPeriod')
+    speed = CheckPositive('RotationPeriod', 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     return 2 * math.pi * drive.gear.ratio / speed
 
 
@@ -259,9 +284,7 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
 
     w = 'BuildReelChanger'
     drive = DriveFromParameters(parameters)
-    for key in ('loadMass', 'leverArm', 'motorSpeed'):
-        if key not in parameters:
-            raise ValueError(f"{w}: missing parameter '{key}' of the reel changer")
+    CheckReelChangerKeys(parameters, w)
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
     profile = profile if profile is not None else ConstantSpeed(motorSpeed)
@@ -436,6 +459,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     """
     import exudyn as exu
     w = 'SimulateReelChanger'
+    CheckReelChangerKeys(parameters, w)
     endTime = RotationPeriod(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
     stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
     steps = CheckRunSize(endTime, stepSize, maxSteps, w)

@@ -711,7 +711,7 @@ def _CheckOutput(output: Path, study: Study, shard, overwrite: bool) -> List[Dic
         return []
     if not sidecar.is_file():
         raise ValueError(f"{where}: '{output}' exists without its sidecar '{sidecar.name}', so it cannot be "
-                         f"resumed; choose another output file or overwrite it")
+                         f"resumed; choose another output file or start it afresh (--overwrite; overwrite=True)")
     try:
         meta = json.loads(sidecar.read_text())
         same = (_Identity(meta['study']) == _Identity(study.ToDict())
@@ -720,7 +720,7 @@ def _CheckOutput(output: Path, study: Study, shard, overwrite: bool) -> List[Dic
         same = False
     if not same:
         raise ValueError(f"{where}: '{output}' holds results of a different study (definition or shard differ); "
-                         f"choose another output file or overwrite it")
+                         f"choose another output file or start it afresh (--overwrite; overwrite=True)")
     header, rows = _ReadCsv(output, repair=True)
     if header and header != _Columns(study):
         raise ValueError(f"{where}: '{output}' has other columns than this study; choose another output file")

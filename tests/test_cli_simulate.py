@@ -41,6 +41,8 @@ def test_simulate_writes_csv_and_plots_where_asked(capsys, tmp_path):
 
 # bad input: (argument list, fragment of the one-line message); '{tmp}' is the test's tmp_path
 BAD_INPUT = [
+    (['--preset', 'chart', '--set', 'J1=0.001', '--set', 'kT=10', '--set', 'DTV=1'],
+     'simulate: the reel-changer simulation needs loadMass, leverArm, motorSpeed; missing loadMass'),
     (['--windows', '0:2,2:x'], '--windows'),
     (['--windows', '3:2'], '0 <= T0 < T1'),
     (['--windows', ''], "--windows: expected T0:T1"),

@@ -27,6 +27,11 @@ def _Error(capsys, argv, text):
     (['sweep', '--vary', 'J1=0.1', '--plot', 'x.txt'], '--plot'),
     (['sweep', '--vary', 'J1=0.1', '--plot', 'x.png', '--metric', 'w7.nothing'], '--metric'),
     (['sweep', '--vary', 'J1=0.1', '--set', 'J2=1 m'], "'J2'"),
+    (['sweep', '--vary', 'J1=0.1,0.2', '--set', 'J1=0.3'], "'J1' is both set (--set) and varied (--vary)"),
+    (['sweep', '--vary', 'J1=0.1', '--metric', 'w0.maxNormalForce'], '--metric w0.maxNormalForce only applies with --plot'),
+    (['sweep', '--vary', 'J1=0.1', '--overwrite'], '--overwrite only applies with --output'),
+    (['sweep', '--preset', 'chart', '--vary', 'J1=0.001,0.002'], 'sweep: the reel-changer simulation needs'),
+    (['sweep', '--vary', 'J1=0.1', '--output', 'nodir/a.csv'], '--output nodir/a.csv: the folder nodir does not exist'),
 ])
 def test_bad_input(capsys, argv, text):
     _Error(capsys, argv, text)

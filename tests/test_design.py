@@ -176,7 +176,7 @@ def test_bad_arguments():
         DesignCheck(p1, span=1.)
     with pytest.raises(TypeError, match="DesignCheck: 'margin' must be a real number"):
         DesignCheck(p1, margin='0.1')
-    with pytest.raises(ValueError, match="ChatterWhileLowering: the simulation needs the reel-changer keys"):
+    with pytest.raises(ValueError, match="ChatterWhileLowering: the reel-changer simulation needs loadMass, leverArm, motorSpeed; missing"):
         ConfirmBySimulation(DesignCheck(GetPreset('chart') | {'J1': 0.01, 'kT': 10., 'DT': 0.01}))
 
 

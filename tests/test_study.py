@@ -230,3 +230,17 @@ def _Complete(text, header=False):
     if lines and not lines[-1].endswith('\n'):
         lines = lines[:-1]
     return lines if header else lines[1:]
+
+
+def test_chatter_map_axes_follow_the_grid():
+    """Two kT values 80x apart: the map's analytical grid is log-spaced, so the axis must be logarithmic too
+    (it was linear from 0 to 250000 N*m/rad); the outer runs lie inside the axes by 15 % of the span."""
+    import matplotlib
+    matplotlib.use('Agg')
+    result = RunStudy(_Study('J1=0.05,0.1', 'kT=350,28000'), workers=1, quiet=True)
+    ax = result.Plot('J1', 'kT').axes[0]
+    assert ax.get_yscale() == 'log' and ax.get_xscale() == 'linear'
+    low, high = ax.get_ylim()
+    assert low == pytest.approx(350. / 80. ** 0.15) and high == pytest.approx(28000. * 80. ** 0.15)
+    lo, hi = ax.get_xlim()
+    assert 0 < lo < 0.05 and hi > 0.1

@@ -127,14 +127,14 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
 
 def _Run(args: argparse.Namespace) -> int:
     from ..design import ConfirmBySimulation, DesignCheck
-    from ..presets import REEL_KEYS
     plotPath = _CheckPlotPath(args.plot) if args.plot is not None else None
     parameters, _ = DriveFromArgs(args)
     if args.simulate:
-        missing = [k for k in REEL_KEYS if k not in parameters]
-        if missing:
-            raise UsageError(f"--simulate needs the reel-changer keys {', '.join(REEL_KEYS)}; missing "
-                             f"{', '.join(missing)} (use a reel-P* preset or --set KEY=VALUE)")
+        from ..reelchanger import CheckReelChangerKeys
+        with BadInput():
+            CheckReelChangerKeys(parameters, 'check --simulate')
+    elif args.step_size is not None:
+        raise UsageError(f"--step-size {args.step_size:g} only applies with --simulate")
     with BadInput():
         result = DesignCheck(parameters, margin=args.margin, span=args.span)
     if args.simulate:

@@ -86,9 +86,10 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, int, List[Tuple[float, float]]]:
     """End time, step size, step limit and windows of a run, checked before anything is computed."""
-    from ..reelchanger import MAX_STEPS, CheckRunSize, DefaultWindows, RotationPeriod
+    from ..reelchanger import MAX_STEPS, CheckReelChangerKeys, CheckRunSize, DefaultWindows, RotationPeriod
     from ..stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
     with BadInput():
+        CheckReelChangerKeys(parameters, 'simulate')
         stepSize = args.step_size if args.step_size is not None else RecommendedStepSize(parameters)
     maxSteps = args.max_steps if args.max_steps is not None else MAX_STEPS
     with BadInput(), warnings.catch_warnings(record=True) as caught:

@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 from typing import List
 
-from ..cli import BadInput, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+from ..cli import BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
 
 __all__ = ['COMMAND', 'FormatStudy']
 
@@ -44,11 +44,21 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _Study(args: argparse.Namespace):
+    from ..reelchanger import CheckReelChangerKeys
     from ..study import ParseVariation, Study
     from .simulate import ParseWindows
     parameters = ParametersFromArgs(args)
+    if args.overwrite and not args.output:
+        raise UsageError("--overwrite only applies with --output FILE.csv")
+    if args.metric != _DEFAULT_METRIC and not args.plot:
+        raise UsageError(f"--metric {args.metric} only applies with --plot FILE.png")
     with BadInput():
         variations = [ParseVariation(text, log=args.log) for text in args.vary]
+        fixed = {text.split('=', 1)[0].strip() for text in args.set}
+        both = [v.key for v in variations if v.key in fixed]
+        if both:
+            raise ValueError(f"'{both[0]}' is both set (--set) and varied (--vary); give it only once")
+        CheckReelChangerKeys({**parameters, **{v.key: v.values[0] for v in variations}}, 'sweep')
         windows = ParseWindows(args.windows) if args.windows else None
         for name in ('end_time', 'step_size'):
             value = getattr(args, name)
@@ -80,6 +90,8 @@ def _CheckPlot(args, study) -> None:
 def _Run(args: argparse.Namespace) -> int:
     from ..study import RunStudy, StudySidecarPath
     study = _Study(args)
+    if args.output:
+        CheckOutputPath(args.output, '--output')
     _CheckPlot(args, study)
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
@@ -88,8 +100,12 @@ def _Run(args: argparse.Namespace) -> int:
             result = RunStudy(study, output=args.output, workers=args.workers, engine=args.engine,
                               shard=args.shard, quiet=True if args.quiet else None, overwrite=args.overwrite)
     except KeyboardInterrupt:
-        where = f" in '{args.output}'; run the same command again to resume" if args.output else ''
-        print(f"{'exudyn-worm'}: interrupted: finished runs are saved{where}", file=sys.stderr)
+        if args.output:
+            print(f"exudyn-worm: interrupted: finished runs are saved in '{args.output}'; run the same command "
+                  f"again to resume", file=sys.stderr)
+        else:
+            print("exudyn-worm: interrupted: nothing was saved (give --output FILE.csv to keep finished runs and "
+                  "resume)", file=sys.stderr)
         return 130
     written = []
     if args.output:
