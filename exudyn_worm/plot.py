@@ -188,13 +188,15 @@ def _DrawSeries(ax, result, name, mask, color=_C_MAIN, label=None, lw=_LINE_WIDT
 
 
 def _RunningMean(t, x, width: float):
-    """Centered moving average of ``x`` over ``width`` seconds (same length as ``x``)."""
+    """Centered moving average of ``x`` over ``width`` seconds (same length as ``x``); near the ends it
+    averages the samples there are (padding with the last value made the mean of an oscillation drift)."""
     if t.size < 3:
         return x
     n = max(1, int(round(width / max(float(np.median(np.diff(t))), 1e-12))))
-    kernel = np.ones(n) / n
-    pad = np.pad(x, (n // 2, n - 1 - n // 2), mode='edge')
-    return np.convolve(pad, kernel, mode='valid')
+    i = np.arange(x.size)
+    lo, hi = np.maximum(i - n // 2, 0), np.minimum(i + n - n // 2, x.size)
+    total = np.concatenate(([0.], np.cumsum(x, dtype=float)))
+    return (total[hi] - total[lo]) / (hi - lo)
 
 
 #: averaging time in s of the mean normal force drawn with the flank forces (longer than a chatter period)

@@ -30,3 +30,17 @@ def test_normal_force_one_panel_per_flank_with_mean(result):
         assert np.all(force >= 0) and f'mean over {MEAN_WINDOW:g} s' in ax.get_legend_handles_labels()[1]
         if flank == 2:                       # lowering with chatter: peaks far above the mean
             assert force.max() > 1.3 * mean.max()
+
+
+def test_running_mean_of_an_oscillation_does_not_drift_at_the_ends():
+    """The mean over 0.25 s of a force oscillating between 0 and 2 kN about 1 kN is 1 kN up to the last sample
+    (it dropped at the end when the window was padded with the last, oscillating value)."""
+    from exudyn_worm.plot import _RunningMean
+    t = np.arange(0., 4., 5e-4)
+    force = 1000. * (1. + np.sin(2 * np.pi * 40. * (t - t[-1]) + np.pi / 2))      # ends on a 2 kN peak
+    mean = _RunningMean(t, force, 0.25)
+    assert mean.shape == force.shape
+    inner = (t > 0.125) & (t < t[-1] - 0.125)
+    np.testing.assert_allclose(mean[inner], 1000., rtol=1e-9)                      # whole periods
+    assert np.max(np.abs(mean - 1000.)) < 70.             # half a window at the ends: >= 5 periods (was 500 N off)
+    np.testing.assert_allclose(_RunningMean(t, np.full_like(t, 7.), 0.25), 7.)
