@@ -392,9 +392,11 @@ def SolverSettings(endTime: float, stepSize: float, solverOptions: Optional[Mapp
     import exudyn as exu
     ss = exu.SimulationSettings()
     ss.solution.file.write = False                 # never litter the user's current directory
-    ss.solution.sensors.writePeriod = stepSize
     ss.timeIntegration.endTime = endTime
     ss.timeIntegration.numberOfSteps = max(1, int(round(endTime / stepSize)))
+    # a sample every step: a hair below the solver's step (endTime / numberOfSteps), or round-off skips the
+    # sample at t = h (the sensor is written once t - tLastWrite >= writePeriod)
+    ss.solution.sensors.writePeriod = endTime / ss.timeIntegration.numberOfSteps * (1. - 1e-9)
     ss.timeIntegration.verboseMode = 0
     return ss, _ApplySolverOptions(ss, {**SOLVER_SETTINGS, **(solverOptions or {})}, where)
 

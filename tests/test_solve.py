@@ -97,3 +97,13 @@ def test_chunked_solve_switches_timers_as_solve_system_does(computationTime, cap
         timers.append(solver.timer.useTimer)
     capsys.readouterr()
     assert timers == [computationTime, computationTime]
+
+
+@pytest.mark.parametrize('endTime', [4., 8.0003])
+def test_a_sample_every_step(endTime):
+    """The recommended step does not divide the end time: the solver's step is endTime / numberOfSteps, and a
+    sensor period equal to the requested step skipped samples by round-off (0, 2h, 3h, ...)."""
+    result = SimulateReelChanger(GetPreset('reel-P1'), endTime=endTime, progress=False)
+    h = endTime / round(endTime / result.info['stepSize'])
+    assert result.time[1] == pytest.approx(h, rel=1e-6)
+    assert np.max(np.diff(result.time)) < 1.001 * h
