@@ -27,6 +27,15 @@ def test_overflowing_parameters_rejected(overrides):
         DriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), overrides))
 
 
+@pytest.mark.parametrize('overrides', [{'J1': 1e100}, {'kT': 1e-100}])
+def test_frequencies_far_apart_rejected(overrides):
+    """J1 = 1e100 kg*m^2 passed and gave 'Hurwitz conditions ok' next to 'Verdict: UNSTABLE': the slow mode
+    was round-off. Frequencies more than 1e12 apart are refused; 1e6 kg*m^2 still works."""
+    with pytest.raises(ValueError, match=r"out of range: its two natural frequencies lie more than 1e12 apart"):
+        DriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), overrides))
+    DriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), {'J1': 1e6}))
+
+
 def test_every_preset_is_within_range():
     from exudyn_worm.presets import PRESETS
     for name in PRESETS:
