@@ -20,7 +20,7 @@ from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, Wor
 from .contact import MATH_OPS, ContactOptions, MeshContact
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
-from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
+from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain, MissingParameterError
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
 from .solve import SolveDynamicInChunks, SolverDivergedError
@@ -261,7 +261,7 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     drive = DriveFromParameters(parameters)
     for key in ('loadMass', 'leverArm', 'motorSpeed'):
         if key not in parameters:
-            raise ValueError(f"{w}: missing parameter '{key}' of the reel changer")
+            raise MissingParameterError(f"{w}: missing parameter '{key}' of the reel changer", [key])
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
     profile = profile if profile is not None else ConstantSpeed(motorSpeed)
