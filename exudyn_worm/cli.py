@@ -428,6 +428,21 @@ def _ShowWarning(message, category, filename, lineno, file=None, line=None) -> N
     print(f"{PROG}: warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
+def _WhereToAdd(err: BaseException, args: Optional[argparse.Namespace]) -> str:
+    """For parameters missing from a run with a drive file: the file and the tables to add them to."""
+    from .presets import MissingParameterError
+    cause = err.__cause__
+    while cause is not None and not isinstance(cause, MissingParameterError):
+        cause = cause.__cause__
+    config = getattr(args, 'config', None)
+    if cause is None or not config:
+        return ''
+    from .drivefile import FileKeyOf
+    return (f"; to describe the drive in '{config}', add " + ', '.join(f"{FileKeyOf(k)} ({k})" for k in cause.keys)
+            + (' (a file with component tables inherits no preset unless it names one)'
+               if not getattr(args, 'preset', None) else ''))
+
+
 def Main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line; return the exit status.
 
@@ -442,13 +457,14 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
         0 on success, 1 if a validation failed, 2 for bad input (one line ``exudyn-worm: error: ...``
         on stderr).
     """
+    args = None
     try:
         args = BuildParser().parse_args(argv)
         with warnings.catch_warnings():
             warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
             return int(args.run(args) or 0)
     except UsageError as err:
-        message = ' '.join(str(err).split())
+        message = ' '.join((str(err) + _WhereToAdd(err, args)).split())
         print(f"{PROG}: error: {message}", file=sys.stderr)
         return 2
     except BrokenPipeError:            # output piped into e.g. `head`: stop quietly

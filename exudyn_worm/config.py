@@ -38,8 +38,8 @@ import sys
 from numbers import Real
 from typing import Dict, Iterable, Mapping, Optional, Tuple, Union
 
-from .drivefile import COMPONENT_TABLES, TOP_LEVEL_KEYS, FlattenDriveFile
-from .presets import PARAMETER_UNITS, PRESETS, ApplyOverrides, GetPreset
+from .drivefile import COMPONENT_TABLES, DRIVE_FILE_TABLES, DRIVE_SIDE_TABLE, TOP_LEVEL_KEYS, FlattenDriveFile
+from .presets import _CHAIN_KEY, PARAMETER_UNITS, PRESETS, ApplyOverrides, CheckParameters, DriveSideChain, GetPreset
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -267,11 +267,17 @@ def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None) -> Di
             raise ValueError(f"{location}: must be a number (SI) or a string with units, "
                              f"got {type(value).__name__} {value!r}")
         parameters[key] = _ParseQuantity(key, value, location)
+        CheckParameters({key: parameters[key]}, location)        # the range, named by the file's line and key
         locations[key] = location
     _RejectAlternatives(parameters, where, locations)
+    if not parameters and preset is None:
+        raise ValueError(f"{where}: the file gives no parameters: a drive file must give the drive's values in "
+                         f"component tables ({', '.join(f'[{t}]' for t in DRIVE_FILE_TABLES)}, "
+                         f"[[{DRIVE_SIDE_TABLE}]]; see docs/drive-files.md) or in a [parameters] table, or name a "
+                         f"preset (preset = \"{DEFAULT_PRESET}\")")
     # a file with component tables describes a whole drive: nothing is inherited unless it names a preset
     wholeDrive = any(table in data for table in COMPONENT_TABLES)
-    return {'preset': preset, 'parameters': parameters, 'wholeDrive': wholeDrive}
+    return {'preset': preset, 'parameters': parameters, 'wholeDrive': wholeDrive, 'locations': locations}
 
 
 def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
@@ -288,15 +294,17 @@ def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
     Returns
     -------
     dict
-        ``{'preset': str or None, 'parameters': {key: float in SI}, 'wholeDrive': bool}``; ``wholeDrive``
-        is True when the file has component tables (then :func:`ResolveParameters` inherits no preset
-        unless the file or the caller names one).
+        ``{'preset': str or None, 'parameters': {key: float in SI}, 'wholeDrive': bool, 'locations': {key:
+        str}}``; ``wholeDrive`` is True when the file has component tables (then :func:`ResolveParameters`
+        inherits no preset unless the file or the caller names one); ``locations`` names the file, line,
+        table and key of each parameter, for messages.
 
     Raises
     ------
     ValueError
-        If the file cannot be read, is not valid TOML, has unknown keys, an unknown preset, an invalid
-        value, or gives one quantity twice or in two forms (e.g. both ``mu`` and ``rho``). The message
+        If the file cannot be read, is not valid TOML, has unknown keys, an unknown preset, a value that is
+        invalid or out of range (:func:`~exudyn_worm.presets.CheckParameters`), gives one quantity twice or in
+        two forms (e.g. both ``mu`` and ``rho``), or gives neither a parameter nor a preset. The message
         names the file, the line where it can be found, the table and key, and what was expected.
     """
     where = f"LoadConfig: '{path}'"
@@ -349,7 +357,7 @@ def ResolveParameters(preset: Optional[str] = None,
     (0.056, 0.2, 2.0)
     """
     if config is None:
-        cfg = {'preset': None, 'parameters': {}, 'wholeDrive': False}
+        cfg = {'preset': None, 'parameters': {}, 'wholeDrive': False, 'locations': {}}
     elif isinstance(config, Mapping):
         cfg = _ConfigFromData(config, 'ResolveParameters: config')
     elif isinstance(config, (str, os.PathLike)):
@@ -373,4 +381,19 @@ def ResolveParameters(preset: Optional[str] = None,
         overrides.pop(key, None)      # a repeated key: the last one wins, in its new position
         overrides[key] = value
     _RejectAlternatives(overrides, 'ResolveParameters: the overrides (--set)')
-    return ApplyOverrides(parameters, overrides)
+    parameters = ApplyOverrides(parameters, overrides)
+    _CheckChain(parameters, {k: v for k, v in cfg.get('locations', {}).items() if k not in overrides})
+    return parameters
+
+
+def _CheckChain(parameters: Mapping[str, float], locations: Mapping[str, str]) -> None:
+    """The drive-side chain must be complete (``J4`` with ``k4``, no gaps) in every resolved parameter set, so that
+    no command meets an incomplete chain later; a chain from a drive file is reported at its first stage there."""
+    try:
+        DriveSideChain(parameters)
+    except ValueError as err:
+        stages = sorted((int(m.group(2)), k) for k, m in ((k, _CHAIN_KEY.match(k)) for k in locations) if m)
+        if not stages:
+            raise ValueError(f"ResolveParameters: {err}") from None
+        raise ValueError(f"{locations[stages[0][1]]}: {err}; each [[{DRIVE_SIDE_TABLE}]] table needs 'inertia' and "
+                         f"'stiffness' ('damping' is optional)") from None

@@ -59,7 +59,7 @@ import re
 from typing import Any, Dict, List, Mapping, Optional, Tuple
 
 __all__ = ['COMPONENT_TABLES', 'DRIVE_FILE_TABLES', 'DRIVE_SIDE_TABLE', 'DRIVE_SIDE_KEYS', 'TOP_LEVEL_KEYS', 'DriveSideKey',
-           'FlattenDriveFile']
+           'FileKeyOf', 'FlattenDriveFile']
 
 #: file table -> {file key: parameter key}; the single mapping from a drive file to the flat parameters
 DRIVE_FILE_TABLES: Dict[str, Dict[str, str]] = {
@@ -111,6 +111,36 @@ def DriveSideKey(fileKey: str, index: int) -> str:
     if isinstance(index, bool) or not isinstance(index, int) or index < 0:
         raise ValueError(f"DriveSideKey: 'index' must be an integer >= 0, got {index!r}")
     return f'{DRIVE_SIDE_KEYS[fileKey]}{4 + index}'
+
+
+def FileKeyOf(key: str) -> str:
+    """Where parameter ``key`` goes in a drive file: its table and file key (the inverse of the mapping).
+
+    Parameters
+    ----------
+    key : str
+        A parameter key, e.g. ``'J2'``.
+
+    Returns
+    -------
+    str
+        E.g. ``'[wheel] inertia'``, ``'[[driveSide]] stiffness'`` for ``k4``; ``'[parameters] KEY'`` for a
+        key that has no component table.
+
+    Examples
+    --------
+    >>> FileKeyOf('J2'), FileKeyOf('r1'), FileKeyOf('k5')
+    ('[wheel] inertia', '[gear] wormRadius', '[[driveSide]] stiffness')
+    """
+    for table, keys in DRIVE_FILE_TABLES.items():
+        for fileKey, parameterKey in keys.items():
+            if parameterKey == key:
+                return f'[{table}] {fileKey}'
+    match = re.match(r'^([Jkd])([4-9]|[1-9][0-9]+)$', str(key))
+    if match:
+        fileKey = next(k for k, letter in DRIVE_SIDE_KEYS.items() if letter == match.group(1))
+        return f'[[{DRIVE_SIDE_TABLE}]] {fileKey}'
+    return f'[parameters] {key}'
 
 
 def _Suggest(word: str, choices) -> str:

@@ -22,7 +22,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field
-from typing import Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -34,7 +34,8 @@ from .profiles import ConstantSpeed
 from .stability import CONTACT_STATES, ContactStability, StabilityAnalysis, _Finite, _SortEigenvalues
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
-           'BuildLinearizationModel', 'LinearStabilityFromParameters', 'ExudynEigenvalues', 'AnalyzeStabilityExudyn']
+           'BuildLinearizationModel', 'LinearStabilityFromParameters', 'DriveStability', 'ExudynEigenvalues',
+           'AnalyzeStabilityExudyn']
 
 #: normal pre-deflection in m beyond half the backlash at which the 2-DOF model is linearized (any value > 0
 #: gives the same result: with S held the law is linear in the deflection)
@@ -381,6 +382,42 @@ def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: 
     SC, mbs = BuildLinearizationModel(DriveFromParameters(parameters), None, useSymbolic,
                                       AxialBearingFromParameters(parameters), DriveSideChain(parameters))
     return AnalyzeLinearStability(mbs)
+
+
+def DriveStability(parameters: Mapping[str, float], useSymbolic: bool = True
+                   ) -> Union[StabilityAnalysis, LinearStability]:
+    """Linear stability of the drive a flat parameter set describes, by the one rule every command follows.
+
+    The two-mass drive of Figure 2 gets the analytical model (eqs. (15)-(19),
+    :func:`~exudyn_worm.stability.AnalyzeStability`); a drive with components beyond it
+    (:func:`~exudyn_worm.presets.ExtraComponents`: a drive-side chain or a worm axial bearing) gets the linearized
+    whole drive (:func:`LinearStabilityFromParameters`), which that model would silently leave out.
+    ``exudyn-worm stability``, the verdict columns of ``exudyn-worm sweep``, the analytical map of its plot and
+    the step-size rule (:mod:`exudyn_worm.stepsize`) all take their verdict or frequencies from here.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (see :mod:`exudyn_worm.presets`).
+    useSymbolic : bool
+        Symbolic (C++) or Python user function for the connector (whole drive only).
+
+    Returns
+    -------
+    StabilityAnalysis or LinearStability
+        Either way with ``stable`` (every contact state) and ``State(S)`` (S = +1 or -1), whose result has
+        ``stable``, ``maxRealPart`` (1/s), ``eigenvalues`` (1/s) and ``frequenciesHz``.
+
+    Raises
+    ------
+    ValueError
+        For a missing or invalid parameter.
+    """
+    from .presets import DriveFromParameters, ExtraComponents
+    from .stability import AnalyzeStability
+    if ExtraComponents(parameters):
+        return LinearStabilityFromParameters(parameters, useSymbolic)
+    return AnalyzeStability(DriveFromParameters(parameters))
 
 
 def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> np.ndarray:

@@ -10,7 +10,11 @@ from typing import Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
-__all__ = ['PlotMetric', 'PlotChatterMap', 'AnalyticalMap', 'AxisLabel']
+__all__ = ['PlotMetric', 'PlotChatterMap', 'AnalyticalMap', 'AxisLabel', 'WHOLE_DRIVE_RESOLUTION']
+
+#: points per axis of the map of the linearized whole drive (a drive with a chain or an axial bearing) in
+#: :func:`PlotChatterMap`: one Exudyn linearization a point, so 400 points take about 12 s
+WHOLE_DRIVE_RESOLUTION = 20
 
 _C_CHATTER, _C_QUIET, _C_FAILED, _C_BOUNDARY = '#c0392b', '#1f4e79', '#7f7f7f', '#2c2c2c'
 _METRIC_LABELS = {'maxAbsWheelAcceleration': (r"max $|\ddot\varphi_2|$", 'rad/s²', 1.),
@@ -126,8 +130,10 @@ def PlotMetric(result, x: str, metric: str = 'w1.maxAbsWheelAcceleration', ax=No
 
 
 def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -> np.ndarray:
-    """Largest real part (1/s) of the S = -1 eigenvalues of the linear model (eqs. (15)-(16)) over a grid of
-    two parameters, the others as in ``base``: > 0 means chatter predicted while lowering.
+    """Largest real part (1/s) of the S = -1 eigenvalues of the linear model over a grid of two parameters, the
+    others as in ``base``: > 0 means chatter predicted while lowering. The model is that of
+    :func:`~exudyn_worm.linearization.DriveStability` at each point: eqs. (15)-(16) for the two-mass drive, the
+    linearized whole drive (about 30 ms a point) for one with a drive-side chain or a worm axial bearing.
 
     Parameters
     ----------
@@ -143,23 +149,23 @@ def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -
     numpy.ndarray
         Shape (len(yValues), len(xValues)).
     """
-    from .presets import ApplyOverrides, DriveFromParameters
-    from .stability import AnalyzeStability
+    from .linearization import DriveStability
+    from .presets import ApplyOverrides
     out = np.empty((len(yValues), len(xValues)))
     for (i, yv), (j, xv) in itertools.product(enumerate(yValues), enumerate(xValues)):
-        drive = DriveFromParameters(ApplyOverrides(base, {x: float(xv), y: float(yv)}))
-        out[i, j] = float(np.max(AnalyzeStability(drive).contact[-1].eigenvalues.real))
+        out[i, j] = DriveStability(ApplyOverrides(base, {x: float(xv), y: float(yv)})).State(-1).maxRealPart
     return out
 
 
 def _Chart(base, x, xValues, y, yValues, resolution):
     """The stability chart (:func:`~exudyn_worm.charts.ComputeStabilityChart`) over a J1-kT map, in the map's
-    coordinates: ``(xGrid, yGrid, unstable, [(xLine, yLine), ...])``; None unless the map's keys are J1 and kT
-    and the damping is given as measures (D_T or D_TV, D_V), which is what a chart holds fixed."""
-    if {x, y} != {'J1', 'kT'} or 'dT' in base or 'dV' in base:
+    coordinates: ``(xGrid, yGrid, unstable, [(xLine, yLine), ...])``; None unless the map's keys are J1 and kT,
+    the damping is given as measures (D_T or D_TV, D_V), which is what a chart holds fixed, and the drive is the
+    two-mass drive the chart describes (no drive-side chain, no axial bearing)."""
+    from .presets import DriveFromParameters, ExtraComponents
+    if {x, y} != {'J1', 'kT'} or 'dT' in base or 'dV' in base or ExtraComponents(base):
         return None
     from .charts import ChartCoordinates, ComputeStabilityChart
-    from .presets import DriveFromParameters
     drive = DriveFromParameters(base)
     c = ChartCoordinates(drive)
     g = drive.gear
@@ -206,6 +212,7 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
     -------
     matplotlib.figure.Figure
     """
+    from .presets import ExtraComponents
     keys = result.study.keys
     for name, key in (('x', x), ('y', y)):
         if key not in keys:
@@ -215,7 +222,7 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
     # log axes for log-spaced values or positive values spanning more than 50x (the grid and the axis alike)
     logX, logY = (_IsLog(v) or bool(np.nanmin(v) > 0 and np.nanmax(v) / np.nanmin(v) > 50) for v in (xs, ys))
 
-    def grid(v, log):
+    def grid(v, log, count=resolution):
         lo, hi = np.nanmin(v), np.nanmax(v)
         n = len(np.unique(np.asarray(v)[np.isfinite(v)]))
         if lo == hi:                                    # one value only: show a factor 2 around it
@@ -228,7 +235,7 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
             else:
                 pad = (hi - lo) * share
                 lo, hi = (lo - pad if lo <= 0 or lo > pad else lo / 2), hi + pad   # a positive key stays positive
-        return np.geomspace(lo, hi, resolution) if log else np.linspace(lo, hi, resolution)
+        return np.geomspace(lo, hi, count) if log else np.linspace(lo, hi, count)
 
     gx, gy = grid(xs, logX), grid(ys, logY)
     (xLabel, xf), (yLabel, yf) = AxisLabel(x), AxisLabel(y)
@@ -240,11 +247,15 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
             ax.plot(lx * xf, ly * yf, color=_C_BOUNDARY, lw=1.2)
         source = 'stability chart'
     else:
+        wholeDrive = bool(ExtraComponents(result.study.base))
+        if wholeDrive:              # one Exudyn linearization a point (about 30 ms): a coarser grid
+            count = min(resolution, WHOLE_DRIVE_RESOLUTION)
+            gx, gy = grid(xs, logX, count), grid(ys, logY, count)
         growth = AnalyticalMap(result.study.base, x, gx, y, gy)
         ax.contourf(gx * xf, gy * yf, (growth > 0).astype(float), levels=[0.5, 1.5], colors=['#f6d5d1'])
         if np.any(growth > 0) and np.any(growth <= 0):
             ax.contour(gx * xf, gy * yf, growth, levels=[0.], colors=[_C_BOUNDARY], linewidths=1.2)
-        source = 'linear model'
+        source = 'linearized whole drive' if wholeDrive else 'linear model'
     ok = [r for r in result.rows if r['status'] == 'ok' and r['loweringChatter'] is not None]
     chatter = [r for r in ok if r['loweringChatter']]
     quiet = [r for r in ok if not r['loweringChatter']]

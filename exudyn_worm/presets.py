@@ -43,7 +43,7 @@ if TYPE_CHECKING:
 __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
            'ExtraComponents',
            'ApplyOverrides', 'CheckParameters', 'GearFromParameters', 'DriveFromParameters', 'DriveSideChain',
-           'AxialBearingFromParameters', 'MAX_RATE', 'MIN_RATE_SPREAD']
+           'AxialBearingFromParameters', 'MAX_RATE', 'MIN_RATE_SPREAD', 'MissingParameterError']
 
 #: keys of the elastic drive (Figure 2)
 DRIVE_KEYS = ('alphaN', 'gamma', 'mu', 'rho', 'r1', 'r2', 'kV', 'dV', 'DV', 'backlash',
@@ -136,22 +136,34 @@ def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, floa
     return out
 
 
+class MissingParameterError(ValueError):
+    """A parameter set lacks parameters a model needs; ``keys`` names them (the CLI adds where to put them)."""
+
+    def __init__(self, message: str, keys):
+        super().__init__(message)
+        self.keys = tuple(keys)
+
+
 def _Require(parameters, keys, what):
     missing = [k for k in keys if k not in parameters]
     if missing:
-        raise ValueError(f"{what}: missing parameter(s) {', '.join(missing)}; give them with --set KEY=VALUE "
-                         f"or in the config file")
+        raise MissingParameterError(f"{what}: missing parameter(s) {', '.join(missing)}; give them with --set "
+                                    f"KEY=VALUE or in the config file", missing)
 
 
-_POSITIVE_KEYS = ('r1', 'r2', 'kV', 'J1', 'J2', 'kT', 'motorSpeed')
-_NON_NEGATIVE_KEYS = ('mu', 'dV', 'DV', 'dT', 'DT', 'DTV', 'backlash', 'loadMass', 'leverArm')
+_POSITIVE_KEYS = ('r1', 'r2', 'kV', 'J1', 'J2', 'kT', 'motorSpeed', 'mA')
+_NON_NEGATIVE_KEYS = ('mu', 'dV', 'DV', 'dT', 'DT', 'DTV', 'backlash', 'loadMass', 'leverArm', 'kA', 'dA')
+#: letter of a drive-side chain key (J4, k5, d6, ...) -> its range: inertia and stiffness > 0, damping >= 0
+_CHAIN_POSITIVE = {'J': True, 'k': True, 'd': False}
 
 
 def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set') -> None:
     """Check the range of every known key of a flat parameter dictionary, naming the key as the user wrote it.
 
-    Positive: ``r1 r2 kV J1 J2 kT motorSpeed``; non-negative: ``mu dV DV dT DT DTV backlash loadMass leverArm``;
-    ``alphaN``, ``gamma`` in (0, pi/2) rad; ``rho`` in [0, pi/2) rad; every other key finite. The plausibility
+    Positive: ``r1 r2 kV J1 J2 kT motorSpeed mA`` and the drive-side chain's ``J4 k4 J5 k5 ...``; non-negative:
+    ``mu dV DV dT DT DTV backlash loadMass leverArm kA dA`` and ``d4 d5 ...``; ``alphaN``, ``gamma`` in
+    (0, pi/2) rad; ``rho`` in [0, pi/2) rad; every other key finite. The one table of ranges: drive files,
+    :func:`DriveSideChain` and the model builders all check with it. The plausibility
     of values against each other (backlash against the worm radius, overflow of the model's coefficients)
     is checked by :class:`~exudyn_worm.gear.WormGear` and :func:`DriveFromParameters`.
 
@@ -168,10 +180,11 @@ def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set
         E.g. ``parameter set: 'kT' must be > 0 N*m/rad, got -5 N*m/rad``.
     """
     for key, value in parameters.items():
-        unit = PARAMETER_UNITS.get(key, '')
-        if key in _POSITIVE_KEYS:
+        unit = PARAMETER_UNITS[key] if key in PARAMETER_UNITS else ''
+        chain = _CHAIN_KEY.match(key) if isinstance(key, str) else None
+        if key in _POSITIVE_KEYS or (chain and _CHAIN_POSITIVE[chain.group(1)]):
             CheckPositive(where, key, value, unit)
-        elif key in _NON_NEGATIVE_KEYS:
+        elif key in _NON_NEGATIVE_KEYS or chain:
             CheckNonNegative(where, key, value, unit)
         elif key in ('alphaN', 'gamma'):
             CheckAngle(where, key, value)
@@ -342,7 +355,6 @@ def DriveSideChain(parameters: Mapping[str, float]) -> List[Tuple[float, float, 
     ValueError
         For a gap in the chain, a spring-damper without its inertia, or a value out of range.
     """
-    from ._checks import CheckNonNegative, CheckPositive
     w = 'DriveSideChain'
     indices = sorted({int(m.group(2)) for m in (_CHAIN_KEY.match(k) for k in parameters if isinstance(k, str)) if m})
     chain = []
@@ -354,9 +366,9 @@ def DriveSideChain(parameters: Mapping[str, float]) -> List[Tuple[float, float, 
                              f"(missing '{missing}')")
         if f'k{i}' not in parameters:
             raise ValueError(f"{w}: 'J{i}' needs the stiffness 'k{i}' (N*m/rad) of the spring-damper on its motor side")
-        chain.append((CheckPositive(w, f'J{i}', parameters[f'J{i}'], 'kg*m^2'),
-                      CheckPositive(w, f'k{i}', parameters[f'k{i}'], 'N*m/rad'),
-                      CheckNonNegative(w, f'd{i}', parameters.get(f'd{i}', 0.), 'N*m*s/rad')))
+        stage = {f'J{i}': parameters[f'J{i}'], f'k{i}': parameters[f'k{i}'], f'd{i}': parameters.get(f'd{i}', 0.)}
+        CheckParameters(stage, w)
+        chain.append(tuple(float(v) for v in stage.values()))
     return chain
 
 

@@ -20,7 +20,7 @@ from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, Wor
 from .contact import MATH_OPS, ContactOptions, MeshContact
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
-from .presets import REEL_KEYS, AxialBearingFromParameters, DriveFromParameters, DriveSideChain
+from .presets import REEL_KEYS, AxialBearingFromParameters, DriveFromParameters, DriveSideChain, MissingParameterError
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
 from .solve import SolveDynamicInChunks, SolverDivergedError
@@ -121,14 +121,14 @@ def CheckReelChangerKeys(parameters: Mapping[str, float], where: str) -> None:
 
     Raises
     ------
-    ValueError
-        If a key is missing.
+    MissingParameterError
+        A ValueError naming the missing keys, if a key is missing.
     """
     missing = [k for k in REEL_KEYS if k not in parameters]
     if missing:
-        raise ValueError(f"{where}: the reel-changer simulation needs {', '.join(REEL_KEYS)}; missing "
-                         f"{', '.join(missing)} (use a reel-P* preset or give them with --set KEY=VALUE or in the "
-                         f"config file)")
+        raise MissingParameterError(f"{where}: the reel-changer simulation needs {', '.join(REEL_KEYS)}; missing "
+                                    f"{', '.join(missing)} (use a reel-P* preset or give them with --set KEY=VALUE "
+                                    f"or in the config file)", missing)
 
 
 def RotationPeriod(parameters: Mapping[str, float]) -> float:

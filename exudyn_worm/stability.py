@@ -243,6 +243,11 @@ class ContactStability:
         """True iff every eigenvalue has a negative real part."""
         return bool(np.all(self.eigenvalues.real < 0))
 
+    @property
+    def maxRealPart(self) -> float:
+        """Largest real part of the eigenvalues in 1/s; > 0: unstable."""
+        return float(np.max(self.eigenvalues.real))
+
     def ToDict(self) -> Dict:
         """JSON-ready dictionary (see the ``exudyn-worm stability --json`` schema)."""
         return {'b': [float(x) for x in self.b],
@@ -263,6 +268,22 @@ class StabilityAnalysis:
     def stable(self) -> bool:
         """Stable iff both contact states S = +1 and S = -1 are stable."""
         return all(c.stable for c in self.contact.values())
+
+    def State(self, S: int) -> ContactStability:
+        """The result for contact state ``S`` (+1 or -1): ``contact[S]``, under the name
+        :meth:`~exudyn_worm.linearization.LinearStability.State` uses for the whole drive.
+
+        Parameters
+        ----------
+        S : int
+            Contact parameter, +1 or -1.
+
+        Returns
+        -------
+        ContactStability
+        """
+        _CheckS(S)
+        return self.contact[S]
 
     @property
     def fuesgenLimit(self) -> float:

@@ -7,8 +7,10 @@ trapezoidal rule, :func:`PeriodError`). A step that
 is too coarse therefore does not fail: it reports a chatter frequency that is too low (28.8 Hz instead
 of 40.5 Hz for P1 at h = 0.01 s) or steps over the vibration and reports no chatter at all (h = 0.05 s),
 an answer that looks right. The rule below is written in terms of that period error of the highest
-natural frequency of the linearized drive (eqs. (1)-(2) with S = +1 and S = -1, :func:`StateMatrix`);
-it covers the chatter frequency, which is one of these modes:
+natural frequency of the linearized drive (eqs. (1)-(2) with S = +1 and S = -1, :func:`StateMatrix`; for a
+drive with a drive-side chain or a worm axial bearing, the linearized whole drive of
+:func:`~exudyn_worm.linearization.DriveStability`, as ``exudyn-worm stability`` reports it: the 116 Hz mode of
+inertia4 in examples/drives/figure19.toml); it covers the chatter frequency, which is one of these modes:
 
 ==============  =====================  ==================================================
 limit           period error of f_max  step
@@ -28,6 +30,15 @@ worm like a viscous damper ``d = |dc2/dS| Fn / frictionSpeed``. Its time constan
 implicit solver does not need to resolve it (the mode is damped, not oscillating) as long as the
 method damps stiff modes (spectral radius < 1), so it does not enter the step size. It matters for the
 Newton iteration instead (see benchmarks/README.md).
+
+The worm's own axial mode on its bearing (kA, mA; 1.2 kHz at kA = 1e8 N/m, 7 kHz at 1e10 N/m for mA = 5 kg,
+Lehr damping 0.04-0.25 from the mesh damping) is left out for the same reason: it is a stiff mode of the
+bearing in series with the mesh, not a mode the chatter or the load excites, and the method damps it where the
+step does not resolve it. Resolving it would make the step fall with sqrt(kA) (5e-6 s at 1e10 N/m, more than
+the run-size limit for one rotation) while the rigid worm, its limit, needs 7.8e-4 s. The bearing's effect on
+the other modes (kV in series with kA) is included. Measured on P1 with mA = 5 kg over 6 s: at kA = 1e9 N/m
+(chatter while lowering) the recommended step 8.0e-4 s gives the peak |phi2''| and the chatter frequency within
+0.1 % and 0.4 % of those at 1e-4 s; at kA = 5e8 N/m (stable) both steps give no chatter.
 """
 from __future__ import annotations
 
@@ -56,6 +67,9 @@ def _CyclesForPeriodError(error: float) -> float:
         low, high = (mid, high) if _PeriodError(2 * math.pi * mid) < error else (low, mid)
     return 0.5 * (low + high)
 
+
+#: label of the worm's axial coordinate in the linearized whole drive (its mode is left out, see the module text)
+AXIAL_COORDINATE = 'wormAxial'
 
 #: f_max * h of the recommended step (0.5 % period error of the highest linearized mode)
 RECOMMENDED_CYCLES = _CyclesForPeriodError(0.005)
@@ -86,8 +100,19 @@ def PeriodError(frequency: float, stepSize: float) -> float:
     return _PeriodError(2. * math.pi * frequency * stepSize)
 
 
+def _WholeDriveEigenvalues(analysis, S: int) -> np.ndarray:
+    """Eigenvalues of the linearized whole drive for contact state S that the step must resolve: every mode but
+    the worm's own axial mode (see the module text) and rigid-body modes."""
+    return np.array([m.eigenvalue for m in analysis.State(S).modes
+                     if m.energyShare.get(AXIAL_COORDINATE, 0.) <= 0.5], dtype=complex)
+
+
 def LinearizedFrequencies(parameters: Mapping[str, float]) -> dict:
-    """Natural frequencies of the linearized drive (eqs. (1)-(2), S = +1 and S = -1).
+    """Natural frequencies of the linearized drive (S = +1 and S = -1).
+
+    The drive is the one :func:`~exudyn_worm.linearization.DriveStability` analyses: for the two-mass drive of
+    Figure 2 the state matrix of eqs. (1)-(2); for a drive with a drive-side chain or a worm axial bearing the
+    linearized whole drive (Exudyn), without the worm's axial mode (see the module text).
 
     Parameters
     ----------
@@ -100,12 +125,15 @@ def LinearizedFrequencies(parameters: Mapping[str, float]) -> dict:
         ``maxHz``: the highest undamped natural frequency |lambda|/(2 pi) over both contact states;
         ``chatterHz``: the highest damped frequency of a growing mode (None if the drive is stable).
     """
-    from .presets import DriveFromParameters
-    from .stability import CONTACT_STATES, StateMatrix
-    drive = DriveFromParameters(parameters)
+    from .linearization import DriveStability
+    from .stability import CONTACT_STATES, StabilityAnalysis, StateMatrix
+    analysis = DriveStability(parameters)
     fMax, fChatter = 0., None
     for S in CONTACT_STATES:
-        lam = np.linalg.eigvals(StateMatrix(drive, S))
+        if isinstance(analysis, StabilityAnalysis):        # two-mass drive: eqs. (1)-(2)
+            lam = np.linalg.eigvals(StateMatrix(analysis.drive, S))
+        else:                                              # drive-side chain or axial bearing: the whole drive
+            lam = _WholeDriveEigenvalues(analysis, S)
         fMax = max(fMax, float(np.max(np.abs(lam))) / (2 * math.pi))
         growing = lam[lam.real > 0]
         if growing.size:

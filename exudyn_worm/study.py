@@ -5,8 +5,10 @@ A :class:`Study` varies keys of a flat parameter set (any key of
 ``loadMass``) over grids or lists (:func:`ParseVariation`), as a full factorial or zipped. For every
 point, :func:`RunPoint` runs :func:`~exudyn_worm.reelchanger.SimulateReelChanger`, takes the window
 metrics and chatter verdicts of ``exudyn-worm simulate``
-(:meth:`~exudyn_worm.results.SimulationResult.WindowMetrics`), adds the analytical verdict of the same
-parameter set (:func:`~exudyn_worm.stability.AnalyzeStability`) and the run's times.
+(:meth:`~exudyn_worm.results.SimulationResult.WindowMetrics`), adds the linear verdict of the same
+parameter set (:func:`~exudyn_worm.linearization.DriveStability`, as ``exudyn-worm stability``: the analytical
+two-mass model, or the linearized whole drive for a drive with a drive-side chain or a worm axial bearing) and
+the run's times.
 
 :func:`RunStudy` executes the points with an executor of the standard ``concurrent.futures`` interface:
 a process pool on every core (Exudyn holds the GIL, threads do not help; each worker builds its own
@@ -366,9 +368,8 @@ def RunPoint(task: Mapping) -> Dict:
         ``w{i}.{metric}`` for each window i and each metric of :data:`WINDOW_METRICS` (None where a run
         failed before computing them).
     """
-    from .presets import DriveFromParameters
+    from .linearization import DriveStability
     from .reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, RotationPeriod, SimulateReelChanger
-    from .stability import AnalyzeStability
     from .stepsize import RecommendedStepSize
     start = time.perf_counter()
     p = dict(task['parameters'])
@@ -376,9 +377,9 @@ def RunPoint(task: Mapping) -> Dict:
            'stepSize': None, 'analyticStable': None, 'analyticStableLowering': None, 'loweringChatter': None}
     row.update(task['varied'])
     try:
-        analysis = AnalyzeStability(DriveFromParameters(p))
+        analysis = DriveStability(p)            # two-mass: eqs. (15)-(19); with a chain or bearing: the whole drive
         row['analyticStable'] = analysis.stable
-        row['analyticStableLowering'] = analysis.contact[-1].stable
+        row['analyticStableLowering'] = analysis.State(-1).stable
         period = RotationPeriod(p)
         if task['windows'] is not None:
             windows = task['windows']

@@ -58,3 +58,31 @@ def test_warnings_of_any_subcommand_read_as_one_line(capsys):
         cli.SUBCOMMANDS.remove(command)
     err = capsys.readouterr().err
     assert err == 'exudyn-worm: warning: something to note\n'
+
+
+CHAIN_WITHOUT_STIFFNESS = 'preset = "reel-P1"\n[[driveSide]]\ninertia = "0.05 kg*m^2"\ndamping = 1\n'
+# an incomplete drive-side chain, in every subcommand: (arguments, fragment of the one-line message)
+INCOMPLETE_CHAIN = [(['--set', 'J4=0.05'], "DriveSideChain: 'J4' needs the stiffness 'k4'"),
+                    (['--set', 'k4=1e4'], "DriveSideChain: the drive-side chain must be J4, J5, ... without gaps"),
+                    (['--set', 'J4=0.05', '--set', 'k4=1e4', '--set', 'J6=0.1'], "missing 'J5'"),
+                    (['--config', '{tmp}/chain.toml'], "line 3: [[driveSide]] number 1 inertia: DriveSideChain: "
+                                                       "'J4' needs the stiffness 'k4'")]
+SUBCOMMAND_ARGS = {'stability': [], 'check': [], 'chart': ['--resolution', '10'], 'simulate': ['--quiet'],
+                   'sweep': ['--vary', 'J1=0.1,0.2', '--quiet', '--output', 'out.csv']}
+
+
+@pytest.mark.parametrize('command', sorted(SUBCOMMAND_ARGS))
+@pytest.mark.parametrize('argv, fragment', INCOMPLETE_CHAIN, ids=[' '.join(a) for a, _ in INCOMPLETE_CHAIN])
+def test_incomplete_chain_is_one_line_exit_2_in_every_subcommand(capsys, tmp_path, monkeypatch, command, argv,
+                                                                 fragment):
+    """Checked where the parameter set is resolved: exit 2, one line, no traceback, nothing written."""
+    from exudyn_worm.cli import Main
+    (tmp_path / 'chain.toml').write_text(CHAIN_WITHOUT_STIFFNESS)
+    work = tmp_path / 'cwd'
+    work.mkdir()
+    monkeypatch.chdir(work)
+    status = Main([command, *SUBCOMMAND_ARGS[command], *[a.replace('{tmp}', str(tmp_path)) for a in argv]])
+    out, err = capsys.readouterr()
+    assert status == 2 and out == ''
+    assert err.count('\n') == 1 and err.startswith('exudyn-worm: error: ') and fragment in err, err
+    assert 'Traceback' not in err and list(work.iterdir()) == []

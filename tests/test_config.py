@@ -143,7 +143,9 @@ def test_load_config(tmp_path):
     assert cfg['preset'] == 'reel-P6'
     assert cfg['parameters'] == {'J1': 0.3, 'kT': 12000., 'backlash': pytest.approx(2.5e-4), 'DV': 0.056,
                                  'gamma': pytest.approx(math.radians(5.3228))}
-    assert LoadConfig(str(_Write(tmp_path, '', 'empty.toml'))) == {'preset': None, 'parameters': {}, 'wholeDrive': False}
+    with pytest.raises(ValueError, match="empty.toml': the file gives no parameters"):     # not silently reel-P1
+        LoadConfig(str(_Write(tmp_path, '', 'empty.toml')))
+    assert LoadConfig(str(_Write(tmp_path, 'preset = "reel-P7"\n', 'named.toml')))['preset'] == 'reel-P7'
 
 
 @pytest.mark.parametrize('text, pattern', [

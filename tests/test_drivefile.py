@@ -2,6 +2,7 @@
 import doctest
 import json
 import math
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -93,6 +94,16 @@ def test_drive_side_keys_are_numbered_from_four():
     ('driveSide = 3\n', None, r"'driveSide' must be an array of tables"),
     ('worm = 3\n', 1, r"'worm' must be a table"),
     ('description = 3\n', 1, r"'description' must be a string"),
+    # ranges (presets.CheckParameters) named by the file's line, table and key
+    ('[gear]\nwormRadius = 0.018\n[worm]\ninertia = -0.1\n', 4,
+     r"\[worm\] inertia: 'J1' must be > 0 kg\*m\^2, got -0.1"),
+    ('[gear]\nbacklash = "-0.1 mm"\n', 2, r"\[gear\] backlash: 'backlash' must be >= 0 m"),
+    ('[[driveSide]]\ninertia = 0.05\nstiffness = -1\n', 3,
+     r"\[\[driveSide\]\] number 1 stiffness: 'k4' must be > 0 N\*m/rad, got -1"),
+    ('[axialBearing]\nstiffness = 1e8\nmass = "0 kg"\n', 3, r"\[axialBearing\] mass: 'mA' must be > 0 kg"),
+    # a file that gives nothing is refused, not taken as the reel-P1 preset
+    ('', None, r"gives no parameters: a drive file must give the drive's values in component tables \(\[gear\]"),
+    ('description = "my drive"\n[worm]\n', None, r"gives no parameters.*or name a preset"),
 ])
 def test_bad_drive_files_name_line_table_key_and_expectation(tmp_path, text, line, pattern):
     path = _Write(tmp_path, text)
@@ -162,3 +173,30 @@ def test_figure19_file_is_the_drive_side_inertia_example():
     halfUnit = {'k4': 0.5, 'd4': 0.5e-4}      # the file prints k4 = 18.483 kN*m/rad and d4 = 0.8512 N*m*s/rad
     for key in expected:
         assert p[key] == pytest.approx(expected[key], rel=1e-12, abs=halfUnit.get(key, 0.)), key
+
+
+def test_incomplete_drive_side_chain_names_the_file(tmp_path):
+    path = _Write(tmp_path, 'preset = "reel-P1"\n\n[[driveSide]]\ninertia = 0.05\ndamping = 1\n')
+    with pytest.raises(ValueError, match=r"line 4: \[\[driveSide\]\] number 1 inertia: DriveSideChain: 'J4' needs "
+                                         r"the stiffness 'k4'.*each \[\[driveSide\]\] table needs 'inertia' and "
+                                         r"'stiffness'") as info:
+        ResolveParameters(config=path)
+    assert str(info.value).startswith(f"LoadConfig: '{path}', line 4")
+    assert ResolveParameters(config=path, sets=['k4=2e4'])['k4'] == 2e4      # completed by --set: fine
+    with pytest.raises(ValueError, match=r"^ResolveParameters: DriveSideChain: 'J4' needs the stiffness 'k4'"):
+        ResolveParameters('reel-P1', sets=['J4=0.05'])
+    with pytest.raises(ValueError, match=r"missing 'J4'"):
+        ResolveParameters('reel-P1', sets=['k4=1e4'])
+
+
+def test_cli_missing_component_names_the_file_and_the_table(tmp_path):
+    text = (DRIVES / 'reel-P1.toml').read_text()
+    path = _Write(tmp_path, re.sub(r'\[wheel\]\ninertia = .*\n', '', text), 'nowheel.toml')
+    assert '[wheel]' not in path.read_text()
+    for command in ('stability', 'check', 'simulate', 'chart'):
+        run = subprocess.run([sys.executable, '-m', 'exudyn_worm', command, '--config', str(path)],
+                             capture_output=True, text=True, cwd=tmp_path)
+        lines = run.stderr.strip().splitlines()
+        assert run.returncode == 2 and run.stdout == '' and len(lines) == 1, (command, run.stderr)
+        assert 'missing parameter' in lines[0] and 'J2' in lines[0], lines[0]
+        assert f"to describe the drive in '{path}', add [wheel] inertia (J2)" in lines[0], lines[0]

@@ -1,9 +1,12 @@
 """Step size from the drive (exudyn_worm.stepsize) and the coarse-step refusal."""
+import json
 import math
 import warnings
+from pathlib import Path
 
 import pytest
 
+from exudyn_worm.config import ResolveParameters
 from exudyn_worm.presets import ApplyOverrides, GetPreset
 from exudyn_worm.stepsize import (HARD_CYCLES, RECOMMENDED_CYCLES, SOFT_CYCLES, CheckStepSize, CoarseStepWarning,
                                   LinearizedFrequencies, PeriodError, RecommendedStepSize, StepSizeLimits)
@@ -71,3 +74,49 @@ def test_cli_warns_for_a_coarse_step_and_runs(capsys):
     out, err = capsys.readouterr()
     assert status == 0 and 'chatter' in out
     assert err.startswith('exudyn-worm: warning: ') and 'recommended' in err
+
+
+FIGURE19 = Path(__file__).resolve().parents[1] / 'examples' / 'drives' / 'figure19.toml'
+
+
+def test_a_drive_beyond_two_masses_gets_the_frequencies_of_its_whole_drive():
+    """Figure 19's drive: the 116 Hz mode of inertia4 and the 36.96 Hz chatter mode that `stability` reports,
+    not the two-mass model's 50.4 Hz and 40.5 Hz."""
+    from exudyn_worm.linearization import LinearStabilityFromParameters
+    p = ResolveParameters(config=FIGURE19)
+    f = LinearizedFrequencies(p)
+    whole = LinearStabilityFromParameters(p)
+    assert f['maxHz'] == pytest.approx(116.03, abs=0.01)
+    growing = [m.frequencyHz for s in whole.states.values() for m in s.modes if m.eigenvalue.real > 0]
+    assert f['chatterHz'] == pytest.approx(max(growing), rel=1e-12) and f['chatterHz'] == pytest.approx(36.96, abs=0.01)
+    assert RecommendedStepSize(p) == pytest.approx(RECOMMENDED_CYCLES / 116.03, rel=1e-3)
+    assert RecommendedStepSize(p) < 0.5 * RecommendedStepSize(GetPreset('reel-P1'))
+    with pytest.raises(ValueError, match=r"'stepSize' must be <= 0.00108 s .* got 0.0015 s: the drive's highest "
+                                         r"natural frequency is 116.0 Hz \(chatter mode 37.0 Hz\)"):
+        CheckStepSize(p, 0.0015)
+    # the two-mass drive keeps its numbers exactly
+    assert LinearizedFrequencies(GetPreset('reel-P1'))['maxHz'] == pytest.approx(50.35077095332752, rel=1e-13)
+
+
+def test_axial_bearing_enters_the_modes_but_its_own_mode_is_left_out():
+    from exudyn_worm.linearization import LinearStabilityFromParameters
+    p = ApplyOverrides(GetPreset('reel-P1'), {'kA': 1e9, 'mA': 5.})
+    f = LinearizedFrequencies(p)
+    assert f['chatterHz'] == pytest.approx(38.9, abs=0.05)           # the whole drive's growing mode (40.5 rigid)
+    assert 45. < f['maxHz'] < 50.                                     # kV in series with kA: below the rigid 50.35
+    axial = [m.frequencyHz for s in LinearStabilityFromParameters(p).states.values() for m in s.modes
+             if m.energyShare['wormAxial'] > 0.5]
+    assert axial and min(axial) > 2000.                               # the bearing's own stiff mode, not resolved
+
+
+def test_cli_step_rule_of_a_whole_drive_file(capsys, tmp_path, monkeypatch):
+    from exudyn_worm.cli import Main
+    monkeypatch.chdir(tmp_path)
+    status = Main(['simulate', '--config', str(FIGURE19), '--step-size', '0.0015'])
+    out, err = capsys.readouterr()
+    assert status == 2 and out == '' and err.count('\n') == 1
+    assert '116.0 Hz (chatter mode 37.0 Hz)' in err and 'Traceback' not in err and list(tmp_path.iterdir()) == []
+    status = Main(['simulate', '--config', str(FIGURE19), '--end-time', '0.02', '--windows', '0:0.02', '--json',
+                   '--quiet'])
+    out, err = capsys.readouterr()
+    assert status == 0 and json.loads(out)['stepSize'] == pytest.approx(RECOMMENDED_CYCLES / 116.03, rel=1e-3)

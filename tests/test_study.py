@@ -13,8 +13,8 @@ import pytest
 from hypothesis import given, strategies as st
 
 from exudyn_worm.config import ResolveParameters
-from exudyn_worm.study import (RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunStudy,
-                               ShardIndices, Study, StudyPoints, StudyResult, StudySidecarPath, Variation)
+from exudyn_worm.study import (RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunPoint,
+                               RunStudy, ShardIndices, Study, StudyPoints, StudyResult, StudySidecarPath, Variation)
 
 # short runs: 1 s of the reel changer (lifting), two windows
 SHORT = dict(windows=[(0., 0.5), (0.5, 1.)], endTime=1.)
@@ -244,3 +244,51 @@ def test_chatter_map_axes_follow_the_grid():
     assert low == pytest.approx(350. / 80. ** 0.15) and high == pytest.approx(28000. * 80. ** 0.15)
     lo, hi = ax.get_xlim()
     assert 0 < lo < 0.05 and hi > 0.1
+
+
+@pytest.mark.parametrize('base, varied', [
+    ({'kA': 5e8, 'mA': 5.}, 'J1=0.1,0.2'),                                  # worm axial bearing
+    ({'J4': 0.05, 'k4': 18483., 'd4': 0.8512}, 'J4=0.05,0.4'),              # Figure 19's drive-side chain
+])
+def test_verdict_of_a_drive_beyond_two_masses_is_that_of_stability(base, varied):
+    """The verdict columns come from the linearized whole drive, as `exudyn-worm stability` gives them, not from the
+    two-mass model (which disagrees here at one of the two points); the simulation agrees with them."""
+    from exudyn_worm.linearization import LinearStabilityFromParameters
+    from exudyn_worm.presets import DriveFromParameters
+    from exudyn_worm.stability import AnalyzeStability
+    study = Study(ResolveParameters('reel-P1', sets=list(base.items())), [ParseVariation(varied)], endTime=6.)
+    rows = [RunPoint(study.Task(i)) for i in range(2)]
+    twoMassDiffers = False
+    for i, row in enumerate(rows):
+        p = study.Parameters(i)
+        whole = LinearStabilityFromParameters(p)
+        assert row['status'] == 'ok', row['error']
+        assert row['analyticStable'] is whole.stable
+        assert row['analyticStableLowering'] is whole.State(-1).stable
+        twoMass = AnalyzeStability(DriveFromParameters({k: v for k, v in p.items() if k not in base}))
+        twoMassDiffers |= twoMass.contact[-1].stable != whole.State(-1).stable
+        assert row['loweringChatter'] is (not whole.State(-1).stable)
+    assert twoMassDiffers                      # the test would catch the two-mass verdict
+    assert sorted(r['analyticStableLowering'] for r in rows) == [False, True]
+    assert StudyResult(study, rows).agreement == 1.
+
+
+def test_chatter_map_of_a_drive_beyond_two_masses_uses_the_whole_drive():
+    """plot_study: the stability-chart shortcut only for the two-mass drive; the map's linear model is the whole
+    drive's (the two-mass model says the opposite at both J1 here)."""
+    pytest.importorskip('matplotlib')
+    from exudyn_worm import plot_study
+    bearing = ResolveParameters('reel-P1', sets=['kA=5e8', 'mA=5'])
+    growth = plot_study.AnalyticalMap(bearing, 'J1', [0.1, 0.2], 'kT', [7000.])
+    assert growth.shape == (1, 2) and growth[0, 0] < 0 < growth[0, 1]       # as `stability`: J1 = 0.1 stable
+    twoMass = plot_study.AnalyticalMap(ResolveParameters('reel-P1'), 'J1', [0.1, 0.2], 'kT', [7000.])
+    assert twoMass[0, 0] > 0 > twoMass[0, 1]
+    grid = np.geomspace(0.05, 0.4, 5), np.geomspace(3000., 20000., 5)
+    assert plot_study._Chart(ResolveParameters('reel-P1'), 'J1', grid[0], 'kT', grid[1], 50) is not None
+    assert plot_study._Chart(bearing, 'J1', grid[0], 'kT', grid[1], 50) is None
+    study = Study(bearing, [ParseVariation('J1=0.1,0.2'), ParseVariation('kT=7000,8000')])
+    rows = [{'run': i, 'status': 'ok', 'loweringChatter': p['J1'] > 0.15, 'analyticStableLowering': p['J1'] < 0.15,
+             **p} for i, p in enumerate(study.points)]
+    fig = plot_study.PlotChatterMap(StudyResult(study, rows), 'J1', 'kT', resolution=8)
+    labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert any('linearized whole drive' in t for t in labels), labels

@@ -73,14 +73,15 @@ def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
 
 def _Run(args: argparse.Namespace) -> int:
     from ..charts import ComputeStabilityChart, FormatChartTable, PresetChartPoints
-    from ..presets import DriveSideChain, GearFromParameters
+    from ..presets import ExtraComponents, GearFromParameters, MissingParameterError
     from ..progress import ProgressBar
     output = _CheckOutput(args.output) if args.output else None
     parameters = ParametersFromArgs(args)
     with BadInput():
         gear = GearFromParameters(parameters, meshDamping=False, where='chart')
         if 'J2' not in parameters:
-            raise ValueError("chart: missing parameter J2 (kg*m^2); give it with --set J2=VALUE or in the config file")
+            raise MissingParameterError("chart: missing parameter J2 (kg*m^2); give it with --set J2=VALUE or in the "
+                                        "config file", ['J2'])
         J2 = parameters['J2']
         DV = args.DV if args.DV is not None else _MeshDampingMeasure(parameters, gear)
         points = PresetChartPoints([_PresetName(n) for n in args.points])
@@ -91,8 +92,7 @@ def _Run(args: argparse.Namespace) -> int:
             ComputeStabilityChart(gear, J2, DV, DTV, resolution=2, S=args.S)
         if not 2 <= args.resolution <= 20000:
             ComputeStabilityChart(gear, J2, DV, args.DTV[0], resolution=args.resolution)
-    extra = (['a drive-side chain (J4, ...)'] if DriveSideChain(parameters) else []) + \
-        (['a worm axial bearing (kA > 0)'] if parameters.get('kA', 0.) > 0 else [])
+    extra = ExtraComponents(parameters)
     if extra:
         print(f"exudyn-worm chart: note: the chart is the two-mass drive of Figure 2 with this gear and J2; "
               f"{' and '.join(extra)} of the parameter set is not in it", file=sys.stderr)

@@ -23,9 +23,9 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra: List[str]) -> int:
     """A drive beyond two masses: the linearized Exudyn model of the whole drive, every contact state."""
     from ..cli import BadInput
-    from ..linearization import LinearStabilityFromParameters
+    from ..linearization import DriveStability
     with StdoutToStderr(args.json), BadInput():
-        analysis = LinearStabilityFromParameters(parameters)
+        analysis = DriveStability(parameters)          # the whole drive's linearization: it has extra components
     if args.json:
         PrintJson({**analysis.ToDict(), 'method': 'exudyn', 'components': extra})
         return 0
