@@ -421,7 +421,7 @@ def WriteReport(results: Dict[str, Dict], path: Path = HERE / 'STUDIES.md', figu
         L += [f'### D_V = {DV}', '',
               f"![stability map D_V = {DV}]({rel(figurePaths[f'map_DV{DV}'])})", '',
               f"{len(result.rows)} runs ({c['failed']} failed), wall time {entry['seconds']:.0f} s with {entry['workers']} "
-              f"worker processes on a shared 2-core machine. "
+              f"worker processes on a 2-core machine. "
               f"Agreement of the simulated chatter while lowering with the analytical S = -1 verdict: "
               f"**{100 * a['agreement']:.1f} %** ({judged - len(a['disagreements'])} of {judged} runs).", '',
               '| | simulation: chatter | simulation: no chatter |', '|---|---|---|',
