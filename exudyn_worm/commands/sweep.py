@@ -133,7 +133,8 @@ def _Run(args: argparse.Namespace) -> int:
 
 def FormatStudy(result, title: str = 'Study') -> List[str]:
     """Human-readable table of a study: one line per run (varied values, status, chatter per window,
-    analytical verdict, time) and a summary with the agreement.
+    verdict of the linear model as ``exudyn-worm stability`` gives it: the analytical two-mass model or the
+    linearized whole drive; time) and a summary with the agreement.
 
     Parameters
     ----------
@@ -153,7 +154,7 @@ def FormatStudy(result, title: str = 'Study') -> List[str]:
     heads = [f"{k} [{PARAMETER_UNITS[k] or '-'}]" for k in keys]
     widths = [max(12, len(h)) for h in heads]
     lines = [title, '', '  '.join(['run'.rjust(5)] + [h.rjust(w) for h, w in zip(heads, widths)]
-                                  + ['status', 'chatter per window'.ljust(max(18, 4 * n)), 'S=-1 analytic',
+                                  + ['status', 'chatter per window'.ljust(max(18, 4 * n)), 'S=-1 linear  ',
                                      'seconds'])]
     for r in result.rows:
         chatter = ' '.join('-' if r.get(f'w{i}.chatter') is None else 'YES' if r[f'w{i}.chatter'] else 'no'
@@ -164,7 +165,8 @@ def FormatStudy(result, title: str = 'Study') -> List[str]:
         lines.append('  '.join(cells) + (f"  {r['error']}" if r['error'] else ''))
     agreement = result.agreement
     lines += ['', f"{len(result.rows)} runs: {len(result.finished)} ok, {len(result.failed)} failed; "
-                  f"agreement of chatter while lowering with the analytical S = -1 verdict: "
+                  f"agreement of chatter while lowering with the linear model's S = -1 verdict (as "
+                  f"'exudyn-worm stability'): "
                   + ('n/a (no lowering window)' if agreement is None else f"{100 * agreement:.0f} %")]
     return lines
 
