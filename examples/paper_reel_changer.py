@@ -54,18 +54,21 @@ PAPER_FIGURES = {8: ('main', 'acceleration'), 9: ('main', 'zoom'), 10: ('main', 
 # zoom intervals in s (the paper gives 7.9-8 s for Fig. 16; the others are not printed: 0.1 s in the
 # middle of the lowering, where the load torque is largest); Fig. 15 shows the lowering
 _ZOOM = {9: (4.0, 4.1), 14: (4.0, 4.1), 15: (4.0, 4.1), 16: (7.9, 8.0)}
+_PAPER_PERIOD = 8.      # s, the rotation of the zoom times above (472.5 rpm; 8.0003 s with u = 63.002)
+#: fewest solver steps in a quarter rotation (one lift phase) for the windows to mean something
+MIN_STEPS_PER_PHASE = 100
 _CAPTIONS = {
-    8: r'wheel acceleration $\ddot\varphi_2$ (one full rotation)',
+    8: r'wheel acceleration $\ddot\varphi_2$',
     9: r'$\ddot\varphi_2$ (zoom of Fig. 8) and contact parameter $S$',
     10: r'worm speed $\dot\varphi_1$ and friction state $s_f$',
     11: 'normal forces on the two tooth flanks',
     12: 'normal force for backlash 0.25, 0.5, 0.75 mm',
-    13: r'wheel acceleration $\ddot\varphi_2$ (chatter also while lifting, 6-10 s)',
+    13: r'wheel acceleration $\ddot\varphi_2$ (the paper: chatter also while lifting)',
     14: r'$\ddot\varphi_2$ and $S$ while lowering (zoom of Fig. 13)',
     15: r'worm speed $\dot\varphi_1$ and friction state $s_f$ while lowering',
     16: r'$\ddot\varphi_2$ and $S$ while lifting (zoom of Fig. 13)',
     17: 'normal force for backlash 0.25, 0.5, 0.75 mm',
-    18: r'drive shaft torque $M_{an}$ and contact parameter $S$ (stable)',
+    18: r'drive shaft torque $M_{an}$ and contact parameter $S$ (the paper: stable)',
 }
 _WINDOW_NAMES = ('lift', 'lower', 'lift')
 # simulated rotations per case group (default 1): P7 keeps chattering while lifting, which the paper
@@ -207,6 +210,11 @@ def RunPaperCases(preset: str = 'reel-P1', backlash: float = 0., motorSpeed: Opt
         bar.set_postfix_str(label)
         params = {k: v for k, v in case.items() if k != 'rotations'}
         period = RotationPeriod(params)
+        if period / 4 < MIN_STEPS_PER_PHASE * stepSize:
+            fastest = params['motorSpeed'] * period / (4 * MIN_STEPS_PER_PHASE * stepSize) / RPM
+            raise ValueError(f"--speed: at {params['motorSpeed'] / RPM:g} rpm a quarter rotation (one lift or "
+                             f"lowering phase) takes {period / 4:.3g} s, fewer than {MIN_STEPS_PER_PHASE} steps of "
+                             f"{stepSize:g} s; at most {fastest:.4g} rpm")
         result = SimulateReelChanger(params, endTime=case['rotations'] * period if endTime is None else endTime,
                                      stepSize=stepSize, progress=False)
         bar.update(1)
@@ -274,6 +282,11 @@ def WriteFigures(results: Mapping[str, SimulationResult], outDir, figures: Optio
     for number in (sorted(PAPER_FIGURES) if figures is None else sorted(figures)):
         group, kind = PAPER_FIGURES[number]
         caption = f'Fig. {number}: {_CAPTIONS[number]}'
+        if number == 8:                   # what the figure spans: a rotation, or the --end-time given
+            result = results[main]
+            period = RotationPeriod(result.info['parameters'])
+            caption += (' (one full rotation)' if abs(result.endTime - period) < 1e-6 * period
+                        else f' ({result.endTime / period:.3g} rotations, {result.endTime:g} s)')
         if group in ('mainBacklash', 'P7Backlash'):
             short = main if group == 'mainBacklash' else 'P7'
             subset = {_BacklashLabel(short, b).replace('δ=', 'δ = ').replace('mm', ' mm'):
@@ -287,6 +300,9 @@ def WriteFigures(results: Mapping[str, SimulationResult], outDir, figures: Optio
             label = main if group == 'main' else group
             result = results[label]
             tZoom = _ZOOM.get(number)
+            if tZoom is not None:         # the same phase of the rotation at another speed (0.1 s wide)
+                start = tZoom[0] * RotationPeriod(result.info['parameters']) / _PAPER_PERIOD
+                tZoom = (start, start + tZoom[1] - tZoom[0])
             if tZoom is not None and tZoom[0] >= result.endTime:
                 tZoom = None if kind != 'zoom' else (max(0., result.endTime - 0.1), result.endTime)
             fig = PlotSimulation(result, kind=kind, tZoom=tZoom,

@@ -8,11 +8,11 @@ from __future__ import annotations
 import csv
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Dict, List, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-__all__ = ['SimulationResult', 'CHATTER_TORQUE_FRACTION', 'CHATTER_MIN_MESH_TORQUE']
+__all__ = ['SimulationResult', 'SeriesUnit', 'CheckWindows', 'CHATTER_TORQUE_FRACTION', 'CHATTER_MIN_MESH_TORQUE']
 
 #: chatter criterion: wheel inertia torque J2*|phi2''| in the second half of a window above this
 #: fraction of the largest mesh torque on the wheel in the window
@@ -88,7 +88,7 @@ class SimulationResult:
         """Per window: t0, t1, maxAbsWheelAcceleration (rad/s^2), maxNormalForce (N), dominantFrequencyHz,
         fractionSNegative, minWormSpeed (rad/s), chatter."""
         out = []
-        for t0, t1 in windows:
+        for t0, t1 in CheckWindows(windows, self.endTime, 'SimulationResult.WindowMetrics'):
             m = self._Window(t0, t1)
             if not m.any():
                 raise ValueError(f"window {t0:g}:{t1:g} s holds no output time (simulated 0:{self.endTime:g} s)")
@@ -102,13 +102,21 @@ class SimulationResult:
         return out
 
     def ToCsv(self, path) -> Path:
-        """Write all time series to a CSV file (header with SI units). Returns the path."""
+        """Write all time series to a CSV file (header with SI units). Returns the path.
+
+        Raises
+        ------
+        ValueError
+            If ``path`` is a folder or its folder does not exist.
+        """
         path = Path(path)
+        if path.is_dir() or not path.parent.is_dir():
+            raise ValueError(f"SimulationResult.ToCsv: 'path' must be a file in an existing folder, got '{path}'"
+                             + (' (a folder)' if path.is_dir() else f" (no folder '{path.parent}')"))
         names = list(self.series)
-        units = _UNITS
         with path.open('w', newline='') as f:
             w = csv.writer(f)
-            w.writerow(['time [s]'] + [f'{n} [{units.get(n, "-")}]' for n in names])
+            w.writerow(['time [s]'] + [f'{n} [{SeriesUnit(n)}]' for n in names])
             data = np.column_stack([self.time] + [self.series[n] for n in names])
             w.writerows(data.tolist())
         return path
@@ -119,7 +127,64 @@ class SimulationResult:
         return plot.PlotSimulation(self, kind=kind, **kwargs)
 
 
-_UNITS = {'phi0': 'rad', 'omega0': 'rad/s', 'phi1': 'rad', 'omega1': 'rad/s', 'alpha1': 'rad/s^2',
-          'phi2': 'rad', 'omega2': 'rad/s', 'alpha2': 'rad/s^2', 'deltaPhi': 'rad', 'deltaS': 'm',
-          'normalForce': 'N', 'S': '-', 'sf': '-', 'wormTorque': 'N*m', 'wheelTorque': 'N*m',
-          'driveTorque': 'N*m', 'tangentialForce': 'N'}
+_UNITS = {'deltaPhi': 'rad', 'deltaS': 'm', 'normalForce': 'N', 'S': '-', 'sf': '-', 'wormTorque': 'N*m',
+          'wheelTorque': 'N*m', 'driveTorque': 'N*m', 'tangentialForce': 'N',
+          'xA': 'm', 'vA': 'm/s', 'aA': 'm/s^2', 'axialForce': 'N'}
+#: angle, speed and acceleration of rotor i (0 motor, 1 worm, 2 wheel, 4, 5, ... the drive-side chain)
+_ROTOR_UNITS = {'phi': 'rad', 'omega': 'rad/s', 'alpha': 'rad/s^2'}
+
+
+def CheckWindows(windows, endTime: Optional[float], where: str) -> List[Tuple[float, float]]:
+    """Evaluation windows as a list of (t0, t1) in s with 0 <= t0 < t1 <= endTime: a window beyond the
+    simulated end would be judged on the part that exists (its second half, which decides chatter, may be empty).
+
+    Parameters
+    ----------
+    windows : sequence of (float, float)
+        Windows in s.
+    endTime : float or None
+        Simulated end time in s (None: not checked against it).
+    where : str
+        Caller, first in the messages.
+
+    Returns
+    -------
+    list of (float, float)
+
+    Raises
+    ------
+    TypeError, ValueError
+        For anything else.
+    """
+    try:
+        pairs = [(float(a), float(b)) for a, b in windows]
+    except (TypeError, ValueError) as err:
+        raise TypeError(f"{where}: 'windows' must be a sequence of (t0, t1) pairs in s, e.g. [(2., 6.)], "
+                        f"got {windows!r}") from err
+    for t0, t1 in pairs:
+        if not (0. <= t0 < t1):
+            raise ValueError(f"{where}: a window must have 0 <= t0 < t1 (s), got {t0:g}:{t1:g}")
+        if endTime is not None and t1 > endTime * (1. + 1e-9):
+            raise ValueError(f"{where}: the window {t0:g}:{t1:g} s ends after the simulated end {endTime:g} s")
+    return pairs
+
+
+def SeriesUnit(name: str) -> str:
+    """SI unit of a series of :class:`SimulationResult` (``'-'`` for dimensionless ones).
+
+    Parameters
+    ----------
+    name : str
+        Series name, e.g. ``'phi4'`` or ``'axialForce'``.
+
+    Raises
+    ------
+    KeyError
+        For a series name without a known unit (a new series must get one here).
+    """
+    if name in _UNITS:
+        return _UNITS[name]
+    for prefix, unit in _ROTOR_UNITS.items():
+        if name.startswith(prefix) and name[len(prefix):].isdigit():
+            return unit
+    raise KeyError(f"SeriesUnit: no unit known for the series '{name}'")

@@ -46,9 +46,27 @@ class SolverDivergedError(RuntimeError):
         self.timeReached, self.endTime, self.stepSize = timeReached, endTime, stepSize
 
 
+def _ConstraintNames(mbs):
+    """Names (or numbers) and types of the objects of the assembled ``mbs`` that add algebraic equations."""
+    found = []
+    for i in range(mbs.systemData.NumberOfObjects()):
+        if len(mbs.systemData.GetObjectLTGAE(i)):
+            item = mbs.GetObject(i)
+            found.append(f"{item.get('name') or i} ({item['objectType']})")
+    return found
+
+
 def _SolveInOnePiece(mbs, ss, solverType):
-    """Explicit solvers: one ``mbs.SolveDynamic`` call (no chunks, no progress), failures as SolverDivergedError."""
+    """Explicit solvers: one ``mbs.SolveDynamic`` call (no chunks, no progress), failures as SolverDivergedError.
+    Refused for a system with constraints: Exudyn's explicit solvers ignore them (a prescribed motor would
+    stand still and the run would look fine)."""
     import exudyn as exu
+    constraints = _ConstraintNames(mbs)
+    if constraints:
+        raise ValueError(f"SolveDynamicInChunks: the explicit solver {solverType} ignores constraints, and this "
+                         f"system has {', '.join(constraints[:3])}{' ...' if len(constraints) > 3 else ''} (e.g. a "
+                         f"prescribed motor rotation, which would stand still); use GeneralizedAlpha or "
+                         f"TrapezoidalIndex2, or drive the rotor by a torque (CreateRotorTorque)")
     ti = ss.timeIntegration
     try:
         mbs.SolveDynamic(ss, solverType=solverType)
@@ -94,7 +112,8 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
     SolverDivergedError
         If the solver fails; the message gives the simulated time reached.
     ValueError, TypeError
-        For ``chunkSteps < 1`` or a ``solverType`` that is not an ``exudyn.DynamicSolverType``.
+        For ``chunkSteps < 1``, a ``solverType`` that is not an ``exudyn.DynamicSolverType``, or an explicit
+        solver on a system with constraints.
     """
     import exudyn as exu
     w = 'SolveDynamicInChunks'

@@ -42,6 +42,8 @@ import numpy as np
 
 from .config import ParseQuantity
 from .presets import PARAMETER_UNITS, ApplyOverrides
+from .results import CheckWindows
+from ._checks import CheckPositive
 
 __all__ = ['Variation', 'ParseVariation', 'StudyPoints', 'Study', 'ParseShard', 'ShardIndices', 'RunPoint',
            'StudyResult', 'RunStudy', 'ReadResults', 'StudySidecarPath', 'VibrationSeconds', 'WINDOW_METRICS',
@@ -212,7 +214,9 @@ class Study:
         Simulated time in s (default: one rotation of each point, at least up to the last window).
     stepSize : float, optional
         Time step in s (default, per run: :data:`~exudyn_worm.reelchanger.DEFAULT_STEP_SIZE` or the drive's
-        :func:`~exudyn_worm.stepsize.RecommendedStepSize` where that is smaller, as ``check --simulate``).
+        :func:`~exudyn_worm.stepsize.RecommendedStepSize` where that is smaller: the validation's step, finer
+        than the recommended step that ``simulate`` and ``check --simulate`` use, so study peaks may differ
+        from theirs by a few 0.1 %, e.g. P7 798.8 against 801.5 rad/s^2).
     source : str, optional
         Where the base set came from (for the record).
     """
@@ -232,8 +236,10 @@ class Study:
             if not isinstance(v, Variation):
                 raise TypeError(f"Study: 'variations' must hold Variation objects (ParseVariation), "
                                 f"got {type(v).__name__}")
-        if self.windows is not None:
-            self.windows = [(float(a), float(b)) for a, b in self.windows]
+        if self.endTime is not None:
+            self.endTime = CheckPositive('Study', 'endTime', self.endTime, 's')
+        if self.windows is not None:      # a window beyond endTime would be judged on its missing part
+            self.windows = CheckWindows(self.windows, self.endTime, 'Study')
         self.points = StudyPoints(self.variations, self.zipped)
         ApplyOverrides(self.base, self.points[0])          # unknown keys raise here
 

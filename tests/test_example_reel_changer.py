@@ -90,6 +90,7 @@ def test_main_writes_the_figure_only_into_the_output_folder(example, tmp_path, m
     (['--speed', '0'], '--speed'),
     (['--load', 'nan'], '--load'),
     (['--end-time', '-1'], '--end-time'),
+    (['--speed', '1e9', '--end-time', '2', '--figures', '8'], 'fewer than 100 steps of 0.0005 s; at most 1.89e+04 rpm'),
 ])
 def test_bad_input_gives_one_line_and_exit_status_2(example, argv, fragment, tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
@@ -114,3 +115,16 @@ def test_unparsable_arguments_give_one_line_and_exit_status_2(example, argv, cap
     assert exit.value.code == 2
     err = capsys.readouterr().err
     assert err.count('\n') == 1 and argv[0] in err
+
+
+def test_figure_8_title_says_what_was_simulated(example, tmp_path):
+    """Fig. 8 said '(one full rotation)' also for a shorter --end-time."""
+    import matplotlib
+    matplotlib.use('Agg')
+    from unittest import mock
+    results = example.RunPaperCases(figures=[8], endTime=4., progress=False)
+    titles = []
+    with mock.patch('exudyn_worm.plot.SaveFigure', side_effect=lambda fig, path: titles.append(
+            fig.axes[0].get_title() or fig._suptitle.get_text()) or path):
+        example.WriteFigures(results, tmp_path, [8])
+    assert '(0.5 rotations, 4 s)' in titles[0] and 'one full rotation' not in titles[0]

@@ -73,9 +73,27 @@ def test_failure_reports_the_time_reached():
 
 
 def test_explicit_solver_runs_in_one_piece():
-    result = SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, stepSize=5e-4,
-                                 solverOptions={'solverType': 'RK44'}, progress=False)
-    assert result.time.size == 101 and np.all(np.diff(result.time) > 0)
+    """Without constraints an explicit solver runs (one piece); two rotors on a shaft keep their speed."""
+    import exudyn as exu
+    import exudyn_worm as ew
+    from exudyn_worm.solve import SolveDynamicInChunks
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    a, b = ew.CreateRotor(mbs, 0.1, initialSpeed=10.), ew.CreateRotor(mbs, 0.2, initialSpeed=10.)
+    ew.CreateShaft(mbs, [a, b], stiffness=1e3, damping=1.)
+    ss, _ = SolverSettings(0.05, 5e-4)
+    solver = SolveDynamicInChunks(mbs, ss, exu.DynamicSolverType.RK44, progress=True)
+    assert isinstance(solver, exu.MainSolverExplicit)
+    assert float(mbs.GetNodeOutput(b['nodeNumber'], exu.OutputVariableType.Coordinates_t)) == pytest.approx(10.)
+
+
+def test_explicit_solver_refused_with_a_prescribed_motor():
+    """Exudyn's explicit solvers ignore constraints: the reel changer's motor stood still (phi1 = -0.01 rad
+    after 0.5 s instead of 24.7 rad) and the run returned normally."""
+    with pytest.raises(ValueError, match=r"explicit solver .*RK44 ignores constraints, and this system has "
+                                         r"motorDrive \(ConnectorCoordinate\)"):
+        SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, stepSize=5e-4, solverOptions={'solverType': 'RK44'},
+                            progress=False)
 
 
 @pytest.mark.parametrize('computationTime', [False, True])

@@ -43,11 +43,14 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _PresetName(name: str) -> str:
     from ..presets import PRESETS
-    if name in PRESETS:
+    # a point needs J1 and kT: the 'chart' preset has neither (it is the gear the chart is drawn for)
+    drives = [p for p in PRESETS if p != 'chart']
+    if name in drives:
         return name
-    if f'reel-{name}' in PRESETS:
+    if f'reel-{name}' in drives:
         return f'reel-{name}'
-    raise UsageError(f"--points: unknown preset '{name}'; expected one of: {', '.join(PRESETS)} "
+    why = " ('chart' is the gear of the chart, it has no J1 or kT to mark)" if name == 'chart' else ''
+    raise UsageError(f"--points: '{name}' is not a drive to mark{why}; expected one of: {', '.join(drives)} "
                      f"(or P1 ... P7 for reel-P1 ... reel-P7)")
 
 

@@ -32,7 +32,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='run only the runs i, i+N, i+2N, ... (0 <= i < N), e.g. one task of a job array')
     parser.add_argument('--end-time', type=float, default=None, metavar='S',
                         help='simulated time in s (default: one rotation of each run)')
-    parser.add_argument('--step-size', type=float, default=None, metavar='S', help="time step in s (default: 5e-4 or the drive's recommended step, whichever is smaller)")
+    parser.add_argument('--step-size', type=float, default=None, metavar='S', help="time step in s (default: 5e-4 or the drive's recommended step, whichever is smaller; finer "
+                             "than simulate's default, the recommended step)")
     parser.add_argument('--windows', default=None, metavar='T0:T1,...',
                         help='evaluation windows in s (default: the lift / lower / lift phases of each run)')
     parser.add_argument('--plot', default=None, metavar='FILE.png',
