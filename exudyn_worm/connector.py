@@ -227,21 +227,8 @@ class WormGearConnector:
         """Mesh quantities over the stored time steps (requires :meth:`AddSensors`), with their ``time`` in s.
 
         ``normalForce`` is signed (see :class:`~exudyn_worm.contact.MeshState`); ``normalForceFlanks`` gives
-        the magnitudes on the two flanks.
-
-        Parameters
-        ----------
-        mbs : exudyn.MainSystem
-            The system the connector belongs to, after a solve.
-
-        Returns
-        -------
-        MeshState
-
-        Raises
-        ------
-        ValueError
-            If :meth:`AddSensors` was not called or the system was not solved yet (:meth:`StoredStates`).
+        the magnitudes on the two flanks. ``mbs`` and the errors (no sensors, not solved yet) are those of
+        :meth:`StoredStates`.
         """
         s = self.StoredStates(mbs)
         state = self.Evaluate(s['phi1'], s['phi2'], s['omega1'], s['omega2'], s.get('xA'), s.get('vA'))
