@@ -209,7 +209,8 @@ def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, floa
     parameters : mapping
         Flat parameter dictionary (SI), e.g. a preset.
     overrides : mapping
-        The new values, keyed by parameter keys; two forms of one quantity together are refused.
+        The new values, keyed by parameter keys, applied in order (of two forms of one quantity here, the later
+        one is kept: ``{'mu': 0.13, 'rho': 0.14}`` sets rho).
 
     Returns
     -------
@@ -220,12 +221,14 @@ def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, floa
     ------
     TypeError, ValueError
         For an argument that is not a mapping, an unknown key (with a near-miss suggestion), or two forms of
-        one quantity within ``parameters`` or within ``overrides`` (:func:`CheckParameterKeys`).
+        one quantity within ``parameters`` (:func:`CheckParameterKeys`).
     """
     w = 'ApplyOverrides'
     CheckParameterKeys(parameters, w)
     CheckMapping(w, 'overrides', overrides, "{'J1': 0.3}", preset=False)
-    CheckParameterKeys(overrides, w, 'overrides')
+    for key in overrides:        # applied in order: two forms here are fine, the later one replaces the earlier
+        if key not in PARAMETER_UNITS:
+            raise ValueError(UnknownParameterMessage(f"{w}: 'overrides'", key))
     out = dict(parameters)
     for key, value in overrides.items():
         for alt in _ALTERNATIVES.get(key, ()):

@@ -130,8 +130,10 @@ def test_apply_overrides_replaces_the_other_form(override, dropped):
 def test_apply_overrides_checks_both_mappings():
     with pytest.raises(ValueError, match=r"^ApplyOverrides: 'overrides': unknown parameter 'Kt' \(did you mean 'kT'"):
         ApplyOverrides(P1, {'Kt': 1.})
-    with pytest.raises(ValueError, match=r"^ApplyOverrides: 'overrides': 'dV' and 'DV' are given together"):
-        ApplyOverrides(P1, {'dV': 1., 'DV': 0.01})
+    with pytest.raises(ValueError, match=r"^ApplyOverrides: 'DV' and 'dV' are given together"):
+        ApplyOverrides({**P1, 'dV': 1.}, {'J1': 0.2})
+    # overrides apply in order: the later form wins (validation/analytical.py sets mu, then rho)
+    assert ApplyOverrides(P1, {'mu': 0.1, 'rho': 0.14})['rho'] == 0.14 and 'mu' not in ApplyOverrides(P1, {'rho': 0.1})
     with pytest.raises(TypeError, match=r"^ApplyOverrides: 'overrides' must be a mapping .*e.g. \{'J1': 0.3\}, got str"):
         ApplyOverrides(P1, 'J1=0.3')
 
