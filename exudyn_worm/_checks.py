@@ -4,14 +4,16 @@ Each check raises ``ValueError`` (or ``TypeError``) whose message names the call
 function, the argument, the allowed range with its unit and the value received, e.g.
 ``WormGear: 'backlash' must be >= 0 m, got -0.001``.
 """
+import difflib
 import math
+from collections.abc import Mapping
 from pathlib import Path
 from numbers import Real
 
 import numpy as np
 
 __all__ = ['CheckReal', 'CheckPositive', 'CheckNonNegative', 'CheckAngle', 'CheckRange', 'CheckArray',
-           'CheckOutputFolder']
+           'CheckOutputFolder', 'CheckBool', 'CheckMapping', 'CheckName', 'CheckSystem', 'Suggest']
 
 
 def _Format(value) -> str:
@@ -99,3 +101,61 @@ def CheckOutputFolder(where: str, name: str, path) -> Path:
     except OSError as error:
         raise ValueError(f"{where}: cannot write to {name} {str(path)!r}: {error.strerror or error}") from None
     return folder
+
+
+def CheckBool(where: str, name: str, value) -> bool:
+    """Return ``value`` if it is a bool (numpy bools included); raise ``TypeError`` otherwise (``'yes'``, 1)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{where}: '{name}' must be True or False, got {type(value).__name__} {value!r}")
+    return bool(value)
+
+
+def CheckMapping(where: str, name: str, value, example: str = "GetPreset('reel-P1')", preset: bool = True) -> Mapping:
+    """Return ``value`` if it is a mapping (a flat parameter dictionary); raise ``TypeError`` otherwise.
+
+    With ``preset``, a string is taken for a preset name: the message suggests ``GetPreset(value)``.
+    """
+    if isinstance(value, Mapping):
+        return value
+    hint = (f"; for the preset {value!r} pass GetPreset({value!r})" if preset and isinstance(value, str) else
+            f", e.g. {example}")
+    raise TypeError(f"{where}: '{name}' must be a mapping of parameter names to values (SI){hint}, "
+                    f"got {type(value).__name__}{'' if isinstance(value, str) else ' ' + _Short(value)}")
+
+
+def _Short(value) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + '...'
+
+
+def Suggest(word, choices) -> str:
+    """`` (did you mean 'X'?)`` for a near miss of ``word`` among ``choices`` (case is ignored first), else ''."""
+    choices = [str(c) for c in choices]
+    same = [c for c in choices if c.lower() == str(word).lower()]
+    close = same or difflib.get_close_matches(str(word), choices, n=1, cutoff=0.75)
+    if not close:
+        return ''
+    return f" (did you mean {' or '.join(repr(c) for c in close)}?)"
+
+
+def CheckName(where: str, name: str, value) -> str:
+    """Return ``value`` if it is a string (an Exudyn item name); raise ``TypeError`` otherwise."""
+    if not isinstance(value, str):
+        raise TypeError(f"{where}: '{name}' must be a string (the name of the Exudyn item), got "
+                        f"{type(value).__name__} {value!r}")
+    return value
+
+
+def CheckSystem(where: str, mbs, name: str = 'mbs'):
+    """Return ``mbs`` if it is an ``exudyn.MainSystem``; raise ``TypeError`` otherwise.
+
+    An object with a MainSystem attribute ``mbs`` (e.g. a :class:`~exudyn_worm.reelchanger.ReelChangerModel`)
+    is named in the message, so that the caller can pass ``model.mbs``.
+    """
+    import exudyn
+    if isinstance(mbs, exudyn.MainSystem):
+        return mbs
+    hint = (f" (this {type(mbs).__name__} holds one: pass its .mbs)"
+            if isinstance(getattr(mbs, 'mbs', None), exudyn.MainSystem) else
+            " (SC = exudyn.SystemContainer(); mbs = SC.AddSystem())")
+    raise TypeError(f"{where}: '{name}' must be an exudyn.MainSystem{hint}, got {type(mbs).__name__}")

@@ -6,6 +6,7 @@ offset) with the arithmetic backend ``ops``; here it becomes either an Exudyn sy
 """
 from __future__ import annotations
 
+from numbers import Real
 from typing import Any, Callable, Sequence, Tuple
 
 import numpy as np
@@ -13,7 +14,7 @@ import numpy as np
 from .contact import MATH_OPS, SymbolicOps
 
 __all__ = ['AddGenericForce', 'SetGenericForceLaw', 'SetOffsetFunction', 'CheckSymbolicLaw', 'CheckForceLaw',
-           'CheckOffsetLaw']
+           'CheckOffsetLaw', 'CheckPlainForceLaw', 'CheckPlainOffsetLaw']
 
 _KEEP_ALIVE = 'exudynWorm.symbolicUserFunctions'   # mbs.variables key: expression trees must outlive the solve
 
@@ -57,14 +58,45 @@ def _Flat(value):
     return [float(x.Evaluate()) if hasattr(x, 'Evaluate') else float(x) for x in items]
 
 
-def CheckSymbolicLaw(where: str, arguments, build: Callable) -> None:
+def _PlainArguments(arguments, t, x, v) -> list:
+    """Plain-Python arguments of a law at sample state (t, x, v): ``[None, ...]`` in the order of ``arguments``."""
+    plain = [None]
+    for name, typ, size in arguments:
+        if typ == 'StdVector':
+            plain.append([(x if name == 'q' else v) * (1. + 0.29 * k) for k in range(size)])
+        else:
+            plain.append(t if name == 't' else 0.)
+    return plain
+
+
+def _CheckPlainCall(where: str, arguments, build: Callable, signature: str, returnSize) -> None:
+    """Call the law once in plain Python (``MATH_OPS``) at the first sample state: a TypeError there is the law's
+    own (wrong number of arguments, ...), and what it returns must be numbers, before anything is recorded."""
+    t, x, v = _SAMPLES[0]
+    try:
+        value = build(_PlainArguments(arguments, t, x, v), MATH_OPS)
+    except TypeError as err:
+        raise TypeError(f"{where}: calling the law in plain Python failed with TypeError: {err}"
+                        f"{'; it must be callable as ' + signature if signature else ''}") from err
+    except (ArithmeticError, ValueError):          # not defined at this state: the comparison skips it
+        return
+    items = list(value) if isinstance(value, (list, tuple)) else [value]
+    bad = [item for item in items if isinstance(item, bool) or not isinstance(item, (Real, np.number))]
+    if bad or (returnSize is not None and len(items) != returnSize):
+        expected = 'a number' if returnSize in (None, 1) else f'{returnSize} numbers'
+        got = f"{type(bad[0]).__name__} {bad[0]!r}" if bad else f"{len(items)} values {value!r}"
+        raise TypeError(f"{where}: the law must return {expected}, got {got} when called in plain Python")
+
+
+def CheckSymbolicLaw(where: str, arguments, build: Callable, signature: str = '', returnSize=None) -> None:
     """Check that ``build(args, ops)`` records as the same function in C++ as it computes in Python.
 
-    A law written with a Python ``if``, ``and``/``or``, the built-in ``min``/``max`` or ``math`` functions
-    on its arguments is evaluated once while it is recorded (with the arguments at 0) and becomes a
-    constant in the symbolic user function, without any error. This records the law, evaluates the
-    recording at a few sample states (:data:`_SAMPLES`) and compares with the law evaluated in plain
-    Python (``MATH_OPS``) there.
+    The law is first called once in plain Python (``MATH_OPS``): a ``TypeError`` there (e.g. the wrong number of
+    arguments) is reported as the law's own error, and it must return numbers. A law written with a Python
+    ``if``, ``and``/``or``, the built-in ``min``/``max`` or ``math`` functions on its arguments is evaluated once
+    while it is recorded (with the arguments at 0) and becomes a constant in the symbolic user function,
+    without any error. This records the law, evaluates the recording at a few sample states (:data:`_SAMPLES`)
+    and compares with the law evaluated in plain Python (``MATH_OPS``) there.
 
     Parameters
     ----------
@@ -74,16 +106,22 @@ def CheckSymbolicLaw(where: str, arguments, build: Callable) -> None:
         The user function's arguments after the MainSystem (as for ``_RecordSymbolic``).
     build : callable
         ``build(args, ops)`` with ``args[0]`` the MainSystem (None here).
+    signature : str, optional
+        How the user's law is called, for the message of a failed call (e.g. ``'law(phi, omega, t, ops)'``).
+    returnSize : int, optional
+        Number of values ``build`` must return (None: not checked).
 
     Raises
     ------
     ValueError
         If recording and Python differ at a sample state; the message names the likely cause.
     TypeError
-        If the law cannot be recorded at all (e.g. a numpy function applied to a symbolic argument).
+        If the law fails when called in plain Python, returns something else than numbers, or cannot be
+        recorded at all (e.g. a numpy function applied to a symbolic argument).
     """
     import exudyn as exu
     esym = exu.symbolic
+    _CheckPlainCall(where, arguments, build, signature, returnSize)
     recording = esym.GetRecording()
     esym.SetRecording(True)
     try:
@@ -96,15 +134,12 @@ def CheckSymbolicLaw(where: str, arguments, build: Callable) -> None:
                             f"it with the functions of 'ops' (ops.sin, ops.cos, ops.where, ops.min, ...) instead of "
                             f"math or numpy, or pass useSymbolic=False") from err
         for t, x, v in _SAMPLES:
-            plain = [None]
-            for (name, typ, size), arg in zip(arguments, args[1:]):
+            plain = _PlainArguments(arguments, t, x, v)
+            for (name, typ, size), arg, sample in zip(arguments, args[1:], plain[1:]):
                 if typ == 'StdVector':
-                    sample = [(x if name == 'q' else v) * (1. + 0.29 * k) for k in range(size)]
                     arg.SetVector(sample)
                 else:
-                    sample = t if name == 't' else 0.
                     arg.SetValue(sample)
-                plain.append(sample)
             try:
                 expected = _Flat(build(plain, MATH_OPS))
             except (ArithmeticError, ValueError):            # the law is not defined there: no comparison
@@ -126,18 +161,31 @@ def CheckSymbolicLaw(where: str, arguments, build: Callable) -> None:
         esym.SetRecording(recording)
 
 
-def CheckForceLaw(where: str, n: int, law: Callable) -> None:
+def CheckForceLaw(where: str, n: int, law: Callable, signature: str = 'law(t, q, q_t, ops)') -> None:
     """:func:`CheckSymbolicLaw` for a generalized-force law ``law(t, q, q_t, ops)`` on ``n`` coordinates."""
-    CheckSymbolicLaw(where, _FORCE_ARGUMENTS(n), lambda args, ops: law(args[1], args[3], args[4], ops))
+    CheckSymbolicLaw(where, _FORCE_ARGUMENTS(n), lambda args, ops: law(args[1], args[3], args[4], ops), signature, n)
 
 
-def CheckOffsetLaw(where: str, law: Callable) -> None:
+def CheckPlainForceLaw(where: str, n: int, law: Callable, signature: str = 'law(t, q, q_t, ops)') -> None:
+    """Call a generalized-force law once in plain Python: a ``TypeError`` or a result that is not ``n`` numbers
+    is refused (the check of :func:`CheckForceLaw` without the symbolic recording)."""
+    _CheckPlainCall(where, _FORCE_ARGUMENTS(n), lambda args, ops: law(args[1], args[3], args[4], ops), signature, n)
+
+
+def CheckPlainOffsetLaw(where: str, law: Callable, signature: str = 'AngleAndSpeed(t, ops)') -> None:
+    """Call a constraint-offset law once in plain Python: a ``TypeError`` or a result that is not two numbers
+    is refused (the check of :func:`CheckOffsetLaw` without the symbolic recording)."""
+    _CheckPlainCall(where, _OFFSET_ARGUMENTS, lambda args, ops: list(law(args[1], ops))[:2], signature, 2)
+
+
+def CheckOffsetLaw(where: str, law: Callable, signature: str = 'AngleAndSpeed(t, ops)') -> None:
     """:func:`CheckSymbolicLaw` for a constraint-offset law ``law(t, ops) -> (offset, offsetRate)``."""
-    CheckSymbolicLaw(where, _OFFSET_ARGUMENTS, lambda args, ops: list(law(args[1], ops))[:2])
+    CheckSymbolicLaw(where, _OFFSET_ARGUMENTS, lambda args, ops: list(law(args[1], ops))[:2], signature, 2)
 
 
 def AddGenericForce(mbs, nodeNumbers: Sequence[Any], law: Callable, name: str = '',
-                    useSymbolic: bool = True, where: str = 'AddGenericForce') -> Tuple[Any, Any]:
+                    useSymbolic: bool = True, where: str = 'AddGenericForce',
+                    signature: str = 'law(t, q, q_t, ops)') -> Tuple[Any, Any]:
     """Add an ``ObjectGenericODE2`` on one-coordinate nodes whose forces are ``law(t, q, q_t, ops)``.
 
     With ``useSymbolic`` the law is first checked with :func:`CheckSymbolicLaw` (errors name ``where``),
@@ -146,7 +194,9 @@ def AddGenericForce(mbs, nodeNumbers: Sequence[Any], law: Callable, name: str = 
     from exudyn.itemInterface import ObjectGenericODE2
     n = len(nodeNumbers)
     if useSymbolic:
-        CheckForceLaw(where, n, law)
+        CheckForceLaw(where, n, law, signature)
+    else:
+        CheckPlainForceLaw(where, n, law, signature)
     zeros = np.zeros((n, n))
     oItem = mbs.AddObject(ObjectGenericODE2(nodeNumbers=list(nodeNumbers), massMatrix=zeros,
                                             stiffnessMatrix=zeros, dampingMatrix=zeros, name=name))

@@ -595,8 +595,9 @@ class StabilityChart:
         ----------
         ax : matplotlib.axes.Axes, optional
             Axes to draw into (default: a new figure).
-        points : mapping, optional
-            ``{label: (x, y)}`` or ``{label: ElasticDrive}`` points to mark.
+        points : mapping or list of str, optional
+            ``{label: (x, y)}`` or ``{label: ElasticDrive}`` points to mark, or a list of preset names
+            (``['reel-P1', 'P7']``) marked at their chart coordinates.
         **kwargs
             Passed on to :func:`~exudyn_worm.plot_charts.PlotStabilityChart`.
 

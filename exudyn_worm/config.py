@@ -39,7 +39,8 @@ from numbers import Real
 from typing import Dict, Iterable, Mapping, Optional, Tuple, Union
 
 from .drivefile import COMPONENT_TABLES, DRIVE_FILE_TABLES, DRIVE_SIDE_TABLE, TOP_LEVEL_KEYS, FlattenDriveFile
-from .presets import _CHAIN_KEY, PARAMETER_UNITS, PRESETS, ApplyOverrides, CheckParameters, DriveSideChain, GetPreset
+from .presets import (_CHAIN_KEY, PARAMETER_UNITS, PRESETS, ApplyOverrides, CheckParameters, DriveSideChain, GetPreset,
+                      UnknownParameterMessage, _Conflicts)
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -94,7 +95,7 @@ def _ExpectedText(key: str) -> str:
 
 def _CheckKey(where: str, key) -> str:
     if not isinstance(key, str) or key not in PARAMETER_UNITS:
-        raise ValueError(f"{where}: unknown parameter {key!r}; expected one of: {' '.join(PARAMETER_UNITS)}")
+        raise ValueError(UnknownParameterMessage(where, key))
     return key
 
 
@@ -240,13 +241,10 @@ def ParseSetOption(text: str) -> Tuple[str, float]:
 def _RejectAlternatives(values: Mapping[str, float], where: str, locations: Optional[Mapping[str, str]] = None
                         ) -> None:
     """Raise if ``values`` gives two forms of one quantity (e.g. ``mu`` and ``rho``), naming where each is."""
-    for key, value in values.items():
-        dropped = sorted(set(values) - set(ApplyOverrides(values, {key: value})))
-        if not dropped:
-            continue
+    for key, dropped in _Conflicts(values):
         others = ' and '.join(f"'{k}'" for k in dropped)
         if locations:
-            places = '; '.join(locations[k][len(where):].lstrip(',: ') for k in [key] + dropped)
+            places = '; '.join(locations[k][len(where):].lstrip(',: ') for k in (key, *dropped))
             raise ValueError(f"{where}: both '{key}' and {others} are given ({places}), which describe the same "
                              f"quantity; give only one of them")
         raise ValueError(f"{where}: both '{key}' and {others} are given, which describe the same quantity; "
@@ -261,8 +259,7 @@ def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None) -> Di
     parameters, locations = {}, {}
     for key, value, location in raw:
         if key not in PARAMETER_UNITS:
-            raise ValueError(f"{location}: unknown parameter {key!r}; expected one of: "
-                             f"{' '.join(PARAMETER_UNITS)}")
+            raise ValueError(UnknownParameterMessage(location, key))
         if isinstance(value, bool) or not isinstance(value, (str, Real)):
             raise ValueError(f"{location}: must be a number (SI) or a string with units, "
                              f"got {type(value).__name__} {value!r}")
@@ -388,12 +385,22 @@ def ResolveParameters(preset: Optional[str] = None,
 
 def _CheckChain(parameters: Mapping[str, float], locations: Mapping[str, str]) -> None:
     """The drive-side chain must be complete (``J4`` with ``k4``, no gaps) in every resolved parameter set, so that
-    no command meets an incomplete chain later; a chain from a drive file is reported at its first stage there."""
+    no command meets an incomplete chain later; a chain from a drive file is reported at the stage that is incomplete
+    (its ``[[driveSide]]`` number and line), or at the file's first stage if that stage was not in the file."""
     try:
         DriveSideChain(parameters)
     except ValueError as err:
-        stages = sorted((int(m.group(2)), k) for k, m in ((k, _CHAIN_KEY.match(k)) for k in locations) if m)
+        stages = {}                  # stage number (4, 5, ...) -> location of its first key in the file
+        for key, location in locations.items():
+            match = _CHAIN_KEY.match(key)
+            if match:
+                stages.setdefault(int(match.group(2)), location)
         if not stages:
             raise ValueError(f"ResolveParameters: {err}") from None
-        raise ValueError(f"{locations[stages[0][1]]}: {err}; each [[{DRIVE_SIDE_TABLE}]] table needs 'inertia' and "
+        given = sorted({int(m.group(2)) for m in (_CHAIN_KEY.match(k) for k in parameters) if m})
+        # the first stage that breaks the chain: a gap before it, or without its inertia or stiffness
+        bad = next((i for expected, i in enumerate(given, start=4)
+                    if i != expected or f'J{i}' not in parameters or f'k{i}' not in parameters), given[0])
+        location = stages.get(bad, stages[min(stages)])
+        raise ValueError(f"{location}: {err}; each [[{DRIVE_SIDE_TABLE}]] table needs 'inertia' and "
                          f"'stiffness' ('damping' is optional)") from None

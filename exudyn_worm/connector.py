@@ -22,7 +22,7 @@ from typing import Any, Dict, List, Sequence
 
 import numpy as np
 
-from ._checks import CheckNonNegative, CheckPositive, CheckReal
+from ._checks import CheckBool, CheckName, CheckNonNegative, CheckPositive, CheckReal, CheckSystem
 from ._userfunctions import AddGenericForce, SetGenericForceLaw
 from .contact import NUMPY_OPS, ContactOptions, MeshContact, MeshState
 from .gear import WormGear
@@ -84,6 +84,8 @@ def CreateWormAxialBearing(mbs, bearing: AxialBearing, initialDisplacement: floa
     from exudyn.itemInterface import (CoordinateSpringDamper, MarkerNodeCoordinate, Node1D, NodePointGround,
                                       ObjectMass1D)
     w = 'CreateWormAxialBearing'
+    CheckSystem(w, mbs)
+    CheckName(w, 'name', name)
     if not isinstance(bearing, AxialBearing):
         raise TypeError(f"{w}: 'bearing' must be an AxialBearing, got {type(bearing).__name__}")
     nNode = mbs.AddNode(Node1D(referenceCoordinates=[0.],
@@ -192,10 +194,31 @@ class WormGearConnector:
         return self.sensors
 
     def StoredStates(self, mbs) -> Dict[str, np.ndarray]:
-        """Stored sensor data after a solve: ``time`` and the arrays of :meth:`AddSensors`."""
+        """Stored sensor data after a solve: ``time`` and the arrays of :meth:`AddSensors`.
+
+        Parameters
+        ----------
+        mbs : exudyn.MainSystem
+            The system the connector belongs to, after a solve.
+
+        Returns
+        -------
+        dict of ndarray
+            ``time`` in s and the node states of :meth:`AddSensors`.
+
+        Raises
+        ------
+        ValueError
+            If :meth:`AddSensors` was not called, or the sensors hold no data yet (the system was not solved).
+        """
+        where = f"WormGearConnector '{self.name}'" if self.name else 'WormGearConnector'
+        CheckSystem(f"{where}.StoredStates", mbs)
         if not self.sensors:
-            raise ValueError(f"WormGearConnector '{self.name}': call AddSensors(mbs) before mbs.Assemble()")
-        data = {k: mbs.GetSensorStoredData(s) for k, s in self.sensors.items()}
+            raise ValueError(f"{where}: call AddSensors(mbs) before mbs.Assemble()")
+        data = {k: np.asarray(mbs.GetSensorStoredData(s)) for k, s in self.sensors.items()}
+        if any(v.ndim != 2 or v.shape[0] == 0 or v.shape[1] < 2 for v in data.values()):
+            raise ValueError(f"{where}: no stored sensor data: solve the system first (mbs.SolveDynamic(...) after "
+                             f"mbs.Assemble()), then read the stored states")
         out = {'time': data['phi1'][:, 0]}
         out.update({k: v[:, 1] for k, v in data.items()})
         return out
@@ -204,14 +227,25 @@ class WormGearConnector:
         """Mesh quantities over the stored time steps (requires :meth:`AddSensors`), with their ``time`` in s.
 
         ``normalForce`` is signed (see :class:`~exudyn_worm.contact.MeshState`); ``normalForceFlanks`` gives
-        the magnitudes on the two flanks."""
+        the magnitudes on the two flanks. ``mbs`` and the errors (no sensors, not solved yet) are those of
+        :meth:`StoredStates`.
+        """
         s = self.StoredStates(mbs)
         state = self.Evaluate(s['phi1'], s['phi2'], s['omega1'], s['omega2'], s.get('xA'), s.get('vA'))
         state.time = s['time']
         return state
 
 
+def _NodeOf(n):
+    """A node number, or the ``nodeNumber`` of a dict from :func:`~exudyn_worm.drivetrain.CreateRotor` (or
+    :func:`CreateWormAxialBearing`)."""
+    return n['nodeNumber'] if isinstance(n, dict) and 'nodeNumber' in n else n
+
+
 def _CheckNode(mbs, n, name, what='rotation'):
+    if isinstance(n, (dict, str, float, bool)) or n is None:
+        raise TypeError(f"CreateWormGear: '{name}' must be a node number or a dict with 'nodeNumber' (a rotor from "
+                        f"CreateRotor), got {type(n).__name__} {n!r}")
     try:
         info = mbs.GetNode(n)
     except Exception as err:  # exudyn raises its own error type for an invalid index
@@ -233,10 +267,11 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
     ----------
     mbs : exudyn.MainSystem
         The system.
-    nodeNumbers : [nWorm, nWheel]
-        Worm and wheel nodes (``Node1D`` or one-coordinate ``NodeGenericODE2``); their coordinate is
-        the rotation angle in rad, positive in the direction in which a positive worm rotation turns
-        the wheel.
+    nodeNumbers : [worm, wheel]
+        Worm and wheel nodes (``Node1D`` or one-coordinate ``NodeGenericODE2``), each given as a node number
+        or as a rotor dict from :func:`~exudyn_worm.drivetrain.CreateRotor` (its ``nodeNumber`` is used):
+        ``[nWorm, nWheel]`` or ``[worm, wheel]``. Their coordinate is the rotation angle in rad, positive in the
+        direction in which a positive worm rotation turns the wheel.
     gear : WormGear
         Mesh geometry, stiffness, damping, backlash and friction.
     name : str
@@ -246,7 +281,8 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
     useSymbolic : bool
         True (default): C++-evaluated symbolic user function; False: plain Python user function.
     axialNodeNumber : optional
-        Node of the worm's axial coordinate in m (e.g. from :func:`CreateWormAxialBearing`), positive in
+        Node of the worm's axial coordinate in m (a node number, or the dict from
+        :func:`CreateWormAxialBearing`), positive in
         the direction in which the thread advances for a positive worm rotation. The mesh displacement
         then includes ``cos(alphaN) cos(gamma) xA`` and the mesh pushes this node with
         ``-wheelTorque / r2``. None (default): the worm is rigid axially.
@@ -254,13 +290,27 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
     Returns
     -------
     WormGearConnector
-        Object number, nodes, gear, options; ``Evaluate`` post-processes stored states.
+        Object number, node numbers, gear, options; ``Evaluate`` post-processes stored states.
 
     Raises
     ------
     ValueError, TypeError
-        For invalid nodes, gear or options.
+        For a ``mbs`` that is not an ``exudyn.MainSystem``, invalid nodes, gear or options.
+
+    Examples
+    --------
+    With the rotors of :func:`~exudyn_worm.drivetrain.CreateRotor` (node numbers work as well)::
+
+        worm, wheel = CreateRotor(mbs, 0.1), CreateRotor(mbs, 33.)
+        mesh = CreateWormGear(mbs, [worm, wheel], gear=gear, name='mesh')
     """
+    w = 'CreateWormGear'
+    CheckSystem(w, mbs)
+    CheckName(w, 'name', name)
+    CheckBool(w, 'useSymbolic', useSymbolic)
+    if isinstance(nodeNumbers, (str, bytes, dict)) or not hasattr(nodeNumbers, '__len__'):
+        raise TypeError(f"{w}: 'nodeNumbers' must be a list [worm, wheel] of two node numbers or rotors from "
+                        f"CreateRotor, got {type(nodeNumbers).__name__} {nodeNumbers!r}")
     if not isinstance(gear, WormGear):
         raise TypeError(f"CreateWormGear: 'gear' must be a WormGear, got {type(gear).__name__}")
     if not isinstance(contactOptions, ContactOptions):
@@ -268,6 +318,8 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
                         f"{type(contactOptions).__name__}")
     if len(nodeNumbers) != 2:
         raise ValueError(f"CreateWormGear: 'nodeNumbers' must be [nWorm, nWheel], got {list(nodeNumbers)!r}")
+    nodeNumbers = [_NodeOf(n) for n in nodeNumbers]
+    axialNodeNumber = _NodeOf(axialNodeNumber)
     ref1 = _CheckNode(mbs, nodeNumbers[0], 'nodeNumbers[0] (worm)')
     ref2 = _CheckNode(mbs, nodeNumbers[1], 'nodeNumbers[1] (wheel)')
 

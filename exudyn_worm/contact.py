@@ -78,16 +78,23 @@ class ContactOptions:
     fixedS : int or None
         Hold the contact parameter S at +1 or -1 (full flank contact, for linearization); None: S
         follows eq. (8).
+
+    Raises
+    ------
+    ValueError, TypeError
+        For a negative or non-finite ``frictionSpeed``, a ``dampingCanPull`` that is not a bool or a
+        ``fixedS`` other than None, +1, -1.
     """
     frictionSpeed: float = 0.05
     dampingCanPull: bool = False
     fixedS: Optional[int] = None
 
     def __post_init__(self):
-        from ._checks import CheckNonNegative
+        from ._checks import CheckBool, CheckNonNegative
         object.__setattr__(self, 'frictionSpeed', CheckNonNegative('ContactOptions', 'frictionSpeed',
                                                                    self.frictionSpeed, 'rad/s'))
-        if self.fixedS not in (None, 1, -1):
+        object.__setattr__(self, 'dampingCanPull', CheckBool('ContactOptions', 'dampingCanPull', self.dampingCanPull))
+        if isinstance(self.fixedS, bool) or self.fixedS not in (None, 1, -1):
             raise ValueError(f"ContactOptions: 'fixedS' must be None, +1 or -1, got {self.fixedS!r}")
 
 
@@ -181,6 +188,11 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
     -------
     MeshState
 
+    Raises
+    ------
+    TypeError
+        If arrays are given with the plain-Python backend ``MATH_OPS`` (the default): pass ``ops=NUMPY_OPS``.
+
     Notes
     -----
     Kinematics of the axial degree of freedom. The worm's thread is a helix of lead angle ``gamma`` on
@@ -205,6 +217,10 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
     normal lever). The friction state keeps the paper's rule ``sf = sign(phi1')`` (eq. (8)): the axial
     speed is not included in the sliding direction.
     """
+    if ops is MATH_OPS and any(isinstance(x, (np.ndarray, list, tuple)) and np.ndim(x) > 0
+                               for x in (phi1, phi2, omega1, omega2, axialDisplacement, axialSpeed)):
+        raise TypeError("MeshContact: 'phi1', 'phi2', 'omega1', 'omega2' (and the axial state) include arrays, but "
+                        "'ops' is MATH_OPS (plain Python floats, the default): pass ops=NUMPY_OPS for arrays")
     # Written for a small recorded expression (the symbolic user function is a tree evaluated node by node,
     # a subexpression used twice is evaluated twice): the relative displacement is kept in worm-angle units
     # d = Delta s / lever, the constants are folded, and |d| = sigma d lets penetration and damping share sigma.

@@ -41,7 +41,7 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from ._checks import CheckRange
-from .presets import PARAMETER_UNITS, ApplyOverrides, DriveFromParameters, ExtraComponents
+from .presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, DriveFromParameters, ExtraComponents
 from .charts import ChartCoordinates, ComputeStabilityChart
 from .stability import (CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzStable,
                         PolynomialCoefficients)
@@ -605,6 +605,7 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
     w = 'DesignCheck'
     margin = CheckRange(w, 'margin', margin, low=0., high=1., unit='decades')
     span = CheckRange(w, 'span', span, low=1., high=1e4, lowOpen=True)
+    CheckParameterKeys(parameters, w)
     parameters = dict(parameters)
     extra = ExtraComponents(parameters)
     if extra:

@@ -54,9 +54,10 @@ is an error. docs/drive-files.md documents the format for users.
 """
 from __future__ import annotations
 
-import difflib
 import re
 from typing import Any, Dict, List, Mapping, Optional, Tuple
+
+from ._checks import Suggest as _Suggest
 
 __all__ = ['COMPONENT_TABLES', 'DRIVE_FILE_TABLES', 'DRIVE_SIDE_TABLE', 'DRIVE_SIDE_KEYS', 'TOP_LEVEL_KEYS', 'DriveSideKey',
            'FileKeyOf', 'FlattenDriveFile']
@@ -143,11 +144,6 @@ def FileKeyOf(key: str) -> str:
     return f'[parameters] {key}'
 
 
-def _Suggest(word: str, choices) -> str:
-    close = difflib.get_close_matches(str(word), list(choices), n=1, cutoff=0.75)
-    return f" (did you mean '{close[0]}'?)" if close else ''
-
-
 class _Lines:
     """Finds the line of a key in the file's text, for messages (best effort: None where not found)."""
 
@@ -162,6 +158,11 @@ class _Lines:
         """1-based line of the first ``[table]`` or ``[[table]]`` header, or None."""
         found = self._HeaderLines(f'[{table}]') + self._HeaderLines(f'[[{table}]]')
         return min(found) + 1 if found else None
+
+    def ArrayHeader(self, table: str, index: int) -> Optional[int]:
+        """1-based line of the ``index``-th (from 0) ``[[table]]`` header, or None."""
+        found = self._HeaderLines(f'[[{table}]]')
+        return found[index] + 1 if index < len(found) else None
 
     def Find(self, table: Optional[str], key: str, index: int = 0, array: bool = False) -> Optional[int]:
         """1-based line of ``key`` in ``[table]`` (or in the ``index``-th ``[[table]]``), or None."""
@@ -209,7 +210,8 @@ def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = 
     ------
     ValueError
         For an unknown table or key (with a suggestion for a near miss and the line where possible), a table
-        that is not a table, a ``preset`` or ``description`` that is not a string, or one parameter given twice.
+        that is not a table, an empty ``[[driveSide]]`` table, a ``preset`` or ``description`` that is not a
+        string, or one parameter given twice.
     """
     if not isinstance(data, Mapping):
         raise TypeError(f"{where}: a config must be a mapping, got {type(data).__name__}")
@@ -252,9 +254,14 @@ def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = 
         raise ValueError(f"{where}: '{DRIVE_SIDE_TABLE}' must be an array of tables ([[{DRIVE_SIDE_TABLE}]]), "
                          f"got {type(stages).__name__}")
     for index, stage in enumerate(stages):
+        label = f'[[{DRIVE_SIDE_TABLE}]] number {index + 1}'
+        if not stage:        # every table is a stage: an empty one would silently shorten or shift the chain
+            raise ValueError(f"{_Where(where, lines.ArrayHeader(DRIVE_SIDE_TABLE, index), label)}: the table is "
+                             f"empty; each [[{DRIVE_SIDE_TABLE}]] table is one stage of the drive-side chain "
+                             f"({DriveSideKey('inertia', index)}, {DriveSideKey('stiffness', index)}) and needs "
+                             f"'inertia' and 'stiffness' ('damping' is optional); give them or remove the table")
         for fileKey, value in stage.items():
             line = lines.Find(DRIVE_SIDE_TABLE, fileKey, index, array=True)
-            label = f'[[{DRIVE_SIDE_TABLE}]] number {index + 1}'
             if fileKey not in DRIVE_SIDE_KEYS:
                 raise ValueError(f"{_Where(where, line, label)}: unknown key {fileKey!r}"
                                  f"{_Suggest(fileKey, DRIVE_SIDE_KEYS)}; expected one of: "

@@ -9,16 +9,37 @@ from __future__ import annotations
 
 from typing import Any, Dict
 
-from ._checks import CheckNonNegative, CheckPositive, CheckReal
-from ._userfunctions import AddGenericForce, CheckOffsetLaw, SetOffsetFunction
+from ._checks import CheckBool, CheckName, CheckNonNegative, CheckPositive, CheckReal, CheckSystem
+from ._userfunctions import AddGenericForce, CheckOffsetLaw, CheckPlainOffsetLaw, SetOffsetFunction
 
 __all__ = ['CreateRotor', 'CreateShaft', 'CreatePrescribedRotation', 'CreateRotorTorque']
 
 
-def _Marker(rotor, where, name):
+def _Marker(mbs, rotor, where, name):
+    """The marker number of a rotor dict (from :func:`CreateRotor`), checked against ``mbs``: the marker must exist
+    there and sit on the rotor's node (a rotor of another system fails one of the two in all but coincidences)."""
     if not isinstance(rotor, dict) or 'markerNumber' not in rotor:
-        raise TypeError(f"{where}: '{name}' must be a rotor returned by CreateRotor, got {type(rotor).__name__}")
-    return rotor['markerNumber']
+        raise TypeError(f"{where}: '{name}' must be a rotor returned by CreateRotor (a dict with 'markerNumber' and "
+                        f"'nodeNumber'), got {type(rotor).__name__} {rotor!r}")
+    marker = rotor['markerNumber']
+    try:
+        info = mbs.GetMarker(marker)
+    except Exception as err:   # exudyn raises its own index/type errors for an invalid marker
+        raise ValueError(f"{where}: '{name}' is not a rotor of this system: its marker {marker!r} does not exist in "
+                         f"'mbs' ({err}); was it created in another system?") from None
+    if 'nodeNumber' in rotor and ('nodeNumber' not in info or int(info['nodeNumber']) != int(rotor['nodeNumber'])):
+        raise ValueError(f"{where}: '{name}' is not a rotor of this system: in 'mbs' its marker {marker!r} is not on "
+                         f"node {rotor['nodeNumber']!r} (marker {info!r}); was it created in another system?")
+    return marker
+
+
+def _Pair(where: str, name: str, value, what: str) -> list:
+    """``value`` as a list of two items (a sequence, not a string or a mapping)."""
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, '__len__') or not hasattr(value, '__getitem__'):
+        raise TypeError(f"{where}: '{name}' must be a list of two {what}, got {type(value).__name__} {value!r}")
+    if len(value) != 2:
+        raise ValueError(f"{where}: '{name}' must hold two {what}, got {len(value)}: {list(value)!r}")
+    return list(value)
 
 
 def CreateRotor(mbs, inertia: float, initialAngle: float = 0., initialSpeed: float = 0., name: str = '') -> Dict[str, Any]:
@@ -37,12 +58,21 @@ def CreateRotor(mbs, inertia: float, initialAngle: float = 0., initialSpeed: flo
     -------
     dict
         ``nodeNumber``, ``objectNumber``, ``markerNumber``.
+
+    Raises
+    ------
+    TypeError, ValueError
+        If ``mbs`` is not an ``exudyn.MainSystem``, ``inertia`` is not > 0, an initial value is not a finite
+        number or ``name`` is not a string; nothing is added then.
     """
     from exudyn.itemInterface import MarkerNodeCoordinate, Node1D, ObjectRotationalMass1D
     w = 'CreateRotor'
+    CheckSystem(w, mbs)
     inertia = CheckPositive(w, 'inertia', inertia, 'kg*m^2')
-    nNode = mbs.AddNode(Node1D(referenceCoordinates=[0.], initialCoordinates=[CheckReal(w, 'initialAngle', initialAngle, 'rad')],
-                               initialVelocities=[CheckReal(w, 'initialSpeed', initialSpeed, 'rad/s')], name=name))
+    angle, speed = CheckReal(w, 'initialAngle', initialAngle, 'rad'), CheckReal(w, 'initialSpeed', initialSpeed, 'rad/s')
+    CheckName(w, 'name', name)
+    nNode = mbs.AddNode(Node1D(referenceCoordinates=[0.], initialCoordinates=[angle], initialVelocities=[speed],
+                               name=name))
     oBody = mbs.AddObject(ObjectRotationalMass1D(nodeNumber=nNode, inertia=inertia, name=name))
     mNode = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nNode, coordinate=0))
     return {'nodeNumber': nNode, 'objectNumber': oBody, 'markerNumber': mNode}
@@ -53,8 +83,9 @@ def CreateShaft(mbs, rotors, stiffness: float, damping: float = 0., name: str = 
 
     Parameters
     ----------
+    mbs : exudyn.MainSystem
     rotors : [rotor0, rotor1]
-        Rotors from :func:`CreateRotor`.
+        Two different rotors of ``mbs`` from :func:`CreateRotor`.
     stiffness : float
         Torsional stiffness in N*m/rad, > 0.
     damping : float
@@ -67,14 +98,25 @@ def CreateShaft(mbs, rotors, stiffness: float, damping: float = 0., name: str = 
     -------
     dict
         ``objectNumber``.
+
+    Raises
+    ------
+    TypeError, ValueError
+        If ``mbs`` is not an ``exudyn.MainSystem``, ``rotors`` is not two different rotors of ``mbs``, or a value
+        is out of range; nothing is added then.
     """
     from exudyn.itemInterface import CoordinateSpringDamper
     w = 'CreateShaft'
-    if len(rotors) != 2:
-        raise ValueError(f"{w}: 'rotors' must hold two rotors, got {len(rotors)}")
-    markers = [_Marker(r, w, f'rotors[{i}]') for i, r in enumerate(rotors)]
-    o = mbs.AddObject(CoordinateSpringDamper(markerNumbers=markers, stiffness=CheckPositive(w, 'stiffness', stiffness, 'N*m/rad'),
-                                             damping=CheckNonNegative(w, 'damping', damping, 'N*m*s/rad'), name=name))
+    CheckSystem(w, mbs)
+    rotors = _Pair(w, 'rotors', rotors, 'rotors from CreateRotor')
+    markers = [_Marker(mbs, r, w, f'rotors[{i}]') for i, r in enumerate(rotors)]
+    if int(markers[0]) == int(markers[1]):
+        raise ValueError(f"{w}: 'rotors' must be two different rotors, got the same rotor twice "
+                         f"(marker {markers[0]!r}): a shaft from a rotor to itself does nothing")
+    stiffness = CheckPositive(w, 'stiffness', stiffness, 'N*m/rad')
+    damping = CheckNonNegative(w, 'damping', damping, 'N*m*s/rad')
+    o = mbs.AddObject(CoordinateSpringDamper(markerNumbers=markers, stiffness=stiffness, damping=damping,
+                                             name=CheckName(w, 'name', name)))
     return {'objectNumber': o}
 
 
@@ -109,15 +151,24 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
     ValueError
         With ``useSymbolic``, if the recorded profile differs from the profile evaluated in Python at a few
         sample times (a Python ``if`` or ``math`` function on ``t`` records a constant); nothing is added then.
+        Also if ``rotor`` is not a rotor of ``mbs``.
+    TypeError
+        If ``mbs`` is not an ``exudyn.MainSystem``, ``rotor`` is not a rotor dict, ``profile`` has no
+        ``AngleAndSpeed`` or ``name`` is not a string.
     """
     from exudyn.itemInterface import CoordinateConstraint, MarkerNodeCoordinate, NodePointGround
     w = 'CreatePrescribedRotation'
-    marker = _Marker(rotor, w, 'rotor')
-    if not hasattr(profile, 'AngleAndSpeed'):
+    CheckSystem(w, mbs)
+    marker = _Marker(mbs, rotor, w, 'rotor')
+    CheckName(w, 'name', name)
+    CheckBool(w, 'useSymbolic', useSymbolic)
+    if not callable(getattr(profile, 'AngleAndSpeed', None)):
         raise TypeError(f"{w}: 'profile' must have AngleAndSpeed(t, ops) (e.g. ConstantSpeed), got {type(profile).__name__}")
     constantSpeed = _ConstantSpeedFromStart(mbs, rotor, profile)
     if useSymbolic and constantSpeed is None:   # before anything is added: a law recorded wrongly is refused
-        CheckOffsetLaw(w, profile.AngleAndSpeed)
+        CheckOffsetLaw(w, profile.AngleAndSpeed, 'profile.AngleAndSpeed(t, ops)')
+    elif constantSpeed is None:
+        CheckPlainOffsetLaw(w, profile.AngleAndSpeed, 'profile.AngleAndSpeed(t, ops)')
     nGround = mbs.AddNode(NodePointGround())
     mGround = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nGround, coordinate=0))
     if constantSpeed is not None:
@@ -137,7 +188,7 @@ def _ConstantSpeedFromStart(mbs, rotor, profile):
     from .profiles import ConstantSpeed
     if type(profile) is not ConstantSpeed:
         return None
-    node = mbs.GetNode(rotor['nodeNumber'])
+    node = mbs.GetNode(mbs.GetMarker(rotor['markerNumber'])['nodeNumber'])
     angle, speed = float(node['initialCoordinates'][0]), float(node['initialVelocities'][0])
     return profile.speed if (angle, speed) == (profile.initialAngle, profile.speed) else None
 
@@ -173,7 +224,9 @@ def CreateRotorTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True)
         With ``useSymbolic``, if the recorded law differs from the law evaluated in Python at a few sample
         states (a Python ``if`` or ``math.cos`` on the arguments records a constant); nothing is added then.
     TypeError
-        If ``law`` is not a torque law, or cannot be recorded (e.g. numpy functions on the arguments).
+        If ``mbs`` is not an ``exudyn.MainSystem``, ``rotor`` is not a rotor dict, ``law`` is not a torque law,
+        raises a TypeError when called (e.g. the wrong number of arguments), returns something else than a
+        number, or cannot be recorded (e.g. numpy functions on the arguments).
 
     Examples
     --------
@@ -182,11 +235,15 @@ def CreateRotorTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True)
         CreateRotorTorque(mbs, wheel, lambda phi, omega, t, ops: ops.min(10. * t, 50.))
     """
     w = 'CreateRotorTorque'
+    CheckSystem(w, mbs)
     torque = law.Torque if hasattr(law, 'Torque') else law
     if not callable(torque):
         raise TypeError(f"{w}: 'law' must have Torque(phi, omega, t, ops) or be a callable (phi, omega, t, ops), "
                         f"got {type(law).__name__}")
-    node = mbs.GetMarker(_Marker(rotor, w, 'rotor'))['nodeNumber']
+    node = mbs.GetMarker(_Marker(mbs, rotor, w, 'rotor'))['nodeNumber']
+    CheckName(w, 'name', name)
+    CheckBool(w, 'useSymbolic', useSymbolic)
     o, _ = AddGenericForce(mbs, [node], lambda t, q, q_t, ops: [torque(q[0], q_t[0], t, ops)],
-                           name=name, useSymbolic=useSymbolic, where=w)
+                           name=name, useSymbolic=useSymbolic, where=w,
+                           signature='law.Torque(phi, omega, t, ops)' if torque is not law else 'law(phi, omega, t, ops)')
     return {'objectNumber': o}

@@ -26,6 +26,7 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
+from ._checks import CheckSystem
 from .connector import CONNECTORS_KEY, AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from .contact import ContactOptions
 from .drive import ElasticDrive
@@ -189,9 +190,28 @@ class LinearStability:
         Parameters
         ----------
         S : int
-            One contact parameter per mesh.
+            One contact parameter per mesh, +1 or -1 (``State(-1)``, ``State(1, -1)``); one tuple or list of them
+            is accepted too (``State((1, -1))``, a key of :attr:`states`).
+
+        Returns
+        -------
+        ContactStateLinearization
+
+        Raises
+        ------
+        TypeError
+            If a contact parameter is not a number.
+        ValueError
+            If ``S`` is not one of the analysed combinations (:attr:`states`).
         """
-        key = tuple(int(s) for s in S)
+        w = 'LinearStability.State'
+        if len(S) == 1 and isinstance(S[0], (tuple, list, np.ndarray)):
+            S = tuple(S[0])
+        for s in S:
+            if isinstance(s, bool) or not isinstance(s, (int, float, np.integer, np.floating)):
+                raise TypeError(f"{w}: each contact parameter 'S' must be +1 or -1 (one per mesh, e.g. State(-1) or "
+                                f"State(1, -1)), got {type(s).__name__} {s!r}")
+        key = tuple(int(s) if s in CONTACT_STATES else s for s in S)
         if key not in self.states:
             raise ValueError(f"LinearStability.State: expected one of {sorted(self.states)}, got {key}")
         return self.states[key]
@@ -245,15 +265,25 @@ def _LinearizeState(mbs, S, labels) -> ContactStateLinearization:
                                      nullspace=N)
 
 
+def _System(where: str, mbs):
+    """``mbs`` itself, or the MainSystem a model holds as ``.mbs`` (e.g. a ReelChangerModel)."""
+    import exudyn
+    inner = getattr(mbs, 'mbs', None)
+    return inner if not isinstance(mbs, exudyn.MainSystem) and isinstance(inner, exudyn.MainSystem) else \
+        CheckSystem(where, mbs)
+
+
 def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]] = None,
                            contactStates: Optional[Sequence[Sequence[int]]] = None) -> LinearStability:
     """Linearized stability of an Exudyn system with worm-gear meshes, for each combination of contact states.
 
     Parameters
     ----------
-    mbs : exudyn.MainSystem
-        The system, built with :func:`~exudyn_worm.connector.CreateWormGear` (and any Exudyn items). It is
-        linearized about its initial state, in which every mesh must be in contact.
+    mbs : exudyn.MainSystem, or an object with one as ``.mbs``
+        The system, built with :func:`~exudyn_worm.connector.CreateWormGear` (and any Exudyn items), or a model
+        that holds it (e.g. the :class:`~exudyn_worm.reelchanger.ReelChangerModel` of
+        :func:`~exudyn_worm.reelchanger.BuildReelChanger`). It is linearized about its initial state, in which
+        every mesh must be in contact.
     connectors : sequence of WormGearConnector, optional
         The meshes whose contact state is held; default: every connector built in ``mbs``.
     contactStates : sequence of sequences of int, optional
@@ -270,6 +300,8 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
     ValueError
         If the system has no connector, a contact state is not +-1 per mesh, or a mesh is not in contact
         (open backlash) at the initial state.
+    TypeError
+        If ``mbs`` is neither an ``exudyn.MainSystem`` nor holds one as ``.mbs``.
 
     Examples
     --------
@@ -281,6 +313,7 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
     ([40.3, 40.5], False)
     """
     w = 'AnalyzeLinearStability'
+    mbs = _System(w, mbs)
     connectors = list(mbs.variables.get(CONNECTORS_KEY, [])) if connectors is None else list(connectors)
     if not connectors:
         raise ValueError(f"{w}: the system has no worm-gear connector (build one with CreateWormGear)")

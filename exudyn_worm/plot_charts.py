@@ -47,6 +47,28 @@ def _PointXY(value):
     return float(x), float(y)
 
 
+def _Points(where: str, points) -> Mapping:
+    """``points`` as ``{label: point}``: a mapping as it is, or a sequence of preset names (``'reel-P1'``, or
+    ``'P1'`` for ``'reel-P1'``) as their chart coordinates (:func:`~exudyn_worm.charts.PresetChartPoints`)."""
+    if points is None or isinstance(points, Mapping):
+        return points or {}
+    from .presets import PRESETS
+    if isinstance(points, str) or not isinstance(points, (list, tuple)) or \
+            not all(isinstance(p, str) for p in points):
+        raise TypeError(f"{where}: 'points' must be a mapping {{label: (x, y), a dict with 'x' and 'y', or an "
+                        f"ElasticDrive}} or a list of preset names (e.g. ['reel-P1', 'reel-P7']), got "
+                        f"{type(points).__name__} {points!r}")
+    names = []
+    for p in points:
+        name = p if p in PRESETS else f'reel-{p}' if f'reel-{p}' in PRESETS else None
+        if name is None:
+            raise ValueError(f"{where}: 'points': unknown preset {p!r}; expected preset names: {', '.join(PRESETS)} "
+                             f"(or P1 ... P7 for reel-P1 ... reel-P7)")
+        names.append(name)
+    from .charts import PresetChartPoints
+    return PresetChartPoints(names)
+
+
 def _DrawPoints(ax, points):
     if not points:
         return
@@ -85,9 +107,10 @@ def PlotStabilityChart(chart, ax=None, points: Optional[Mapping] = None, color: 
         From :func:`~exudyn_worm.charts.ComputeStabilityChart`.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into (default: a new figure).
-    points : mapping, optional
+    points : mapping or list of str, optional
         ``{label: point}`` with a point as (x, y), as a dict with 'x' and 'y' (e.g. from
-        :func:`~exudyn_worm.charts.ChartCoordinates`) or as an ElasticDrive.
+        :func:`~exudyn_worm.charts.ChartCoordinates`) or as an ElasticDrive; or a list of preset names
+        (``['reel-P1', 'P7']``; ``'P1'`` stands for ``'reel-P1'``), marked at their chart coordinates.
     color : str, optional
         Colour of region and boundary.
     label : str, optional
@@ -100,10 +123,16 @@ def PlotStabilityChart(chart, ax=None, points: Optional[Mapping] = None, color: 
     Returns
     -------
     matplotlib.axes.Axes
+
+    Raises
+    ------
+    TypeError, ValueError
+        For a ``chart`` that is not a StabilityChart, or ``points`` of another form or with an unknown preset name.
     """
     from .charts import StabilityChart
     if not isinstance(chart, StabilityChart):
         raise TypeError(f"PlotStabilityChart: 'chart' must be a StabilityChart, got {type(chart).__name__}")
+    points = _Points('PlotStabilityChart', points)
     ax = _Axes(ax)
     _DrawChart(ax, chart, color or _COLORS[0], shade, label or fr'$D_{{TV}}$ = {chart.DTV:g}')
     _Decorate(ax, chart)
@@ -123,8 +152,8 @@ def PlotStabilityCharts(charts: Sequence, points: Optional[Mapping] = None, titl
     ----------
     charts : sequence of StabilityChart
         Charts on the same grid (e.g. D_TV = 1, 5, 25).
-    points : mapping, optional
-        Points to mark, as for :func:`PlotStabilityChart`.
+    points : mapping or list of str, optional
+        Points to mark, as for :func:`PlotStabilityChart` (a mapping or a list of preset names).
     title : str, optional
         Axes title.
     ax : matplotlib.axes.Axes, optional
@@ -141,6 +170,7 @@ def PlotStabilityCharts(charts: Sequence, points: Optional[Mapping] = None, titl
     charts = list(charts)
     if not charts:
         raise ValueError("PlotStabilityCharts: 'charts' must hold at least one StabilityChart, got none")
+    points = _Points('PlotStabilityCharts', points)
     ax = _Axes(ax)
     handles = []
     for k, chart in enumerate(charts):

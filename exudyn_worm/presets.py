@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from ._checks import CheckAngle, CheckNonNegative, CheckPositive, CheckRange, CheckReal
+from ._checks import CheckAngle, CheckMapping, CheckNonNegative, CheckPositive, CheckRange, CheckReal, Suggest
 from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from .gear import WormGear
 
@@ -42,7 +42,8 @@ if TYPE_CHECKING:
 
 __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
            'ExtraComponents',
-           'ApplyOverrides', 'CheckParameters', 'GearFromParameters', 'DriveFromParameters', 'DriveSideChain',
+           'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
+           'DriveFromParameters', 'DriveSideChain',
            'AxialBearingFromParameters', 'MAX_RATE', 'MIN_RATE_SPREAD', 'MissingParameterError']
 
 #: keys of the elastic drive (Figure 2)
@@ -123,13 +124,114 @@ def GetPreset(name: str) -> Dict[str, float]:
     return dict(PRESETS[name])
 
 
+def UnknownParameterMessage(where: str, key) -> str:
+    """The message for an unknown parameter key: names ``where`` and ``key``, a near miss and the known keys.
+
+    Parameters
+    ----------
+    where : str
+        Prefix of the message (the function or the file location).
+    key : object
+        The key received.
+
+    Returns
+    -------
+    str
+        E.g. ``"DriveFromParameters: unknown parameter 'Kt' (did you mean 'kT'?); expected one of: alphaN ..."``.
+    """
+    return (f"{where}: unknown parameter {key!r}{Suggest(key, PARAMETER_UNITS)}; expected one of: "
+            f"{' '.join(PARAMETER_UNITS)} (and J5 k5 d5, J6 ... for a longer drive-side chain)")
+
+
+def _Conflicts(parameters: Mapping[str, float]) -> List[Tuple[str, Tuple[str, ...]]]:
+    """Keys of ``parameters`` given together with one of their alternative forms: ``[(key, (others, ...))]``,
+    each group once, in the order of the keys (``key`` is the first of its group in ``parameters``)."""
+    found, seen = [], set()
+    for key in parameters:
+        if key in seen:
+            continue
+        others = tuple(k for k in parameters if k in _ALTERNATIVES.get(key, ()))
+        if others:
+            found.append((key, others))
+            seen.update((key,) + others)
+    return found
+
+
+_QUANTITY = {'mu': 'flank friction', 'rho': 'flank friction', 'dV': 'mesh damping', 'DV': 'mesh damping',
+             'dT': 'drive-shaft damping', 'DT': 'drive-shaft damping', 'DTV': 'drive-shaft damping'}
+
+
+def CheckParameterKeys(parameters: Mapping[str, float], where: str = 'parameter set', name: str = 'parameters') -> None:
+    """Check the keys of a flat parameter dictionary: a mapping, only known keys, one form per quantity.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary (SI).
+    where : str
+        Prefix of the error messages (the function that received the set).
+    name : str
+        The argument's name in the messages.
+
+    Raises
+    ------
+    TypeError
+        If ``parameters`` is not a mapping (a string is taken for a preset name: the message suggests
+        ``GetPreset(name)``).
+    ValueError
+        For a key that is not a parameter (with a near-miss suggestion, e.g. ``'Kt'`` -> ``'kT'``), or two
+        forms of one quantity given together (``mu`` with ``rho``, ``dV`` with ``DV``, two of ``dT``, ``DT``,
+        ``DTV``): which one is meant is not clear. To change one form of a set that holds another, use
+        :func:`ApplyOverrides`, which drops the other forms.
+    """
+    CheckMapping(where, name, parameters, preset=name == 'parameters')
+    if name != 'parameters':
+        where = f"{where}: '{name}'"
+    for key in parameters:
+        if key not in PARAMETER_UNITS:
+            raise ValueError(UnknownParameterMessage(where, key))
+    for key, others in _Conflicts(parameters):
+        group = (key,) + others
+        last, earlier = group[-1], ' and '.join(repr(k) for k in group[:-1])
+        raise ValueError(f"{where}: {' and '.join(repr(k) for k in group)} are given together, which describe the "
+                         f"same quantity ({_QUANTITY[key]}); give only one of them (to replace one form by another, use "
+                         f"ApplyOverrides(parameters, {{{last!r}: {parameters[last]!r}}}), which sets {last!r} and "
+                         f"drops {earlier})")
+
+
 def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, float]) -> Dict[str, float]:
-    """Return ``parameters`` updated by ``overrides``; an override removes its alternative forms
-    (setting ``mu`` drops ``rho``, ``dT`` drops ``DT``/``DTV``, ``DV`` drops ``dV``, ...)."""
+    """Return ``parameters`` updated by ``overrides``; an override removes its alternative forms.
+
+    Setting ``mu`` drops ``rho``, ``dT`` drops ``DT``/``DTV``, ``DV`` drops ``dV``, ...: this is how one form of
+    a quantity replaces another (a set with two forms is refused by :func:`CheckParameterKeys`).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary (SI), e.g. a preset.
+    overrides : mapping
+        The new values, keyed by parameter keys, applied in order (of two forms of one quantity here, the later
+        one is kept: ``{'mu': 0.13, 'rho': 0.14}`` sets rho).
+
+    Returns
+    -------
+    dict
+        A new dictionary; ``parameters`` is not changed.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For an argument that is not a mapping, an unknown key (with a near-miss suggestion), or two forms of
+        one quantity within ``parameters`` (:func:`CheckParameterKeys`).
+    """
+    w = 'ApplyOverrides'
+    CheckParameterKeys(parameters, w)
+    CheckMapping(w, 'overrides', overrides, "{'J1': 0.3}", preset=False)
+    for key in overrides:        # applied in order: two forms here are fine, the later one replaces the earlier
+        if key not in PARAMETER_UNITS:
+            raise ValueError(UnknownParameterMessage(f"{w}: 'overrides'", key))
     out = dict(parameters)
     for key, value in overrides.items():
-        if key not in PARAMETER_UNITS:
-            raise ValueError(f"unknown parameter '{key}'; expected one of: {' '.join(PARAMETER_UNITS)}")
         for alt in _ALTERNATIVES.get(key, ()):
             out.pop(alt, None)
         out[key] = value
@@ -158,7 +260,8 @@ _CHAIN_POSITIVE = {'J': True, 'k': True, 'd': False}
 
 
 def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set') -> None:
-    """Check the range of every known key of a flat parameter dictionary, naming the key as the user wrote it.
+    """Check a flat parameter dictionary: its keys (:func:`CheckParameterKeys`: known keys, one form per
+    quantity) and the range of every value, naming the key as the user wrote it.
 
     Positive: ``r1 r2 kV J1 J2 kT motorSpeed mA`` and the drive-side chain's ``J4 k4 J5 k5 ...``; non-negative:
     ``mu dV DV dT DT DTV backlash loadMass leverArm kA dA`` and ``d4 d5 ...``; ``alphaN``, ``gamma`` in
@@ -177,8 +280,10 @@ def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set
     Raises
     ------
     ValueError, TypeError
-        E.g. ``parameter set: 'kT' must be > 0 N*m/rad, got -5 N*m/rad``.
+        E.g. ``parameter set: 'kT' must be > 0 N*m/rad, got -5 N*m/rad``; for the keys see
+        :func:`CheckParameterKeys`.
     """
+    CheckParameterKeys(parameters, where)
     for key, value in parameters.items():
         unit = PARAMETER_UNITS[key] if key in PARAMETER_UNITS else ''
         chain = _CHAIN_KEY.match(key) if isinstance(key, str) else None
@@ -245,9 +350,10 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
 
     Raises
     ------
-    ValueError
-        For a missing or invalid parameter.
+    ValueError, TypeError
+        For a missing, unknown or invalid parameter or two forms of one quantity (:func:`CheckParameters`).
     """
+    CheckParameterKeys(parameters, where)            # names the function: unknown keys, two forms of a quantity
     p = dict(parameters)
     CheckParameters(p)
     _Require(p, ('alphaN', 'gamma', 'r1', 'r2', 'kV'), where)
@@ -269,8 +375,9 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
 def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     """Build the :class:`ElasticDrive` described by a flat parameter dictionary.
 
-    Damping: ``dT`` if given, else ``DT``, else ``DTV * DV`` (eq. (24)); ``dV`` if given, else ``DV``.
-    Friction: ``mu`` or ``rho`` (eq. (13)).
+    Damping: ``dT``, ``DT`` or ``DTV * DV`` (eq. (24)); ``dV`` or ``DV``. Friction: ``mu`` or ``rho`` (eq. (13)).
+    Each quantity in one form only: a set with two forms (``dV`` and ``DV``) is refused; to change the form,
+    use :func:`ApplyOverrides`, which drops the other one.
 
     Parameters
     ----------
@@ -284,11 +391,14 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     Raises
     ------
     ValueError
-        For a missing or invalid parameter (see :func:`CheckParameters`) or parameters whose model
-        coefficients overflow.
+        For a missing, unknown or invalid parameter, two forms of one quantity (see :func:`CheckParameters`)
+        or parameters whose model coefficients overflow.
+    TypeError
+        If ``parameters`` is not a mapping.
     """
-    p = dict(parameters)
     where = 'DriveFromParameters'
+    CheckParameterKeys(parameters, where)
+    p = dict(parameters)
     _Require(p, ('alphaN', 'gamma', 'r1', 'r2', 'kV', 'J1', 'J2', 'kT'), where)
     gear = GearFromParameters(p, where=where)
     if 'dT' in p:

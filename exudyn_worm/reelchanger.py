@@ -20,12 +20,13 @@ from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, Wor
 from .contact import MATH_OPS, ContactOptions, MeshContact
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
-from .presets import REEL_KEYS, AxialBearingFromParameters, DriveFromParameters, DriveSideChain, MissingParameterError
+from .presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, DriveFromParameters, DriveSideChain,
+                      MissingParameterError)
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
 from .solve import SolveDynamicInChunks, SolverDivergedError
 from .stepsize import CheckStepSize, RecommendedStepSize
-from ._checks import CheckPositive
+from ._checks import CheckBool, CheckPositive
 from ._roots import FindRoot
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
@@ -123,7 +124,11 @@ def CheckReelChangerKeys(parameters: Mapping[str, float], where: str) -> None:
     ------
     MissingParameterError
         A ValueError naming the missing keys, if a key is missing.
+    ValueError, TypeError
+        If ``parameters`` is not a mapping or has an unknown key or two forms of one quantity
+        (:func:`~exudyn_worm.presets.CheckParameterKeys`).
     """
+    CheckParameterKeys(parameters, where)
     missing = [k for k in REEL_KEYS if k not in parameters]
     if missing:
         raise MissingParameterError(f"{where}: the reel-changer simulation needs {', '.join(REEL_KEYS)}; missing "
@@ -240,6 +245,18 @@ def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed
     return state
 
 
+def _CheckModelOptions(where: str, contactOptions, profile, useSymbolic, startFromEquilibrium) -> None:
+    """The options of :func:`BuildReelChanger` and :func:`SimulateReelChanger`, checked before anything is built."""
+    if not isinstance(contactOptions, ContactOptions):
+        raise TypeError(f"{where}: 'contactOptions' must be a ContactOptions (e.g. ContactOptions(frictionSpeed=0.05)), "
+                        f"got {type(contactOptions).__name__} {contactOptions!r}")
+    if profile is not None and not callable(getattr(profile, 'AngleAndSpeed', None)):
+        raise TypeError(f"{where}: 'profile' must be None (constant motor speed) or have AngleAndSpeed(t, ops) "
+                        f"(e.g. ConstantSpeed, StartStopProfile), got {type(profile).__name__} {profile!r}")
+    CheckBool(where, 'useSymbolic', useSymbolic)
+    CheckBool(where, 'startFromEquilibrium', startFromEquilibrium)
+
+
 @dataclass
 class ReelChangerModel:
     """The Exudyn system of the reel changer and what is needed to read its results."""
@@ -273,16 +290,26 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
         Start in the static equilibrium under the initial load at nominal speed (default); otherwise
         all rotors start at rest with zero angles.
     profile : optional
-        Motor motion (default :class:`ConstantSpeed` at ``motorSpeed``).
+        Motor motion: an object with ``AngleAndSpeed(t, ops)`` such as :class:`ConstantSpeed` or
+        :class:`~exudyn_worm.profiles.StartStopProfile` (default :class:`ConstantSpeed` at ``motorSpeed``).
 
     Returns
     -------
     ReelChangerModel
+
+    Raises
+    ------
+    ValueError, TypeError
+        For a bad parameter set (:func:`~exudyn_worm.presets.DriveFromParameters`, :func:`CheckReelChangerKeys`),
+        ``contactOptions`` that is not a :class:`~exudyn_worm.contact.ContactOptions`, or a ``profile`` without
+        ``AngleAndSpeed``.
     """
     import exudyn as exu
     from exudyn.itemInterface import SensorNode
 
     w = 'BuildReelChanger'
+    CheckParameterKeys(parameters, w)
+    _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
     drive = DriveFromParameters(parameters)
     CheckReelChangerKeys(parameters, w)
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
@@ -456,12 +483,16 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     ------
     ValueError
         For bad arguments or parameters, or a run above ``maxSteps``.
+    TypeError
+        If ``parameters`` is not a mapping (a preset name: use ``GetPreset(name)``), ``contactOptions`` is not a
+        :class:`~exudyn_worm.contact.ContactOptions` or ``profile`` has no ``AngleAndSpeed``.
     SolverDivergedError
         If the solver fails; the message gives the simulated time reached and the likely cause.
     """
     import exudyn as exu
     w = 'SimulateReelChanger'
     CheckReelChangerKeys(parameters, w)
+    _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
     endTime = RotationPeriod(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
     stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
     steps = CheckRunSize(endTime, stepSize, maxSteps, w)

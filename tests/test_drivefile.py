@@ -200,3 +200,51 @@ def test_cli_missing_component_names_the_file_and_the_table(tmp_path):
         assert run.returncode == 2 and run.stdout == '' and len(lines) == 1, (command, run.stderr)
         assert 'missing parameter' in lines[0] and 'J2' in lines[0], lines[0]
         assert f"to describe the drive in '{path}', add [wheel] inertia (J2)" in lines[0], lines[0]
+
+
+_FIG19 = (DRIVES / 'figure19.toml').read_text()
+
+
+def _Figure19Plus(tmp_path, extra):
+    """figure19.toml with ``extra`` ('\n[[driveSide]]\n...') appended; returns the path and the line of its header."""
+    assert _FIG19.endswith('\n') and extra.startswith('\n[[driveSide]]\n')
+    return _Write(tmp_path, _FIG19 + extra), _FIG19.count('\n') + 2
+
+
+@pytest.mark.parametrize('where', ['last', 'first'])
+def test_empty_drive_side_table_is_refused_at_its_line(tmp_path, where):
+    """An empty trailing [[driveSide]] gave the same result as figure19.toml (silently ignored), an empty first one
+    a message about a gap: every table is a stage, so an empty one is refused, named by its number and line."""
+    if where == 'last':
+        path, line = _Figure19Plus(tmp_path, '\n[[driveSide]]\n')
+        number, expected = 2, 'J5, k5'
+    else:
+        header = _FIG19.index('[[driveSide]]')
+        text = _FIG19[:header] + '[[driveSide]]\n\n' + _FIG19[header:]
+        path, line = _Write(tmp_path, text), _FIG19[:header].count('\n') + 1
+        number, expected = 1, 'J4, k4'
+    with pytest.raises(ValueError) as info:
+        ResolveParameters(config=path)
+    assert str(info.value).startswith(f"LoadConfig: '{path}', line {line}: [[driveSide]] number {number}: the table "
+                                      f"is empty; each [[driveSide]] table is one stage of the drive-side chain "
+                                      f"({expected}) and needs 'inertia' and 'stiffness'")
+
+
+@pytest.mark.parametrize('key, message', [
+    ('stiffness = 1000.0', "[[driveSide]] number 2 stiffness: DriveSideChain: the drive-side chain must be J4, J5, "
+                           "... without gaps, each with its spring k<i>; got keys J4, k4, d4, k5 (missing 'J5')"),
+    ('inertia = 0.01', "[[driveSide]] number 2 inertia: DriveSideChain: 'J5' needs the stiffness 'k5'"),
+])
+def test_incomplete_second_drive_side_table_is_named(tmp_path, key, message):
+    """With two tables and the second incomplete, the error pointed at the first table ('line 36: [[driveSide]]
+    number 1 inertia'); it names the second one, at its own line."""
+    path, line = _Figure19Plus(tmp_path, f'\n[[driveSide]]\n{key}\n')
+    with pytest.raises(ValueError) as info:
+        ResolveParameters(config=path)
+    assert str(info.value).startswith(f"LoadConfig: '{path}', line {line + 1}: {message}"), str(info.value)
+
+
+def test_second_drive_side_table_completed_by_set(tmp_path):
+    path, _ = _Figure19Plus(tmp_path, '\n[[driveSide]]\ninertia = 0.01\n')
+    p = ResolveParameters(config=path, sets=['k5=2e4'])
+    assert (p['J5'], p['k5']) == (0.01, 2e4) and p['J4'] == ResolveParameters(config=DRIVES / 'figure19.toml')['J4']

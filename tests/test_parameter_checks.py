@@ -57,3 +57,97 @@ def test_backlash_above_the_worm_radius_suggests_the_unit():
         gear.Replace(backlash=0.5)
     assert gear.Replace(backlash=0.5e-3).backlash == 0.5e-3
     assert isinstance(gear.Replace(backlash=gear.r1), WormGear)
+
+
+# --- keys of a parameter set: typos and two forms of one quantity (found by a QA pass) ---------------------------
+P1 = GetPreset('reel-P1')
+_KNOWN = "expected one of: alphaN gamma mu rho r1 r2 kV dV DV backlash J1 J2 kT"
+
+
+def _Design(p):
+    from exudyn_worm.design import DesignCheck
+    return DesignCheck(p)
+
+
+def _Simulate(p):
+    from exudyn_worm import SimulateReelChanger
+    return SimulateReelChanger(p, endTime=0.01)
+
+
+def _Study(p):
+    from exudyn_worm.study import Study
+    return Study(p)
+
+
+@pytest.mark.parametrize('call, where', [
+    (DriveFromParameters, 'DriveFromParameters'), (_Design, 'DesignCheck'), (_Simulate, 'SimulateReelChanger'),
+    (_Study, 'ApplyOverrides'),
+])
+@pytest.mark.parametrize('key, suggestion', [('Kt', " (did you mean 'kT'?)"), ('kt', " (did you mean 'kT'?)"),
+                                             ('J_1', " (did you mean 'J1'?)"), ('rotations', '')])
+def test_unknown_keys_are_refused_with_a_suggestion(call, where, key, suggestion):
+    """{**P1, 'kt': 1.} ran SimulateReelChanger, DesignCheck and Study with the typo ignored."""
+    with pytest.raises(ValueError) as info:
+        call({**P1, key: 1.})
+    assert str(info.value).startswith(f"{where}: unknown parameter {key!r}{suggestion}; {_KNOWN}")
+
+
+def test_unknown_key_message_is_the_cli_one():
+    from exudyn_worm.config import ResolveParameters
+    with pytest.raises(ValueError, match=r"^ParseSetOption: unknown parameter 'Kt' \(did you mean 'kT'\?\); "):
+        ResolveParameters('reel-P1', sets=['Kt=5'])
+    from exudyn_worm.presets import GearFromParameters
+    with pytest.raises(ValueError, match=r"^chart: unknown parameter 'Dv' \(did you mean 'dV' or 'DV'\?\)"):
+        GearFromParameters({**GetPreset('chart'), 'Dv': 1.}, meshDamping=False, where='chart')
+
+
+@pytest.mark.parametrize('added, group, quantity, dropped', [
+    ({'dV': 1.}, "'DV' and 'dV'", 'mesh damping', "'DV'"),
+    ({'DTV': 5.}, "'DT' and 'DTV'", 'drive-shaft damping', "'DT'"),
+    ({'dT': 100.}, "'DT' and 'dT'", 'drive-shaft damping', "'DT'"),
+    ({'rho': math.radians(8)}, "'mu' and 'rho'", 'flank friction', "'mu'"),
+    ({'dT': 1., 'DTV': 2.}, "'DT' and 'dT' and 'DTV'", 'drive-shaft damping', "'DT' and 'dT'"),
+])
+def test_two_forms_of_one_quantity_are_refused(added, group, quantity, dropped):
+    """{**P1, 'dV': 1.} used dV = 1 and ignored DV = 0.014; {**P1, 'DTV': 5.} kept DT; {**P1, 'dT': 100.} used dT."""
+    last = list(added)[-1]
+    with pytest.raises(ValueError) as info:
+        DriveFromParameters({**P1, **added})
+    assert str(info.value) == (f"DriveFromParameters: {group} are given together, which describe the same quantity "
+                               f"({quantity}); give only one of them (to replace one form by another, use "
+                               f"ApplyOverrides(parameters, {{{last!r}: {added[last]!r}}}), which sets {last!r} and "
+                               f"drops {dropped})")
+
+
+@pytest.mark.parametrize('override, dropped', [({'dV': 21470.}, 'DV'), ({'DTV': 1.}, 'DT'), ({'dT': 0.741}, 'DT'),
+                                               ({'rho': math.radians(8)}, 'mu')])
+def test_apply_overrides_replaces_the_other_form(override, dropped):
+    """The CLI's --set and the design scans change one form of a quantity with ApplyOverrides: still accepted."""
+    p = ApplyOverrides(P1, override)
+    assert dropped not in p and DriveFromParameters(p)
+
+
+def test_apply_overrides_checks_both_mappings():
+    with pytest.raises(ValueError, match=r"^ApplyOverrides: 'overrides': unknown parameter 'Kt' \(did you mean 'kT'"):
+        ApplyOverrides(P1, {'Kt': 1.})
+    with pytest.raises(ValueError, match=r"^ApplyOverrides: 'DV' and 'dV' are given together"):
+        ApplyOverrides({**P1, 'dV': 1.}, {'J1': 0.2})
+    # overrides apply in order: the later form wins (validation/analytical.py sets mu, then rho)
+    assert ApplyOverrides(P1, {'mu': 0.1, 'rho': 0.14})['rho'] == 0.14 and 'mu' not in ApplyOverrides(P1, {'rho': 0.1})
+    with pytest.raises(TypeError, match=r"^ApplyOverrides: 'overrides' must be a mapping .*e.g. \{'J1': 0.3\}, got str"):
+        ApplyOverrides(P1, 'J1=0.3')
+
+
+def test_every_example_and_preset_set_passes_the_key_check():
+    """Internal code carries no extra keys into a parameter set: presets, drive files, design recommendations."""
+    from exudyn_worm.config import ResolveParameters
+    from exudyn_worm.design import DesignCheck
+    from exudyn_worm.presets import PRESETS, CheckParameterKeys
+    from pathlib import Path
+    for name in PRESETS:
+        CheckParameterKeys(GetPreset(name))
+    for path in sorted((Path(__file__).resolve().parents[1] / 'examples' / 'drives').glob('*.toml')):
+        CheckParameterKeys(ResolveParameters(config=path))
+    result = DesignCheck(P1)
+    for r in result.recommendations:
+        CheckParameterKeys(ApplyOverrides(P1, r.changes))
