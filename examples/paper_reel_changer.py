@@ -162,7 +162,8 @@ def CaseParameters(preset: str = 'reel-P1', backlash: float = 0., motorSpeed: Op
                 label = _BacklashLabel(short, b)
                 cases[label] = {**ApplyOverrides(params, {**operating, 'backlash': b}),
                                 'rotations': max(rotations, cases.get(label, {}).get('rotations', 1.))}
-    for params in cases.values():                  # validate now: bad input fails before any simulation
+    for case in cases.values():                    # validate now: bad input fails before any simulation
+        params = {k: v for k, v in case.items() if k != 'rotations'}     # not a model parameter
         RotationPeriod(params)
         DriveFromParameters(params)
         if params['loadMass'] < 0 or not math.isfinite(params['loadMass']):
