@@ -41,7 +41,7 @@ from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Uni
 import numpy as np
 
 from .config import ParseQuantity
-from .presets import PARAMETER_UNITS, ApplyOverrides
+from .presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys
 from .results import CheckWindows
 from ._checks import CheckPositive
 
@@ -230,6 +230,7 @@ class Study:
     points: List[Dict[str, float]] = field(init=False, repr=False)
 
     def __post_init__(self):
+        CheckParameterKeys(self.base, 'Study', 'base')
         self.base = dict(self.base)
         self.variations = list(self.variations)
         for v in self.variations:

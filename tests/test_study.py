@@ -292,3 +292,8 @@ def test_chatter_map_of_a_drive_beyond_two_masses_uses_the_whole_drive():
     fig = plot_study.PlotChatterMap(StudyResult(study, rows), 'J1', 'kT', resolution=8)
     labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert any('linearized whole drive' in t for t in labels), labels
+
+
+def test_study_names_itself_for_a_typo_in_the_base_set():
+    with pytest.raises(ValueError, match=r"Study: 'base': unknown parameter 'Kt' \(did you mean 'kT'\?\)"):
+        Study({**ResolveParameters('reel-P1'), 'Kt': 1.}, [ParseVariation('J1=0.1')])
