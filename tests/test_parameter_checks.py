@@ -81,7 +81,7 @@ def _Study(p):
 
 @pytest.mark.parametrize('call, where', [
     (DriveFromParameters, 'DriveFromParameters'), (_Design, 'DesignCheck'), (_Simulate, 'SimulateReelChanger'),
-    (_Study, 'ApplyOverrides'),
+    (_Study, "Study: 'base'"),
 ])
 @pytest.mark.parametrize('key, suggestion', [('Kt', " (did you mean 'kT'?)"), ('kt', " (did you mean 'kT'?)"),
                                              ('J_1', " (did you mean 'J1'?)"), ('rotations', '')])
