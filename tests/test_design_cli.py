@@ -112,3 +112,10 @@ def test_check_simulate(capsys):
     # no single change within 1.5: the best pair is simulated (and the given drive)
     assert data['simulatedChatterWhileLowering'] is True
     assert data['bestPair']['simulatedChatterWhileLowering'] is False
+
+
+def test_heavy_damping_recommendations_get_a_remark(capsys):
+    """P1's table recommends DT x65 (0.91) and DV x79 (1.1): damping ratios an engineer cannot take at face value."""
+    rc, out, err = Run(capsys, 'check', '--preset', 'reel-P1')
+    note = [line for line in out.splitlines() if line.startswith('Note: DT = 0.912 and DV = 1.1 are damping ratios')]
+    assert rc == 0 and len(note) == 1 and 'critical damping' in note[0]

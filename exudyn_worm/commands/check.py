@@ -55,6 +55,10 @@ def _Simulated(chatter) -> str:
     return '' if chatter is None else ('CHATTER' if chatter else 'no chatter')
 
 
+#: a recommended Lehr damping ratio D_T or D_V from which the table adds a remark (half of critical damping)
+HEAVY_DAMPING = 0.5
+
+
 def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
     """Human-readable report of a :class:`~exudyn_worm.design.DesignCheckResult` (the ``check`` output).
 
@@ -107,6 +111,11 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
             row = (f"  {r.parameter:<10}{_Factor(r.factor):>10}{r.newValue:>14.4g}  {r.unit:<10}"
                    f"{r.maxRealPartAfter:>20.3g}")
             lines.append(row + (f"  {_Simulated(r.simulatedChatter)}" if simulated else ''))
+    heavy = [r for r in result.recommendations if r.parameter in ('DT', 'DV') and r.newValue >= HEAVY_DAMPING]
+    if heavy:
+        lines.append('Note: ' + ' and '.join(f"{r.parameter} = {r.newValue:.3g}" for r in heavy)
+                     + " are damping ratios near or above critical damping (1); the paper's largest are D_V = 0.056 "
+                       "and D_T = 0.35 (D_TV = 25 at D_V = 0.014): reachable only with a dedicated damper")
     missing = result.Missing()
     if missing and result.recommendations:
         lines.append('No ' + ', '.join(f"{'increase' if d > 0 else 'decrease'} of {k}" for k, d in missing)
