@@ -13,7 +13,9 @@ Law (paper eqs. (1)-(2), (4)-(5), (8)-(12)), with ``lever = r1 cos(alphaN) sin(g
 - normal force on that flank ``Fn = kV p + dV sigma d(Delta s)/dt`` if ``p > 0``, else 0; the mesh cannot
   pull, so ``Fn`` is clipped at 0 unless ``dampingCanPull`` (the paper's linear law) is set;
 - sliding state ``sf = sat(phi1' / frictionSpeed)`` in [-1, 1] (regularized ``sign(phi1')``;
-  ``frictionSpeed = 0`` gives the exact sign), contact parameter ``S = sigma * sf`` (eq. (8));
+  ``frictionSpeed = 0`` gives the exact sign, meant for evaluating the law: a simulation in which the worm
+  speed crosses zero, e.g. a start from rest, can stop there, as Newton's iteration cannot cross the jump),
+  contact parameter ``S = sigma * sf`` (eq. (8));
 - torques: worm ``-c2(S) sigma Fn``, wheel ``+c4(S) sigma Fn`` with c2, c4 of eqs. (10), (12).
 
 Optional axial degree of freedom of the worm (its axial bearing, see :func:`MeshContact`): the worm's
