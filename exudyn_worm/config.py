@@ -14,7 +14,8 @@ replaces its alternative forms: ``mu`` drops ``rho``, ``dT`` drops ``DT``/``DTV`
 
 A value is a plain SI number (angles in rad, ``motorSpeed`` in rad/s) or a string with units parsed by
 pint, e.g. ``'0.5 mm'``, ``'8 deg'``, ``'7 kN*m'``, ``'472.5 rpm'``. The target unit of every key is
-:data:`~exudyn_worm.presets.PARAMETER_UNITS`.
+:data:`~exudyn_worm.presets.PARAMETER_UNITS`; unit, range and kind of every key are declared once in
+:data:`~exudyn_worm.parameters.PARAMETERS`, which parses the values.
 
 Example config file (flat form; whole-drive files are described in :mod:`exudyn_worm.drivefile`)::
 
@@ -30,17 +31,14 @@ This module holds no command-line code; :mod:`exudyn_worm.cli` uses it.
 """
 from __future__ import annotations
 
-import functools
-import math
 import os
-import re
 import sys
 from numbers import Real
 from typing import Dict, Iterable, Mapping, Optional, Tuple, Union
 
 from .drivefile import COMPONENT_TABLES, DRIVE_FILE_TABLES, DRIVE_SIDE_TABLE, TOP_LEVEL_KEYS, FlattenDriveFile
-from .presets import (_CHAIN_KEY, PARAMETER_UNITS, PRESETS, ApplyOverrides, CheckParameters, DriveSideChain, GetPreset,
-                      UnknownParameterMessage, _Conflicts)
+from .parameters import PARAMETERS
+from .presets import PRESETS, ApplyOverrides, CheckParameters, DriveSideChain, GetPreset
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -56,46 +54,9 @@ DEFAULT_PRESET = 'reel-P1'
 #: top-level keys of a config file besides the component tables of :mod:`exudyn_worm.drivefile`
 CONFIG_KEYS = TOP_LEVEL_KEYS
 
-# a number (no inf/nan) followed by an optional unit expression
-_NUMBER_UNIT = re.compile(r'^\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*$')
-
-# human form of each target unit for messages
-_UNIT_TEXT = {'': 'a dimensionless number (plain, or e.g. "1.4 %")',
-              'rad': 'an angle in rad (plain numbers are rad; or e.g. "8 deg")',
-              'N*m/rad': 'in N*m/rad (N*m is accepted; e.g. "7 kN*m")',
-              'N*m*s/rad': 'in N*m*s/rad (N*m*s is accepted)',
-              'rad/s': 'an angular speed in rad/s (plain numbers are rad/s; or e.g. "472.5 rpm")'}
-
-
-@functools.lru_cache(maxsize=None)
-def _UnitRegistry():
-    """The pint registry, built on first use only (it takes about half a second)."""
-    import pint
-    return pint.UnitRegistry()
-
-
-def _PintErrors() -> tuple:
-    """Exceptions pint's unit parser raises for malformed text."""
-    import tokenize
-    import pint
-    return (pint.errors.PintError, ValueError, TypeError, AttributeError, AssertionError, SyntaxError,
-            ZeroDivisionError, OverflowError, tokenize.TokenError)
-
-
-def _RadianExponent(units) -> float:
-    """Power of radian in ``units`` expressed in base units (pint treats rad as dimensionless)."""
-    ureg = _UnitRegistry()
-    return dict(ureg.Quantity(1., units).to_base_units().unit_items()).get('radian', 0)
-
-
-def _ExpectedText(key: str) -> str:
-    unit = PARAMETER_UNITS[key]
-    return _UNIT_TEXT.get(unit, f'in {unit} (plain numbers are SI)')
-
-
 def _CheckKey(where: str, key) -> str:
-    if not isinstance(key, str) or key not in PARAMETER_UNITS:
-        raise ValueError(UnknownParameterMessage(where, key))
+    if not isinstance(key, str) or key not in PARAMETERS:
+        raise ValueError(PARAMETERS.UnknownKeyMessage(where, key))
     return key
 
 
@@ -114,7 +75,8 @@ def ParseQuantity(key: str, text: Union[str, float]) -> float:
     Returns
     -------
     float
-        The value in the unit of ``PARAMETER_UNITS[key]``.
+        The value in the unit of ``PARAMETER_UNITS[key]``. (A key whose value is not a number, see
+        :mod:`exudyn_worm.parameters`, gives its parsed value: the choice, or the path or rows of a table.)
 
     Raises
     ------
@@ -143,68 +105,8 @@ def ParseQuantity(key: str, text: Union[str, float]) -> float:
     return _ParseQuantity(key, text, 'ParseQuantity')
 
 
-def _DimensionText(ureg, units, radians) -> str:
-    """Dimension of ``units`` for messages, with the angle that pint drops shown as [angle]."""
-    dim = ureg.Quantity(1., units).dimensionality
-    parts = [] if not dim else [str(dim)]
-    if radians:
-        parts.insert(0, '[angle]' if radians == 1 else f'[angle] ** {radians:g}')
-    return ' * '.join(parts) or 'dimensionless'
-
-
-def _ParseQuantity(key, text, where: str) -> float:
-    key = _CheckKey(where, key)
-    if isinstance(text, bool) or not isinstance(text, (str, Real)):
-        raise TypeError(f"{where}: value of '{key}' must be a number or a string such as '0.5 mm', "
-                        f"got {type(text).__name__} {text!r}")
-    if isinstance(text, Real):
-        value = float(text)
-        if not math.isfinite(value):
-            raise ValueError(f"{where}: '{key}' must be finite, got {value}")
-        return value
-    try:  # plain SI number: no unit registry needed
-        value = float(text)
-    except ValueError:
-        pass
-    else:
-        if not math.isfinite(value):
-            raise ValueError(f"{where}: '{key}' must be finite, got {text!r}")
-        return value
-    match = _NUMBER_UNIT.match(text)
-    if match is None:
-        first = text.split()[0] if text.split() else ''
-        try:
-            nonFinite = not math.isfinite(float(first))
-        except ValueError:
-            nonFinite = False
-        if nonFinite:
-            raise ValueError(f"{where}: '{key}' must be finite, got {text!r}")
-        raise ValueError(f"{where}: '{key}' must be a number optionally followed by a unit, "
-                         f"{_ExpectedText(key)}, got {text!r}")
-    number, unitText = float(match.group(1)), match.group(2)
-    if not math.isfinite(number):
-        raise ValueError(f"{where}: '{key}' must be finite, got {text!r}")
-    ureg = _UnitRegistry()
-    try:
-        units = ureg.parse_units(unitText)
-    except _PintErrors() as err:
-        detail = str(err).strip() or 'not a unit expression'
-        raise ValueError(f"{where}: '{key}': cannot read the unit {unitText!r} in {text!r} ({detail}); "
-                         f"expected {_ExpectedText(key)}") from None
-    target = PARAMETER_UNITS[key]
-    targetUnits = ureg.parse_units(target) if target else ureg.dimensionless
-    radTarget, radReceived = _RadianExponent(targetUnits), _RadianExponent(units)
-    wrong = (f"{where}: '{key}' must be {_ExpectedText(key)}, got {text!r} "
-             f"(unit {units:~}, dimension {_DimensionText(ureg, units, radReceived)})")
-    if radReceived != radTarget and not (radTarget < 0 and radReceived == 0):
-        raise ValueError(wrong)
-    try:
-        value = float(ureg.Quantity(number, units).to(targetUnits).magnitude)
-    except _PintErrors():
-        raise ValueError(wrong) from None
-    if not math.isfinite(value):
-        raise ValueError(f"{where}: '{key}' must be finite, got {text!r}")
-    return value
+def _ParseQuantity(key, text, where: str):
+    return PARAMETERS.Parse(_CheckKey(where, key), text, where)
 
 
 def ParseSetOption(text: str) -> Tuple[str, float]:
@@ -241,7 +143,7 @@ def ParseSetOption(text: str) -> Tuple[str, float]:
 def _RejectAlternatives(values: Mapping[str, float], where: str, locations: Optional[Mapping[str, str]] = None
                         ) -> None:
     """Raise if ``values`` gives two forms of one quantity (e.g. ``mu`` and ``rho``), naming where each is."""
-    for key, dropped in _Conflicts(values):
+    for key, dropped in PARAMETERS.Conflicts(values):
         others = ' and '.join(f"'{k}'" for k in dropped)
         if locations:
             places = '; '.join(locations[k][len(where):].lstrip(',: ') for k in (key, *dropped))
@@ -258,9 +160,9 @@ def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None) -> Di
         raise ValueError(f"{where}: unknown preset '{preset}'; expected one of: {', '.join(PRESETS)}")
     parameters, locations = {}, {}
     for key, value, location in raw:
-        if key not in PARAMETER_UNITS:
-            raise ValueError(UnknownParameterMessage(location, key))
-        if isinstance(value, bool) or not isinstance(value, (str, Real)):
+        if key not in PARAMETERS:
+            raise ValueError(PARAMETERS.UnknownKeyMessage(location, key))
+        if PARAMETERS[key].kind == 'number' and (isinstance(value, bool) or not isinstance(value, (str, Real))):
             raise ValueError(f"{location}: must be a number (SI) or a string with units, "
                              f"got {type(value).__name__} {value!r}")
         parameters[key] = _ParseQuantity(key, value, location)
@@ -392,12 +294,12 @@ def _CheckChain(parameters: Mapping[str, float], locations: Mapping[str, str]) -
     except ValueError as err:
         stages = {}                  # stage number (4, 5, ...) -> location of its first key in the file
         for key, location in locations.items():
-            match = _CHAIN_KEY.match(key)
-            if match:
-                stages.setdefault(int(match.group(2)), location)
+            series = PARAMETERS.SeriesIndex(key)
+            if series:
+                stages.setdefault(series[1], location)
         if not stages:
             raise ValueError(f"ResolveParameters: {err}") from None
-        given = sorted({int(m.group(2)) for m in (_CHAIN_KEY.match(k) for k in parameters) if m})
+        given = sorted({m[1] for m in map(PARAMETERS.SeriesIndex, parameters) if m})
         # the first stage that breaks the chain: a gap before it, or without its inertia or stiffness
         bad = next((i for expected, i in enumerate(given, start=4)
                     if i != expected or f'J{i}' not in parameters or f'k{i}' not in parameters), given[0])

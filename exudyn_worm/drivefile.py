@@ -1,8 +1,9 @@
 """Whole-drive TOML files: one table per component of the drive, mapped onto the flat parameter keys.
 
-A drive file describes a whole drive in the words of a drive engineer; :data:`DRIVE_FILE_TABLES` is the one
-place that says which file key becomes which parameter key of :mod:`exudyn_worm.presets` (the keys that
-``--set`` takes and the solver receives). Every table and key is optional: what a file leaves out comes from
+A drive file describes a whole drive in the words of a drive engineer; :data:`DRIVE_FILE_TABLES` says which
+file key becomes which parameter key of :mod:`exudyn_worm.presets` (the keys that ``--set`` takes and the solver
+receives). It is derived from the registry :data:`~exudyn_worm.parameters.PARAMETERS`, where each parameter
+names its table and file key. Every table and key is optional: what a file leaves out comes from
 its ``preset`` (default ``reel-P1``). Values are plain SI numbers (angles in rad, speeds in rad/s) or strings
 with units (``"18.05 mm"``, ``"8 deg"``, ``"472.5 rpm"``), read by :func:`exudyn_worm.config.ParseQuantity`.
 
@@ -58,22 +59,14 @@ import re
 from typing import Any, Dict, List, Mapping, Optional, Tuple
 
 from ._checks import Suggest as _Suggest
+from .parameters import PARAMETERS
 
 __all__ = ['COMPONENT_TABLES', 'DRIVE_FILE_TABLES', 'DRIVE_SIDE_TABLE', 'DRIVE_SIDE_KEYS', 'TOP_LEVEL_KEYS', 'DriveSideKey',
            'FileKeyOf', 'FlattenDriveFile']
 
-#: file table -> {file key: parameter key}; the single mapping from a drive file to the flat parameters
-DRIVE_FILE_TABLES: Dict[str, Dict[str, str]] = {
-    'gear': {'pressureAngle': 'alphaN', 'pitchAngle': 'gamma', 'frictionCoefficient': 'mu',
-             'frictionAngle': 'rho', 'wormRadius': 'r1', 'wheelRadius': 'r2', 'meshStiffness': 'kV',
-             'meshDamping': 'dV', 'meshDampingMeasure': 'DV', 'backlash': 'backlash'},
-    'worm': {'inertia': 'J1'},
-    'wheel': {'inertia': 'J2'},
-    'driveShaft': {'stiffness': 'kT', 'damping': 'dT', 'dampingMeasure': 'DT', 'dampingMeasureRatio': 'DTV'},
-    'load': {'mass': 'loadMass', 'leverArm': 'leverArm'},
-    'motor': {'speed': 'motorSpeed'},
-    'axialBearing': {'stiffness': 'kA', 'damping': 'dA', 'mass': 'mA'},
-}
+#: file table -> {file key: parameter key}; the mapping from a drive file to the flat parameters, derived from the
+#: ``table`` and ``fileKey`` of each parameter in the registry :data:`~exudyn_worm.parameters.PARAMETERS`
+DRIVE_FILE_TABLES: Dict[str, Dict[str, str]] = PARAMETERS.fileTables
 
 #: every component table of a whole-drive file
 COMPONENT_TABLES = tuple(DRIVE_FILE_TABLES) + ('driveSide',)
@@ -81,7 +74,7 @@ COMPONENT_TABLES = tuple(DRIVE_FILE_TABLES) + ('driveSide',)
 #: the array of tables ``[[driveSide]]``: entry i (from 0) gives the keys with number 4 + i
 DRIVE_SIDE_TABLE = 'driveSide'
 #: file key -> letter of the numbered parameter key of a drive-side stage (J4, k4, d4, J5, ...)
-DRIVE_SIDE_KEYS = {'inertia': 'J', 'stiffness': 'k', 'damping': 'd'}
+DRIVE_SIDE_KEYS: Dict[str, str] = PARAMETERS.arrayTables[DRIVE_SIDE_TABLE]
 
 #: keys allowed at the top of a file besides the tables
 TOP_LEVEL_KEYS = ('preset', 'description', 'parameters')
@@ -111,7 +104,7 @@ def DriveSideKey(fileKey: str, index: int) -> str:
         raise ValueError(f"DriveSideKey: 'fileKey' must be one of {', '.join(DRIVE_SIDE_KEYS)}, got {fileKey!r}")
     if isinstance(index, bool) or not isinstance(index, int) or index < 0:
         raise ValueError(f"DriveSideKey: 'index' must be an integer >= 0, got {index!r}")
-    return f'{DRIVE_SIDE_KEYS[fileKey]}{4 + index}'
+    return f'{DRIVE_SIDE_KEYS[fileKey]}{PARAMETERS.Series(DRIVE_SIDE_KEYS[fileKey]).series + index}'
 
 
 def FileKeyOf(key: str) -> str:
@@ -133,15 +126,7 @@ def FileKeyOf(key: str) -> str:
     >>> FileKeyOf('J2'), FileKeyOf('r1'), FileKeyOf('k5')
     ('[wheel] inertia', '[gear] wormRadius', '[[driveSide]] stiffness')
     """
-    for table, keys in DRIVE_FILE_TABLES.items():
-        for fileKey, parameterKey in keys.items():
-            if parameterKey == key:
-                return f'[{table}] {fileKey}'
-    match = re.match(r'^([Jkd])([4-9]|[1-9][0-9]+)$', str(key))
-    if match:
-        fileKey = next(k for k, letter in DRIVE_SIDE_KEYS.items() if letter == match.group(1))
-        return f'[[{DRIVE_SIDE_TABLE}]] {fileKey}'
-    return f'[parameters] {key}'
+    return PARAMETERS.FileKeyOf(key)
 
 
 class _Lines:

@@ -10,6 +10,8 @@ from typing import Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
+from .parameters import PARAMETERS
+
 __all__ = ['PlotMetric', 'PlotChatterMap', 'AnalyticalMap', 'AxisLabel', 'WHOLE_DRIVE_RESOLUTION']
 
 #: points per axis of the map of the linearized whole drive (a drive with a chain or an axial bearing) in
@@ -38,11 +40,8 @@ def AxisLabel(column: str) -> Tuple[str, float]:
     -------
     (str, float)
     """
-    from .presets import PARAMETER_UNITS
-    if column in PARAMETER_UNITS:
-        if column == 'backlash':
-            return 'backlash [mm]', 1e3
-        return f"{column} [{PARAMETER_UNITS[column] or '–'}]", 1.
+    if column in PARAMETERS:
+        return PARAMETERS.AxisLabel(column)
     window, _, name = column.rpartition('.')
     text, unit, factor = _METRIC_LABELS.get(name, (name, '', 1.))
     where = f', window {window[1:]}' if window.startswith('w') else ''

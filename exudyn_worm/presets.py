@@ -28,14 +28,14 @@ Optional components beyond the two-mass drive (absent = the drive of Figure 2):
 from __future__ import annotations
 
 import math
-import re
 from typing import TYPE_CHECKING, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from ._checks import CheckAngle, CheckMapping, CheckNonNegative, CheckPositive, CheckRange, CheckReal, Suggest
+from ._checks import CheckMapping, CheckNonNegative
 from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from .gear import WormGear
+from .parameters import PARAMETERS
 
 if TYPE_CHECKING:
     from .connector import AxialBearing
@@ -57,35 +57,10 @@ CHAIN_KEYS = ('J4', 'k4', 'd4')
 #: keys of the worm's axial bearing
 AXIAL_KEYS = ('kA', 'dA', 'mA')
 
-_CHAIN_UNITS = {'J': 'kg*m^2', 'k': 'N*m/rad', 'd': 'N*m*s/rad'}
-_CHAIN_KEY = re.compile(r'^([Jkd])([4-9]|[1-9][0-9]+)$')
-
-
-class _ParameterUnits(dict):
-    """The unit table; besides its listed keys it knows every drive-side chain key J<i>, k<i>, d<i> (i >= 4)."""
-
-    def __contains__(self, key):
-        return dict.__contains__(self, key) or (isinstance(key, str) and _CHAIN_KEY.match(key) is not None)
-
-    def __missing__(self, key):
-        match = _CHAIN_KEY.match(key) if isinstance(key, str) else None
-        if match is None:
-            raise KeyError(key)
-        return _CHAIN_UNITS[match.group(1)]
-
-
 #: SI unit of every key (pint syntax), used to parse quantities such as ``8 deg`` or ``0.5 mm``; the
-#: chain keys J5, k5, d5, J6, ... are accepted too (``'J5' in PARAMETER_UNITS``), though only J4/k4/d4 are listed
-PARAMETER_UNITS = _ParameterUnits({'alphaN': 'rad', 'gamma': 'rad', 'mu': '', 'rho': 'rad', 'r1': 'm', 'r2': 'm',
-                                   'kV': 'N/m', 'dV': 'N*s/m', 'DV': '', 'backlash': 'm', 'J1': 'kg*m^2',
-                                   'J2': 'kg*m^2', 'kT': 'N*m/rad', 'dT': 'N*m*s/rad', 'DT': '', 'DTV': '',
-                                   'loadMass': 'kg', 'leverArm': 'm', 'motorSpeed': 'rad/s',
-                                   'J4': 'kg*m^2', 'k4': 'N*m/rad', 'd4': 'N*m*s/rad',
-                                   'kA': 'N/m', 'dA': 'N*s/m', 'mA': 'kg'})
-
-# keys that describe the same physical quantity: setting one removes the others
-_ALTERNATIVES = {'mu': ('rho',), 'rho': ('mu',), 'dT': ('DT', 'DTV'), 'DT': ('dT', 'DTV'), 'DTV': ('dT', 'DT'),
-                 'dV': ('DV',), 'DV': ('dV',)}
+#: chain keys J5, k5, d5, J6, ... are accepted too (``'J5' in PARAMETER_UNITS``), though only J4/k4/d4 are listed.
+#: Derived from the registry :data:`~exudyn_worm.parameters.PARAMETERS`, where every key is declared.
+PARAMETER_UNITS = PARAMETERS.units
 
 _deg = math.radians
 _RPM = 2 * math.pi / 60
@@ -139,26 +114,7 @@ def UnknownParameterMessage(where: str, key) -> str:
     str
         E.g. ``"DriveFromParameters: unknown parameter 'Kt' (did you mean 'kT'?); expected one of: alphaN ..."``.
     """
-    return (f"{where}: unknown parameter {key!r}{Suggest(key, PARAMETER_UNITS)}; expected one of: "
-            f"{' '.join(PARAMETER_UNITS)} (and J5 k5 d5, J6 ... for a longer drive-side chain)")
-
-
-def _Conflicts(parameters: Mapping[str, float]) -> List[Tuple[str, Tuple[str, ...]]]:
-    """Keys of ``parameters`` given together with one of their alternative forms: ``[(key, (others, ...))]``,
-    each group once, in the order of the keys (``key`` is the first of its group in ``parameters``)."""
-    found, seen = [], set()
-    for key in parameters:
-        if key in seen:
-            continue
-        others = tuple(k for k in parameters if k in _ALTERNATIVES.get(key, ()))
-        if others:
-            found.append((key, others))
-            seen.update((key,) + others)
-    return found
-
-
-_QUANTITY = {'mu': 'flank friction', 'rho': 'flank friction', 'dV': 'mesh damping', 'DV': 'mesh damping',
-             'dT': 'drive-shaft damping', 'DT': 'drive-shaft damping', 'DTV': 'drive-shaft damping'}
+    return PARAMETERS.UnknownKeyMessage(where, key)
 
 
 def CheckParameterKeys(parameters: Mapping[str, float], where: str = 'parameter set', name: str = 'parameters') -> None:
@@ -190,11 +146,11 @@ def CheckParameterKeys(parameters: Mapping[str, float], where: str = 'parameter 
     for key in parameters:
         if key not in PARAMETER_UNITS:
             raise ValueError(UnknownParameterMessage(where, key))
-    for key, others in _Conflicts(parameters):
+    for key, others in PARAMETERS.Conflicts(parameters):
         group = (key,) + others
         last, earlier = group[-1], ' and '.join(repr(k) for k in group[:-1])
         raise ValueError(f"{where}: {' and '.join(repr(k) for k in group)} are given together, which describe the "
-                         f"same quantity ({_QUANTITY[key]}); give only one of them (to replace one form by another, use "
+                         f"same quantity ({PARAMETERS.Quantity(key)}); give only one of them (to replace one form by another, use "
                          f"ApplyOverrides(parameters, {{{last!r}: {parameters[last]!r}}}), which sets {last!r} and "
                          f"drops {earlier})")
 
@@ -232,7 +188,7 @@ def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, floa
             raise ValueError(UnknownParameterMessage(f"{w}: 'overrides'", key))
     out = dict(parameters)
     for key, value in overrides.items():
-        for alt in _ALTERNATIVES.get(key, ()):
+        for alt in PARAMETERS.Alternatives(key):
             out.pop(alt, None)
         out[key] = value
     return out
@@ -253,20 +209,15 @@ def _Require(parameters, keys, what):
                                     f"KEY=VALUE or in the config file", missing)
 
 
-_POSITIVE_KEYS = ('r1', 'r2', 'kV', 'J1', 'J2', 'kT', 'motorSpeed', 'mA')
-_NON_NEGATIVE_KEYS = ('mu', 'dV', 'DV', 'dT', 'DT', 'DTV', 'backlash', 'loadMass', 'leverArm', 'kA', 'dA')
-#: letter of a drive-side chain key (J4, k5, d6, ...) -> its range: inertia and stiffness > 0, damping >= 0
-_CHAIN_POSITIVE = {'J': True, 'k': True, 'd': False}
-
-
 def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set') -> None:
     """Check a flat parameter dictionary: its keys (:func:`CheckParameterKeys`: known keys, one form per
     quantity) and the range of every value, naming the key as the user wrote it.
 
     Positive: ``r1 r2 kV J1 J2 kT motorSpeed mA`` and the drive-side chain's ``J4 k4 J5 k5 ...``; non-negative:
     ``mu dV DV dT DT DTV backlash loadMass leverArm kA dA`` and ``d4 d5 ...``; ``alphaN``, ``gamma`` in
-    (0, pi/2) rad; ``rho`` in [0, pi/2) rad; every other key finite. The one table of ranges: drive files,
-    :func:`DriveSideChain` and the model builders all check with it. The plausibility
+    (0, pi/2) rad; ``rho`` in [0, pi/2) rad; every other key finite. The ranges are declared in the registry
+    :data:`~exudyn_worm.parameters.PARAMETERS` (docs/parameters.md); drive files, :func:`DriveSideChain` and the
+    model builders all check with it. The plausibility
     of values against each other (backlash against the worm radius, overflow of the model's coefficients)
     is checked by :class:`~exudyn_worm.gear.WormGear` and :func:`DriveFromParameters`.
 
@@ -285,18 +236,7 @@ def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set
     """
     CheckParameterKeys(parameters, where)
     for key, value in parameters.items():
-        unit = PARAMETER_UNITS[key] if key in PARAMETER_UNITS else ''
-        chain = _CHAIN_KEY.match(key) if isinstance(key, str) else None
-        if key in _POSITIVE_KEYS or (chain and _CHAIN_POSITIVE[chain.group(1)]):
-            CheckPositive(where, key, value, unit)
-        elif key in _NON_NEGATIVE_KEYS or chain:
-            CheckNonNegative(where, key, value, unit)
-        elif key in ('alphaN', 'gamma'):
-            CheckAngle(where, key, value)
-        elif key == 'rho':
-            CheckRange(where, key, value, 0., 0.5 * math.pi, 'rad', highOpen=True)
-        else:
-            CheckReal(where, key, value, unit)
+        PARAMETERS.Check(key, value, where)
 
 
 #: largest rate |b_i|^(1/i) of eq. (16), 1/s, that a parameter set may reach: no mechanical drive comes near it,
@@ -466,13 +406,13 @@ def DriveSideChain(parameters: Mapping[str, float]) -> List[Tuple[float, float, 
         For a gap in the chain, a spring-damper without its inertia, or a value out of range.
     """
     w = 'DriveSideChain'
-    indices = sorted({int(m.group(2)) for m in (_CHAIN_KEY.match(k) for k in parameters if isinstance(k, str)) if m})
+    indices = sorted({m[1] for m in map(PARAMETERS.SeriesIndex, parameters) if m})
     chain = []
     for expected, i in enumerate(indices, start=4):
         if i != expected or f'J{i}' not in parameters:
             missing = f'J{expected}' if i != expected else f'J{i}'
             raise ValueError(f"{w}: the drive-side chain must be J4, J5, ... without gaps, each with its spring "
-                             f"k<i>; got keys {', '.join(k for k in parameters if _CHAIN_KEY.match(str(k)))} "
+                             f"k<i>; got keys {', '.join(k for k in parameters if PARAMETERS.SeriesIndex(k))} "
                              f"(missing '{missing}')")
         if f'k{i}' not in parameters:
             raise ValueError(f"{w}: 'J{i}' needs the stiffness 'k{i}' (N*m/rad) of the spring-damper on its motor side")
@@ -499,7 +439,6 @@ def AxialBearingFromParameters(parameters: Mapping[str, float]) -> Optional['Axi
     ValueError
         If ``kA`` > 0 without ``mA`` or a value is out of range.
     """
-    from ._checks import CheckNonNegative
     from .connector import AxialBearing
     w = 'AxialBearingFromParameters'
     kA = CheckNonNegative(w, 'kA', parameters.get('kA', 0.), 'N/m')

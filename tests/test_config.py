@@ -100,7 +100,8 @@ def test_unit_registry_lazy_and_single():
             "ParseQuantity('r1', '0.1'); ResolveParameters(sets=['J1=0.2']); print('pint' in sys.modules)")
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == 'False'
-    assert config._UnitRegistry() is config._UnitRegistry()
+    from exudyn_worm import parameters
+    assert parameters._UnitRegistry() is parameters._UnitRegistry()
 
 
 def test_config_doctests():

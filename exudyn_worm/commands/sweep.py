@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import List
 
 from ..cli import BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+from ..parameters import PARAMETERS
 
 __all__ = ['COMMAND', 'FormatStudy']
 
@@ -149,10 +150,9 @@ def FormatStudy(result, title: str = 'Study') -> List[str]:
     list of str
         The lines, without trailing newlines.
     """
-    from ..presets import PARAMETER_UNITS
     keys = result.study.keys
     n = result.study.numberOfWindows
-    heads = [f"{k} [{PARAMETER_UNITS[k] or '-'}]" for k in keys]
+    heads = [PARAMETERS.AxisLabel(k, display=False, dash='-')[0] for k in keys]
     widths = [max(12, len(h)) for h in heads]
     lines = [title, '', '  '.join(['run'.rjust(5)] + [h.rjust(w) for h, w in zip(heads, widths)]
                                   + ['status', 'chatter per window'.ljust(max(18, 4 * n)), 'S=-1 linear  ',
