@@ -305,6 +305,20 @@ class ParameterRegistry:
         """
         return tuple(self._byName)
 
+    def KeysOf(self, *tables: str) -> Tuple[str, ...]:
+        """The listed keys whose drive-file table is one of ``tables``, in declaration order.
+
+        Parameters
+        ----------
+        *tables : str
+            Drive-file tables (``'load'``, ``'motor'``; ``'driveSide'`` gives ``J4 k4 d4``).
+
+        Returns
+        -------
+        tuple of str
+        """
+        return tuple(p.key for p in self if p.table in tables)
+
     # -- alternative forms ------------------------------------------------------------------------------------
     def Alternatives(self, key) -> Tuple[str, ...]:
         """The other forms of the quantity of ``key`` (``'dT'`` -> ``('DT', 'DTV')``); empty if none.

@@ -46,16 +46,15 @@ __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNI
            'DriveFromParameters', 'DriveSideChain',
            'AxialBearingFromParameters', 'MAX_RATE', 'MIN_RATE_SPREAD', 'MissingParameterError']
 
-#: keys of the elastic drive (Figure 2)
-DRIVE_KEYS = ('alphaN', 'gamma', 'mu', 'rho', 'r1', 'r2', 'kV', 'dV', 'DV', 'backlash',
-              'J1', 'J2', 'kT', 'dT', 'DT', 'DTV')
+#: keys of the elastic drive (Figure 2): the drive-file tables [gear], [worm], [wheel], [driveShaft]
+DRIVE_KEYS = PARAMETERS.KeysOf('gear', 'worm', 'wheel', 'driveShaft')
 #: keys of the paper-reel-changer load case (section 3.2)
-REEL_KEYS = ('loadMass', 'leverArm', 'motorSpeed')
+REEL_KEYS = PARAMETERS.KeysOf('load', 'motor')
 
 #: keys of the first element of the drive-side chain (Figure 19); J5/k5/d5, ... continue it
-CHAIN_KEYS = ('J4', 'k4', 'd4')
+CHAIN_KEYS = PARAMETERS.KeysOf('driveSide')
 #: keys of the worm's axial bearing
-AXIAL_KEYS = ('kA', 'dA', 'mA')
+AXIAL_KEYS = PARAMETERS.KeysOf('axialBearing')
 
 #: SI unit of every key (pint syntax), used to parse quantities such as ``8 deg`` or ``0.5 mm``; the
 #: chain keys J5, k5, d5, J6, ... are accepted too (``'J5' in PARAMETER_UNITS``), though only J4/k4/d4 are listed.

@@ -41,6 +41,7 @@ from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Uni
 import numpy as np
 
 from .config import ParseQuantity
+from .parameters import PARAMETERS
 from .presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys
 from .results import CheckWindows
 from ._checks import CheckPositive
@@ -120,9 +121,11 @@ def ParseVariation(text: str, log: bool = False) -> Variation:
     if not sep or not key or not spec:
         raise ValueError(f"{where}: expected KEY=START:STOP:COUNT or KEY=V1,V2,... "
                          f"(e.g. 'J1=0.01:0.4:8' or 'backlash=0,0.25mm,0.5mm'), got {text!r}")
-    if key not in PARAMETER_UNITS:
-        raise ValueError(f"{where}: unknown parameter {key!r} in {text!r}; expected one of: "
-                         f"{' '.join(PARAMETER_UNITS)}")
+    if key not in PARAMETERS:
+        raise ValueError(PARAMETERS.UnknownKeyMessage(f"{where}: {text!r}", key))
+    if PARAMETERS[key].kind != 'number':
+        raise ValueError(f"{where}: {text!r}: a study sweeps numbers; {key!r} takes a {PARAMETERS[key].kind} "
+                         f"({PARAMETERS[key].rangeText}): set it with --set or in the base set instead")
     context = f"{where}: {text!r}"
     if ':' in spec:
         fields = [f.strip() for f in spec.split(':')]

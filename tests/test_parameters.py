@@ -241,3 +241,14 @@ def test_declared_key_reaches_the_docs(declared):
 def test_registry_restored_after_the_declarations():
     assert 'testLaw' not in PARAMETER_UNITS and 'testFrictionLaw' not in DRIVE_FILE_TABLES['gear']
     assert len(PARAMETERS.Keys()) == 25 and PARAMETERS.Get('testLaw') is None
+
+
+def test_a_study_sweeps_numbers_only(declared):
+    from exudyn_worm.study import ParseVariation
+    assert list(ParseVariation('testSpeed=1,2 mm/s').values) == [1., 0.002]
+    with pytest.raises(ValueError, match=r"ParseVariation: 'testLaw=agma,table': a study sweeps numbers; 'testLaw' "
+                                         r"takes a choice \(one of: constant, stribeck, agma, table\)"):
+        ParseVariation('testLaw=agma,table')
+    with pytest.raises(ValueError, match=r"ParseVariation: 'testlaw=1': unknown parameter 'testlaw' \(did you mean "
+                                         r"'testLaw'\?\)"):
+        ParseVariation('testlaw=1')
