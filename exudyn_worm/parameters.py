@@ -43,7 +43,8 @@ from typing import Any, Dict, Iterator, List, Mapping, Optional, Tuple
 
 from ._checks import CheckAngle, CheckNonNegative, CheckPositive, CheckRange, CheckReal, Suggest
 
-__all__ = ['KINDS', 'RANGES', 'Parameter', 'ParameterRegistry', 'PARAMETERS', 'ParametersMarkdown', 'WithGeneratedTables']
+__all__ = ['KINDS', 'RANGES', 'Parameter', 'ParameterRegistry', 'PARAMETERS', 'ParametersMarkdown',
+           'WithGeneratedTables']
 
 #: kinds of value a parameter may take
 KINDS = ('number', 'choice', 'table')
@@ -439,7 +440,8 @@ class ParameterRegistry:
         parameter = self.Get(key)
         if parameter is None or not parameter.table:
             return f'[parameters] {key}'
-        return f'[[{parameter.table}]] {parameter.fileKey}' if parameter.series else f'[{parameter.table}] {parameter.fileKey}'
+        table = f'[{parameter.table}]' if parameter.series else parameter.table
+        return f'[{table}] {parameter.fileKey}'
 
     # -- values -----------------------------------------------------------------------------------------------
     def Parse(self, key: str, value: Any, where: str) -> Any:

@@ -149,9 +149,9 @@ def CheckParameterKeys(parameters: Mapping[str, float], where: str = 'parameter 
         group = (key,) + others
         last, earlier = group[-1], ' and '.join(repr(k) for k in group[:-1])
         raise ValueError(f"{where}: {' and '.join(repr(k) for k in group)} are given together, which describe the "
-                         f"same quantity ({PARAMETERS.Quantity(key)}); give only one of them (to replace one form by another, use "
-                         f"ApplyOverrides(parameters, {{{last!r}: {parameters[last]!r}}}), which sets {last!r} and "
-                         f"drops {earlier})")
+                         f"same quantity ({PARAMETERS.Quantity(key)}); give only one of them (to replace one form by another, "
+                         f"use ApplyOverrides(parameters, {{{last!r}: {parameters[last]!r}}}), which sets {last!r} "
+                         f"and drops {earlier})")
 
 
 def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, float]) -> Dict[str, float]:
@@ -212,12 +212,10 @@ def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set
     """Check a flat parameter dictionary: its keys (:func:`CheckParameterKeys`: known keys, one form per
     quantity) and the range of every value, naming the key as the user wrote it.
 
-    Positive: ``r1 r2 kV J1 J2 kT motorSpeed mA`` and the drive-side chain's ``J4 k4 J5 k5 ...``; non-negative:
-    ``mu dV DV dT DT DTV backlash loadMass leverArm kA dA`` and ``d4 d5 ...``; ``alphaN``, ``gamma`` in
-    (0, pi/2) rad; ``rho`` in [0, pi/2) rad; every other key finite. The ranges are declared in the registry
-    :data:`~exudyn_worm.parameters.PARAMETERS` (docs/parameters.md); drive files, :func:`DriveSideChain` and the
-    model builders all check with it. The plausibility
-    of values against each other (backlash against the worm radius, overflow of the model's coefficients)
+    The range (``> 0``, ``>= 0``, an angle in (0, pi/2) rad, ...) and kind (number, choice, table) of every key
+    are declared once in the registry :data:`~exudyn_worm.parameters.PARAMETERS` and listed in
+    docs/parameters.md; drive files, :func:`DriveSideChain` and the model builders all check with it. The
+    plausibility of values against each other (backlash against the worm radius, overflow of the model's coefficients)
     is checked by :class:`~exudyn_worm.gear.WormGear` and :func:`DriveFromParameters`.
 
     Parameters
