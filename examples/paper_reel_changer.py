@@ -5,15 +5,15 @@ so the frame makes one full rotation in 8 s: it starts horizontal, is lifted for
 4 s and lifted again for 2 s. Parameter set (28) is the chart point P1 (chatter while lowering),
 P7 has ten times smaller J1 and kT (chatter also while lifting), P2 has J1 tripled (stable).
 
-============  ==============================  =========================================
-figure        case                            file
-============  ==============================  =========================================
+============  =================================  =========================================
+figure        case                               file
+============  =================================  =========================================
 8, 9, 10, 11  ``--preset`` (P1), ``--backlash``  fig08_P1_acceleration.png, ...
-12            ``--preset``, 0.25/0.5/0.75 mm  fig12_P1_backlash_normalForce.png
-13-16         P7                              fig13_P7_acceleration.png, ...
-17            P7, 0.25/0.5/0.75 mm            fig17_P7_backlash_normalForce.png
-18            P2                              fig18_P2_driveTorque.png
-============  ==============================  =========================================
+12            ``--preset``, 0.25/0.5/0.75 mm     fig12_P1_backlash_normalForce.png
+13-16         P7                                 fig13_P7_acceleration.png, ...
+17            P7, 0.25/0.5/0.75 mm               fig17_P7_backlash_normalForce.png
+18            P2                                 fig18_P2_driveTorque.png
+============  =================================  =========================================
 
 ``--speed`` and ``--load`` change the operating point of every case; ``--backlash`` replaces the
 paper's zero backlash of the single-case figures (the backlash studies keep 0.25, 0.5, 0.75 mm).

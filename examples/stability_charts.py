@@ -4,7 +4,7 @@
 figure      content                                                              file
 ==========  ===================================================================  ==============================
 3           first criterion (20) with dT = 0: J1/J2 limit against the pitch      fig03_first_criterion.png
-            angle gamma for friction angles rho = 4 ... 10 deg (u = 63, set (25))
+            angle gamma, friction angles rho = 4 ... 10 deg (u = 63, set (25))
 4           second criterion (17), (19), S = -1, D_V = 0.014, D_TV = 1, 5, 25    fig04_chart_DV0.014.png
 5           the same for D_V = 0.056                                             fig05_chart_DV0.056.png
 ==========  ===================================================================  ==============================

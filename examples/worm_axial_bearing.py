@@ -25,7 +25,7 @@ Findings (numbers from :func:`RunExample`, checked by tests/test_example_worm_ax
   unstable in a window of soft bearings, P2 for kA between 6.9e7 and 1.90e8 N/m, P5 below 1.30e8 N/m
   (largest real part at 1e8 N/m: +7.0 and +3.5 1/s); P7 needs kA below 1.0e8 N/m to become stable. Much
   softer bearings leave the mesh almost no stiffness and every drive tends to marginal stability.
-- The simulations agree: P1 with kA = 5e8 N/m does not chatter (max |phi2''| while lowering 0.25 rad/s^2),
+- The simulations agree: P1 with kA = 5e8 N/m does not chatter (max ``|phi2''|`` while lowering 0.25 rad/s^2),
   with 1e9 N/m it does (77 rad/s^2); P2 with 1e8 N/m chatters while lowering (112 rad/s^2).
 
 Run ``python examples/worm_axial_bearing.py`` (about 10 s) for the table; ``--out DIR`` also writes

@@ -234,7 +234,7 @@ def _MaxRealPartScaled(a):
 def MaxRealPart(b, returnFallback: bool = False):
     """Largest real part of the roots of the quartic (15) for many coefficient sets at once, in 1/s.
 
-    Time is scaled by omega = b4^(1/4) (the largest |b_k|^(1/k) if b4 <= 0), the scaled quartic is
+    Time is scaled by omega = b4^(1/4) (the largest ``|b_k|^(1/k)`` if b4 <= 0), the scaled quartic is
     solved in closed form (Ferrari, real arithmetic), the root of largest real part is polished by three
     Newton steps, and where its relative residual stays above 1e-10 (or where a root of nearly equal real
     part could have been missed) numpy's batched ``eigvals`` of the companion matrix is used instead.

@@ -123,7 +123,7 @@ class MeshState:
         regularized, so S takes values between -1 and +1 while the worm speed is within
         ``ContactOptions.frictionSpeed`` of zero (sticking), and 0 inside the backlash (sigma = 0 at Delta s = 0).
     sf : float or ndarray
-        Friction state, the regularized sign of phi1' in [-1, 1] (+-1 sliding, |sf| < 1 sticking).
+        Friction state, the regularized sign of phi1' in [-1, 1] (+-1 sliding, ``|sf| < 1`` sticking).
     wormTorque : float or ndarray
         Mesh torque on the worm in N*m (positive in the worm's positive direction).
     wheelTorque : float or ndarray

@@ -249,8 +249,8 @@ class AxisScan:
     limit: float
 
     def Move(self, direction: int, margin: float, span: float) -> Optional[float]:
-        """Smallest change t (decades, sign of ``direction``, |t| <= log10(span)) after which every
-        t' with |t' - t| <= margin is stable; 0 if the given value already is; None if there is none.
+        """Smallest change t (decades, sign of ``direction``, ``|t| <= log10(span)``) after which every
+        t' with ``|t' - t| <= margin`` is stable; 0 if the given value already is; None if there is none.
 
         Parameters
         ----------
@@ -280,7 +280,7 @@ class AxisScan:
 
 
 def ScanParameter(parameters: Mapping[str, float], key: str, limit: float, step: float = SCAN_STEP) -> AxisScan:
-    """Scan the stability of the drive with ``key`` multiplied by 10**t for |t| <= limit.
+    """Scan the stability of the drive with ``key`` multiplied by 10**t for ``|t| <= limit``.
 
     Parameters
     ----------

@@ -9,7 +9,7 @@ as a prescribed motor projected out) and returns eigenvalues, damped natural fre
 verdict and the mode shapes (which coordinates take part in each mode). The connectors' options are restored
 afterwards.
 
-The initial state must have every mesh in contact (|Delta s| beyond half the backlash), e.g. the static
+The initial state must have every mesh in contact (``|Delta s|`` beyond half the backlash), e.g. the static
 equilibrium under load that :func:`~exudyn_worm.reelchanger.BuildReelChanger` starts from. With S held and
 ``dampingCanPull`` the mesh law is linear on either flank, so the result does not depend on how deep the
 pre-deflection is.
@@ -44,7 +44,7 @@ _PRELOAD = 1e-6
 #: smallest pre-deflection in m beyond half the backlash that AnalyzeLinearStability accepts: Exudyn's
 #: numerical differentiation must not cross the kink of the law at contact loss
 MINIMUM_PENETRATION = 1e-9
-#: eigenvalues with |lambda| below this fraction of the largest |lambda| count as rigid-body modes
+#: eigenvalues with ``|lambda|`` below this fraction of the largest |lambda| count as rigid-body modes
 RIGID_BODY_TOLERANCE = 1e-9
 
 _NO_ODE2_NODE_TYPES = ('Ground', 'GenericData', 'GenericODE1', 'GenericAE')
@@ -64,7 +64,7 @@ class LinearMode:
         (1 for the coordinate that moves most). Coordinates keep their units (rad, m), so compare
         coordinates of one kind, or use ``energyShare``.
     energyShare : dict
-        Share of each coordinate in the mode's kinetic energy, M_ii |x_i|^2 / sum_j M_jj |x_j|^2 (sums to 1;
+        Share of each coordinate in the mode's kinetic energy, ``M_ii |x_i|^2 / sum_j M_jj |x_j|^2`` (sums to 1;
         unit-free, so rotations and axial displacements compare).
     """
     eigenvalue: complex
@@ -73,12 +73,12 @@ class LinearMode:
 
     @property
     def frequencyHz(self) -> float:
-        """Damped natural frequency |Im(lambda)| / (2 pi) in Hz (0 for a real eigenvalue)."""
+        """Damped natural frequency ``|Im(lambda)| / (2 pi)`` in Hz (0 for a real eigenvalue)."""
         return abs(self.eigenvalue.imag) / (2 * math.pi)
 
     @property
     def lehrDamping(self) -> float:
-        """Lehr damping -Re/|Im| as the paper defines it (section 3.1); negative: growing; +-inf if real."""
+        """Lehr damping ``-Re/|Im|`` as the paper defines it (section 3.1); negative: growing; +-inf if real."""
         lam = self.eigenvalue
         return -lam.real / abs(lam.imag) if lam.imag != 0 else math.copysign(math.inf, -lam.real)
 
@@ -118,7 +118,7 @@ class ContactStateLinearization:
         One per conjugate pair (by increasing frequency), then one per real eigenvalue; rigid-body
         modes (lambda = 0) are left out.
     rigidBodyModes : int
-        Number of eigenvalues with |lambda| below :data:`RIGID_BODY_TOLERANCE` times the largest (free
+        Number of eigenvalues with ``|lambda|`` below :data:`RIGID_BODY_TOLERANCE` times the largest (free
         rotation of an undriven system); they do not enter the verdict.
     massMatrix, stiffnessMatrix, dampingMatrix : ndarray
         M, K, D of the linearized system in the independent coordinates (constraints projected out).

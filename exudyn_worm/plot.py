@@ -17,7 +17,7 @@ user's backend is never changed.
 ``'speed'``                worm speed phi1' and friction state sf (panel below)          Fig. 10, 15
 ``'normalForce'``          normal force on the two tooth flanks                          Fig. 11
 ``'driveTorque'``          drive-shaft torque M_an (eq. (6)) and S (twin axis)           Fig. 18
-``'overview'``             2 x 2 panels: acceleration, speed, normal force, drive torque
+``'overview'``             2 x 2: acceleration, speed, normal force, drive torque
 =========================  ============================================================  ===========
 
 :func:`PlotComparison` stacks one panel per simulation (Fig. 12 and 17: normal force for three backlashes).
@@ -282,7 +282,7 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
     """Plot the time functions of one simulation (the paper's Figures 8-11, 13-16, 18).
 
     The contact parameter is drawn as the paper's S = +-1, the sign of the regularized S of the model
-    (|S| < 1 only while the worm speed is within the friction regularization speed of zero). Over a
+    (``|S| < 1`` only while the worm speed is within the friction regularization speed of zero). Over a
     whole run (``'driveTorque'``) it gets its own panel below the torque, so it never covers the torque;
     the normal force shows each flank in its own panel with its running mean over :data:`MEAN_WINDOW`.
 

@@ -236,7 +236,7 @@ def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set
         PARAMETERS.Check(key, value, where)
 
 
-#: largest rate |b_i|^(1/i) of eq. (16), 1/s, that a parameter set may reach: no mechanical drive comes near it,
+#: largest rate ``|b_i|^(1/i)`` of eq. (16), 1/s, that a parameter set may reach: no mechanical drive comes near it,
 #: so a drive above it has a value or unit off by orders of magnitude (and kT = 1e300 would overflow the analysis)
 MAX_RATE = 1e12
 #: smallest b4^(1/4) / b2^(1/2) of eq. (16) accepted (natural frequencies at most 1e12 apart)

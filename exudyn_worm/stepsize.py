@@ -37,7 +37,7 @@ bearing in series with the mesh, not a mode the chatter or the load excites, and
 step does not resolve it. Resolving it would make the step fall with sqrt(kA) (5e-6 s at 1e10 N/m, more than
 the run-size limit for one rotation) while the rigid worm, its limit, needs 7.8e-4 s. The bearing's effect on
 the other modes (kV in series with kA) is included. Measured on P1 with mA = 5 kg over 6 s: at kA = 1e9 N/m
-(chatter while lowering) the recommended step 8.0e-4 s gives the peak |phi2''| and the chatter frequency within
+(chatter while lowering) the recommended step 8.0e-4 s gives the peak ``|phi2''|`` and the chatter frequency within
 0.1 % and 0.4 % of those at 1e-4 s; at kA = 5e8 N/m (stable) both steps give no chatter.
 """
 from __future__ import annotations
@@ -122,7 +122,7 @@ def LinearizedFrequencies(parameters: Mapping[str, float]) -> dict:
     Returns
     -------
     dict
-        ``maxHz``: the highest undamped natural frequency |lambda|/(2 pi) over both contact states;
+        ``maxHz``: the highest undamped natural frequency ``|lambda|/(2 pi)`` over both contact states;
         ``chatterHz``: the highest damped frequency of a growing mode (None if the drive is stable).
     """
     from .linearization import DriveStability

@@ -220,7 +220,7 @@ All runs: the reel changer of `exudyn_worm.reelchanger` (motor with prescribed c
 kT/dT, worm J1, the worm-gear connector, wheel J2, load -m2 g l2 cos(phi2)), one full rotation starting in the
 static equilibrium at full speed, generalized-alpha with step 5e-4 s, friction regularized below 0.05 rad/s.
 "Chatter" in a window: in its second half the wheel inertia torque J2 max|phi2''| exceeds 10 % of the largest
-mesh torque on the wheel in the window (README). Each row is computed with the mesh stiffness and damping along
+mesh torque on the wheel in the window (docs/command-line.md). Each row is computed with the mesh stiffness and damping along
 the tooth normal (eq. (5), the package's model) and referred to the wheel circumference (kV, dV times
 1/(cos alphaN cos gamma)^2, the reading the printed eigenvalues imply):
 
