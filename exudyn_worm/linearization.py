@@ -32,7 +32,7 @@ from .contact import ContactOptions
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft
 from .profiles import ConstantSpeed
-from .stability import CONTACT_STATES, ContactStability, StabilityAnalysis, _Finite, _SortEigenvalues
+from .stability import CONTACT_STATES, ContactStability, OperatingPoint, StabilityAnalysis, _Finite, _SortEigenvalues
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
            'BuildLinearizationModel', 'LinearStabilityFromParameters', 'DriveStability', 'ExudynEigenvalues',
@@ -351,8 +351,15 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
 
 def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True,
                             axialBearing: Optional[AxialBearing] = None,
-                            chain: Sequence[Tuple[float, float, float]] = ()):
+                            chain: Sequence[Tuple[float, float, float]] = (),
+                            operatingPoint: Optional[OperatingPoint] = None):
     """Exudyn system of Figure 2 (motor held still), worm pre-deflected into contact; returns ``(SC, mbs)``.
+
+    With ``operatingPoint`` the system starts in that steady state instead (what a speed-dependent friction
+    law needs, :mod:`exudyn_worm.stability`): motor, worm and wheel turn at the worm speed
+    ``slidingSpeed cos(gamma) / r1`` (the motor prescribed at it) and the worm is deflected so that the mesh
+    carries the normal force ``normalForce`` on the flank sigma = S (S = -1: lowering), i.e.
+    sigma sign(phi1') = S as eq. (8) requires.
 
     With ``axialBearing`` the worm has its axial coordinate (node ``wormAxial``): the 3-DOF problem in
     (phi1, phi2, xA). With ``chain`` the drive-side chain of Figure 19 sits between worm and motor
@@ -371,6 +378,8 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
         The worm's axial bearing (None: axially rigid worm).
     chain : sequence of (J, k, d)
         Drive-side chain, worm side first (:func:`~exudyn_worm.presets.DriveSideChain`).
+    operatingPoint : OperatingPoint, optional
+        Start in this steady state (needs ``S``, the flank to load); None: at rest.
     """
     import exudyn as exu
     if S is not None and S not in CONTACT_STATES:
@@ -378,11 +387,18 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
     g = drive.gear
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    deltaPhi = (0.5 * g.backlash + _PRELOAD) / g.normalLever
-    motor = CreateRotor(mbs, 1e-3, name='motor')
-    worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, name='worm')
-    wheel = CreateRotor(mbs, drive.J2, name='wheel')
-    CreatePrescribedRotation(mbs, motor, ConstantSpeed(0.), useSymbolic=useSymbolic)
+    speed, deltaPhi = 0., (0.5 * g.backlash + _PRELOAD) / g.normalLever
+    if operatingPoint is not None:
+        if S is None:
+            raise ValueError("BuildLinearizationModel: with an 'operatingPoint' give 'S' (+1 or -1), the flank to "
+                             "load, got None")
+        speed = operatingPoint.slidingSpeed * math.cos(g.gamma) / g.r1
+        deflection = operatingPoint.normalForce / g.kV if operatingPoint.normalForce > 0 else _PRELOAD
+        deltaPhi = S * (0.5 * g.backlash + deflection) / g.normalLever
+    motor = CreateRotor(mbs, 1e-3, initialSpeed=speed, name='motor')
+    worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, initialSpeed=speed, name='worm')
+    wheel = CreateRotor(mbs, drive.J2, initialSpeed=speed / g.ratio, name='wheel')
+    CreatePrescribedRotation(mbs, motor, ConstantSpeed(speed), useSymbolic=useSymbolic)
     chainRotors = [CreateRotor(mbs, J, name=f'inertia{i}') for i, (J, _, _) in enumerate(chain, start=4)]
     CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT)
     for rotor, motorSide, (_, k, d) in zip(chainRotors, chainRotors[1:] + [motor], chain):
@@ -471,7 +487,8 @@ def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> 
     return AnalyzeLinearStability(mbs, contactStates=[(S,)]).State(S).eigenvalues
 
 
-def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True) -> StabilityAnalysis:
+def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True,
+                           operatingPoint: Optional[OperatingPoint] = None) -> StabilityAnalysis:
     """Same result type as :func:`~exudyn_worm.stability.AnalyzeStability`, from the Exudyn linearization.
 
     Parameters
@@ -480,6 +497,9 @@ def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True) -> Sta
         The 2-DOF drive of Figure 2.
     useSymbolic : bool
         Evaluate the connector as symbolic (default) or Python user function.
+    operatingPoint : OperatingPoint, optional
+        Linearize each contact state S in the steady state of :func:`BuildLinearizationModel` (speed, normal
+        force on the flank sigma = S); Exudyn differentiates the connector's mu(v) numerically. None: at rest.
 
     Returns
     -------
@@ -488,6 +508,13 @@ def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True) -> Sta
     """
     if not isinstance(drive, ElasticDrive):
         raise TypeError(f"AnalyzeStabilityExudyn: 'drive' must be an ElasticDrive, got {type(drive).__name__}")
+    if operatingPoint is not None:
+        contact = {}
+        for S in CONTACT_STATES:
+            SC, mbs = BuildLinearizationModel(drive, S, useSymbolic, operatingPoint=operatingPoint)
+            eigenvalues = AnalyzeLinearStability(mbs, contactStates=[(S,)]).State(S).eigenvalues
+            contact[S] = ContactStability.FromEigenvalues(S, eigenvalues)
+        return StabilityAnalysis(drive, contact, operatingPoint)
     SC, mbs = BuildLinearizationModel(drive, None, useSymbolic)
     linear = AnalyzeLinearStability(mbs)
     return StabilityAnalysis(drive, {S: ContactStability.FromEigenvalues(S, linear.State(S).eigenvalues)
