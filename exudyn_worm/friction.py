@@ -39,12 +39,11 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
-from types import SimpleNamespace
 from typing import Optional, Sequence, Tuple
 
 import numpy as np
 
-from ._checks import CheckNonNegative, CheckPositive, CheckReal, Suggest
+from ._checks import CheckNonNegative, CheckPositive, Suggest
 
 __all__ = ['FRICTION_LAWS', 'FT_PER_MIN', 'ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction',
            'FrictionLaw', 'FrictionTableRangeWarning']
@@ -59,16 +58,12 @@ class FrictionTableRangeWarning(UserWarning):
     """A friction table was evaluated outside its speed range: the end value was held."""
 
 
-def _Sign(x):
-    return float(x > 0) - float(x < 0)
-
-
-_MATH = SimpleNamespace(exp=math.exp, where=lambda c, a, b: a if c else b, abs=abs, sign=_Sign)
-
-
 def _Ops(ops):
-    """The backend: ``None`` means plain Python floats (as :data:`~exudyn_worm.contact.MATH_OPS`)."""
-    return _MATH if ops is None else ops
+    """The backend: ``None`` means plain Python floats, :data:`~exudyn_worm.contact.MATH_OPS`."""
+    if ops is None:
+        from .contact import MATH_OPS      # contact imports gear, which imports this module: import when used
+        return MATH_OPS
+    return ops
 
 
 def _IsSymbolic(v) -> bool:
