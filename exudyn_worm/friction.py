@@ -36,7 +36,6 @@ Laws (``kind``)
 """
 from __future__ import annotations
 
-import math
 import warnings
 from dataclasses import dataclass
 from typing import Optional, Sequence, Tuple
