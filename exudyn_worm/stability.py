@@ -29,7 +29,8 @@ import numpy as np
 from .drive import ElasticDrive
 
 __all__ = ['OperatingPoint', 'OperatingPointAt', 'OperatingPointFromParameters', 'FrictionSlopeDamping',
-           'PolynomialCoefficients', 'CharacteristicCoefficients', 'HurwitzConditions', 'HurwitzStable', 'LinearMatrices',
+           'PolynomialCoefficients', 'CharacteristicCoefficients', 'HurwitzConditions', 'HurwitzStable',
+           'LinearMatrices',
            'StateMatrix', 'EigenvaluesFromPolynomial', 'EigenvaluesFromStateMatrix', 'FuesgenLimit',
            'FirstCriterionLimit', 'ContactStability', 'StabilityAnalysis', 'AnalyzeStability']
 
