@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -174,10 +174,14 @@ class LinearStability:
         Labels of the system's ODE2 coordinates (node names; ``name[j]`` for multi-coordinate nodes).
     states : dict
         ``{S tuple: ContactStateLinearization}``.
+    operatingPoint : OperatingPoint or None
+        The steady state the system was linearized about when its friction depends on speed
+        (:func:`LinearStabilityFromParameters`); None: as built (the initial state).
     """
     meshes: List[str]
     coordinates: List[str]
     states: Dict[Tuple[int, ...], ContactStateLinearization]
+    operatingPoint: Optional[OperatingPoint] = None
 
     @property
     def stable(self) -> bool:
@@ -219,7 +223,8 @@ class LinearStability:
     def ToDict(self) -> Dict:
         """JSON-ready dictionary: ``{"meshes", "coordinates", "stable", "states": [...]}``."""
         return {'meshes': list(self.meshes), 'coordinates': list(self.coordinates), 'stable': self.stable,
-                'states': [s.ToDict() for s in self.states.values()]}
+                'states': [s.ToDict() for s in self.states.values()],
+                'operatingPoint': None if self.operatingPoint is None else self.operatingPoint.ToDict()}
 
 
 def _CoordinateLabels(mbs, size: int) -> List[str]:
@@ -399,7 +404,8 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
     worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, initialSpeed=speed, name='worm')
     wheel = CreateRotor(mbs, drive.J2, initialSpeed=speed / g.ratio, name='wheel')
     CreatePrescribedRotation(mbs, motor, ConstantSpeed(speed), useSymbolic=useSymbolic)
-    chainRotors = [CreateRotor(mbs, J, name=f'inertia{i}') for i, (J, _, _) in enumerate(chain, start=4)]
+    chainRotors = [CreateRotor(mbs, J, initialSpeed=speed, name=f'inertia{i}')
+                   for i, (J, _, _) in enumerate(chain, start=4)]
     CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT)
     for rotor, motorSide, (_, k, d) in zip(chainRotors, chainRotors[1:] + [motor], chain):
         CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d)
@@ -425,12 +431,25 @@ def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: 
     Returns
     -------
     LinearStability
-        For S = +1 and S = -1; coordinates ``motor, worm, wheel`` (+ ``inertia4``, ..., ``wormAxial``).
+        For S = +1 and S = -1; coordinates ``motor, worm, wheel`` (+ ``inertia4``, ..., ``wormAxial``). With the
+        reel-changer keys ``loadMass, leverArm, motorSpeed`` its ``operatingPoint`` is steady lowering
+        (:func:`~exudyn_worm.stability.OperatingPointFromParameters`); a speed-dependent friction law is then
+        linearized there (one model per contact state, :func:`BuildLinearizationModel`).
     """
     from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
-    SC, mbs = BuildLinearizationModel(DriveFromParameters(parameters), None, useSymbolic,
-                                      AxialBearingFromParameters(parameters), DriveSideChain(parameters))
-    return AnalyzeLinearStability(mbs)
+    from .stability import OperatingPointFromParameters
+    drive = DriveFromParameters(parameters)
+    operatingPoint = OperatingPointFromParameters(parameters, drive.gear)
+    parts = (useSymbolic, AxialBearingFromParameters(parameters), DriveSideChain(parameters))
+    if operatingPoint is None or not drive.gear.speedDependentFriction:
+        SC, mbs = BuildLinearizationModel(drive, None, *parts)
+        return replace(AnalyzeLinearStability(mbs), operatingPoint=operatingPoint)
+    states = {}
+    for S in CONTACT_STATES:
+        SC, mbs = BuildLinearizationModel(drive, S, *parts, operatingPoint=operatingPoint)
+        linear = AnalyzeLinearStability(mbs, contactStates=[(S,)])
+        states.update(linear.states)
+    return replace(linear, states=states, operatingPoint=operatingPoint)
 
 
 def DriveStability(parameters: Mapping[str, float], useSymbolic: bool = True

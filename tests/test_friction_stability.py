@@ -194,3 +194,20 @@ def test_simulation_grows_where_the_linear_analysis_says_unstable(monkeypatch):
     assert constant[8] < constant[7] < constant[6]                   # 3-4.5 s: decaying
     assert steep[8] > 3 * steep[7] > 9 * steep[6]                    # 3-4.5 s: growing, at more than 2.2 1/s
     assert steep[11] < steep[10]                                      # 5-6 s: the load falls, it decays again
+
+
+def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
+    """LinearStabilityFromParameters (the whole-drive path of `stability`) linearizes a speed-dependent law at the
+    operating point: for the two-mass drive it equals the extended eq. (16)."""
+    import exudyn_worm.presets as presets
+    from exudyn_worm.linearization import LinearStabilityFromParameters
+    original = presets.DriveFromParameters
+    monkeypatch.setattr(presets, 'DriveFromParameters', lambda p: Stribeck(original(p)))
+    linear = LinearStabilityFromParameters(P3)
+    drive = Stribeck()
+    op = OperatingPointFromParameters(P3, drive.gear)
+    assert linear.operatingPoint == op and linear.ToDict()['operatingPoint'] == op.ToDict()
+    analytical = AnalyzeStability(drive, op)
+    for S in (1, -1):
+        np.testing.assert_allclose(linear.State(S).eigenvalues, analytical.contact[S].eigenvalues, rtol=1e-6)
+        assert linear.State(S).stable == analytical.contact[S].stable
