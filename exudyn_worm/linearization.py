@@ -308,6 +308,14 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
     TypeError
         If ``mbs`` is neither an ``exudyn.MainSystem`` nor holds one as ``.mbs``.
 
+    Notes
+    -----
+    A gear with a speed-dependent friction law (:mod:`exudyn_worm.friction`) is linearized at its initial
+    speed and normal force: start the system in the operating state. The friction slope enters with the sign of
+    sigma sign(phi1') S, so only the contact state with S = sigma sign(phi1') of the initial state (S = -1 for a
+    system that starts lowering) has the physical damping; :func:`BuildLinearizationModel` with an
+    ``operatingPoint`` builds one consistent model per contact state.
+
     Examples
     --------
     >>> import exudyn_worm as ew
