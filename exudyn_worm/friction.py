@@ -37,7 +37,7 @@ Laws (``kind``)
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Optional, Sequence, Tuple
 
 import numpy as np
@@ -307,6 +307,7 @@ class TableFriction:
         speeds out of order (unsorted) or repeated (not strictly increasing).
     """
     points: Tuple[Tuple[float, float], ...]
+    _segments: tuple = field(init=False, repr=False, compare=False)
     kind = 'table'
 
     def __post_init__(self):
@@ -332,6 +333,7 @@ class TableFriction:
                 raise ValueError(f"{w}: the sliding speeds of 'points' must increase strictly (m/s): points {i - 1} "
                                  f"and {i} both have {clean[i][0]:g} m/s")
         object.__setattr__(self, 'points', tuple(clean))
+        object.__setattr__(self, '_segments', self._Segments())        # the cubic pieces, computed once
 
     @property
     def speeds(self) -> np.ndarray:
@@ -356,7 +358,7 @@ class TableFriction:
         delta = np.diff(y) / h
         c = (3 * delta - 2 * m[:-1] - m[1:]) / h
         d = (m[:-1] + m[1:] - 2 * delta) / h**2
-        return [(float(x[i]), float(y[i]), float(m[i]), float(c[i]), float(d[i])) for i in range(h.size)]
+        return tuple((float(x[i]), float(y[i]), float(m[i]), float(c[i]), float(d[i])) for i in range(h.size))
 
     def _Warn(self, v):
         x = self.speeds
@@ -386,7 +388,7 @@ class TableFriction:
             self._Warn(v)
         x = self.speeds
         result = float(self.values[-1])                     # held above the last speed
-        for i, (x0, a, b, c, d) in reversed(list(enumerate(self._Segments()))):
+        for i, (x0, a, b, c, d) in reversed(list(enumerate(self._segments))):
             t = v - x0
             result = ops.where(v <= float(x[i + 1]), a + t * (b + t * (c + t * d)), result)
         return ops.where(v < x[0], float(self.values[0]), result)
@@ -403,7 +405,7 @@ class TableFriction:
         vv = np.asarray(v, dtype=float)
         s = np.zeros(vv.shape)
         x = self.speeds
-        for i, (x0, a, b, c, d) in enumerate(self._Segments()):
+        for i, (x0, a, b, c, d) in enumerate(self._segments):
             inside = (vv >= x0) & (vv <= x[i + 1]) if i == 0 else (vv > x0) & (vv <= x[i + 1])
             t = vv - x0
             s = np.where(inside, b + t * (2 * c + 3 * d * t), s)
