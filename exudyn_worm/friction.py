@@ -45,7 +45,7 @@ import numpy as np
 from ._checks import CheckNonNegative, CheckPositive, Suggest
 
 __all__ = ['FRICTION_LAWS', 'FT_PER_MIN', 'ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction',
-           'FrictionLaw', 'FrictionTableRangeWarning']
+           'FrictionLaw', 'FrictionTableRangeWarning', 'ReadFrictionTable']
 
 #: names of the friction laws (the ``frictionLaw`` parameter)
 FRICTION_LAWS = ('constant', 'stribeck', 'agma', 'table')
@@ -414,6 +414,56 @@ class TableFriction:
     def ToDict(self) -> dict:
         """The law's parameters as the parameter keys name them (JSON-ready)."""
         return {'frictionLaw': self.kind, 'frictionTable': [list(p) for p in self.points]}
+
+
+def ReadFrictionTable(source) -> TableFriction:
+    """A :class:`TableFriction` from a text file of measured points, or from the pairs themselves.
+
+    Parameters
+    ----------
+    source : str, os.PathLike or sequence of (float, float)
+        A file with one ``sliding speed (m/s), mu`` pair per line, separated by a comma, a semicolon or blanks
+        (blank lines, lines starting with ``#`` and a first line that is not numeric, a header, are skipped); or
+        the pairs.
+
+    Returns
+    -------
+    TableFriction
+
+    Raises
+    ------
+    ValueError
+        If the file cannot be read or a line is not two numbers (the message gives the file and line), or the
+        table is invalid (:class:`TableFriction`).
+    """
+    import os
+    import re
+    if not isinstance(source, (str, os.PathLike)):
+        return TableFriction(tuple(source))
+    w = 'ReadFrictionTable'
+    try:
+        with open(source, encoding='utf-8') as file:
+            lines = file.read().splitlines()
+    except OSError as error:
+        raise ValueError(f"{w}: cannot read the friction table {str(source)!r}: {error.strerror or error}") from None
+    points, first = [], True
+    for number, line in enumerate(lines, start=1):
+        text = line.strip()
+        if not text or text.startswith('#'):
+            continue
+        fields = [f for f in re.split(r'[,;\s]+', text) if f]
+        header, first = first, False
+        try:
+            values = [float(f) for f in fields]
+        except ValueError:
+            if header:
+                continue                                        # the first line may name the columns
+            raise ValueError(f"{w}: {source}, line {number}: expected 'sliding speed (m/s), mu', got {text!r}") from None
+        if len(values) != 2:
+            raise ValueError(f"{w}: {source}, line {number}: expected 2 numbers 'sliding speed (m/s), mu', "
+                             f"got {len(values)}: {text!r}")
+        points.append(tuple(values))
+    return TableFriction(tuple(points))
 
 
 def FrictionLaw(kind: str = 'constant', mu: Optional[float] = None, muStatic: Optional[float] = None,

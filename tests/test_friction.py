@@ -206,3 +206,22 @@ def test_friction_law_factory():
     assert isinstance(FrictionLaw('agma', mu=0.05), AgmaFriction)
     assert FrictionLaw(mu=0.1) == ConstantFriction(0.1)
     assert STRIBECK.ToDict() == {'frictionLaw': 'stribeck', 'mu': 0.05, 'muStatic': 0.15, 'stribeckVelocity': 0.1}
+
+
+def test_read_friction_table(tmp_path):
+    from exudyn_worm.friction import ReadFrictionTable
+    path = tmp_path / 'rig.csv'
+    path.write_text('# test rig, oil X\nv_m_s, mu\n0, 0.15\n0.05; 0.10\n\n0.5 0.06\n2.0,0.04\n')
+    assert ReadFrictionTable(path) == TABLE
+    assert ReadFrictionTable([(0., 0.15), (0.05, 0.10), (0.5, 0.06), (2., 0.04)]) == TABLE
+    path.write_text('0, 0.15\n0.05, 0.10, 3\n')
+    with pytest.raises(ValueError, match=r"rig.csv, line 2: expected 2 numbers .* got 3"):
+        ReadFrictionTable(path)
+    path.write_text('0, 0.15\nfast, 0.10\n')
+    with pytest.raises(ValueError, match=r"rig.csv, line 2: expected 'sliding speed \(m/s\), mu', got 'fast, 0.10'"):
+        ReadFrictionTable(path)
+    with pytest.raises(ValueError, match=r"ReadFrictionTable: cannot read the friction table"):
+        ReadFrictionTable(tmp_path / 'missing.csv')
+    path.write_text('v, mu\n')
+    with pytest.raises(ValueError, match=r"TableFriction: 'points' must hold at least 2 .* got 0"):
+        ReadFrictionTable(path)
