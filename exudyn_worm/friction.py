@@ -458,7 +458,8 @@ def ReadFrictionTable(source) -> TableFriction:
         except ValueError:
             if header:
                 continue                                        # the first line may name the columns
-            raise ValueError(f"{w}: {source}, line {number}: expected 'sliding speed (m/s), mu', got {text!r}") from None
+            raise ValueError(f"{w}: {source}, line {number}: expected 'sliding speed (m/s), mu', "
+                             f"got {text!r}") from None
         if len(values) != 2:
             raise ValueError(f"{w}: {source}, line {number}: expected 2 numbers 'sliding speed (m/s), mu', "
                              f"got {len(values)}: {text!r}")
