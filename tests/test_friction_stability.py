@@ -211,3 +211,15 @@ def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
     for S in (1, -1):
         np.testing.assert_allclose(linear.State(S).eigenvalues, analytical.contact[S].eigenvalues, rtol=1e-6)
         assert linear.State(S).stable == analytical.contact[S].stable
+
+
+def test_first_criterion_limit_includes_the_slope():
+    """(20) with the slope: at J1/J2 = FirstCriterionLimit the b1 of S = -1 vanishes."""
+    from exudyn_worm.stability import FirstCriterionLimit
+    drive = Stribeck()
+    op = OperatingPointFromParameters(P3, drive.gear)
+    limit = FirstCriterionLimit(drive, op)
+    assert limit != FirstCriterionLimit(drive)
+    b1 = CharacteristicCoefficients(drive.Replace(J1=limit * drive.J2), -1, op)[0]
+    D = LinearMatrices(drive.Replace(J1=limit * drive.J2), -1, op)[1]
+    assert abs(b1) < 1e-12 * (abs(D[0, 0]) / (limit * drive.J2) + abs(D[1, 1]) / drive.J2)

@@ -32,6 +32,10 @@ def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra
         return 0
     lines = [f"exudyn-worm stability: {SourceText(args)}, method exudyn (linearized Exudyn model of the whole "
              f"drive: it has {' and '.join(extra)})", '']
+    op = analysis.operatingPoint
+    if op is not None:
+        lines += [f"Operating point (steady lowering): v0 = {op.slidingSpeed:.4g} m/s, Fn0 = {op.normalForce:.4g} N, "
+                  f"mu(v0) = {op.mu:.4g}, dmu/dv = {op.dmuDv:.4g} s/m", '']
     for state in analysis.states.values():
         verdict = 'stable' if state.stable else 'UNSTABLE'
         lines.append(f"S = {', '.join(f'{s:+d}' for s in state.S)}: {verdict}, largest real part "
