@@ -21,6 +21,10 @@ _LAZY = {'WormGear': 'gear',
          **dict.fromkeys(('AnalyzeLinearStability', 'AnalyzeStabilityExudyn', 'LinearStability'), 'linearization'),
          **dict.fromkeys(('BuildReelChanger', 'SimulateReelChanger'), 'reelchanger'),
          'SimulationResult': 'results',
+         **dict.fromkeys(('ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction', 'FrictionLaw'),
+                         'friction'),
+         **dict.fromkeys(('OperatingPoint', 'OperatingPointAt'), 'stability'),
+         'SelfLocking': 'selflocking',
          **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'stepsize')}
 
 
@@ -46,7 +50,8 @@ __all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMea
            'LinearMotorCharacteristic', 'StartStopProfile', 'ApplyOverrides', 'DriveFromParameters', 'GetPreset',
            'PRESETS', 'AnalyzeStabilityExudyn', 'AnalyzeLinearStability', 'LinearStability', 'BuildReelChanger',
            'SimulateReelChanger', 'SimulationResult', 'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods',
-           '__version__']
+           'ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction', 'FrictionLaw', 'OperatingPoint',
+           'OperatingPointAt', 'SelfLocking', '__version__']
 
 _MAIN_SYSTEM_METHODS = ('CreateWormGear', 'CreateWormAxialBearing', 'CreateRotor', 'CreateShaft',
                         'CreatePrescribedRotation', 'CreateRotorTorque')

@@ -799,6 +799,7 @@ def FirstCriterionChart(gear: WormGear, gamma: Sequence[float], rho: Sequence[fl
         for j, g in enumerate(gamma):
             if g >= r:
                 continue
-            mesh = gear.Replace(gamma=g, rho=r, r2=u * gear.r1 * math.tan(g), dV=1.)
+            # Figure 3 varies a constant rho: the gear's own friction law (if any) does not apply
+            mesh = gear.Replace(gamma=g, rho=r, r2=u * gear.r1 * math.tan(g), dV=1., friction=None)
             limit[i, j] = FirstCriterionLimit(ElasticDrive(mesh, J1=1., J2=1., kT=1., dT=0.))
     return FirstCriterionCurves(gamma=gamma, rho=rho, ratio=u, limit=limit)

@@ -16,7 +16,11 @@ Law (paper eqs. (1)-(2), (4)-(5), (8)-(12)), with ``lever = r1 cos(alphaN) sin(g
   ``frictionSpeed = 0`` gives the exact sign, meant for evaluating the law: a simulation in which the worm
   speed crosses zero, e.g. a start from rest, can stop there, as Newton's iteration cannot cross the jump),
   contact parameter ``S = sigma * sf`` (eq. (8));
-- torques: worm ``-c2(S) sigma Fn``, wheel ``+c4(S) sigma Fn`` with c2, c4 of eqs. (10), (12).
+- torques: worm ``-c2(S) sigma Fn``, wheel ``+c4(S) sigma Fn`` with c2, c4 of eqs. (10), (12);
+- friction: the gear's constant ``mu`` (rho of eq. (13)), or, for a speed-dependent law
+  (:attr:`WormGear.friction <exudyn_worm.gear.WormGear>`, :mod:`exudyn_worm.friction`), ``mu(v)`` at the sliding
+  speed ``v = r1 |phi1'| / cos(gamma)`` and rho = atan(mu(v)/cos(alphaN)) in c2, c4. The constant law records
+  exactly the expression it always did.
 
 Optional axial degree of freedom of the worm (its axial bearing, see :func:`MeshContact`): the worm's
 axial displacement ``xA`` adds ``cos(alphaN) cos(gamma) xA`` to ``Delta s`` and the mesh pushes the worm
@@ -46,10 +50,10 @@ def _Sign(x):
 
 #: plain-Python backend (floats)
 MATH_OPS = SimpleNamespace(sin=math.sin, cos=math.cos, abs=abs, sign=_Sign, max=max, min=min,
-                           where=lambda c, a, b: a if c else b)
+                           where=lambda c, a, b: a if c else b, exp=math.exp, atan=math.atan)
 #: numpy backend (arrays, element-wise)
 NUMPY_OPS = SimpleNamespace(sin=np.sin, cos=np.cos, abs=np.abs, sign=np.sign, max=np.maximum, min=np.minimum,
-                            where=np.where)
+                            where=np.where, exp=np.exp, atan=np.arctan)
 
 
 def SymbolicOps():
@@ -61,7 +65,7 @@ def SymbolicOps():
         return esym.IfThenElse(condition, *(x if isinstance(x, esym.Real) else esym.Real(float(x)) for x in (a, b)))
 
     return SimpleNamespace(sin=esym.sin, cos=esym.cos, abs=esym.abs, sign=esym.sign, max=esym.max, min=esym.min,
-                           where=Where)
+                           where=Where, exp=esym.exp, atan=esym.atan)
 
 
 @dataclass(frozen=True)
@@ -247,7 +251,10 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
     else:
         sf = ops.sign(omega1)
     S = sigma * sf if options.fixedS is None else float(options.fixedS)
-    c2, c4 = gear.LeverArms(S, ops)
+    if gear.speedDependentFriction:              # mu(v) at the sliding speed r1 |phi1'| / cos(gamma)
+        c2, c4 = gear.LeverArms(S, ops, gear.friction.Mu(gear.SlidingSpeed(omega1, ops), ops))
+    else:                                        # constant mu: exactly the paper's (and today's) expression
+        c2, c4 = gear.LeverArms(S, ops)
     normalForce = sigma * fn
     wheelTorque = c4 * normalForce
     return MeshState(deltaPhi=deltaPhi, deltaS=lever * d, normalForce=normalForce, S=S, sf=sf,

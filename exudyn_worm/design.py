@@ -499,6 +499,15 @@ class DesignCheckResult:
         found = {(r.parameter, 1 if r.factor > 1 else -1) for r in self.recommendations}
         return [(k, d) for k in self.marginShortBy for d in (1, -1) if (k, d) not in found]
 
+    @property
+    def selfLockingVerdict(self):
+        """Static and dynamic self-locking (:func:`~exudyn_worm.selflocking.SelfLocking`), the dynamic one at the
+        sliding speed of ``motorSpeed`` if the parameter set gives it."""
+        from .selflocking import SelfLocking
+        gear = self.analysis.drive.gear
+        speed = self.parameters.get('motorSpeed')
+        return SelfLocking(gear, None if speed is None else gear.SlidingSpeed(speed))
+
     def ToDict(self) -> Dict:
         """JSON-ready dictionary (the schema of ``exudyn-worm check --json``).
 
@@ -521,6 +530,7 @@ class DesignCheckResult:
                 'singleParameterSuffices': self.singleParameterSuffices,
                 'bestPair': self.bestPair.ToDict() if self.bestPair else None,
                 'notes': list(self.notes)}
+        data['selfLockingVerdict'] = self.selfLockingVerdict.ToDict()
         if self.simulatedChatter is not None:
             data['simulatedChatterWhileLowering'] = self.simulatedChatter
         return data

@@ -2,15 +2,19 @@
 
 This module is the single source of truth for the coefficients c1..c4: the analytical
 stability model, the Exudyn connector and post-processing all call
-:meth:`WormGear.Coefficients`.
+:meth:`WormGear.Coefficients`. A gear may carry a speed-dependent friction law
+(:mod:`exudyn_worm.friction`); the coefficients are then evaluated at ``mu(v)``.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Optional
+from typing import Optional, Union
 
 from ._checks import CheckAngle, CheckNonNegative, CheckPositive
+from .friction import AgmaFriction, ConstantFriction, StribeckFriction, TableFriction
+
+FrictionLawType = Union[ConstantFriction, StribeckFriction, AgmaFriction, TableFriction]
 
 __all__ = ['WormGear']
 
@@ -43,6 +47,11 @@ class WormGear:
         Flank friction coefficient, >= 0. Give ``mu`` or ``rho`` (or both, consistent via eq. (13)).
     rho : float, optional
         Friction angle in rad, in [0, pi/2).
+    friction : ConstantFriction, StribeckFriction, AgmaFriction or TableFriction, optional
+        Friction law mu(v) over the sliding speed v in m/s (:mod:`exudyn_worm.friction`). None (default): the
+        constant ``mu``, exactly the paper's model. ``mu`` stays the nominal coefficient of the constant-mu
+        formulas (:attr:`rho`, the efficiencies, the stability charts); for a constant or Stribeck law it is
+        the law's (kinetic) ``mu`` and may be left out; for an AGMA or table law give it as well.
 
     Raises
     ------
@@ -68,6 +77,7 @@ class WormGear:
     backlash: float = 0.
     mu: Optional[float] = None
     rho: Optional[float] = None
+    friction: Optional[FrictionLawType] = None
 
     def __post_init__(self):
         w = 'WormGear'
@@ -84,6 +94,15 @@ class WormGear:
             raise ValueError(f"{w}: 'backlash' must be <= the worm radius r1 = {self.r1:g} m, got {b:g} m; "
                              f"backlash is in m: for {b:g} mm give {b * 1e-3:g} (on the command line "
                              f"--set 'backlash={b:g} mm')")
+        law = self.friction
+        if law is not None and not isinstance(law, (ConstantFriction, StribeckFriction, AgmaFriction, TableFriction)):
+            raise TypeError(f"{w}: 'friction' must be a friction law of exudyn_worm.friction (ConstantFriction, "
+                            f"StribeckFriction, AgmaFriction, TableFriction) or None, got {type(law).__name__}")
+        if self.mu is None and self.rho is None and isinstance(law, (ConstantFriction, StribeckFriction)):
+            set_('mu', law.mu)                                  # the law's (kinetic) mu is the nominal one
+        if self.mu is None and self.rho is None and law is not None:
+            raise ValueError(f"{w}: with the '{law.kind}' friction law give the nominal friction 'mu' (>= 0) too "
+                             f"(used by the constant-mu formulas, e.g. mu at the operating sliding speed), got none")
         if self.mu is None and self.rho is None:
             raise ValueError(f"{w}: give the friction as 'mu' (>= 0) or as 'rho' (in [0, pi/2) rad), got neither")
         cosA = math.cos(self.alphaN)
@@ -103,12 +122,56 @@ class WormGear:
             raise ValueError(f"{w}: 'mu' and 'rho' are inconsistent through eq. (13) rho = atan(mu/cos(alphaN)): "
                              f"mu = {self.mu:g} needs rho = {math.degrees(math.atan(self.mu / cosA)):.6g} deg, "
                              f"got rho = {math.degrees(self.rho):.6g} deg; give only one of them")
+        if isinstance(law, (ConstantFriction, StribeckFriction)) and not math.isclose(
+                self.mu, law.mu, rel_tol=FRICTION_CONSISTENCY_RTOL, abs_tol=1e-12):
+            raise ValueError(f"{w}: 'mu' = {self.mu:g} differs from the {law.kind} friction law's mu = {law.mu:g}; "
+                             f"give one of them (the law's mu is the gear's nominal mu)")
 
     # --- derived quantities -------------------------------------------------------------
     @property
     def ratio(self) -> float:
         """Transmission ratio u = r2 / (r1 tan(gamma)), eq. (3)."""
         return self.r2 / (self.r1 * math.tan(self.gamma))
+
+    @property
+    def frictionLaw(self) -> FrictionLawType:
+        """The friction law mu(v): :attr:`friction`, or ``ConstantFriction(mu)`` if none is given."""
+        return ConstantFriction(self.mu) if self.friction is None else self.friction
+
+    @property
+    def speedDependentFriction(self) -> bool:
+        """True if the friction law is not the constant ``mu`` (the contact law then evaluates mu(v))."""
+        return self.friction is not None and not isinstance(self.friction, ConstantFriction)
+
+    @property
+    def muStatic(self) -> float:
+        """Friction coefficient at rest, mu(0) of the law (= ``mu`` for the constant law)."""
+        return self.mu if self.friction is None else float(self.friction.muStatic)
+
+    def SlidingSpeed(self, omega1, ops=math):
+        """Sliding speed of the flanks v = r1 |omega1| / cos(gamma) in m/s for the worm speed ``omega1`` (rad/s).
+
+        Parameters
+        ----------
+        omega1 : float, ndarray or symbolic
+            Worm speed in rad/s (either sign).
+        ops : namespace
+            Backend supplying ``abs`` (``math``/:data:`~exudyn_worm.contact.MATH_OPS`, numpy, symbolic).
+        """
+        absolute = abs if ops is math else ops.abs
+        return absolute(omega1) * (self.r1 / math.cos(self.gamma))
+
+    def FrictionCoefficient(self, slidingSpeed, ops=None):
+        """Friction coefficient mu(v) of the gear's law at the sliding speed ``slidingSpeed`` (m/s).
+
+        Parameters
+        ----------
+        slidingSpeed : float, ndarray or symbolic
+            Sliding speed in m/s, >= 0 (:meth:`SlidingSpeed`).
+        ops : namespace, optional
+            Arithmetic backend of :mod:`exudyn_worm.contact`; None: Python floats.
+        """
+        return self.frictionLaw.Mu(slidingSpeed, ops)
 
     @property
     def frictionAngle(self) -> float:
@@ -143,24 +206,47 @@ class WormGear:
         """Relative angle Delta phi = phi1 - u phi2 in rad (worm side), eq. (4)."""
         return phi1 - self.ratio * phi2
 
-    def LeverArms(self, S, ops=math):
+    def LeverArms(self, S, ops=math, mu=None):
         """Torque per unit normal force on worm and wheel, (c2, c4) of eqs. (10), (12), in m.
 
         ``S`` may be +-1 or, for the regularized friction of the connector, any value in [-1, 1]
-        (0 = frictionless); ``ops`` supplies ``sin``/``cos`` (``math``, ``numpy`` or Exudyn symbolic).
+        (0 = frictionless); ``ops`` supplies ``sin``/``cos`` (and ``atan`` with ``mu``) (``math``, ``numpy`` or
+        Exudyn symbolic). ``mu`` (float, array or symbolic): evaluate at this friction coefficient, with
+        rho = atan(mu / cos(alphaN)) (eq. (13)); None (default): at the gear's ``mu`` (its :attr:`rho`).
         """
-        k = math.cos(self.alphaN) / math.cos(self.rho)
-        arg = self.gamma + self.rho * S
+        cosA = math.cos(self.alphaN)
+        if mu is None:
+            k = cosA / math.cos(self.rho)
+            arg = self.gamma + self.rho * S
+        else:
+            rho = ops.atan(mu * (1. / cosA))                    # eq. (13)
+            k = cosA / ops.cos(rho)
+            arg = self.gamma + rho * S
         return self.r1 * k * ops.sin(arg), self.r2 * k * ops.cos(arg)
 
-    def Coefficients(self, S, ops=math):
+    def Coefficients(self, S, ops=math, mu=None):
         """Mesh coefficients (c1, c2, c3, c4) of eqs. (9)-(12) for contact parameter ``S``.
 
         c1 = c2 * normalLever and c3 = c4 * normalLever: the normal force acts on the worm through
-        the lever c2 and on the wheel through c4.
+        the lever c2 and on the wheel through c4. ``mu``: evaluate at this friction coefficient instead of
+        the gear's ``mu`` (see :meth:`LeverArms`).
         """
-        c2, c4 = self.LeverArms(S, ops)
+        c2, c4 = self.LeverArms(S, ops, mu)
         return c2 * self.normalLever, c2, c4 * self.normalLever, c4
+
+    def Efficiencies(self, mu=None):
+        """Efficiencies (worm driving, wheel driving) at the friction coefficient ``mu`` (default: the gear's).
+
+        Worm driving: tan(gamma)/tan(gamma + rho); wheel driving: tan(gamma - rho)/tan(gamma) (<= 0: self-locking).
+
+        Parameters
+        ----------
+        mu : float, optional
+            Friction coefficient, >= 0.
+        """
+        c2p, c4p = self.LeverArms(+1, math, mu)
+        c2m, c4m = self.LeverArms(-1, math, mu)
+        return c4p / (self.ratio * c2p), self.ratio * c2m / c4m
 
     @property
     def efficiencyWormDriving(self) -> float:
@@ -175,7 +261,8 @@ class WormGear:
         return self.ratio * c2 / c4
 
     def Replace(self, **changes) -> 'WormGear':
-        """Return a copy with some parameters changed (``mu`` or ``rho`` given alone replaces both)."""
+        """Return a copy with some parameters changed (``mu`` or ``rho`` given alone replaces both; a new ``mu``
+        with a constant or Stribeck law needs a new ``friction`` too)."""
         if 'mu' in changes and 'rho' not in changes:
             changes['rho'] = None
         if 'rho' in changes and 'mu' not in changes:

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -32,7 +32,7 @@ from .contact import ContactOptions
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft
 from .profiles import ConstantSpeed
-from .stability import CONTACT_STATES, ContactStability, StabilityAnalysis, _Finite, _SortEigenvalues
+from .stability import CONTACT_STATES, ContactStability, OperatingPoint, StabilityAnalysis, _Finite, _SortEigenvalues
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
            'BuildLinearizationModel', 'LinearStabilityFromParameters', 'DriveStability', 'ExudynEigenvalues',
@@ -174,10 +174,14 @@ class LinearStability:
         Labels of the system's ODE2 coordinates (node names; ``name[j]`` for multi-coordinate nodes).
     states : dict
         ``{S tuple: ContactStateLinearization}``.
+    operatingPoint : OperatingPoint or None
+        The steady state the system was linearized about when its friction depends on speed
+        (:func:`LinearStabilityFromParameters`); None: as built (the initial state).
     """
     meshes: List[str]
     coordinates: List[str]
     states: Dict[Tuple[int, ...], ContactStateLinearization]
+    operatingPoint: Optional[OperatingPoint] = None
 
     @property
     def stable(self) -> bool:
@@ -219,7 +223,8 @@ class LinearStability:
     def ToDict(self) -> Dict:
         """JSON-ready dictionary: ``{"meshes", "coordinates", "stable", "states": [...]}``."""
         return {'meshes': list(self.meshes), 'coordinates': list(self.coordinates), 'stable': self.stable,
-                'states': [s.ToDict() for s in self.states.values()]}
+                'states': [s.ToDict() for s in self.states.values()],
+                'operatingPoint': None if self.operatingPoint is None else self.operatingPoint.ToDict()}
 
 
 def _CoordinateLabels(mbs, size: int) -> List[str]:
@@ -303,6 +308,14 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
     TypeError
         If ``mbs`` is neither an ``exudyn.MainSystem`` nor holds one as ``.mbs``.
 
+    Notes
+    -----
+    A gear with a speed-dependent friction law (:mod:`exudyn_worm.friction`) is linearized at its initial
+    speed and normal force: start the system in the operating state. The friction slope enters with the sign of
+    sigma sign(phi1') S, so only the contact state with S = sigma sign(phi1') of the initial state (S = -1 for a
+    system that starts lowering) has the physical damping; :func:`BuildLinearizationModel` with an
+    ``operatingPoint`` builds one consistent model per contact state.
+
     Examples
     --------
     >>> import exudyn_worm as ew
@@ -351,8 +364,15 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
 
 def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True,
                             axialBearing: Optional[AxialBearing] = None,
-                            chain: Sequence[Tuple[float, float, float]] = ()):
+                            chain: Sequence[Tuple[float, float, float]] = (),
+                            operatingPoint: Optional[OperatingPoint] = None):
     """Exudyn system of Figure 2 (motor held still), worm pre-deflected into contact; returns ``(SC, mbs)``.
+
+    With ``operatingPoint`` the system starts in that steady state instead (what a speed-dependent friction
+    law needs, :mod:`exudyn_worm.stability`): motor, worm and wheel turn at the worm speed
+    ``slidingSpeed cos(gamma) / r1`` (the motor prescribed at it) and the worm is deflected so that the mesh
+    carries the normal force ``normalForce`` on the flank sigma = S (S = -1: lowering), i.e.
+    sigma sign(phi1') = S as eq. (8) requires.
 
     With ``axialBearing`` the worm has its axial coordinate (node ``wormAxial``): the 3-DOF problem in
     (phi1, phi2, xA). With ``chain`` the drive-side chain of Figure 19 sits between worm and motor
@@ -371,6 +391,8 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
         The worm's axial bearing (None: axially rigid worm).
     chain : sequence of (J, k, d)
         Drive-side chain, worm side first (:func:`~exudyn_worm.presets.DriveSideChain`).
+    operatingPoint : OperatingPoint, optional
+        Start in this steady state (needs ``S``, the flank to load); None: at rest.
     """
     import exudyn as exu
     if S is not None and S not in CONTACT_STATES:
@@ -378,12 +400,20 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
     g = drive.gear
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    deltaPhi = (0.5 * g.backlash + _PRELOAD) / g.normalLever
-    motor = CreateRotor(mbs, 1e-3, name='motor')
-    worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, name='worm')
-    wheel = CreateRotor(mbs, drive.J2, name='wheel')
-    CreatePrescribedRotation(mbs, motor, ConstantSpeed(0.), useSymbolic=useSymbolic)
-    chainRotors = [CreateRotor(mbs, J, name=f'inertia{i}') for i, (J, _, _) in enumerate(chain, start=4)]
+    speed, deltaPhi = 0., (0.5 * g.backlash + _PRELOAD) / g.normalLever
+    if operatingPoint is not None:
+        if S is None:
+            raise ValueError("BuildLinearizationModel: with an 'operatingPoint' give 'S' (+1 or -1), the flank to "
+                             "load, got None")
+        speed = operatingPoint.slidingSpeed * math.cos(g.gamma) / g.r1
+        deflection = operatingPoint.normalForce / g.kV if operatingPoint.normalForce > 0 else _PRELOAD
+        deltaPhi = S * (0.5 * g.backlash + deflection) / g.normalLever
+    motor = CreateRotor(mbs, 1e-3, initialSpeed=speed, name='motor')
+    worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, initialSpeed=speed, name='worm')
+    wheel = CreateRotor(mbs, drive.J2, initialSpeed=speed / g.ratio, name='wheel')
+    CreatePrescribedRotation(mbs, motor, ConstantSpeed(speed), useSymbolic=useSymbolic)
+    chainRotors = [CreateRotor(mbs, J, initialSpeed=speed, name=f'inertia{i}')
+                   for i, (J, _, _) in enumerate(chain, start=4)]
     CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT)
     for rotor, motorSide, (_, k, d) in zip(chainRotors, chainRotors[1:] + [motor], chain):
         CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d)
@@ -409,12 +439,25 @@ def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: 
     Returns
     -------
     LinearStability
-        For S = +1 and S = -1; coordinates ``motor, worm, wheel`` (+ ``inertia4``, ..., ``wormAxial``).
+        For S = +1 and S = -1; coordinates ``motor, worm, wheel`` (+ ``inertia4``, ..., ``wormAxial``). With the
+        reel-changer keys ``loadMass, leverArm, motorSpeed`` its ``operatingPoint`` is steady lowering
+        (:func:`~exudyn_worm.stability.OperatingPointFromParameters`); a speed-dependent friction law is then
+        linearized there (one model per contact state, :func:`BuildLinearizationModel`).
     """
     from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
-    SC, mbs = BuildLinearizationModel(DriveFromParameters(parameters), None, useSymbolic,
-                                      AxialBearingFromParameters(parameters), DriveSideChain(parameters))
-    return AnalyzeLinearStability(mbs)
+    from .stability import OperatingPointFromParameters
+    drive = DriveFromParameters(parameters)
+    operatingPoint = OperatingPointFromParameters(parameters, drive.gear)
+    parts = (useSymbolic, AxialBearingFromParameters(parameters), DriveSideChain(parameters))
+    if operatingPoint is None or not drive.gear.speedDependentFriction:
+        SC, mbs = BuildLinearizationModel(drive, None, *parts)
+        return replace(AnalyzeLinearStability(mbs), operatingPoint=operatingPoint)
+    states = {}
+    for S in CONTACT_STATES:
+        SC, mbs = BuildLinearizationModel(drive, S, *parts, operatingPoint=operatingPoint)
+        linear = AnalyzeLinearStability(mbs, contactStates=[(S,)])
+        states.update(linear.states)
+    return replace(linear, states=states, operatingPoint=operatingPoint)
 
 
 def DriveStability(parameters: Mapping[str, float], useSymbolic: bool = True
@@ -471,7 +514,8 @@ def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> 
     return AnalyzeLinearStability(mbs, contactStates=[(S,)]).State(S).eigenvalues
 
 
-def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True) -> StabilityAnalysis:
+def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True,
+                           operatingPoint: Optional[OperatingPoint] = None) -> StabilityAnalysis:
     """Same result type as :func:`~exudyn_worm.stability.AnalyzeStability`, from the Exudyn linearization.
 
     Parameters
@@ -480,6 +524,9 @@ def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True) -> Sta
         The 2-DOF drive of Figure 2.
     useSymbolic : bool
         Evaluate the connector as symbolic (default) or Python user function.
+    operatingPoint : OperatingPoint, optional
+        Linearize each contact state S in the steady state of :func:`BuildLinearizationModel` (speed, normal
+        force on the flank sigma = S); Exudyn differentiates the connector's mu(v) numerically. None: at rest.
 
     Returns
     -------
@@ -488,6 +535,13 @@ def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True) -> Sta
     """
     if not isinstance(drive, ElasticDrive):
         raise TypeError(f"AnalyzeStabilityExudyn: 'drive' must be an ElasticDrive, got {type(drive).__name__}")
+    if operatingPoint is not None:
+        contact = {}
+        for S in CONTACT_STATES:
+            SC, mbs = BuildLinearizationModel(drive, S, useSymbolic, operatingPoint=operatingPoint)
+            eigenvalues = AnalyzeLinearStability(mbs, contactStates=[(S,)]).State(S).eigenvalues
+            contact[S] = ContactStability.FromEigenvalues(S, eigenvalues)
+        return StabilityAnalysis(drive, contact, operatingPoint)
     SC, mbs = BuildLinearizationModel(drive, None, useSymbolic)
     linear = AnalyzeLinearStability(mbs)
     return StabilityAnalysis(drive, {S: ContactStability.FromEigenvalues(S, linear.State(S).eigenvalues)

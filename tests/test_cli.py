@@ -14,8 +14,9 @@ from exudyn_worm import cli
 from exudyn_worm.cli import Main
 
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
+# issue 15 added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
 TOP_KEYS = {'ratio', 'frictionAngle', 'selfLocking', 'efficiency', 'S', 'fuesgenLimit', 'firstCriterionLimit', 'hint',
-            'stable'}
+            'stable', 'friction', 'selfLockingVerdict', 'operatingPoint'}
 
 
 def Run(capsys, *argv):

@@ -86,6 +86,11 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
     lines.append(f"Verdict: {verdict} ({states})")
     if result.simulatedChatter is not None:
         lines.append(f"Simulation (reel changer, lowering): {_Simulated(result.simulatedChatter)}")
+    lock = result.selfLockingVerdict
+    state = lambda s: 'n/a (no motorSpeed)' if s is None else \
+        f"{'yes' if s.selfLocking else 'no'} (mu {s.mu:.4g}, worm-driving efficiency {s.efficiencyWormDriving:.3g}: {s.rating})"
+    lines.append(f"Self-locking: at rest {state(lock.static)}; moving {state(lock.dynamic)}"
+                 + ('; DANGER: holds at rest but runs away once moving' if lock.dangerous else ''))
     distance = ('no boundary within 2 decades' if result.distanceToBoundary is None else
                 f"{result.distanceToBoundary:.3g} decades to the stability boundary (at x = "
                 f"{result.nearestBoundaryPoint['x']:.4g}, y = {result.nearestBoundaryPoint['y']:.4g})")

@@ -2,13 +2,14 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 from typing import Dict, List
 
 from ..cli import DriveFromArgs, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
 from ..design import StabilizingChanges
 from ..presets import ExtraComponents
-from ..stability import CONTACT_STATES, AnalyzeStability, StabilityAnalysis
+from ..stability import CONTACT_STATES, AnalyzeStability, OperatingPointFromParameters, StabilityAnalysis
 
 __all__ = ['COMMAND', 'FormatStability', 'StabilityHint', 'StabilityHintData']
 
@@ -31,6 +32,10 @@ def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra
         return 0
     lines = [f"exudyn-worm stability: {SourceText(args)}, method exudyn (linearized Exudyn model of the whole "
              f"drive: it has {' and '.join(extra)})", '']
+    op = analysis.operatingPoint
+    if op is not None:
+        lines += [f"Operating point (steady lowering): v0 = {op.slidingSpeed:.4g} m/s, Fn0 = {op.normalForce:.4g} N, "
+                  f"mu(v0) = {op.mu:.4g}, dmu/dv = {op.dmuDv:.4g} s/m", '']
     for state in analysis.states.values():
         verdict = 'stable' if state.stable else 'UNSTABLE'
         lines.append(f"S = {', '.join(f'{s:+d}' for s in state.S)}: {verdict}, largest real part "
@@ -56,16 +61,21 @@ def _Run(args: argparse.Namespace) -> int:
         return _RunWholeDrive(args, parameters, extra)
     args.method = args.method or 'analytical'
     parameters, drive = DriveFromArgs(args)
+    from ..cli import BadInput
+    with BadInput():        # steady lowering at motorSpeed under loadMass * g * leverArm, if the set gives them
+        operatingPoint = OperatingPointFromParameters(parameters, drive.gear)
     if args.method == 'exudyn':
         try:
             from ..linearization import AnalyzeStabilityExudyn
         except ImportError as err:
             raise UsageError(f"--method exudyn is not available: cannot import "
                              f"exudyn_worm.linearization.AnalyzeStabilityExudyn ({err})") from err
-        with StdoutToStderr(args.json):
-            analysis = AnalyzeStabilityExudyn(drive)
+        with StdoutToStderr(args.json):    # constant mu: the linear model is the same at rest (no speed or load in it)
+            analysis = AnalyzeStabilityExudyn(drive, operatingPoint=operatingPoint) if \
+                drive.gear.speedDependentFriction and operatingPoint is not None else AnalyzeStabilityExudyn(drive)
+        analysis = dataclasses.replace(analysis, operatingPoint=operatingPoint)
     else:
-        analysis = AnalyzeStability(drive)
+        analysis = AnalyzeStability(drive, operatingPoint)
     hint = None if analysis.stable else StabilityHintData(parameters)
     if args.json:
         PrintJson({**analysis.ToDict(), 'hint': hint})
@@ -111,7 +121,20 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability') -> Li
               row('friction angle rho [deg]', _G(math.degrees(g.frictionAngle))),
               row('friction coefficient mu', _G(g.mu)),
               row('self-locking (gamma < rho)', 'yes' if g.selfLocking else 'no'),
-              row('efficiency, worm driving', _G(g.efficiencyWormDriving, 4)),
+              row('friction law', g.frictionLaw.kind)]
+    verdict = analysis.selfLockingVerdict
+    for label, state in (('at rest (static)', verdict.static), ('moving (dynamic)',
+                                                                   verdict.dynamic)):
+        lines.append(row(f'self-locking, {label}', 'n/a (no speed)' if state is None else
+                         f"{'yes' if state.selfLocking else 'no'} (mu {_G(state.mu, 4)})",
+                         '' if state is None else f"eta {_G(state.efficiencyWormDriving, 3)}, {state.rating}"))
+    if verdict.dangerous:
+        lines.append('  DANGER: self-locking at rest but not while moving: the load holds, but runs away once it moves')
+    op = analysis.operatingPoint
+    if op is not None:
+        lines.append(row('operating point v0 [m/s], Fn0 [N]', _G(op.slidingSpeed, 4), _G(op.normalForce, 4)))
+        lines.append(row('mu(v0), dmu/dv(v0) [s/m]', _G(op.mu, 4), _G(op.dmuDv, 4)))
+    lines += [row('efficiency, worm driving', _G(g.efficiencyWormDriving, 4)),
               row('efficiency, wheel driving', _G(g.efficiencyWheelDriving, 4)),
               row('J1, J2 [kg*m^2]', _G(d.J1), _G(d.J2)),
               row('kT [N*m/rad], kV [N/m]', _G(d.kT), _G(g.kV)),
