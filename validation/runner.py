@@ -30,9 +30,7 @@ DIFFERS
 """
 from __future__ import annotations
 
-import contextlib
 import csv
-import os
 import math
 import re
 import time
@@ -40,6 +38,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
+from exudyn_worm.cli import WriteAtomically
 from exudyn_worm.presets import PRESETS
 from exudyn_worm.solve import IsInterrupt
 
@@ -526,7 +525,7 @@ def RunValidation(reportPath: Optional[Union[str, Path]] = None, quick: bool = F
 
 def WriteText(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` so that the file is complete or absent (temporary file, then renamed; an
-    interrupt removes the temporary file).
+    interrupt removes the temporary file): :func:`exudyn_worm.cli.WriteAtomically`, the package's one rule.
 
     Parameters
     ----------
@@ -535,15 +534,7 @@ def WriteText(path: Path, text: str) -> None:
     text : str
         Its content.
     """
-    path = Path(path)
-    tmp = path.with_name(f'.{path.name}.{os.getpid()}.partial')
-    try:
-        tmp.write_text(text)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            tmp.unlink()
-        raise
+    WriteAtomically(path, lambda tmp: Path(tmp).write_text(text))
 
 
 def _Lines(summary: ValidationSummary, groupLines: List[str]) -> List[str]:
