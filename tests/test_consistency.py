@@ -28,6 +28,7 @@ def test_sweep_max_steps_limits_each_run(capsys):
     runs = json.loads(out)['runs']
     assert status == 1 and [r['status'] for r in runs] == ['failed', 'failed']
     assert all('more than the limit maxSteps = 100' in r['error'] for r in runs)
+    assert err.strip().endswith('runs longer than the step limit are refused: raise it with --max-steps N')
     status, out, err = _Run(capsys, *argv, '--max-steps', '400')
     assert status == 0 and [r['status'] for r in json.loads(out)['runs']] == ['ok', 'ok']
 

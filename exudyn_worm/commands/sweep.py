@@ -128,7 +128,9 @@ def _Run(args: argparse.Namespace) -> int:
     failed = sum(r['status'] != 'ok' for r in result.rows)
     if failed:
         print(f"exudyn-worm: warning: {failed} of {len(result.rows)} runs failed; their reason is in the "
-              f"'error' column{' of ' + repr(str(args.output)) if args.output else ' (--json or --output)'}",
+              f"'error' column{' of ' + repr(str(args.output)) if args.output else ' (--json or --output)'}"
+              + ('; runs longer than the step limit are refused: raise it with --max-steps N'
+                 if any('more than the limit maxSteps' in (r['error'] or '') for r in result.rows) else ''),
               file=sys.stderr)
     return 1 if result.rows and failed == len(result.rows) else 0
 
