@@ -29,7 +29,9 @@ signals bad user input by raising :class:`UsageError` (or a ``ValueError``/``Typ
 ``with BadInput():``); :func:`Main` prints it as one line ``exudyn-worm: error: ...`` on stderr and
 returns 2. Other exceptions are internal errors and propagate with their traceback.
 
-Exit status: 0 success (for ``stability`` whatever the verdict), 1 failed validation, 2 bad input.
+Exit status: 0 success (for ``stability`` whatever the verdict), 1 failed runs, 2 bad input, 130 interrupted
+(Ctrl-C: one line on stderr, no traceback; files are written with :func:`WriteAtomically`, so none is left
+half-written). An existing output file is refused unless ``--overwrite`` (:func:`CheckOutputPath`).
 """
 from __future__ import annotations
 
@@ -49,13 +51,18 @@ from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 from .config import DEFAULT_PRESET, ResolveParameters
 from .drive import ElasticDrive
 from .presets import PRESETS, DriveFromParameters
+from .solve import IsInterrupt
 
 __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'SUBCOMMANDS', 'Subcommands',
            'AddParameterOptions', 'ParametersFromArgs', 'DriveFromArgs', 'SourceText', 'SourceInfo',
-           'StdoutToStderr', 'PrintJson', 'CheckOutputPath', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
+           'StdoutToStderr', 'PrintJson', 'CheckOutputPath', 'CheckFigurePath', 'FIGURE_SUFFIXES',
+           'AddOverwriteOption', 'WriteAtomically',
+           'INTERRUPTED_STATUS', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
 
 #: program name used in help and error messages
 PROG = 'exudyn-worm'
+#: exit status after Ctrl-C (SIGINT): 128 + 2, the shell's convention
+INTERRUPTED_STATUS = 130
 
 
 class UsageError(Exception):
@@ -144,11 +151,13 @@ def PositiveInt(unit: str = ''):
     return _NumberType(int, unit, 1, False)
 
 
-def CheckOutputPath(path, option: str, kind: str = 'file') -> Path:
+def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = False,
+                    contents: Sequence[str] = ()) -> Path:
     """Check, before any computation, that an output named on the command line can be written.
 
     One rule for every subcommand: the output you name (a file, or a folder for ``kind='folder'``) is
-    created or overwritten; the folder that holds it must already exist. Nothing is created here.
+    created; an existing file is refused unless ``--overwrite`` is given (``overwrite=True``); the folder
+    that holds it must already exist. Nothing is created here.
 
     Parameters
     ----------
@@ -158,6 +167,11 @@ def CheckOutputPath(path, option: str, kind: str = 'file') -> Path:
         The option that named it, for the message (e.g. ``'--csv'``).
     kind : {'file', 'folder'}
         What the path is to be.
+    overwrite : bool, optional
+        Allow replacing an existing file (for a folder: the files of ``contents`` in it).
+    contents : sequence of str, optional
+        For ``kind='folder'``: the names of the files that will be written into it (an existing folder is
+        fine; these files in it are refused unless ``overwrite``).
 
     Returns
     -------
@@ -167,8 +181,8 @@ def CheckOutputPath(path, option: str, kind: str = 'file') -> Path:
     Raises
     ------
     UsageError
-        If the path is empty, is a folder where a file is wanted or the other way round, its parent is
-        missing or not a folder, or it is not writable.
+        If the path is empty, is a folder where a file is wanted or the other way round, exists without
+        ``overwrite``, its parent is missing or not a folder, or it is not writable.
     """
     if kind not in ('file', 'folder'):
         raise ValueError(f"CheckOutputPath: 'kind' must be 'file' or 'folder', got {kind!r}")
@@ -184,6 +198,12 @@ def CheckOutputPath(path, option: str, kind: str = 'file') -> Path:
             raise UsageError(f"{option} {text}: is a file, expected a folder (the figures are written into it)")
         if not os.access(p, os.W_OK):
             raise UsageError(f"{option} {text}: not writable")
+        existing = [p] if kind == 'file' else [p / name for name in contents if (p / name).exists()]
+        if existing and not overwrite:
+            what = 'exists' if kind == 'file' else \
+                f"holds {', '.join(e.name for e in existing[:3])}{' ...' if len(existing) > 3 else ''}"
+            raise UsageError(f"{option} {text}: {what}; give --overwrite to replace "
+                             f"{'it' if len(existing) == 1 else 'them'}, or choose another name")
         return p
     parent = p.parent
     if not parent.exists():
@@ -194,6 +214,80 @@ def CheckOutputPath(path, option: str, kind: str = 'file') -> Path:
     if not os.access(parent, os.W_OK):
         raise UsageError(f"{option} {text}: cannot write into the folder {parent} (permission denied)")
     return p
+
+
+#: file formats of the figure options (``--plot``, ``--output`` of ``chart``)
+FIGURE_SUFFIXES = ('.png', '.pdf', '.svg')
+
+
+def CheckFigurePath(path, option: str, overwrite: bool = False) -> Path:
+    """:func:`CheckOutputPath` for a figure file: also its format (a suffix of :data:`FIGURE_SUFFIXES`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The path given by the user.
+    option : str
+        The option that named it (e.g. ``'--plot'``).
+    overwrite : bool, optional
+        Allow replacing an existing file.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    UsageError
+        For another suffix, or what :func:`CheckOutputPath` refuses.
+    """
+    if Path(os.fspath(path)).suffix.lower() not in FIGURE_SUFFIXES:
+        raise UsageError(f"{option}: expected a file ending in {', '.join(FIGURE_SUFFIXES)}, got '{os.fspath(path)}'")
+    return CheckOutputPath(path, option, overwrite=overwrite)
+
+
+def AddOverwriteOption(parser: argparse.ArgumentParser, what: str = 'the output files') -> None:
+    """Add ``--overwrite``: the one switch that lets a subcommand replace existing output files.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The subcommand's parser.
+    what : str, optional
+        What is replaced, for the help text.
+    """
+    parser.add_argument('--overwrite', action='store_true',
+                        help=f'replace {what} if they exist (without it an existing output file is refused)')
+
+
+def WriteAtomically(path, write: Callable[[Path], object]) -> Path:
+    """Write a file so that it is either complete or absent: into a temporary file beside it, then renamed.
+
+    An interrupt (Ctrl-C) or error during ``write`` removes the temporary file and leaves ``path`` as it was.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    write : callable
+        ``write(temporaryPath)`` writes the whole file to the path it is given (same folder and suffix as
+        ``path``, so that a format is chosen from the suffix as for ``path``).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    path = Path(path)
+    tmp = path.with_name(f'.{path.stem}.{os.getpid()}.partial{path.suffix}')
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise
+    return path
 
 
 @dataclass(frozen=True)
@@ -386,7 +480,7 @@ def SourceText(args: argparse.Namespace) -> str:
 
 
 #: built-in subcommands: modules of :mod:`exudyn_worm.commands`, in the order of ``exudyn-worm --help``
-COMMAND_MODULES: Tuple[str, ...] = ('stability', 'check', 'chart', 'simulate', 'sweep', 'validate')
+COMMAND_MODULES: Tuple[str, ...] = ('stability', 'check', 'chart', 'simulate', 'sweep')
 #: further subcommands registered at run time (plugins, tests), after the built-in ones
 SUBCOMMANDS: List[Subcommand] = []
 
@@ -443,6 +537,13 @@ def _WhereToAdd(err: BaseException, args: Optional[argparse.Namespace]) -> str:
                if not getattr(args, 'preset', None) else ''))
 
 
+def _Interrupted() -> None:
+    """The one line after Ctrl-C (a second Ctrl-C while printing it is ignored)."""
+    with contextlib.suppress(KeyboardInterrupt, OSError, ValueError):
+        sys.stderr.flush()
+        print(f"{PROG}: interrupted (Ctrl-C); no output file was left half-written", file=sys.stderr)
+
+
 def Main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line; return the exit status.
 
@@ -455,7 +556,7 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     -------
     int
         0 on success, 1 if a validation failed, 2 for bad input (one line ``exudyn-worm: error: ...``
-        on stderr).
+        on stderr), 130 after Ctrl-C (one line ``exudyn-worm: interrupted ...`` on stderr, no traceback).
     """
     args = None
     try:
@@ -464,11 +565,22 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
             warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
             return int(args.run(args) or 0)
     except UsageError as err:
+        if IsInterrupt(err):
+            _Interrupted()
+            return INTERRUPTED_STATUS
         message = ' '.join((str(err) + _WhereToAdd(err, args)).split())
         print(f"{PROG}: error: {message}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:          # Ctrl-C: one line, no traceback; outputs are written atomically
+        _Interrupted()
+        return INTERRUPTED_STATUS
     except BrokenPipeError:            # output piped into e.g. `head`: stop quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
     except SystemExit as err:          # --help, --version
         return err.code if isinstance(err.code, int) else 0 if err.code is None else 2
+    except Exception as err:           # e.g. Exudyn's SystemError around a pending Ctrl-C
+        if not IsInterrupt(err):
+            raise                      # an internal error: its traceback is for the bug report
+        _Interrupted()
+        return INTERRUPTED_STATUS

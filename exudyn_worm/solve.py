@@ -17,11 +17,13 @@ bit for bit; without a bar the run is exactly Exudyn's ``SolveSystem``.
 """
 from __future__ import annotations
 
+import contextlib
 import math
+from typing import Iterator
 
 from .progress import ProgressBar, ProgressEnabled
 
-__all__ = ['SolverDivergedError', 'SolveDynamicInChunks', 'CHUNK_STEPS']
+__all__ = ['SolverDivergedError', 'SolveDynamicInChunks', 'CHUNK_STEPS', 'IsInterrupt', 'Interruptible']
 
 #: solver steps per chunk: small enough for a live progress bar (a chunk of the slowest reel-changer run,
 #: P7, takes about 0.3 s), large enough that the per-chunk restart costs nothing measurable
@@ -44,6 +46,45 @@ class SolverDivergedError(RuntimeError):
     def __init__(self, message: str, timeReached: float, endTime: float, stepSize: float):
         super().__init__(message)
         self.timeReached, self.endTime, self.stepSize = timeReached, endTime, stepSize
+
+
+def IsInterrupt(err: BaseException) -> bool:
+    """Whether an exception is, or was caused by, Ctrl-C (a ``KeyboardInterrupt`` anywhere in its chain).
+
+    Exudyn's C++ solver notices a pending Ctrl-C and returns with the ``KeyboardInterrupt`` set; Python then
+    raises ``SystemError: ... returned a result with an exception set`` (or an ``ExudynError``) with the
+    interrupt as its context. Such an error is an interrupt, not a failed run.
+
+    Parameters
+    ----------
+    err : BaseException
+        The exception.
+
+    Returns
+    -------
+    bool
+    """
+    seen = set()
+    while err is not None and id(err) not in seen:
+        if isinstance(err, KeyboardInterrupt):
+            return True
+        seen.add(id(err))
+        err = err.__cause__ or err.__context__
+    return False
+
+
+@contextlib.contextmanager
+def Interruptible() -> Iterator[None]:
+    """Context manager: an exception of the block caused by Ctrl-C (:func:`IsInterrupt`) becomes a plain
+    ``KeyboardInterrupt``, so that callers stop instead of recording a failure."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        raise
+    except Exception as err:
+        if IsInterrupt(err):
+            raise KeyboardInterrupt() from None
+        raise
 
 
 def _ConstraintNames(mbs):
@@ -69,7 +110,8 @@ def _SolveInOnePiece(mbs, ss, solverType):
                          f"TrapezoidalIndex2, or drive the rotor by a torque (CreateRotorTorque)")
     ti = ss.timeIntegration
     try:
-        mbs.SolveDynamic(ss, solverType=solverType)
+        with Interruptible():
+            mbs.SolveDynamic(ss, solverType=solverType)
     except exu.ExudynError as err:
         solver = mbs.sys.get('dynamicSolver')
         reached = solver.it.currentTime if solver is not None else ti.startTime
@@ -146,38 +188,39 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
                                    f"{h:g} s): Newton did not converge even with reduced steps{detail}",
                                    reached, T, h)
     quiet = None if progress is None else not progress
-    try:
-        if not ProgressEnabled(quiet):           # no bar: Exudyn's own loop, bit for bit as before
-            try:
-                ok = solver.SolveSystem(mbs, ss)
-            except exu.ExudynError as err:
-                raise Diverged(err) from err
-            if not ok:
-                raise Diverged()
-            return solver
-        with ProgressBar(total=T - t0, desc=desc, unit='s', quiet=quiet, delay=2. if progress is None else 0.,
-                         bar_format='{desc}: {percentage:3.0f}%|{bar}| {n:.3g}/{total:.3g} s simulated '
-                                    '[{elapsed}<{remaining}]') as bar:
-            try:
-                ok = solver.InitializeSolver(mbs, ss)
-                # SolveSystem switches Exudyn's per-step timers off unless asked for; InitializeSolver leaves
-                # them on, and their clock reads made a chunked run 7-16 % slower
-                timer = solver.timer
-                timer.Reset(ss.show.computationTime)
-                solver.timer = timer
-                mbs.sys['dynamicSolverSteps'] = 0        # steps taken in all chunks (it.currentStepIndex restarts)
-                for k in range(1, chunks + 1):
-                    if not ok:
-                        raise Diverged()
-                    solver.it.endTime = T if k == chunks else t0 + h * round(n * k / chunks)
-                    ok = solver.SolveSteps(mbs, ss)
-                    mbs.sys['dynamicSolverSteps'] += int(solver.it.currentStepIndex) - 1
-                    bar.update(solver.it.currentTime - t0 - bar.n)
+    with Interruptible():       # Ctrl-C in the C++ solver: a KeyboardInterrupt, not a diverged run
+        try:
+            if not ProgressEnabled(quiet):           # no bar: Exudyn's own loop, bit for bit as before
+                try:
+                    ok = solver.SolveSystem(mbs, ss)
+                except exu.ExudynError as err:
+                    raise Diverged(err) from err
                 if not ok:
                     raise Diverged()
-            except exu.ExudynError as err:    # SolverError and others raised by the C++ solver
-                raise Diverged(err) from err
-            solver.FinalizeSolver(mbs, ss)
-    finally:
-        ti.solverType, ga.useNewmark, ga.useIndex2Constraints = saved
+                return solver
+            with ProgressBar(total=T - t0, desc=desc, unit='s', quiet=quiet, delay=2. if progress is None else 0.,
+                             bar_format='{desc}: {percentage:3.0f}%|{bar}| {n:.3g}/{total:.3g} s simulated '
+                                        '[{elapsed}<{remaining}]') as bar:
+                try:
+                    ok = solver.InitializeSolver(mbs, ss)
+                    # SolveSystem switches Exudyn's per-step timers off unless asked for; InitializeSolver leaves
+                    # them on, and their clock reads made a chunked run 7-16 % slower
+                    timer = solver.timer
+                    timer.Reset(ss.show.computationTime)
+                    solver.timer = timer
+                    mbs.sys['dynamicSolverSteps'] = 0        # steps taken in all chunks (it.currentStepIndex restarts)
+                    for k in range(1, chunks + 1):
+                        if not ok:
+                            raise Diverged()
+                        solver.it.endTime = T if k == chunks else t0 + h * round(n * k / chunks)
+                        ok = solver.SolveSteps(mbs, ss)
+                        mbs.sys['dynamicSolverSteps'] += int(solver.it.currentStepIndex) - 1
+                        bar.update(solver.it.currentTime - t0 - bar.n)
+                    if not ok:
+                        raise Diverged()
+                except exu.ExudynError as err:    # SolverError and others raised by the C++ solver
+                    raise Diverged(err) from err
+                solver.FinalizeSolver(mbs, ss)
+        finally:
+            ti.solverType, ga.useNewmark, ga.useIndex2Constraints = saved
     return solver

@@ -44,6 +44,7 @@ from .config import ParseQuantity
 from .parameters import PARAMETERS
 from .presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys
 from .results import CheckWindows
+from .solve import IsInterrupt
 from ._checks import CheckPositive
 
 __all__ = ['Variation', 'ParseVariation', 'StudyPoints', 'Study', 'ParseShard', 'ShardIndices', 'RunPoint',
@@ -222,6 +223,9 @@ class Study:
         from theirs by a few 0.1 %, e.g. P7 798.8 against 801.5 rad/s^2).
     source : str, optional
         Where the base set came from (for the record).
+    maxSteps : int, optional
+        Refuse (record as failed) runs of more solver steps than this (default, None:
+        :data:`~exudyn_worm.reelchanger.MAX_STEPS`, as ``simulate``).
     """
     base: Mapping[str, float]
     variations: Sequence[Variation] = ()
@@ -230,6 +234,7 @@ class Study:
     endTime: Optional[float] = None
     stepSize: Optional[float] = None
     source: str = ''
+    maxSteps: Optional[int] = None
     points: List[Dict[str, float]] = field(init=False, repr=False)
 
     def __post_init__(self):
@@ -242,6 +247,9 @@ class Study:
                                 f"got {type(v).__name__}")
         if self.endTime is not None:
             self.endTime = CheckPositive('Study', 'endTime', self.endTime, 's')
+        if self.maxSteps is not None and (isinstance(self.maxSteps, bool) or not isinstance(self.maxSteps, int)
+                                          or self.maxSteps < 1):
+            raise ValueError(f"Study: 'maxSteps' must be a whole number >= 1 (solver steps), got {self.maxSteps!r}")
         if self.windows is not None:      # a window beyond endTime would be judged on its missing part
             self.windows = CheckWindows(self.windows, self.endTime, 'Study')
         self.points = StudyPoints(self.variations, self.zipped)
@@ -264,22 +272,20 @@ class Study:
     def Task(self, run: int) -> Dict:
         """The picklable work item of point ``run`` for :func:`RunPoint` (plain data only)."""
         return {'run': run, 'parameters': self.Parameters(run), 'varied': dict(self.points[run]),
-                'windows': self.windows, 'endTime': self.endTime, 'stepSize': self.stepSize}
+                'windows': self.windows, 'endTime': self.endTime, 'stepSize': self.stepSize,
+                'maxSteps': self.maxSteps}
 
     def ToDict(self) -> Dict:
         """JSON-ready definition: base set, variations, pairing, windows, times, number of runs."""
         return {'base': dict(self.base), 'source': self.source,
                 'variations': [v.ToDict() for v in self.variations], 'zipped': self.zipped,
                 'windows': None if self.windows is None else [list(w) for w in self.windows],
-                'endTime': self.endTime, 'stepSize': self.stepSize, 'runs': len(self.points)}
+                'endTime': self.endTime, 'stepSize': self.stepSize, 'maxSteps': self.maxSteps,
+                'runs': len(self.points)}
 
     def Identity(self) -> Dict:
         """What must match for a results file to be resumed: the definition without its free-text parts."""
-        d = self.ToDict()
-        d.pop('source')
-        for v in d['variations']:
-            v.pop('text')
-        return d
+        return _Identity(self.ToDict())
 
 
 def ParseShard(text: Union[str, Tuple[int, int], None]) -> Optional[Tuple[int, int]]:
@@ -369,7 +375,7 @@ def RunPoint(task: Mapping) -> Dict:
     task : mapping
         A work item of :meth:`Study.Task`: ``run`` (index), ``parameters`` (full set), ``varied``,
         ``windows`` (None: default), ``endTime`` (None: one rotation), ``stepSize`` (None: the default or the
-        drive's recommended step, whichever is smaller).
+        drive's recommended step, whichever is smaller), ``maxSteps`` (optional; None: the default limit).
 
     Returns
     -------
@@ -399,7 +405,9 @@ def RunPoint(task: Mapping) -> Dict:
         endTime = task['endTime'] if task['endTime'] is not None else max(period, max(t1 for _, t1 in windows))
         stepSize = task['stepSize'] or min(DEFAULT_STEP_SIZE, RecommendedStepSize(p))
         row['stepSize'] = stepSize
-        result = SimulateReelChanger(p, endTime=endTime, stepSize=stepSize)
+        # no bar per run: the study draws one bar for all runs
+        result = SimulateReelChanger(p, endTime=endTime, stepSize=stepSize, progress=False,
+                                     **({} if task.get('maxSteps') is None else {'maxSteps': task['maxSteps']}))
         row['solveSeconds'] = result.solveSeconds
         if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
             raise FloatingPointError('diverged: non-finite state in the solution')
@@ -416,6 +424,8 @@ def RunPoint(task: Mapping) -> Dict:
         row['loweringChatter'] = bool(metrics[lowering[0]]['chatter']) if lowering else None
         row['status'] = 'ok'
     except Exception as err:            # a failing run is a result, not the end of the study
+        if IsInterrupt(err):            # ... but Ctrl-C is the end of it
+            raise KeyboardInterrupt() from None
         row['error'] = _OneLine(err)
         for key in [k for k in row if k.startswith('w') and '.' in k]:
             del row[key]
@@ -543,9 +553,48 @@ def ReadResults(*paths: Union[str, os.PathLike]) -> 'StudyResult':
 def _Identity(definition: Mapping) -> Dict:
     d = json.loads(json.dumps(definition))
     d.pop('source', None)
+    d.setdefault('maxSteps', None)           # files written before the option existed: the default limit
     for v in d.get('variations', []):
         v.pop('text', None)
     return d
+
+
+#: the option of ``exudyn-worm sweep`` behind each entry of a study definition (for messages)
+_DEFINITION_OPTIONS = {'base': '--preset/--config/--set', 'variations': '--vary', 'zipped': '--zip',
+                       'windows': '--windows', 'endTime': '--end-time', 'stepSize': '--step-size',
+                       'maxSteps': '--max-steps', 'runs': '--vary', 'shard': '--shard'}
+
+
+def _Text(value) -> str:
+    if value is None:
+        return 'default'
+    if isinstance(value, float):
+        return f'{value:g}'
+    return json.dumps(value)
+
+
+def _DefinitionDifferences(old: Mapping, new: Mapping) -> List[str]:
+    """What differs between two study identities (plus ``shard``), one phrase per entry: the entry, the
+    option of ``sweep`` that sets it, the old and the new value."""
+    out = []
+    for name in dict.fromkeys(list(new) + list(old)):
+        a, b = old.get(name), new.get(name)
+        if a == b:
+            continue
+        option = _DEFINITION_OPTIONS.get(name, name)
+        if name == 'base' and isinstance(a, Mapping) and isinstance(b, Mapping):
+            for key in dict.fromkeys(list(b) + list(a)):
+                if a.get(key) != b.get(key):
+                    out.append(f"parameter {key} ({option}): {_Text(a.get(key))} in the file, {_Text(b.get(key))} now")
+        elif name == 'variations' and isinstance(a, list) and isinstance(b, list):
+            spell = lambda vs: '; '.join(f"{v.get('key')}={','.join(f'{x:g}' for x in v.get('values', []))}"
+                                         for v in vs)
+            out.append(f"varied values ({option}): {spell(a) or 'none'} in the file, {spell(b) or 'none'} now")
+        elif name == 'runs' and old.get('variations') != new.get('variations'):
+            continue                                      # the number of runs follows from the variations
+        else:
+            out.append(f"{name} ({option}): {_Text(a)} in the file, {_Text(b)} now")
+    return out
 
 
 def _StudyFromDict(d: Mapping) -> Study:
@@ -725,23 +774,24 @@ def _CheckOutput(output: Path, study: Study, shard, overwrite: bool) -> List[Dic
                          f"resumed; choose another output file or start it afresh (--overwrite; overwrite=True)")
     try:
         meta = json.loads(sidecar.read_text())
-        same = (_Identity(meta['study']) == _Identity(study.ToDict())
-                and (meta.get('shard') and tuple(meta['shard'])) == (shard and tuple(shard)))
-    except (ValueError, KeyError, TypeError):
-        same = False
-    if not same:
-        raise ValueError(f"{where}: '{output}' holds results of a different study (definition or shard differ); "
-                         f"choose another output file or start it afresh (--overwrite; overwrite=True)")
+        old = dict(_Identity(meta['study']), shard=meta.get('shard') and list(meta['shard']))
+        differences = _DefinitionDifferences(old, dict(study.Identity(), shard=shard and list(shard)))
+    except (ValueError, KeyError, TypeError, AttributeError):
+        differences = [f"its sidecar '{sidecar.name}' cannot be read"]
+    if differences:
+        raise ValueError(f"{where}: '{output}' holds results of a different study ({'; '.join(differences)}); "
+                         f"give the same options to resume it, or choose another output file or start it afresh "
+                         f"(--overwrite; overwrite=True)")
     header, rows = _ReadCsv(output, repair=True)
     if header and header != _Columns(study):
         raise ValueError(f"{where}: '{output}' has other columns than this study; choose another output file")
     return rows
 
 
-def _WriteSidecar(path: Path, study: Study, shard, engine, workers, started, counts=None,
+def _WriteSidecar(path: Path, study: Study, shard, engine, workers, started, versions, counts=None,
                   wallSeconds=None) -> None:
     meta = {'study': study.ToDict(), 'shard': list(shard) if shard else None, 'engine': engine, 'workers': workers,
-            'versions': _Versions(engine),
+            'versions': versions,
             'units': {k: PARAMETER_UNITS[k] for k in study.keys},
             'windowMetricUnits': {'t0': 's', 't1': 's', 'maxAbsWheelAcceleration': 'rad/s^2', 'maxNormalForce': 'N',
                                   'dominantFrequencyHz': 'Hz', 'fractionSNegative': '-', 'minWormSpeed': 'rad/s',
@@ -792,7 +842,8 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     ValueError
         For bad arguments or an output file that cannot be written or belongs to another study.
     KeyboardInterrupt
-        On Ctrl-C or SIGTERM, after the finished runs are saved (rerun the same call to resume).
+        On Ctrl-C or SIGTERM, after the finished runs are saved (rerun the same call to resume); the queued
+        runs are cancelled and the running ones stopped at once (a process pool's workers are terminated).
     """
     where = 'RunStudy'
     if not isinstance(study, Study):
@@ -826,7 +877,8 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     # a resumed study with nothing left to run keeps its record (engine, workers, versions, wall time of the runs)
     record = output is not None and (bool(todo) or not previous or not StudySidecarPath(output).exists())
     if record:
-        _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started)
+        versions = _Versions(engine)       # once: the final record after Ctrl-C runs no subprocess
+        _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started, versions)
         new = not output.exists() or output.stat().st_size == 0
         csvFile = output.open('a', newline='')
         writer = csv.writer(csvFile)
@@ -865,7 +917,7 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
                         bar.set_postfix(failed=failed, refresh=False)
                         bar.update(1)
             except BaseException:
-                executor.shutdown(wait=False, cancel_futures=True)
+                _Cancel(executor, futures)
                 raise
             else:
                 executor.shutdown(wait=True)
@@ -875,10 +927,32 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
         if csvFile is not None:
             csvFile.close()
         if record:
-            _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started,
+            _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started, versions,
                           counts={'runs': len(indices), 'done': len(rows), 'failed': failed},
                           wallSeconds=wallBefore + time.perf_counter() - startTime)
     return StudyResult(study, [rows[i] for i in sorted(rows)])
+
+
+def _Cancel(executor, futures) -> None:
+    """Stop a study at once (Ctrl-C, SIGTERM, an error): cancel the queued runs and end the running ones.
+
+    A process pool's workers are terminated (their runs are lost, the finished ones are already recorded);
+    an MPI pool can only cancel what has not started.
+    """
+    for future in futures:
+        future.cancel()
+    processes = list((getattr(executor, '_processes', None) or {}).values())   # ProcessPoolExecutor only
+    for process in processes:
+        try:
+            process.terminate()
+        except (OSError, ValueError, AttributeError):
+            pass
+    executor.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        try:
+            process.join(timeout=5.)
+        except (OSError, ValueError, AttributeError, AssertionError):
+            pass
 
 
 def _RaiseTerminated(signum, frame):

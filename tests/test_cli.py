@@ -4,7 +4,6 @@ import os
 import subprocess
 import sys
 import types
-from pathlib import Path
 
 import pytest
 from numpy.testing import assert_allclose
@@ -153,7 +152,8 @@ def test_table_stable(capsys):
 
 def test_help(capsys):
     rc, out, _ = Run(capsys, '--help')
-    assert rc == 0 and 'stability' in out and 'validate' in out
+    assert rc == 0 and 'stability' in out and 'sweep' in out
+    assert 'validate' not in out          # removed: the validation runs from the checkout, python -m validation
     rc, out, _ = Run(capsys, 'stability', '--help')
     assert rc == 0 and '--preset' in out and '--config' in out and '--set' in out and '--json' in out
     rc, out, _ = Run(capsys, '--version')
@@ -166,7 +166,7 @@ BAD_CASES = ('no command', 'unknown command', 'unknown option', 'bad method', 'u
              'negative inertia', 'zero stiffness', 'pitch angle out of range', 'missing parameters',
              'conflicting overrides', 'missing config', 'config is a directory', 'malformed config',
              'unknown key in config', 'wrong unit in config', 'missing --set value',
-             'validate --report and --no-report')
+             'removed validate command')
 
 
 def _Bad(tmp_path):
@@ -200,7 +200,7 @@ def _Bad(tmp_path):
         'unknown key in config': ['stability', '--config', str(unknown)],
         'wrong unit in config': ['stability', '--config', str(wrongUnit)],
         'missing --set value': ['stability', '--set'],
-        'validate --report and --no-report': ['validate', '--report', str(tmp_path / 'r.md'), '--no-report'],
+        'removed validate command': ['validate', '--quick'],
     }
 
 
@@ -267,46 +267,6 @@ def test_exudyn_method_real(capsys):
         ana = RunJson(capsys, '--preset', preset)
         assert exu['stable'] == ana['stable']
         assert_allclose(exu['S']['-1']['b'], ana['S']['-1']['b'], rtol=1e-6)
-
-
-# --- validate (a thin entry to the suite of the checkout) -----------------------------------------
-class _FakeSuite:
-    """Stands for validation.cli: records the parsed options."""
-
-    def __init__(self, status):
-        self.status, self.calls = status, []
-
-    def Run(self, args):
-        self.calls.append((args.report, args.quick))
-        if args.report == 'bad':
-            raise ValueError("--report: expected a file path in an existing directory, got 'bad'")
-        print('validation summary')
-        return self.status
-
-
-@pytest.mark.parametrize('status', [0, 1])
-def test_validate_runs_the_suite_of_the_checkout(capsys, monkeypatch, status):
-    from exudyn_worm.commands import validate
-    fake = _FakeSuite(status)
-    monkeypatch.setattr(validate, '_Suite', lambda root: fake)
-    rc, out, err = Run(capsys, 'validate', '--quick', '--report', 'r.md')
-    assert (rc, out) == (status, 'validation summary\n') and fake.calls == [('r.md', True)]
-    rc, out, err = Run(capsys, 'validate', '--report', 'bad')
-    assert rc == 2 and err.startswith('exudyn-worm: error: --report') and err.count('\n') == 1
-
-
-def test_validate_finds_the_checkout():
-    from exudyn_worm.commands import validate
-    assert validate.FindSuite() == Path(exudyn_worm.__file__).resolve().parents[1]
-
-
-@pytest.mark.parametrize('argv', [['validate'], ['validate', '--quick']])
-def test_validate_without_checkout(capsys, monkeypatch, argv):
-    from exudyn_worm.commands import validate
-    monkeypatch.setattr(validate, 'FindSuite', lambda: None)
-    rc, out, err = Run(capsys, *argv)
-    assert rc == 2 and out == '' and err.count('\n') == 1
-    assert err.startswith("exudyn-worm: error: validate: the validation suite is not installed") and 'python -m validation' in err
 
 
 # --- registry --------------------------------------------------------------------------------------

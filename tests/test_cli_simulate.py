@@ -104,16 +104,6 @@ def test_simulate_divergence_is_one_line(capsys, monkeypatch):
     assert 'likely cause' in err
 
 
-def test_validate_report_path_checked_first(capsys, tmp_path, monkeypatch):
-    import exudyn_worm.commands.validate as validate
-    monkeypatch.setattr(validate, 'FindSuite', lambda: pytest.fail('ran before the path check'))
-    (tmp_path / 'afile').write_text('')
-    for path, fragment in (('/nonexistent/dir/r.md', 'does not exist'), (str(tmp_path), 'is a folder'),
-                           (str(tmp_path / 'afile' / 'r.md'), 'is not a folder')):
-        status, out, err = _Run(capsys, 'validate', '--report', path)
-        assert status == 2 and fragment in err and err.count('\n') == 1
-
-
 def test_output_rule_is_the_same_for_csv_and_plot(capsys, tmp_path):
     """The output you name is created (file or folder); the folder holding it must exist."""
     status, out, err = _Run(capsys, 'simulate', '--quiet', '--end-time', '0.5', '--csv', str(tmp_path / 'r.csv'),

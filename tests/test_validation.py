@@ -52,6 +52,14 @@ def test_quick_run_fails_exactly_the_pinned_checks(quickRun):
     assert quickRun.lines[0].startswith('validation FAILED (quick mode)' if failed else 'validation PASSED')
 
 
+def test_quick_run_matches_the_committed_baseline(quickRun):
+    """The regression gate of CI (python -m validation --quick --baseline validation/baseline-quick.json): after a
+    deliberate change of results, record the baseline again (validation/README.md)."""
+    from validation.baseline import CompareWithBaseline, LoadBaseline
+    baseline = LoadBaseline(runner.VALIDATION_DIR / 'baseline-quick.json', 'quick')
+    assert CompareWithBaseline(quickRun, baseline) == []
+
+
 def test_every_reference_row_is_checked(quickRun):
     slow = set(quickRun.skipped)
     assert {c.row.id for c in quickRun.checks} == {r.id for r in LoadReference().values() if r.group not in slow}

@@ -31,20 +31,25 @@ DIFFERS
 from __future__ import annotations
 
 import csv
-import importlib
 import math
 import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable, Dict, FrozenSet, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
+from exudyn_worm.cli import WriteAtomically
 from exudyn_worm.presets import PRESETS
+from exudyn_worm.solve import IsInterrupt
+
+from .model import (KINDS, READINGS, RULES, VERDICTS, Check, CheckGroup, Fmt, GroupFunction, HeadLine, ReferenceRow,
+                    ValidationSummary)
+from .report import Report
 
 __all__ = ['VALIDATION_DIR', 'COMMITTED_REPORT', 'PAPER_MU', 'KINDS', 'RULES', 'READINGS', 'VERDICTS',
            'ReferenceRow', 'Check', 'ValidationContext', 'CheckGroup', 'ValidationSummary', 'CHECK_GROUPS',
            'RegisterCheckGroup', 'LoadReference', 'LoadKnownDifferences', 'HalfUnit', 'ReadingInterval',
-           'InputRounding', 'RunValidation', 'HeadLine', 'Fmt']
+           'InputRounding', 'RunValidation', 'WriteText', 'HeadLine', 'Fmt']
 
 #: the validation data beside this module (``validation/<source>/reference.csv``)
 VALIDATION_DIR = Path(__file__).resolve().parent
@@ -54,32 +59,6 @@ COMMITTED_REPORT = VALIDATION_DIR / 'REPORT.md'
 #: friction coefficient of the gear of set (28) as the paper computed b1..b4 and (19): the value printed
 #: with (25), mu = 0.132 (rho = 7.996 deg, printed as "8 deg"); the 0.134 printed in (28) is rejected
 PAPER_MU = PRESETS['reel-P1']['mu']
-
-#: how a row is compared: kind -> 'match' (passes inside the interval) or 'exclude' (a rejected reading:
-#: passes outside). Kinds only describe what is compared; every kind is gated the same way.
-KINDS = {'value': 'match', 'consistency': 'match', 'forensic': 'match', 'eigenvalue': 'match',
-         'exclusion': 'exclude'}
-
-#: the reading rules of validation/README.md: rule -> the phrase of the paper it reads
-RULES = {
-    'printed': 'a printed number without qualifier: +- half a unit of the last printed digit',
-    'about': '"about X": +- 10 % of X, or half a unit of the last printed digit if wider',
-    'virtually': '"virtually <exact statement>": the exact value +- 10 % ("ceased to exist": at most 10 % of the '
-                 'reference size)',
-    'ratio': 'an unqualified ratio statement ("is also doubled", "do not depend on"): the exact ratio +- 5 %',
-    'range': '"N-M times": the closed interval [N, M]',
-    'many-times': '"many times": at least 3 times',
-    'chart-bound': 'a bound read off a chart: within a factor 10^0.05 of X, or half a unit of its last digit if wider',
-    'comparison': 'a comparison of regions ("smallest", "smaller", "broadens", "shorter"): the strict inequality '
-                  'holds (1) or not (0)',
-    'none': '"no unstable regions": zero unstable grid points',
-    'yes-no': 'a yes/no verdict or a count: exact',
-    'robustness': 'our own requirement (issue 3): a numerical knob changes the result by at most 3 %',
-}
-#: the two mesh readings of every time-domain row: tooth normal (eq. (5)) and wheel circumference
-READINGS = ('normal', 'paperMesh')
-#: possible verdicts
-VERDICTS = ('PASS', 'FAIL', 'DIFFERS')
 
 _COLUMNS = ('id', 'group', 'quantity', 'S', 'published', 'unit', 'source', 'rule', 'kind', 'inputs', 'identifies',
             'note')
@@ -227,29 +206,6 @@ def InputRounding(compute: Callable[[Dict[str, float]], float], parameters: Mapp
 
 # --- reference data ------------------------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class ReferenceRow:
-    """One published number or statement (a row of a ``reference.csv``).
-
-    ``publishedText`` keeps the value as printed; ``published`` is its nominal number (the midpoint of a
-    range, 3 for "many"); ``identifies`` the hypotheses ('mu', 'circ') this number was used to identify.
-    """
-    id: str
-    group: str
-    quantity: str
-    S: Optional[int]
-    published: float
-    publishedText: str
-    unit: str
-    source: str
-    rule: str
-    kind: str
-    inputs: str
-    identifies: FrozenSet[str]
-    note: str
-    file: Path
-
-
 def _Nominal(rule: str, text: str) -> float:
     lo, hi = ReadingInterval(rule, text)
     return lo if math.isinf(hi) else 0.5 * (lo + hi) if rule == 'range' else float(text)
@@ -346,94 +302,6 @@ def LoadKnownDifferences(validationDir: Optional[Path] = None,
 
 # --- checks --------------------------------------------------------------------------------------------
 
-@dataclass(frozen=True)
-class Check:
-    """The comparison of one reference row with our computed value (under one mesh reading).
-
-    ``holds`` is the bare comparison; ``verdict`` adds the known-differences list; ``uses`` names the
-    hypotheses the computation relies on ('mu': the friction 0.132 of set (28); 'circ': the mesh referred
-    to the wheel circumference), so that a check is in-sample when its row identified one of them.
-    """
-    row: ReferenceRow
-    computed: float
-    interval: Tuple[float, float]
-    verdict: str
-    holds: bool
-    detail: str = ''
-    reading: str = ''
-    uses: FrozenSet[str] = frozenset()
-    knownDifference: str = ''
-
-    @property
-    def id(self) -> str:
-        """Check id: the row id, with ``@paperMesh`` for the wheel-circumference reading."""
-        return self.row.id + ('@paperMesh' if self.reading == 'paperMesh' else '')
-
-    @property
-    def failed(self) -> bool:
-        """True for a FAIL (including non-finite values and crashed groups)."""
-        return self.verdict == 'FAIL'
-
-    @property
-    def stale(self) -> bool:
-        """True for a check listed as a known difference that passes."""
-        return bool(self.knownDifference) and self.holds
-
-    @property
-    def inSample(self) -> bool:
-        """True if the row's published number was used to identify a hypothesis this check uses."""
-        return bool(self.row.identifies & self.uses)
-
-    @property
-    def difference(self) -> float:
-        """computed - published (nominal)."""
-        return self.computed - self.row.published
-
-    def IntervalText(self) -> str:
-        """The accepted interval as text (``outside [lo, hi]`` for an exclusion)."""
-        lo, hi = self.interval
-        like = self.row.publishedText if self.row.rule not in ('range', 'many-times') else '0.00'
-        text = (f'>= {Fmt(lo, like)}' if math.isinf(hi) else
-                f'{Fmt(lo, like)}' if lo == hi else f'[{Fmt(lo, like)}, {Fmt(hi, like)}]')
-        return ('outside ' if KINDS[self.row.kind] == 'exclude' else '') + text
-
-    def Line(self) -> str:
-        """One human-readable line."""
-        r = self.row
-        S = '' if r.S is None else f' (S = {r.S:+d})'
-        reading = f' [{self.reading}]' if self.reading else ''
-        return (f'{self.verdict:<7s} {self.id}: {r.quantity}{S}{reading}: published {r.publishedText}{_Unit(r.unit)} '
-                f'({r.rule}), computed {Fmt(self.computed, r.publishedText)}, accepted {self.IntervalText()}'
-                f' [{r.source}]' + (' (in-sample)' if self.inSample else '')
-                + (f' -- {self.detail}' if self.detail else '')
-                + (f' -- known difference: {self.knownDifference}' if self.verdict == 'DIFFERS' else '')
-                + (' -- STALE: listed as a known difference but passes' if self.stale else ''))
-
-
-def _Unit(unit: str) -> str:
-    return '' if unit.strip() in ('', '-') else ' ' + unit.strip()
-
-
-def Fmt(value: float, like: str) -> str:
-    """Format ``value`` with two more significant digits than the printed ``like``.
-
-    Parameters
-    ----------
-    value : float
-        The number.
-    like : str
-        A printed number whose significant digits set the precision.
-
-    Returns
-    -------
-    str
-    """
-    if not math.isfinite(value):
-        return str(value)
-    digits = len(re.sub(r'[^0-9]', '', re.split(r'[eE]', like)[0]).lstrip('0')) or 1
-    return f'{value:.{max(digits + 2, 5)}g}'
-
-
 def _Holds(kind: str, computed: float, interval: Tuple[float, float]) -> bool:
     lo, hi = interval
     eps = 1e-12 * max(abs(lo) if math.isfinite(lo) else 0., abs(hi) if math.isfinite(hi) else 0.)
@@ -508,65 +376,6 @@ class ValidationContext:
     def AddSection(self, title: str, markdown: str) -> None:
         """Add a prose section to the report."""
         self.sections.append((title, markdown.strip() + '\n'))
-
-
-GroupFunction = Callable[[ValidationContext], Sequence[Check]]
-
-
-@dataclass(frozen=True)
-class CheckGroup:
-    """A named group of checks.
-
-    ``function`` is a callable ``(context) -> list[Check]`` or a string ``'package.module:Function'``
-    imported when the group runs. ``level``: 0 always runs, 1 is skipped by quick runs, 2 runs only in
-    full runs.
-    """
-    name: str
-    function: Union[GroupFunction, str]
-    level: int = 0
-    title: str = ''
-
-    def Resolve(self) -> GroupFunction:
-        """The callable of this group."""
-        if callable(self.function):
-            return self.function
-        module, _, attr = str(self.function).partition(':')
-        if not module or not attr:
-            raise ValueError(f"CheckGroup '{self.name}': 'function' must be a callable or 'module:function', "
-                             f"got {self.function!r}")
-        return getattr(importlib.import_module(module), attr)
-
-
-@dataclass
-class ValidationSummary:
-    """Result of :func:`RunValidation`."""
-    checks: List[Check]
-    lines: List[str]
-    skipped: List[str] = field(default_factory=list)
-    sections: List[Tuple[str, str]] = field(default_factory=list)
-    crashed: Dict[str, str] = field(default_factory=dict)
-    mode: str = 'default'
-    seconds: float = 0.
-    reportPath: Optional[Path] = None
-
-    @property
-    def passed(self) -> bool:
-        """True if no check failed."""
-        return not any(c.failed for c in self.checks)
-
-    @property
-    def stale(self) -> List[Check]:
-        """Checks listed as known differences that pass (the list should drop them)."""
-        return [c for c in self.checks if c.stale]
-
-    def Count(self, verdict: str) -> int:
-        """Number of checks with ``verdict``."""
-        return sum(c.verdict == verdict for c in self.checks)
-
-    def Checks(self, verdict: Optional[str] = None, group: Optional[str] = None) -> List[Check]:
-        """The checks with ``verdict`` (any if None) of ``group`` (any if None)."""
-        return [c for c in self.checks if (verdict is None or c.verdict == verdict)
-                and (group is None or c.row.group == group)]
 
 
 #: the check groups run by :func:`RunValidation`, in report order
@@ -688,6 +497,8 @@ def RunValidation(reportPath: Optional[Union[str, Path]] = None, quick: bool = F
             try:
                 got = list(group.Resolve()(ctx))
             except Exception as e:  # a broken group fails its rows instead of hiding the other groups
+                if IsInterrupt(e):  # Ctrl-C stops the validation; it is no failure of the group
+                    raise KeyboardInterrupt() from None
                 crashed[group.name] = f'{type(e).__name__}: {e}'
                 groupLines.append(f"FAIL    group '{group.name}' raised {type(e).__name__}: {e}")
                 got = _FailAll(rows, f'group raised {type(e).__name__}: {e}')
@@ -707,19 +518,23 @@ def RunValidation(reportPath: Optional[Union[str, Path]] = None, quick: bool = F
     summary.seconds = time.perf_counter() - start
     summary.lines = _Lines(summary, groupLines)
     if reportPath is not None:
-        from .report import Report
         summary.reportPath = reportPath
-        reportPath.write_text(Report(summary, groups, validationDir or VALIDATION_DIR))
+        WriteText(reportPath, Report(summary, groups, validationDir or VALIDATION_DIR))
     return summary
 
 
-def HeadLine(summary: ValidationSummary) -> str:
-    """The one-line summary of a run (first line of :attr:`ValidationSummary.lines`)."""
-    n = len(summary.checks)
-    return (f"validation {'PASSED' if summary.passed else 'FAILED'} ({summary.mode} mode): {n} checks, "
-            f"{summary.Count('PASS')} PASS, {summary.Count('FAIL')} FAIL, {summary.Count('DIFFERS')} DIFFERS "
-            f"(known differences)" + (f"; {len(summary.stale)} stale known difference(s)" if summary.stale else '')
-            + (f"; skipped group(s): {', '.join(summary.skipped)}" if summary.skipped else ''))
+def WriteText(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` so that the file is complete or absent (temporary file, then renamed; an
+    interrupt removes the temporary file): :func:`exudyn_worm.cli.WriteAtomically`, the package's one rule.
+
+    Parameters
+    ----------
+    path : Path
+        The file.
+    text : str
+        Its content.
+    """
+    WriteAtomically(path, lambda tmp: Path(tmp).write_text(text))
 
 
 def _Lines(summary: ValidationSummary, groupLines: List[str]) -> List[str]:

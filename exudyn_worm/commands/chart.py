@@ -6,12 +6,11 @@ constants are what the chart sweeps (x = kT/(kV r1^2), y = J1/J2, D_T = D_TV D_V
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from typing import Dict, List
 
-from ..cli import (BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, Subcommand,
-                   UsageError)
+from ..cli import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceText,
+                   Subcommand, UsageError, WriteAtomically)
 
 __all__ = ['COMMAND', 'PAPER_DTV']
 
@@ -38,6 +37,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                              'their verdict on each chart is listed')
     parser.add_argument('--output', default=None, metavar='FILE.png',
                         help='draw the charts (one axes, one region per D_TV) into FILE (.png, .pdf or .svg)')
+    AddOverwriteOption(parser, 'the --output file')
     parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
 
 
@@ -54,17 +54,6 @@ def _PresetName(name: str) -> str:
                      f"(or P1 ... P7 for reel-P1 ... reel-P7)")
 
 
-#: file formats --output accepts
-_PLOT_SUFFIXES = ('.png', '.pdf', '.svg')
-
-
-def _CheckOutput(path: str):
-    """The shared output rule (:func:`~exudyn_worm.cli.CheckOutputPath`) plus a figure format."""
-    if os.path.splitext(path)[1].lower() not in _PLOT_SUFFIXES:
-        raise UsageError(f"--output: expected a file ending in {', '.join(_PLOT_SUFFIXES)}, got '{path}'")
-    return CheckOutputPath(path, '--output')
-
-
 def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
     from ..drive import MeshDampingMeasure
     if 'DV' in parameters:
@@ -78,7 +67,7 @@ def _Run(args: argparse.Namespace) -> int:
     from ..charts import ComputeStabilityChart, FormatChartTable, PresetChartPoints
     from ..presets import ExtraComponents, GearFromParameters, MissingParameterError
     from ..progress import ProgressBar
-    output = _CheckOutput(args.output) if args.output else None
+    output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
     parameters = ParametersFromArgs(args)
     with BadInput():
         gear = GearFromParameters(parameters, meshDamping=False, where='chart')
@@ -110,7 +99,7 @@ def _Run(args: argparse.Namespace) -> int:
         from ..plot_charts import PlotStabilityCharts
         ax = PlotStabilityCharts(charts, points={k: (p['x'], p['y']) for k, p in points.items()},
                                  note=f'gear: {SourceText(args)}, J2 = {J2:g} kg*m^2')
-        path = SaveFigure(ax.figure, output)
+        path = WriteAtomically(output, lambda tmp: SaveFigure(ax.figure, tmp))
         print(f'wrote {path.resolve()}', file=sys.stderr)
     if args.json:
         entries: List[Dict] = []

@@ -5,16 +5,12 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from pathlib import Path
 from typing import List
 
-from ..cli import (BadInput, CheckOutputPath, DriveFromArgs, PositiveFloat, PrintJson, SourceText, StdoutToStderr,
-                   Subcommand, UsageError)
+from ..cli import (AddOverwriteOption, BadInput, CheckFigurePath, DriveFromArgs, PositiveFloat, PrintJson, SourceText,
+                   StdoutToStderr, Subcommand, UsageError, WriteAtomically)
 
 __all__ = ['COMMAND', 'FormatDesignCheck']
-
-_PLOT_SUFFIXES = ('.png', '.pdf', '.svg')
-
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
     from ..design import DEFAULT_MARGIN, DEFAULT_SPAN
@@ -25,6 +21,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help=f'search changes up to this factor in each direction (default {DEFAULT_SPAN:g})')
     parser.add_argument('--plot', default=None, metavar='FILE.png',
                         help='draw the drive\'s point, the stability boundary and the recommended moves into FILE')
+    AddOverwriteOption(parser, 'the --plot file')
     parser.add_argument('--simulate', action='store_true',
                         help='confirm each recommendation with the time-domain reel-changer simulation '
                              '(chatter while lowering, as `exudyn-worm simulate` decides it); needs loadMass, '
@@ -32,14 +29,6 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--step-size', type=PositiveFloat('s'), default=None, metavar='S',
                         help='time step of the --simulate runs in s (default: each drive\'s recommended step, as simulate)')
     parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
-
-
-def _CheckPlotPath(path: str) -> Path:
-    """Refuse a --plot path that cannot be written (the shared rule of CheckOutputPath) or is no figure format,
-    before anything is computed."""
-    if Path(path).suffix.lower() not in _PLOT_SUFFIXES:
-        raise UsageError(f"--plot: expected a file ending in {', '.join(_PLOT_SUFFIXES)}, got '{path}'")
-    return CheckOutputPath(path, '--plot')
 
 
 def _Factor(f: float) -> str:
@@ -141,7 +130,7 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
 
 def _Run(args: argparse.Namespace) -> int:
     from ..design import ConfirmBySimulation, DesignCheck
-    plotPath = _CheckPlotPath(args.plot) if args.plot is not None else None
+    plotPath = CheckFigurePath(args.plot, '--plot', args.overwrite) if args.plot is not None else None
     parameters, _ = DriveFromArgs(args)
     if args.simulate:
         from ..reelchanger import CheckReelChangerKeys
@@ -161,7 +150,8 @@ def _Run(args: argparse.Namespace) -> int:
     if plotPath is not None:
         from ..plot import SaveFigure
         try:
-            SaveFigure(result.plot(title=f'exudyn-worm check: {SourceText(args)}'), plotPath)
+            figure = result.plot(title=f'exudyn-worm check: {SourceText(args)}')
+            WriteAtomically(plotPath, lambda tmp: SaveFigure(figure, tmp))
         except OSError as err:
             raise UsageError(f"--plot {plotPath}: cannot write: {err.strerror or err}") from err
     if args.json:

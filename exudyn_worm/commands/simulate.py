@@ -8,8 +8,8 @@ import warnings
 from pathlib import Path
 from typing import List, Tuple
 
-from ..cli import (BadInput, CheckOutputPath, DriveFromArgs, PositiveFloat, PositiveInt, PrintJson, SourceInfo,
-                   SourceText, StdoutToStderr, Subcommand, UsageError)
+from ..cli import (AddOverwriteOption, BadInput, CheckOutputPath, DriveFromArgs, PositiveFloat, PositiveInt,
+                   PrintJson, SourceInfo, SourceText, StdoutToStderr, Subcommand, UsageError, WriteAtomically)
 
 __all__ = ['COMMAND', 'ParseWindows']
 
@@ -56,7 +56,8 @@ def _SaveFigures(result, folder: Path, subtitle: str = '', quiet=None) -> List[P
     with ProgressBar(total=len(_SIMULATE_FIGURES), desc='figures', unit='figure', quiet=quiet, delay=2.) as bar:
         for kind in _SIMULATE_FIGURES:
             path = folder / f'{kind}.png'
-            plot.SaveFigure(plot.PlotSimulation(result, kind=kind, subtitle=subtitle), path)
+            figure = plot.PlotSimulation(result, kind=kind, subtitle=subtitle)
+            WriteAtomically(path, lambda tmp: plot.SaveFigure(figure, tmp))
             paths.append(path)
             bar.update(1)
     return paths
@@ -79,6 +80,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='write PNG figures into the folder DIR (created if missing; its parent must exist)')
     parser.add_argument('--csv', default=None, metavar='FILE',
                         help='write the time series to FILE (CSV; its folder must exist)')
+    AddOverwriteOption(parser, 'the --csv file and the figures of --plot')
     parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
     parser.add_argument('--python-user-functions', action='store_true',
                         help='evaluate the connector in Python instead of C++ (debugging; same results, slower)')
@@ -127,8 +129,9 @@ def _Write(what: str, path, write):
 
 def _Run(args: argparse.Namespace) -> int:
     parameters, drive = DriveFromArgs(args)
-    csv = CheckOutputPath(args.csv, '--csv') if args.csv is not None else None
-    plots = CheckOutputPath(args.plot, '--plot', 'folder') if args.plot is not None else None
+    csv = CheckOutputPath(args.csv, '--csv', overwrite=args.overwrite) if args.csv is not None else None
+    plots = (CheckOutputPath(args.plot, '--plot', 'folder', overwrite=args.overwrite,
+                             contents=[f'{kind}.png' for kind in _SIMULATE_FIGURES]) if args.plot is not None else None)
     endTime, stepSize, maxSteps, windows = _RunSettings(args, parameters)
     from ..reelchanger import SimulateReelChanger
     from ..solve import SolverDivergedError
@@ -158,7 +161,7 @@ def _Run(args: argparse.Namespace) -> int:
         sys.stdout.flush()
     written = []
     if csv is not None:
-        written.append(_Write('--csv', csv, lambda: result.ToCsv(csv)))
+        written.append(_Write('--csv', csv, lambda: WriteAtomically(csv, result.ToCsv)))
     if plots is not None:
         written += _Write('--plot', plots, lambda: _SaveFigures(result, plots, subtitle=source,
                                                                 quiet=True if args.quiet else None))

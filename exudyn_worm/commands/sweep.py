@@ -6,7 +6,8 @@ import sys
 from pathlib import Path
 from typing import List
 
-from ..cli import BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+from ..cli import (INTERRUPTED_STATUS, BadInput, CheckFigurePath, CheckOutputPath, ParametersFromArgs, PositiveInt,
+                   PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WriteAtomically)
 from ..parameters import PARAMETERS
 
 __all__ = ['COMMAND', 'FormatStudy']
@@ -23,7 +24,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--output', metavar='FILE.csv', default=None,
                         help='results table, one row per run, written as runs finish, with the sidecar '
                              'FILE.study.json; an existing one of the same study is resumed')
-    parser.add_argument('--overwrite', action='store_true', help='start --output afresh instead of resuming it')
+    parser.add_argument('--overwrite', action='store_true',
+                        help='start --output afresh instead of resuming it; replace an existing --plot file')
     parser.add_argument('--workers', type=int, default=None, metavar='N',
                         help='worker processes (default: every available CPU)')
     parser.add_argument('--engine', choices=('process', 'mpi'), default='process',
@@ -35,6 +37,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='simulated time in s (default: one rotation of each run)')
     parser.add_argument('--step-size', type=float, default=None, metavar='S', help="time step in s (default: 5e-4 or the drive's recommended step, whichever is smaller; finer "
                              "than simulate's default, the recommended step)")
+    parser.add_argument('--max-steps', type=PositiveInt('steps'), default=None, metavar='N',
+                        help='record as failed the runs of more solver steps than N (default 1e6, as simulate)')
     parser.add_argument('--windows', default=None, metavar='T0:T1,...',
                         help='evaluation windows in s (default: the lift / lower / lift phases of each run)')
     parser.add_argument('--plot', default=None, metavar='FILE.png',
@@ -50,8 +54,8 @@ def _Study(args: argparse.Namespace):
     from ..study import ParseVariation, Study
     from .simulate import ParseWindows
     parameters = ParametersFromArgs(args)
-    if args.overwrite and not args.output:
-        raise UsageError("--overwrite only applies with --output FILE.csv")
+    if args.overwrite and not (args.output or args.plot):
+        raise UsageError("--overwrite only applies with --output FILE.csv or --plot FILE.png")
     if args.metric != _DEFAULT_METRIC and not args.plot:
         raise UsageError(f"--metric {args.metric} only applies with --plot FILE.png")
     with BadInput():
@@ -69,17 +73,13 @@ def _Study(args: argparse.Namespace):
         if windows and args.end_time is not None and max(t1 for _, t1 in windows) > args.end_time:
             raise ValueError(f"--windows: a window ends after --end-time = {args.end_time:g} s")
         return Study(parameters, variations, zipped=args.zip, windows=windows, endTime=args.end_time,
-                     stepSize=args.step_size, source=SourceText(args))
+                     stepSize=args.step_size, source=SourceText(args), maxSteps=args.max_steps)
 
 
 def _CheckPlot(args, study) -> None:
     if not args.plot:
         return
-    path = Path(args.plot)
-    if path.suffix.lower() not in ('.png', '.pdf', '.svg'):
-        raise UsageError(f"--plot: expected a .png, .pdf or .svg file, got '{path}'")
-    if not path.parent.is_dir():
-        raise UsageError(f"--plot: the folder '{path.parent}' does not exist")
+    CheckFigurePath(args.plot, '--plot', args.overwrite)
     if len(study.keys) not in (1, 2):
         raise UsageError(f"--plot needs one or two varied keys, got {len(study.keys)}")
     from ..study import RUN_COLUMNS, WINDOW_METRICS
@@ -93,7 +93,8 @@ def _Run(args: argparse.Namespace) -> int:
     from ..study import RunStudy, StudySidecarPath
     study = _Study(args)
     if args.output:
-        CheckOutputPath(args.output, '--output')
+        # an existing results file is resumed (same study) or refused naming what differs (RunStudy)
+        CheckOutputPath(args.output, '--output', overwrite=True)
     _CheckPlot(args, study)
     if args.workers is not None and args.workers < 1:
         raise UsageError(f"--workers must be >= 1, got {args.workers}")
@@ -108,7 +109,7 @@ def _Run(args: argparse.Namespace) -> int:
         else:
             print("exudyn-worm: interrupted: nothing was saved (give --output FILE.csv to keep finished runs and "
                   "resume)", file=sys.stderr)
-        return 130
+        return INTERRUPTED_STATUS
     written = []
     if args.output:
         written += [Path(args.output), StudySidecarPath(args.output)]
@@ -117,7 +118,7 @@ def _Run(args: argparse.Namespace) -> int:
         subtitle = f"exudyn-worm sweep: {SourceText(args)}"
         figure = (result.Plot(study.keys[0], metric=args.metric, subtitle=subtitle) if len(study.keys) == 1
                   else result.Plot(study.keys[0], study.keys[1], subtitle=subtitle))
-        plot.SaveFigure(figure, args.plot)
+        WriteAtomically(args.plot, lambda tmp: plot.SaveFigure(figure, tmp))
         written.append(Path(args.plot))
     if args.json:
         PrintJson(result.ToDict())
@@ -128,7 +129,9 @@ def _Run(args: argparse.Namespace) -> int:
     failed = sum(r['status'] != 'ok' for r in result.rows)
     if failed:
         print(f"exudyn-worm: warning: {failed} of {len(result.rows)} runs failed; their reason is in the "
-              f"'error' column{' of ' + repr(str(args.output)) if args.output else ' (--json or --output)'}",
+              f"'error' column{' of ' + repr(str(args.output)) if args.output else ' (--json or --output)'}"
+              + ('; runs longer than the step limit are refused: raise it with --max-steps N'
+                 if any('more than the limit maxSteps' in (r['error'] or '') for r in result.rows) else ''),
               file=sys.stderr)
     return 1 if result.rows and failed == len(result.rows) else 0
 
