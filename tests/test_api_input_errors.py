@@ -249,9 +249,11 @@ def test_rotor_errors_add_nothing():
     SC, mbs = _System()
     a, b = _Two(mbs)
     before = (mbs.systemData.NumberOfNodes(), mbs.systemData.NumberOfObjects(), mbs.systemData.NumberOfMarkers())
-    for call in (lambda: ew.CreateRotor(mbs, 1., name=5), lambda: ew.CreateShaft(mbs, [a, a], stiffness=1.),
-                 lambda: ew.CreateRotorTorque(mbs, a, lambda phi, omega, t: 0.)):
-        with pytest.raises((TypeError, ValueError)):
+    for call, error, message in ((lambda: ew.CreateRotor(mbs, 1., name=5), TypeError, "CreateRotor: 'name'"),
+                                 (lambda: ew.CreateShaft(mbs, [a, a], stiffness=1.), ValueError, "CreateShaft: 'rotors'"),
+                                 (lambda: ew.CreateRotorTorque(mbs, a, lambda phi, omega, t: 0.), TypeError,
+                                  'CreateRotorTorque: calling the law')):
+        with pytest.raises(error, match=message):
             call()
     assert (mbs.systemData.NumberOfNodes(), mbs.systemData.NumberOfObjects(),
             mbs.systemData.NumberOfMarkers()) == before
