@@ -175,6 +175,7 @@ CASES = {
 }
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('name', list(CASES))
 def test_bad_input_gets_a_clear_message(name):
     call, error, message = CASES[name]
@@ -185,6 +186,7 @@ def test_bad_input_gets_a_clear_message(name):
     assert all(part in str(info.value) for part in parts), str(info.value)
 
 
+@pytest.mark.messages
 def test_analyze_linear_stability_takes_a_model_with_mbs():
     """A ReelChangerModel instead of model.mbs raised AttributeError; it is accepted now, with the same result."""
     model = ew.BuildReelChanger(P1)
@@ -237,6 +239,7 @@ def test_worm_gear_takes_the_axial_bearing_dict():
     assert int(connector.axialNodeNumber) == int(axial['nodeNumber'])
 
 
+@pytest.mark.messages
 def test_worm_gear_refuses_one_rotor_twice():
     SC, mbs = _System()
     worm, _ = _Two(mbs)

@@ -222,6 +222,7 @@ def _Bad(tmp_path):
     }
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('case', BAD_CASES)
 @pytest.mark.parametrize('json_', [False, True])
 def test_errors_one_line_exit_2(capsys, tmp_path, case, json_):
@@ -239,6 +240,7 @@ def test_errors_one_line_exit_2(capsys, tmp_path, case, json_):
     assert 'Traceback' not in err
 
 
+@pytest.mark.messages
 def test_error_messages_are_specific(capsys, tmp_path):
     expected = {'unknown preset': ['reel-P9', 'reel-P1'],
                 'unknown key': ["'foo'", 'alphaN', 'motorSpeed'],
@@ -255,6 +257,7 @@ def test_error_messages_are_specific(capsys, tmp_path):
             assert fragment in err, (case, fragment, err)
 
 
+@pytest.mark.messages
 def test_exudyn_method_unavailable(capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, 'exudyn_worm.linearization', None)   # import fails
     rc, out, err = Run(capsys, 'stability', '--method', 'exudyn', '--json')
@@ -319,6 +322,7 @@ def test_validate_finds_the_checkout():
     assert validate.FindSuite() == Path(exudyn_worm.__file__).resolve().parents[1]
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('argv', [['validate'], ['validate', '--quick']])
 def test_validate_without_checkout(capsys, monkeypatch, argv):
     from exudyn_worm.commands import validate
@@ -359,6 +363,7 @@ def test_python_m_exudyn_worm_json():
     assert 'Traceback' not in result.stderr
 
 
+@pytest.mark.messages
 def test_python_m_exudyn_worm_error():
     result = _Subprocess('stability', '--set', 'kT=7 kg')
     assert result.returncode == 2 and result.stdout == ''

@@ -76,6 +76,7 @@ BAD_INPUT = [
 ]
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('argv, fragment', BAD_INPUT, ids=[' '.join(a) for a, _ in BAD_INPUT])
 def test_simulate_bad_input(capsys, tmp_path, monkeypatch, argv, fragment):
     """One line on stderr, exit 2, no traceback, nothing written (checked before anything is computed)."""
@@ -91,6 +92,7 @@ def test_simulate_bad_input(capsys, tmp_path, monkeypatch, argv, fragment):
     assert (tmp_path / 'afile').read_text() == 'keep'
 
 
+@pytest.mark.messages
 def test_simulate_divergence_is_one_line(capsys, monkeypatch):
     import exudyn_worm.reelchanger as reelchanger
     from exudyn_worm.solve import SolverDivergedError
@@ -104,6 +106,7 @@ def test_simulate_divergence_is_one_line(capsys, monkeypatch):
     assert 'likely cause' in err
 
 
+@pytest.mark.messages
 def test_validate_report_path_checked_first(capsys, tmp_path, monkeypatch):
     import exudyn_worm.commands.validate as validate
     monkeypatch.setattr(validate, 'FindSuite', lambda: pytest.fail('ran before the path check'))

@@ -35,6 +35,7 @@ def _Error(capsys, argv, text):
     (['sweep', '--preset', 'chart', '--vary', 'J1=0.001,0.002'], 'sweep: the reel-changer simulation needs'),
     (['sweep', '--vary', 'J1=0.1', '--output', 'nodir/a.csv'], '--output nodir/a.csv: the folder nodir does not exist'),
 ])
+@pytest.mark.messages
 def test_bad_input(capsys, argv, text):
     _Error(capsys, argv, text)
 

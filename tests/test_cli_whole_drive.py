@@ -35,6 +35,7 @@ def test_chain_uses_the_linearized_whole_drive(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('sets', [['--set', 'J4=0.05', '--set', 'k4=2e4'], ['--set', 'kA=7e8', '--set', 'mA=5']])
 def test_analytical_method_refuses_components_it_does_not_model(tmp_path, sets):
     run = _Run(tmp_path, '--preset', 'reel-P1', *sets, '--method', 'analytical')
@@ -44,6 +45,7 @@ def test_analytical_method_refuses_components_it_does_not_model(tmp_path, sets):
     assert len(run.stderr.strip().splitlines()) == 1
 
 
+@pytest.mark.messages
 def test_warnings_of_any_subcommand_read_as_one_line(capsys):
     """A Python warning raised inside a subcommand is printed as `exudyn-worm: warning: ...`, without a path."""
     import warnings
@@ -71,6 +73,7 @@ SUBCOMMAND_ARGS = {'stability': [], 'check': [], 'chart': ['--resolution', '10']
                    'sweep': ['--vary', 'J1=0.1,0.2', '--quiet', '--output', 'out.csv']}
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('command', sorted(SUBCOMMAND_ARGS))
 @pytest.mark.parametrize('argv, fragment', INCOMPLETE_CHAIN, ids=[' '.join(a) for a, _ in INCOMPLETE_CHAIN])
 def test_incomplete_chain_is_one_line_exit_2_in_every_subcommand(capsys, tmp_path, monkeypatch, command, argv,

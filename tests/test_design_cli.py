@@ -59,6 +59,7 @@ def _Recommended(key, up, margin=0.1):
     return 10. ** (t + margin if up else t - margin)
 
 
+@pytest.mark.physics
 def test_check_recommendations_are_the_boundaries_of_eq19_plus_the_margin(capsys):
     data = Json(capsys, 'check', '--preset', 'reel-P1')
     factors = {(r['parameter'], r['factor'] > 1): r['factor'] for r in data['recommendations']}
@@ -108,6 +109,7 @@ def test_check_plot(capsys, tmp_path):
     (('--set', 'J4=0.1', '--set', 'k4=1000'), "DesignCheck: the design check uses the two-mass model of Figure 2"),
     (('--set', 'kA=1e8', '--set', 'mA=1'), "this parameter set has a worm axial bearing (kA > 0)"),
 ])
+@pytest.mark.messages
 def test_check_bad_input(capsys, argv, message):
     rc, out, err = Run(capsys, 'check', *argv)
     assert rc == 2 and out == ''
@@ -115,6 +117,7 @@ def test_check_bad_input(capsys, argv, message):
     assert 'Traceback' not in err
 
 
+@pytest.mark.messages
 def test_check_plot_path_is_checked_before_computing(capsys, tmp_path, monkeypatch):
     from exudyn_worm import design
     monkeypatch.setattr(design, 'DesignCheck', lambda *a, **k: pytest.fail('computed before the path check'))

@@ -101,6 +101,7 @@ def test_series_keys():
     assert PARAMETERS['k9'] is PARAMETERS.Series('k')
 
 
+@pytest.mark.messages
 def test_declaring_twice_is_refused():
     with pytest.raises(ValueError, match="'kT' is declared already"):
         PARAMETERS.Declare(Parameter('kT', 'N*m/rad', 'positive'))
@@ -111,6 +112,7 @@ def test_declaring_twice_is_refused():
         ParameterRegistry([Parameter('J4'), Parameter('J', series=4)])
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('kwargs, message', [
     (dict(name='x', kind='list'), "'kind' of 'x' must be one of number, choice, table"),
     (dict(name='x', range='big'), "'range' of 'x' must be one of"),
@@ -216,6 +218,7 @@ def test_declared_key_reaches_drive_files(declared, tmp_path):
         LoadConfig(path)
 
 
+@pytest.mark.messages
 def test_declared_key_reaches_checks_and_messages(declared):
     base = GetPreset('reel-P1')
     CheckParameters({**base, 'testLaw': 'agma', 'testTable': 'mu.csv'})

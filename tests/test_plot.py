@@ -47,6 +47,7 @@ def test_comparison_stacks_one_panel_per_result(result):
     assert [ax.get_title(loc='left') for ax in panels] == ['a', 'b', 'c']
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('call, error, fragment', [
     (lambda r: plot.PlotSimulation(r, kind='spectrum'), ValueError, "'kind'"),
     (lambda r: plot.PlotSimulation(r, kind='zoom', tZoom=(1.3, 1.2)), ValueError, 't0 < t1'),

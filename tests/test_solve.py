@@ -22,6 +22,7 @@ def _Plain(parameters, endTime, stepSize):
     return model.connector.StoredStates(mbs)
 
 
+@pytest.mark.physics
 @pytest.mark.parametrize('preset', ['reel-P1', 'reel-P7'])
 def test_chunks_agree_with_one_solve(preset, capsys):
     """Chunks restart the modified-Newton Jacobian (and P7's step halvings move), so the trajectories agree
@@ -52,6 +53,7 @@ def test_without_a_bar_exactly_one_solve(capsys):
         assert np.array_equal(getattr(result, key), plain[key])
 
 
+@pytest.mark.messages
 def test_bad_solver_type_refused():
     import exudyn as exu
     from exudyn_worm.solve import SolveDynamicInChunks
@@ -59,6 +61,7 @@ def test_bad_solver_type_refused():
         SolveDynamicInChunks(None, exu.SimulationSettings(), 'RK44')
 
 
+@pytest.mark.messages
 def test_failure_reports_the_time_reached():
     """A solve that cannot converge: one Newton iteration allowed, unreachable tolerance, no step reduction."""
     from exudyn_worm.solve import SolverDivergedError
@@ -87,6 +90,7 @@ def test_explicit_solver_runs_in_one_piece():
     assert float(mbs.GetNodeOutput(b['nodeNumber'], exu.OutputVariableType.Coordinates_t)) == pytest.approx(10.)
 
 
+@pytest.mark.messages
 def test_explicit_solver_refused_with_a_prescribed_motor():
     """Exudyn's explicit solvers ignore constraints: the reel changer's motor stood still (phi1 = -0.01 rad
     after 0.5 s instead of 24.7 rad) and the run returned normally."""

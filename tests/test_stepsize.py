@@ -22,6 +22,7 @@ def _Frequencies(eigenvalues):
             np.abs(growing.imag).max() / (2 * math.pi) if growing.size else None)
 
 
+@pytest.mark.physics
 def test_frequencies_of_p1_are_those_of_the_linear_model():
     """The roots of the characteristic polynomial (15) with the b's of eq. (16) written out (tests/paper_model.py).
     The paper prints 52.2 Hz for the S = +1 second mode and 42.0 Hz for the growing one (section 3.1); our
@@ -34,6 +35,7 @@ def test_frequencies_of_p1_are_those_of_the_linear_model():
     assert LinearizedFrequencies(GetPreset('reel-P2'))['chatterHz'] is None
 
 
+@pytest.mark.physics
 def test_period_error_is_the_trapezoidal_one():
     assert PeriodError(40.5, 1e-4) == pytest.approx((2 * math.pi * 40.5e-4)**2 / 12, rel=1e-3)
     # P1 at h = 0.01 s: 40.5 Hz comes out as 40.5 / 1.41 = 28.8 Hz (the measured frequency of issue 9)
@@ -42,6 +44,7 @@ def test_period_error_is_the_trapezoidal_one():
         assert PeriodError(1., cycles) == pytest.approx(error, rel=1e-9)
 
 
+@pytest.mark.physics
 def test_recommended_step_follows_the_stiffest_mode():
     p1, p3 = GetPreset('reel-P1'), GetPreset('reel-P3')       # P3: J1 / 3 raises f_max from 50 to 81 Hz
     maxHz, _ = _Frequencies([Eigenvalues(p1, S) for S in (+1, -1)])
@@ -53,12 +56,14 @@ def test_recommended_step_follows_the_stiffest_mode():
     assert limits['recommended'] < limits['soft'] < limits['hard']
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('stepSize', [0.05, 0.01, 3e-3])
 def test_coarse_step_of_issue_9_is_refused(stepSize):
     with pytest.raises(ValueError, match=r"CheckStepSize: 'stepSize' must be <= 0.0025 s .* got "):
         CheckStepSize(GetPreset('reel-P1'), stepSize)
 
 
+@pytest.mark.messages
 def test_soft_limit_warns_and_default_step_is_quiet():
     with pytest.warns(CoarseStepWarning, match='50.4 Hz'):
         assert CheckStepSize(GetPreset('reel-P1'), 2e-3) == 2e-3
@@ -68,12 +73,14 @@ def test_soft_limit_warns_and_default_step_is_quiet():
             CheckStepSize(GetPreset(name), 5e-4)
 
 
+@pytest.mark.messages
 def test_simulate_refuses_before_computing():
     from exudyn_worm.reelchanger import SimulateReelChanger
     with pytest.raises(ValueError, match="SimulateReelChanger: 'stepSize' must be <="):
         SimulateReelChanger(GetPreset('reel-P1'), stepSize=0.01)
 
 
+@pytest.mark.messages
 def test_cli_refuses_the_coarse_step_in_one_line(capsys, tmp_path, monkeypatch):
     from exudyn_worm.cli import Main
     monkeypatch.chdir(tmp_path)
@@ -95,6 +102,7 @@ def test_cli_warns_for_a_coarse_step_and_runs(capsys):
 FIGURE19 = Path(__file__).resolve().parents[1] / 'examples' / 'drives' / 'figure19.toml'
 
 
+@pytest.mark.physics
 def test_a_drive_beyond_two_masses_gets_the_frequencies_of_its_whole_drive():
     """Figure 19's drive: the 116 Hz mode of inertia4 and the 36.96 Hz chatter mode that `stability` reports,
     not the two-mass model's 50.4 Hz and 40.5 Hz."""
@@ -116,6 +124,7 @@ def test_a_drive_beyond_two_masses_gets_the_frequencies_of_its_whole_drive():
         CheckStepSize(p, 0.0015)
 
 
+@pytest.mark.physics
 def test_axial_bearing_enters_the_modes_but_its_own_mode_is_left_out():
     from exudyn_worm.linearization import LinearStabilityFromParameters
     p = ApplyOverrides(GetPreset('reel-P1'), {'kA': 1e9, 'mA': 5.})
@@ -127,6 +136,7 @@ def test_axial_bearing_enters_the_modes_but_its_own_mode_is_left_out():
     assert axial and min(axial) > 2000.                               # the bearing's own stiff mode, not resolved
 
 
+@pytest.mark.messages
 def test_cli_step_rule_of_a_whole_drive_file(capsys, tmp_path, monkeypatch):
     from exudyn_worm.cli import Main
     monkeypatch.chdir(tmp_path)

@@ -42,6 +42,7 @@ def test_list_and_grid_with_units():
     np.testing.assert_allclose(ParseVariation('kT=7 kN*m,14kN*m').values, [7000, 14000])
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('text, message', [
     ('J1', 'expected KEY='), ('J1=', 'expected KEY='), ('nope=1,2', "unknown parameter 'nope'"),
     ('J1=0.01:0.4', 'START:STOP:COUNT'), ('J1=0.01:0.4:0', 'COUNT must be >= 1'),
@@ -139,6 +140,7 @@ def test_agreement_counts_finished_runs_only():
     assert StudyResult(study, rows).agreement == pytest.approx(2 / 3)
 
 
+@pytest.mark.messages
 def test_output_checked_before_computing(tmp_path):
     study = _Study('J1=0.1')
     with pytest.raises(ValueError, match='does not exist'):
@@ -294,6 +296,7 @@ def test_chatter_map_of_a_drive_beyond_two_masses_uses_the_whole_drive():
     assert any('linearized whole drive' in t for t in labels), labels
 
 
+@pytest.mark.messages
 def test_study_names_itself_for_a_typo_in_the_base_set():
     with pytest.raises(ValueError, match=r"Study: 'base': unknown parameter 'Kt' \(did you mean 'kT'\?\)"):
         Study({**ResolveParameters('reel-P1'), 'Kt': 1.}, [ParseVariation('J1=0.1')])
