@@ -4,11 +4,12 @@ expected and what was received, instead of an error from deep inside (pybind11, 
 Each case was reproduced by a QA pass before its fix (the failure it gave then is in the comment)."""
 import math
 
+import exudyn as exu
 import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.charts import ComputeStabilityChart
+from exudyn_worm.charts import ComputeStabilityChart, PresetChartPoints
 from exudyn_worm.contact import MeshContact, NUMPY_OPS
 from exudyn_worm.design import DesignCheck
 from exudyn_worm.linearization import AnalyzeLinearStability
@@ -18,7 +19,6 @@ P1 = ew.GetPreset('reel-P1')
 
 
 def _System():
-    import exudyn as exu
     SC = exu.SystemContainer()
     return SC, SC.AddSystem()
 
@@ -206,7 +206,6 @@ def test_linear_state_takes_a_tuple_or_list():
 def test_chart_points_take_preset_names():
     """points=['P1'] raised "'list' object has no attribute 'items'"; preset names are marked at their coordinates."""
     pytest.importorskip('matplotlib')
-    from exudyn_worm.charts import PresetChartPoints
     ax = _Chart().plot(points=['P1', 'reel-P7'])
     texts = {t.get_text(): t.xy for t in ax.texts}
     expected = PresetChartPoints(['reel-P1', 'reel-P7'])

@@ -1,6 +1,7 @@
 """Tests of the exudyn-worm command line (exudyn_worm.cli), run in-process with Main([...])."""
 import json
 import os
+import re
 import subprocess
 import sys
 import types
@@ -12,6 +13,8 @@ from numpy.testing import assert_allclose
 import exudyn_worm
 from exudyn_worm import cli
 from exudyn_worm.cli import Main
+from exudyn_worm.commands import validate
+from exudyn_worm.stability import AnalyzeStability
 
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
 TOP_KEYS = {'ratio', 'frictionAngle', 'selfLocking', 'efficiency', 'S', 'fuesgenLimit', 'firstCriterionLimit', 'hint',
@@ -134,7 +137,6 @@ def test_hint_values_are_stable_and_unstable_inside(capsys):
     rc, out, _ = Run(capsys, 'stability')
     hint = next(line for line in out.splitlines() if line.startswith('Hint:'))
     # the paper's P2 (J1 = 0.3), P3 (0.033), P4 (kT = 14000), P5 (1400) lie beyond the reported limits
-    import re
     j1Low, j1High = (float(x) for x in re.findall(r'J1 [<>]= ([0-9.e+-]+) kg', hint))
     kTLow, kTHigh = (float(x) for x in re.findall(r'kT [<>]= ([0-9.e+-]+) N', hint))
     assert 0.033 < j1Low < 0.1 < j1High < 0.3
@@ -266,7 +268,6 @@ def test_exudyn_method_unavailable(capsys, monkeypatch):
 
 
 def test_exudyn_method_uses_linearization(capsys, monkeypatch):
-    from exudyn_worm.stability import AnalyzeStability
     calls = []
 
     def Fake(drive):
@@ -308,7 +309,6 @@ class _FakeSuite:
 
 @pytest.mark.parametrize('status', [0, 1])
 def test_validate_runs_the_suite_of_the_checkout(capsys, monkeypatch, status):
-    from exudyn_worm.commands import validate
     fake = _FakeSuite(status)
     monkeypatch.setattr(validate, '_Suite', lambda root: fake)
     rc, out, err = Run(capsys, 'validate', '--quick', '--report', 'r.md')
@@ -318,14 +318,12 @@ def test_validate_runs_the_suite_of_the_checkout(capsys, monkeypatch, status):
 
 
 def test_validate_finds_the_checkout():
-    from exudyn_worm.commands import validate
     assert validate.FindSuite() == Path(exudyn_worm.__file__).resolve().parents[1]
 
 
 @pytest.mark.messages
 @pytest.mark.parametrize('argv', [['validate'], ['validate', '--quick']])
 def test_validate_without_checkout(capsys, monkeypatch, argv):
-    from exudyn_worm.commands import validate
     monkeypatch.setattr(validate, 'FindSuite', lambda: None)
     rc, out, err = Run(capsys, *argv)
     assert rc == 2 and out == '' and err.count('\n') == 1

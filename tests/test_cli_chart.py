@@ -5,6 +5,7 @@ import json
 import pytest
 from numpy.testing import assert_allclose
 
+import exudyn_worm.charts as charts
 from exudyn_worm.charts import ComputeStabilityChart
 from exudyn_worm.cli import Main
 from exudyn_worm.presets import GearFromParameters, GetPreset
@@ -93,7 +94,6 @@ def test_bad_input_one_line_exit_2(capsys, argv, message):
 
 @pytest.mark.messages
 def test_output_checked_before_computing(capsys, tmp_path, monkeypatch):
-    import exudyn_worm.charts as charts
     monkeypatch.setattr(charts, 'ComputeStabilityChart', lambda *a, **k: pytest.fail('computed'))
     (tmp_path / 'adir.png').mkdir()
     for path, message in ((tmp_path / 'adir.png', 'is a folder'),

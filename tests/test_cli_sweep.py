@@ -1,6 +1,10 @@
 """``exudyn-worm sweep``: options, errors, JSON, table, resume, plots."""
 import json
 import math
+import signal
+import subprocess
+import sys
+import time
 
 import pytest
 
@@ -85,10 +89,6 @@ def test_table_agreement_and_plots(capsys, tmp_path):
 
 def test_sigterm_saves_and_says_how_to_resume(tmp_path):
     # a job scheduler's time limit (SIGTERM) ends the study like Ctrl-C: exit 130, finished runs kept, hint on stderr
-    import signal
-    import subprocess
-    import sys
-    import time
     out = tmp_path / 'runs.csv'
     argv = [sys.executable, '-m', 'exudyn_worm', 'sweep', '--vary', 'J1=0.02:0.3:12:log', '--workers', '1',
             '--output', str(out)] + SHORT

@@ -7,7 +7,7 @@ import sys
 import pytest
 from hypothesis import given, strategies as st
 
-from exudyn_worm import config
+from exudyn_worm import config, parameters
 from exudyn_worm.config import (DEFAULT_PRESET, LoadConfig, ParseQuantity, ParseSetOption,
                                 ResolveParameters)
 from exudyn_worm.presets import PARAMETER_UNITS, GetPreset
@@ -104,7 +104,6 @@ def test_unit_registry_lazy_and_single():
             "ParseQuantity('r1', '0.1'); ResolveParameters(sets=['J1=0.2']); print('pint' in sys.modules)")
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == 'False'
-    from exudyn_worm import parameters
     assert parameters._UnitRegistry() is parameters._UnitRegistry()
 
 

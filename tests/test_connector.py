@@ -8,10 +8,10 @@ import exudyn as exu
 from exudyn.itemInterface import NodePoint
 from exudyn_worm import AnalyzeStability
 from exudyn_worm.connector import CreateWormGear
-from exudyn_worm.drivetrain import CreateRotor
+from exudyn_worm.drivetrain import CreateRotor, CreateShaft
 from exudyn_worm.linearization import AnalyzeStabilityExudyn, ExudynEigenvalues
 from exudyn_worm.presets import PRESETS, ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.reelchanger import SimulateReelChanger
+from exudyn_worm.reelchanger import BuildReelChanger, SimulateReelChanger
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 
@@ -74,7 +74,6 @@ def test_connector_rejects_bad_input():
     with pytest.raises(ValueError, match="one rotation coordinate"):
         CreateWormGear(mbs, [nodes[0], nPoint], gear=gear)
     with pytest.raises(TypeError, match=r"CreateShaft: 'rotors\[1\]' must be a rotor"):
-        from exudyn_worm.drivetrain import CreateShaft
         CreateShaft(mbs, [worm, 3], stiffness=1.)
     with pytest.raises(ValueError, match="CreateRotor: 'inertia' must be > 0 kg\\*m\\^2, got -1"):
         CreateRotor(mbs, -1.)
@@ -83,7 +82,6 @@ def test_connector_rejects_bad_input():
 @pytest.mark.physics
 def test_full_model_linearizes_with_exudyn():
     """mbs.ComputeLinearizedSystem works on a system containing the connector and the load."""
-    from exudyn_worm.reelchanger import BuildReelChanger
     model = BuildReelChanger(GetPreset('reel-P1'))
     model.mbs.Assemble()
     M, K, D = model.mbs.ComputeLinearizedSystem()

@@ -3,7 +3,7 @@ import json
 
 import pytest
 
-from exudyn_worm import AnalyzeStability, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm import AnalyzeStability, ApplyOverrides, DriveFromParameters, GetPreset, design
 from exudyn_worm.cli import Main
 from paper_model import BoundaryDecades
 
@@ -119,7 +119,6 @@ def test_check_bad_input(capsys, argv, message):
 
 @pytest.mark.messages
 def test_check_plot_path_is_checked_before_computing(capsys, tmp_path, monkeypatch):
-    from exudyn_worm import design
     monkeypatch.setattr(design, 'DesignCheck', lambda *a, **k: pytest.fail('computed before the path check'))
     (tmp_path / 'folder.png').mkdir()
     rc, _, err = Run(capsys, 'check', '--plot', str(tmp_path / 'folder.png'))

@@ -9,10 +9,11 @@ from pathlib import Path
 
 import pytest
 
+from conftest import LoadScript
 from exudyn_worm import drivefile
 from exudyn_worm.config import LoadConfig, ResolveParameters
 from exudyn_worm.drivefile import DRIVE_FILE_TABLES, DRIVE_SIDE_KEYS, DriveSideKey
-from exudyn_worm.presets import PARAMETER_UNITS, PRESETS, GetPreset
+from exudyn_worm.presets import AxialBearingFromParameters, DriveSideChain, GetPreset, PARAMETER_UNITS, PRESETS
 
 ROOT = Path(__file__).resolve().parents[1]
 DRIVES = ROOT / 'examples' / 'drives'
@@ -152,7 +153,6 @@ def test_docs_list_every_file_key():
 
 def test_drive_side_chain_and_axial_bearing_reach_the_model(tmp_path):
     """[[driveSide]] and [axialBearing] become the model's chain and bearing (presets.DriveSideChain, ...)."""
-    from exudyn_worm.presets import AxialBearingFromParameters, DriveSideChain
     path = _Write(tmp_path, 'preset = "reel-P1"\n'
                             '[[driveSide]]\ninertia = "0.05 kg*m^2"\nstiffness = "2 kN*m"\ndamping = 0.1\n'
                             '[[driveSide]]\ninertia = 0.2\nstiffness = 500\n'
@@ -167,7 +167,6 @@ def test_drive_side_chain_and_axial_bearing_reach_the_model(tmp_path):
 
 def test_figure19_file_is_the_drive_side_inertia_example():
     """examples/drives/figure19.toml holds the values of examples/drive_side_inertia.py to its printed digits."""
-    from conftest import LoadScript
     example = LoadScript('examples/drive_side_inertia.py', 'drive_side_inertia_for_files')
     expected = example.DriveSideParameters()
     p = ResolveParameters(config=DRIVES / 'figure19.toml')

@@ -1,12 +1,13 @@
 """Drivetrain builders and motion/load laws: ordinary Exudyn items around the connector."""
 import math
 
+import exudyn as exu
 import numpy as np
 import pytest
 
-import exudyn as exu
 import exudyn_worm as ew
 from exudyn_worm.contact import MATH_OPS, NUMPY_OPS
+from exudyn_worm.drivetrain import _ConstantSpeedFromStart
 from exudyn_worm.profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque,
                                   LinearMotorCharacteristic, StartStopProfile)
 
@@ -178,7 +179,6 @@ def test_constant_speed_on_velocity_level_is_the_same_motion(initialAngle, veloc
     """A ConstantSpeed whose initial state the rotor has is prescribed on velocity level, without a user
     function; the worm then moves as with the angle prescribed by a user function. A rotor that does not
     start on the profile keeps the angle constraint (which moves it onto the profile)."""
-    from exudyn_worm.drivetrain import _ConstantSpeedFromStart
     drive = ew.DriveFromParameters(ew.GetPreset('reel-P1'))
     speeds = []
     for forceUserFunction in (False, True):

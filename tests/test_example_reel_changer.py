@@ -4,7 +4,9 @@ into the requested folder and rejects bad input cleanly."""
 import subprocess
 import sys
 from pathlib import Path
+from unittest import mock
 
+import matplotlib
 import pytest
 
 from conftest import LoadScript
@@ -124,9 +126,7 @@ def test_unparsable_arguments_give_one_line_and_exit_status_2(example, argv, cap
 
 def test_figure_8_title_says_what_was_simulated(example, tmp_path):
     """Fig. 8 said '(one full rotation)' also for a shorter --end-time."""
-    import matplotlib
     matplotlib.use('Agg')
-    from unittest import mock
     results = example.RunPaperCases(figures=[8], endTime=4., progress=False)
     titles = []
     with mock.patch('exudyn_worm.plot.SaveFigure', side_effect=lambda fig, path: titles.append(

@@ -6,7 +6,7 @@ import pytest
 
 import exudyn as exu
 import exudyn_worm as ew
-from exudyn_worm.linearization import AnalyzeLinearStability, BuildLinearizationModel
+from exudyn_worm.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStabilityFromParameters
 from exudyn_worm.presets import PRESETS, ApplyOverrides, DriveFromParameters, GetPreset
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
@@ -132,7 +132,6 @@ def test_linear_analysis_rejects_bad_input():
 
 @pytest.mark.physics
 def test_linear_stability_from_parameters_with_chain_and_axial_bearing():
-    from exudyn_worm.linearization import LinearStabilityFromParameters
     p = GetPreset('reel-P1')
     plain = LinearStabilityFromParameters(p)
     analytical = ew.AnalyzeStability(DriveFromParameters(p))

@@ -1,10 +1,15 @@
 """Parameter checks name the user's key, reject values that overflow the model, and catch unit mistakes."""
 import math
+from pathlib import Path
 
 import pytest
 
-from exudyn_worm import ApplyOverrides, DriveFromParameters, GetPreset, WormGear
+from exudyn_worm import ApplyOverrides, DriveFromParameters, GetPreset, SimulateReelChanger, WormGear
 from exudyn_worm.cli import Main
+from exudyn_worm.config import ResolveParameters
+from exudyn_worm.design import DesignCheck
+from exudyn_worm.presets import CheckParameterKeys, GearFromParameters, PRESETS
+from exudyn_worm.study import Study
 
 
 @pytest.mark.messages
@@ -40,7 +45,6 @@ def test_frequencies_far_apart_rejected(overrides):
 
 
 def test_every_preset_is_within_range():
-    from exudyn_worm.presets import PRESETS
     for name in PRESETS:
         DriveFromParameters(ApplyOverrides(GetPreset(name), {'J1': 0.01, 'kT': 10., 'DT': 0.01}) if name == 'chart'
                             else GetPreset(name))
@@ -70,17 +74,14 @@ _KNOWN = "expected one of: alphaN gamma mu rho r1 r2 kV dV DV backlash J1 J2 kT"
 
 
 def _Design(p):
-    from exudyn_worm.design import DesignCheck
     return DesignCheck(p)
 
 
 def _Simulate(p):
-    from exudyn_worm import SimulateReelChanger
     return SimulateReelChanger(p, endTime=0.01)
 
 
 def _Study(p):
-    from exudyn_worm.study import Study
     return Study(p)
 
 
@@ -100,10 +101,8 @@ def test_unknown_keys_are_refused_with_a_suggestion(call, where, key, suggestion
 
 @pytest.mark.messages
 def test_unknown_key_message_is_the_cli_one():
-    from exudyn_worm.config import ResolveParameters
     with pytest.raises(ValueError, match=r"^ParseSetOption: unknown parameter 'Kt' \(did you mean 'kT'\?\); "):
         ResolveParameters('reel-P1', sets=['Kt=5'])
-    from exudyn_worm.presets import GearFromParameters
     with pytest.raises(ValueError, match=r"^chart: unknown parameter 'Dv' \(did you mean 'dV' or 'DV'\?\)"):
         GearFromParameters({**GetPreset('chart'), 'Dv': 1.}, meshDamping=False, where='chart')
 
@@ -149,10 +148,6 @@ def test_apply_overrides_checks_both_mappings():
 
 def test_every_example_and_preset_set_passes_the_key_check():
     """Internal code carries no extra keys into a parameter set: presets, drive files, design recommendations."""
-    from exudyn_worm.config import ResolveParameters
-    from exudyn_worm.design import DesignCheck
-    from exudyn_worm.presets import PRESETS, CheckParameterKeys
-    from pathlib import Path
     for name in PRESETS:
         CheckParameterKeys(GetPreset(name))
     for path in sorted((Path(__file__).resolve().parents[1] / 'examples' / 'drives').glob('*.toml')):

@@ -14,6 +14,7 @@ from exudyn_worm.drivefile import DRIVE_FILE_TABLES, FileKeyOf, FlattenDriveFile
 from exudyn_worm.parameters import PARAMETERS, Parameter, ParameterRegistry, ParametersMarkdown, WithGeneratedTables
 from exudyn_worm.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, CheckParameters, GetPreset,
                                  UnknownParameterMessage)
+from exudyn_worm.study import ParseVariation
 
 DOCS = Path(__file__).resolve().parents[1] / 'docs'
 
@@ -247,7 +248,6 @@ def test_registry_restored_after_the_declarations():
 
 
 def test_a_study_sweeps_numbers_only(declared):
-    from exudyn_worm.study import ParseVariation
     assert list(ParseVariation('testSpeed=1,2 mm/s').values) == [1., 0.002]
     with pytest.raises(ValueError, match=r"ParseVariation: 'testLaw=agma,table': a study sweeps numbers; 'testLaw' "
                                          r"takes a choice \(one of: constant, stribeck, agma, table\)"):

@@ -7,6 +7,8 @@ import pytest
 
 pytest.importorskip('matplotlib')
 
+from matplotlib.figure import Figure                                  # noqa: E402
+
 from exudyn_worm import plot                                          # noqa: E402
 from exudyn_worm.results import SimulationResult                      # noqa: E402
 
@@ -27,7 +29,6 @@ def result():
 
 @pytest.mark.parametrize('kind', plot.PLOT_KINDS)
 def test_every_kind_returns_a_figure(result, kind, tmp_path):
-    from matplotlib.figure import Figure
     fig = plot.PlotSimulation(result, kind=kind, title=f'Fig. 0: {kind}')
     assert isinstance(fig, Figure)
     path = plot.SaveFigure(fig, tmp_path / 'sub' / f'{kind}.png')

@@ -7,8 +7,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from exudyn_worm.cli import Main
 from exudyn_worm.config import ResolveParameters
+from exudyn_worm.linearization import LinearStabilityFromParameters
 from exudyn_worm.presets import ApplyOverrides, GetPreset
+from exudyn_worm.reelchanger import SimulateReelChanger
 from exudyn_worm.stepsize import (HARD_CYCLES, RECOMMENDED_CYCLES, SOFT_CYCLES, CheckStepSize, CoarseStepWarning,
                                   LinearizedFrequencies, PeriodError, RecommendedStepSize, StepSizeLimits)
 from paper_model import ChainEigenvalues, Eigenvalues
@@ -75,14 +78,12 @@ def test_soft_limit_warns_and_default_step_is_quiet():
 
 @pytest.mark.messages
 def test_simulate_refuses_before_computing():
-    from exudyn_worm.reelchanger import SimulateReelChanger
     with pytest.raises(ValueError, match="SimulateReelChanger: 'stepSize' must be <="):
         SimulateReelChanger(GetPreset('reel-P1'), stepSize=0.01)
 
 
 @pytest.mark.messages
 def test_cli_refuses_the_coarse_step_in_one_line(capsys, tmp_path, monkeypatch):
-    from exudyn_worm.cli import Main
     monkeypatch.chdir(tmp_path)
     status = Main(['simulate', '--preset', 'reel-P1', '--step-size', '0.05'])
     out, err = capsys.readouterr()
@@ -92,7 +93,6 @@ def test_cli_refuses_the_coarse_step_in_one_line(capsys, tmp_path, monkeypatch):
 
 
 def test_cli_warns_for_a_coarse_step_and_runs(capsys):
-    from exudyn_worm.cli import Main
     status = Main(['simulate', '--preset', 'reel-P1', '--step-size', '2e-3', '--end-time', '2', '--windows', '0:2'])
     out, err = capsys.readouterr()
     assert status == 0 and 'chatter' in out
@@ -106,7 +106,6 @@ FIGURE19 = Path(__file__).resolve().parents[1] / 'examples' / 'drives' / 'figure
 def test_a_drive_beyond_two_masses_gets_the_frequencies_of_its_whole_drive():
     """Figure 19's drive: the 116 Hz mode of inertia4 and the 36.96 Hz chatter mode that `stability` reports,
     not the two-mass model's 50.4 Hz and 40.5 Hz."""
-    from exudyn_worm.linearization import LinearStabilityFromParameters
     p = ResolveParameters(config=FIGURE19)
     f = LinearizedFrequencies(p)
     whole = LinearStabilityFromParameters(p)
@@ -126,7 +125,6 @@ def test_a_drive_beyond_two_masses_gets_the_frequencies_of_its_whole_drive():
 
 @pytest.mark.physics
 def test_axial_bearing_enters_the_modes_but_its_own_mode_is_left_out():
-    from exudyn_worm.linearization import LinearStabilityFromParameters
     p = ApplyOverrides(GetPreset('reel-P1'), {'kA': 1e9, 'mA': 5.})
     f = LinearizedFrequencies(p)
     assert f['chatterHz'] == pytest.approx(38.9, abs=0.05)           # the whole drive's growing mode (40.5 rigid)
@@ -138,7 +136,6 @@ def test_axial_bearing_enters_the_modes_but_its_own_mode_is_left_out():
 
 @pytest.mark.messages
 def test_cli_step_rule_of_a_whole_drive_file(capsys, tmp_path, monkeypatch):
-    from exudyn_worm.cli import Main
     monkeypatch.chdir(tmp_path)
     status = Main(['simulate', '--config', str(FIGURE19), '--step-size', '0.0015'])
     out, err = capsys.readouterr()

@@ -8,11 +8,16 @@ import sys
 import textwrap
 import time
 
+import matplotlib
 import numpy as np
 import pytest
 from hypothesis import given, strategies as st
 
+from exudyn_worm import plot_study
 from exudyn_worm.config import ResolveParameters
+from exudyn_worm.linearization import LinearStabilityFromParameters
+from exudyn_worm.presets import DriveFromParameters
+from exudyn_worm.stability import AnalyzeStability
 from exudyn_worm.study import (RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunPoint,
                                RunStudy, ShardIndices, Study, StudyPoints, StudyResult, StudySidecarPath, Variation)
 
@@ -166,7 +171,6 @@ def test_output_checked_before_computing(tmp_path):
 def test_finished_study_resumed_keeps_its_record(tmp_path):
     """Reading a finished study again (e.g. to redraw its figures) with other workers leaves its sidecar alone:
     it records how the runs were computed."""
-    from exudyn_worm.study import StudySidecarPath
     study = _Study('J1=0.05,0.1')
     RunStudy(study, tmp_path / 'a.csv', workers=2, quiet=True)
     sidecar = StudySidecarPath(tmp_path / 'a.csv').read_text()
@@ -237,7 +241,6 @@ def _Complete(text, header=False):
 def test_chatter_map_axes_follow_the_grid():
     """Two kT values 80x apart: the map's analytical grid is log-spaced, so the axis must be logarithmic too
     (it was linear from 0 to 250000 N*m/rad); the outer runs lie inside the axes by 15 % of the span."""
-    import matplotlib
     matplotlib.use('Agg')
     result = RunStudy(_Study('J1=0.05,0.1', 'kT=350,28000'), workers=1, quiet=True)
     ax = result.Plot('J1', 'kT').axes[0]
@@ -255,9 +258,6 @@ def test_chatter_map_axes_follow_the_grid():
 def test_verdict_of_a_drive_beyond_two_masses_is_that_of_stability(base, varied):
     """The verdict columns come from the linearized whole drive, as `exudyn-worm stability` gives them, not from the
     two-mass model (which disagrees here at one of the two points); the simulation agrees with them."""
-    from exudyn_worm.linearization import LinearStabilityFromParameters
-    from exudyn_worm.presets import DriveFromParameters
-    from exudyn_worm.stability import AnalyzeStability
     study = Study(ResolveParameters('reel-P1', sets=list(base.items())), [ParseVariation(varied)], endTime=6.)
     rows = [RunPoint(study.Task(i)) for i in range(2)]
     twoMassDiffers = False
@@ -279,7 +279,6 @@ def test_chatter_map_of_a_drive_beyond_two_masses_uses_the_whole_drive():
     """plot_study: the stability-chart shortcut only for the two-mass drive; the map's linear model is the whole
     drive's (the two-mass model says the opposite at both J1 here)."""
     pytest.importorskip('matplotlib')
-    from exudyn_worm import plot_study
     bearing = ResolveParameters('reel-P1', sets=['kA=5e8', 'mA=5'])
     growth = plot_study.AnalyticalMap(bearing, 'J1', [0.1, 0.2], 'kT', [7000.])
     assert growth.shape == (1, 2) and growth[0, 0] < 0 < growth[0, 1]       # as `stability`: J1 = 0.1 stable

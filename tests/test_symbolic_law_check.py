@@ -1,13 +1,14 @@
 """A law written with a Python `if` or math function records as a constant: the builders refuse it at creation."""
 import math
 
+import exudyn as exu
+import numpy as np
 import pytest
 
 import exudyn_worm as ew
 
 
 def _System():
-    import exudyn as exu
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     return SC, mbs, ew.CreateRotor(mbs, 1.)
@@ -46,7 +47,6 @@ def test_correct_laws_pass(law):
 
 @pytest.mark.messages
 def test_numpy_on_symbolic_arguments_is_a_clear_type_error():
-    import numpy as np
     SC, mbs, rotor = _System()
     with pytest.raises(TypeError, match=r"CreateRotorTorque: the law cannot be recorded .* write it with the "
                                         r"functions of 'ops'"):

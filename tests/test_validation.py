@@ -11,6 +11,7 @@ from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
 from exudyn_worm.stability import CharacteristicCoefficients
 from validation import runner
 from validation.paper import eigenvalue_forensics
+from validation.report import Report
 from validation.runner import (KINDS, RULES, CheckGroup, HalfUnit, InputRounding, LoadKnownDifferences,
                                LoadReference, ReadingInterval, RegisterCheckGroup, RunValidation)
 
@@ -92,7 +93,6 @@ def test_chart_statements_are_rows(quickRun):
 
 
 def test_report_is_generated_from_the_verdicts(quickRun, tmp_path):
-    from validation.report import Report
     text = Report(quickRun, runner.CHECK_GROUPS, tmp_path)
     assert quickRun.lines[0] in text
     for c in quickRun.checks:
