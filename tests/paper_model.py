@@ -10,7 +10,8 @@ import math
 import numpy as np
 
 __all__ = ['Ratio', 'FrictionAngle', 'Dampings', 'MeshCoefficients', 'BCoefficients', 'Eigenvalues',
-           'HurwitzStable', 'ChainEigenvalues', 'BoundaryDecades']
+           'HurwitzStable', 'ChainEigenvalues', 'BoundaryDecades',
+           'AxialBearingEigenvalues']
 
 
 def Ratio(p) -> float:
@@ -105,3 +106,22 @@ def BoundaryDecades(p, key: str, stable: float, unstable: float, tol: float = 1e
         mid = 0.5 * (stable + unstable)
         stable, unstable = (mid, unstable) if Stable(mid) else (stable, mid)
     return 0.5 * (stable + unstable)
+
+
+def AxialBearingEigenvalues(p, S: int) -> np.ndarray:
+    """Eigenvalues of the two-mass drive whose worm sits in an axial bearing (kA, dA, mA; not in the paper, the
+    package's extension): coordinates [phi1, phi2, xA]. The normal displacement is eq. (5) plus the axial part,
+    Delta s = r1 cos(alphaN) sin(gamma) (phi1 - u phi2) + cos(alphaN) cos(gamma) xA, the mesh force
+    F = kV Delta s + dV Delta s' acts on the worm with the lever c2 of eq. (10), on the wheel with c4 of eq. (12)
+    and on the axial coordinate as -c4 F / r2 (the axial share of the tooth force)."""
+    a, g, rho, u = p['alphaN'], p['gamma'], FrictionAngle(p), Ratio(p)
+    dT, dV = Dampings(p)
+    c2 = p['r1'] * math.cos(a) * math.sin(g + rho * S) / math.cos(rho)
+    c4 = p['r2'] * math.cos(a) * math.cos(g + rho * S) / math.cos(rho)
+    L = p['r1'] * math.cos(a) * math.sin(g)
+    lever = np.array([c2, -c4, c4 / p['r2']])               # generalized force per unit F is -lever
+    gradient = np.array([L, -L * u, math.cos(a) * math.cos(g)])
+    K = np.diag([p['kT'], 0., p['kA']]) + p['kV'] * np.outer(lever, gradient)
+    C = np.diag([dT, 0., p.get('dA', 0.)]) + dV * np.outer(lever, gradient)
+    Minv = np.diag(1. / np.array([p['J1'], p['J2'], p['mA']]))
+    return np.linalg.eigvals(np.block([[np.zeros((3, 3)), np.eye(3)], [-Minv @ K, -Minv @ C]]))
