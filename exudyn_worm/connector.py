@@ -106,6 +106,31 @@ class WormGearConnector:
 
     Use :meth:`AddSensors` before ``mbs.Assemble()`` to record the worm and wheel states, then
     :meth:`StoredMeshState` after the solve for every mesh quantity over time.
+
+    Attributes
+    ----------
+    objectNumber : exudyn.ObjectIndex
+        The ``ObjectGenericODE2`` that carries the mesh law.
+    nodeNumbers : list of exudyn.NodeIndex
+        Worm and wheel nodes, ``[nWorm, nWheel]``.
+    gear : WormGear
+        Mesh geometry, stiffness, damping, backlash and friction.
+    options : ContactOptions
+        The contact options the law was built with.
+    name : str
+        Name of the Exudyn object.
+    userFunction : callable or None
+        The user function given to Exudyn (kept alive here).
+    referenceAngles : list of float
+        Reference coordinates in rad of the worm and wheel nodes, added to their stored displacements.
+    sensors : dict
+        Sensors added by :meth:`AddSensors`, by name.
+    axialNodeNumber : exudyn.NodeIndex or None
+        Node of the worm's axial coordinate in m; None: the worm is rigid axially.
+    axialReference : float
+        Reference coordinate of the axial node in m.
+    useSymbolic : bool
+        True: C++-evaluated symbolic user function; False: plain Python user function.
     """
     objectNumber: Any
     nodeNumbers: List[Any]

@@ -717,7 +717,23 @@ def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = N
 
 @dataclass(frozen=True)
 class StableRange:
-    """Nearest stable values of one parameter on both sides of the given value (None: not found)."""
+    """Nearest stable values of one parameter on both sides of the given value (None: not found).
+
+    Attributes
+    ----------
+    key : str
+        The parameter key (``'J1'`` or ``'kT'``).
+    given : float
+        Its given value, in ``unit``.
+    below, above : float or None
+        Nearest stable value below and above the given one, in ``unit`` (None: none within the span).
+    ratioName : str
+        The chart ratio the parameter is shown as (``'J1/J2'``, ``'kT/(kV r1^2)'``).
+    ratioScale : float
+        Multiply a value by this to get the chart ratio.
+    unit : str
+        Unit of ``given``, ``below`` and ``above``.
+    """
     key: str
     given: float
     below: Optional[float]

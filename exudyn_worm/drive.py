@@ -33,7 +33,22 @@ def TorsionalDampingFromMeasure(DT: float, kT: float, J1: float) -> float:
 
 
 def TorsionalDampingMeasure(dT: float, kT: float, J1: float) -> float:
-    """Damping measure D_T = dT / (2 sqrt(kT J1)), eq. (22) inverted."""
+    """Damping measure D_T = dT / (2 sqrt(kT J1)), eq. (22) inverted.
+
+    Parameters
+    ----------
+    dT : float
+        Torsional damping of the drive shaft in N*m*s/rad, >= 0.
+    kT : float
+        Torsional stiffness of the drive shaft in N*m/rad, > 0.
+    J1 : float
+        Worm-side inertia in kg*m^2, > 0.
+
+    Returns
+    -------
+    float
+        D_T, dimensionless.
+    """
     w = 'TorsionalDampingMeasure'
     return CheckNonNegative(w, 'dT', dT, 'N*m*s/rad') / (2. * math.sqrt(
         CheckPositive(w, 'kT', kT, 'N*m/rad') * CheckPositive(w, 'J1', J1, 'kg*m^2')))
@@ -63,7 +78,24 @@ def MeshDampingFromMeasure(DV: float, kV: float, r2: float, J2: float) -> float:
 
 
 def MeshDampingMeasure(dV: float, kV: float, r2: float, J2: float) -> float:
-    """Damping measure D_V = dV r2^2 / (2 sqrt(kV r2^2 J2)), eq. (23) inverted."""
+    """Damping measure D_V = dV r2^2 / (2 sqrt(kV r2^2 J2)), eq. (23) inverted.
+
+    Parameters
+    ----------
+    dV : float
+        Mesh damping in N*s/m, >= 0.
+    kV : float
+        Mesh stiffness in N/m, > 0.
+    r2 : float
+        Wheel radius in m, > 0.
+    J2 : float
+        Wheel-side inertia in kg*m^2, > 0.
+
+    Returns
+    -------
+    float
+        D_V, dimensionless.
+    """
     w = 'MeshDampingMeasure'
     kV = CheckPositive(w, 'kV', kV, 'N/m')
     r2 = CheckPositive(w, 'r2', r2, 'm')

@@ -92,7 +92,23 @@ PAPER_CHATTERS = {'reel-P1': True, 'reel-P2': False, 'reel-P3': False, 'reel-P4'
 
 
 def GetPreset(name: str) -> Dict[str, float]:
-    """Return a copy of preset ``name`` (one of :data:`PRESETS`)."""
+    """Return a copy of preset ``name`` (one of :data:`PRESETS`).
+
+    Parameters
+    ----------
+    name : str
+        Preset name, e.g. ``'reel-P1'``.
+
+    Returns
+    -------
+    dict
+        Flat parameter set (SI units, angles in rad).
+
+    Raises
+    ------
+    ValueError
+        For an unknown name.
+    """
     if name not in PRESETS:
         raise ValueError(f"unknown preset '{name}'; expected one of: {', '.join(PRESETS)}")
     return dict(PRESETS[name])
@@ -194,7 +210,15 @@ def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, floa
 
 
 class MissingParameterError(ValueError):
-    """A parameter set lacks parameters a model needs; ``keys`` names them (the CLI adds where to put them)."""
+    """A parameter set lacks parameters a model needs; ``keys`` names them (the CLI adds where to put them).
+
+    Parameters
+    ----------
+    message : str
+        The error message.
+    keys : iterable of str
+        The missing parameter keys (kept as the tuple ``keys``).
+    """
 
     def __init__(self, message: str, keys):
         super().__init__(message)

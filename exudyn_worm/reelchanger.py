@@ -259,7 +259,31 @@ def _CheckModelOptions(where: str, contactOptions, profile, useSymbolic, startFr
 
 @dataclass
 class ReelChangerModel:
-    """The Exudyn system of the reel changer and what is needed to read its results."""
+    """The Exudyn system of the reel changer and what is needed to read its results.
+
+    Attributes
+    ----------
+    systemContainer : exudyn.SystemContainer
+        The container of ``mbs`` (kept alive with it).
+    mbs : exudyn.MainSystem
+        The system, assembled.
+    drive : ElasticDrive
+        The two-mass drive of eqs. (1)-(2).
+    load : GravityLeverTorque
+        The reel's load torque, eq. (27).
+    motorSpeed : float
+        Nominal motor speed in rad/s.
+    connector : WormGearConnector
+        The worm-gear mesh.
+    rotors : dict
+        Rotor dicts of :func:`~exudyn_worm.drivetrain.CreateRotor` by name (``'worm'``, ``'wheel'``, ...).
+    sensors : dict
+        Sensors by name.
+    axialBearing : dict or None
+        The worm axial bearing of :func:`~exudyn_worm.connector.CreateWormAxialBearing` (None: rigid).
+    chain : tuple of (float, float, float)
+        The drive-side chain ``(J, k, d)`` of inertia4, spring-Damper4, ... (empty: none).
+    """
     systemContainer: Any
     mbs: Any
     drive: ElasticDrive
@@ -460,8 +484,15 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
         Time step in s, > 0; refused above the hard limit and warned about above the soft limit of
         :func:`exudyn_worm.stepsize.CheckStepSize`. Default: the drive's own
         :func:`~exudyn_worm.stepsize.RecommendedStepSize` (7.8e-4 s for P1, 5.1e-4 s for P7).
-    contactOptions, useSymbolic, startFromEquilibrium, profile
-        See :func:`BuildReelChanger`.
+    contactOptions : ContactOptions
+        Options of the worm-gear contact law (see :func:`BuildReelChanger`).
+    useSymbolic : bool
+        C++ symbolic user functions (default) or plain Python.
+    startFromEquilibrium : bool
+        Start in the static equilibrium under the initial load (default); see :func:`BuildReelChanger`.
+    profile : optional
+        Motor motion with ``AngleAndSpeed(t, ops)`` (default: constant ``motorSpeed``); see
+        :func:`BuildReelChanger`.
     solverOptions : mapping, optional
         Changes to the solver settings, keyed by their path in ``exudyn.SimulationSettings`` (e.g.
         ``{'timeIntegration.newton.maxIterations': 10}``), and ``'solverType'`` (a name of

@@ -32,6 +32,23 @@ class SimulationResult:
     :attr:`normalForceFlanks` for magnitudes), ``S``, ``sf`` (see :class:`~exudyn_worm.contact.MeshState`),
     ``wormTorque, wheelTorque`` (N*m); ``driveTorque`` M_an (eq. (6), N*m) and ``tangentialForce`` F_V
     (eq. (7), N). Units of every series: :meth:`ToCsv`'s header.
+
+    Attributes
+    ----------
+    time : numpy.ndarray
+        Output times in s.
+    series : dict of str to numpy.ndarray
+        The time series above by name, each over ``time`` (also readable as attributes).
+    J2 : float
+        Wheel-side inertia in kg*m^2 (chatter criterion: wheel inertia torque).
+    r2 : float
+        Wheel radius in m.
+    solveSeconds : float
+        Wall-clock time of the solve in s.
+    steps : int
+        Number of time steps.
+    info : dict
+        Metadata of the run (step size, maximum load torque, ...).
     """
     time: np.ndarray
     series: Dict[str, np.ndarray]

@@ -33,6 +33,11 @@ CHUNK_STEPS = 2000
 class SolverDivergedError(RuntimeError):
     """The dynamic solver failed (Newton did not converge even with reduced steps).
 
+    Parameters
+    ----------
+    message : str
+        The error message.
+
     Attributes
     ----------
     timeReached : float

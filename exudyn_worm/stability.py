@@ -214,7 +214,15 @@ def CharacteristicCoefficients(drive: ElasticDrive, S: int, operatingPoint: Opti
 def HurwitzConditions(b: Sequence[float]) -> np.ndarray:
     """Left-hand sides of the Routh-Hurwitz conditions (17), (18), (19); all > 0 for stability.
 
-    ``b`` may be an array of shape ``(4, ...)`` (the result has shape ``(3, ...)``).
+    Parameters
+    ----------
+    b : array_like
+        Coefficients b1..b4 of eq. (16), shape ``(4,)`` or ``(4, ...)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``[b1, b1 b2 - b3, (b1 b2 - b3) b3 - b1^2 b4]``, shape ``(3,)`` or ``(3, ...)``.
     """
     b1, b2, b3, b4 = b
     return np.array([b1, b1 * b2 - b3, (b1 * b2 - b3) * b3 - b1**2 * b4])
@@ -223,7 +231,15 @@ def HurwitzConditions(b: Sequence[float]) -> np.ndarray:
 def HurwitzStable(b: Sequence[float]):
     """Routh-Hurwitz classification of the quartic (15): b1, b3, b4 > 0 and (18), (19) > 0.
 
-    Returns a bool for one polynomial; for ``b`` of shape ``(4, ...)`` a bool array of shape ``(...)``.
+    Parameters
+    ----------
+    b : array_like
+        Coefficients b1..b4 of eq. (16), shape ``(4,)`` or ``(4, ...)``.
+
+    Returns
+    -------
+    bool or numpy.ndarray
+        A bool for one polynomial; for ``b`` of shape ``(4, ...)`` a bool array of shape ``(...)``.
     """
     b = np.asarray(b, dtype=float)
     stable = (b[0] > 0) & (b[2] > 0) & (b[3] > 0) & np.all(HurwitzConditions(b) > 0, axis=0)
@@ -277,7 +293,18 @@ def _SortEigenvalues(lam) -> np.ndarray:
 
 
 def EigenvaluesFromPolynomial(b: Sequence[float]) -> np.ndarray:
-    """The four roots of P(lambda) = lambda^4 + b1 lambda^3 + b2 lambda^2 + b3 lambda + b4, eq. (15)."""
+    """The four roots of P(lambda) = lambda^4 + b1 lambda^3 + b2 lambda^2 + b3 lambda + b4, eq. (15).
+
+    Parameters
+    ----------
+    b : array_like
+        Coefficients b1..b4 of eq. (16), shape ``(4,)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        The four (complex) roots in 1/s.
+    """
     return _SortEigenvalues(np.roots(np.concatenate([[1.], np.asarray(b, dtype=float)])))
 
 
@@ -349,6 +376,15 @@ class ContactStability:
 
     Build it with :meth:`FromCoefficients` (analytical) or :meth:`FromEigenvalues` (e.g. from an
     Exudyn linearization); the other quantities are derived the same way in both cases.
+
+    Attributes
+    ----------
+    S : int
+        Contact parameter, +1 or -1 (eq. (8)).
+    b : numpy.ndarray
+        Coefficients b1..b4 of the characteristic polynomial (15), eq. (16).
+    eigenvalues : numpy.ndarray
+        The four eigenvalues in 1/s.
     """
     S: int
     b: np.ndarray
@@ -414,7 +450,14 @@ class ContactStability:
 class StabilityAnalysis:
     """Stability of an elastic worm drive for both contact states, plus the classic criteria.
 
-    ``operatingPoint``: the point the drive was linearized about (None: constant mu, the paper's model).
+    Attributes
+    ----------
+    drive : ElasticDrive
+        The drive analysed.
+    contact : dict of int to ContactStability
+        The result of each contact state, keyed by S = +1 and -1.
+    operatingPoint : OperatingPoint or None
+        The point the drive was linearized about (None: constant mu, the paper's model).
     """
     drive: ElasticDrive
     contact: Dict[int, ContactStability]

@@ -4,11 +4,12 @@ expected and what was received, instead of an error from deep inside (pybind11, 
 Each case was reproduced by a QA pass before its fix (the failure it gave then is in the comment)."""
 import math
 
+import exudyn as exu
 import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.charts import ComputeStabilityChart
+from exudyn_worm.charts import ComputeStabilityChart, PresetChartPoints
 from exudyn_worm.contact import MeshContact, NUMPY_OPS
 from exudyn_worm.design import DesignCheck
 from exudyn_worm.linearization import AnalyzeLinearStability
@@ -18,7 +19,6 @@ P1 = ew.GetPreset('reel-P1')
 
 
 def _System():
-    import exudyn as exu
     SC = exu.SystemContainer()
     return SC, SC.AddSystem()
 
@@ -175,6 +175,7 @@ CASES = {
 }
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('name', list(CASES))
 def test_bad_input_gets_a_clear_message(name):
     call, error, message = CASES[name]
@@ -185,6 +186,7 @@ def test_bad_input_gets_a_clear_message(name):
     assert all(part in str(info.value) for part in parts), str(info.value)
 
 
+@pytest.mark.messages
 def test_analyze_linear_stability_takes_a_model_with_mbs():
     """A ReelChangerModel instead of model.mbs raised AttributeError; it is accepted now, with the same result."""
     model = ew.BuildReelChanger(P1)
@@ -204,7 +206,6 @@ def test_linear_state_takes_a_tuple_or_list():
 def test_chart_points_take_preset_names():
     """points=['P1'] raised "'list' object has no attribute 'items'"; preset names are marked at their coordinates."""
     pytest.importorskip('matplotlib')
-    from exudyn_worm.charts import PresetChartPoints
     ax = _Chart().plot(points=['P1', 'reel-P7'])
     texts = {t.get_text(): t.xy for t in ax.texts}
     expected = PresetChartPoints(['reel-P1', 'reel-P7'])
@@ -237,6 +238,7 @@ def test_worm_gear_takes_the_axial_bearing_dict():
     assert int(connector.axialNodeNumber) == int(axial['nodeNumber'])
 
 
+@pytest.mark.messages
 def test_worm_gear_refuses_one_rotor_twice():
     SC, mbs = _System()
     worm, _ = _Two(mbs)
@@ -249,9 +251,11 @@ def test_rotor_errors_add_nothing():
     SC, mbs = _System()
     a, b = _Two(mbs)
     before = (mbs.systemData.NumberOfNodes(), mbs.systemData.NumberOfObjects(), mbs.systemData.NumberOfMarkers())
-    for call in (lambda: ew.CreateRotor(mbs, 1., name=5), lambda: ew.CreateShaft(mbs, [a, a], stiffness=1.),
-                 lambda: ew.CreateRotorTorque(mbs, a, lambda phi, omega, t: 0.)):
-        with pytest.raises((TypeError, ValueError)):
+    for call, error, message in ((lambda: ew.CreateRotor(mbs, 1., name=5), TypeError, "CreateRotor: 'name'"),
+                                 (lambda: ew.CreateShaft(mbs, [a, a], stiffness=1.), ValueError, "CreateShaft: 'rotors'"),
+                                 (lambda: ew.CreateRotorTorque(mbs, a, lambda phi, omega, t: 0.), TypeError,
+                                  'CreateRotorTorque: calling the law')):
+        with pytest.raises(error, match=message):
             call()
     assert (mbs.systemData.NumberOfNodes(), mbs.systemData.NumberOfObjects(),
             mbs.systemData.NumberOfMarkers()) == before

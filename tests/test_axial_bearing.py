@@ -15,6 +15,7 @@ from exudyn_worm.reelchanger import BuildReelChanger, SimulateReelChanger
 P1 = GetPreset('reel-P1')
 
 
+@pytest.mark.physics
 def test_contact_law_axial_displacement_acts_like_a_worm_rotation():
     """xA shifts the thread like a worm rotation xA/(r1 tan gamma): Delta s grows by cos(alphaN) cos(gamma) xA."""
     gear = DriveFromParameters(P1).gear
@@ -32,6 +33,7 @@ def test_contact_law_axial_displacement_acts_like_a_worm_rotation():
     assert withAxial.axialForce == pytest.approx(-withAxial.wheelTorque / gear.r2, rel=1e-15)
 
 
+@pytest.mark.physics
 def test_axial_force_is_the_spring_energy_gradient_without_friction():
     """rho = 0: the axial force is -dU/dxA of the mesh spring energy U = kV Delta s^2 / 2."""
     gear = DriveFromParameters(ApplyOverrides(P1, {'mu': 0.})).gear
@@ -41,6 +43,7 @@ def test_axial_force_is_the_spring_energy_gradient_without_friction():
     np.testing.assert_allclose(state.axialForce, -gear.kV * gear.axialLever**2 * xA, rtol=1e-12)
 
 
+@pytest.mark.physics
 def test_contact_law_without_axial_arguments_is_unchanged():
     gear = DriveFromParameters(ApplyOverrides(P1, {'backlash': 1e-4})).gear
     args = (np.linspace(-1e-3, 1e-3, 11), 1e-6, np.linspace(-1, 1, 11), 0.01)
@@ -50,6 +53,7 @@ def test_contact_law_without_axial_arguments_is_unchanged():
         np.testing.assert_array_equal(getattr(plain, name), getattr(zero, name))
 
 
+@pytest.mark.physics
 def test_default_off_keeps_every_result_bit_identical(tmp_path, monkeypatch):
     """Absent keys and kA = 0 build the same two-mass system and give bit-identical P1 series (chatter run)."""
     monkeypatch.chdir(tmp_path)
@@ -64,6 +68,7 @@ def test_default_off_keeps_every_result_bit_identical(tmp_path, monkeypatch):
     assert os.listdir(tmp_path) == []
 
 
+@pytest.mark.physics
 def test_stiff_axial_bearing_converges_to_the_rigid_worm():
     peaks = {}
     for kA in (None, 1e10, 1e11):
@@ -73,6 +78,7 @@ def test_stiff_axial_bearing_converges_to_the_rigid_worm():
     assert error11 < 0.01 and error11 < error10 / 3
 
 
+@pytest.mark.physics
 @pytest.mark.parametrize('useSymbolic', [True, False])
 def test_axial_bearing_and_chain_start_in_equilibrium(useSymbolic):
     p = ApplyOverrides(P1, {'kA': 5e8, 'dA': 1e4, 'mA': 5., 'J4': 0.05, 'k4': 2e4, 'd4': 1., 'J5': 0.02, 'k5': 1e5})
@@ -85,6 +91,7 @@ def test_axial_bearing_and_chain_start_in_equilibrium(useSymbolic):
     assert r.series['driveTorque'][0] == pytest.approx(r.series['wormTorque'][0], rel=1e-6)   # same as two masses
 
 
+@pytest.mark.physics
 def test_symbolic_and_python_agree_with_axial_bearing():
     p = ApplyOverrides(P1, {'kA': 1e9, 'dA': 1e4, 'mA': 5., 'backlash': 0.25e-3})
     fast, slow = (SimulateReelChanger(p, endTime=2.6, useSymbolic=s) for s in (True, False))
@@ -95,6 +102,7 @@ def test_symbolic_and_python_agree_with_axial_bearing():
                                atol=1e-6 * np.max(np.abs(fast.series['xA'])))
 
 
+@pytest.mark.messages
 def test_parameter_keys_and_their_errors():
     assert all(k in PARAMETER_UNITS for k in ('kA', 'dA', 'mA', 'J4', 'k4', 'd4', 'J5', 'k5', 'd17'))
     assert 'J3' not in PARAMETER_UNITS and 'k0' not in PARAMETER_UNITS

@@ -37,6 +37,7 @@ def _Window(result, t0, t1):
     return (result.time >= t0) & (result.time <= t1)
 
 
+@pytest.mark.physics
 def test_starts_in_equilibrium(reference):
     # the scipy model starts from SteadyInitialState as the Exudyn model does: no initial acceleration
     rhs, y0, *_ = reference.ReelChangerOde(GetPreset('reel-P1'))
@@ -45,11 +46,13 @@ def test_starts_in_equilibrium(reference):
     assert omega1 == pytest.approx(y0[2]) and omega2 == pytest.approx(y0[3])
 
 
+@pytest.mark.physics
 def test_same_output_grid(runs):
     ours, scipy = runs
     np.testing.assert_allclose(scipy.time, ours.time, rtol=0, atol=1e-12)
 
 
+@pytest.mark.physics
 def test_lifting_phase_agrees_pointwise(runs):
     # 0..2 s: smooth quasi-static lifting. The solutions differ only by the integration errors (Exudyn's
     # generalized-alpha at h = 5e-4 s, LSODA at rtol 1e-8): measured 4e-7 of the force and 5e-10 rad.
@@ -64,6 +67,7 @@ def test_lifting_phase_agrees_pointwise(runs):
     assert np.max(np.abs(ours.alpha2[m])) < 0.1 and np.max(np.abs(scipy.alpha2[m])) < 0.1   # no chatter yet
 
 
+@pytest.mark.physics
 def test_chatter_onset_agrees(runs):
     # 2.5..3 s: the chatter has built up (the paper's P1 chatters in the lowering phase). Self-excited
     # oscillations drift in phase, so the amplitudes are compared, not the samples: peak |phi2''| and peak

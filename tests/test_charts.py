@@ -42,6 +42,7 @@ def Omega(b):
 
 
 # --- agreement with the single-drive analysis -------------------------------------------------------------------
+@pytest.mark.physics
 @pytest.mark.parametrize('DV, DTV', [(0.014, 1.), (0.014, 25.), (0.056, 5.)])
 def test_mask_agrees_with_scalar_analysis_at_random_points(DV, DTV):
     chart = ComputeStabilityChart(GEAR25, J2_25, DV, DTV, resolution=(150, 130))
@@ -64,6 +65,7 @@ def test_mask_agrees_with_scalar_analysis_at_random_points(DV, DTV):
     assert checked > 400
 
 
+@pytest.mark.physics
 @settings(max_examples=200, deadline=None)
 @given(logX, logY, DVs, DTVs, st.sampled_from([-1, 1]))
 def test_grid_functions_agree_with_analysis(lx, ly, DV, DTV, S):
@@ -77,6 +79,7 @@ def test_grid_functions_agree_with_analysis(lx, ly, DV, DTV, S):
     assert bool(UnstableGrid(GEAR25, J2_25, x, y, DV, DTV, S)) == (not HurwitzStable(b))
 
 
+@pytest.mark.physics
 def test_chart_coordinates_of_p1_and_its_verdict():
     drive = DriveFromParameters(GetPreset('reel-P1'))
     c = ChartCoordinates(drive)
@@ -91,6 +94,7 @@ def test_chart_coordinates_of_p1_and_its_verdict():
                     AnalyzeStability(drive).contact[-1].eigenvalues.real.max(), rtol=1e-9)
 
 
+@pytest.mark.physics
 def test_many_drives_at_once_broadcast():
     x = np.array([0.107, 0.107, 0.214, 0.0214])
     y = np.array([0.00303, 0.0091, 0.00303, 0.00303])
@@ -104,6 +108,7 @@ def test_many_drives_at_once_broadcast():
 
 
 # --- largest real part ----------------------------------------------------------------------------------------
+@pytest.mark.physics
 @pytest.mark.parametrize('DV, DTV, S', [(0.014, 1., -1), (0.056, 25., -1), (0.014, 5., 1), (0.014, 0.2, -1)])
 def test_max_real_part_sign_matches_mask_and_eigvals(DV, DTV, S):
     chart = ComputeStabilityChart(GEAR25, J2_25, DV, DTV, resolution=200, S=S)
@@ -119,6 +124,7 @@ def test_max_real_part_sign_matches_mask_and_eigvals(DV, DTV, S):
     assert_allclose(mrp[i, j], ref, rtol=0, atol=1e-10 * Omega(b[:, i, j]).max())
 
 
+@pytest.mark.physics
 def test_max_real_part_of_hard_polynomials():
     cases = [np.poly([-1., -1., -1., -1.]),                  # fourfold root: Newton cannot polish it
              np.poly([1., -2., -3., -4.]),                   # real roots, b4 < 0
@@ -131,6 +137,7 @@ def test_max_real_part_of_hard_polynomials():
 
 
 # --- dimensionless chart ---------------------------------------------------------------------------------------
+@pytest.mark.physics
 @settings(max_examples=150, deadline=None)
 @given(logX, logY, DVs, DTVs, st.floats(0.1, 10.), st.floats(0.01, 100.), st.floats(0.01, 1000.))
 def test_chart_depends_only_on_dimensionless_gear(lx, ly, DV, DTV, size, stiffness, J2):
@@ -152,6 +159,7 @@ def test_chart_depends_only_on_dimensionless_gear(lx, ly, DV, DTV, size, stiffne
 NEIGHBOURHOOD = 0.01
 
 
+@pytest.mark.physics
 @settings(max_examples=300, deadline=None)
 @given(logX, logY, st.floats(0.005, 0.2), st.floats(0., 30.))
 def test_sets_25_and_28_give_the_same_verdict(lx, ly, DV, DTV):
@@ -162,6 +170,7 @@ def test_sets_25_and_28_give_the_same_verdict(lx, ly, DV, DTV):
     assert bool(UnstableGrid(GEAR28, J2_28, x, y, DV, DTV)) == bool(around[1, 1])
 
 
+@pytest.mark.physics
 def test_sets_25_and_28_charts_nearly_identical():
     c25 = ComputeStabilityChart(GEAR25, J2_25, 0.014, 1., resolution=300)
     c28 = ComputeStabilityChart(GEAR28, J2_28, 0.014, 1., resolution=300)
@@ -173,6 +182,7 @@ def test_sets_25_and_28_charts_nearly_identical():
 
 
 # --- S = +1 and the paper's charts -----------------------------------------------------------------------------
+@pytest.mark.physics
 @pytest.mark.parametrize('DV', [0.014, 0.056])
 @pytest.mark.parametrize('DTV', [1., 5., 25.])
 def test_no_unstable_points_for_S_plus_1(DV, DTV):
@@ -182,6 +192,7 @@ def test_no_unstable_points_for_S_plus_1(DV, DTV):
     assert chart.boundaries == [] and (chart.maxRealPart < 0).all()
 
 
+@pytest.mark.physics
 def test_damping_shrinks_the_unstable_x_range():
     """Sanity of the chart object (not a paper statement): at D_TV = 5 more mesh damping ends the unstable
     stiffness ratios earlier."""
@@ -190,6 +201,7 @@ def test_damping_shrinks_the_unstable_x_range():
 
 
 # --- boundaries and ranges ---------------------------------------------------------------------------------
+@pytest.mark.physics
 def test_boundary_points_separate_stable_from_unstable():
     chart = ComputeStabilityChart(GEAR25, J2_25, 0.014, 5., resolution=200)
     lines = chart.boundaries
@@ -207,6 +219,7 @@ def test_boundary_points_separate_stable_from_unstable():
         assert verdicts.any() and not verdicts.all()
 
 
+@pytest.mark.physics
 def test_ranges_cover_the_unstable_points_and_the_boundary():
     chart = ComputeStabilityChart(GEAR25, J2_25, 0.014, 25., resolution=200)
     (x0, x1), (y0, y1) = chart.unstableXRange, chart.unstableYRange
@@ -223,6 +236,7 @@ def test_ranges_cover_the_unstable_points_and_the_boundary():
     assert ext.shape == chart.x.shape and (ext[~chart.unstable.any(axis=0)] == 0).all()
 
 
+@pytest.mark.physics
 @pytest.mark.parametrize('DV, DTV', [(0.014, 1.), (0.056, 5.)])
 def test_range_ends_do_not_depend_on_the_resolution(DV, DTV):
     """At D_V = 0.014, D_TV = 1 the region ends in a needle thinner than a grid step of a 100 x 100 grid;
@@ -235,6 +249,7 @@ def test_range_ends_do_not_depend_on_the_resolution(DV, DTV):
     assert not ends[0].IsUnstable(x1 * 1.001, dense).any() and ends[0].IsUnstable(x1 / 1.001, dense).any()
 
 
+@pytest.mark.physics
 def test_contour_lines_of_a_circle():
     u = np.linspace(-1., 1., 81)
     field = u[None, :]**2 + u[:, None]**2 - 0.25
@@ -270,6 +285,7 @@ def test_grid_is_logarithmic_and_maxrealpart_is_lazy():
 
 
 # --- bad input -----------------------------------------------------------------------------------------------
+@pytest.mark.messages
 @pytest.mark.parametrize('kwargs, error, message', [
     (dict(DV=-0.1), ValueError, r"ComputeStabilityChart: 'DV' must be >= 0, got -0.1"),
     (dict(DTV=math.nan), ValueError, r"ComputeStabilityChart: 'DTV' must be finite"),
@@ -290,6 +306,7 @@ def test_bad_input(kwargs, error, message):
         ComputeStabilityChart(**args)
 
 
+@pytest.mark.messages
 def test_bad_input_of_grid_functions():
     with pytest.raises(ValueError, match=r"ChartCoefficients: 'x' must be finite and > 0 everywhere, got -1"):
         UnstableGrid(GEAR25, J2_25, np.array([0.1, -1.]), 0.01, 0.014, 1.)

@@ -1,5 +1,6 @@
 """The chatter rule of SimulationResult.Chatter: relative to the mesh torque, and never on an unloaded mesh."""
 import numpy as np
+import pytest
 
 from exudyn_worm import GetPreset, SimulateReelChanger
 from exudyn_worm.results import CHATTER_MIN_MESH_TORQUE, SimulationResult
@@ -20,6 +21,7 @@ def test_relative_rule_and_floor():
     assert _Result(10 * CHATTER_MIN_MESH_TORQUE, 1e-3).Chatter(0., 1.)
 
 
+@pytest.mark.physics
 def test_unloaded_reel_changer_does_not_chatter():
     """loadMass = 0: the mesh carries only round-off (|phi2''| about 1e-9 rad/s^2), which the relative rule
     alone called chatter in both windows."""

@@ -1,6 +1,7 @@
 """Tests of the exudyn-worm command line (exudyn_worm.cli), run in-process with Main([...])."""
 import json
 import os
+import re
 import subprocess
 import sys
 import types
@@ -11,6 +12,7 @@ from numpy.testing import assert_allclose
 import exudyn_worm
 from exudyn_worm import cli
 from exudyn_worm.cli import Main
+from exudyn_worm.stability import AnalyzeStability
 
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
 # issue 15 added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
@@ -134,7 +136,6 @@ def test_hint_values_are_stable_and_unstable_inside(capsys):
     rc, out, _ = Run(capsys, 'stability')
     hint = next(line for line in out.splitlines() if line.startswith('Hint:'))
     # the paper's P2 (J1 = 0.3), P3 (0.033), P4 (kT = 14000), P5 (1400) lie beyond the reported limits
-    import re
     j1Low, j1High = (float(x) for x in re.findall(r'J1 [<>]= ([0-9.e+-]+) kg', hint))
     kTLow, kTHigh = (float(x) for x in re.findall(r'kT [<>]= ([0-9.e+-]+) N', hint))
     assert 0.033 < j1Low < 0.1 < j1High < 0.3
@@ -161,12 +162,33 @@ def test_help(capsys):
 
 
 # --- errors: one line on stderr, exit status 2 -----------------------------------------------------
-BAD_CASES = ('no command', 'unknown command', 'unknown option', 'bad method', 'unknown preset', 'unknown key',
-             'no equals sign', 'malformed value', 'non-finite value', 'wrong unit', 'angle for a ratio',
-             'negative inertia', 'zero stiffness', 'pitch angle out of range', 'missing parameters',
-             'conflicting overrides', 'missing config', 'config is a directory', 'malformed config',
-             'unknown key in config', 'wrong unit in config', 'missing --set value',
-             'removed validate command')
+# case: the words that say it is this error and not another one (a stale case that fails on 'unrecognized
+# arguments' instead of its own error would pass the exit-2 checks alone)
+BAD_CASES = {
+    'no command': 'the following arguments are required: COMMAND',
+    'unknown command': "invalid choice: 'bogus'",
+    'unknown option': 'unrecognized arguments: --bogus',
+    'bad method': "argument --method: invalid choice: 'fem'",
+    'unknown preset': "unknown preset 'reel-P9'",
+    'unknown key': "unknown parameter 'foo'",
+    'no equals sign': "expected KEY=VALUE",
+    'malformed value': "'J1=0.1.2'",
+    'non-finite value': "'J1' must be finite, got 'nan'",
+    'wrong unit': "'kT' must be in N*m/rad",
+    'angle for a ratio': "'mu' must be a dimensionless number",
+    'negative inertia': "'J1' must be > 0 kg*m^2, got -0.1",
+    'zero stiffness': "'kT' must be > 0 N*m/rad, got 0",
+    'pitch angle out of range': "'gamma' must be in (0, pi/2) rad",
+    'missing parameters': 'missing parameter(s) J1, kT',
+    'conflicting overrides': "both 'mu' and 'rho' are given",
+    'missing config': 'missing.toml',
+    'config is a directory': 'cannot read it',
+    'malformed config': 'not valid TOML',
+    'unknown key in config': "unknown parameter 'foo'",
+    'wrong unit in config': "'kT' must be in N*m/rad",
+    'missing --set value': 'argument --set: expected one argument',
+    'removed validate command': "invalid choice: 'validate'",
+}
 
 
 def _Bad(tmp_path):
@@ -204,6 +226,7 @@ def _Bad(tmp_path):
     }
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('case', BAD_CASES)
 @pytest.mark.parametrize('json_', [False, True])
 def test_errors_one_line_exit_2(capsys, tmp_path, case, json_):
@@ -216,10 +239,12 @@ def test_errors_one_line_exit_2(capsys, tmp_path, case, json_):
     assert rc == 2
     assert out == ''
     assert err.startswith('exudyn-worm: error: ') and err.endswith('\n')
+    assert BAD_CASES[case] in err, (case, err)
     assert err.count('\n') == 1, err
     assert 'Traceback' not in err
 
 
+@pytest.mark.messages
 def test_error_messages_are_specific(capsys, tmp_path):
     expected = {'unknown preset': ['reel-P9', 'reel-P1'],
                 'unknown key': ["'foo'", 'alphaN', 'motorSpeed'],
@@ -236,6 +261,7 @@ def test_error_messages_are_specific(capsys, tmp_path):
             assert fragment in err, (case, fragment, err)
 
 
+@pytest.mark.messages
 def test_exudyn_method_unavailable(capsys, monkeypatch):
     monkeypatch.setitem(sys.modules, 'exudyn_worm.linearization', None)   # import fails
     rc, out, err = Run(capsys, 'stability', '--method', 'exudyn', '--json')
@@ -244,7 +270,6 @@ def test_exudyn_method_unavailable(capsys, monkeypatch):
 
 
 def test_exudyn_method_uses_linearization(capsys, monkeypatch):
-    from exudyn_worm.stability import AnalyzeStability
     calls = []
 
     def Fake(drive):
@@ -300,6 +325,7 @@ def test_python_m_exudyn_worm_json():
     assert 'Traceback' not in result.stderr
 
 
+@pytest.mark.messages
 def test_python_m_exudyn_worm_error():
     result = _Subprocess('stability', '--set', 'kT=7 kg')
     assert result.returncode == 2 and result.stdout == ''

@@ -5,6 +5,7 @@ import json
 import pytest
 from numpy.testing import assert_allclose
 
+import exudyn_worm.charts as charts
 from exudyn_worm.charts import ComputeStabilityChart
 from exudyn_worm.cli import Main
 from exudyn_worm.presets import GearFromParameters, GetPreset
@@ -71,6 +72,7 @@ def test_output_png(capsys, tmp_path):
     assert status == 0 and target.read_bytes()[:4] == b'\x89PNG' and 'wrote' in err
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('argv, message', [
     (['--DV', '-1'], "'DV' must be >= 0, got -1"),
     (['--DTV', '1', 'nan'], "'DTV' must be finite"),
@@ -90,8 +92,8 @@ def test_bad_input_one_line_exit_2(capsys, argv, message):
     assert err.startswith('exudyn-worm: error: ') and err.count('\n') == 1 and message in err
 
 
+@pytest.mark.messages
 def test_output_checked_before_computing(capsys, tmp_path, monkeypatch):
-    import exudyn_worm.charts as charts
     monkeypatch.setattr(charts, 'ComputeStabilityChart', lambda *a, **k: pytest.fail('computed'))
     (tmp_path / 'adir.png').mkdir()
     for path, message in ((tmp_path / 'adir.png', 'is a folder'),

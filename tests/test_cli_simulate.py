@@ -4,8 +4,12 @@ import os
 
 import pytest
 
+import exudyn_worm.reelchanger as reelchanger
+from exudyn_worm import GetPreset, SimulateReelChanger
 from exudyn_worm.cli import Main
 from exudyn_worm.commands.simulate import ParseWindows
+from exudyn_worm.reelchanger import DefaultWindows, RotationPeriod
+from exudyn_worm.solve import SolverDivergedError
 
 WINDOW_KEYS = {'t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
                'fractionSNegative', 'minWormSpeed', 'chatter'}
@@ -76,6 +80,7 @@ BAD_INPUT = [
 ]
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('argv, fragment', BAD_INPUT, ids=[' '.join(a) for a, _ in BAD_INPUT])
 def test_simulate_bad_input(capsys, tmp_path, monkeypatch, argv, fragment):
     """One line on stderr, exit 2, no traceback, nothing written (checked before anything is computed)."""
@@ -91,9 +96,8 @@ def test_simulate_bad_input(capsys, tmp_path, monkeypatch, argv, fragment):
     assert (tmp_path / 'afile').read_text() == 'keep'
 
 
+@pytest.mark.messages
 def test_simulate_divergence_is_one_line(capsys, monkeypatch):
-    import exudyn_worm.reelchanger as reelchanger
-    from exudyn_worm.solve import SolverDivergedError
 
     def Fail(mbs, ss, *args, **kwargs):
         raise SolverDivergedError('the Exudyn solver failed at t = 0.25 s of 1 s (step size 0.0005 s)', 0.25, 1., 5e-4)
@@ -118,8 +122,6 @@ def test_end_time_below_one_rotation_and_default_windows(capsys):
 
 
 def test_default_windows_follow_the_end_time():
-    from exudyn_worm import GetPreset
-    from exudyn_worm.reelchanger import DefaultWindows, RotationPeriod
     p = GetPreset('reel-P1')
     T = RotationPeriod(p)
     assert DefaultWindows(p) == [(0., T / 4), (T / 4, 3 * T / 4), (3 * T / 4, T)]
@@ -130,7 +132,6 @@ def test_default_windows_follow_the_end_time():
 
 
 def test_run_size_limit_api():
-    from exudyn_worm import GetPreset, SimulateReelChanger
     with pytest.raises(ValueError, match=r"SimulateReelChanger: endTime 10 s at stepSize 0.0005 s needs 2e\+04 "
                                          r"solver steps, more than the limit maxSteps = 1000"):
         SimulateReelChanger(GetPreset('reel-P1'), endTime=10., stepSize=5e-4, maxSteps=1000)

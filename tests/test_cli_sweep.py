@@ -1,9 +1,15 @@
 """``exudyn-worm sweep``: options, errors, JSON, table, resume, plots."""
 import json
+import math
+import signal
+import subprocess
+import sys
+import time
 
 import pytest
 
 from exudyn_worm.cli import Main
+from exudyn_worm.presets import GetPreset
 from exudyn_worm.study import ReadResults
 
 SHORT = ['--windows', '0:0.5,0.5:1', '--end-time', '1', '--quiet']
@@ -33,6 +39,7 @@ def _Error(capsys, argv, text):
     (['sweep', '--preset', 'chart', '--vary', 'J1=0.001,0.002'], 'sweep: the reel-changer simulation needs'),
     (['sweep', '--vary', 'J1=0.1', '--output', 'nodir/a.csv'], '--output nodir/a.csv: the folder nodir does not exist'),
 ])
+@pytest.mark.messages
 def test_bad_input(capsys, argv, text):
     _Error(capsys, argv, text)
 
@@ -82,10 +89,6 @@ def test_table_agreement_and_plots(capsys, tmp_path):
 
 def test_sigterm_saves_and_says_how_to_resume(tmp_path):
     # a job scheduler's time limit (SIGTERM) ends the study like Ctrl-C: exit 130, finished runs kept, hint on stderr
-    import signal
-    import subprocess
-    import sys
-    import time
     out = tmp_path / 'runs.csv'
     argv = [sys.executable, '-m', 'exudyn_worm', 'sweep', '--vary', 'J1=0.02:0.3:12:log', '--workers', '1',
             '--output', str(out)] + SHORT
@@ -112,8 +115,11 @@ def test_default_windows_follow_a_short_end_time(capsys, tmp_path):
                  '--json']) == 0
     data = json.loads(capsys.readouterr().out)
     assert [r['status'] for r in data['runs']] == ['ok', 'ok']
-    assert [[(w['t0'], w['t1']) for w in r['windows']] for r in data['runs']] == [[(0., 2.0000634476120305),
-                                                                                  (2.0000634476120305, 4.)]] * 2
+    # a quarter rotation of the wheel: T/4 = (pi/2) u / motorSpeed with u = r2 / (r1 tan gamma), eq. (3)
+    p1 = GetPreset('reel-P1')
+    quarter = math.pi / 2 * p1['r2'] / (p1['r1'] * math.tan(p1['gamma'])) / p1['motorSpeed']
+    windows = [[(w['t0'], w['t1']) for w in r['windows']] for r in data['runs']]
+    assert windows == [[(0., pytest.approx(quarter, rel=1e-12)), (pytest.approx(quarter, rel=1e-12), 4.)]] * 2
     assert [r['loweringChatter'] for r in data['runs']] == [True, True]          # P1 chatters while lowering
 
 

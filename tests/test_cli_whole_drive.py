@@ -2,12 +2,15 @@
 import json
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import pytest
 
-from exudyn_worm.linearization import LinearStabilityFromParameters
+from exudyn_worm import cli
+from exudyn_worm.cli import Main
 from exudyn_worm.config import ResolveParameters
+from exudyn_worm.linearization import LinearStabilityFromParameters
 
 ROOT = Path(__file__).resolve().parents[1]
 FIGURE19 = ROOT / 'examples' / 'drives' / 'figure19.toml'
@@ -35,6 +38,7 @@ def test_chain_uses_the_linearized_whole_drive(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('sets', [['--set', 'J4=0.05', '--set', 'k4=2e4'], ['--set', 'kA=7e8', '--set', 'mA=5']])
 def test_analytical_method_refuses_components_it_does_not_model(tmp_path, sets):
     run = _Run(tmp_path, '--preset', 'reel-P1', *sets, '--method', 'analytical')
@@ -44,10 +48,9 @@ def test_analytical_method_refuses_components_it_does_not_model(tmp_path, sets):
     assert len(run.stderr.strip().splitlines()) == 1
 
 
+@pytest.mark.messages
 def test_warnings_of_any_subcommand_read_as_one_line(capsys):
     """A Python warning raised inside a subcommand is printed as `exudyn-worm: warning: ...`, without a path."""
-    import warnings
-    from exudyn_worm import cli
     command = cli.Subcommand(name='warn-test', help='emits a warning', addArguments=lambda parser: None,
                              run=lambda args: warnings.warn('something\n to note', UserWarning) or 0,
                              parameterOptions=False)
@@ -71,12 +74,12 @@ SUBCOMMAND_ARGS = {'stability': [], 'check': [], 'chart': ['--resolution', '10']
                    'sweep': ['--vary', 'J1=0.1,0.2', '--quiet', '--output', 'out.csv']}
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('command', sorted(SUBCOMMAND_ARGS))
 @pytest.mark.parametrize('argv, fragment', INCOMPLETE_CHAIN, ids=[' '.join(a) for a, _ in INCOMPLETE_CHAIN])
 def test_incomplete_chain_is_one_line_exit_2_in_every_subcommand(capsys, tmp_path, monkeypatch, command, argv,
                                                                  fragment):
     """Checked where the parameter set is resolved: exit 2, one line, no traceback, nothing written."""
-    from exudyn_worm.cli import Main
     (tmp_path / 'chain.toml').write_text(CHAIN_WITHOUT_STIFFNESS)
     work = tmp_path / 'cwd'
     work.mkdir()

@@ -22,12 +22,14 @@ def modules():
     return scipyReference, LoadScript('benchmarks/compiled_reference.py', 'compiled_reference')
 
 
+@pytest.mark.physics
 def test_generated_law_is_the_package_law(modules):
     _, compiled = modules
     source = compiled.ReelChangerC(GetPreset('reel-P1'))
     assert 'sgn(' in source and 'fmax(' in source and 'sin(' in source and 'cos(' in source
 
 
+@pytest.mark.physics
 def test_same_trajectory_as_scipy(modules):
     scipyReference, compiled = modules
     p1 = GetPreset('reel-P1')

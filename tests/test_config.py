@@ -7,7 +7,7 @@ import sys
 import pytest
 from hypothesis import given, strategies as st
 
-from exudyn_worm import config
+from exudyn_worm import config, parameters
 from exudyn_worm.config import (DEFAULT_PRESET, LoadConfig, ParseQuantity, ParseSetOption,
                                 ResolveParameters)
 from exudyn_worm.presets import PARAMETER_UNITS, GetPreset
@@ -44,6 +44,7 @@ def test_parse_quantity(key, text, expected):
     assert ParseQuantity(key, text) == pytest.approx(expected, rel=1e-12)
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('key, text, fragments', [
     ('kT', '7 kg', ["'kT'", 'N*m/rad', "'7 kg'", '[mass]']),
     ('r1', '5 s', ["'r1'", 'm', "'5 s'", '[time]']),
@@ -62,6 +63,7 @@ def test_parse_quantity_wrong_dimension(key, text, fragments):
         assert fragment in message
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('text', ['nan', 'inf', '-inf', 'NaN m', 'inf mm', '1e400', '1e400 mm',
                                   float('nan'), float('inf')])
 def test_parse_quantity_non_finite(text):
@@ -69,6 +71,7 @@ def test_parse_quantity_non_finite(text):
         ParseQuantity('r1', text)
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('text', ['', '   ', 'abc', 'mm', '1.2.3 m', '3 abc', '1/0 m', '3 m+', '0.5 mm mm x',
                                   '1,5 mm', '2 * 3 m', '__import__("os")'])
 def test_parse_quantity_malformed(text):
@@ -76,6 +79,7 @@ def test_parse_quantity_malformed(text):
         ParseQuantity('r1', text)
 
 
+@pytest.mark.messages
 def test_parse_quantity_bad_key_and_type():
     with pytest.raises(ValueError, match="unknown parameter 'foo'; expected one of: alphaN"):
         ParseQuantity('foo', '1')
@@ -100,7 +104,6 @@ def test_unit_registry_lazy_and_single():
             "ParseQuantity('r1', '0.1'); ResolveParameters(sets=['J1=0.2']); print('pint' in sys.modules)")
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == 'False'
-    from exudyn_worm import parameters
     assert parameters._UnitRegistry() is parameters._UnitRegistry()
 
 
@@ -117,6 +120,7 @@ def test_parse_set_option():
     assert ParseSetOption('gamma=5.3228 deg') == ('gamma', pytest.approx(math.radians(5.3228)))
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('text, pattern', [
     ('J1', 'expected KEY=VALUE'),
     ('=0.3', 'expected KEY=VALUE'),
@@ -163,6 +167,7 @@ def test_load_config(tmp_path):
     ('[parameters]\nmu = 0.134\nrho = "8 deg"\n', "both 'mu' and 'rho'"),
     ('[parameters]\ndT = 0.7\nDT = 0.014\n', "both 'dT' and 'DT'"),
 ])
+@pytest.mark.messages
 def test_load_config_errors(tmp_path, text, pattern):
     path = _Write(tmp_path, text)
     with pytest.raises(ValueError, match=pattern) as info:
@@ -170,6 +175,7 @@ def test_load_config_errors(tmp_path, text, pattern):
     assert str(path) in str(info.value)
 
 
+@pytest.mark.messages
 def test_load_config_unreadable(tmp_path):
     with pytest.raises(ValueError, match='cannot read it'):
         LoadConfig(tmp_path / 'missing.toml')
@@ -219,6 +225,7 @@ def test_resolve_alternatives_are_replaced(tmp_path):
     assert p['DV'] == 0.056 and p['DTV'] == 2. and p['J1'] == 0.2 and p['kT'] == 12000.
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('kwargs, error, pattern', [
     (dict(preset='nope'), ValueError, "unknown preset 'nope'"),
     (dict(sets=['foo=1']), ValueError, "unknown parameter 'foo'"),

@@ -8,14 +8,15 @@ import exudyn as exu
 from exudyn.itemInterface import NodePoint
 from exudyn_worm import AnalyzeStability
 from exudyn_worm.connector import CreateWormGear
-from exudyn_worm.drivetrain import CreateRotor
+from exudyn_worm.drivetrain import CreateRotor, CreateShaft
 from exudyn_worm.linearization import AnalyzeStabilityExudyn, ExudynEigenvalues
 from exudyn_worm.presets import PRESETS, ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.reelchanger import SimulateReelChanger
+from exudyn_worm.reelchanger import BuildReelChanger, SimulateReelChanger
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 
 
+@pytest.mark.physics
 @pytest.mark.parametrize('name', REEL_PRESETS + ['chart'])
 def test_linearized_exudyn_model_reproduces_analytical_eigenvalues(name):
     """Issue requirement: 1e-6 relative. The connector implements eqs. (1)-(2)."""
@@ -32,6 +33,7 @@ def test_linearized_exudyn_model_reproduces_analytical_eigenvalues(name):
     assert exudyn.stable == analytical.stable
 
 
+@pytest.mark.physics
 def test_linearization_with_backlash_and_python_user_function():
     drive = DriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), {'backlash': 0.5e-3}))
     for S in (1, -1):
@@ -39,6 +41,7 @@ def test_linearization_with_backlash_and_python_user_function():
                                    AnalyzeStability(drive).contact[S].eigenvalues, rtol=1e-6)
 
 
+@pytest.mark.physics
 def test_symbolic_and_python_user_functions_give_identical_results(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     p = ApplyOverrides(GetPreset('reel-P1'), {'backlash': 0.25e-3})
@@ -57,6 +60,7 @@ def _System():
     return SC, SC.AddSystem()
 
 
+@pytest.mark.messages
 def test_connector_rejects_bad_input():
     SC, mbs = _System()
     gear = DriveFromParameters(GetPreset('reel-P1')).gear
@@ -70,21 +74,21 @@ def test_connector_rejects_bad_input():
     with pytest.raises(ValueError, match="one rotation coordinate"):
         CreateWormGear(mbs, [nodes[0], nPoint], gear=gear)
     with pytest.raises(TypeError, match=r"CreateShaft: 'rotors\[1\]' must be a rotor"):
-        from exudyn_worm.drivetrain import CreateShaft
         CreateShaft(mbs, [worm, 3], stiffness=1.)
     with pytest.raises(ValueError, match="CreateRotor: 'inertia' must be > 0 kg\\*m\\^2, got -1"):
         CreateRotor(mbs, -1.)
 
 
+@pytest.mark.physics
 def test_full_model_linearizes_with_exudyn():
     """mbs.ComputeLinearizedSystem works on a system containing the connector and the load."""
-    from exudyn_worm.reelchanger import BuildReelChanger
     model = BuildReelChanger(GetPreset('reel-P1'))
     model.mbs.Assemble()
     M, K, D = model.mbs.ComputeLinearizedSystem()
     assert np.all(np.isfinite(K)) and np.any(K != 0)
 
 
+@pytest.mark.physics
 def test_starts_in_static_equilibrium():
     r = SimulateReelChanger(GetPreset('reel-P1'), endTime=0.5)
     assert np.max(np.abs(r.series['alpha2'])) < 0.01          # rad/s^2: no start-up transient

@@ -19,12 +19,14 @@ def _AtDeltaS(gear, deltaS, rate=0., omega1=50., options=ContactOptions()):
                        MATH_OPS)           # ... plus the relative normal rate
 
 
+@pytest.mark.physics
 def test_no_force_inside_backlash():
     for ds in (-0.24e-3, 0., 0.1e-3, 0.2499e-3):
         s = _AtDeltaS(GEAR_BACKLASH, ds, rate=1e-3)
         assert s.normalForce == 0 and s.wormTorque == 0 and s.wheelTorque == 0
 
 
+@pytest.mark.physics
 def test_elastic_force_beyond_backlash():
     s = _AtDeltaS(GEAR_BACKLASH, 0.25e-3 + 1e-5)
     assert s.normalForce == pytest.approx(GEAR.kV * 1e-5, rel=1e-9)
@@ -32,6 +34,7 @@ def test_elastic_force_beyond_backlash():
     assert s.normalForce == pytest.approx(-GEAR.kV * 1e-5, rel=1e-9)
 
 
+@pytest.mark.physics
 def test_mesh_cannot_pull_unless_asked():
     # fast separation: damping alone would make the normal force change sign
     ds, rate = 1e-6, -1.0
@@ -41,6 +44,7 @@ def test_mesh_cannot_pull_unless_asked():
     assert pulled == pytest.approx(GEAR.kV * ds + GEAR.dV * rate, rel=1e-9)
 
 
+@pytest.mark.physics
 def test_friction_state_and_contact_parameter():
     opts = ContactOptions(frictionSpeed=0.05)
     assert _AtDeltaS(GEAR, 1e-5, omega1=1.).sf == 1. and _AtDeltaS(GEAR, 1e-5, omega1=1.).S == 1.
@@ -50,6 +54,7 @@ def test_friction_state_and_contact_parameter():
     assert _AtDeltaS(GEAR, 1e-5, omega1=0.025, options=ContactOptions(frictionSpeed=0.)).sf == 1.
 
 
+@pytest.mark.physics
 @settings(max_examples=60, deadline=None)
 @given(dphi=st.floats(-1e-2, 1e-2).filter(lambda x: abs(x) > 1e-9), rate=st.floats(-5, 5), S=st.sampled_from([1, -1]))
 def test_linear_law_is_equations_1_and_2(dphi, rate, S):
@@ -73,6 +78,7 @@ def _SymbolicTorques(gear, options):
     return v, s
 
 
+@pytest.mark.physics
 @settings(max_examples=60, deadline=None)
 @given(phi1=st.floats(-1e-2, 1e-2), phi2=st.floats(-1e-4, 1e-4), omega1=st.floats(-0.2, 0.2),
        omega2=st.floats(-1e-2, 1e-2), pull=st.booleans())
@@ -92,6 +98,7 @@ def test_backends_agree(phi1, phi2, omega1, omega2, pull):
     assert sym.wheelTorque.Evaluate() == pytest.approx(ref.wheelTorque, abs=1e-9 * scale)
 
 
+@pytest.mark.messages
 def test_options_are_validated():
     with pytest.raises(ValueError, match="'frictionSpeed' must be >= 0 rad/s, got -1"):
         ContactOptions(frictionSpeed=-1.)

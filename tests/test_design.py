@@ -34,6 +34,7 @@ def p1Check():
     return DesignCheck(GetPreset('reel-P1'))
 
 
+@pytest.mark.physics
 def test_p1_is_unstable_and_gets_increases_and_decreases(p1Check):
     r = p1Check
     assert not r.stable and not r.stableWithMargin and r.maxRealPart > 0
@@ -49,6 +50,7 @@ def test_p1_is_unstable_and_gets_increases_and_decreases(p1Check):
         assert x.newValue == pytest.approx(GetPreset('reel-P1')[x.parameter] * x.factor, rel=1e-12)
 
 
+@pytest.mark.physics
 def test_each_recommendation_is_stable_with_the_margin_and_the_smallest(p1Check):
     p1 = GetPreset('reel-P1')
     for x in p1Check.recommendations:
@@ -60,6 +62,7 @@ def test_each_recommendation_is_stable_with_the_margin_and_the_smallest(p1Check)
         assert not _Stable(ApplyOverrides(p1, {x.parameter: p1[x.parameter] * 10. ** inside})), x
 
 
+@pytest.mark.physics
 def test_paper_points_p2_to_p5_lie_beyond_the_boundaries(p1Check):
     # section 3.2.4: P2 (J1 x3), P3 (J1 /3), P4 (kT x2), P5 (kT /5) are stable; each lies at or beyond our
     # margin-0 boundary in its direction (this is a consistency check, not a tuning target)
@@ -69,6 +72,7 @@ def test_paper_points_p2_to_p5_lie_beyond_the_boundaries(p1Check):
     assert 1400. < nearest['kT', -1] < 7000. < nearest['kT', 1] < 14000.
 
 
+@pytest.mark.physics
 def test_stable_preset_needs_no_change():
     r = DesignCheck(GetPreset('reel-P2'))
     assert r.stable and r.stableWithMargin and r.recommendations == [] and r.marginShortBy == []
@@ -120,6 +124,7 @@ def test_no_single_parameter_gives_the_best_pair():
     assert data['singleParameterSuffices'] is False and data['bestPair']['parameters'] == list(pair.parameters)
 
 
+@pytest.mark.physics
 def test_chart_point_and_distance_to_the_boundary(p1Check):
     point = p1Check.chartPoint
     # section 3.1: P1 at kT/(kV r1^2) = 0.107 and J1/J2 = 0.003 (printed digits)
@@ -168,6 +173,7 @@ def test_to_dict_is_json_ready(p1Check):
     assert data['margin']['decades'] == DEFAULT_MARGIN and 'stable with margin' in data['margin']['rule']
 
 
+@pytest.mark.messages
 def test_bad_arguments():
     p1 = GetPreset('reel-P1')
     with pytest.raises(ValueError, match="DesignCheck: 'margin' must be in \\[0, 1\\] decades, got -0.1"):
@@ -190,6 +196,7 @@ def test_nearest_stable_value():
         NearestStableValue(p1, 'J1', 1, span=0.5)
 
 
+@pytest.mark.physics
 @pytest.mark.slow
 def test_simulation_confirms_recommendations(p1Check):
     # P1 chatters while lowering; none of its recommended drives does (one rotation each)

@@ -9,10 +9,11 @@ from pathlib import Path
 
 import pytest
 
+from conftest import LoadScript
 from exudyn_worm import drivefile
 from exudyn_worm.config import LoadConfig, ResolveParameters
 from exudyn_worm.drivefile import DRIVE_FILE_TABLES, DRIVE_SIDE_KEYS, DriveSideKey
-from exudyn_worm.presets import PARAMETER_UNITS, PRESETS, GetPreset
+from exudyn_worm.presets import AxialBearingFromParameters, DriveSideChain, GetPreset, PARAMETER_UNITS, PRESETS
 
 ROOT = Path(__file__).resolve().parents[1]
 DRIVES = ROOT / 'examples' / 'drives'
@@ -105,6 +106,7 @@ def test_drive_side_keys_are_numbered_from_four():
     ('', None, r"gives no parameters: a drive file must give the drive's values in component tables \(\[gear\]"),
     ('description = "my drive"\n[worm]\n', None, r"gives no parameters.*or name a preset"),
 ])
+@pytest.mark.messages
 def test_bad_drive_files_name_line_table_key_and_expectation(tmp_path, text, line, pattern):
     path = _Write(tmp_path, text)
     with pytest.raises(ValueError, match=pattern) as info:
@@ -116,6 +118,7 @@ def test_bad_drive_files_name_line_table_key_and_expectation(tmp_path, text, lin
     assert '\n' not in message
 
 
+@pytest.mark.messages
 def test_cli_bad_drive_file_one_line_exit_2(tmp_path):
     path = _Write(tmp_path, '[gear]\nwormRadius = "18 kg"\n')
     run = subprocess.run([sys.executable, '-m', 'exudyn_worm', 'stability', '--config', str(path)],
@@ -150,7 +153,6 @@ def test_docs_list_every_file_key():
 
 def test_drive_side_chain_and_axial_bearing_reach_the_model(tmp_path):
     """[[driveSide]] and [axialBearing] become the model's chain and bearing (presets.DriveSideChain, ...)."""
-    from exudyn_worm.presets import AxialBearingFromParameters, DriveSideChain
     path = _Write(tmp_path, 'preset = "reel-P1"\n'
                             '[[driveSide]]\ninertia = "0.05 kg*m^2"\nstiffness = "2 kN*m"\ndamping = 0.1\n'
                             '[[driveSide]]\ninertia = 0.2\nstiffness = 500\n'
@@ -165,7 +167,6 @@ def test_drive_side_chain_and_axial_bearing_reach_the_model(tmp_path):
 
 def test_figure19_file_is_the_drive_side_inertia_example():
     """examples/drives/figure19.toml holds the values of examples/drive_side_inertia.py to its printed digits."""
-    from conftest import LoadScript
     example = LoadScript('examples/drive_side_inertia.py', 'drive_side_inertia_for_files')
     expected = example.DriveSideParameters()
     p = ResolveParameters(config=DRIVES / 'figure19.toml')
@@ -175,6 +176,7 @@ def test_figure19_file_is_the_drive_side_inertia_example():
         assert p[key] == pytest.approx(expected[key], rel=1e-12, abs=halfUnit.get(key, 0.)), key
 
 
+@pytest.mark.messages
 def test_incomplete_drive_side_chain_names_the_file(tmp_path):
     path = _Write(tmp_path, 'preset = "reel-P1"\n\n[[driveSide]]\ninertia = 0.05\ndamping = 1\n')
     with pytest.raises(ValueError, match=r"line 4: \[\[driveSide\]\] number 1 inertia: DriveSideChain: 'J4' needs "
@@ -189,6 +191,7 @@ def test_incomplete_drive_side_chain_names_the_file(tmp_path):
         ResolveParameters('reel-P1', sets=['k4=1e4'])
 
 
+@pytest.mark.messages
 def test_cli_missing_component_names_the_file_and_the_table(tmp_path):
     text = (DRIVES / 'reel-P1.toml').read_text()
     path = _Write(tmp_path, re.sub(r'\[wheel\]\ninertia = .*\n', '', text), 'nowheel.toml')
@@ -211,6 +214,7 @@ def _Figure19Plus(tmp_path, extra):
     return _Write(tmp_path, _FIG19 + extra), _FIG19.count('\n') + 2
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('where', ['last', 'first'])
 def test_empty_drive_side_table_is_refused_at_its_line(tmp_path, where):
     """An empty trailing [[driveSide]] gave the same result as figure19.toml (silently ignored), an empty first one
@@ -230,6 +234,7 @@ def test_empty_drive_side_table_is_refused_at_its_line(tmp_path, where):
                                       f"({expected}) and needs 'inertia' and 'stiffness'")
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('key, message', [
     ('stiffness = 1000.0', "[[driveSide]] number 2 stiffness: DriveSideChain: the drive-side chain must be J4, J5, "
                            "... without gaps, each with its spring k<i>; got keys J4, k4, d4, k5 (missing 'J5')"),

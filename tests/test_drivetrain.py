@@ -1,12 +1,13 @@
 """Drivetrain builders and motion/load laws: ordinary Exudyn items around the connector."""
 import math
 
+import exudyn as exu
 import numpy as np
 import pytest
 
-import exudyn as exu
 import exudyn_worm as ew
 from exudyn_worm.contact import MATH_OPS, NUMPY_OPS
+from exudyn_worm.drivetrain import _ConstantSpeedFromStart
 from exudyn_worm.profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque,
                                   LinearMotorCharacteristic, StartStopProfile)
 
@@ -46,6 +47,7 @@ def _Solve(mbs, endTime, h=1e-3):
     mbs.SolveDynamic(ss)
 
 
+@pytest.mark.physics
 @pytest.mark.parametrize('useSymbolic', [True, False])
 def test_prescribed_start_up_drives_the_worm(useSymbolic, tmp_path, monkeypatch):
     """Start from rest with a smooth start-up; the worm follows the motor through the shaft."""
@@ -69,6 +71,7 @@ def test_prescribed_start_up_drives_the_worm(useSymbolic, tmp_path, monkeypatch)
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.physics
 def test_motor_characteristic_reaches_its_operating_point():
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -80,6 +83,7 @@ def test_motor_characteristic_reaches_its_operating_point():
     assert omega == pytest.approx(50., rel=1e-3)          # 2 (1 - w/100) = 1
 
 
+@pytest.mark.physics
 def test_neighbouring_inertia_adds_a_mode():
     """Figure 19: an extra inertia on the drive side is just another rotor and shaft; the linearized
     system then has three modes."""
@@ -98,6 +102,7 @@ def test_neighbouring_inertia_adds_a_mode():
     assert np.count_nonzero(np.asarray(values).imag > 1.) == 3
 
 
+@pytest.mark.messages
 def test_builders_validate_arguments():
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -168,12 +173,12 @@ class _SameLaw:
         self.AngleAndSpeed = profile.AngleAndSpeed
 
 
+@pytest.mark.physics
 @pytest.mark.parametrize('initialAngle, velocityLevel', [(0.3, True), (0., False)])
 def test_constant_speed_on_velocity_level_is_the_same_motion(initialAngle, velocityLevel):
     """A ConstantSpeed whose initial state the rotor has is prescribed on velocity level, without a user
     function; the worm then moves as with the angle prescribed by a user function. A rotor that does not
     start on the profile keeps the angle constraint (which moves it onto the profile)."""
-    from exudyn_worm.drivetrain import _ConstantSpeedFromStart
     drive = ew.DriveFromParameters(ew.GetPreset('reel-P1'))
     speeds = []
     for forceUserFunction in (False, True):

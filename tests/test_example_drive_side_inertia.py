@@ -19,6 +19,7 @@ def run(example):
     return example.RunExample(scanStiffnesses=(None,))
 
 
+@pytest.mark.physics
 def test_third_natural_frequency_is_116_hz(run, example):
     p = run['parameters']
     assert p['J4'] == example.J4 == 0.05
@@ -30,6 +31,7 @@ def test_third_natural_frequency_is_116_hz(run, example):
     assert 25 < plus.frequenciesHz[0] < plus.frequenciesHz[1] < 50
 
 
+@pytest.mark.physics
 def test_hand_built_model_equals_build_reel_changer(run, example):
     p = run['parameters']
     built = AnalyzeLinearStability(ew.BuildReelChanger(p).mbs)
@@ -38,6 +40,7 @@ def test_hand_built_model_equals_build_reel_changer(run, example):
     assert run['linear'].coordinates == ['motor', 'inertia4', 'worm', 'wheel']
 
 
+@pytest.mark.physics
 def test_extra_inertia_moves_p1_towards_stability_and_into_it(run, example):
     minus = run['linear'].State(-1)
     assert not minus.stable                                            # Figure 20: chatter continues
@@ -51,6 +54,7 @@ def test_extra_inertia_moves_p1_towards_stability_and_into_it(run, example):
         assert np.sign(example.MaxRealPart(example.DriveSideParameters(J, k4))) == sign
 
 
+@pytest.mark.physics
 def test_simulation_chatters_and_excites_the_new_mode(run):
     s = run['summary']
     growing = max(run['linear'].State(-1).modes, key=lambda m: m.eigenvalue.real)
@@ -71,6 +75,7 @@ def test_worked_example_reads_time_normal_force_and_state(run):
     assert np.all(r.series['S'][second & (r.series['omega1'] > 1.)] == -1)
 
 
+@pytest.mark.physics
 def test_stable_inertia_does_not_chatter(example, run):
     """The simulation confirms the linear verdict inside the stable range."""
     scan, = run['scans']
@@ -80,6 +85,7 @@ def test_stable_inertia_does_not_chatter(example, run):
     assert not r.Chatter(2., 6.)
 
 
+@pytest.mark.messages
 def test_figures_and_bad_output_folder(example, run, tmp_path, capsys):
     paths = example._WriteFigures(run, tmp_path)
     assert sorted(p.name for p in paths) == ['fig19_linear_scan.png', 'fig20_accelerations.png', 'fig20_spectrum.png']

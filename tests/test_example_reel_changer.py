@@ -4,7 +4,9 @@ into the requested folder and rejects bad input cleanly."""
 import subprocess
 import sys
 from pathlib import Path
+from unittest import mock
 
+import matplotlib
 import pytest
 
 from conftest import LoadScript
@@ -37,6 +39,7 @@ def test_only_the_cases_of_the_requested_figures_are_run(p1):
     assert p1['P1'].endTime == pytest.approx(8., rel=1e-4)
 
 
+@pytest.mark.physics
 def test_p1_chatters_only_while_lowering(p1Rows):
     # section 3.2.2: "The chatter vibrations start, once the reel has passed the topmost position at
     # t = 2 s. The chatter continues for the complete lowering phase, which lasts 4 s."
@@ -45,12 +48,14 @@ def test_p1_chatters_only_while_lowering(p1Rows):
     assert [r['chatter'] for r in p1Rows] == [False, True, False]
 
 
+@pytest.mark.physics
 def test_p1_chatter_frequency_lies_between_the_stable_natural_frequencies(p1Rows):
     # section 3.1: for S = +1 the damped natural frequencies are f1 = 33.3 Hz and f2 = 52.2 Hz; section 3.2.2:
     # "The main frequency of the chatter is about 42 Hz ... located between the two natural frequencies"
     assert 33.3 < p1Rows[1]['dominantFrequencyHz'] < 52.2
 
 
+@pytest.mark.physics
 def test_p1_wheel_acceleration_amplitude_while_lowering(p1Rows):
     # section 3.2.2: phi2'' "has its maximum at 110 rad/s^2", read by its printed digits as 110 +- 5
     # (validation/README.md). With the mesh along the tooth normal (eq. (5), our model) P1 stays below that: the known
@@ -83,6 +88,7 @@ def test_main_writes_the_figure_only_into_the_output_folder(example, tmp_path, m
     assert str(out.resolve()) in printed and png.name in printed and 'lower' in printed
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('argv, fragment', [
     (['--backlash', '-0.1'], 'backlash'),
     (['--preset', 'reel-P99'], 'reel-P99'),
@@ -108,6 +114,7 @@ def test_importing_the_example_does_not_import_matplotlib():
     assert out.strip() == 'False'
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('argv', [['--figures', '99'], ['--speed', 'fast']])
 def test_unparsable_arguments_give_one_line_and_exit_status_2(example, argv, capsys):
     with pytest.raises(SystemExit) as exit:
@@ -119,9 +126,7 @@ def test_unparsable_arguments_give_one_line_and_exit_status_2(example, argv, cap
 
 def test_figure_8_title_says_what_was_simulated(example, tmp_path):
     """Fig. 8 said '(one full rotation)' also for a shorter --end-time."""
-    import matplotlib
     matplotlib.use('Agg')
-    from unittest import mock
     results = example.RunPaperCases(figures=[8], endTime=4., progress=False)
     titles = []
     with mock.patch('exudyn_worm.plot.SaveFigure', side_effect=lambda fig, path: titles.append(

@@ -17,6 +17,7 @@ def figures():
     return example.ComputeFigures(resolution=120)
 
 
+@pytest.mark.physics
 def test_figure3_is_fuesgen_limit(figures):
     curves = figures[3]
     u = curves.ratio
@@ -32,6 +33,7 @@ def test_figure3_is_fuesgen_limit(figures):
     assert all((np.diff(row[np.isfinite(row)]) < 0).all() for row in curves.limit)
 
 
+@pytest.mark.physics
 def test_figures_4_and_5_charts_and_points(figures):
     rows = example.Summary(figures)
     assert [(r['figure'], r['DV'], r['DTV']) for r in rows] == [(4, 0.014, 1.), (4, 0.014, 5.), (4, 0.014, 25.),

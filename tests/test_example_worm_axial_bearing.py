@@ -31,6 +31,7 @@ def _ThreeDofEigenvalues(parameters, S):
     return _SortEigenvalues(np.linalg.eigvals(A))
 
 
+@pytest.mark.physics
 @pytest.mark.parametrize('kA, dA', [(5e8, 0.), (2e8, 1e4), (3e9, 5e3)])
 def test_three_dof_problem_from_exudyn_equals_the_matrix_model(example, kA, dA):
     p = example.AxialParameters('reel-P1', kA, dA=dA)
@@ -44,6 +45,7 @@ def test_three_dof_problem_from_exudyn_equals_the_matrix_model(example, kA, dA):
         assert axial.Participants(0.5) == ['wormAxial'] and axial.frequencyHz > 1000
 
 
+@pytest.mark.physics
 def test_stiff_bearing_gives_back_the_two_mass_drive(example):
     """kA = 1e13 N/m: the rotational eigenvalues differ from eqs. (15)-(16) by about kV a^2/kA = 2e-5."""
     linear = example.AxialLinearStability(example.AxialParameters('reel-P1', 1e13))
@@ -58,6 +60,7 @@ def run(example):
     return example.RunExample()
 
 
+@pytest.mark.physics
 def test_soft_bearing_moves_p1_off_the_unstable_region(example, run):
     boundary = run['boundaryP1']
     assert 5e8 < boundary < 1e9                        # rolling bearings: about 1e8..1e9 N/m
@@ -74,6 +77,7 @@ def test_soft_bearing_moves_p1_off_the_unstable_region(example, run):
         assert run[key] == pytest.approx(boundary, rel=0.01)
 
 
+@pytest.mark.physics
 def test_soft_bearing_moves_p2_and_p5_onto_it(example, run):
     for name in ('reel-P2', 'reel-P5'):
         row = run['table'][name]
@@ -84,6 +88,7 @@ def test_soft_bearing_moves_p2_and_p5_onto_it(example, run):
     assert 5e7 < run['boundaryP7'] < 1.5e8                 # P7 needs a very soft bearing
 
 
+@pytest.mark.physics
 def test_simulation_agrees_with_the_linear_verdict(run):
     cases = {(s['preset'], s['kA']): s for s in run['simulations']}
     assert not cases[('reel-P1', 5e8)]['chatter'] and cases[('reel-P1', 5e8)]['linearStable']
@@ -91,6 +96,7 @@ def test_simulation_agrees_with_the_linear_verdict(run):
     assert cases[('reel-P2', 1e8)]['chatter'] and not cases[('reel-P2', 1e8)]['linearStable']
 
 
+@pytest.mark.messages
 def test_bad_output_folder(example, tmp_path, capsys):
     blocker = tmp_path / 'file'
     blocker.write_text('x')

@@ -20,6 +20,7 @@ CHART = dict(alphaN=deg(20), gamma=deg(5.3228), r1=3.235e-3, r2=18.98e-3, kV=1.7
 
 # --- argument validation: the message names function, argument, range with unit, and value ------------
 
+@pytest.mark.messages
 @pytest.mark.parametrize('name, value, pattern', [
     ('r1', -0.001, r"WormGear: 'r1' must be > 0 m, got -0.001 m"),
     ('r2', 0., r"WormGear: 'r2' must be > 0 m, got 0 m"),
@@ -39,11 +40,13 @@ def test_gear_rejects_out_of_range(name, value, pattern):
         WormGear(**kwargs)
 
 
+@pytest.mark.messages
 def test_gear_rejects_rho_out_of_range():
     with pytest.raises(ValueError, match=r"WormGear: 'rho' must be in \[0, pi/2\) rad, got 1.6 rad"):
         WormGear(**REEL, rho=1.6)
 
 
+@pytest.mark.messages
 def test_gear_rejects_non_numbers():
     with pytest.raises(TypeError, match=r"WormGear: 'r1' must be a real number in m, got str '1'"):
         WormGear(**{**REEL, 'r1': '1'}, rho=deg(8))
@@ -51,11 +54,13 @@ def test_gear_rejects_non_numbers():
         WormGear(**{**REEL, 'kV': True}, rho=deg(8))
 
 
+@pytest.mark.messages
 def test_gear_needs_friction():
     with pytest.raises(ValueError, match=r"give the friction as 'mu'.*or as 'rho'.*got neither"):
         WormGear(**REEL)
 
 
+@pytest.mark.messages
 def test_drive_rejects_out_of_range():
     gear = WormGear(**REEL, rho=deg(8))
     with pytest.raises(ValueError, match=r"ElasticDrive: 'J1' must be > 0 kg\*m\^2, got -0.1 kg\*m\^2"):
@@ -68,6 +73,7 @@ def test_drive_rejects_out_of_range():
 
 # --- friction: eq. (13) and the mu/rho question of set (28) -----------------------------------------------
 
+@pytest.mark.physics
 def test_friction_angle_eq13():
     # eq. (13): rho = atan(mu / cos(alphaN)); (25) prints mu = 0.132 (rho = 8 deg)
     g = WormGear(**CHART, mu=0.132)
@@ -78,6 +84,7 @@ def test_friction_angle_eq13():
     assert_allclose(mu, 0.132, atol=5e-4)  # printed digits of (25)
 
 
+@pytest.mark.messages
 def test_mu_and_rho_must_be_consistent():
     # (28) prints mu = 0.134 (rho = 8 deg): inconsistent through eq. (13) if 8 deg is exact
     with pytest.raises(ValueError, match=r"'mu' and 'rho' are inconsistent through eq. \(13\).*mu = 0.134 needs "
@@ -97,6 +104,7 @@ def test_replace_friction():
 
 # --- ratio, coefficients, efficiency -------------------------------------------------------------------------
 
+@pytest.mark.physics
 @pytest.mark.parametrize('geometry', [REEL, CHART], ids=['set28', 'set25'])
 def test_ratio_is_63(geometry):
     # eq. (3); both sets print "u = 63"
@@ -105,6 +113,7 @@ def test_ratio_is_63(geometry):
     assert abs(g.ratio - 63) <= 0.5
 
 
+@pytest.mark.physics
 def test_coefficients_eqs_9_to_12():
     g = WormGear(**REEL, rho=deg(8))
     a, gm, r = deg(20), deg(5.3228), deg(8)
@@ -121,12 +130,14 @@ def test_coefficients_eqs_9_to_12():
     assert g.selfLocking and g.Coefficients(-1)[0] < 0 < g.Coefficients(+1)[0]
 
 
+@pytest.mark.physics
 def test_normal_displacement_eq5():
     g = WormGear(**REEL, rho=deg(8))
     assert g.NormalDisplacement(1e-3) == pytest.approx(REEL['r1'] * math.cos(deg(20)) * math.sin(deg(5.3228)) * 1e-3)
     assert g.RelativeAngle(1., 1. / g.ratio) == pytest.approx(0., abs=1e-15)
 
 
+@pytest.mark.physics
 def test_efficiency_sign_and_self_locking():
     locking = WormGear(**REEL, rho=deg(8))
     assert locking.selfLocking
@@ -139,6 +150,7 @@ def test_efficiency_sign_and_self_locking():
 
 # --- damping measures (22)-(23) ----------------------------------------------------------------------------
 
+@pytest.mark.physics
 def test_damping_measures_of_set28():
     # (28): dT = 0.741 N m s (D_T = 0.014), dV = 21470 N s/m (D_V = 0.014), printed digits
     assert_allclose(TorsionalDampingMeasure(0.741, 7000., 0.1), 0.014, atol=5e-4)
@@ -147,6 +159,7 @@ def test_damping_measures_of_set28():
     assert_allclose(MeshDampingFromMeasure(0.014, 2e8, 105.95e-3, 33.), 21470., atol=5)
 
 
+@pytest.mark.messages
 def test_damping_measure_errors_name_argument():
     with pytest.raises(ValueError, match=r"TorsionalDampingMeasure: 'kT' must be > 0 N\*m/rad, got 0 N\*m/rad"):
         TorsionalDampingMeasure(0.7, 0., 0.1)
@@ -159,6 +172,7 @@ def test_damping_measure_errors_name_argument():
 angles = st.floats(min_value=0.5, max_value=45., allow_nan=False)
 
 
+@pytest.mark.physics
 @settings(max_examples=200, deadline=None)
 @given(alphaN=st.floats(5., 35.), gamma=angles, rho=st.floats(0., 40.), r1=st.floats(1e-3, 0.2),
        r2=st.floats(5e-3, 1.), S=st.sampled_from([+1, -1]))
@@ -171,6 +185,7 @@ def test_c3_c4_positive(alphaN, gamma, rho, r1, r2, S):
     assert c3 > 0 and c4 > 0
 
 
+@pytest.mark.physics
 @settings(max_examples=200, deadline=None)
 @given(alphaN=st.floats(5., 35.), gamma=angles, mu=st.floats(0., 0.5))
 def test_mu_rho_roundtrip_and_locking(alphaN, gamma, mu):
@@ -181,6 +196,7 @@ def test_mu_rho_roundtrip_and_locking(alphaN, gamma, mu):
         assert g.selfLocking == (g.efficiencyWheelDriving < 0) == (g.Coefficients(-1)[0] < 0)
 
 
+@pytest.mark.messages
 def test_error_message_lists_unit_and_value():
     with pytest.raises(ValueError) as err:
         WormGear(**{**REEL, 'r2': -2.}, rho=deg(8))

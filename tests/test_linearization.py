@@ -6,12 +6,13 @@ import pytest
 
 import exudyn as exu
 import exudyn_worm as ew
-from exudyn_worm.linearization import AnalyzeLinearStability, BuildLinearizationModel
+from exudyn_worm.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStabilityFromParameters
 from exudyn_worm.presets import PRESETS, ApplyOverrides, DriveFromParameters, GetPreset
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 
 
+@pytest.mark.physics
 @pytest.mark.parametrize('name', REEL_PRESETS)
 def test_two_mass_drive_agrees_with_the_analytical_model(name):
     """Issue requirement: on the two-mass drive the generic analysis equals eqs. (15)-(16) to 1e-6."""
@@ -33,6 +34,7 @@ def test_two_mass_drive_agrees_with_the_analytical_model(name):
     assert linear.stable == analytical.stable
 
 
+@pytest.mark.physics
 def test_reel_changer_model_with_load_and_its_options_restored(tmp_path, monkeypatch):
     """The full reel changer (load, equilibrium start) linearizes as the two-mass drive; the load's angle
     dependence adds a stiffness of about 1e-6 relative, hence the looser tolerance here."""
@@ -76,6 +78,7 @@ def _TwoDrives():
     return SC, mbs, drives
 
 
+@pytest.mark.physics
 def test_every_combination_of_contact_states_for_two_meshes():
     SC, mbs, drives = _TwoDrives()
     linear = AnalyzeLinearStability(mbs)
@@ -95,6 +98,7 @@ def test_every_combination_of_contact_states_for_two_meshes():
     assert list(only.states) == [(-1, -1)]
 
 
+@pytest.mark.physics
 def test_drive_side_inertia_adds_a_mode_with_its_participants():
     p = ApplyOverrides(GetPreset('reel-P1'), {'J4': 0.05, 'k4': 2e4, 'd4': 1.})
     linear = AnalyzeLinearStability(ew.BuildReelChanger(p).mbs)
@@ -107,6 +111,7 @@ def test_drive_side_inertia_adds_a_mode_with_its_participants():
         assert all(m.energyShare['inertia4'] < 0.1 for m in state.modes[:2])
 
 
+@pytest.mark.messages
 def test_linear_analysis_rejects_bad_input():
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -125,8 +130,8 @@ def test_linear_analysis_rejects_bad_input():
         AnalyzeLinearStability(mbs, connectors=[3])
 
 
+@pytest.mark.physics
 def test_linear_stability_from_parameters_with_chain_and_axial_bearing():
-    from exudyn_worm.linearization import LinearStabilityFromParameters
     p = GetPreset('reel-P1')
     plain = LinearStabilityFromParameters(p)
     analytical = ew.AnalyzeStability(DriveFromParameters(p))

@@ -2,10 +2,12 @@
 import dataclasses
 import inspect
 
+import exudyn as exu
 import numpy as np
 
 import exudyn_worm as ew
 from exudyn_worm.contact import MeshState, NormalForceFlanks
+from exudyn_worm.solve import SolveDynamicInChunks
 
 
 def test_every_field_documented_with_a_unit_or_sign():
@@ -32,7 +34,6 @@ def test_result_and_stored_state_carry_time_and_flanks():
 
 
 def test_stored_mesh_state_has_time():
-    import exudyn as exu
     drive = ew.DriveFromParameters(ew.GetPreset('reel-P1'))
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -44,7 +45,6 @@ def test_stored_mesh_state_has_time():
     ss.solution.file.write = False
     ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = 0.01, 20
     ss.solution.sensors.writePeriod = 0.01 / 20
-    from exudyn_worm.solve import SolveDynamicInChunks
     SolveDynamicInChunks(mbs, ss, progress=False)
     state = mesh.StoredMeshState(mbs)
     assert state.time.shape == state.normalForce.shape and state.time[0] == 0. and abs(state.time[-1] - 0.01) < 1e-12

@@ -1,12 +1,18 @@
 """Parameter checks name the user's key, reject values that overflow the model, and catch unit mistakes."""
 import math
+from pathlib import Path
 
 import pytest
 
-from exudyn_worm import ApplyOverrides, DriveFromParameters, GetPreset, WormGear
+from exudyn_worm import ApplyOverrides, DriveFromParameters, GetPreset, SimulateReelChanger, WormGear
 from exudyn_worm.cli import Main
+from exudyn_worm.config import ResolveParameters
+from exudyn_worm.design import DesignCheck
+from exudyn_worm.presets import CheckParameterKeys, GearFromParameters, PRESETS
+from exudyn_worm.study import Study
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('key, value, message', [
     ('kT', -5., "parameter set: 'kT' must be > 0 N*m/rad, got -5 N*m/rad"),
     ('J2', 0., "parameter set: 'J2' must be > 0 kg*m^2, got 0 kg*m^2"),
@@ -21,12 +27,14 @@ def test_messages_name_the_key(key, value, message):
     assert str(info.value).startswith(message)
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('overrides', [{'kT': 1e300}, {'J1': 1e-300}, {'kV': 1e300}, {'dT': 1e300}])
 def test_overflowing_parameters_rejected(overrides):
     with pytest.raises(ValueError, match=r"parameter set: out of range: the drive's rates .* check these values"):
         DriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), overrides))
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('overrides', [{'J1': 1e100}, {'kT': 1e-100}])
 def test_frequencies_far_apart_rejected(overrides):
     """J1 = 1e100 kg*m^2 passed and gave 'Hurwitz conditions ok' next to 'Verdict: UNSTABLE': the slow mode
@@ -37,12 +45,12 @@ def test_frequencies_far_apart_rejected(overrides):
 
 
 def test_every_preset_is_within_range():
-    from exudyn_worm.presets import PRESETS
     for name in PRESETS:
         DriveFromParameters(ApplyOverrides(GetPreset(name), {'J1': 0.01, 'kT': 10., 'DT': 0.01}) if name == 'chart'
                             else GetPreset(name))
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('value', ['kT=1e300', 'J1=1e-300'])
 def test_stability_cli_overflow_is_one_line(capsys, value):
     status = Main(['stability', '--set', value])
@@ -50,6 +58,7 @@ def test_stability_cli_overflow_is_one_line(capsys, value):
     assert status == 2 and err.count('\n') == 1 and 'out of range' in err and 'Traceback' not in err
 
 
+@pytest.mark.messages
 def test_backlash_above_the_worm_radius_suggests_the_unit():
     gear = DriveFromParameters(GetPreset('reel-P1')).gear
     with pytest.raises(ValueError, match=r"WormGear: 'backlash' must be <= the worm radius r1 = 0.01805 m, got 0.5 m; "
@@ -65,20 +74,18 @@ _KNOWN = "expected one of: alphaN gamma mu rho r1 r2 kV dV DV backlash J1 J2 kT"
 
 
 def _Design(p):
-    from exudyn_worm.design import DesignCheck
     return DesignCheck(p)
 
 
 def _Simulate(p):
-    from exudyn_worm import SimulateReelChanger
     return SimulateReelChanger(p, endTime=0.01)
 
 
 def _Study(p):
-    from exudyn_worm.study import Study
     return Study(p)
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('call, where', [
     (DriveFromParameters, 'DriveFromParameters'), (_Design, 'DesignCheck'), (_Simulate, 'SimulateReelChanger'),
     (_Study, "Study: 'base'"),
@@ -92,15 +99,15 @@ def test_unknown_keys_are_refused_with_a_suggestion(call, where, key, suggestion
     assert str(info.value).startswith(f"{where}: unknown parameter {key!r}{suggestion}; {_KNOWN}")
 
 
+@pytest.mark.messages
 def test_unknown_key_message_is_the_cli_one():
-    from exudyn_worm.config import ResolveParameters
     with pytest.raises(ValueError, match=r"^ParseSetOption: unknown parameter 'Kt' \(did you mean 'kT'\?\); "):
         ResolveParameters('reel-P1', sets=['Kt=5'])
-    from exudyn_worm.presets import GearFromParameters
     with pytest.raises(ValueError, match=r"^chart: unknown parameter 'Dv' \(did you mean 'dV' or 'DV'\?\)"):
         GearFromParameters({**GetPreset('chart'), 'Dv': 1.}, meshDamping=False, where='chart')
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('added, group, quantity, dropped', [
     ({'dV': 1.}, "'DV' and 'dV'", 'mesh damping', "'DV'"),
     ({'DTV': 5.}, "'DT' and 'DTV'", 'drive-shaft damping', "'DT'"),
@@ -127,6 +134,7 @@ def test_apply_overrides_replaces_the_other_form(override, dropped):
     assert dropped not in p and DriveFromParameters(p)
 
 
+@pytest.mark.messages
 def test_apply_overrides_checks_both_mappings():
     with pytest.raises(ValueError, match=r"^ApplyOverrides: 'overrides': unknown parameter 'Kt' \(did you mean 'kT'"):
         ApplyOverrides(P1, {'Kt': 1.})
@@ -140,10 +148,6 @@ def test_apply_overrides_checks_both_mappings():
 
 def test_every_example_and_preset_set_passes_the_key_check():
     """Internal code carries no extra keys into a parameter set: presets, drive files, design recommendations."""
-    from exudyn_worm.config import ResolveParameters
-    from exudyn_worm.design import DesignCheck
-    from exudyn_worm.presets import PRESETS, CheckParameterKeys
-    from pathlib import Path
     for name in PRESETS:
         CheckParameterKeys(GetPreset(name))
     for path in sorted((Path(__file__).resolve().parents[1] / 'examples' / 'drives').glob('*.toml')):

@@ -14,6 +14,7 @@ from exudyn_worm.drivefile import DRIVE_FILE_TABLES, FileKeyOf, FlattenDriveFile
 from exudyn_worm.parameters import PARAMETERS, Parameter, ParameterRegistry, ParametersMarkdown, WithGeneratedTables
 from exudyn_worm.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, CheckParameters, GetPreset,
                                  UnknownParameterMessage)
+from exudyn_worm.study import ParseVariation
 
 DOCS = Path(__file__).resolve().parents[1] / 'docs'
 
@@ -101,6 +102,7 @@ def test_series_keys():
     assert PARAMETERS['k9'] is PARAMETERS.Series('k')
 
 
+@pytest.mark.messages
 def test_declaring_twice_is_refused():
     with pytest.raises(ValueError, match="'kT' is declared already"):
         PARAMETERS.Declare(Parameter('kT', 'N*m/rad', 'positive'))
@@ -111,6 +113,7 @@ def test_declaring_twice_is_refused():
         ParameterRegistry([Parameter('J4'), Parameter('J', series=4)])
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('kwargs, message', [
     (dict(name='x', kind='list'), "'kind' of 'x' must be one of number, choice, table"),
     (dict(name='x', range='big'), "'range' of 'x' must be one of"),
@@ -216,6 +219,7 @@ def test_declared_key_reaches_drive_files(declared, tmp_path):
         LoadConfig(path)
 
 
+@pytest.mark.messages
 def test_declared_key_reaches_checks_and_messages(declared):
     base = GetPreset('reel-P1')
     CheckParameters({**base, 'testLaw': 'agma', 'testTable': 'mu.csv'})
@@ -244,7 +248,6 @@ def test_registry_restored_after_the_declarations():
 
 
 def test_a_study_sweeps_numbers_only(declared):
-    from exudyn_worm.study import ParseVariation
     assert list(ParseVariation('testSpeed=1,2 mm/s').values) == [1., 0.002]
     with pytest.raises(ValueError, match=r"ParseVariation: 'testLaw=agma,table': a study sweeps numbers; 'testLaw' "
                                          r"takes a choice \(one of: constant, stribeck, agma, table\)"):

@@ -7,6 +7,8 @@ import pytest
 
 pytest.importorskip('matplotlib')
 
+from matplotlib.figure import Figure                                  # noqa: E402
+
 from exudyn_worm import plot                                          # noqa: E402
 from exudyn_worm.results import SimulationResult                      # noqa: E402
 
@@ -27,7 +29,6 @@ def result():
 
 @pytest.mark.parametrize('kind', plot.PLOT_KINDS)
 def test_every_kind_returns_a_figure(result, kind, tmp_path):
-    from matplotlib.figure import Figure
     fig = plot.PlotSimulation(result, kind=kind, title=f'Fig. 0: {kind}')
     assert isinstance(fig, Figure)
     path = plot.SaveFigure(fig, tmp_path / 'sub' / f'{kind}.png')
@@ -47,6 +48,7 @@ def test_comparison_stacks_one_panel_per_result(result):
     assert [ax.get_title(loc='left') for ax in panels] == ['a', 'b', 'c']
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('call, error, fragment', [
     (lambda r: plot.PlotSimulation(r, kind='spectrum'), ValueError, "'kind'"),
     (lambda r: plot.PlotSimulation(r, kind='zoom', tZoom=(1.3, 1.2)), ValueError, 't0 < t1'),

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
+from exudyn_worm.plot import MEAN_WINDOW, PlotSimulation, _RunningMean
 
 
 @pytest.fixture(scope='module')
@@ -12,7 +13,6 @@ def result():
 
 
 def test_drive_torque_and_S_in_separate_panels(result):
-    from exudyn_worm.plot import PlotSimulation
     fig = PlotSimulation(result, kind='driveTorque', subtitle='preset reel-P1, --set J1=0.1')
     top, bottom = fig.axes
     assert len(fig.axes) == 2 and 'preset reel-P1, --set J1=0.1' in top.get_title()
@@ -22,7 +22,6 @@ def test_drive_torque_and_S_in_separate_panels(result):
 
 
 def test_normal_force_one_panel_per_flank_with_mean(result):
-    from exudyn_worm.plot import MEAN_WINDOW, PlotSimulation
     fig = PlotSimulation(result, kind='normalForce')
     assert len(fig.axes) == 2
     for flank, ax in enumerate(fig.axes, start=1):
@@ -35,7 +34,6 @@ def test_normal_force_one_panel_per_flank_with_mean(result):
 def test_running_mean_of_an_oscillation_does_not_drift_at_the_ends():
     """The mean over 0.25 s of a force oscillating between 0 and 2 kN about 1 kN is 1 kN up to the last sample
     (it dropped at the end when the window was padded with the last, oscillating value)."""
-    from exudyn_worm.plot import _RunningMean
     t = np.arange(0., 4., 5e-4)
     force = 1000. * (1. + np.sin(2 * np.pi * 40. * (t - t[-1]) + np.pi / 2))      # ends on a 2 kN peak
     mean = _RunningMean(t, force, 0.25)

@@ -30,11 +30,13 @@ def test_csv_header_has_a_unit_for_every_series(wholeDrive, tmp_path):
         SeriesUnit('foo')
 
 
+@pytest.mark.messages
 def test_to_csv_refuses_a_folder(wholeDrive, tmp_path):
     with pytest.raises(ValueError, match=r"ToCsv: 'path' must be a file in an existing folder, got .* \(a folder\)"):
         wholeDrive.ToCsv(tmp_path)
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('windows, error, message', [
     ([(0., 0.1)], ValueError, r"the window 0:0.1 s ends after the simulated end 0.05 s"),
     ([(-0.01, 0.02)], ValueError, r"a window must have 0 <= t0 < t1 \(s\), got -0.01:0.02"),
@@ -46,6 +48,7 @@ def test_windows_beyond_the_end_are_refused(wholeDrive, windows, error, message)
         wholeDrive.WindowMetrics(windows)
 
 
+@pytest.mark.messages
 def test_study_refuses_windows_beyond_its_end_time():
     with pytest.raises(ValueError, match=r"Study: the window 2:6 s ends after the simulated end 3 s"):
         Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.1')], endTime=3., windows=[(0., 2.), (2., 6.)])

@@ -1,15 +1,17 @@
 """Solving with a progress bar (in chunks): the same numbers as one Exudyn solve to the Newton tolerance, one
 sample per time, the bar on stderr; without a bar exactly one solve; failures with the time reached."""
+import exudyn as exu
 import numpy as np
 import pytest
 
+import exudyn_worm as ew
 from exudyn_worm import GetPreset, SimulateReelChanger
 from exudyn_worm.reelchanger import BuildReelChanger, SolverSettings
+from exudyn_worm.solve import SolveDynamicInChunks, SolverDivergedError
 
 
 def _Plain(parameters, endTime, stepSize):
     """The reference: one mbs.SolveDynamic call with SimulateReelChanger's settings."""
-    import exudyn as exu
     model = BuildReelChanger(parameters)
     mbs = model.mbs
     mbs.Assemble()
@@ -22,6 +24,7 @@ def _Plain(parameters, endTime, stepSize):
     return model.connector.StoredStates(mbs)
 
 
+@pytest.mark.physics
 @pytest.mark.parametrize('preset', ['reel-P1', 'reel-P7'])
 def test_chunks_agree_with_one_solve(preset, capsys):
     """Chunks restart the modified-Newton Jacobian (and P7's step halvings move), so the trajectories agree
@@ -52,16 +55,15 @@ def test_without_a_bar_exactly_one_solve(capsys):
         assert np.array_equal(getattr(result, key), plain[key])
 
 
+@pytest.mark.messages
 def test_bad_solver_type_refused():
-    import exudyn as exu
-    from exudyn_worm.solve import SolveDynamicInChunks
     with pytest.raises(TypeError, match="'solverType' must be an exudyn.DynamicSolverType"):
         SolveDynamicInChunks(None, exu.SimulationSettings(), 'RK44')
 
 
+@pytest.mark.messages
 def test_failure_reports_the_time_reached():
     """A solve that cannot converge: one Newton iteration allowed, unreachable tolerance, no step reduction."""
-    from exudyn_worm.solve import SolverDivergedError
     options = {'timeIntegration.newton.maxIterations': 1, 'timeIntegration.newton.useModifiedNewton': False,
                'timeIntegration.adaptiveStep': False, 'timeIntegration.newton.relativeTolerance': 1e-30,
                'timeIntegration.newton.absoluteTolerance': 1e-30}
@@ -74,9 +76,6 @@ def test_failure_reports_the_time_reached():
 
 def test_explicit_solver_runs_in_one_piece():
     """Without constraints an explicit solver runs (one piece); two rotors on a shaft keep their speed."""
-    import exudyn as exu
-    import exudyn_worm as ew
-    from exudyn_worm.solve import SolveDynamicInChunks
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     a, b = ew.CreateRotor(mbs, 0.1, initialSpeed=10.), ew.CreateRotor(mbs, 0.2, initialSpeed=10.)
@@ -87,6 +86,7 @@ def test_explicit_solver_runs_in_one_piece():
     assert float(mbs.GetNodeOutput(b['nodeNumber'], exu.OutputVariableType.Coordinates_t)) == pytest.approx(10.)
 
 
+@pytest.mark.messages
 def test_explicit_solver_refused_with_a_prescribed_motor():
     """Exudyn's explicit solvers ignore constraints: the reel changer's motor stood still (phi1 = -0.01 rad
     after 0.5 s instead of 24.7 rad) and the run returned normally."""
@@ -100,8 +100,6 @@ def test_explicit_solver_refused_with_a_prescribed_motor():
 def test_chunked_solve_switches_timers_as_solve_system_does(computationTime, capsys):
     """Exudyn's per-step timers made a chunked (progress bar) run 7-16 % slower: they are off in a chunked run
     exactly when SolveSystem switches them off (show.computationTime False)."""
-    import exudyn as exu
-    from exudyn_worm.solve import SolveDynamicInChunks
     timers = []
     for progress in (True, False):
         model = BuildReelChanger(GetPreset('reel-P1'))

@@ -35,6 +35,7 @@ def _Match(a, b):
 
 # --- set (28), section 3.1 ----------------------------------------------------------------------------------
 
+@pytest.mark.physics
 def test_printed_coefficients_of_set28():
     # section 3.1: b1 = 13.615 1/s, b2 = 1.279e5, b3 = 9.004e5, b4 = 4.224e9; (19) = -2.607e10 (S = -1)
     b = CharacteristicCoefficients(Reel(), -1)
@@ -49,6 +50,7 @@ def test_printed_coefficients_of_set28():
     assert b[0] > 0 and HurwitzConditions(b)[2] < 0  # (17) holds, (19) fails: unstable
 
 
+@pytest.mark.physics
 def test_set28_verdicts():
     a = AnalyzeStability(Reel())
     assert a.contact[+1].stable and not a.contact[-1].stable and not a.stable
@@ -57,6 +59,7 @@ def test_set28_verdicts():
     assert d['stable'] is False and d['selfLocking'] is True and set(d['S']) == {'+1', '-1'}
 
 
+@pytest.mark.physics
 def test_coefficients_equal_state_matrix_polynomial():
     d = Reel()
     for S in (+1, -1):
@@ -65,16 +68,19 @@ def test_coefficients_equal_state_matrix_polynomial():
         assert_allclose(poly[1:], b, rtol=1e-9)
 
 
+@pytest.mark.messages
 def test_contact_state_must_be_pm1():
     with pytest.raises(ValueError, match=r"contact parameter 'S' must be \+1 or -1, got 0"):
         CharacteristicCoefficients(Reel(), 0)
 
 
+@pytest.mark.messages
 def test_analyze_requires_drive():
     with pytest.raises(TypeError, match=r"AnalyzeStability: 'drive' must be an ElasticDrive, got str"):
         AnalyzeStability('reel')
 
 
+@pytest.mark.physics
 def test_contact_stability_from_eigenvalues_roundtrip():
     c = AnalyzeStability(Reel()).contact[-1]
     back = ContactStability.FromEigenvalues(-1, c.eigenvalues)
@@ -84,6 +90,7 @@ def test_contact_stability_from_eigenvalues_roundtrip():
         ContactStability.FromEigenvalues(-1, c.eigenvalues[:2])
 
 
+@pytest.mark.physics
 def test_frequencies_and_lehr_damping_definitions():
     # section 3.1: f_i = omega_i/(2 pi), D_i = delta_i/omega_i (positive for decaying modes)
     c = ContactStability.FromEigenvalues(+1, [-2.3 + 209.0j, -2.3 - 209.0j, -5.8 + 328.1j, -5.8 - 328.1j])
@@ -92,6 +99,7 @@ def test_frequencies_and_lehr_damping_definitions():
     assert c.stable
 
 
+@pytest.mark.physics
 def test_first_criterion_limit_is_the_b1_root():
     # eq. (20): b1(S = -1) = 0 exactly at J1/J2 = limit (dT held fixed); for set (28) the shaft damping
     # removes the first-criterion region (limit < 0, b1 > 0), so take a lightly damped shaft
@@ -104,6 +112,7 @@ def test_first_criterion_limit_is_the_b1_root():
     assert CharacteristicCoefficients(d.Replace(J1=0.9 * limit * d.J2), -1)[0] < 0
 
 
+@pytest.mark.physics
 def test_fuesgen_limit_eq21():
     d = Reel()
     g = d.gear
@@ -150,6 +159,7 @@ def _ClearOfBoundary(b, lam) -> bool:
             and abs(HurwitzConditions(b)[2]) > 1e-9 * scale19 and abs(b1) > 1e-9 * np.max(np.abs(lam)))
 
 
+@pytest.mark.physics
 @settings(max_examples=300, deadline=None)
 @given(drive=Drives(), S=st.sampled_from([+1, -1]))
 def test_hurwitz_equals_eigenvalue_classification(drive, S):
@@ -177,6 +187,7 @@ def test_generator_covers_stable_and_unstable():
     assert verdicts == {True, False}
 
 
+@pytest.mark.physics
 @settings(max_examples=200, deadline=None)
 @given(drive=Drives(selfLocking=False))
 def test_no_first_criterion_instability_without_self_locking(drive):
@@ -188,6 +199,7 @@ def test_no_first_criterion_instability_without_self_locking(drive):
     assert FuesgenLimit(drive) < 0 and FirstCriterionLimit(drive) < drive.inertiaRatio
 
 
+@pytest.mark.physics
 @settings(max_examples=200, deadline=None)
 @given(drive=Drives(selfLocking=True))
 def test_self_locking_first_criterion(drive):
@@ -199,6 +211,7 @@ def test_self_locking_first_criterion(drive):
     assert CharacteristicCoefficients(drive, +1)[0] > 0  # S = +1 is never affected
 
 
+@pytest.mark.physics
 @settings(max_examples=300, deadline=None)
 @given(drive=Drives(), S=st.sampled_from([+1, -1]))
 def test_polynomial_roots_equal_state_matrix_eigenvalues(drive, S):

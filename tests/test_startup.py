@@ -8,6 +8,8 @@ import sys
 
 import pytest
 
+import exudyn_worm
+
 HEAVY = ('exudyn', 'scipy', 'pint', 'matplotlib', 'tqdm')
 
 _SCRIPT = """
@@ -36,6 +38,5 @@ def test_light_paths_import_no_heavy_module(code):
 
 
 def test_lazy_package_attributes_still_resolve():
-    import exudyn_worm
     for name in exudyn_worm.__all__:
         assert getattr(exudyn_worm, name) is not None

@@ -8,11 +8,16 @@ import sys
 import textwrap
 import time
 
+import matplotlib
 import numpy as np
 import pytest
 from hypothesis import given, strategies as st
 
+from exudyn_worm import plot_study
 from exudyn_worm.config import ResolveParameters
+from exudyn_worm.linearization import LinearStabilityFromParameters
+from exudyn_worm.presets import DriveFromParameters
+from exudyn_worm.stability import AnalyzeStability
 from exudyn_worm.study import (RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunPoint,
                                RunStudy, ShardIndices, Study, StudyPoints, StudyResult, StudySidecarPath, Variation)
 
@@ -42,6 +47,7 @@ def test_list_and_grid_with_units():
     np.testing.assert_allclose(ParseVariation('kT=7 kN*m,14kN*m').values, [7000, 14000])
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('text, message', [
     ('J1', 'expected KEY='), ('J1=', 'expected KEY='), ('nope=1,2', "unknown parameter 'nope'"),
     ('J1=0.01:0.4', 'START:STOP:COUNT'), ('J1=0.01:0.4:0', 'COUNT must be >= 1'),
@@ -139,6 +145,7 @@ def test_agreement_counts_finished_runs_only():
     assert StudyResult(study, rows).agreement == pytest.approx(2 / 3)
 
 
+@pytest.mark.messages
 def test_output_checked_before_computing(tmp_path):
     study = _Study('J1=0.1')
     with pytest.raises(ValueError, match='does not exist'):
@@ -164,7 +171,6 @@ def test_output_checked_before_computing(tmp_path):
 def test_finished_study_resumed_keeps_its_record(tmp_path):
     """Reading a finished study again (e.g. to redraw its figures) with other workers leaves its sidecar alone:
     it records how the runs were computed."""
-    from exudyn_worm.study import StudySidecarPath
     study = _Study('J1=0.05,0.1')
     RunStudy(study, tmp_path / 'a.csv', workers=2, quiet=True)
     sidecar = StudySidecarPath(tmp_path / 'a.csv').read_text()
@@ -235,7 +241,6 @@ def _Complete(text, header=False):
 def test_chatter_map_axes_follow_the_grid():
     """Two kT values 80x apart: the map's analytical grid is log-spaced, so the axis must be logarithmic too
     (it was linear from 0 to 250000 N*m/rad); the outer runs lie inside the axes by 15 % of the span."""
-    import matplotlib
     matplotlib.use('Agg')
     result = RunStudy(_Study('J1=0.05,0.1', 'kT=350,28000'), workers=1, quiet=True)
     ax = result.Plot('J1', 'kT').axes[0]
@@ -253,9 +258,6 @@ def test_chatter_map_axes_follow_the_grid():
 def test_verdict_of_a_drive_beyond_two_masses_is_that_of_stability(base, varied):
     """The verdict columns come from the linearized whole drive, as `exudyn-worm stability` gives them, not from the
     two-mass model (which disagrees here at one of the two points); the simulation agrees with them."""
-    from exudyn_worm.linearization import LinearStabilityFromParameters
-    from exudyn_worm.presets import DriveFromParameters
-    from exudyn_worm.stability import AnalyzeStability
     study = Study(ResolveParameters('reel-P1', sets=list(base.items())), [ParseVariation(varied)], endTime=6.)
     rows = [RunPoint(study.Task(i)) for i in range(2)]
     twoMassDiffers = False
@@ -277,7 +279,6 @@ def test_chatter_map_of_a_drive_beyond_two_masses_uses_the_whole_drive():
     """plot_study: the stability-chart shortcut only for the two-mass drive; the map's linear model is the whole
     drive's (the two-mass model says the opposite at both J1 here)."""
     pytest.importorskip('matplotlib')
-    from exudyn_worm import plot_study
     bearing = ResolveParameters('reel-P1', sets=['kA=5e8', 'mA=5'])
     growth = plot_study.AnalyticalMap(bearing, 'J1', [0.1, 0.2], 'kT', [7000.])
     assert growth.shape == (1, 2) and growth[0, 0] < 0 < growth[0, 1]       # as `stability`: J1 = 0.1 stable
@@ -294,6 +295,7 @@ def test_chatter_map_of_a_drive_beyond_two_masses_uses_the_whole_drive():
     assert any('linearized whole drive' in t for t in labels), labels
 
 
+@pytest.mark.messages
 def test_study_names_itself_for_a_typo_in_the_base_set():
     with pytest.raises(ValueError, match=r"Study: 'base': unknown parameter 'Kt' \(did you mean 'kT'\?\)"):
         Study({**ResolveParameters('reel-P1'), 'Kt': 1.}, [ParseVariation('J1=0.1')])

@@ -1,18 +1,20 @@
 """A law written with a Python `if` or math function records as a constant: the builders refuse it at creation."""
 import math
 
+import exudyn as exu
+import numpy as np
 import pytest
 
 import exudyn_worm as ew
 
 
 def _System():
-    import exudyn as exu
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     return SC, mbs, ew.CreateRotor(mbs, 1.)
 
 
+@pytest.mark.messages
 @pytest.mark.parametrize('law', [
     lambda phi, om, t, ops: 1. if t < 0.5 else 0.,                 # the issue's example
     lambda phi, om, t, ops: 10. * math.cos(phi),
@@ -43,8 +45,8 @@ def test_correct_laws_pass(law):
     ew.CreateRotorTorque(mbs, rotor, law)
 
 
+@pytest.mark.messages
 def test_numpy_on_symbolic_arguments_is_a_clear_type_error():
-    import numpy as np
     SC, mbs, rotor = _System()
     with pytest.raises(TypeError, match=r"CreateRotorTorque: the law cannot be recorded .* write it with the "
                                         r"functions of 'ops'"):
@@ -58,6 +60,7 @@ class _IfProfile:
         return (10. * t, 10.) if t < 1. else (10., 0.)
 
 
+@pytest.mark.messages
 def test_prescribed_rotation_recorded_as_constant_is_refused():
     SC, mbs, rotor = _System()
     nodes = mbs.systemData.NumberOfNodes()
@@ -67,6 +70,7 @@ def test_prescribed_rotation_recorded_as_constant_is_refused():
     ew.CreatePrescribedRotation(mbs, rotor, ew.StartStopProfile(speed=49.48, rampTime=0.5))
 
 
+@pytest.mark.messages
 def test_worm_gear_on_one_node_is_refused():
     SC, mbs, rotor = _System()
     drive = ew.DriveFromParameters(ew.GetPreset('reel-P1'))

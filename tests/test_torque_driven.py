@@ -17,6 +17,7 @@ def runs():
             torqueDriven.SimulateTorqueDriven(p1, 5e-4, endTime=3.))
 
 
+@pytest.mark.physics
 def test_same_lifting_phase(runs):
     ours, torque = runs
     np.testing.assert_allclose(torque.time, ours.time, atol=1e-12)
@@ -26,6 +27,7 @@ def test_same_lifting_phase(runs):
     assert np.max(np.abs(torque.phi1[m] - ours.phi1[m])) < 1e-9
 
 
+@pytest.mark.physics
 def test_same_chatter_onset(runs):
     ours, torque = runs
     late = ours.time >= 2.5

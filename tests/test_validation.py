@@ -11,6 +11,7 @@ from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
 from exudyn_worm.stability import CharacteristicCoefficients
 from validation import runner
 from validation.paper import eigenvalue_forensics
+from validation.report import Report
 from validation.runner import (KINDS, RULES, CheckGroup, HalfUnit, InputRounding, LoadKnownDifferences,
                                LoadReference, ReadingInterval, RegisterCheckGroup, RunValidation)
 
@@ -44,6 +45,7 @@ def forensics():
 
 # --- the quick run (analytical, eigenvalues, forensics, charts) -------------------------------------------
 
+@pytest.mark.physics
 def test_quick_run_fails_exactly_the_pinned_checks(quickRun):
     failed = {c.id for c in quickRun.checks if c.failed}
     assert failed == EXPECTED_FAILURES_QUICK, '\n'.join(c.Line() for c in quickRun.checks if c.failed)
@@ -78,6 +80,7 @@ def test_known_differences_are_pinned_and_not_stale(quickRun):
     assert differs and all(c.knownDifference and not c.holds for c in differs)
 
 
+@pytest.mark.physics
 def test_key_findings(quickRun):
     checks = {c.id: c for c in quickRun.checks}
     # mu = 0.132 reproduces b1..b4 and (19); mu = 0.134 and rho = 8.000 deg are rejected
@@ -98,7 +101,6 @@ def test_chart_statements_are_rows(quickRun):
 
 
 def test_report_is_generated_from_the_verdicts(quickRun, tmp_path):
-    from validation.report import Report
     text = Report(quickRun, runner.CHECK_GROUPS, tmp_path)
     assert quickRun.lines[0] in text
     for c in quickRun.checks:
@@ -133,6 +135,7 @@ SIMULATION_FAILURES = {
 }
 
 
+@pytest.mark.physics
 def test_time_domain_checks_under_both_readings():
     """The slow group: the statements of section 3.2 under both mesh readings (about a minute)."""
     group = next(g for g in runner.CHECK_GROUPS if g.name == 'simulation')
@@ -167,6 +170,7 @@ def test_half_unit(text, half):
     assert HalfUnit(text) == pytest.approx(half)
 
 
+@pytest.mark.messages
 def test_half_unit_rejects_text():
     with pytest.raises(ValueError, match=r"HalfUnit: 'text' must be a decimal number, got 'abc'"):
         HalfUnit('abc')
@@ -265,6 +269,7 @@ def test_crashed_group_fails_its_rows(table):
     assert not summary.passed
 
 
+@pytest.mark.messages
 def test_known_differences_must_name_rows(tmp_path):
     (tmp_path / 'sim').mkdir()
     (tmp_path / 'sim' / 'reference.csv').write_text(_CSV)
@@ -295,6 +300,7 @@ def test_compare_rules():
 
 # --- eigenvalue forensics -----------------------------------------------------------------------------------
 
+@pytest.mark.physics
 def test_reduced_parametrization_is_eq16(forensics):
     d = DriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), {'mu': 0.132}))
     r = forensics.ReducedParameters(d)
@@ -303,6 +309,7 @@ def test_reduced_parametrization_is_eq16(forensics):
         assert_allclose(b, CharacteristicCoefficients(d, S), rtol=1e-12)
 
 
+@pytest.mark.physics
 def test_forensic_findings(forensics):
     printed = forensics.PrintedEigenvalues()
     results = {r.hypothesis.key: r for r in forensics.EvaluateHypotheses(fitted=False, printed=printed)}
@@ -318,6 +325,7 @@ def test_forensic_findings(forensics):
     assert math.degrees(hi) < math.atan(0.132 / math.cos(math.radians(20))) * 180 / math.pi
 
 
+@pytest.mark.physics
 def test_wheel_circumference_factor(forensics):
     d = DriveFromParameters(GetPreset('reel-P1'))
     assert forensics.WheelCircumferenceFactor(d) == pytest.approx(
