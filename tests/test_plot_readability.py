@@ -48,6 +48,15 @@ def test_running_mean_of_an_oscillation_does_not_drift_at_the_ends():
 
 # --- issue 16, item 9: labels outside the data, the first time tick, the sign of M_an, a readable sign(S) -------
 
+@pytest.fixture(autouse=True)
+def _CloseFigures():
+    """Figures go through pyplot once another test imported it: close them (pyplot keeps them)."""
+    yield
+    import sys
+    if 'matplotlib.pyplot' in sys.modules:
+        sys.modules['matplotlib.pyplot'].close('all')
+
+
 def _Record(seconds=2., chatterHz=40., omegaSign=1.):
     """Synthetic reel-changer-like record: a quarter turn of the wheel per s, chatter while lowering."""
     from exudyn_worm.results import SimulationResult
