@@ -16,8 +16,8 @@ variations) are marked at their chart coordinates: the chart is dimensionless, a
 share angles and friction (their r2/r1 differ by 0.05 %); the legend says so. P1-P5 and P7 have D_TV = 1;
 P6 has D_TV = 2 (section 3.2.4): its own boundary is drawn dashed. Each unstable region is hatched in its
 chart's colour (crossed hatches where regions overlap); a point closer than ZOOM_DECADES to the boundary of a
-chart on which it is stable (P3 and P5 next to D_TV = 25 in Figure 4) is shown again in a zoomed inset whose
-title gives its verdict on every chart and its distance to that boundary.
+chart on which it is stable (P3 and P5 next to D_TV = 25 in Figure 4; :func:`PointsToZoom`) is shown again in a
+zoomed inset whose title gives its verdict on every chart and its distance to that boundary.
 
 Run ``python examples/stability_charts.py --out DIR`` (about 5 s). The computation (:func:`ComputeFigures`,
 :func:`Summary`) is importable and checked by ``tests/test_example_stability_charts.py``; only
@@ -36,6 +36,7 @@ import numpy as np
 from exudyn_worm.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, FormatChartTable,
                                 PresetChartPoints, StabilityChart)
 from exudyn_worm._checks import CheckOutputFolder
+from exudyn_worm.plot_charts import ZOOM_DECADES, PointsToZoom
 from exudyn_worm.presets import GearFromParameters, GetPreset
 
 __all__ = ['CHART_PRESET', 'FIGURE_DV', 'DTV_VALUES', 'POINT_PRESETS', 'FIGURE3_RHO_DEG', 'ZOOM_DECADES',
@@ -163,23 +164,6 @@ def WriteFigures(figures: Dict, outDir) -> List[Path]:
     """
     from exudyn_worm.plot import SaveFigure
     return [SaveFigure(fig, Path(outDir) / name) for name, fig in DrawFigures(figures).items()]
-
-
-#: a point closer than this to a boundary of a chart that calls it stable is shown in a zoomed inset (decades)
-ZOOM_DECADES = 0.05
-
-
-def PointsToZoom(charts: Sequence[StabilityChart], points: Dict) -> List[str]:
-    """The labels (at most two, nearest first) of the points closer than :data:`ZOOM_DECADES` to the boundary
-    of a chart on which they are stable: at the figure's scale they look as if on the line or inside."""
-    from exudyn_worm.plot_charts import NearestBoundary
-    near = {}
-    for k, p in points.items():
-        for c in charts:
-            d = NearestBoundary(c, (p['x'], p['y']))
-            if d < ZOOM_DECADES and not c.IsUnstable(p['x'], p['y']):
-                near[k] = min(d, near.get(k, d))
-    return sorted(near, key=near.get)[:2]
 
 
 class _Parser1Line(argparse.ArgumentParser):

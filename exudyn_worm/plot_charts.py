@@ -15,8 +15,8 @@ from typing import Mapping, Optional, Sequence
 
 import numpy as np
 
-__all__ = ['STIFFNESS_RATIO_LABEL', 'INERTIA_RATIO_LABEL', 'POINT_SIZE', 'HATCHES', 'PlotStabilityChart',
-           'PlotStabilityCharts', 'PlotFirstCriterion', 'NearestBoundary']
+__all__ = ['STIFFNESS_RATIO_LABEL', 'INERTIA_RATIO_LABEL', 'POINT_SIZE', 'HATCHES', 'ZOOM_DECADES',
+           'PlotStabilityChart', 'PlotStabilityCharts', 'PlotFirstCriterion', 'NearestBoundary', 'PointsToZoom']
 
 #: axis label of the abscissa of Figures 4 and 5
 STIFFNESS_RATIO_LABEL = r'stiffness ratio $k_T\,/\,(k_V\,r_1^2)$'
@@ -226,7 +226,7 @@ def PlotStabilityChart(chart, ax=None, points: Optional[Mapping] = None, color: 
 
 def PlotStabilityCharts(charts: Sequence, points: Optional[Mapping] = None, title: Optional[str] = None,
                         ax=None, note: Optional[str] = None, pointsLabel: Optional[str] = None,
-                        outlines: Sequence = (), zoom=None, zoomDecades: float = 0.25):
+                        outlines: Sequence = (), zoom='auto', zoomDecades: float = 0.25):
     """Several charts of one D_V on one axes (the layout of Figures 4 and 5: one region per D_TV).
 
     Each unstable region is hatched in its chart's colour on no fill (crossed hatches where regions overlap,
@@ -244,16 +244,17 @@ def PlotStabilityCharts(charts: Sequence, points: Optional[Mapping] = None, titl
     ax : matplotlib.axes.Axes, optional
         Axes to draw into (default: a new figure).
     note : str, optional
-        Small text in the lower right corner.
+        A last line of the legend (e.g. which gear the chart is of).
     pointsLabel : str, optional
         Legend entry of the points (default: ``'points at their chart coordinates'``).
     outlines : sequence of (StabilityChart, str), optional
         Further charts drawn as a dashed boundary only, with their legend text (e.g. the chart of one point's
         own D_TV).
-    zoom : str or sequence of str, optional
+    zoom : str or sequence of str or None, optional
         Label(s) of at most two points to show in insets (lower right, then upper left) with ``zoomDecades``
         around each: where the point lies relative to a nearby boundary, which the main axes cannot resolve.
         An inset's title states the point's verdict on every chart and its distance to the nearest boundary.
+        Default ``'auto'``: the points :func:`PointsToZoom` names; None: no inset.
     zoomDecades : float, optional
         Half width of the inset in decades (default 0.25).
 
@@ -267,6 +268,8 @@ def PlotStabilityCharts(charts: Sequence, points: Optional[Mapping] = None, titl
     if not charts:
         raise ValueError("PlotStabilityCharts: 'charts' must hold at least one StabilityChart, got none")
     points = _Points('PlotStabilityCharts', points)
+    if isinstance(zoom, str) and zoom == 'auto':
+        zoom = PointsToZoom(charts, {k: _PointXY(v) for k, v in points.items()})
     zoom = [] if zoom is None else [zoom] if isinstance(zoom, str) else list(zoom)
     if len(zoom) > len(_INSETS) or any(z not in points for z in zoom):
         raise ValueError(f"PlotStabilityCharts: 'zoom' must be at most {len(_INSETS)} labels of points "
@@ -296,14 +299,14 @@ def PlotStabilityCharts(charts: Sequence, points: Optional[Mapping] = None, titl
     if points:
         entries.append((Line2D([], [], ls='none', marker='o', ms=POINT_SIZE + 1, mfc='white', mec='black'),
                         pointsLabel or 'points at their chart coordinates'))
+    if note:                                   # in the legend: a text in a corner could meet an inset or data
+        entries.append((Line2D([], [], ls='none'), note))
     _Decorate(ax, charts[0])
     _Legend(ax, entries, loc='upper center', bbox_to_anchor=(0.5, -0.11), ncols=2, fontsize=8.5,
             frameon=False, title='unstable region of criteria (17), (19)', title_fontsize=8.5)
     c0 = charts[0]
     ax.set_title(title if title is not None else
                  fr'Stability chart, $S$ = {c0.S:+d}, $D_V$ = {c0.DV:g}, criteria (17) and (19)')
-    if note:
-        ax.text(0.99, 0.01, note, transform=ax.transAxes, ha='right', va='bottom', fontsize=8, color='0.3')
     for label, where in zip(zoom, _INSETS):
         _ZoomInset(ax, charts, points, label, zoomDecades, draw, where)
     return ax
@@ -311,6 +314,38 @@ def PlotStabilityCharts(charts: Sequence, points: Optional[Mapping] = None, titl
 
 # inset positions in axes fractions: lower right, upper left (the corners a chart of Figures 4/5 leaves empty)
 _INSETS = ([0.6, 0.05, 0.37, 0.33], [0.07, 0.6, 0.3, 0.27])
+
+
+#: a point closer than this (decades) to the boundary of a chart on which it is stable gets a zoomed inset
+ZOOM_DECADES = 0.05
+
+
+def PointsToZoom(charts: Sequence, points: Mapping, decades: float = ZOOM_DECADES) -> list:
+    """Labels of the points (at most two, nearest first) closer than ``decades`` to the boundary of a chart
+    on which they are stable: at a whole chart's scale they look as if on the line or inside (P3 and P5 next to
+    D_TV = 25 in Figure 4).
+
+    Parameters
+    ----------
+    charts : sequence of StabilityChart
+        The charts drawn.
+    points : mapping
+        ``{label: point}``, a point as for :func:`PlotStabilityChart`.
+    decades : float, optional
+        Distance threshold in decades (default :data:`ZOOM_DECADES`).
+
+    Returns
+    -------
+    list of str
+    """
+    near = {}
+    for label, value in points.items():
+        x, y = _PointXY(value)
+        for chart in charts:
+            d = NearestBoundary(chart, (x, y))
+            if d < decades and not chart.IsUnstable(x, y):
+                near[label] = min(d, near.get(label, d))
+    return sorted(near, key=near.get)[:len(_INSETS)]
 
 
 def _ZoomInset(ax, charts, points, label, decades, draw, where):

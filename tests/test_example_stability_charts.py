@@ -138,3 +138,15 @@ def test_p3_is_outside_the_DTV25_region_and_drawn_so(figures, drawn):
         nearest = line[np.argmin(np.hypot(*(axes.transData.transform(line) - centre).T))]
         assert nearest[0] < p3['x']
     assert not [a for a in _Chart(drawn, 5).child_axes]            # Figure 5: no point that close
+
+
+def test_inset_is_the_default_for_a_point_next_to_a_boundary(figures):
+    """`exudyn-worm chart --points P3` draws through PlotStabilityCharts' default: the same inset; zoom=None: none;
+    the note goes into the legend, where it meets no inset."""
+    from exudyn_worm.plot_charts import PlotStabilityCharts
+    points = {k: (c['x'], c['y']) for k, c in figures['points'].items() if k in ('P1', 'P3', 'P7')}
+    ax = PlotStabilityCharts(figures[4], points=points, note='gear: preset reel-P1')
+    assert [a.get_gid() for a in ax.child_axes] == ['zoom P3']
+    assert 'gear: preset reel-P1' in [t.get_text() for t in ax.get_legend().get_texts()]
+    assert not [t for t in ax.texts if 'gear' in t.get_text()]
+    assert not PlotStabilityCharts(figures[4], points=points, zoom=None).child_axes
