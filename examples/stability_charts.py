@@ -13,8 +13,11 @@ The charts use the gear of parameter set (25) (preset 'chart', J2 = 0.1 kg*m^2);
 y = J1/J2 are swept on log grids over the domain fixed in validation/README.md (1e-4..1e2, 1e-6..1), the
 damping follows eqs. (22)-(24). The points P1-P7 (presets reel-P1 ... reel-P7, set (28) and its
 variations) are marked at their chart coordinates: the chart is dimensionless, and sets (25) and (28)
-share angles and friction (their r2/r1 differ by 0.05 %). P1-P5 and P7 have D_TV = 1; P6 has D_TV = 2
-(section 3.2.4) and lies on a chart between the D_TV = 1 and 5 regions.
+share angles and friction (their r2/r1 differ by 0.05 %); the legend says so. P1-P5 and P7 have D_TV = 1;
+P6 has D_TV = 2 (section 3.2.4): its own boundary is drawn dashed. Each unstable region is hatched in its
+chart's colour (crossed hatches where regions overlap); a point closer than ZOOM_DECADES to the boundary of a
+chart on which it is stable (P3 and P5 next to D_TV = 25 in Figure 4; :func:`PointsToZoom`) is shown again in a
+zoomed inset whose title gives its verdict on every chart and its distance to that boundary.
 
 Run ``python examples/stability_charts.py --out DIR`` (about 5 s). The computation (:func:`ComputeFigures`,
 :func:`Summary`) is importable and checked by ``tests/test_example_stability_charts.py``; only
@@ -33,10 +36,11 @@ import numpy as np
 from exudyn_worm.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, FormatChartTable,
                                 PresetChartPoints, StabilityChart)
 from exudyn_worm._checks import CheckOutputFolder
+from exudyn_worm.plot_charts import ZOOM_DECADES, PointsToZoom
 from exudyn_worm.presets import GearFromParameters, GetPreset
 
-__all__ = ['CHART_PRESET', 'FIGURE_DV', 'DTV_VALUES', 'POINT_PRESETS', 'FIGURE3_RHO_DEG', 'ComputeFigures',
-           'Summary', 'FormatSummary', 'WriteFigures', 'main']
+__all__ = ['CHART_PRESET', 'FIGURE_DV', 'DTV_VALUES', 'POINT_PRESETS', 'FIGURE3_RHO_DEG', 'ZOOM_DECADES',
+           'ComputeFigures', 'Summary', 'FormatSummary', 'DrawFigures', 'WriteFigures', 'PointsToZoom', 'main']
 
 #: the gear of parameter set (25)
 CHART_PRESET = 'chart'
@@ -102,8 +106,49 @@ def FormatSummary(figures: Dict) -> str:
     return '\n'.join(FormatChartTable(charts, figures['points']))
 
 
+def DrawFigures(figures: Dict) -> Dict[str, object]:
+    """Draw Figures 3, 4 and 5 (nothing is written).
+
+    Parameters
+    ----------
+    figures : dict
+        From :func:`ComputeFigures`.
+
+    Returns
+    -------
+    dict
+        ``{file name: matplotlib Figure}``.
+    """
+    from exudyn_worm.plot_charts import PlotFirstCriterion, PlotStabilityCharts
+
+    curves: FirstCriterionCurves = figures[3]
+    gear = GearFromParameters(GetPreset(CHART_PRESET), meshDamping=False)
+    design = {'set (25)': (gear.gamma, curves.limit[list(np.degrees(curves.rho)).index(8.)][
+        np.argmin(np.abs(curves.gamma - gear.gamma))])} if 8. in FIGURE3_RHO_DEG else None
+    ax = PlotFirstCriterion(curves, mark=design,
+                            title=f'Fig. 3: first criterion (20) with $d_T$ = 0, $u$ = {curves.ratio:.4g} '
+                                  f'(set (25)): stable above the lines')
+    drawn = {'fig03_first_criterion.png': ax.figure}
+    points = {label: c for label, c in figures['points'].items()}
+    other = ', '.join(f'{k}: {c["DTV"]:g}' for k, c in points.items() if not math.isclose(c['DTV'], 1.))
+    pointsLabel = ('P1-P7: reel-changer drives of set (28), at their (x, y);\n'
+                   'set (28) has the gear of set (25) (same angles, friction;\n'
+                   fr'$r_2/r_1$ 0.05 % apart); $D_{{TV}}$ = 1' + (f' ({other})' if other else ''))
+    for figure, DV in FIGURE_DV.items():
+        charts: List[StabilityChart] = figures[figure]
+        p6 = figures['P6'][figure]
+        # a point the main axes cannot resolve from a boundary it is not inside gets an inset (P3 in Fig. 4)
+        ax = PlotStabilityCharts(charts, points={k: (c['x'], c['y']) for k, c in points.items()},
+                                 title=f'Fig. {figure}: stability chart for $D_V$ = {DV:g}, $S$ = -1, '
+                                       f'criteria (17) and (19), set (25)', pointsLabel=pointsLabel,
+                                 outlines=[(p6, fr'$D_{{TV}}$ = {p6.DTV:g} (P6): boundary only')],
+                                 zoom=PointsToZoom(charts, points))
+        drawn[f'fig{figure:02d}_chart_DV{DV:g}.png'] = ax.figure
+    return drawn
+
+
 def WriteFigures(figures: Dict, outDir) -> List[Path]:
-    """Draw Figures 3, 4 and 5 and save them as PNG files in ``outDir``.
+    """Draw Figures 3, 4 and 5 (:func:`DrawFigures`) and save them as PNG files in ``outDir``.
 
     Parameters
     ----------
@@ -118,35 +163,7 @@ def WriteFigures(figures: Dict, outDir) -> List[Path]:
         The files written.
     """
     from exudyn_worm.plot import SaveFigure
-    from exudyn_worm.plot_charts import PlotFirstCriterion, PlotStabilityCharts
-
-    outDir = Path(outDir)
-    curves: FirstCriterionCurves = figures[3]
-    gear = GearFromParameters(GetPreset(CHART_PRESET), meshDamping=False)
-    design = {'set (25)': (gear.gamma, curves.limit[list(np.degrees(curves.rho)).index(8.)][
-        np.argmin(np.abs(curves.gamma - gear.gamma))])} if 8. in FIGURE3_RHO_DEG else None
-    ax = PlotFirstCriterion(curves, mark=design,
-                            title=f'Fig. 3: first criterion (20) with $d_T$ = 0, $u$ = {curves.ratio:.4g} '
-                                  f'(set (25)): stable above the lines')
-    written = [SaveFigure(ax.figure, outDir / 'fig03_first_criterion.png')]
-    points = {label: c for label, c in figures['points'].items()}
-    note = ', '.join(f'{k}: $D_{{TV}}$ = {c["DTV"]:g}' for k, c in points.items() if not math.isclose(c['DTV'], 1.))
-    note = 'points P1-P7 at their (x, y) (set (28)): $D_{TV}$ = 1' + (f'; {note}' if note else '')
-    for figure, DV in FIGURE_DV.items():
-        charts: List[StabilityChart] = figures[figure]
-        ax = PlotStabilityCharts(charts, points={k: (c['x'], c['y']) for k, c in points.items()},
-                                 title=f'Fig. {figure}: stability chart for $D_V$ = {DV:g}, $S$ = -1, '
-                                       f'criteria (17) and (19), set (25)', note=note)
-        p6 = figures['P6'][figure]
-        for k, line in enumerate(p6.boundaries):
-            ax.plot(line[:, 0], line[:, 1], color='0.35', lw=1., ls='--',
-                    label=fr'$D_{{TV}}$ = {p6.DTV:g} (P6), boundary only' if k == 0 else None)
-        handles, labels = ax.get_legend_handles_labels()
-        legend = ax.get_legend()
-        ax.add_artist(legend)
-        ax.legend(handles[-1:], labels[-1:], loc='lower left', fontsize=9)
-        written.append(SaveFigure(ax.figure, outDir / f'fig{figure:02d}_chart_DV{DV:g}.png'))
-    return written
+    return [SaveFigure(fig, Path(outDir) / name) for name, fig in DrawFigures(figures).items()]
 
 
 class _Parser1Line(argparse.ArgumentParser):

@@ -328,9 +328,11 @@ def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
     group.add_argument('--preset', metavar='NAME', default=None,
                        help=f"parameter preset, one of: {', '.join(PRESETS)} "
                             f"(default: the config file's preset, else {DEFAULT_PRESET})")
-    group.add_argument('--config', metavar='FILE.toml', default=None,
-                       help="whole-drive TOML file (docs/drive-files.md; examples/drives/) or one with a "
-                            "[parameters] table")
+    from .drives import ConfigArgument, DocPath, ShippedDrives
+    group.add_argument('--config', metavar='FILE.toml', default=None, type=ConfigArgument,
+                       help=f"whole-drive TOML file or one with a [parameters] table (format: "
+                            f"{DocPath('drive-files.md')}), or the name of a shipped drive: "
+                            f"{', '.join(ShippedDrives()) or 'none found'}")
     group.add_argument('--set', metavar='KEY=VALUE', action='append', default=[], dest='set',
                        help="override one parameter; VALUE is SI (angles in rad) or has units, "
                             "e.g. --set 'backlash=0.5 mm' --set 'kT=7 kN*m' (repeatable)")

@@ -30,8 +30,8 @@ from typing import Any, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-__all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'MEAN_WINDOW', 'S_SIGN_LABEL', 'S_SIGN_NOTE', 'PlotSimulation',
-           'PlotComparison', 'SaveFigure']
+__all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'MEAN_WINDOW', 'S_SIGN_LABEL', 'S_SIGN_NOTE',
+           'DENSE_SWITCHES_PER_INCH', 'PlotSimulation', 'PlotComparison', 'SaveFigure', 'TorqueSignNote']
 
 #: the kinds :func:`PlotSimulation` draws
 PLOT_KINDS = ('overview', 'acceleration', 'zoom', 'speed', 'normalForce', 'driveTorque')
@@ -138,7 +138,8 @@ def _Phases(result) -> list:
 
 
 def _ShadePhases(ax, phases, interval, labels: bool = True):
-    """Shade lift / lower phases inside ``interval``; name them at the top if there is room."""
+    """Shade lift / lower phases inside ``interval``; name them in a strip just above the axes (outside the
+    data, so no curve runs through a name) if there is room."""
     import matplotlib.transforms as mtransforms
     t0, t1 = interval
     span = t1 - t0
@@ -149,13 +150,30 @@ def _ShadePhases(ax, phases, interval, labels: bool = True):
             continue
         ax.axvspan(a, b, color=_PHASE_COLORS[kind], alpha=0.6, lw=0, zorder=0)
         if labels and (b - a) > 0.08 * span:
-            ax.text(0.5 * (a + b), 0.98, kind, transform=trans, ha='center', va='top', fontsize=8,
-                    color='0.35', zorder=1)
+            ax.text(0.5 * (a + b), 1.005, kind, transform=trans, ha='center', va='bottom', fontsize=8,
+                    color='0.35', clip_on=False, gid='phase label')
+            ax._phaseLabels = True
+
+
+def _SetTitle(ax, text: str, **kwargs):
+    """Axes title; above the phase names of :func:`_ShadePhases` where the axes has them."""
+    if getattr(ax, '_phaseLabels', False):
+        kwargs.setdefault('pad', 14.)
+    ax.set_title(text, **kwargs)
 
 
 def _Decorate(ax, interval):
     ax.grid(True, color='0.85', lw=0.5)
-    ax.set_xlim(*interval)
+    t0, t1 = interval
+    # a limit just past a round tick (e.g. a zoom from 4.00015 s) would hide the first or last time tick:
+    # widen the view to that tick when it lies within 2 % of the span
+    ticks = ax.xaxis.get_major_locator().tick_values(t0, t1)
+    below, above = [v for v in ticks if v <= t0], [v for v in ticks if v >= t1]
+    if below and t0 - below[-1] <= 0.02 * (t1 - t0):
+        t0 = float(below[-1])
+    if above and above[0] - t1 <= 0.02 * (t1 - t0):
+        t1 = float(above[0])
+    ax.set_xlim(t0, t1)
     ax.margins(y=0.08)
 
 
@@ -260,6 +278,7 @@ def _Draw(kind, ax, result, mask, interval, phases, twin: bool = True):
         _DrawSeries(ax, result, 'driveTorque', mask)
         ax.set_ylabel(_Label('driveTorque'), color=_C_MAIN)
         ax.axhline(0., color='0.4', lw=0.6)
+        _ExplainTorqueSign(ax, result, mask, phases)
         if twin:
             _TwinStep(ax, t, _ContactSign(result, mask), _S_LABEL, _C_SECOND)
     else:                                                             # any series by name
@@ -267,6 +286,111 @@ def _Draw(kind, ax, result, mask, interval, phases, twin: bool = True):
         ax.set_ylabel(_Label(kind))
     _Decorate(ax, interval)
     ax.set_xlabel('time $t$ [s]')
+
+
+def TorqueSignNote(result, mask=None, phases: Sequence = ()) -> str:
+    """What the sign of the drive-shaft torque M_an (eq. (6)) means in ``result``, one line per statement.
+
+    M_an = kT (phi1 - phi0) + dT (phi1' - phi0') is positive when the worm runs ahead of the motor. With the
+    worm turning forward (mean phi1' > 0), M_an < 0 means the shaft pulls the worm along: the motor drives
+    the gear; M_an > 0 means the worm drives the motor. With ``phases`` (lift / lower intervals), the mean
+    torque of each phase follows, and a remark where the motor drives while the load is lowered
+    (self-locking).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        With the series ``driveTorque`` (and ``omega1`` for the direction of the worm).
+    mask : array of bool, optional
+        Output times to use (default: all).
+    phases : sequence of (t0, t1, 'lift' | 'lower'), optional
+        Phase intervals, e.g. of a reel-changer run.
+
+    Returns
+    -------
+    str
+    """
+    t = np.asarray(result.time)
+    mask = np.ones(t.shape, bool) if mask is None else np.asarray(mask, bool)
+    M = np.asarray(result.series['driveTorque'])
+    lines = [r'$M_{an} = k_T(\varphi_1-\varphi_0) + d_T(\dot\varphi_1-\dot\varphi_0)$ (eq. 6)']
+    if 'omega1' not in result.series:
+        lines.append(r'$M_{an} < 0$: the worm lags behind the motor')
+        return '\n'.join(lines)
+    forward = float(np.mean(np.asarray(result.series['omega1'])[mask])) >= 0.
+    drives = '<' if forward else '>'
+    lines.append(fr'worm turning {"forward" if forward else "backward"}: $M_{{an}}$ {drives} 0 = the motor drives '
+                 fr'the worm, $M_{{an}}$ {">" if forward else "<"} 0 = the worm drives the motor')
+    means = {}
+    for a, b, kind in phases:
+        inside = mask & (t >= a) & (t <= b)
+        if inside.any():
+            means.setdefault(kind, []).append(M[inside])
+    if means:
+        means = {k: float(np.mean(np.concatenate(v))) for k, v in means.items()}
+        lines.append(', '.join(f"{'lifting' if k == 'lift' else 'lowering'}: mean {v:+.3g} N·m"
+                               for k, v in sorted(means.items())))
+        if 'lower' in means and (means['lower'] < 0) == forward:
+            lines[-1] += ' (self-locking: the motor drives while lowering too)'
+    return '\n'.join(lines)
+
+
+def _ExplainTorqueSign(ax, result, mask, phases):
+    """The meaning of the torque's sign as a legend without handles, where it covers the least data."""
+    from matplotlib.lines import Line2D
+    note = TorqueSignNote(result, mask, phases)
+    legend = ax.legend([Line2D([], [], ls='none')], [note], loc='best', fontsize=7.5, handlelength=0,
+                       handletextpad=0, framealpha=0.9, title='sign of $M_{an}$', title_fontsize=8)
+    legend.set_gid('torque sign')
+
+
+#: more sign changes of S per inch of figure width than this: drawn as the share of time per bin and a zoom
+DENSE_SWITCHES_PER_INCH = 15.
+
+
+def _DrawDenseSign(share, zoom, result, mask, interval, phases):
+    """sign(S) switching too often for a step line: its share of time per bin (``share``) and a step plot
+    over a short window with about 20 switches (``zoom``), marked on ``share``."""
+    t = np.asarray(result.time)[mask]
+    sign = _ContactSign(result, mask)
+    switches = t[1:][np.diff(sign) != 0]
+    if phases:
+        _ShadePhases(share, phases, interval, labels=False)
+    bins = int(min(200, max(20, t.size // 20)))
+    edges = np.linspace(interval[0], interval[1], bins + 1)
+    index = np.clip(np.searchsorted(edges, t, side='right') - 1, 0, bins - 1)
+    count = np.maximum(np.bincount(index, minlength=bins), 1)
+    minus = np.bincount(index, weights=(sign < 0), minlength=bins) / count
+    plus = np.bincount(index, weights=(sign > 0), minlength=bins) / count
+    x = edges
+    step = lambda v: np.append(v, v[-1])
+    share.fill_between(x, 0., step(minus), step='post', color=_C_SECOND, lw=0, label='$S = -1$', gid='share S=-1')
+    share.fill_between(x, step(minus), step(minus + plus), step='post', color=_C_MAIN, lw=0, alpha=0.85,
+                       label='$S = +1$', gid='share S=+1')
+    share.set_ylim(0., 1.)
+    share.set_yticks([0., 0.5, 1.])
+    share.set_ylabel('share of time')
+    _Decorate(share, interval)
+    share.margins(y=0.)
+    share.legend(loc='center left', bbox_to_anchor=(1.0, 0.5), fontsize=7.5, frameon=False)
+    share.set_title(fr'sign$(S)$ changes {switches.size} times: its share of time per '
+                    fr'{1e3 * (edges[1] - edges[0]):.3g} ms (zoom below, window shaded)', loc='left', fontsize=8)
+    span = interval[1] - interval[0]
+    width = float(np.clip(20. * span / max(switches.size, 1), 20 * np.median(np.diff(t)), span / 10))
+    centre = float(switches[switches.size // 2]) if switches.size else 0.5 * sum(interval)
+    w0 = min(max(centre - 0.5 * width, interval[0]), interval[1] - width)
+    share.axvspan(w0, w0 + width, fc='none', ec='black', lw=0.8, zorder=3)
+    inside = (t >= w0) & (t <= w0 + width)
+    if phases:
+        _ShadePhases(zoom, phases, (w0, w0 + width), labels=False)
+    zoom.plot(t[inside], sign[inside], color=_C_SECOND, lw=0.9, drawstyle='steps-post', gid='sign zoom')
+    zoom.set_ylim(-1.3, 1.3)
+    zoom.set_yticks([-1, 0, 1])
+    zoom.set_ylabel('sign$(S)$ [–]')
+    zoom.grid(True, color='0.85', lw=0.5)
+    zoom.set_xlim(w0, w0 + width)
+    zoom.set_xlabel('time $t$ [s] (zoom)')
+    zoom.set_title(_S_NOTE, loc='left', fontsize=8)
 
 
 _REQUIRED = {'acceleration': ('alpha2',), 'zoom': ('alpha2', 'S'), 'speed': ('omega1', 'sf'),
@@ -343,7 +467,7 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
         fig, axes = _NewFigure(2, 2, figsize=figsize or (12., 7.), sharex=True)
         for ax, k in zip(axes.flat, ('acceleration', 'speed', 'normalForce', 'driveTorque')):
             _Draw(k, ax, result, mask, interval, phases, twin=False)
-            ax.set_title(_DEFAULT_TITLES[k].split(' and ')[0], fontsize=10)
+            _SetTitle(ax, _DEFAULT_TITLES[k].split(' and ')[0], fontsize=10)
         for ax in axes[0]:
             ax.set_xlabel('')
         fig.suptitle(title)
@@ -355,7 +479,7 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
         _Draw('sf', axes[1, 0], result, mask, interval, phases)
         axes[0, 0].set_xlabel('')
         axes[1, 0].set_title(r'friction state $s_f$ (±1 sliding, |$s_f$| < 1 sticking)', loc='left', fontsize=9)
-        axes[0, 0].set_title(title, fontsize=11)
+        _SetTitle(axes[0, 0], title, fontsize=11)
         return fig
     if kind == 'normalForce':              # one panel per flank: the dense second flank stays legible
         fig, axes = _NewFigure(2, 1, figsize=figsize or (8., 5.6), sharex=True)
@@ -365,22 +489,33 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
             _DrawFlank(ax, result, mask, flank)
             _Decorate(ax, interval)
         axes[1, 0].set_xlabel('time $t$ [s]')
-        axes[0, 0].set_title(title, fontsize=11)
+        _SetTitle(axes[0, 0], title, fontsize=11)
         return fig
     if kind == 'driveTorque' and tZoom is None:   # whole run: S in its own panel, never over the torque
+        width = (figsize or (8., 5.))[0]
+        if np.count_nonzero(np.diff(_ContactSign(result, mask))) > DENSE_SWITCHES_PER_INCH * width:
+            # a step line of S would be a solid block: share of time per bin, and a zoom with readable steps
+            fig, axes = _NewFigure(3, 1, figsize=figsize or (8., 6.4), heightRatios=(3, 1, 1.1))
+            axes[1, 0].sharex(axes[0, 0])
+            _Draw('driveTorque', axes[0, 0], result, mask, interval, phases, twin=False)
+            _DrawDenseSign(axes[1, 0], axes[2, 0], result, mask, interval, phases)
+            axes[0, 0].set_xlabel('')
+            axes[1, 0].set_xlabel('time $t$ [s]')
+            _SetTitle(axes[0, 0], title, fontsize=11)
+            return fig
         fig, axes = _NewFigure(2, 1, figsize=figsize or (8., 5.), sharex=True, heightRatios=(3, 1))
         _Draw('driveTorque', axes[0, 0], result, mask, interval, phases, twin=False)
         _Draw('S', axes[1, 0], result, mask, interval, phases)
         axes[0, 0].set_xlabel('')
         axes[1, 0].set_title(_S_NOTE, loc='left', fontsize=8)
-        axes[0, 0].set_title(title, fontsize=11)
+        _SetTitle(axes[0, 0], title, fontsize=11)
         return fig
     fig, axes = _NewFigure(1, 1, figsize=figsize or (8., 4.2))
     ax = axes[0, 0]
     _Draw(kind, ax, result, mask, interval, phases)
     if kind in ('zoom', 'driveTorque'):
         ax.text(0.0, -0.2, _S_NOTE, transform=ax.transAxes, fontsize=7, color='0.3', va='top')
-    ax.set_title(title, fontsize=11)
+    _SetTitle(ax, title, fontsize=11)
     return fig
 
 
@@ -445,8 +580,8 @@ def PlotComparison(results: Mapping[str, Any], quantity: str = 'normalForce',
         _Decorate(ax, interval)
         m = np.max(np.abs(np.asarray(result.series[series])[mask])) * _Factor(series)
         unit = _Label(series).rsplit('[', 1)[-1].rstrip(']')
-        ax.set_title(str(label), loc='left', fontsize=10, fontweight='bold')
-        ax.set_title(f'max |{series if series not in _AXES else _AXES[series][0].split(" ")[-1]}| = {m:.4g} {unit}',
+        _SetTitle(ax, str(label), loc='left', fontsize=10, fontweight='bold')
+        _SetTitle(ax, f'max |{series if series not in _AXES else _AXES[series][0].split(" ")[-1]}| = {m:.4g} {unit}',
                      loc='right', fontsize=9)
     axes[-1, 0].set_xlabel('time $t$ [s]')
     if title is None:

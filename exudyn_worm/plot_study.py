@@ -12,7 +12,7 @@ import numpy as np
 
 from .parameters import PARAMETERS
 
-__all__ = ['PlotMetric', 'PlotChatterMap', 'AnalyticalMap', 'AxisLabel', 'WHOLE_DRIVE_RESOLUTION']
+__all__ = ['PlotMetric', 'PlotChatterMap', 'AnalyticalMap', 'AxisLabel', 'ChartAxes', 'WHOLE_DRIVE_RESOLUTION']
 
 #: points per axis of the map of the linearized whole drive (a drive with a chain or an axial bearing) in
 #: :func:`PlotChatterMap`: one Exudyn linearization a point, so 400 points take about 12 s
@@ -46,6 +46,26 @@ def AxisLabel(column: str) -> Tuple[str, float]:
     text, unit, factor = _METRIC_LABELS.get(name, (name, '', 1.))
     where = f', window {window[1:]}' if window.startswith('w') else ''
     return f'{text}{where} [{unit}]', factor
+
+
+def ChartAxes(x: str, y: str) -> Tuple[str, str]:
+    """The two keys of a chatter map in the stability charts' order: a stiffness (kT, kV, k3, ...) on the
+    horizontal axis, an inertia (J1, J2, ...) on the vertical one, as the charts' x = kT/(kV r1^2) and
+    y = J1/J2; any other pair as given.
+
+    Parameters
+    ----------
+    x, y : str
+        The varied keys in the order given (e.g. ``--vary J1=... --vary kT=...``).
+
+    Returns
+    -------
+    (str, str)
+        (horizontal key, vertical key).
+    """
+    inertia = lambda key: key.startswith('J')
+    stiffness = lambda key: key.startswith('k')
+    return (y, x) if inertia(x) and stiffness(y) else (x, y)
 
 
 def _IsLog(values) -> bool:

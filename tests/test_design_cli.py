@@ -171,3 +171,34 @@ def test_heavy_damping_recommendations_get_a_remark(capsys):
     rc, out, err = Run(capsys, 'check', '--preset', 'reel-P1')
     note = [line for line in out.splitlines() if line.startswith('Note: DT = 0.912 and DV = 1.1 are damping ratios')]
     assert rc == 0 and len(note) == 1 and 'critical damping' in note[0]
+
+
+def test_check_plot_reads_well():
+    """issue 16, item 9: D_V / D_TV in mathtext, no label box over the boundary, the shading in the legend, and
+    the legend off the chart."""
+    import re
+    import numpy as np
+    from exudyn_worm.design import DesignCheck
+    from exudyn_worm.plot_design import PlotDesignCheck, _Dense
+    fig = PlotDesignCheck(DesignCheck(GetPreset('reel-P1')), title='reel-P1')
+    ax = fig.axes[0]
+    legend = ax.get_legend()
+    texts = [t.get_text() for t in legend.get_texts()]
+    for text in [ax.get_title()] + texts:
+        plain = re.sub(r'\$[^$]*\$', '', text)                  # what is left outside mathtext
+        assert not re.search(r'D_V|D_TV|D_T\b', plain), text
+    assert '$D_V$ = 0.014' in ax.get_title() and '$D_{TV}$ = 1' in ax.get_title()
+    assert texts[0].startswith('$S = -1$: unstable region (shaded)')
+    fig.draw_without_rendering()
+    renderer = fig._get_renderer()
+    assert legend.get_window_extent(renderer).y1 <= ax.get_window_extent(renderer).y0 + 0.5   # below the axes
+    boundary = np.concatenate([_Dense(ax.transData.transform(line.get_xydata())) for line in ax.lines
+                               if (line.get_gid() or '').startswith('boundary')])
+    labels = [t for t in ax.texts if t.get_gid() == 'move label']
+    assert len(labels) == 4                                     # J1 x = J2 /, J1 / = J2 x, kT x, kT /
+    for text in labels:
+        assert text.get_bbox_patch() is None                    # no box that could hide the line
+        box = text.get_window_extent(renderer)
+        inside = ((boundary[:, 0] >= box.x0) & (boundary[:, 0] <= box.x1) &
+                  (boundary[:, 1] >= box.y0) & (boundary[:, 1] <= box.y1))
+        assert not inside.any(), text.get_text()

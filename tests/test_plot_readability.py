@@ -42,3 +42,105 @@ def test_running_mean_of_an_oscillation_does_not_drift_at_the_ends():
     np.testing.assert_allclose(mean[inner], 1000., rtol=1e-9)                      # whole periods
     assert np.max(np.abs(mean - 1000.)) < 70.             # half a window at the ends: >= 5 periods (was 500 N off)
     np.testing.assert_allclose(_RunningMean(t, np.full_like(t, 7.), 0.25), 7.)
+
+
+# --- issue 16, item 9: labels outside the data, the first time tick, the sign of M_an, a readable sign(S) -------
+
+@pytest.fixture(autouse=True)
+def _CloseFigures():
+    """Figures go through pyplot once another test imported it: close them (pyplot keeps them)."""
+    yield
+    import sys
+    if 'matplotlib.pyplot' in sys.modules:
+        sys.modules['matplotlib.pyplot'].close('all')
+
+
+def _Record(seconds=2., chatterHz=40., omegaSign=1.):
+    """Synthetic reel-changer-like record: a quarter turn of the wheel per s, chatter while lowering."""
+    from exudyn_worm.results import SimulationResult
+    t = np.linspace(0., seconds, int(1000 * seconds) + 1)
+    phi2 = 0.5 * np.pi * t
+    chatter = np.where(np.cos(phi2) < 0, np.sin(2 * np.pi * chatterHz * t), 0.)
+    series = {'phi0': 50 * t, 'omega0': 50 + 0 * t, 'phi1': 50 * t, 'omega1': omegaSign * (50 + chatter),
+              'alpha1': chatter, 'phi2': phi2, 'omega2': np.pi / 2 + 0 * t, 'alpha2': 100 * chatter,
+              'deltaPhi': chatter, 'deltaS': 1e-6 * chatter, 'normalForce': 2e4 * np.abs(np.cos(phi2)),
+              'S': np.sign(chatter) + (chatter == 0), 'sf': 1 + 0 * t, 'wormTorque': 0 * t, 'wheelTorque': 0 * t,
+              'driveTorque': -80 * np.cos(phi2) ** 2 - 10, 'tangentialForce': 0 * t}
+    return SimulationResult(time=t, series=series, J2=33., r2=0.106, info={'maxLoadTorque': 2060.})
+
+
+@pytest.mark.parametrize('kind', ['acceleration', 'speed', 'normalForce', 'driveTorque', 'zoom'])
+def test_phase_names_lie_outside_the_data(kind):
+    """No curve can run through 'lift' / 'lower': the names sit above the axes, where the data is clipped."""
+    from exudyn_worm.plot import PlotSimulation
+    fig = PlotSimulation(_Record(), kind=kind, tZoom=(0.9, 1.4) if kind == 'zoom' else None)
+    fig.draw_without_rendering()
+    renderer = fig._get_renderer()
+    names = [(ax, t) for ax in fig.axes for t in ax.texts if t.get_gid() == 'phase label']
+    assert {t.get_text() for _, t in names} >= ({'lower'} if kind == 'zoom' else {'lift', 'lower'})
+    for ax, text in names:
+        box, frame = text.get_window_extent(renderer), ax.get_window_extent(renderer)
+        assert box.y0 >= frame.y1 - 0.5, (kind, text.get_text())
+        title = ax.title.get_window_extent(renderer)
+        assert title.y0 >= box.y1 - 0.5 or not ax.get_title()
+
+
+def test_zoom_starting_just_after_a_round_time_keeps_its_first_tick():
+    """A zoom from 1.20015 s (the paper's 4.0 s at the simulated rotation period) shows the tick 1.2."""
+    from exudyn_worm.plot import PlotSimulation
+    fig = PlotSimulation(_Record(), kind='zoom', tZoom=(1.20015, 1.30015))
+    ax = fig.axes[0]
+    lo, hi = ax.get_xlim()
+    visible = [v for v in ax.get_xticks() if lo <= v <= hi]
+    assert visible[0] == pytest.approx(1.2) and lo == pytest.approx(1.2)
+    assert visible[-1] == pytest.approx(1.3)
+    fig = PlotSimulation(_Record(), kind='zoom', tZoom=(1.205, 1.305))      # 5 % off a tick: not widened
+    assert fig.axes[0].get_xlim() == pytest.approx((1.205, 1.305))
+
+
+@pytest.mark.parametrize('omegaSign', [1., -1.])
+def test_drive_torque_says_what_its_sign_means(omegaSign):
+    from exudyn_worm.plot import PlotSimulation, TorqueSignNote
+    result = _Record(omegaSign=omegaSign)
+    fig = PlotSimulation(result, kind='driveTorque')
+    legend = next(ax.get_legend() for ax in fig.axes if ax.get_legend() and ax.get_legend().get_gid() == 'torque sign')
+    text = '\n'.join(t.get_text() for t in legend.get_texts())
+    assert 'eq. 6' in text
+    drives = '$M_{an}$ < 0 = the motor drives' if omegaSign > 0 else '$M_{an}$ > 0 = the motor drives'
+    assert drives in text
+    # the record's torque is negative throughout: with the worm turning forward, the motor drives also while
+    # lowering (the self-locking remark); turning backward it would be the worm that drives
+    assert ('self-locking' in text) == (omegaSign > 0)
+    assert 'lifting: mean' in text and 'lowering: mean' in text
+    assert TorqueSignNote(result).count('\n') == 1                 # without phases: no means
+
+
+def test_dense_contact_sign_is_drawn_as_share_of_time_and_zoom():
+    """P7's sign(S) over a whole run switches about a thousand times: a step line would be a solid block."""
+    from exudyn_worm.plot import DENSE_SWITCHES_PER_INCH, PlotSimulation
+    result = _Record(seconds=8., chatterHz=60.)
+    sign = np.sign(result.series['S'])
+    assert np.count_nonzero(np.diff(sign)) > DENSE_SWITCHES_PER_INCH * 8
+    fig = PlotSimulation(result, kind='driveTorque')
+    assert len(fig.axes) == 3
+    share, zoom = fig.axes[1], fig.axes[2]
+    fills = {c.get_gid(): c for c in share.collections if c.get_gid()}
+    assert set(fills) == {'share S=-1', 'share S=+1'}
+    top = fills['share S=+1'].get_paths()[0].vertices
+    assert top[:, 1].max() <= 1. + 1e-12 and top[:, 1].min() >= 0.
+    minus = fills['share S=-1'].get_paths()[0].vertices
+    t = minus[:, 0]
+    lowering = (t > 1.2) & (t < 2.8)                               # sin(2 pi 60 t): half the time below zero
+    assert np.median(minus[lowering, 1][minus[lowering, 1] > 0]) == pytest.approx(0.5, abs=0.06)
+    assert minus[(t > 3.2) & (t < 4.8), 1].max() == 0.             # lifting: S = +1 all the time
+    line = next(l for l in zoom.lines if l.get_gid() == 'sign zoom')
+    steps = np.count_nonzero(np.diff(line.get_ydata()))
+    assert 5 <= steps <= 40                                        # readable steps
+    width = np.diff(zoom.get_xlim())[0]
+    assert width < 8. / 10
+
+
+def test_sparse_contact_sign_keeps_its_step_line():
+    from exudyn_worm.plot import PlotSimulation
+    fig = PlotSimulation(_Record(seconds=2., chatterHz=5.), kind='driveTorque')
+    assert len(fig.axes) == 2 and fig.axes[1].lines[0].get_drawstyle() == 'steps-post'

@@ -42,7 +42,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--windows', default=None, metavar='T0:T1,...',
                         help='evaluation windows in s (default: the lift / lower / lift phases of each run)')
     parser.add_argument('--plot', default=None, metavar='FILE.png',
-                        help='one varied key: --metric against it; two: the chatter map over them')
+                        help='one varied key: --metric against it; two: the chatter map over them (a stiffness '
+                             'across and an inertia up, as the stability charts)')
     parser.add_argument('--metric', default=_DEFAULT_METRIC, metavar='COLUMN',
                         help=f"column plotted against one varied key (default {_DEFAULT_METRIC}: the largest "
                              f"|phi2''| in window 1, the lowering)")
@@ -115,9 +116,10 @@ def _Run(args: argparse.Namespace) -> int:
         written += [Path(args.output), StudySidecarPath(args.output)]
     if args.plot:
         from .. import plot
+        from ..plot_study import ChartAxes            # kT across, J1 up, as the stability charts
         subtitle = f"exudyn-worm sweep: {SourceText(args)}"
         figure = (result.Plot(study.keys[0], metric=args.metric, subtitle=subtitle) if len(study.keys) == 1
-                  else result.Plot(study.keys[0], study.keys[1], subtitle=subtitle))
+                  else result.Plot(*ChartAxes(study.keys[0], study.keys[1]), subtitle=subtitle))
         WriteAtomically(args.plot, lambda tmp: plot.SaveFigure(figure, tmp))
         written.append(Path(args.plot))
     if args.json:
