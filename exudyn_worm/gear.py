@@ -11,6 +11,7 @@ from dataclasses import dataclass, replace
 from typing import Optional
 
 from ._checks import CheckAngle, CheckNonNegative, CheckPositive
+from .plausibility import CheckGearPlausibility
 
 __all__ = ['WormGear']
 
@@ -38,7 +39,9 @@ class WormGear:
         Mesh damping in the normal direction in N*s/m, >= 0.
     backlash : float, optional
         Total normal backlash delta in m, in [0, r1] (no force while ``|Delta s| <= delta/2``); a value
-        above the worm radius is rejected as a unit mistake (mm given as m).
+        above the worm radius is rejected as a unit mistake (mm given as m). Values that no worm gear has are
+        refused (ratio u < 1, gamma + rho >= 90 deg) or warned about (mu > 0.5, r1 > r2), naming the likely
+        unit slip: :func:`~exudyn_worm.plausibility.CheckGearPlausibility`.
     mu : float, optional
         Flank friction coefficient, >= 0. Give ``mu`` or ``rho`` (or both, consistent via eq. (13)).
     rho : float, optional
@@ -47,7 +50,8 @@ class WormGear:
     Raises
     ------
     ValueError
-        If a value is out of range or non-finite, if neither or inconsistent ``mu``/``rho`` are given.
+        If a value is out of range or non-finite, if neither or inconsistent ``mu``/``rho`` are given, or for a
+        ratio u below 1 or gamma + rho >= 90 deg (efficiency with the worm driving <= 0).
     TypeError
         If a value is not a real number.
 
@@ -103,6 +107,7 @@ class WormGear:
             raise ValueError(f"{w}: 'mu' and 'rho' are inconsistent through eq. (13) rho = atan(mu/cos(alphaN)): "
                              f"mu = {self.mu:g} needs rho = {math.degrees(math.atan(self.mu / cosA)):.6g} deg, "
                              f"got rho = {math.degrees(self.rho):.6g} deg; give only one of them")
+        CheckGearPlausibility(self, w)     # values that no worm gear has: refused or warned, naming the unit slip
 
     # --- derived quantities -------------------------------------------------------------
     @property
