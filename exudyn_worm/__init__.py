@@ -20,6 +20,7 @@ _LAZY = {'WormGear': 'gear',
          **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'GetPreset', 'PRESETS'), 'presets'),
          **dict.fromkeys(('AnalyzeLinearStability', 'AnalyzeStabilityExudyn', 'LinearStability'), 'linearization'),
          **dict.fromkeys(('BuildReelChanger', 'SimulateReelChanger'), 'reelchanger'),
+         'SteadyInitialState': 'equilibrium',
          'SimulationResult': 'results',
          **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'stepsize')}
 
@@ -45,7 +46,7 @@ __all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMea
            'CreateRotorTorque', 'ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque',
            'LinearMotorCharacteristic', 'StartStopProfile', 'ApplyOverrides', 'DriveFromParameters', 'GetPreset',
            'PRESETS', 'AnalyzeStabilityExudyn', 'AnalyzeLinearStability', 'LinearStability', 'BuildReelChanger',
-           'SimulateReelChanger', 'SimulationResult', 'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods',
+           'SimulateReelChanger', 'SteadyInitialState', 'SimulationResult', 'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods',
            '__version__']
 
 _MAIN_SYSTEM_METHODS = ('CreateWormGear', 'CreateWormAxialBearing', 'CreateRotor', 'CreateShaft',
