@@ -15,7 +15,7 @@ from exudyn_worm.cli import Main
 
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
 TOP_KEYS = {'ratio', 'frictionAngle', 'selfLocking', 'efficiency', 'S', 'fuesgenLimit', 'firstCriterionLimit', 'hint',
-            'stable'}
+            'stable', 'geometry'}
 
 
 def Run(capsys, *argv):

@@ -1,4 +1,5 @@
 """Gear geometry from its designation (issue 16, item 3): exudyn_worm/geometry.py and the [gear] forms."""
+import json
 import math
 import subprocess
 import sys
@@ -139,6 +140,11 @@ def test_cli_stability_prints_the_derived_geometry(tmp_path):
     row = next(line for line in run.stdout.splitlines() if 'reference radii r1, r2 [mm]' in line)
     assert [float(x) for x in row.split()[-2:]] == pytest.approx([r1, 40 - r1], rel=1e-4)
     assert DescribeGeometry(P1) == ''
+    data = json.loads(_Run('stability', '--json', '--set', 'mx=3 mm', '--set', 'z1=2', '--set', 'z2=30',
+                           '--set', 'q=14.666666666666666', cwd=tmp_path).stdout)
+    assert data['geometry']['form'] == 'designation'
+    assert (data['geometry']['r1'], data['geometry']['r2'], data['geometry']['u']) == pytest.approx((0.022, 0.045, 15.),
+                                                                                                    rel=1e-12)
 
 
 @pytest.mark.parametrize('args, text', [

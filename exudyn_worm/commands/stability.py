@@ -7,7 +7,7 @@ from typing import Dict, List
 
 from ..cli import DriveFromArgs, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
 from ..design import StabilizingChanges
-from ..geometry import DescribeGeometry
+from ..geometry import DescribeGeometry, GeometryForm
 from ..presets import ExtraComponents
 from ..stability import CONTACT_STATES, AnalyzeStability, StabilityAnalysis
 
@@ -69,7 +69,9 @@ def _Run(args: argparse.Namespace) -> int:
         analysis = AnalyzeStability(drive)
     hint = None if analysis.stable else StabilityHintData(parameters)
     if args.json:
-        PrintJson({**analysis.ToDict(), 'hint': hint})
+        g = drive.gear
+        geometry = {'form': GeometryForm(parameters), 'r1': g.r1, 'r2': g.r2, 'gamma': g.gamma, 'u': g.ratio}
+        PrintJson({**analysis.ToDict(), 'geometry': geometry, 'hint': hint})
         return 0
     lines = FormatStability(analysis, title=f"exudyn-worm stability: {SourceText(args)}, method {args.method}")
     geometry = DescribeGeometry(parameters)
