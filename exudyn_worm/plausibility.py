@@ -26,6 +26,8 @@ __all__ = ['ImplausibleValueWarning', 'MAX_PLAUSIBLE_MU', 'CheckGearPlausibility
 
 #: flank friction coefficient above which a gear is warned about (issue 16, item 8); the paper's gears have 0.132
 MAX_PLAUSIBLE_MU = 0.5
+#: worm radius in m from which a message suggests mm given as m (a worm of 1 m diameter; a hint, not a limit)
+_LARGE_RADIUS = 0.5
 #: lead angle in rad above which a message suggests degrees given as rad (28.6 deg)
 _LARGE_GAMMA = 0.5
 
@@ -39,6 +41,8 @@ class ImplausibleValueWarning(UserWarning):
 
 
 def _RadiusSlip(name: str, value: float) -> str:
+    if value < _LARGE_RADIUS:
+        return f"; check '{name}' and its unit (m)"
     return (f"; '{name}' is in m: mm given as m? {value:g} mm = {value * 1e-3:g} m "
             f"(on the command line --set '{name}={value:g} mm')")
 

@@ -10,6 +10,9 @@ from exudyn_worm.drive import (ElasticDrive, MeshDampingFromMeasure, MeshDamping
                                TorsionalDampingFromMeasure, TorsionalDampingMeasure)
 from exudyn_worm.gear import WormGear
 
+# random gears of the property tests include worms larger than their wheels: warned, not wrong here
+pytestmark = pytest.mark.filterwarnings('ignore::exudyn_worm.plausibility.ImplausibleValueWarning')
+
 deg = math.radians
 
 # set (28) of the paper (section 3.1); friction given as rho so mu follows from eq. (13)

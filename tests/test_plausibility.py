@@ -1,5 +1,6 @@
 """Plausibility of a worm gear (issue 16, item 8): refusals and warnings naming the likely unit slip."""
 import math
+import re
 import subprocess
 import sys
 import warnings
@@ -56,10 +57,12 @@ def test_mu_at_the_limit_is_not_warned():
         WormGear(**{**GEAR, 'mu': 0.5})
 
 
-def test_worm_larger_than_wheel_is_warned():
-    with pytest.warns(ImplausibleValueWarning, match=r"worm radius r1 = 0.2 m is larger than the wheel radius "
-                                                     r"r2 = 0.10595 m .*0.2 mm = 0.0002 m"):
-        gear = WormGear(**{**GEAR, 'r1': 0.2})
+@pytest.mark.parametrize('r1, r2, slip', [(0.2, 0.10595, "check 'r1' and its unit"),
+                                           (0.6, 0.5, "mm given as m? 0.6 mm = 0.0006 m")])
+def test_worm_larger_than_wheel_is_warned(r1, r2, slip):
+    with pytest.warns(ImplausibleValueWarning, match=rf"worm radius r1 = {r1:g} m is larger than the wheel radius "
+                                                     rf"r2 = {r2:g} m .*{re.escape(slip)}"):
+        gear = WormGear(**{**GEAR, 'r1': r1, 'r2': r2, 'gamma': deg(1.)})
     assert gear.ratio >= 1
 
 
