@@ -33,19 +33,17 @@ import math
 from typing import Dict, Mapping, Tuple
 
 from ._checks import CheckAngle, CheckPositive
+from .parameters import PARAMETERS
 
 __all__ = ['GEOMETRY_FORMS', 'GEOMETRY_KEYS', 'GeometryForm', 'RadiiFromCentreDistance', 'RadiiFromDesignation',
            'DesignationFromRadii', 'GeometryFromParameters', 'MissingGeometryKeys', 'DescribeGeometry',
            'MeshStiffnessFromWheelTorsion']
 
-#: the forms in which a parameter set may give the gear geometry: name -> its keys (all required)
-GEOMETRY_FORMS: Dict[str, Tuple[str, ...]] = {'radii': ('r1', 'r2', 'gamma'),
-                                               'centre distance': ('a', 'u', 'gamma'),
-                                               'designation': ('mx', 'z1', 'z2', 'q')}
-#: every key of the gear geometry, in the order of :data:`GEOMETRY_FORMS`
+#: the forms in which a parameter set may give the gear geometry: name -> its keys (all required), as declared in
+#: the registry (``radii``: gamma r1 r2, ``centre distance``: gamma a u, ``designation``: mx z1 z2 q)
+GEOMETRY_FORMS: Dict[str, Tuple[str, ...]] = PARAMETERS.Forms('gear geometry')
+#: every key of the gear geometry, in the order of the registry
 GEOMETRY_KEYS: Tuple[str, ...] = tuple(dict.fromkeys(k for keys in GEOMETRY_FORMS.values() for k in keys))
-#: order of missing keys in messages (the registry's: gamma before r1, r2)
-_MESSAGE_ORDER = ('gamma', 'r1', 'r2', 'a', 'u', 'mx', 'z1', 'z2', 'q')
 
 
 def RadiiFromDesignation(mx: float, z1: float, z2: float, q: float) -> Tuple[float, float, float]:
@@ -170,10 +168,6 @@ def GeometryForm(parameters: Mapping[str, float]) -> str:
     return 'radii'
 
 
-def _FormsText() -> str:
-    return '; or '.join(', '.join(keys) for keys in GEOMETRY_FORMS.values())
-
-
 def MissingGeometryKeys(parameters: Mapping[str, float]) -> Tuple[str, ...]:
     """The keys missing from the geometry form that ``parameters`` use (empty if complete).
 
@@ -186,8 +180,7 @@ def MissingGeometryKeys(parameters: Mapping[str, float]) -> Tuple[str, ...]:
     -------
     tuple of str
     """
-    keys = GEOMETRY_FORMS[GeometryForm(parameters)]
-    return tuple(k for k in _MESSAGE_ORDER if k in keys and k not in parameters)
+    return tuple(k for k in GEOMETRY_FORMS[GeometryForm(parameters)] if k not in parameters)
 
 
 def GeometryFromParameters(parameters: Mapping[str, float], where: str = 'GeometryFromParameters'
@@ -220,7 +213,7 @@ def GeometryFromParameters(parameters: Mapping[str, float], where: str = 'Geomet
         raise MissingParameterError(
             f"{where}: missing parameter(s) {', '.join(missing)} of the gear geometry"
             + (f" (given {', '.join(given)}: the {form} form needs {', '.join(GEOMETRY_FORMS[form])})" if given else '')
-            + f"; give one of: {_FormsText()}; with --set KEY=VALUE or in the config file", missing)
+            + f"; give one of: {PARAMETERS.FormsText('gamma')}; with --set KEY=VALUE or in the config file", missing)
     p = parameters
     if form == 'designation':
         return RadiiFromDesignation(p['mx'], p['z1'], p['z2'], p['q'])

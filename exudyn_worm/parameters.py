@@ -346,9 +346,30 @@ class ParameterRegistry:
         return tuple(p.key for p in self if p.quantity == parameter.quantity and p.key != key
                      and not set(p.forms) & set(parameter.forms))
 
+    def Forms(self, quantity: str) -> Dict[str, Tuple[str, ...]]:
+        """The forms of a quantity given by groups of keys: form -> its keys, in declaration order.
+
+        Parameters
+        ----------
+        quantity : str
+            The label of the quantity (``'gear geometry'``).
+
+        Returns
+        -------
+        dict
+            E.g. ``{'radii': ('gamma', 'r1', 'r2'), 'centre distance': ('gamma', 'a', 'u'), ...}``; empty for a
+            quantity without forms.
+        """
+        groups: Dict[str, List[str]] = {}
+        for p in self:
+            if p.quantity == quantity:
+                for form in p.forms:
+                    groups.setdefault(form, []).append(p.key)
+        return {form: tuple(keys) for form, keys in groups.items()}
+
     def FormsText(self, key) -> str:
-        """The groups of keys of the quantity of ``key`` that has forms, as text (``'r1, r2, gamma; or a, u,
-        gamma; ...'``); ``''`` for a key without forms.
+        """The forms of the quantity of ``key`` as text (``'gamma, r1, r2 (radii); or gamma, a, u (centre
+        distance); ...'``); ``''`` for a key without forms.
 
         Parameters
         ----------
@@ -362,12 +383,7 @@ class ParameterRegistry:
         parameter = self.Get(key)
         if parameter is None or not parameter.forms:
             return ''
-        groups: Dict[str, List[str]] = {}
-        for p in self:
-            if p.quantity == parameter.quantity:
-                for form in p.forms:
-                    groups.setdefault(form, []).append(p.key)
-        return '; or '.join(f"{', '.join(keys)} ({form})" for form, keys in groups.items())
+        return '; or '.join(f"{', '.join(keys)} ({form})" for form, keys in self.Forms(parameter.quantity).items())
 
     def Quantity(self, key) -> str:
         """The label of the quantity ``key`` is one form of (``'flank friction'``), ``''`` if none.
