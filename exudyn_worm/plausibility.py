@@ -22,6 +22,8 @@ from __future__ import annotations
 import math
 import warnings
 
+from .parameters import PARAMETERS
+
 __all__ = ['ImplausibleValueWarning', 'MAX_PLAUSIBLE_MU', 'CheckGearPlausibility']
 
 #: flank friction coefficient above which a gear is warned about (issue 16, item 8); the paper's gears have 0.132
@@ -40,18 +42,25 @@ class ImplausibleValueWarning(UserWarning):
     """
 
 
+def _FileLine(key: str, value: float, unit: str) -> str:
+    """``[gear] wormRadius = "18.05 mm"``: the line of a drive file that gives ``key`` in ``unit``."""
+    parameter = PARAMETERS[key]
+    return f'[{parameter.table}] {parameter.fileKey} = "{value:g} {unit}"'
+
+
 def _RadiusSlip(name: str, value: float) -> str:
     if value < _LARGE_RADIUS:
         return f"; check '{name}' and its unit (m)"
     return (f"; '{name}' is in m: mm given as m? {value:g} mm = {value * 1e-3:g} m "
-            f"(on the command line --set '{name}={value:g} mm')")
+            f"(on the command line --set '{name}={value:g} mm', in a drive file {_FileLine(name, value, 'mm')})")
 
 
 def _GammaSlip(gamma: float) -> str:
     if gamma <= _LARGE_GAMMA:
         return ''
     return (f"; 'gamma' = {gamma:g} rad is {math.degrees(gamma):.4g} deg: degrees given as rad? {gamma:g} deg = "
-            f"{math.radians(gamma):.4g} rad (--set 'gamma={gamma:g} deg')")
+            f"{math.radians(gamma):.4g} rad (--set 'gamma={gamma:g} deg', in a drive file "
+            f"{_FileLine('gamma', gamma, 'deg')})")
 
 
 def _MuSlip(mu: float) -> str:
