@@ -20,6 +20,7 @@ _LAZY = {'WormGear': 'gear',
          **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'GetPreset', 'PRESETS'), 'presets'),
          **dict.fromkeys(('AnalyzeLinearStability', 'AnalyzeStabilityExudyn', 'LinearStability'), 'linearization'),
          **dict.fromkeys(('BuildReelChanger', 'SimulateReelChanger'), 'reelchanger'),
+         'SteadyInitialState': 'equilibrium',
          'SimulationResult': 'results',
          **dict.fromkeys(('ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction', 'FrictionLaw'),
                          'friction'),
@@ -49,7 +50,7 @@ __all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMea
            'CreateRotorTorque', 'ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque',
            'LinearMotorCharacteristic', 'StartStopProfile', 'ApplyOverrides', 'DriveFromParameters', 'GetPreset',
            'PRESETS', 'AnalyzeStabilityExudyn', 'AnalyzeLinearStability', 'LinearStability', 'BuildReelChanger',
-           'SimulateReelChanger', 'SimulationResult', 'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods',
+           'SimulateReelChanger', 'SteadyInitialState', 'SimulationResult', 'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods',
            'ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction', 'FrictionLaw', 'OperatingPoint',
            'OperatingPointAt', 'SelfLocking', '__version__']
 

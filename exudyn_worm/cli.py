@@ -49,6 +49,7 @@ from pathlib import Path
 from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple
 
 from .config import DEFAULT_PRESET, ResolveParameters
+from .plausibility import ImplausibleValueWarning
 from .drive import ElasticDrive
 from .presets import PRESETS, DriveFromParameters
 from .solve import IsInterrupt
@@ -519,9 +520,16 @@ def BuildParser() -> argparse.ArgumentParser:
     return parser
 
 
+#: the warnings printed in this run of :func:`Main` (each message once, however often it is issued)
+_SHOWN: set = set()
+
+
 def _ShowWarning(message, category, filename, lineno, file=None, line=None) -> None:
-    """Print a Python warning as one line ``exudyn-worm: warning: ...`` on stderr (no source path)."""
-    print(f"{PROG}: warning: {' '.join(str(message).split())}", file=sys.stderr)
+    """Print a Python warning as one line ``exudyn-worm: warning: ...`` on stderr (no source path), once per run."""
+    text = f"{PROG}: warning: {' '.join(str(message).split())}"
+    if text not in _SHOWN:
+        _SHOWN.add(text)
+        print(text, file=sys.stderr)
 
 
 def _WhereToAdd(err: BaseException, args: Optional[argparse.Namespace]) -> str:
@@ -561,10 +569,12 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
         on stderr), 130 after Ctrl-C (one line ``exudyn-worm: interrupted ...`` on stderr, no traceback).
     """
     args = None
+    _SHOWN.clear()
     try:
         args = BuildParser().parse_args(argv)
         with warnings.catch_warnings():
             warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
+            warnings.simplefilter('always', ImplausibleValueWarning)  # shown once per run by _ShowWarning
             return int(args.run(args) or 0)
     except UsageError as err:
         if IsInterrupt(err):

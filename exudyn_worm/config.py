@@ -145,12 +145,13 @@ def _RejectAlternatives(values: Mapping[str, float], where: str, locations: Opti
     """Raise if ``values`` gives two forms of one quantity (e.g. ``mu`` and ``rho``), naming where each is."""
     for key, dropped in PARAMETERS.Conflicts(values):
         others = ' and '.join(f"'{k}'" for k in dropped)
+        forms = PARAMETERS.FormsText(key)
+        what = (f"which belong to different forms of the {PARAMETERS.Quantity(key)}; give one form: {forms}" if forms
+                else 'which describe the same quantity; give only one of them')
         if locations:
             places = '; '.join(locations[k][len(where):].lstrip(',: ') for k in (key, *dropped))
-            raise ValueError(f"{where}: both '{key}' and {others} are given ({places}), which describe the same "
-                             f"quantity; give only one of them")
-        raise ValueError(f"{where}: both '{key}' and {others} are given, which describe the same quantity; "
-                         f"give only one of them")
+            raise ValueError(f"{where}: both '{key}' and {others} are given ({places}), {what}")
+        raise ValueError(f"{where}: both '{key}' and {others} are given, {what}")
 
 
 def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None) -> Dict:

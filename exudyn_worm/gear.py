@@ -13,6 +13,7 @@ from typing import Optional, Union
 
 from ._checks import CheckAngle, CheckNonNegative, CheckPositive
 from .friction import AgmaFriction, ConstantFriction, StribeckFriction, TableFriction
+from .plausibility import CheckGearPlausibility
 
 FrictionLawType = Union[ConstantFriction, StribeckFriction, AgmaFriction, TableFriction]
 
@@ -42,7 +43,9 @@ class WormGear:
         Mesh damping in the normal direction in N*s/m, >= 0.
     backlash : float, optional
         Total normal backlash delta in m, in [0, r1] (no force while ``|Delta s| <= delta/2``); a value
-        above the worm radius is rejected as a unit mistake (mm given as m).
+        above the worm radius is rejected as a unit mistake (mm given as m). Values that no worm gear has are
+        refused (ratio u < 1, gamma + rho >= 90 deg) or warned about (mu > 0.5, r1 > r2), naming the likely
+        unit slip: :func:`~exudyn_worm.plausibility.CheckGearPlausibility`.
     mu : float, optional
         Flank friction coefficient, >= 0. Give ``mu`` or ``rho`` (or both, consistent via eq. (13)).
     rho : float, optional
@@ -56,7 +59,8 @@ class WormGear:
     Raises
     ------
     ValueError
-        If a value is out of range or non-finite, if neither or inconsistent ``mu``/``rho`` are given.
+        If a value is out of range or non-finite, if neither or inconsistent ``mu``/``rho`` are given, or for a
+        ratio u below 1 or gamma + rho >= 90 deg (efficiency with the worm driving <= 0).
     TypeError
         If a value is not a real number.
 
@@ -126,6 +130,7 @@ class WormGear:
                 self.mu, law.mu, rel_tol=FRICTION_CONSISTENCY_RTOL, abs_tol=1e-12):
             raise ValueError(f"{w}: 'mu' = {self.mu:g} differs from the {law.kind} friction law's mu = {law.mu:g}; "
                              f"give one of them (the law's mu is the gear's nominal mu)")
+        CheckGearPlausibility(self, w)     # values that no worm gear has: refused or warned, naming the unit slip
 
     # --- derived quantities -------------------------------------------------------------
     @property

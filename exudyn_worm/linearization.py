@@ -10,7 +10,8 @@ verdict and the mode shapes (which coordinates take part in each mode). The conn
 afterwards.
 
 The initial state must have every mesh in contact (``|Delta s|`` beyond half the backlash), e.g. the static
-equilibrium under load that :func:`~exudyn_worm.reelchanger.BuildReelChanger` starts from. With S held and
+equilibrium under load that :func:`~exudyn_worm.reelchanger.BuildReelChanger` starts from; for a model of your
+own, start every rotor from :func:`~exudyn_worm.equilibrium.SteadyInitialState` (docs/equilibrium.md). With S held and
 ``dampingCanPull`` the mesh law is linear on either flank, so the result does not depend on how deep the
 pre-deflection is.
 
@@ -288,7 +289,8 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
         The system, built with :func:`~exudyn_worm.connector.CreateWormGear` (and any Exudyn items), or a model
         that holds it (e.g. the :class:`~exudyn_worm.reelchanger.ReelChangerModel` of
         :func:`~exudyn_worm.reelchanger.BuildReelChanger`). It is linearized about its initial state, in which
-        every mesh must be in contact.
+        every mesh must be in contact: build your own model at :func:`~exudyn_worm.equilibrium.SteadyInitialState`
+        (docs/equilibrium.md).
     connectors : sequence of WormGearConnector, optional
         The meshes whose contact state is held; default: every connector built in ``mbs``.
     contactStates : sequence of sequences of int, optional

@@ -51,7 +51,7 @@ KINDS = ('number', 'choice', 'table')
 
 #: ranges of a number -> the text shown in the docs
 RANGES = {'positive': '> 0', 'nonNegative': '>= 0', 'angle': '(0, pi/2)', 'angleFromZero': '[0, pi/2)',
-          'finite': 'finite'}
+          'count': 'whole number >= 1', 'finite': 'finite'}
 
 
 @dataclass(frozen=True)
@@ -74,6 +74,10 @@ class Parameter:
     quantity : str
         Label of the quantity this key is one form of (``'flank friction'``): keys with the same quantity are
         alternative forms; a set may hold one of them, and setting one drops the others. ``''``: none.
+    forms : tuple of str
+        For a quantity given by groups of keys (the gear geometry: ``r1 r2 gamma`` or ``a u gamma`` or
+        ``mx z1 z2 q``): the groups this key belongs to. Two keys of the quantity are then alternatives only if
+        no group holds both (``a`` and ``gamma`` go together, ``a`` and ``r1`` do not).
     table : str
         Drive-file table (``'gear'``; the array of tables for a series); ``''``: only in ``[parameters]``.
     fileKey : str
@@ -98,6 +102,7 @@ class Parameter:
     description: str = ''
     kind: str = 'number'
     quantity: str = ''
+    forms: Tuple[str, ...] = ()
     table: str = ''
     fileKey: str = ''
     label: str = ''
@@ -122,6 +127,8 @@ class Parameter:
                              f"got {self.columns!r}")
         if self.series and self.kind != 'number':
             raise ValueError(f"{w}: a series ({self.name!r}) must be of kind 'number'")
+        if self.forms and not self.quantity:
+            raise ValueError(f"{w}: {self.name!r} has 'forms' but no 'quantity' they are forms of")
         if bool(self.table) != bool(self.fileKey):
             raise ValueError(f"{w}: {self.name!r} needs both 'table' and 'fileKey' or neither")
 
@@ -336,7 +343,47 @@ class ParameterRegistry:
         parameter = self.Get(key)
         if parameter is None or not parameter.quantity:
             return ()
-        return tuple(p.key for p in self if p.quantity == parameter.quantity and p.key != key)
+        return tuple(p.key for p in self if p.quantity == parameter.quantity and p.key != key
+                     and not set(p.forms) & set(parameter.forms))
+
+    def Forms(self, quantity: str) -> Dict[str, Tuple[str, ...]]:
+        """The forms of a quantity given by groups of keys: form -> its keys, in declaration order.
+
+        Parameters
+        ----------
+        quantity : str
+            The label of the quantity (``'gear geometry'``).
+
+        Returns
+        -------
+        dict
+            E.g. ``{'radii': ('gamma', 'r1', 'r2'), 'centre distance': ('gamma', 'a', 'u'), ...}``; empty for a
+            quantity without forms.
+        """
+        groups: Dict[str, List[str]] = {}
+        for p in self:
+            if p.quantity == quantity:
+                for form in p.forms:
+                    groups.setdefault(form, []).append(p.key)
+        return {form: tuple(keys) for form, keys in groups.items()}
+
+    def FormsText(self, key) -> str:
+        """The forms of the quantity of ``key`` as text (``'gamma, r1, r2 (radii); or gamma, a, u (centre
+        distance); ...'``); ``''`` for a key without forms.
+
+        Parameters
+        ----------
+        key : str
+            A parameter key.
+
+        Returns
+        -------
+        str
+        """
+        parameter = self.Get(key)
+        if parameter is None or not parameter.forms:
+            return ''
+        return '; or '.join(f"{', '.join(keys)} ({form})" for form, keys in self.Forms(parameter.quantity).items())
 
     def Quantity(self, key) -> str:
         """The label of the quantity ``key`` is one form of (``'flank friction'``), ``''`` if none.
@@ -566,7 +613,10 @@ class ParameterRegistry:
             where = f'`{self.FileKeyOf(p.key)}`' if p.table else '–'
             text = p.description
             others = self.Alternatives(p.key)
-            if others:
+            if p.forms:
+                forms = ' and '.join(p.forms) + (' forms' if len(p.forms) > 1 else ' form')
+                text += f" (key of the {forms} of the {p.quantity}; give one form: {self.FormsText(p.key)})"
+            elif others:
                 text += f" (or give {' or '.join(f'`{k}`' for k in others)}: one form of the {p.quantity})"
             lines.append(f"| {key} | {p.unit or '–'} | {p.rangeText} | {where} | {text} |")
         return '\n'.join(lines) + '\n'
@@ -586,7 +636,8 @@ class ParameterRegistry:
             last = p.table
             key = f'`{p.key}`, `{p.name}{p.series + 1}`, ...' if p.series else f'`{p.key}`'
             others = [f'`{o.fileKey}`' for o in map(self.Get, self.Alternatives(p.key)) if o.table]
-            text = p.description + (f" (or {' or '.join(others)})" if others else '')
+            text = p.description + (f" (one form of the {p.quantity}, see below)" if p.forms else
+                                    f" (or {' or '.join(others)})" if others else '')
             lines.append(f"| {table} | `{p.fileKey}` | {key} | {text} | {p.unit or '–'} |".replace('|  |', '| |'))
         return '\n'.join(lines) + '\n'
 
@@ -706,6 +757,11 @@ def _CheckNumber(where: str, key: str, value, rangeName: str, unit: str) -> floa
         return CheckAngle(where, key, value)
     if rangeName == 'angleFromZero':
         return CheckRange(where, key, value, 0., 0.5 * math.pi, 'rad', highOpen=True)
+    if rangeName == 'count':
+        value = CheckRange(where, key, value, 1., None, unit)
+        if not value.is_integer():
+            raise ValueError(f"{where}: '{key}' must be a whole number >= 1 (a count of teeth or starts), got {value:g}")
+        return value
     return CheckReal(where, key, value, unit)
 
 
@@ -728,13 +784,30 @@ def _InlineArray(key: str, text: str, where: str):
 PARAMETERS = ParameterRegistry([
     # the worm-gear mesh, eqs. (3)-(13)
     Parameter('alphaN', 'rad', 'angle', 'normal pressure angle', table='gear', fileKey='pressureAngle'),
-    Parameter('gamma', 'rad', 'angle', 'pitch (lead) angle of the worm', table='gear', fileKey='pitchAngle'),
+    Parameter('gamma', 'rad', 'angle', 'pitch (lead) angle of the worm', quantity='gear geometry',
+              forms=('radii', 'centre distance'), table='gear', fileKey='pitchAngle'),
     Parameter('mu', '', 'nonNegative', 'flank friction coefficient', quantity='flank friction', table='gear',
               fileKey='frictionCoefficient'),
     Parameter('rho', 'rad', 'angleFromZero', 'friction angle, eq. (13)', quantity='flank friction', table='gear',
               fileKey='frictionAngle'),
-    Parameter('r1', 'm', 'positive', 'reference radius of the worm', table='gear', fileKey='wormRadius'),
-    Parameter('r2', 'm', 'positive', 'reference radius of the wheel', table='gear', fileKey='wheelRadius'),
+    Parameter('r1', 'm', 'positive', 'reference radius of the worm', quantity='gear geometry', forms=('radii',),
+              table='gear', fileKey='wormRadius'),
+    Parameter('r2', 'm', 'positive', 'reference radius of the wheel', quantity='gear geometry', forms=('radii',),
+              table='gear', fileKey='wheelRadius'),
+    # the gear geometry from its designation (DIN 3975 / ISO/TR 10828 names), exudyn_worm/geometry.py
+    Parameter('a', 'm', 'positive', 'centre distance, a = r1 + r2', quantity='gear geometry',
+              forms=('centre distance',), table='gear', fileKey='centreDistance', displayUnit='mm',
+              displayFactor=1e3),
+    Parameter('u', '', 'positive', 'transmission ratio z2/z1 = r2/(r1 tan(gamma)), eq. (3)', quantity='gear geometry',
+              forms=('centre distance',), table='gear', fileKey='ratio'),
+    Parameter('mx', 'm', 'positive', 'axial module of the worm (d1 = q mx, d2 = z2 mx)', quantity='gear geometry',
+              forms=('designation',), table='gear', fileKey='axialModule', displayUnit='mm', displayFactor=1e3),
+    Parameter('z1', '', 'count', 'number of starts (threads) of the worm', quantity='gear geometry',
+              forms=('designation',), table='gear', fileKey='starts'),
+    Parameter('z2', '', 'count', 'number of teeth of the wheel', quantity='gear geometry', forms=('designation',),
+              table='gear', fileKey='wheelTeeth'),
+    Parameter('q', '', 'positive', 'diameter quotient d1/mx of the worm (tan(gamma) = z1/q)', quantity='gear geometry',
+              forms=('designation',), table='gear', fileKey='diameterQuotient'),
     Parameter('kV', 'N/m', 'positive', 'mesh stiffness, normal direction', table='gear', fileKey='meshStiffness'),
     Parameter('dV', 'N*s/m', 'nonNegative', 'mesh damping, normal direction', quantity='mesh damping',
               table='gear', fileKey='meshDamping'),

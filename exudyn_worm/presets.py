@@ -35,6 +35,7 @@ import numpy as np
 from ._checks import CheckMapping, CheckNonNegative
 from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from .gear import WormGear
+from .geometry import GEOMETRY_FORMS, GEOMETRY_KEYS, GeometryForm, GeometryFromParameters, MissingGeometryKeys
 from .parameters import PARAMETERS
 
 if TYPE_CHECKING:
@@ -164,6 +165,11 @@ def CheckParameterKeys(parameters: Mapping[str, float], where: str = 'parameter 
     for key, others in PARAMETERS.Conflicts(parameters):
         group = (key,) + others
         last, earlier = group[-1], ' and '.join(repr(k) for k in group[:-1])
+        forms = PARAMETERS.FormsText(key)
+        if forms:       # the gear geometry: groups of keys
+            raise ValueError(f"{where}: {' and '.join(repr(k) for k in group)} are given together, which belong to "
+                             f"different forms of the {PARAMETERS.Quantity(key)}; give one form: {forms} (to change "
+                             f"the form of a set, use ApplyOverrides, which drops the keys of the other forms)")
         raise ValueError(f"{where}: {' and '.join(repr(k) for k in group)} are given together, which describe the "
                          f"same quantity ({PARAMETERS.Quantity(key)}); give only one of them (to replace one form by another, "
                          f"use ApplyOverrides(parameters, {{{last!r}: {parameters[last]!r}}}), which sets {last!r} "
@@ -228,7 +234,12 @@ class MissingParameterError(ValueError):
 def _Require(parameters, keys, what):
     missing = [k for k in keys if k not in parameters]
     if missing:
-        raise MissingParameterError(f"{what}: missing parameter(s) {', '.join(missing)}; give them with --set "
+        geometry = [k for k in missing if k in GEOMETRY_KEYS]
+        form = GeometryForm(parameters)
+        hint = (f" ({', '.join(geometry)} of the gear geometry in the {form} form, "
+                f"{', '.join(GEOMETRY_FORMS[form])}; the forms are: {PARAMETERS.FormsText(geometry[0])})"
+                if geometry else '')
+        raise MissingParameterError(f"{what}: missing parameter(s) {', '.join(missing)}{hint}; give them with --set "
                                     f"KEY=VALUE or in the config file", missing)
 
 
@@ -297,8 +308,9 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
     Parameters
     ----------
     parameters : mapping
-        Flat parameter dictionary (SI) with ``alphaN gamma r1 r2 kV``, ``mu`` or ``rho`` and, if
-        ``meshDamping``, ``dV`` or ``DV`` (with ``J2``).
+        Flat parameter dictionary (SI) with ``alphaN``, the geometry as ``r1 r2 gamma`` or ``a u gamma`` or
+        ``mx z1 z2 q`` (:mod:`exudyn_worm.geometry`), ``kV``, ``mu`` or ``rho`` and, if ``meshDamping``,
+        ``dV`` or ``DV`` (with ``J2``).
     meshDamping : bool, optional
         If False, the mesh damping is not required and the gear gets dV = 0 (for the stability charts,
         which set dV from the swept D_V).
@@ -317,7 +329,8 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
     CheckParameterKeys(parameters, where)            # names the function: unknown keys, two forms of a quantity
     p = dict(parameters)
     CheckParameters(p)
-    _Require(p, ('alphaN', 'gamma', 'r1', 'r2', 'kV'), where)
+    _Require(p, ('alphaN',) + MissingGeometryKeys(p) + ('kV',), where)
+    r1, r2, gamma = GeometryFromParameters(p, where)     # r1 r2 gamma, or a u gamma, or mx z1 z2 q
     if 'mu' not in p and 'rho' not in p:
         raise ValueError(f"{where}: give the friction as 'mu' or as the friction angle 'rho'")
     if not meshDamping:
@@ -326,10 +339,10 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
         dV = p['dV']
     elif 'DV' in p:
         _Require(p, ('J2',), where)
-        dV = MeshDampingFromMeasure(p['DV'], p['kV'], p['r2'], p['J2'])
+        dV = MeshDampingFromMeasure(p['DV'], p['kV'], r2, p['J2'])
     else:
         raise ValueError(f"{where}: give the mesh damping as 'dV' (N*s/m) or as the measure 'DV'")
-    return WormGear(alphaN=p['alphaN'], gamma=p['gamma'], r1=p['r1'], r2=p['r2'], kV=p['kV'], dV=dV,
+    return WormGear(alphaN=p['alphaN'], gamma=gamma, r1=r1, r2=r2, kV=p['kV'], dV=dV,
                     backlash=p.get('backlash', 0.), mu=p.get('mu'), rho=p.get('rho'))
 
 
@@ -360,7 +373,7 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     where = 'DriveFromParameters'
     CheckParameterKeys(parameters, where)
     p = dict(parameters)
-    _Require(p, ('alphaN', 'gamma', 'r1', 'r2', 'kV', 'J1', 'J2', 'kT'), where)
+    _Require(p, ('alphaN',) + MissingGeometryKeys(p) + ('kV', 'J1', 'J2', 'kT'), where)
     gear = GearFromParameters(p, where=where)
     if 'dT' in p:
         dT = p['dT']

@@ -12,14 +12,15 @@ from __future__ import annotations
 import math
 import time as _time
 from dataclasses import dataclass
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
-from .contact import MATH_OPS, ContactOptions, MeshContact
+from .connector import CreateWormAxialBearing, CreateWormGear, WormGearConnector
+from .contact import MATH_OPS, ContactOptions
 from .drive import ElasticDrive
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
+from .equilibrium import SteadyInitialState  # re-exported: it lived here before
 from .presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, DriveFromParameters, DriveSideChain,
                       MissingParameterError)
 from .profiles import ConstantSpeed, GravityLeverTorque
@@ -27,7 +28,6 @@ from .results import SimulationResult
 from .solve import SolveDynamicInChunks, SolverDivergedError
 from .stepsize import CheckStepSize, RecommendedStepSize
 from ._checks import CheckBool, CheckPositive
-from ._roots import FindRoot
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
            'SteadyInitialState', 'CheckRunSize', 'CheckReelChangerKeys', 'SolverSettings', 'DEFAULT_STEP_SIZE',
@@ -179,70 +179,6 @@ def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = N
             if t0 < endTime and (not windows or t1 - t0 >= minLength):
                 windows.append((t0, t1))
     return windows
-
-
-def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed: float,
-                       options: ContactOptions = ContactOptions(), axialBearing: Optional[AxialBearing] = None,
-                       chain: Sequence[Tuple[float, float, float]] = ()) -> Dict[str, float]:
-    """Static equilibrium at t = 0 under the initial load, moving at the nominal speed.
-
-    Solves the wheel balance (mesh torque = -load torque) for Delta s with the contact law itself and
-    the worm balance (shaft torque = mesh torque) for the shaft twist, so a run starts without a
-    spurious transient. With a drive-side chain every spring-damper carries the same torque; with an
-    axial bearing the bearing carries the mesh's axial force and Delta s is split into the axial part
-    and the relative angle.
-
-    Parameters
-    ----------
-    drive : ElasticDrive
-        The drive (gear, J1, J2, kT, dT).
-    load : GravityLeverTorque
-        The reel's load torque.
-    motorSpeed : float
-        Motor speed in rad/s (phi0(0) = 0).
-    options : ContactOptions
-        Options of the contact law.
-    axialBearing : AxialBearing, optional
-        The worm's axial bearing (None: axially rigid worm).
-    chain : sequence of (J, k, d)
-        Drive-side chain, worm side first (:func:`~exudyn_worm.presets.DriveSideChain`).
-
-    Returns
-    -------
-    dict
-        ``phi1, phi2`` in rad and ``omega1, omega2`` in rad/s; with a chain ``phi4, omega4, ...``, with an
-        axial bearing ``xA`` in m and ``vA`` in m/s.
-    """
-    g = drive.gear
-    u = g.ratio
-    omega1, omega2 = motorSpeed, motorSpeed / u
-    phi2 = 0.
-    for _ in range(3):                                   # load depends weakly on phi2
-        loadTorque = load.Torque(phi2, omega2, 0., MATH_OPS)
-
-        def WheelBalance(deltaS):
-            deltaPhi = deltaS / g.normalLever
-            return MeshContact(g, deltaPhi, 0., omega1, omega2, options, MATH_OPS).wheelTorque + loadTorque
-
-        span = 0.5 * g.backlash + 10 * (abs(loadTorque) / g.r2 + 1.) / g.kV
-        deltaS = FindRoot(WheelBalance, -span, span, xtol=1e-15) if loadTorque != 0 else 0.
-        mesh = MeshContact(g, deltaS / g.normalLever, 0., omega1, omega2, options, MATH_OPS)
-        wormTorque = mesh.wormTorque
-        xA = 0. if axialBearing is None else mesh.axialForce / axialBearing.stiffness   # kA xA = axial mesh force
-        deltaPhi = (deltaS - g.axialLever * xA) / g.normalLever
-        # every spring-damper between motor and worm carries -wormTorque: k (phi_motorSide - phi) + wormTorque = 0
-        angles, phi = [], 0.                               # phi0(0) = 0
-        for _, k, _ in reversed(chain):
-            phi += wormTorque / k
-            angles.append(phi)
-        phi1 = phi + wormTorque / drive.kT
-        phi2 = (phi1 - deltaPhi) / u
-    state = {'phi1': phi1, 'phi2': phi2, 'omega1': omega1, 'omega2': omega2}
-    for i, angle in enumerate(reversed(angles), start=4):
-        state[f'phi{i}'], state[f'omega{i}'] = angle, omega1
-    if axialBearing is not None:
-        state.update(xA=xA, vA=0.)
-    return state
 
 
 def _CheckModelOptions(where: str, contactOptions, profile, useSymbolic, startFromEquilibrium) -> None:

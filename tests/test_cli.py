@@ -17,7 +17,8 @@ from exudyn_worm.stability import AnalyzeStability
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
 # issue 15 added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
 TOP_KEYS = {'ratio', 'frictionAngle', 'selfLocking', 'efficiency', 'S', 'fuesgenLimit', 'firstCriterionLimit', 'hint',
-            'stable', 'friction', 'selfLockingVerdict', 'operatingPoint'}
+            'stable', 'friction', 'selfLockingVerdict', 'operatingPoint',
+            'geometry'}
 
 
 def Run(capsys, *argv):

@@ -8,6 +8,7 @@ from typing import Dict, List
 
 from ..cli import DriveFromArgs, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
 from ..design import StabilizingChanges
+from ..geometry import DescribeGeometry, GeometryForm
 from ..presets import ExtraComponents
 from ..stability import CONTACT_STATES, AnalyzeStability, OperatingPointFromParameters, StabilityAnalysis
 
@@ -78,9 +79,14 @@ def _Run(args: argparse.Namespace) -> int:
         analysis = AnalyzeStability(drive, operatingPoint)
     hint = None if analysis.stable else StabilityHintData(parameters)
     if args.json:
-        PrintJson({**analysis.ToDict(), 'hint': hint})
+        g = drive.gear
+        geometry = {'form': GeometryForm(parameters), 'r1': g.r1, 'r2': g.r2, 'gamma': g.gamma, 'u': g.ratio}
+        PrintJson({**analysis.ToDict(), 'geometry': geometry, 'hint': hint})
         return 0
     lines = FormatStability(analysis, title=f"exudyn-worm stability: {SourceText(args)}, method {args.method}")
+    geometry = DescribeGeometry(parameters)
+    if geometry:                  # given as a designation: say how r1, r2, gamma, u were derived
+        lines.insert(1, geometry[0].upper() + geometry[1:])
     if hint is not None:
         lines.append(hint['text'])
     print('\n'.join(lines))
@@ -116,7 +122,8 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability') -> Li
     w = 36
     row = lambda label, *cells: f"  {label:<{w}}" + ''.join(f"{' ' + c:>22}" for c in cells)   # a wide cell keeps a gap
     lines = [title, '', 'Gear and drive']
-    lines += [row('transmission ratio u', _G(g.ratio)),
+    lines += [row('reference radii r1, r2 [mm]', _G(g.r1 * 1e3), _G(g.r2 * 1e3)),
+              row('transmission ratio u', _G(g.ratio)),
               row('pitch angle gamma [deg]', _G(math.degrees(g.gamma))),
               row('friction angle rho [deg]', _G(math.degrees(g.frictionAngle))),
               row('friction coefficient mu', _G(g.mu)),
