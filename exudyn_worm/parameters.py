@@ -172,11 +172,12 @@ class ParameterRegistry:
     ----------
     parameters : iterable of Parameter
         Declared in order (the order of listings, messages and the docs).
-    seriesText : str
-        What a series stands for, in messages: ``'drive-side chain'``.
+    seriesText : str or mapping
+        What a series stands for, in messages: ``'drive-side chain'``; a mapping gives one text per array of
+        tables (``{'driveSide': 'drive-side chain', 'loadSide': 'load-side chain'}``).
     """
 
-    def __init__(self, parameters=(), seriesText: str = 'series'):
+    def __init__(self, parameters=(), seriesText: Any = 'series'):
         self._byName: Dict[str, Parameter] = {}
         self._series: Dict[str, Parameter] = {}
         self.seriesText = seriesText
@@ -229,6 +230,22 @@ class ParameterRegistry:
     def _SeriesMatch(key, parameter: Parameter) -> bool:
         match = re.match(r'^([A-Za-z]+?)([1-9][0-9]*)$', key) if isinstance(key, str) else None
         return bool(match and match.group(1) == parameter.name and int(match.group(2)) >= parameter.series)
+
+    def SeriesText(self, table: str) -> str:
+        """What the series of the array of tables ``table`` stands for, in messages (``'load-side chain'``).
+
+        Parameters
+        ----------
+        table : str
+            An array of tables (``'driveSide'``).
+
+        Returns
+        -------
+        str
+        """
+        if isinstance(self.seriesText, str):
+            return self.seriesText
+        return self.seriesText.get(table, 'series')
 
     def SeriesIndex(self, key) -> Optional[Tuple[str, int]]:
         """``(prefix, number)`` of a series key (``'k5'`` -> ``('k', 5)``), else None.
@@ -397,8 +414,12 @@ class ParameterRegistry:
         text = f"{where}: unknown parameter {key!r}{Suggest(key, keys)}; expected one of: {' '.join(keys)}"
         series = list(self._series.values())
         if series:
-            nexts = ' '.join(f'{p.name}{p.series + 1}' for p in series)
-            text += f" (and {nexts}, {series[0].name}{series[0].series + 2} ... for a longer {self.seriesText})"
+            groups = {}                                    # one group per array of tables (one chain each)
+            for p in series:
+                groups.setdefault(p.table, []).append(p)
+            text += ' (and ' + '; '.join(
+                f"{' '.join(f'{p.name}{p.series + 1}' for p in group)}, {group[0].name}{group[0].series + 2} ... "
+                f"for a longer {self.SeriesText(group[0].table)}" for group in groups.values()) + ')'
         return text
 
     def AxisLabel(self, key: str, display: bool = True, dash: str = '–') -> Tuple[str, float]:
@@ -768,6 +789,14 @@ PARAMETERS = ParameterRegistry([
               table='driveSide', fileKey='stiffness', series=4),
     Parameter('d', 'N*m*s/rad', 'nonNegative', 'damping of spring-Damper4, ... (default 0)', table='driveSide',
               fileKey='damping', series=4),
+    # the load-side chain, from the wheel to the driven machine: wheel J2 --(kL1, dL1)-- JL1 --(kL2, dL2)-- JL2 ...
+    # (the load torque acts on the last inertia)
+    Parameter('JL', 'kg*m^2', 'positive', 'load-side chain: inertia of stage i (JL1 next to the wheel, the last one '
+              'carries the load torque; optional)', table='loadSide', fileKey='inertia', series=1),
+    Parameter('kL', 'N*m/rad', 'positive', 'stiffness of the load shaft on the wheel side of JLi (kL1: wheel to JL1)',
+              table='loadSide', fileKey='stiffness', series=1),
+    Parameter('dL', 'N*m*s/rad', 'nonNegative', 'damping of that load shaft (default 0)', table='loadSide',
+              fileKey='damping', series=1),
     # the worm's axial bearing, in series with the mesh
     Parameter('kA', 'N/m', 'nonNegative', "axial stiffness of the worm's bearing (optional; absent or 0: axially "
               "rigid worm)", table='axialBearing', fileKey='stiffness'),
@@ -775,7 +804,7 @@ PARAMETERS = ParameterRegistry([
               fileKey='damping'),
     Parameter('mA', 'kg', 'positive', "the worm's axially moving mass (required with kA > 0)", table='axialBearing',
               fileKey='mass'),
-], seriesText='drive-side chain')
+], seriesText={'driveSide': 'drive-side chain', 'loadSide': 'load-side chain'})
 
 
 def ParametersMarkdown(registry: Optional[ParameterRegistry] = None) -> str:
