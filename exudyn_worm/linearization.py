@@ -30,7 +30,7 @@ from ._checks import CheckSystem
 from .connector import CONNECTORS_KEY, AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from .contact import ContactOptions
 from .drive import ElasticDrive
-from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft
+from .drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft
 from .profiles import ConstantSpeed
 from .stability import CONTACT_STATES, ContactStability, StabilityAnalysis, _Finite, _SortEigenvalues
 
@@ -238,7 +238,12 @@ def _CoordinateLabels(mbs, size: int) -> List[str]:
 
 
 def _LinearizeState(mbs, S, labels) -> ContactStateLinearization:
-    M, K, D, _, N = mbs.ComputeLinearizedSystem(projectIntoConstraintNullspace=True, returnConstraintNullspace=True)
+    linear = mbs.ComputeLinearizedSystem(projectIntoConstraintNullspace=True, returnConstraintNullspace=True)
+    if len(linear) == 3:             # a system without constraints: Exudyn returns no nullspace (all independent)
+        M, K, D = linear
+        N = np.eye(np.atleast_2d(M).shape[0])
+    else:
+        M, K, D, _, N = linear
     M, K, D, N = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (M, K, D, N))
     n = M.shape[0]
     Minv = np.linalg.inv(M)
@@ -351,12 +356,14 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
 
 def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True,
                             axialBearing: Optional[AxialBearing] = None,
-                            chain: Sequence[Tuple[float, float, float]] = ()):
+                            chain: Sequence[Tuple[float, float, float]] = (),
+                            loadChain: Sequence[Tuple[float, float, float]] = ()):
     """Exudyn system of Figure 2 (motor held still), worm pre-deflected into contact; returns ``(SC, mbs)``.
 
     With ``axialBearing`` the worm has its axial coordinate (node ``wormAxial``): the 3-DOF problem in
     (phi1, phi2, xA). With ``chain`` the drive-side chain of Figure 19 sits between worm and motor
-    (rotors ``inertia4``, ...; topology in :mod:`exudyn_worm.presets`).
+    (rotors ``inertia4``, ...), with ``loadChain`` the load-side chain behind the wheel (rotors ``loadInertia1``,
+    ...; topologies in :mod:`exudyn_worm.presets`).
 
     Parameters
     ----------
@@ -371,6 +378,8 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
         The worm's axial bearing (None: axially rigid worm).
     chain : sequence of (J, k, d)
         Drive-side chain, worm side first (:func:`~exudyn_worm.presets.DriveSideChain`).
+    loadChain : sequence of (J, k, d)
+        Load-side chain, wheel side first (:func:`~exudyn_worm.presets.LoadSideChain`).
     """
     import exudyn as exu
     if S is not None and S not in CONTACT_STATES:
@@ -387,6 +396,7 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
     CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT)
     for rotor, motorSide, (_, k, d) in zip(chainRotors, chainRotors[1:] + [motor], chain):
         CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d)
+    CreateLoadSideChain(mbs, wheel, loadChain)
     axialNode = None if axialBearing is None else CreateWormAxialBearing(mbs, axialBearing)['nodeNumber']
     options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
     CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=g, useSymbolic=useSymbolic,
@@ -409,11 +419,13 @@ def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: 
     Returns
     -------
     LinearStability
-        For S = +1 and S = -1; coordinates ``motor, worm, wheel`` (+ ``inertia4``, ..., ``wormAxial``).
+        For S = +1 and S = -1; coordinates ``motor, worm, wheel`` (+ ``inertia4``, ..., ``loadInertia1``, ...,
+        ``wormAxial``).
     """
-    from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
+    from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain, LoadSideChain
     SC, mbs = BuildLinearizationModel(DriveFromParameters(parameters), None, useSymbolic,
-                                      AxialBearingFromParameters(parameters), DriveSideChain(parameters))
+                                      AxialBearingFromParameters(parameters), DriveSideChain(parameters),
+                                      LoadSideChain(parameters))
     return AnalyzeLinearStability(mbs)
 
 
@@ -423,8 +435,8 @@ def DriveStability(parameters: Mapping[str, float], useSymbolic: bool = True
 
     The two-mass drive of Figure 2 gets the analytical model (eqs. (15)-(19),
     :func:`~exudyn_worm.stability.AnalyzeStability`); a drive with components beyond it
-    (:func:`~exudyn_worm.presets.ExtraComponents`: a drive-side chain or a worm axial bearing) gets the linearized
-    whole drive (:func:`LinearStabilityFromParameters`), which that model would silently leave out.
+    (:func:`~exudyn_worm.presets.ExtraComponents`: a drive-side or load-side chain or a worm axial bearing) gets the
+    linearized whole drive (:func:`LinearStabilityFromParameters`), which that model would silently leave out.
     ``exudyn-worm stability``, the verdict columns of ``exudyn-worm sweep``, the analytical map of its plot and
     the step-size rule (:mod:`exudyn_worm.stepsize`) all take their verdict or frequencies from here.
 

@@ -5,7 +5,9 @@ frame J2 -- load torque of the reel, M2 = -m2 g l2 cos(phi2) (eq. (27)). The fra
 t = 0 and is lifted first; one full rotation of the wheel takes 2 pi u / motorSpeed (8 s in the paper).
 
 Optional (see :mod:`exudyn_worm.presets`): the drive-side chain of Figure 19 (``J4, k4, d4, J5, ...``:
-worm --kT-- J4 --k4-- J5 ... -- motor) and the worm's axial bearing (``kA, dA, mA``).
+worm --kT-- J4 --k4-- J5 ... -- motor), the load-side chain (``JL1, kL1, dL1, JL2, ...``: wheel --kL1-- JL1
+--kL2-- JL2 ...; the reel's load torque then acts on the last inertia) and the worm's axial bearing
+(``kA, dA, mA``).
 """
 from __future__ import annotations
 
@@ -19,9 +21,9 @@ import numpy as np
 from .connector import AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from .contact import MATH_OPS, ContactOptions, MeshContact
 from .drive import ElasticDrive
-from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
+from .drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
 from .presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, DriveFromParameters, DriveSideChain,
-                      MissingParameterError)
+                      LoadSideChain, MissingParameterError)
 from .profiles import ConstantSpeed, GravityLeverTorque
 from .results import SimulationResult
 from .solve import SolveDynamicInChunks, SolverDivergedError
@@ -183,7 +185,8 @@ def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = N
 
 def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed: float,
                        options: ContactOptions = ContactOptions(), axialBearing: Optional[AxialBearing] = None,
-                       chain: Sequence[Tuple[float, float, float]] = ()) -> Dict[str, float]:
+                       chain: Sequence[Tuple[float, float, float]] = (),
+                       loadChain: Sequence[Tuple[float, float, float]] = ()) -> Dict[str, float]:
     """Static equilibrium at t = 0 under the initial load, moving at the nominal speed.
 
     Solves the wheel balance (mesh torque = -load torque) for Delta s with the contact law itself and
@@ -206,19 +209,21 @@ def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed
         The worm's axial bearing (None: axially rigid worm).
     chain : sequence of (J, k, d)
         Drive-side chain, worm side first (:func:`~exudyn_worm.presets.DriveSideChain`).
+    loadChain : sequence of (J, k, d)
+        Load-side chain, wheel side first (:func:`~exudyn_worm.presets.LoadSideChain`).
 
     Returns
     -------
     dict
-        ``phi1, phi2`` in rad and ``omega1, omega2`` in rad/s; with a chain ``phi4, omega4, ...``, with an
-        axial bearing ``xA`` in m and ``vA`` in m/s.
+        ``phi1, phi2`` in rad and ``omega1, omega2`` in rad/s; with a chain ``phi4, omega4, ...``, with a
+        load-side chain ``phiL1, omegaL1, ...``, with an axial bearing ``xA`` in m and ``vA`` in m/s.
     """
     g = drive.gear
     u = g.ratio
     omega1, omega2 = motorSpeed, motorSpeed / u
-    phi2 = 0.
-    for _ in range(3):                                   # load depends weakly on phi2
-        loadTorque = load.Torque(phi2, omega2, 0., MATH_OPS)
+    phi2, loadAngles = 0., [0.] * len(loadChain)
+    for _ in range(3):                                   # load depends weakly on the angle it acts at
+        loadTorque = load.Torque((loadAngles or [phi2])[-1], omega2, 0., MATH_OPS)
 
         def WheelBalance(deltaS):
             deltaPhi = deltaS / g.normalLever
@@ -237,9 +242,13 @@ def SteadyInitialState(drive: ElasticDrive, load: GravityLeverTorque, motorSpeed
             angles.append(phi)
         phi1 = phi + wormTorque / drive.kT
         phi2 = (phi1 - deltaPhi) / u
+        # every load shaft carries the load torque: kLi (phi_{i-1} - phi_i) = -loadTorque, phi_0 = phi2
+        loadAngles = list(phi2 + np.cumsum([loadTorque / k for _, k, _ in loadChain]))
     state = {'phi1': phi1, 'phi2': phi2, 'omega1': omega1, 'omega2': omega2}
     for i, angle in enumerate(reversed(angles), start=4):
         state[f'phi{i}'], state[f'omega{i}'] = angle, omega1
+    for i, angle in enumerate(loadAngles, start=1):
+        state[f'phiL{i}'], state[f'omegaL{i}'] = float(angle), omega2
     if axialBearing is not None:
         state.update(xA=xA, vA=0.)
     return state
@@ -270,6 +279,7 @@ class ReelChangerModel:
     sensors: Dict[str, Any]
     axialBearing: Optional[Dict[str, Any]] = None
     chain: Tuple[Tuple[float, float, float], ...] = ()
+    loadChain: Tuple[Tuple[float, float, float], ...] = ()
 
 
 def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
@@ -281,7 +291,8 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     parameters : mapping
         Flat parameter set (see :mod:`exudyn_worm.presets`), including ``loadMass`` (kg), ``leverArm`` (m)
         and ``motorSpeed`` (rad/s); optional drive-side chain ``J4, k4, d4, J5, ...`` (rotors ``inertia4``,
-        ... and shafts ``springDamper4``, ...) and axial bearing ``kA, dA, mA``.
+        ... and shafts ``springDamper4``, ...), load-side chain ``JL1, kL1, dL1, ...`` (rotors ``loadInertia1``,
+        ... and shafts ``loadShaft1``, ...; the load acts on the last one) and axial bearing ``kA, dA, mA``.
     contactOptions : ContactOptions
         Options of the worm-gear contact law.
     useSymbolic : bool
@@ -316,10 +327,11 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
     profile = profile if profile is not None else ConstantSpeed(motorSpeed)
     chain = tuple(DriveSideChain(parameters))
+    loadChain = tuple(LoadSideChain(parameters))
     bearing = AxialBearingFromParameters(parameters)
 
     if startFromEquilibrium:
-        init = SteadyInitialState(drive, load, motorSpeed, contactOptions, bearing, chain)
+        init = SteadyInitialState(drive, load, motorSpeed, contactOptions, bearing, chain, loadChain)
         init0 = profile.AngleAndSpeed(0., MATH_OPS)
     else:
         init, init0 = {}, (0., 0.)
@@ -347,18 +359,22 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     connector = CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='wormGear',
                                contactOptions=contactOptions, useSymbolic=useSymbolic,
                                axialNodeNumber=None if axial is None else axial['nodeNumber'])
-    CreateRotorTorque(mbs, wheel, load, name='reelLoad', useSymbolic=useSymbolic)
+    # load-side chain, wheel side first: wheel --kL1-- loadInertia1 --kL2-- loadInertia2 ...; the load on the last
+    loadRotors = CreateLoadSideChain(mbs, wheel, loadChain, init)
+    rotors.update({f'loadInertia{i}': r for i, r in enumerate(loadRotors, start=1)})
+    CreateRotorTorque(mbs, (loadRotors or [wheel])[-1], load, name='reelLoad', useSymbolic=useSymbolic)
 
     sensors = dict(connector.AddSensors(mbs))
     OVT = exu.OutputVariableType
-    for index, rotor in [('0', motor)] + [(str(i), r) for i, r in enumerate(chainRotors, start=4)]:
+    for index, rotor in ([('0', motor)] + [(str(i), r) for i, r in enumerate(chainRotors, start=4)]
+                         + [(f'L{i}', r) for i, r in enumerate(loadRotors, start=1)]):
         quantities = (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t))
         if index != '0':
             quantities += (('alpha', OVT.Coordinates_tt),)
         for prefix, ovt in quantities:
             sensors[prefix + index] = mbs.AddSensor(SensorNode(nodeNumber=rotor['nodeNumber'], outputVariableType=ovt,
                                                                storeInternal=True, writeToFile=False))
-    return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain)
+    return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain, loadChain)
 
 
 def _SolverCounters(mbs) -> Dict[str, Any]:
