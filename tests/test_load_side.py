@@ -97,3 +97,109 @@ def test_lumping_the_load_into_j2_turns_the_verdict(fileParameters):
     growing = max(chained.State(-1).modes, key=lambda m: m.eigenvalue.real)
     assert growing.eigenvalue.real > 0 and 150. < growing.frequencyHz < 300.
     assert growing.Participants(0.5) == ['wheel']
+
+
+def test_set_keys_build_a_chain_of_any_length():
+    from exudyn_worm.presets import ExtraComponents, LoadSideChain
+    p = ResolveParameters('reel-P1', sets=['JL1=1 kg*m^2', 'kL1=2 kN*m', 'JL2=2', 'kL2=1e6', 'dL2=3', 'JL3=0.5',
+                                           'kL3=5e5'])
+    assert LoadSideChain(p) == [(1., 2000., 0.), (2., 1e6, 3.), (0.5, 5e5, 0.)]
+    assert ExtraComponents(p) == ['a load-side chain (JL1, ...)']
+    assert LoadSideChain(ResolveParameters('reel-P1')) == []
+
+
+@pytest.mark.parametrize('sets, fragment', [
+    (['JL1=0.5'], "LoadSideChain: 'JL1' needs the stiffness 'kL1' (N*m/rad) of the spring-damper on its wheel side"),
+    (['JL2=0.5', 'kL2=1e4'], "the load-side chain must be JL1, JL2, ... without gaps"),
+    (['JL1=0.5', 'kL1=1e4', 'JL3=1', 'kL3=1'], "missing 'JL2'"),
+    (['JL1=-0.5', 'kL1=1e4'], "'JL1' must be > 0 kg*m^2"),
+    (['JL1=0.5', 'kL1=1e4', 'dL1=-1'], "'dL1' must be >= 0 N*m*s/rad"),
+])
+def test_bad_load_side_chain_is_one_line_exit_2(capsys, tmp_path, monkeypatch, sets, fragment):
+    from exudyn_worm.cli import Main
+    monkeypatch.chdir(tmp_path)
+    status = Main(['stability', *[a for s in sets for a in ('--set', s)]])
+    out, err = capsys.readouterr()
+    assert status == 2 and out == '' and err.count('\n') == 1 and fragment in err, err
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize('body, fragment', [
+    ('[[loadSide]]\n', "line 2: [[loadSide]] number 1: the table is empty; each [[loadSide]] table is one stage of "
+                       "the load-side chain (JL1, kL1)"),
+    ('[[loadSide]]\ninertia = 1\nstifnes = 3\n', "line 4: [[loadSide]] number 1: unknown key 'stifnes' (did you mean "
+                                                 "'stiffness'?)"),
+    ('[[loadSide]]\ninertia = 1\nstiffness = 3\n[[loadSide]]\ndamping = 1\n',
+     "line 6: [[loadSide]] number 2 damping: LoadSideChain: the load-side chain must be JL1, JL2, ..."),
+    ('[[loadSide]]\ninertia = "1 kg"\nstiffness = 3\n', "line 3: [[loadSide]] number 1 inertia"),
+])
+def test_bad_load_side_table_names_file_line_and_stage(tmp_path, body, fragment):
+    path = tmp_path / 'drive.toml'
+    path.write_text('preset = "reel-P1"\n' + body)
+    with pytest.raises(ValueError) as info:
+        ResolveParameters(config=path)
+    assert fragment in str(info.value)
+
+
+def test_stage_keys_of_a_drive_file_in_order(tmp_path):
+    from exudyn_worm.drivefile import StageKey
+    path = tmp_path / 'drive.toml'
+    path.write_text('preset = "reel-P1"\n[[loadSide]]\ninertia = 1\nstiffness = "3 kN*m"\n'
+                    '[[loadSide]]\ninertia = 2\nstiffness = 4e5\ndamping = 7\n')
+    p = ResolveParameters(config=path)
+    assert (p['JL1'], p['kL1'], p['JL2'], p['kL2'], p['dL2']) == (1., 3000., 2., 4e5, 7.) and 'dL1' not in p
+    assert StageKey('loadSide', 'damping', 2) == 'dL3' and StageKey('driveSide', 'inertia', 0) == 'J4'
+    with pytest.raises(ValueError, match="StageKey: 'table' must be one of driveSide, loadSide, got 'load'"):
+        StageKey('load', 'inertia', 0)
+
+
+def test_equilibrium_every_load_shaft_carries_the_load_torque():
+    from exudyn_worm.presets import DriveFromParameters, GetPreset
+    from exudyn_worm.profiles import GravityLeverTorque
+    from exudyn_worm.reelchanger import SteadyInitialState
+    p = GetPreset('reel-P2')
+    load = GravityLeverTorque(mass=p['loadMass'], leverArm=p['leverArm'])
+    stages = ((5., 2e5, 1.), (10., 4e5, 0.))
+    state = SteadyInitialState(DriveFromParameters(p), load, p['motorSpeed'], loadChain=stages)
+    from exudyn_worm.contact import MATH_OPS
+    torque = load.Torque(state['phiL2'], 0., 0., MATH_OPS)             # the load acts on the last inertia
+    assert torque < 0
+    assert 2e5 * (state['phiL1'] - state['phi2']) == pytest.approx(torque, rel=1e-9)
+    assert 4e5 * (state['phiL2'] - state['phiL1']) == pytest.approx(torque, rel=1e-9)
+    assert state['omegaL1'] == state['omegaL2'] == state['omega2']
+
+
+def test_simulation_starts_in_equilibrium_and_reports_the_load_inertia(fileParameters):
+    from exudyn_worm.reelchanger import SimulateReelChanger
+    from exudyn_worm.results import SeriesUnit
+    result = SimulateReelChanger(fileParameters, endTime=0.02)
+    for key in ('phiL1', 'omegaL1', 'alphaL1'):
+        assert key in result.series
+    assert SeriesUnit('alphaL1') == 'rad/s^2' and SeriesUnit('phiL1') == 'rad'
+    # released at rest without the equilibrium, the load (39 N*m on 0.5 kg*m^2) would accelerate at about 80 rad/s^2
+    assert np.max(np.abs(result.series['alphaL1'])) < 1.
+    assert np.max(np.abs(result.series['omegaL1'] - result.series['omega2'])) < 1e-2
+
+
+def test_cli_stability_and_sweep_treat_the_whole_drive(tmp_path, fileParameters):
+    import json
+    run = subprocess.run([sys.executable, '-m', 'exudyn_worm', 'stability', '--config', str(LOAD_SHAFT), '--json'],
+                         capture_output=True, text=True, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    data = json.loads(run.stdout)
+    assert data['components'] == ['a load-side chain (JL1, ...)'] and 'loadInertia1' in data['coordinates']
+    assert data['stable'] is False
+    expected = DriveStability(fileParameters).State(-1)
+    byS = {tuple(s['S']): s for s in data['states']}
+    assert byS[(-1,)]['maxRealPart'] == pytest.approx(expected.maxRealPart, rel=1e-9)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize('kL1, stable', [(2e4, False), (2e7, True)])
+def test_sweep_point_takes_the_verdict_of_the_whole_drive(fileParameters, kL1, stable):
+    """A sweep over the load shaft: the soft one chatters (whole drive), the stiff one is the lumped drive."""
+    from exudyn_worm.study import RunPoint
+    row = RunPoint({'run': 0, 'parameters': {**fileParameters, 'kL1': kL1}, 'varied': {'kL1': kL1},
+                    'windows': [(0., 0.01)], 'endTime': 0.01, 'stepSize': None})
+    assert row['status'] == 'ok', row['error']
+    assert row['analyticStable'] is stable and row['analyticStableLowering'] is stable
