@@ -28,7 +28,8 @@ Kinds of value (parsed by :meth:`ParameterRegistry.Parse`, checked by :meth:`Par
 
 A *series* parameter (``series=4``) stands for the numbered keys ``J4, J5, J6, ...`` (the drive-side chain of
 Figure 19): its ``name`` is the prefix (``'J'``), it is listed under its first key (``J4``) and in a drive file
-it is a key of the array of tables ``table`` (``[[driveSide]]``), entry i giving number ``series + i``.
+it is a key of the array of tables ``table`` (``[[driveSide]]``), entry i giving number ``series + i``. The
+load-side chain is the series ``JL1, kL1, dL1, JL2, ...`` (prefix ``'JL'``, ``series=1``, ``[[loadSide]]``).
 """
 from __future__ import annotations
 
@@ -766,7 +767,8 @@ PARAMETERS = ParameterRegistry([
     # the two-mass drive, Figure 2
     Parameter('J1', 'kg*m^2', 'positive', 'inertia on the worm shaft (worm, coupling, motor rotor)', table='worm',
               fileKey='inertia'),
-    Parameter('J2', 'kg*m^2', 'positive', 'inertia on the wheel shaft (wheel and driven machine)', table='wheel',
+    Parameter('J2', 'kg*m^2', 'positive', 'inertia on the wheel shaft (wheel and driven machine; with a load-side '
+              'chain the wheel side only)', table='wheel',
               fileKey='inertia'),
     Parameter('kT', 'N*m/rad', 'positive', 'torsional stiffness of the drive shaft (motor to worm)',
               table='driveShaft', fileKey='stiffness'),

@@ -203,3 +203,63 @@ def test_sweep_point_takes_the_verdict_of_the_whole_drive(fileParameters, kL1, s
                     'windows': [(0., 0.01)], 'endTime': 0.01, 'stepSize': None})
     assert row['status'] == 'ok', row['error']
     assert row['analyticStable'] is stable and row['analyticStableLowering'] is stable
+
+
+def test_diagnosis_names_the_soft_load_shaft_as_the_cause(fileParameters):
+    from exudyn_worm.loadside import DiagnoseLoadSide
+    d = DiagnoseLoadSide(fileParameters)
+    assert d.stages[0].frequencyHz == pytest.approx(math.sqrt(KL1 / JL1) / (2 * math.pi), rel=1e-12)
+    assert d.lumpedStable and not d.wholeStable and not d.lumpingSafe and d.cause == 1
+    assert d.growingMode['S'] == -1 and d.growingMode['energyShare']['wheel'] > 0.9
+    assert d.limitFactor == pytest.approx(1 / math.sqrt(1 - 10 ** -0.1))
+    assert 'the cause is load-side stage 1' in d.Text()
+
+
+def test_second_stage_named_when_it_is_the_soft_one(fileParameters):
+    """A stiff first stage and a soft second: the second stage carries the blame."""
+    from exudyn_worm.loadside import DiagnoseLoadSide
+    p = {**fileParameters, 'JL1': 0.01, 'kL1': 1e8, 'JL2': JL1, 'kL2': KL1}
+    d = DiagnoseLoadSide(p)
+    assert not d.wholeStable and d.cause == 2
+    assert d.stages[0].inertiaBeyond == pytest.approx(0.01 + JL1) and d.stages[1].inertiaBeyond == JL1
+
+
+@pytest.mark.parametrize('kL1', [1.2e5, 2e6, 2e8])
+def test_lumping_judged_safe_gives_the_lumped_verdict(fileParameters, kL1):
+    """Where the criterion calls lumping safe, the whole drive's verdict is the lumped one (the criterion
+    includes that check; the stage frequency alone must pass too)."""
+    from exudyn_worm.loadside import DiagnoseLoadSide
+    d = DiagnoseLoadSide({**fileParameters, 'kL1': kL1})
+    assert d.lumpingSafe and d.cause is None
+    assert all(s.frequencyHz >= d.limitFactor * max(d.wheelModesHz) for s in d.stages)
+    assert d.lumpedStable == d.wholeStable
+
+
+def test_design_check_lumps_a_safe_chain_and_refuses_a_soft_one(fileParameters):
+    from exudyn_worm.design import DesignCheck
+    from exudyn_worm.loadside import LoadSideNotLumpable
+    with pytest.raises(LoadSideNotLumpable, match='the cause is load-side stage 1') as info:
+        DesignCheck(fileParameters)
+    assert info.value.diagnosis.cause == 1
+    result = DesignCheck({**fileParameters, 'kL1': 2e6})
+    assert result.parameters['J2'] == pytest.approx(J2 + JL1) and 'JL1' not in result.parameters
+    assert any('lumped into J2' in n for n in result.notes)
+    with pytest.raises(ValueError, match='DiagnoseLoadSide: the parameter set has no load-side chain'):
+        from exudyn_worm.loadside import DiagnoseLoadSide
+        DiagnoseLoadSide({k: v for k, v in fileParameters.items() if k not in ('JL1', 'kL1', 'dL1')})
+
+
+def test_cli_check_reports_the_whole_drive_and_the_cause(capsys, tmp_path, monkeypatch):
+    import json
+    from exudyn_worm.cli import Main
+    monkeypatch.chdir(tmp_path)
+    assert Main(['check', '--config', str(LOAD_SHAFT)]) == 0
+    out, err = capsys.readouterr()
+    assert 'Verdict (linearized whole drive): UNSTABLE' in out and 'the cause is load-side stage 1' in out
+    assert Main(['check', '--config', str(LOAD_SHAFT), '--json']) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data['stable'] is False and data['loadSide']['cause'] == 1 and data['recommendations'] == []
+    assert Main(['check', '--config', str(LOAD_SHAFT), '--plot', 'x.png']) == 2
+    out, err = capsys.readouterr()
+    assert out == '' and err.count('\n') == 1 and '--plot: the design chart' in err
+    assert list(tmp_path.iterdir()) == []
