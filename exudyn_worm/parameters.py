@@ -784,6 +784,28 @@ PARAMETERS = ParameterRegistry([
     Parameter('leverArm', 'm', 'nonNegative', 'lever arm l2 of that mass (reel changer, eq. (27))', table='load',
               fileKey='leverArm'),
     Parameter('motorSpeed', 'rad/s', 'positive', 'motor speed n0 (reel changer)', table='motor', fileKey='speed'),
+    # duty cycles: what loads the wheel side and how the motor moves (default: the reel changer's lever, constant speed)
+    Parameter('loadType', kind='choice', choices=('lever', 'constant', 'timeTable', 'angleTable', 'none'),
+              description='the load: lever (mass on a lever, eq. (27); default), constant (loadTorque), timeTable '
+              '(loadTorqueOverTime), angleTable (loadTorqueOverAngle) or none', table='load', fileKey='type'),
+    Parameter('loadTorque', 'N*m', 'finite', 'constant load torque (loadType constant; < 0 opposes positive wheel '
+              'rotation: lifting)', table='load', fileKey='torque'),
+    Parameter('loadTorqueOverTime', kind='table', columns=(('time', 's', 'nonNegative'), ('torque', 'N*m', 'finite')),
+              description='load torque over time, linear between rows, constant beyond (loadType timeTable)',
+              table='load', fileKey='torqueOverTime'),
+    Parameter('loadTorqueOverAngle', kind='table', columns=(('angle', 'rad', 'finite'), ('torque', 'N*m', 'finite')),
+              description='load torque over the angle of the rotor it acts on (wheel or last load-side inertia), '
+              'linear between rows, constant beyond (loadType angleTable)', table='load', fileKey='torqueOverAngle'),
+    Parameter('motorType', kind='choice', choices=('constantSpeed', 'startStop', 'speedTable'),
+              description='the motor: constantSpeed (motorSpeed; default), startStop (motorSpeed, rampTime, '
+              'brakeTime) or speedTable (motorSpeedOverTime)', table='motor', fileKey='type'),
+    Parameter('rampTime', 's', 'positive', 'duration of the start and stop ramps (motorType startStop)',
+              table='motor', fileKey='rampTime'),
+    Parameter('brakeTime', 's', 'nonNegative', 'start of braking, >= rampTime (motorType startStop; absent: no stop)',
+              table='motor', fileKey='brakeTime'),
+    Parameter('motorSpeedOverTime', kind='table', columns=(('time', 's', 'nonNegative'), ('speed', 'rad/s', 'finite')),
+              description='motor speed over time from t = 0, linear between rows, constant beyond (motorType '
+              'speedTable)', table='motor', fileKey='speedOverTime'),
     # the drive-side chain, Figure 19: worm J1 --(kT, dT)-- J4 --(k4, d4)-- J5 -- ... -- motor
     Parameter('J', 'kg*m^2', 'positive', 'drive-side chain of Figure 19: inertia4, inertia5, ... (optional)',
               table='driveSide', fileKey='inertia', series=4),

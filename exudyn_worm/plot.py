@@ -126,7 +126,8 @@ def _Interval(where: str, result, tZoom) -> Tuple[np.ndarray, Tuple[float, float
 def _Phases(result) -> list:
     """Lift / lower intervals of a reel-changer run: the load torque -m g l cos(phi2) opposes the wheel's
     motion while lifting (cos(phi2) * sign(omega2) > 0). Empty for other simulations."""
-    if 'maxLoadTorque' not in getattr(result, 'info', {}) or 'phi2' not in result.series:
+    if 'maxLoadTorque' not in getattr(result, 'info', {}) or 'phi2' not in result.series \
+            or result.info.get('loadType', 'lever') != 'lever':         # the phases below are the lever's
         return []
     t = np.asarray(result.time)
     direction = np.sign(np.mean(result.series['omega2'])) or 1.

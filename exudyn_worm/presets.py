@@ -49,7 +49,7 @@ from .parameters import PARAMETERS
 if TYPE_CHECKING:
     from .connector import AxialBearing
 
-__all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
+__all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
            'ExtraComponents',
            'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
            'DriveFromParameters', 'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
@@ -57,8 +57,10 @@ __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNI
 
 #: keys of the elastic drive (Figure 2): the drive-file tables [gear], [worm], [wheel], [driveShaft]
 DRIVE_KEYS = PARAMETERS.KeysOf('gear', 'worm', 'wheel', 'driveShaft')
-#: keys of the paper-reel-changer load case (section 3.2)
-REEL_KEYS = PARAMETERS.KeysOf('load', 'motor')
+#: keys of the paper-reel-changer load case (section 3.2): the lever's mass and arm, the motor speed
+REEL_KEYS = ('loadMass', 'leverArm', 'motorSpeed')
+#: keys of the duty cycle: load and motor (the reel changer's and the others, see exudyn_worm.duty)
+DUTY_KEYS = PARAMETERS.KeysOf('load', 'motor')
 
 #: keys of the first element of the drive-side chain (Figure 19); J5/k5/d5, ... continue it
 CHAIN_KEYS = PARAMETERS.KeysOf('driveSide')
