@@ -16,7 +16,11 @@ inertia:
 - ``startStop``: (1 - cos)/2 ramps to ``motorSpeed`` in ``rampTime`` s, braking from ``brakeTime`` s if given
   (:class:`~exudyn_worm.profiles.StartStopProfile`);
 - ``speedTable``: ``motorSpeedOverTime``, rows (t in s from 0, speed in rad/s)
-  (:class:`~exudyn_worm.profiles.SpeedTable`).
+  (:class:`~exudyn_worm.profiles.SpeedTable`);
+- ``characteristic``: a free motor rotor (``motorInertia``) driven by the torque-speed line
+  M = ``stallTorque`` (1 - omega / ``noLoadSpeed``) (:class:`~exudyn_worm.profiles.LinearMotorCharacteristic`),
+  started at the speed where that line carries the initial load (:func:`SteadyMotorSpeed`). The linear analysis
+  then has the motor rotor with the line's slope as a damper to ground (instead of a motor held on its path).
 
 **Phases.** A load that opposes the motion is lifted (load power M omega < 0, contact state S = +1 expected);
 a load that drives the gear is lowered (M omega > 0: the self-locking worm brakes it, S = -1, where chatter
@@ -32,10 +36,12 @@ from typing import List, Mapping, Optional, Tuple
 import numpy as np
 
 from .presets import MissingParameterError
-from .profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque, SpeedTable, StartStopProfile, TorqueTable
+from .profiles import (ConstantSpeed, ConstantTorque, GravityLeverTorque, LinearMotorCharacteristic, SpeedTable,
+                       StartStopProfile, TorqueTable)
 
 __all__ = ['LOAD_TYPES', 'MOTOR_TYPES', 'LoadType', 'MotorType', 'DutyKeys', 'CheckDutyKeys', 'LoadFromParameters',
-           'MotorFromParameters', 'IsReelChangerDuty', 'DefaultEndTime', 'DutyPhases']
+           'MotorFromParameters', 'MotorMotion', 'SteadyMotorSpeed', 'IsReelChangerDuty', 'DefaultEndTime',
+           'DutyPhases']
 
 #: the keys each load type needs
 LOAD_TYPES = {'lever': ('loadMass', 'leverArm'), 'constant': ('loadTorque',), 'timeTable': ('loadTorqueOverTime',),
@@ -178,7 +184,8 @@ def MotorFromParameters(parameters: Mapping, where: str = 'MotorFromParameters')
 
     Returns
     -------
-    ConstantSpeed, StartStopProfile or SpeedTable
+    ConstantSpeed, StartStopProfile, SpeedTable or LinearMotorCharacteristic
+        A prescribed motion (``AngleAndSpeed``), or for ``characteristic`` the torque law (``Torque``).
 
     Raises
     ------
@@ -187,11 +194,72 @@ def MotorFromParameters(parameters: Mapping, where: str = 'MotorFromParameters')
     """
     CheckDutyKeys(parameters, where)
     motor = MotorType(parameters)
+    if motor == 'characteristic':
+        return LinearMotorCharacteristic(parameters['stallTorque'], parameters['noLoadSpeed'])
     if motor == 'startStop':
         return StartStopProfile(parameters['motorSpeed'], parameters['rampTime'], parameters.get('brakeTime'))
     if motor == 'speedTable':
         return SpeedTable(_Table(parameters, 'motorSpeedOverTime', where))
     return ConstantSpeed(parameters['motorSpeed'])
+
+
+def SteadyMotorSpeed(parameters: Mapping, where: str = 'SteadyMotorSpeed') -> float:
+    """The speed in rad/s at which a motor on its characteristic carries the initial load: M(omega) equals the
+    drive-shaft torque of the static equilibrium (:func:`~exudyn_worm.reelchanger.SteadyInitialState`) at omega.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with ``motorType = characteristic``.
+    where : str, optional
+        Caller named in messages.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        If the motor cannot carry the load (the required torque reaches the stall torque).
+    """
+    from .presets import DriveFromParameters, DriveSideChain, LoadSideChain, AxialBearingFromParameters
+    from .reelchanger import SteadyInitialState
+    motor = MotorFromParameters(parameters, where)
+    drive = DriveFromParameters(parameters)
+    load = LoadFromParameters(parameters, where) or ConstantTorque(0.)
+    chain = DriveSideChain(parameters)
+    speed = motor.noLoadSpeed
+    for _ in range(20):                    # the required torque depends on the speed only through the friction law
+        state = SteadyInitialState(drive, load, speed, axialBearing=AxialBearingFromParameters(parameters),
+                                   chain=chain, loadChain=LoadSideChain(parameters))
+        motorSide = state['phi4'] if chain else 0.
+        required = drive.kT * (motorSide - state['phi1'])          # torque of the drive shaft on the worm
+        if required >= motor.stallTorque:
+            raise ValueError(f"{where}: the motor cannot carry the load: it needs {required:.4g} N*m at the worm "
+                             f"shaft, at least the stall torque {motor.stallTorque:g} N*m")
+        new = motor.noLoadSpeed * (1. - max(required, 0.) / motor.stallTorque)
+        if abs(new - speed) <= 1e-12 * motor.noLoadSpeed:
+            break
+        speed = new
+    return new
+
+
+def MotorMotion(parameters: Mapping, where: str = 'MotorMotion'):
+    """The motor's motion ``AngleAndSpeed`` for the rigid kinematics of the phases: the prescribed one, or for a
+    motor on its characteristic constant speed at :func:`SteadyMotorSpeed`.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    where : str, optional
+        Caller named in messages.
+    """
+    motor = MotorFromParameters(parameters, where)
+    if isinstance(motor, LinearMotorCharacteristic):
+        return ConstantSpeed(SteadyMotorSpeed(parameters, where))
+    return motor
 
 
 def DefaultEndTime(parameters: Mapping, ratio: float) -> float:
@@ -212,7 +280,7 @@ def DefaultEndTime(parameters: Mapping, ratio: float) -> float:
         Time in s.
     """
     ends = []
-    motor = MotorFromParameters(parameters, 'DefaultEndTime')
+    motor = MotorMotion(parameters, 'DefaultEndTime')
     load = LoadFromParameters(parameters, 'DefaultEndTime')
     if isinstance(motor, SpeedTable):
         ends.append(motor.endTime)
@@ -221,8 +289,8 @@ def DefaultEndTime(parameters: Mapping, ratio: float) -> float:
     if isinstance(load, TorqueTable) and load.over == 'time':
         ends.append(load.points[-1][0])
     ends = [e for e in ends if e > 0]
-    if IsReelChangerDuty(parameters) or not ends:
-        return 2 * math.pi * ratio / abs(parameters['motorSpeed']) if parameters.get('motorSpeed') else max(ends)
+    if IsReelChangerDuty(parameters) or not ends:      # one wheel rotation
+        return 2 * math.pi * ratio / abs(motor.speed)
     return max(ends)
 
 
@@ -255,7 +323,7 @@ def DutyPhases(parameters: Mapping, ratio: float, endTime: float, minLength: flo
         ``(t0, t1, phase)`` in time order, covering [0, endTime].
     """
     from .contact import MATH_OPS
-    motor, load = MotorFromParameters(parameters, 'DutyPhases'), LoadFromParameters(parameters, 'DutyPhases')
+    motor, load = MotorMotion(parameters, 'DutyPhases'), LoadFromParameters(parameters, 'DutyPhases')
     if load is None:
         return [(0., float(endTime), 'idle')]
     speedBound = max(abs(motor.AngleAndSpeed(t, MATH_OPS)[1]) for t in np.linspace(0., endTime, 101)) / ratio

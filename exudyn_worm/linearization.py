@@ -357,7 +357,8 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
 def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True,
                             axialBearing: Optional[AxialBearing] = None,
                             chain: Sequence[Tuple[float, float, float]] = (),
-                            loadChain: Sequence[Tuple[float, float, float]] = ()):
+                            loadChain: Sequence[Tuple[float, float, float]] = (),
+                            motor: Optional[Tuple[float, float]] = None):
     """Exudyn system of Figure 2 (motor held still), worm pre-deflected into contact; returns ``(SC, mbs)``.
 
     With ``axialBearing`` the worm has its axial coordinate (node ``wormAxial``): the 3-DOF problem in
@@ -380,18 +381,29 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
         Drive-side chain, worm side first (:func:`~exudyn_worm.presets.DriveSideChain`).
     loadChain : sequence of (J, k, d)
         Load-side chain, wheel side first (:func:`~exudyn_worm.presets.LoadSideChain`).
+    motor : (float, float), optional
+        A free motor rotor instead of one held on its path: its inertia in kg*m^2 and the damping to ground in
+        N*m*s/rad by which its torque falls with speed (the slope of a motor characteristic).
     """
     import exudyn as exu
+    from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, NodePointGround
     if S is not None and S not in CONTACT_STATES:
         raise ValueError(f"BuildLinearizationModel: 'S' must be None, +1 or -1, got {S!r}")
     g = drive.gear
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     deltaPhi = (0.5 * g.backlash + _PRELOAD) / g.normalLever
-    motor = CreateRotor(mbs, 1e-3, name='motor')
     worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, name='worm')
     wheel = CreateRotor(mbs, drive.J2, name='wheel')
-    CreatePrescribedRotation(mbs, motor, ConstantSpeed(0.), useSymbolic=useSymbolic)
+    if motor is None:
+        motor = CreateRotor(mbs, 1e-3, name='motor')
+        CreatePrescribedRotation(mbs, motor, ConstantSpeed(0.), useSymbolic=useSymbolic)
+    else:                                   # a free motor rotor, its characteristic's slope a damper to ground
+        inertia, slope = motor
+        motor = CreateRotor(mbs, inertia, name='motor')
+        ground = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
+        mbs.AddObject(CoordinateSpringDamper(markerNumbers=[ground, motor['markerNumber']], stiffness=0.,
+                                             damping=slope))
     chainRotors = [CreateRotor(mbs, J, name=f'inertia{i}') for i, (J, _, _) in enumerate(chain, start=4)]
     CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT)
     for rotor, motorSide, (_, k, d) in zip(chainRotors, chainRotors[1:] + [motor], chain):
@@ -423,9 +435,12 @@ def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: 
         ``wormAxial``).
     """
     from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain, LoadSideChain
+    motor = None
+    if parameters.get('motorType') == 'characteristic':      # a free motor: its inertia, the line's slope
+        motor = (parameters['motorInertia'], parameters['stallTorque'] / parameters['noLoadSpeed'])
     SC, mbs = BuildLinearizationModel(DriveFromParameters(parameters), None, useSymbolic,
                                       AxialBearingFromParameters(parameters), DriveSideChain(parameters),
-                                      LoadSideChain(parameters))
+                                      LoadSideChain(parameters), motor)
     return AnalyzeLinearStability(mbs)
 
 

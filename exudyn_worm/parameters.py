@@ -796,9 +796,10 @@ PARAMETERS = ParameterRegistry([
     Parameter('loadTorqueOverAngle', kind='table', columns=(('angle', 'rad', 'finite'), ('torque', 'N*m', 'finite')),
               description='load torque over the angle of the rotor it acts on (wheel or last load-side inertia), '
               'linear between rows, constant beyond (loadType angleTable)', table='load', fileKey='torqueOverAngle'),
-    Parameter('motorType', kind='choice', choices=('constantSpeed', 'startStop', 'speedTable'),
+    Parameter('motorType', kind='choice', choices=('constantSpeed', 'startStop', 'speedTable', 'characteristic'),
               description='the motor: constantSpeed (motorSpeed; default), startStop (motorSpeed, rampTime, '
-              'brakeTime) or speedTable (motorSpeedOverTime)', table='motor', fileKey='type'),
+              'brakeTime), speedTable (motorSpeedOverTime) or characteristic (stallTorque, noLoadSpeed, '
+              'motorInertia)', table='motor', fileKey='type'),
     Parameter('rampTime', 's', 'positive', 'duration of the start and stop ramps (motorType startStop)',
               table='motor', fileKey='rampTime'),
     Parameter('brakeTime', 's', 'nonNegative', 'start of braking, >= rampTime (motorType startStop; absent: no stop)',
@@ -806,6 +807,12 @@ PARAMETERS = ParameterRegistry([
     Parameter('motorSpeedOverTime', kind='table', columns=(('time', 's', 'nonNegative'), ('speed', 'rad/s', 'finite')),
               description='motor speed over time from t = 0, linear between rows, constant beyond (motorType '
               'speedTable)', table='motor', fileKey='speedOverTime'),
+    Parameter('stallTorque', 'N*m', 'positive', 'motor torque at standstill of the line M = stallTorque (1 - omega / '
+              'noLoadSpeed) (motorType characteristic)', table='motor', fileKey='stallTorque'),
+    Parameter('noLoadSpeed', 'rad/s', 'positive', 'motor speed at zero torque of that line (motorType characteristic)',
+              table='motor', fileKey='noLoadSpeed'),
+    Parameter('motorInertia', 'kg*m^2', 'positive', 'inertia of the motor rotor on the motor side of the drive shaft '
+              '(motorType characteristic)', table='motor', fileKey='inertia'),
     # the drive-side chain, Figure 19: worm J1 --(kT, dT)-- J4 --(k4, d4)-- J5 -- ... -- motor
     Parameter('J', 'kg*m^2', 'positive', 'drive-side chain of Figure 19: inertia4, inertia5, ... (optional)',
               table='driveSide', fileKey='inertia', series=4),

@@ -393,6 +393,8 @@ def ExtraComponents(parameters: Mapping[str, float]) -> List[str]:
     """
     return ((['a drive-side chain (J4, ...)'] if DriveSideChain(parameters) else []) +
             (['a load-side chain (JL1, ...)'] if LoadSideChain(parameters) else []) +
+            (['a motor on its characteristic (motorType characteristic)']
+             if parameters.get('motorType') == 'characteristic' else []) +
             (['a worm axial bearing (kA > 0)'] if parameters.get('kA', 0.) > 0 else []))
 
 

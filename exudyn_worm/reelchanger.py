@@ -381,10 +381,17 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
     drive = DriveFromParameters(parameters)
     CheckReelChangerKeys(parameters, w)
-    from .duty import LoadFromParameters, MotorFromParameters, MotorType
-    if MotorType(parameters) != 'speedTable':
+    from .duty import LoadFromParameters, MotorFromParameters, MotorType, SteadyMotorSpeed
+    if MotorType(parameters) in ('constantSpeed', 'startStop'):
         CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     load = LoadFromParameters(parameters, w)            # the duty: lever (reel changer), constant, table or None
+    characteristic = None                               # a free motor on its torque-speed line, else prescribed
+    if MotorType(parameters) == 'characteristic':
+        if profile is not None:
+            raise ValueError(f"{w}: 'profile' prescribes the motor, but the parameter set drives it by its "
+                             f"characteristic (motorType = characteristic); give one of them")
+        characteristic = MotorFromParameters(parameters, w)
+        profile = ConstantSpeed(SteadyMotorSpeed(parameters, w))          # its start: the steady speed
     profile = profile if profile is not None else MotorFromParameters(parameters, w)
     motorSpeed = float(profile.AngleAndSpeed(0., MATH_OPS)[1])         # the motor's speed at t = 0
     chain = tuple(DriveSideChain(parameters))
@@ -400,12 +407,16 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
 
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    motor = CreateRotor(mbs, _MOTOR_INERTIA, initialAngle=init0[0], initialSpeed=init0[1], name='motor')
+    motor = CreateRotor(mbs, _MOTOR_INERTIA if characteristic is None else parameters['motorInertia'],
+                        initialAngle=init0[0], initialSpeed=init0[1], name='motor')
     worm = CreateRotor(mbs, drive.J1, initialAngle=init.get('phi1', 0.), initialSpeed=init.get('omega1', 0.),
                        name='worm')
     wheel = CreateRotor(mbs, drive.J2, initialAngle=init.get('phi2', 0.), initialSpeed=init.get('omega2', 0.),
                         name='wheel')
-    CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+    if characteristic is None:
+        CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+    else:
+        CreateRotorTorque(mbs, motor, characteristic, name='motorTorque', useSymbolic=useSymbolic)
     rotors = {'motor': motor, 'worm': worm, 'wheel': wheel}
     # drive-side chain, worm side first: worm --kT-- inertia4 --k4-- inertia5 ... --kn-- motor
     chainRotors = [CreateRotor(mbs, J, initialAngle=init.get(f'phi{i}', 0.), initialSpeed=init.get(f'omega{i}', 0.),

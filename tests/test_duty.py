@@ -138,3 +138,35 @@ def test_study_of_another_duty_needs_windows():
     with pytest.raises(ValueError, match="Study: a duty other than the reel changer's"):
         Study(p, [ParseVariation('J1=0.1,0.2')])
     Study(p, [ParseVariation('J1=0.1,0.2')], windows=[(0., 1.)], endTime=1.)
+
+
+CHARACTERISTIC = ['motorType=characteristic', 'stallTorque=300', 'noLoadSpeed=500 rpm', 'motorInertia=0.05']
+
+
+def test_motor_characteristic_starts_where_its_line_carries_the_load():
+    """The steady speed: M(omega) = stallTorque (1 - omega / noLoadSpeed) equals the drive-shaft torque of the
+    equilibrium; the run starts there without a jump and the speed follows the lever's load."""
+    from exudyn_worm.duty import SteadyMotorSpeed
+    from exudyn_worm.reelchanger import SimulateReelChanger
+    p = ResolveParameters('reel-P2', sets=CHARACTERISTIC)
+    speed = SteadyMotorSpeed(p)
+    result = SimulateReelChanger(p, endTime=0.2)
+    torque = 300. * (1 - speed / p['noLoadSpeed'])
+    shaft = result.series['driveTorque'][0]
+    assert torque == pytest.approx(-shaft, rel=1e-6)            # the shaft pulls the worm with the motor's torque
+    assert result.series['omega0'][0] == pytest.approx(speed, rel=1e-12)
+    assert np.max(np.abs(np.diff(result.series['omega0'][:20]))) < 1e-3   # no start transient
+    with pytest.raises(ValueError, match='the motor cannot carry the load'):
+        SteadyMotorSpeed({**p, 'stallTorque': 20.})
+
+
+def test_motor_characteristic_in_the_linear_analysis():
+    """The free motor rotor is in the linearized drive: its inertia adds a mode, the line's slope damps the
+    drive's free rotation (a real eigenvalue -slope / (J0 + J1 + ...) reflected), one rigid-body angle remains."""
+    from exudyn_worm.linearization import DriveStability
+    from exudyn_worm.presets import ExtraComponents
+    p = ResolveParameters('reel-P2', sets=CHARACTERISTIC)
+    assert ExtraComponents(p) == ['a motor on its characteristic (motorType characteristic)']
+    state = DriveStability(p).State(1)
+    assert state.rigidBodyModes == 1
+    assert len(state.frequenciesHz) == 2 and any(m.eigenvalue.imag == 0 and m.eigenvalue.real < 0 for m in state.modes)
