@@ -657,12 +657,13 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
 
     One rotation with :func:`~exudyn_worm.reelchanger.SimulateReelChanger`; the verdict is
     :meth:`~exudyn_worm.results.SimulationResult.Chatter` on the lowering window of
-    :func:`~exudyn_worm.reelchanger.DefaultWindows` (the rule of ``exudyn-worm simulate``).
+    :func:`~exudyn_worm.reelchanger.DefaultWindows` (the rule of ``exudyn-worm simulate``); for another duty
+    (:mod:`exudyn_worm.duty`) on each of its lowering phases (False if it has none).
 
     Parameters
     ----------
     parameters : mapping
-        Flat parameter set with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed``.
+        Flat parameter set with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed`` (or another duty's).
     stepSize : float, optional
         Time step in s. Default: the simulation's default, the drive's own
         :func:`~exudyn_worm.stepsize.RecommendedStepSize` (a recommended drive can have a higher natural
@@ -677,10 +678,13 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
     ValueError
         For a parameter set without the reel-changer keys, or a ``stepSize`` the simulation refuses.
     """
-    from .reelchanger import CheckReelChangerKeys, DefaultWindows, SimulateReelChanger
+    from .reelchanger import CheckReelChangerKeys, DefaultPhases, SimulateReelChanger
     CheckReelChangerKeys(parameters, 'ChatterWhileLowering')
-    lift, lower, _ = DefaultWindows(parameters)
-    return SimulateReelChanger(parameters, stepSize=stepSize).Chatter(*lower)
+    lowering = [(t0, t1) for t0, t1, phase in DefaultPhases(parameters) if phase == 'lower']   # the load drives
+    if not lowering:
+        return False
+    result = SimulateReelChanger(parameters, stepSize=stepSize)          # the default time the phases cover
+    return any(result.Chatter(t0, t1) for t0, t1 in lowering)
 
 
 def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = None,

@@ -170,3 +170,14 @@ def test_motor_characteristic_in_the_linear_analysis():
     state = DriveStability(p).State(1)
     assert state.rigidBodyModes == 1
     assert len(state.frequenciesHz) == 2 and any(m.eigenvalue.imag == 0 and m.eigenvalue.real < 0 for m in state.modes)
+
+
+def test_check_simulate_judges_the_lowering_phases_of_a_duty():
+    """check --simulate on another duty: chatter is looked for where the load drives the gear; a duty that only
+    lifts has no lowering to chatter in."""
+    from exudyn_worm.design import ChatterWhileLowering
+    lifting = ResolveParameters('reel-P7', sets=['loadType=constant', 'loadTorque=-2000', 'motorType=speedTable',
+                                                 'motorSpeedOverTime=[[0, 49.5], [1, 49.5]]'])
+    assert ChatterWhileLowering(lifting) is False
+    lowering = {**lifting, 'loadTorque': 2000.}
+    assert ChatterWhileLowering(lowering) is True          # P7 chatters while lowering (the paper's Figure 14)
