@@ -393,17 +393,15 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     deltaPhi = (0.5 * g.backlash + _PRELOAD) / g.normalLever
+    free, motor = motor, CreateRotor(mbs, 1e-3 if motor is None else motor[0], name='motor')
     worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, name='worm')
     wheel = CreateRotor(mbs, drive.J2, name='wheel')
-    if motor is None:
-        motor = CreateRotor(mbs, 1e-3, name='motor')
+    if free is None:
         CreatePrescribedRotation(mbs, motor, ConstantSpeed(0.), useSymbolic=useSymbolic)
     else:                                   # a free motor rotor, its characteristic's slope a damper to ground
-        inertia, slope = motor
-        motor = CreateRotor(mbs, inertia, name='motor')
         ground = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
         mbs.AddObject(CoordinateSpringDamper(markerNumbers=[ground, motor['markerNumber']], stiffness=0.,
-                                             damping=slope))
+                                             damping=free[1]))
     chainRotors = [CreateRotor(mbs, J, name=f'inertia{i}') for i, (J, _, _) in enumerate(chain, start=4)]
     CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT)
     for rotor, motorSide, (_, k, d) in zip(chainRotors, chainRotors[1:] + [motor], chain):
