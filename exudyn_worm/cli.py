@@ -46,7 +46,7 @@ import sys
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple
+from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 from .config import DEFAULT_PRESET, ResolveParameters
 from .plausibility import ImplausibleValueWarning
@@ -221,7 +221,7 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
 FIGURE_SUFFIXES = ('.png', '.pdf', '.svg')
 
 
-def CheckFigurePath(path, option: str, overwrite: bool = False) -> Path:
+def CheckFigurePath(path: Union[str, os.PathLike], option: str, overwrite: bool = False) -> Path:
     """:func:`CheckOutputPath` for a figure file: also its format (a suffix of :data:`FIGURE_SUFFIXES`).
 
     Parameters
@@ -261,7 +261,7 @@ def AddOverwriteOption(parser: argparse.ArgumentParser, what: str = 'the output 
                         help=f'replace {what} if they exist (without it an existing output file is refused)')
 
 
-def WriteAtomically(path, write: Callable[[Path], object]) -> Path:
+def WriteAtomically(path: Union[str, os.PathLike], write: Callable[[Path], object]) -> Path:
     """Write a file so that it is either complete or absent: into a temporary file beside it, then renamed.
 
     An interrupt (Ctrl-C) or error during ``write`` removes the temporary file and leaves ``path`` as it was.

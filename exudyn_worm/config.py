@@ -9,7 +9,7 @@ replaces its alternative forms: ``mu`` drops ``rho``, ``dT`` drops ``DT``/``DTV`
    nothing, so that what it leaves out is reported missing instead of taken from the reel changer);
 2. the values of a TOML config file: the component tables of a whole-drive file
    (:mod:`exudyn_worm.drivefile`: ``[gear]``, ``[worm]``, ``[wheel]``, ``[driveShaft]``, ``[load]``,
-   ``[motor]``, ``[[driveSide]]``, ``[axialBearing]``) and/or the flat ``[parameters]`` table;
+   ``[motor]``, ``[[driveSide]]``, ``[[loadSide]]``, ``[axialBearing]``) and/or the flat ``[parameters]`` table;
 3. ``KEY=VALUE`` overrides (the CLI's ``--set``).
 
 A value is a plain SI number (angles in rad, ``motorSpeed`` in rad/s) or a string with units parsed by
@@ -36,9 +36,10 @@ import sys
 from numbers import Real
 from typing import Dict, Iterable, Mapping, Optional, Tuple, Union
 
-from .drivefile import COMPONENT_TABLES, DRIVE_FILE_TABLES, DRIVE_SIDE_TABLE, TOP_LEVEL_KEYS, FlattenDriveFile
+from .drivefile import (ARRAY_TABLES, COMPONENT_TABLES, DRIVE_FILE_TABLES, DRIVE_SIDE_TABLE, LOAD_SIDE_TABLE,
+                        TOP_LEVEL_KEYS, FlattenDriveFile)
 from .parameters import PARAMETERS
-from .presets import PRESETS, ApplyOverrides, CheckParameters, DriveSideChain, GetPreset
+from .presets import PRESETS, ApplyOverrides, CheckParameters, DriveSideChain, GetPreset, LoadSideChain
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -173,7 +174,7 @@ def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None) -> Di
     if not parameters and preset is None:
         raise ValueError(f"{where}: the file gives no parameters: a drive file must give the drive's values in "
                          f"component tables ({', '.join(f'[{t}]' for t in DRIVE_FILE_TABLES)}, "
-                         f"[[{DRIVE_SIDE_TABLE}]]; see docs/drive-files.md) or in a [parameters] table, or name a "
+                         f"[[{DRIVE_SIDE_TABLE}]], [[{LOAD_SIDE_TABLE}]]; see docs/drive-files.md) or in a [parameters] table, or name a "
                          f"preset (preset = \"{DEFAULT_PRESET}\")")
     # a file with component tables describes a whole drive: nothing is inherited unless it names a preset
     wholeDrive = any(table in data for table in COMPONENT_TABLES)
@@ -287,23 +288,31 @@ def ResolveParameters(preset: Optional[str] = None,
 
 
 def _CheckChain(parameters: Mapping[str, float], locations: Mapping[str, str]) -> None:
-    """The drive-side chain must be complete (``J4`` with ``k4``, no gaps) in every resolved parameter set, so that
-    no command meets an incomplete chain later; a chain from a drive file is reported at the stage that is incomplete
-    (its ``[[driveSide]]`` number and line), or at the file's first stage if that stage was not in the file."""
-    try:
-        DriveSideChain(parameters)
-    except ValueError as err:
-        stages = {}                  # stage number (4, 5, ...) -> location of its first key in the file
-        for key, location in locations.items():
+    """The drive-side and load-side chains must be complete (``J4`` with ``k4``, ``JL1`` with ``kL1``, no gaps) in
+    every resolved parameter set, so that no command meets an incomplete chain later; a chain from a drive file is
+    reported at the stage that is incomplete (its ``[[driveSide]]`` / ``[[loadSide]]`` number and line), or at the
+    file's first stage of that chain if that stage was not in the file."""
+    for table, Chain in ((DRIVE_SIDE_TABLE, DriveSideChain), (LOAD_SIDE_TABLE, LoadSideChain)):
+        prefixes = tuple(ARRAY_TABLES[table].values())
+        J, k = ARRAY_TABLES[table]['inertia'], ARRAY_TABLES[table]['stiffness']
+        first = PARAMETERS.Series(J).series
+
+        def Index(key):
             series = PARAMETERS.SeriesIndex(key)
-            if series:
-                stages.setdefault(series[1], location)
-        if not stages:
-            raise ValueError(f"ResolveParameters: {err}") from None
-        given = sorted({m[1] for m in map(PARAMETERS.SeriesIndex, parameters) if m})
-        # the first stage that breaks the chain: a gap before it, or without its inertia or stiffness
-        bad = next((i for expected, i in enumerate(given, start=4)
-                    if i != expected or f'J{i}' not in parameters or f'k{i}' not in parameters), given[0])
-        location = stages.get(bad, stages[min(stages)])
-        raise ValueError(f"{location}: {err}; each [[{DRIVE_SIDE_TABLE}]] table needs 'inertia' and "
-                         f"'stiffness' ('damping' is optional)") from None
+            return series[1] if series and series[0] in prefixes else None
+        try:
+            Chain(parameters)
+        except ValueError as err:
+            stages = {}              # stage number (4, 5, ... / 1, 2, ...) -> location of its first key in the file
+            for key, location in locations.items():
+                if Index(key) is not None:
+                    stages.setdefault(Index(key), location)
+            if not stages:
+                raise ValueError(f"ResolveParameters: {err}") from None
+            given = sorted({Index(key) for key in parameters if Index(key) is not None})
+            # the first stage that breaks the chain: a gap before it, or without its inertia or stiffness
+            bad = next((i for expected, i in enumerate(given, start=first)
+                        if i != expected or f'{J}{i}' not in parameters or f'{k}{i}' not in parameters), given[0])
+            location = stages.get(bad, stages[min(stages)])
+            raise ValueError(f"{location}: {err}; each [[{table}]] table needs 'inertia' and "
+                             f"'stiffness' ('damping' is optional)") from None

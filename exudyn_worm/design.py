@@ -41,7 +41,8 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from ._checks import CheckRange
-from .presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, DriveFromParameters, ExtraComponents
+from .presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, DriveFromParameters, ExtraComponents,
+                      LumpedLoadSide)
 from .charts import ChartCoordinates, ComputeStabilityChart
 from .stability import (CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzStable,
                         PolynomialCoefficients)
@@ -611,6 +612,10 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
     ValueError, TypeError
         For a bad parameter set, margin or span, or a parameter set with components the two-mass model
         does not include (a drive-side chain J4, ... or a worm axial bearing kA > 0).
+    LoadSideNotLumpable
+        A ValueError: the parameter set has a load-side chain (JL1, ...) that may not be lumped into J2
+        (:func:`~exudyn_worm.loadside.DiagnoseLoadSide`); the message and its ``diagnosis`` name the stage that is
+        the cause. A load-side chain that may be lumped is checked as the lumped drive (a note says so).
     """
     w = 'DesignCheck'
     margin = CheckRange(w, 'margin', margin, low=0., high=1., unit='decades')
@@ -618,12 +623,21 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
     CheckParameterKeys(parameters, w)
     parameters = dict(parameters)
     extra = ExtraComponents(parameters)
-    if extra:
+    notes = []
+    if extra == ['a load-side chain (JL1, ...)']:      # the two-mass model holds if the load may be lumped into J2
+        from .loadside import DiagnoseLoadSide, LoadSideNotLumpable
+        diagnosis = DiagnoseLoadSide(parameters, margin)
+        if not diagnosis.lumpingSafe:
+            raise LoadSideNotLumpable(f"{w}: {diagnosis.Text()}; the two-mass model of the design check (eqs. "
+                                      f"(15)-(19)) does not describe this drive", diagnosis)
+        parameters = LumpedLoadSide(parameters)
+        notes.append(f"the load-side chain is lumped into J2 = {parameters['J2']:.4g} kg*m^2 (changes of J2 are "
+                     f"changes of wheel and driven machine): {diagnosis.Text()}")
+    elif extra:
         raise ValueError(f"{w}: the design check uses the two-mass model of Figure 2 (eqs. (15)-(19)); this "
                          f"parameter set has {' and '.join(extra)}, which that model does not include")
     drive = DriveFromParameters(parameters)
     analysis = AnalyzeStability(drive)
-    notes = []
     keys = []
     for key in DesignParameters(parameters):
         if parameters[key] > 0:
@@ -653,12 +667,13 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
 
     One rotation with :func:`~exudyn_worm.reelchanger.SimulateReelChanger`; the verdict is
     :meth:`~exudyn_worm.results.SimulationResult.Chatter` on the lowering window of
-    :func:`~exudyn_worm.reelchanger.DefaultWindows` (the rule of ``exudyn-worm simulate``).
+    :func:`~exudyn_worm.reelchanger.DefaultWindows` (the rule of ``exudyn-worm simulate``); for another duty
+    (:mod:`exudyn_worm.duty`) on each of its lowering phases (False if it has none).
 
     Parameters
     ----------
     parameters : mapping
-        Flat parameter set with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed``.
+        Flat parameter set with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed`` (or another duty's).
     stepSize : float, optional
         Time step in s. Default: the simulation's default, the drive's own
         :func:`~exudyn_worm.stepsize.RecommendedStepSize` (a recommended drive can have a higher natural
@@ -673,10 +688,13 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
     ValueError
         For a parameter set without the reel-changer keys, or a ``stepSize`` the simulation refuses.
     """
-    from .reelchanger import CheckReelChangerKeys, DefaultWindows, SimulateReelChanger
+    from .reelchanger import CheckReelChangerKeys, DefaultPhases, SimulateReelChanger
     CheckReelChangerKeys(parameters, 'ChatterWhileLowering')
-    lift, lower, _ = DefaultWindows(parameters)
-    return SimulateReelChanger(parameters, stepSize=stepSize).Chatter(*lower)
+    lowering = [(t0, t1) for t0, t1, phase in DefaultPhases(parameters) if phase == 'lower']   # the load drives
+    if not lowering:
+        return False
+    result = SimulateReelChanger(parameters, stepSize=stepSize)          # the default time the phases cover
+    return any(result.Chatter(t0, t1) for t0, t1 in lowering)
 
 
 def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = None,

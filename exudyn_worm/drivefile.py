@@ -44,6 +44,11 @@ Example (the reel changer at P1, parameter set (28))::
     stiffness = "2000 N*m/rad"            # k4
     damping = "0.1 N*m*s/rad"             # d4
 
+    [[loadSide]]                          # wheel to driven machine, in order: wheel --kL1-- JL1 --kL2-- JL2 ...
+    inertia = "0.5 kg*m^2"                # JL1 (the last stage carries the load torque)
+    stiffness = "2e4 N*m/rad"             # kL1, the load shaft between wheel and JL1
+    damping = "1 N*m*s/rad"               # dL1
+
     [axialBearing]                        # the worm's axial bearing, in series with the mesh
     stiffness = "1e8 N/m"                 # kA
     damping = "1e3 N*s/m"                 # dA
@@ -61,20 +66,27 @@ from typing import Any, Dict, List, Mapping, Optional, Tuple
 from ._checks import Suggest as _Suggest
 from .parameters import PARAMETERS
 
-__all__ = ['COMPONENT_TABLES', 'DRIVE_FILE_TABLES', 'DRIVE_SIDE_TABLE', 'DRIVE_SIDE_KEYS', 'TOP_LEVEL_KEYS', 'DriveSideKey',
-           'FileKeyOf', 'FlattenDriveFile']
+__all__ = ['COMPONENT_TABLES', 'DRIVE_FILE_TABLES', 'DRIVE_SIDE_TABLE', 'DRIVE_SIDE_KEYS', 'LOAD_SIDE_TABLE',
+           'LOAD_SIDE_KEYS', 'ARRAY_TABLES', 'TOP_LEVEL_KEYS', 'DriveSideKey', 'StageKey', 'FileKeyOf', 'FlattenDriveFile']
 
 #: file table -> {file key: parameter key}; the mapping from a drive file to the flat parameters, derived from the
 #: ``table`` and ``fileKey`` of each parameter in the registry :data:`~exudyn_worm.parameters.PARAMETERS`
 DRIVE_FILE_TABLES: Dict[str, Dict[str, str]] = PARAMETERS.fileTables
 
+#: the arrays of tables (one stage of a chain each): table -> {file key: prefix of the numbered parameter key}
+ARRAY_TABLES: Dict[str, Dict[str, str]] = PARAMETERS.arrayTables
+
 #: every component table of a whole-drive file
-COMPONENT_TABLES = tuple(DRIVE_FILE_TABLES) + ('driveSide',)
+COMPONENT_TABLES = tuple(DRIVE_FILE_TABLES) + tuple(ARRAY_TABLES)
 
 #: the array of tables ``[[driveSide]]``: entry i (from 0) gives the keys with number 4 + i
 DRIVE_SIDE_TABLE = 'driveSide'
 #: file key -> letter of the numbered parameter key of a drive-side stage (J4, k4, d4, J5, ...)
-DRIVE_SIDE_KEYS: Dict[str, str] = PARAMETERS.arrayTables[DRIVE_SIDE_TABLE]
+DRIVE_SIDE_KEYS: Dict[str, str] = ARRAY_TABLES[DRIVE_SIDE_TABLE]
+#: the array of tables ``[[loadSide]]`` (wheel to driven machine): entry i (from 0) gives JL<i+1>, kL<i+1>, dL<i+1>
+LOAD_SIDE_TABLE = 'loadSide'
+#: file key -> prefix of the numbered parameter key of a load-side stage (JL1, kL1, dL1, JL2, ...)
+LOAD_SIDE_KEYS: Dict[str, str] = ARRAY_TABLES[LOAD_SIDE_TABLE]
 
 #: keys allowed at the top of a file besides the tables
 TOP_LEVEL_KEYS = ('preset', 'description', 'parameters')
@@ -100,11 +112,41 @@ def DriveSideKey(fileKey: str, index: int) -> str:
     >>> DriveSideKey('inertia', 0), DriveSideKey('stiffness', 1)
     ('J4', 'k5')
     """
-    if fileKey not in DRIVE_SIDE_KEYS:
-        raise ValueError(f"DriveSideKey: 'fileKey' must be one of {', '.join(DRIVE_SIDE_KEYS)}, got {fileKey!r}")
+    return StageKey(DRIVE_SIDE_TABLE, fileKey, index, 'DriveSideKey')
+
+
+def StageKey(table: str, fileKey: str, index: int, where: str = 'StageKey') -> str:
+    """Parameter key of ``fileKey`` in stage ``index`` (from 0) of the array of tables ``table``.
+
+    Parameters
+    ----------
+    table : str
+        One of :data:`ARRAY_TABLES` (``'driveSide'``, ``'loadSide'``).
+    fileKey : str
+        ``inertia``, ``stiffness`` or ``damping``.
+    index : int
+        Position of the stage in the file, >= 0.
+    where : str, optional
+        Function named in error messages.
+
+    Returns
+    -------
+    str
+        E.g. ``J4`` for the first ``[[driveSide]]`` inertia, ``kL2`` for the second ``[[loadSide]]`` stiffness.
+
+    Examples
+    --------
+    >>> StageKey('loadSide', 'inertia', 0), StageKey('loadSide', 'stiffness', 1)
+    ('JL1', 'kL2')
+    """
+    if table not in ARRAY_TABLES:
+        raise ValueError(f"{where}: 'table' must be one of {', '.join(ARRAY_TABLES)}, got {table!r}")
+    keys = ARRAY_TABLES[table]
+    if fileKey not in keys:
+        raise ValueError(f"{where}: 'fileKey' must be one of {', '.join(keys)}, got {fileKey!r}")
     if isinstance(index, bool) or not isinstance(index, int) or index < 0:
-        raise ValueError(f"DriveSideKey: 'index' must be an integer >= 0, got {index!r}")
-    return f'{DRIVE_SIDE_KEYS[fileKey]}{PARAMETERS.Series(DRIVE_SIDE_KEYS[fileKey]).series + index}'
+        raise ValueError(f"{where}: 'index' must be an integer >= 0, got {index!r}")
+    return f'{keys[fileKey]}{PARAMETERS.Series(keys[fileKey]).series + index}'
 
 
 def FileKeyOf(key: str) -> str:
@@ -195,13 +237,13 @@ def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = 
     ------
     ValueError
         For an unknown table or key (with a suggestion for a near miss and the line where possible), a table
-        that is not a table, an empty ``[[driveSide]]`` table, a ``preset`` or ``description`` that is not a
+        that is not a table, an empty ``[[driveSide]]`` or ``[[loadSide]]`` table, a ``preset`` or ``description`` that is not a
         string, or one parameter given twice.
     """
     if not isinstance(data, Mapping):
         raise TypeError(f"{where}: a config must be a mapping, got {type(data).__name__}")
     lines = _Lines(text)
-    known = list(TOP_LEVEL_KEYS) + list(DRIVE_FILE_TABLES) + [DRIVE_SIDE_TABLE]
+    known = list(TOP_LEVEL_KEYS) + list(DRIVE_FILE_TABLES) + list(ARRAY_TABLES)
     for key in data:
         if key not in known:
             line = lines.Find(None, key) or lines.Header(key)
@@ -234,24 +276,8 @@ def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = 
                                  f"{_Suggest(fileKey, keys)}; expected one of: {', '.join(keys)}")
             values.append((keys[fileKey], value, _Where(where, line, f'[{table}] {fileKey}')))
 
-    stages = data.get(DRIVE_SIDE_TABLE, [])
-    if not isinstance(stages, list) or not all(isinstance(s, Mapping) for s in stages):
-        raise ValueError(f"{where}: '{DRIVE_SIDE_TABLE}' must be an array of tables ([[{DRIVE_SIDE_TABLE}]]), "
-                         f"got {type(stages).__name__}")
-    for index, stage in enumerate(stages):
-        label = f'[[{DRIVE_SIDE_TABLE}]] number {index + 1}'
-        if not stage:        # every table is a stage: an empty one would silently shorten or shift the chain
-            raise ValueError(f"{_Where(where, lines.ArrayHeader(DRIVE_SIDE_TABLE, index), label)}: the table is "
-                             f"empty; each [[{DRIVE_SIDE_TABLE}]] table is one stage of the drive-side chain "
-                             f"({DriveSideKey('inertia', index)}, {DriveSideKey('stiffness', index)}) and needs "
-                             f"'inertia' and 'stiffness' ('damping' is optional); give them or remove the table")
-        for fileKey, value in stage.items():
-            line = lines.Find(DRIVE_SIDE_TABLE, fileKey, index, array=True)
-            if fileKey not in DRIVE_SIDE_KEYS:
-                raise ValueError(f"{_Where(where, line, label)}: unknown key {fileKey!r}"
-                                 f"{_Suggest(fileKey, DRIVE_SIDE_KEYS)}; expected one of: "
-                                 f"{', '.join(DRIVE_SIDE_KEYS)}")
-            values.append((DriveSideKey(fileKey, index), value, _Where(where, line, f'{label} {fileKey}')))
+    for table, keys in ARRAY_TABLES.items():
+        values += _StageValues(data, table, keys, where, lines)
 
     seen: Dict[str, str] = {}
     for key, _, location in values:
@@ -260,3 +286,26 @@ def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = 
                              f"{seen[key][len(where):].lstrip(',: ')}); give it once")
         seen[key] = location
     return data.get('preset'), values
+
+
+def _StageValues(data: Mapping[str, Any], table: str, keys: Mapping[str, str], where: str, lines: _Lines
+                 ) -> List[Tuple[str, Any, str]]:
+    """The values of the array of tables ``table`` (one stage of a chain each) as (parameter key, value, location)."""
+    stages = data.get(table, [])
+    if not isinstance(stages, list) or not all(isinstance(s, Mapping) for s in stages):
+        raise ValueError(f"{where}: '{table}' must be an array of tables ([[{table}]]), got {type(stages).__name__}")
+    values = []
+    for index, stage in enumerate(stages):
+        label = f'[[{table}]] number {index + 1}'
+        if not stage:        # every table is a stage: an empty one would silently shorten or shift the chain
+            raise ValueError(f"{_Where(where, lines.ArrayHeader(table, index), label)}: the table is "
+                             f"empty; each [[{table}]] table is one stage of the {PARAMETERS.SeriesText(table)} "
+                             f"({StageKey(table, 'inertia', index)}, {StageKey(table, 'stiffness', index)}) and needs "
+                             f"'inertia' and 'stiffness' ('damping' is optional); give them or remove the table")
+        for fileKey, value in stage.items():
+            line = lines.Find(table, fileKey, index, array=True)
+            if fileKey not in keys:
+                raise ValueError(f"{_Where(where, line, label)}: unknown key {fileKey!r}"
+                                 f"{_Suggest(fileKey, keys)}; expected one of: {', '.join(keys)}")
+            values.append((StageKey(table, fileKey, index), value, _Where(where, line, f'{label} {fileKey}')))
+    return values

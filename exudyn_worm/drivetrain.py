@@ -7,12 +7,12 @@ a ``Torque(phi, omega, t, ops)`` method) and run as symbolic (C++) user function
 """
 from __future__ import annotations
 
-from typing import Any, Dict
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from ._checks import CheckBool, CheckName, CheckNonNegative, CheckPositive, CheckReal, CheckSystem
 from ._userfunctions import AddGenericForce, CheckOffsetLaw, CheckPlainOffsetLaw, SetOffsetFunction
 
-__all__ = ['CreateRotor', 'CreateShaft', 'CreatePrescribedRotation', 'CreateRotorTorque']
+__all__ = ['CreateRotor', 'CreateShaft', 'CreateLoadSideChain', 'CreatePrescribedRotation', 'CreateRotorTorque']
 
 
 def _Marker(mbs, rotor, where, name):
@@ -118,6 +118,54 @@ def CreateShaft(mbs, rotors, stiffness: float, damping: float = 0., name: str = 
     o = mbs.AddObject(CoordinateSpringDamper(markerNumbers=markers, stiffness=stiffness, damping=damping,
                                              name=CheckName(w, 'name', name)))
     return {'objectNumber': o}
+
+
+def CreateLoadSideChain(mbs, wheel, stages: Sequence[Tuple[float, float, float]],
+                        initial: Optional[Mapping[str, float]] = None) -> List[Dict[str, Any]]:
+    """Add the load-side chain behind ``wheel``: wheel --(kL1, dL1)-- JL1 --(kL2, dL2)-- JL2 -- ...
+
+    Rotor *i* is named ``loadInertia<i>``, the shaft on its wheel side ``loadShaft<i>`` (i from 1). A load
+    torque belongs on the last rotor (:func:`CreateRotorTorque`).
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    wheel : dict
+        The wheel's rotor from :func:`CreateRotor`.
+    stages : sequence of (float, float, float)
+        ``(J, k, d)`` of each stage, wheel side first: inertia in kg*m^2 (> 0), stiffness in N*m/rad (> 0) and
+        damping in N*m*s/rad (>= 0) of the shaft on its wheel side
+        (:func:`~exudyn_worm.presets.LoadSideChain` gives them from a parameter set).
+    initial : mapping, optional
+        Initial angles ``phiL1, ...`` in rad and speeds ``omegaL1, ...`` in rad/s (default 0), e.g. from
+        :func:`~exudyn_worm.equilibrium.SteadyInitialState`.
+
+    Returns
+    -------
+    list of dict
+        The rotors (:func:`CreateRotor`), wheel side first; empty for no stages.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For a stage that is not three numbers, or a value out of range (:func:`CreateRotor`, :func:`CreateShaft`).
+    """
+    w = 'CreateLoadSideChain'
+    if isinstance(stages, (str, bytes, dict)) or not hasattr(stages, '__iter__'):
+        raise TypeError(f"{w}: 'stages' must be a list of (J, k, d) tuples, got {type(stages).__name__} {stages!r}")
+    stages = list(stages)
+    for i, stage in enumerate(stages):
+        if isinstance(stage, (str, bytes, dict)) or not hasattr(stage, '__len__') or len(stage) != 3:
+            raise ValueError(f"{w}: 'stages[{i}]' must be (J in kg*m^2, k in N*m/rad, d in N*m*s/rad), got {stage!r}")
+    initial = {} if initial is None else initial
+    rotors, previous = [], wheel
+    for i, (J, k, d) in enumerate(stages, start=1):
+        rotor = CreateRotor(mbs, J, initialAngle=initial.get(f'phiL{i}', 0.), initialSpeed=initial.get(f'omegaL{i}', 0.),
+                            name=f'loadInertia{i}')
+        CreateShaft(mbs, [previous, rotor], stiffness=k, damping=d, name=f'loadShaft{i}')
+        rotors.append(rotor)
+        previous = rotor
+    return rotors
 
 
 def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: bool = True) -> Dict[str, Any]:

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from numbers import Real
-from typing import Dict, Optional, Sequence, Tuple
+from typing import Any, Dict, Optional, Sequence, Tuple
 
 from ._checks import CheckNonNegative, CheckPositive, CheckReal
 from ._roots import FindRoot
@@ -37,7 +37,7 @@ _MAX_STEPS = 100
 _TORQUE_RTOL = 1e-14
 
 
-def LoadSideStages(loadSide, where: str = 'SteadyInitialState') -> Tuple[Tuple[float, float, float], ...]:
+def LoadSideStages(loadSide: Sequence[Sequence[float]], where: str = 'SteadyInitialState') -> Tuple[Tuple[float, float, float], ...]:
     """Check a load-side chain and return it as ``((J, k, d), ...)``, wheel side first.
 
     Parameters
@@ -80,7 +80,7 @@ def _LoadTorque(load, angle: float, speed: float, where: str) -> float:
     return float(load.Torque(angle, speed, 0., MATH_OPS))
 
 
-def SteadyInitialState(drive: ElasticDrive, load=None, motorSpeed: float = 0.,
+def SteadyInitialState(drive: ElasticDrive, load: Optional[Any] = None, motorSpeed: float = 0.,
                        options: ContactOptions = ContactOptions(), axialBearing: Optional[AxialBearing] = None,
                        chain: Sequence[Tuple[float, float, float]] = (),
                        loadSide: Sequence[Sequence[float]] = ()) -> Dict[str, float]:
@@ -117,7 +117,7 @@ def SteadyInitialState(drive: ElasticDrive, load=None, motorSpeed: float = 0.,
     -------
     dict
         ``phi1, phi2`` in rad and ``omega1, omega2`` in rad/s; with a drive-side chain ``phi4, omega4, ...``;
-        with a load-side chain ``phiLoad1, omegaLoad1, ...`` (wheel side first); with an axial bearing ``xA``
+        with a load-side chain ``phiL1, omegaL1, ...`` (wheel side first); with an axial bearing ``xA``
         in m and ``vA`` in m/s.
 
     Raises
@@ -132,7 +132,7 @@ def SteadyInitialState(drive: ElasticDrive, load=None, motorSpeed: float = 0.,
     >>> from exudyn_worm.presets import DriveFromParameters, GetPreset
     >>> drive = DriveFromParameters(GetPreset('reel-P1'))
     >>> state = SteadyInitialState(drive, load=-2000., motorSpeed=49.48, loadSide=[(0.5, 2e4)])
-    >>> round((state['phiLoad1'] - state['phi2']) * 2e4, 6)          # the load shaft carries the load: M / k
+    >>> round((state['phiL1'] - state['phi2']) * 2e4, 6)          # the load shaft carries the load: M / k
     -2000.0
     """
     w = 'SteadyInitialState'
@@ -189,7 +189,7 @@ def SteadyInitialState(drive: ElasticDrive, load=None, motorSpeed: float = 0.,
     for i, angle in enumerate(reversed(angles), start=4):
         state[f'phi{i}'], state[f'omega{i}'] = angle, omega1
     for i, angle in enumerate(loadAngles, start=1):
-        state[f'phiLoad{i}'], state[f'omegaLoad{i}'] = angle, omega2
+        state[f'phiL{i}'], state[f'omegaL{i}'] = angle, omega2
     if axialBearing is not None:
         state.update(xA=xA, vA=0.)
     return state

@@ -36,9 +36,10 @@ Laws (``kind``)
 """
 from __future__ import annotations
 
+import os
 import warnings
 from dataclasses import dataclass, field
-from typing import Optional, Sequence, Tuple
+from typing import Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -416,7 +417,7 @@ class TableFriction:
         return {'frictionLaw': self.kind, 'frictionTable': [list(p) for p in self.points]}
 
 
-def ReadFrictionTable(source) -> TableFriction:
+def ReadFrictionTable(source: Union[str, os.PathLike, Sequence[Sequence[float]]]) -> TableFriction:
     """A :class:`TableFriction` from a text file of measured points, or from the pairs themselves.
 
     Parameters
@@ -468,7 +469,8 @@ def ReadFrictionTable(source) -> TableFriction:
 
 
 def FrictionLaw(kind: str = 'constant', mu: Optional[float] = None, muStatic: Optional[float] = None,
-                stribeckVelocity: Optional[float] = None, table: Optional[Sequence[Tuple[float, float]]] = None):
+                stribeckVelocity: Optional[float] = None, table: Optional[Sequence[Tuple[float, float]]] = None
+                ) -> Union['ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction']:
     """Build a friction law from its name and values (the parameter keys ``frictionLaw mu muStatic
     stribeckVelocity frictionTable``).
 

@@ -31,7 +31,7 @@ from ._checks import CheckSystem
 from .connector import CONNECTORS_KEY, AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from .contact import ContactOptions
 from .drive import ElasticDrive
-from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft
+from .drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft
 from .profiles import ConstantSpeed
 from .stability import CONTACT_STATES, ContactStability, OperatingPoint, StabilityAnalysis, _Finite, _SortEigenvalues
 
@@ -244,7 +244,12 @@ def _CoordinateLabels(mbs, size: int) -> List[str]:
 
 
 def _LinearizeState(mbs, S, labels) -> ContactStateLinearization:
-    M, K, D, _, N = mbs.ComputeLinearizedSystem(projectIntoConstraintNullspace=True, returnConstraintNullspace=True)
+    linear = mbs.ComputeLinearizedSystem(projectIntoConstraintNullspace=True, returnConstraintNullspace=True)
+    if len(linear) == 3:             # a system without constraints: Exudyn returns no nullspace (all independent)
+        M, K, D = linear
+        N = np.eye(np.atleast_2d(M).shape[0])
+    else:
+        M, K, D, _, N = linear
     M, K, D, N = (np.atleast_2d(np.asarray(x, dtype=float)) for x in (M, K, D, N))
     n = M.shape[0]
     Minv = np.linalg.inv(M)
@@ -367,6 +372,8 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
 def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True,
                             axialBearing: Optional[AxialBearing] = None,
                             chain: Sequence[Tuple[float, float, float]] = (),
+                            loadChain: Sequence[Tuple[float, float, float]] = (),
+                            motor: Optional[Tuple[float, float]] = None,
                             operatingPoint: Optional[OperatingPoint] = None):
     """Exudyn system of Figure 2 (motor held still), worm pre-deflected into contact; returns ``(SC, mbs)``.
 
@@ -378,7 +385,8 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
 
     With ``axialBearing`` the worm has its axial coordinate (node ``wormAxial``): the 3-DOF problem in
     (phi1, phi2, xA). With ``chain`` the drive-side chain of Figure 19 sits between worm and motor
-    (rotors ``inertia4``, ...; topology in :mod:`exudyn_worm.presets`).
+    (rotors ``inertia4``, ...), with ``loadChain`` the load-side chain behind the wheel (rotors ``loadInertia1``,
+    ...; topologies in :mod:`exudyn_worm.presets`).
 
     Parameters
     ----------
@@ -393,10 +401,16 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
         The worm's axial bearing (None: axially rigid worm).
     chain : sequence of (J, k, d)
         Drive-side chain, worm side first (:func:`~exudyn_worm.presets.DriveSideChain`).
+    loadChain : sequence of (J, k, d)
+        Load-side chain, wheel side first (:func:`~exudyn_worm.presets.LoadSideChain`).
+    motor : (float, float), optional
+        A free motor rotor instead of one held on its path: its inertia in kg*m^2 and the damping to ground in
+        N*m*s/rad by which its torque falls with speed (the slope of a motor characteristic).
     operatingPoint : OperatingPoint, optional
         Start in this steady state (needs ``S``, the flank to load); None: at rest.
     """
     import exudyn as exu
+    from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, NodePointGround
     if S is not None and S not in CONTACT_STATES:
         raise ValueError(f"BuildLinearizationModel: 'S' must be None, +1 or -1, got {S!r}")
     g = drive.gear
@@ -410,15 +424,21 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
         speed = operatingPoint.slidingSpeed * math.cos(g.gamma) / g.r1
         deflection = operatingPoint.normalForce / g.kV if operatingPoint.normalForce > 0 else _PRELOAD
         deltaPhi = S * (0.5 * g.backlash + deflection) / g.normalLever
-    motor = CreateRotor(mbs, 1e-3, initialSpeed=speed, name='motor')
+    free, motor = motor, CreateRotor(mbs, 1e-3 if motor is None else motor[0], initialSpeed=speed, name='motor')
     worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, initialSpeed=speed, name='worm')
     wheel = CreateRotor(mbs, drive.J2, initialSpeed=speed / g.ratio, name='wheel')
-    CreatePrescribedRotation(mbs, motor, ConstantSpeed(speed), useSymbolic=useSymbolic)
+    if free is None:
+        CreatePrescribedRotation(mbs, motor, ConstantSpeed(speed), useSymbolic=useSymbolic)
+    else:                                   # a free motor rotor, its characteristic's slope a damper to ground
+        ground = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
+        mbs.AddObject(CoordinateSpringDamper(markerNumbers=[ground, motor['markerNumber']], stiffness=0.,
+                                             damping=free[1]))
     chainRotors = [CreateRotor(mbs, J, initialSpeed=speed, name=f'inertia{i}')
                    for i, (J, _, _) in enumerate(chain, start=4)]
     CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT)
     for rotor, motorSide, (_, k, d) in zip(chainRotors, chainRotors[1:] + [motor], chain):
         CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d)
+    CreateLoadSideChain(mbs, wheel, loadChain, {f'omegaL{i}': speed / g.ratio for i in range(1, len(loadChain) + 1)})
     axialNode = None if axialBearing is None else CreateWormAxialBearing(mbs, axialBearing)['nodeNumber']
     options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
     CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=g, useSymbolic=useSymbolic,
@@ -441,16 +461,20 @@ def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: 
     Returns
     -------
     LinearStability
-        For S = +1 and S = -1; coordinates ``motor, worm, wheel`` (+ ``inertia4``, ..., ``wormAxial``). With the
-        reel-changer keys ``loadMass, leverArm, motorSpeed`` its ``operatingPoint`` is steady lowering
-        (:func:`~exudyn_worm.stability.OperatingPointFromParameters`); a speed-dependent friction law is then
-        linearized there (one model per contact state, :func:`BuildLinearizationModel`).
+        For S = +1 and S = -1; coordinates ``motor, worm, wheel`` (+ ``inertia4``, ..., ``loadInertia1``, ...,
+        ``wormAxial``). With the reel-changer keys ``loadMass, leverArm, motorSpeed`` its ``operatingPoint`` is
+        steady lowering (:func:`~exudyn_worm.stability.OperatingPointFromParameters`); a speed-dependent friction
+        law is then linearized there (one model per contact state, :func:`BuildLinearizationModel`).
     """
-    from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain
+    from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain, LoadSideChain
     from .stability import OperatingPointFromParameters
     drive = DriveFromParameters(parameters)
     operatingPoint = OperatingPointFromParameters(parameters, drive.gear)
-    parts = (useSymbolic, AxialBearingFromParameters(parameters), DriveSideChain(parameters))
+    motor = None
+    if parameters.get('motorType') == 'characteristic':      # a free motor: its inertia, the line's slope
+        motor = (parameters['motorInertia'], parameters['stallTorque'] / parameters['noLoadSpeed'])
+    parts = (useSymbolic, AxialBearingFromParameters(parameters), DriveSideChain(parameters),
+             LoadSideChain(parameters), motor)
     if operatingPoint is None or not drive.gear.speedDependentFriction:
         SC, mbs = BuildLinearizationModel(drive, None, *parts)
         return replace(AnalyzeLinearStability(mbs), operatingPoint=operatingPoint)
@@ -468,8 +492,8 @@ def DriveStability(parameters: Mapping[str, float], useSymbolic: bool = True
 
     The two-mass drive of Figure 2 gets the analytical model (eqs. (15)-(19),
     :func:`~exudyn_worm.stability.AnalyzeStability`); a drive with components beyond it
-    (:func:`~exudyn_worm.presets.ExtraComponents`: a drive-side chain or a worm axial bearing) gets the linearized
-    whole drive (:func:`LinearStabilityFromParameters`), which that model would silently leave out.
+    (:func:`~exudyn_worm.presets.ExtraComponents`: a drive-side or load-side chain or a worm axial bearing) gets the
+    linearized whole drive (:func:`LinearStabilityFromParameters`), which that model would silently leave out.
     ``exudyn-worm stability``, the verdict columns of ``exudyn-worm sweep``, the analytical map of its plot and
     the step-size rule (:mod:`exudyn_worm.stepsize`) all take their verdict or frequencies from here.
 

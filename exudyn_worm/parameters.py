@@ -28,7 +28,8 @@ Kinds of value (parsed by :meth:`ParameterRegistry.Parse`, checked by :meth:`Par
 
 A *series* parameter (``series=4``) stands for the numbered keys ``J4, J5, J6, ...`` (the drive-side chain of
 Figure 19): its ``name`` is the prefix (``'J'``), it is listed under its first key (``J4``) and in a drive file
-it is a key of the array of tables ``table`` (``[[driveSide]]``), entry i giving number ``series + i``.
+it is a key of the array of tables ``table`` (``[[driveSide]]``), entry i giving number ``series + i``. The
+load-side chain is the series ``JL1, kL1, dL1, JL2, ...`` (prefix ``'JL'``, ``series=1``, ``[[loadSide]]``).
 """
 from __future__ import annotations
 
@@ -179,11 +180,12 @@ class ParameterRegistry:
     ----------
     parameters : iterable of Parameter
         Declared in order (the order of listings, messages and the docs).
-    seriesText : str
-        What a series stands for, in messages: ``'drive-side chain'``.
+    seriesText : str or mapping
+        What a series stands for, in messages: ``'drive-side chain'``; a mapping gives one text per array of
+        tables (``{'driveSide': 'drive-side chain', 'loadSide': 'load-side chain'}``).
     """
 
-    def __init__(self, parameters=(), seriesText: str = 'series'):
+    def __init__(self, parameters=(), seriesText: Any = 'series'):
         self._byName: Dict[str, Parameter] = {}
         self._series: Dict[str, Parameter] = {}
         self.seriesText = seriesText
@@ -236,6 +238,22 @@ class ParameterRegistry:
     def _SeriesMatch(key, parameter: Parameter) -> bool:
         match = re.match(r'^([A-Za-z]+?)([1-9][0-9]*)$', key) if isinstance(key, str) else None
         return bool(match and match.group(1) == parameter.name and int(match.group(2)) >= parameter.series)
+
+    def SeriesText(self, table: str) -> str:
+        """What the series of the array of tables ``table`` stands for, in messages (``'load-side chain'``).
+
+        Parameters
+        ----------
+        table : str
+            An array of tables (``'driveSide'``).
+
+        Returns
+        -------
+        str
+        """
+        if isinstance(self.seriesText, str):
+            return self.seriesText
+        return self.seriesText.get(table, 'series')
 
     def SeriesIndex(self, key) -> Optional[Tuple[str, int]]:
         """``(prefix, number)`` of a series key (``'k5'`` -> ``('k', 5)``), else None.
@@ -444,8 +462,12 @@ class ParameterRegistry:
         text = f"{where}: unknown parameter {key!r}{Suggest(key, keys)}; expected one of: {' '.join(keys)}"
         series = list(self._series.values())
         if series:
-            nexts = ' '.join(f'{p.name}{p.series + 1}' for p in series)
-            text += f" (and {nexts}, {series[0].name}{series[0].series + 2} ... for a longer {self.seriesText})"
+            groups = {}                                    # one group per array of tables (one chain each)
+            for p in series:
+                groups.setdefault(p.table, []).append(p)
+            text += ' (and ' + '; '.join(
+                f"{' '.join(f'{p.name}{p.series + 1}' for p in group)}, {group[0].name}{group[0].series + 2} ... "
+                f"for a longer {self.SeriesText(group[0].table)}" for group in groups.values()) + ')'
         return text
 
     def AxisLabel(self, key: str, display: bool = True, dash: str = '–') -> Tuple[str, float]:
@@ -818,7 +840,8 @@ PARAMETERS = ParameterRegistry([
     # the two-mass drive, Figure 2
     Parameter('J1', 'kg*m^2', 'positive', 'inertia on the worm shaft (worm, coupling, motor rotor)', table='worm',
               fileKey='inertia'),
-    Parameter('J2', 'kg*m^2', 'positive', 'inertia on the wheel shaft (wheel and driven machine)', table='wheel',
+    Parameter('J2', 'kg*m^2', 'positive', 'inertia on the wheel shaft (wheel and driven machine; with a load-side '
+              'chain the wheel side only)', table='wheel',
               fileKey='inertia'),
     Parameter('kT', 'N*m/rad', 'positive', 'torsional stiffness of the drive shaft (motor to worm)',
               table='driveShaft', fileKey='stiffness'),
@@ -834,6 +857,35 @@ PARAMETERS = ParameterRegistry([
     Parameter('leverArm', 'm', 'nonNegative', 'lever arm l2 of that mass (reel changer, eq. (27))', table='load',
               fileKey='leverArm'),
     Parameter('motorSpeed', 'rad/s', 'positive', 'motor speed n0 (reel changer)', table='motor', fileKey='speed'),
+    # duty cycles: what loads the wheel side and how the motor moves (default: the reel changer's lever, constant speed)
+    Parameter('loadType', kind='choice', choices=('lever', 'constant', 'timeTable', 'angleTable', 'none'),
+              description='the load: lever (mass on a lever, eq. (27); default), constant (loadTorque), timeTable '
+              '(loadTorqueOverTime), angleTable (loadTorqueOverAngle) or none', table='load', fileKey='type'),
+    Parameter('loadTorque', 'N*m', 'finite', 'constant load torque (loadType constant; < 0 opposes positive wheel '
+              'rotation: lifting)', table='load', fileKey='torque'),
+    Parameter('loadTorqueOverTime', kind='table', columns=(('time', 's', 'nonNegative'), ('torque', 'N*m', 'finite')),
+              description='load torque over time, linear between rows, constant beyond (loadType timeTable)',
+              table='load', fileKey='torqueOverTime'),
+    Parameter('loadTorqueOverAngle', kind='table', columns=(('angle', 'rad', 'finite'), ('torque', 'N*m', 'finite')),
+              description='load torque over the angle of the rotor it acts on (wheel or last load-side inertia), '
+              'linear between rows, constant beyond (loadType angleTable)', table='load', fileKey='torqueOverAngle'),
+    Parameter('motorType', kind='choice', choices=('constantSpeed', 'startStop', 'speedTable', 'characteristic'),
+              description='the motor: constantSpeed (motorSpeed; default), startStop (motorSpeed, rampTime, '
+              'brakeTime), speedTable (motorSpeedOverTime) or characteristic (stallTorque, noLoadSpeed, '
+              'motorInertia)', table='motor', fileKey='type'),
+    Parameter('rampTime', 's', 'positive', 'duration of the start and stop ramps (motorType startStop)',
+              table='motor', fileKey='rampTime'),
+    Parameter('brakeTime', 's', 'nonNegative', 'start of braking, >= rampTime (motorType startStop; absent: no stop)',
+              table='motor', fileKey='brakeTime'),
+    Parameter('motorSpeedOverTime', kind='table', columns=(('time', 's', 'nonNegative'), ('speed', 'rad/s', 'finite')),
+              description='motor speed over time from t = 0, linear between rows, constant beyond (motorType '
+              'speedTable)', table='motor', fileKey='speedOverTime'),
+    Parameter('stallTorque', 'N*m', 'positive', 'motor torque at standstill of the line M = stallTorque (1 - omega / '
+              'noLoadSpeed) (motorType characteristic)', table='motor', fileKey='stallTorque'),
+    Parameter('noLoadSpeed', 'rad/s', 'positive', 'motor speed at zero torque of that line (motorType characteristic)',
+              table='motor', fileKey='noLoadSpeed'),
+    Parameter('motorInertia', 'kg*m^2', 'positive', 'inertia of the motor rotor on the motor side of the drive shaft '
+              '(motorType characteristic)', table='motor', fileKey='inertia'),
     # the drive-side chain, Figure 19: worm J1 --(kT, dT)-- J4 --(k4, d4)-- J5 -- ... -- motor
     Parameter('J', 'kg*m^2', 'positive', 'drive-side chain of Figure 19: inertia4, inertia5, ... (optional)',
               table='driveSide', fileKey='inertia', series=4),
@@ -841,6 +893,14 @@ PARAMETERS = ParameterRegistry([
               table='driveSide', fileKey='stiffness', series=4),
     Parameter('d', 'N*m*s/rad', 'nonNegative', 'damping of spring-Damper4, ... (default 0)', table='driveSide',
               fileKey='damping', series=4),
+    # the load-side chain, from the wheel to the driven machine: wheel J2 --(kL1, dL1)-- JL1 --(kL2, dL2)-- JL2 ...
+    # (the load torque acts on the last inertia)
+    Parameter('JL', 'kg*m^2', 'positive', 'load-side chain: inertia of stage i (JL1 next to the wheel, the last one '
+              'carries the load torque; optional)', table='loadSide', fileKey='inertia', series=1),
+    Parameter('kL', 'N*m/rad', 'positive', 'stiffness of the load shaft on the wheel side of JLi (kL1: wheel to JL1)',
+              table='loadSide', fileKey='stiffness', series=1),
+    Parameter('dL', 'N*m*s/rad', 'nonNegative', 'damping of that load shaft (default 0)', table='loadSide',
+              fileKey='damping', series=1),
     # the worm's axial bearing, in series with the mesh
     Parameter('kA', 'N/m', 'nonNegative', "axial stiffness of the worm's bearing (optional; absent or 0: axially "
               "rigid worm)", table='axialBearing', fileKey='stiffness'),
@@ -848,7 +908,7 @@ PARAMETERS = ParameterRegistry([
               fileKey='damping'),
     Parameter('mA', 'kg', 'positive', "the worm's axially moving mass (required with kA > 0)", table='axialBearing',
               fileKey='mass'),
-], seriesText='drive-side chain')
+], seriesText={'driveSide': 'drive-side chain', 'loadSide': 'load-side chain'})
 
 
 def ParametersMarkdown(registry: Optional[ParameterRegistry] = None) -> str:

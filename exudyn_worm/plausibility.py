@@ -67,7 +67,7 @@ def _MuSlip(mu: float) -> str:
     return f"; percent given as a number? {mu:g} % = {mu / 100:g}" if mu >= 1 else ''
 
 
-def CheckGearPlausibility(gear, where: str = 'WormGear') -> None:
+def CheckGearPlausibility(gear: 'WormGear', where: str = 'WormGear') -> None:
     """Refuse or warn about a gear whose values cannot belong to a worm gear (see the module docstring).
 
     Parameters

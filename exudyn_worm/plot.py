@@ -126,7 +126,8 @@ def _Interval(where: str, result, tZoom) -> Tuple[np.ndarray, Tuple[float, float
 def _Phases(result) -> list:
     """Lift / lower intervals of a reel-changer run: the load torque -m g l cos(phi2) opposes the wheel's
     motion while lifting (cos(phi2) * sign(omega2) > 0). Empty for other simulations."""
-    if 'maxLoadTorque' not in getattr(result, 'info', {}) or 'phi2' not in result.series:
+    if 'maxLoadTorque' not in getattr(result, 'info', {}) or 'phi2' not in result.series \
+            or result.info.get('loadType', 'lever') != 'lever':         # the phases below are the lever's
         return []
     t = np.asarray(result.time)
     direction = np.sign(np.mean(result.series['omega2'])) or 1.
@@ -288,7 +289,7 @@ def _Draw(kind, ax, result, mask, interval, phases, twin: bool = True):
     ax.set_xlabel('time $t$ [s]')
 
 
-def TorqueSignNote(result, mask=None, phases: Sequence = ()) -> str:
+def TorqueSignNote(result: 'SimulationResult', mask: Optional[np.ndarray] = None, phases: Sequence = ()) -> str:
     """What the sign of the drive-shaft torque M_an (eq. (6)) means in ``result``, one line per statement.
 
     M_an = kT (phi1 - phi0) + dT (phi1' - phi0') is positive when the worm runs ahead of the motor. With the

@@ -11,7 +11,7 @@ set is the boundary); the boundary lines themselves are the chart's own marching
 from __future__ import annotations
 
 import math
-from typing import Mapping, Optional, Sequence
+from typing import Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -118,7 +118,7 @@ def _Light(color: str, share: float = 0.15):
     return tuple(1. - share * (1. - c) for c in to_rgb(color))
 
 
-def NearestBoundary(chart, point) -> float:
+def NearestBoundary(chart: 'StabilityChartData', point: Tuple[float, float]) -> float:
     """Distance in decades (Euclidean in log10 x, log10 y) from a point to the nearest boundary vertex of a
     chart; inf for a chart without boundary.
 
@@ -226,7 +226,7 @@ def PlotStabilityChart(chart, ax=None, points: Optional[Mapping] = None, color: 
 
 def PlotStabilityCharts(charts: Sequence, points: Optional[Mapping] = None, title: Optional[str] = None,
                         ax=None, note: Optional[str] = None, pointsLabel: Optional[str] = None,
-                        outlines: Sequence = (), zoom='auto', zoomDecades: float = 0.25):
+                        outlines: Sequence = (), zoom: Union[str, bool] = 'auto', zoomDecades: float = 0.25):
     """Several charts of one D_V on one axes (the layout of Figures 4 and 5: one region per D_TV).
 
     Each unstable region is hatched in its chart's colour on no fill (crossed hatches where regions overlap,

@@ -21,6 +21,15 @@ Optional components beyond the two-mass drive (absent = the drive of Figure 2):
   small enough", i.e. inertia4 is tied to the worm through spring-Damper1 and to the motor through
   spring-Damper4. ``Ji`` needs ``ki`` > 0; ``di`` is optional (default 0); the chain has no gaps
   (``J5`` needs ``J4``). See :func:`DriveSideChain`.
+- **Load-side chain** (wheel to driven machine): ``JL1`` (kg*m^2), ``kL1`` (N*m/rad) and ``dL1``
+  (N*m*s/rad), continued as ``JL2, kL2, dL2``, ... Topology (wheel first)::
+
+      wheel J2 --(kL1, dL1)-- JL1 --(kL2, dL2)-- JL2 -- ... -- JLn <- load torque
+
+  i.e. load shaft *i* sits on the wheel side of inertia *i*; the load torque (the reel changer's lever) acts
+  on the last inertia. J2 is then the wheel's own inertia. ``JLi`` needs ``kLi`` > 0; ``dLi`` is optional
+  (default 0); no gaps. See :func:`LoadSideChain`; when lumping the chain into J2 is safe:
+  docs/drive-files.md, "Load-side chain".
 - **Worm axial bearing**: ``kA`` (N/m), ``dA`` (N*s/m, default 0), ``mA`` (kg, the worm's axially moving
   mass, required when ``kA`` > 0). Absent or ``kA = 0``: axially rigid worm. See
   :func:`AxialBearingFromParameters` and :func:`exudyn_worm.contact.MeshContact` for the kinematics.
@@ -41,19 +50,23 @@ from .parameters import PARAMETERS
 if TYPE_CHECKING:
     from .connector import AxialBearing
 
-__all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
+__all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
            'ExtraComponents',
            'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
-           'DriveFromParameters', 'DriveSideChain',
+           'DriveFromParameters', 'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
            'AxialBearingFromParameters', 'MAX_RATE', 'MIN_RATE_SPREAD', 'MissingParameterError']
 
 #: keys of the elastic drive (Figure 2): the drive-file tables [gear], [worm], [wheel], [driveShaft]
 DRIVE_KEYS = PARAMETERS.KeysOf('gear', 'worm', 'wheel', 'driveShaft')
-#: keys of the paper-reel-changer load case (section 3.2)
-REEL_KEYS = PARAMETERS.KeysOf('load', 'motor')
+#: keys of the paper-reel-changer load case (section 3.2): the lever's mass and arm, the motor speed
+REEL_KEYS = ('loadMass', 'leverArm', 'motorSpeed')
+#: keys of the duty cycle: load and motor (the reel changer's and the others, see exudyn_worm.duty)
+DUTY_KEYS = PARAMETERS.KeysOf('load', 'motor')
 
 #: keys of the first element of the drive-side chain (Figure 19); J5/k5/d5, ... continue it
 CHAIN_KEYS = PARAMETERS.KeysOf('driveSide')
+#: keys of the first stage of the load-side chain (wheel to driven machine); JL2/kL2/dL2, ... continue it
+LOAD_CHAIN_KEYS = PARAMETERS.KeysOf('loadSide')
 #: keys of the worm's axial bearing
 AXIAL_KEYS = PARAMETERS.KeysOf('axialBearing')
 
@@ -403,7 +416,8 @@ def ExtraComponents(parameters: Mapping[str, float]) -> List[str]:
     Returns
     -------
     list of str
-        ``'a drive-side chain (J4, ...)'`` and/or ``'a worm axial bearing (kA > 0)'``; empty for the two-mass
+        ``'a drive-side chain (J4, ...)'``, ``'a load-side chain (JL1, ...)'`` and/or
+        ``'a worm axial bearing (kA > 0)'``; empty for the two-mass
         drive. The analytical model and the design check do not include these; the linearized Exudyn model
         (:func:`exudyn_worm.linearization.LinearStabilityFromParameters`) and the simulation do.
 
@@ -415,7 +429,36 @@ def ExtraComponents(parameters: Mapping[str, float]) -> List[str]:
     ['a drive-side chain (J4, ...)']
     """
     return ((['a drive-side chain (J4, ...)'] if DriveSideChain(parameters) else []) +
+            (['a load-side chain (JL1, ...)'] if LoadSideChain(parameters) else []) +
+            (['a motor on its characteristic (motorType characteristic)']
+             if parameters.get('motorType') == 'characteristic' else []) +
             (['a worm axial bearing (kA > 0)'] if parameters.get('kA', 0.) > 0 else []))
+
+
+def _SeriesChain(parameters: Mapping[str, float], table: str, where: str) -> List[Tuple[float, float, float]]:
+    """The stages ``(J, k, d)`` of the chain of the array of tables ``table`` (``'driveSide'``, ``'loadSide'``),
+    in order of their numbers; see :func:`DriveSideChain` and :func:`LoadSideChain`."""
+    J, k, d = (PARAMETERS.arrayTables[table][f] for f in ('inertia', 'stiffness', 'damping'))
+    first = PARAMETERS.Series(J).series
+    text = PARAMETERS.SeriesText(table)
+    prefixes = (J, k, d)
+    mine = [key for key in parameters if (PARAMETERS.SeriesIndex(key) or ('',))[0] in prefixes]
+    indices = sorted({PARAMETERS.SeriesIndex(key)[1] for key in mine})
+    side = 'motor' if table == 'driveSide' else 'wheel'
+    chain = []
+    for expected, i in enumerate(indices, start=first):
+        if i != expected or f'{J}{i}' not in parameters:
+            missing = f'{J}{expected}' if i != expected else f'{J}{i}'
+            raise ValueError(f"{where}: the {text} must be {J}{first}, {J}{first + 1}, ... without gaps, each with "
+                             f"its spring {k}<i>; got keys {', '.join(mine)} (missing '{missing}')")
+        if f'{k}{i}' not in parameters:
+            raise ValueError(f"{where}: '{J}{i}' needs the stiffness '{k}{i}' (N*m/rad) of the spring-damper on its "
+                             f"{side} side")
+        stage = {f'{J}{i}': parameters[f'{J}{i}'], f'{k}{i}': parameters[f'{k}{i}'],
+                 f'{d}{i}': parameters.get(f'{d}{i}', 0.)}
+        CheckParameters(stage, where)
+        chain.append(tuple(float(v) for v in stage.values()))
+    return chain
 
 
 def DriveSideChain(parameters: Mapping[str, float]) -> List[Tuple[float, float, float]]:
@@ -439,21 +482,70 @@ def DriveSideChain(parameters: Mapping[str, float]) -> List[Tuple[float, float, 
     ValueError
         For a gap in the chain, a spring-damper without its inertia, or a value out of range.
     """
-    w = 'DriveSideChain'
-    indices = sorted({m[1] for m in map(PARAMETERS.SeriesIndex, parameters) if m})
-    chain = []
-    for expected, i in enumerate(indices, start=4):
-        if i != expected or f'J{i}' not in parameters:
-            missing = f'J{expected}' if i != expected else f'J{i}'
-            raise ValueError(f"{w}: the drive-side chain must be J4, J5, ... without gaps, each with its spring "
-                             f"k<i>; got keys {', '.join(k for k in parameters if PARAMETERS.SeriesIndex(k))} "
-                             f"(missing '{missing}')")
-        if f'k{i}' not in parameters:
-            raise ValueError(f"{w}: 'J{i}' needs the stiffness 'k{i}' (N*m/rad) of the spring-damper on its motor side")
-        stage = {f'J{i}': parameters[f'J{i}'], f'k{i}': parameters[f'k{i}'], f'd{i}': parameters.get(f'd{i}', 0.)}
-        CheckParameters(stage, w)
-        chain.append(tuple(float(v) for v in stage.values()))
-    return chain
+    return _SeriesChain(parameters, 'driveSide', 'DriveSideChain')
+
+
+def LoadSideChain(parameters: Mapping[str, float]) -> List[Tuple[float, float, float]]:
+    """The load-side chain as ``[(JL1, kL1, dL1), (JL2, kL2, dL2), ...]``, wheel side first.
+
+    ``(JLi, kLi, dLi)`` is inertia *i* of the driven machine in kg*m^2 and the load shaft on its wheel side in
+    N*m/rad and N*m*s/rad (topology in the module docstring: ``wheel J2 --(kL1, dL1)-- JL1 --(kL2, dL2)-- JL2``);
+    the load torque acts on the last inertia. Empty if no ``JL1`` is given (the load acts on the wheel).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary (SI) with the chain keys ``JL1, kL1, dL1, JL2, ...`` (others are ignored).
+
+    Returns
+    -------
+    list of (float, float, float)
+
+    Raises
+    ------
+    ValueError
+        For a gap in the chain, a spring-damper without its inertia, or a value out of range.
+
+    Examples
+    --------
+    >>> LoadSideChain({'JL1': 0.5, 'kL1': 2e4})
+    [(0.5, 20000.0, 0.0)]
+    """
+    return _SeriesChain(parameters, 'loadSide', 'LoadSideChain')
+
+
+def LumpedLoadSide(parameters: Mapping[str, float]) -> Dict[str, float]:
+    """``parameters`` with the load-side chain lumped into the wheel: J2 + JL1 + JL2 + ..., no chain keys.
+
+    What the two-mass model assumes when the driven machine is counted in J2 (rigid load shafts); compare its
+    verdict with the whole drive's (:func:`~exudyn_worm.linearization.DriveStability`) to see whether lumping is
+    safe for a drive (docs/drive-files.md, "Load-side chain").
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary (SI) with ``J2``.
+
+    Returns
+    -------
+    dict
+        A new dictionary; a set without a load-side chain is returned unchanged (as a copy). The physical
+        damping is kept: a damping given as a measure (``DV``, ``DT``, ``DTV``, which refer to J2) is replaced by
+        the ``dV`` and ``dT`` it gives for the wheel's own J2.
+
+    Raises
+    ------
+    ValueError
+        For an incomplete chain (:func:`LoadSideChain`) or a missing ``J2``.
+    """
+    chain = LoadSideChain(parameters)
+    out = {k: v for k, v in parameters.items() if (PARAMETERS.SeriesIndex(k) or ('',))[0] not in ('JL', 'kL', 'dL')}
+    if chain:
+        _Require(parameters, ('J2',), 'LumpedLoadSide')
+        drive = DriveFromParameters(out)
+        out = ApplyOverrides(out, {'J2': parameters['J2'] + sum(J for J, _, _ in chain), 'dV': drive.gear.dV,
+                                   'dT': drive.dT})
+    return out
 
 
 def AxialBearingFromParameters(parameters: Mapping[str, float]) -> Optional['AxialBearing']:

@@ -7,12 +7,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Optional
+from typing import Optional, Sequence, Tuple
 
 from ._checks import CheckNonNegative, CheckPositive, CheckReal
 
-__all__ = ['ConstantSpeed', 'StartStopProfile', 'GravityLeverTorque', 'LinearMotorCharacteristic',
-           'CoulombViscousFriction', 'STANDARD_GRAVITY']
+__all__ = ['ConstantSpeed', 'StartStopProfile', 'SpeedTable', 'GravityLeverTorque', 'ConstantTorque', 'TorqueTable',
+           'LinearMotorCharacteristic', 'CoulombViscousFriction', 'STANDARD_GRAVITY']
 
 STANDARD_GRAVITY = 9.81  #: m/s^2, as in the paper's M2 = 2060 N*m for 175 kg at 1.2 m
 
@@ -85,6 +85,128 @@ class StartStopProfile:
             angle = angle - w * ab - w * ops.max(t - self.brakeTime - T, 0.)
             speed = speed - w * vb
         return angle, speed
+
+
+def _Points(where: str, points, names: Tuple[str, str], units: Tuple[str, str]) -> Tuple[Tuple[float, float], ...]:
+    """Rows (x, y) of a table as floats, at least one, x strictly increasing."""
+    if isinstance(points, (str, bytes, dict)) or not hasattr(points, '__len__'):
+        raise TypeError(f"{where}: 'points' must be rows ({names[0]} in {units[0]}, {names[1]} in {units[1]}), got "
+                        f"{type(points).__name__} {points!r}")
+    rows = []
+    for i, row in enumerate(points):
+        if isinstance(row, (str, bytes, dict)) or not hasattr(row, '__len__') or len(row) != 2:
+            raise ValueError(f"{where}: row {i} of 'points' must be ({names[0]}, {names[1]}), got {row!r}")
+        rows.append((CheckReal(where, f'points[{i}] {names[0]}', row[0], units[0]),
+                     CheckReal(where, f'points[{i}] {names[1]}', row[1], units[1])))
+    if not rows:
+        raise ValueError(f"{where}: 'points' must hold at least one row ({names[0]}, {names[1]}), got none")
+    for i in range(1, len(rows)):
+        if not rows[i][0] > rows[i - 1][0]:
+            raise ValueError(f"{where}: the {names[0]} of 'points' must increase, got {rows[i - 1][0]:g} then "
+                             f"{rows[i][0]:g} (rows {i - 1} and {i})")
+    return tuple(rows)
+
+
+def _Interpolate(points, x, ops):
+    """Piecewise-linear interpolation through ``points`` (constant beyond the ends), written with ``ops.min`` and
+    ``ops.max`` only, so that it records as an Exudyn symbolic expression: y0 + sum of clipped ramps."""
+    y = points[0][1] + 0. * x
+    for (x0, y0), (x1, y1) in zip(points, points[1:]):
+        y = y + (y1 - y0) / (x1 - x0) * (ops.max(x0, ops.min(x, x1)) - x0)
+    return y
+
+
+@dataclass(frozen=True)
+class SpeedTable:
+    """Motor speed tabulated over time, linear between the rows (constant beyond the last); the angle is its integral.
+
+    Parameters
+    ----------
+    points : sequence of (float, float)
+        Rows (time in s, speed in rad/s), time strictly increasing from 0 (the first row is the speed at t = 0).
+    initialAngle : float
+        phi0(0) in rad.
+    """
+    points: Tuple[Tuple[float, float], ...]
+    initialAngle: float = 0.
+
+    def __post_init__(self):
+        points = _Points('SpeedTable', self.points, ('time', 'speed'), ('s', 'rad/s'))
+        if points[0][0] != 0.:
+            raise ValueError(f"SpeedTable: the first row of 'points' must be at time 0 s (the speed at the start), "
+                             f"got {points[0][0]:g} s")
+        object.__setattr__(self, 'points', points)
+        CheckReal('SpeedTable', 'initialAngle', self.initialAngle, 'rad')
+
+    @property
+    def endTime(self) -> float:
+        """Time of the last row in s."""
+        return self.points[-1][0]
+
+    def AngleAndSpeed(self, t, ops):
+        """(phi0(t), phi0'(t)): the integral of the piecewise-linear speed, and the speed."""
+        angle = self.initialAngle + 0. * t
+        for (t0, v0), (t1, v1) in zip(self.points, self.points[1:]):
+            tau = ops.max(0., ops.min(t, t1) - t0)              # time spent in this segment so far
+            angle = angle + v0 * tau + 0.5 * (v1 - v0) / (t1 - t0) * tau * tau
+        angle = angle + self.points[-1][1] * ops.max(t - self.endTime, 0.)
+        return angle, _Interpolate(self.points, t, ops)
+
+
+@dataclass(frozen=True)
+class ConstantTorque:
+    """A constant load torque M in N*m on the wheel side (negative: against positive wheel rotation, i.e. lifting).
+
+    Parameters
+    ----------
+    torque : float
+        Torque in N*m.
+    """
+    torque: float
+
+    def __post_init__(self):
+        CheckReal('ConstantTorque', 'torque', self.torque, 'N*m')
+
+    @property
+    def maximum(self) -> float:
+        """Largest |M| in N*m."""
+        return abs(self.torque)
+
+    def Torque(self, phi, omega, t, ops):
+        """Load torque in N*m."""
+        return self.torque + 0. * t
+
+
+@dataclass(frozen=True)
+class TorqueTable:
+    """A load torque tabulated over time or over the angle of the rotor it acts on, linear between the rows and
+    constant beyond the ends.
+
+    Parameters
+    ----------
+    points : sequence of (float, float)
+        Rows (time in s or angle in rad, torque in N*m), the first column strictly increasing.
+    over : str
+        ``'time'`` or ``'angle'`` (the angle of the rotor the torque acts on: the wheel, or the last load-side
+        inertia).
+    """
+    points: Tuple[Tuple[float, float], ...]
+    over: str = 'time'
+
+    def __post_init__(self):
+        if self.over not in ('time', 'angle'):
+            raise ValueError(f"TorqueTable: 'over' must be 'time' or 'angle', got {self.over!r}")
+        object.__setattr__(self, 'points', _Points('TorqueTable', self.points, (self.over, 'torque'),
+                                                   ('s' if self.over == 'time' else 'rad', 'N*m')))
+
+    @property
+    def maximum(self) -> float:
+        """Largest |M| of the table in N*m."""
+        return max(abs(y) for _, y in self.points)
+
+    def Torque(self, phi, omega, t, ops):
+        """Load torque in N*m."""
+        return _Interpolate(self.points, t if self.over == 'time' else phi, ops)
 
 
 @dataclass(frozen=True)

@@ -5,7 +5,9 @@ frame J2 -- load torque of the reel, M2 = -m2 g l2 cos(phi2) (eq. (27)). The fra
 t = 0 and is lifted first; one full rotation of the wheel takes 2 pi u / motorSpeed (8 s in the paper).
 
 Optional (see :mod:`exudyn_worm.presets`): the drive-side chain of Figure 19 (``J4, k4, d4, J5, ...``:
-worm --kT-- J4 --k4-- J5 ... -- motor) and the worm's axial bearing (``kA, dA, mA``).
+worm --kT-- J4 --k4-- J5 ... -- motor), the load-side chain (``JL1, kL1, dL1, JL2, ...``: wheel --kL1-- JL1
+--kL2-- JL2 ...; the reel's load torque then acts on the last inertia) and the worm's axial bearing
+(``kA, dA, mA``).
 """
 from __future__ import annotations
 
@@ -19,17 +21,18 @@ import numpy as np
 from .connector import CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from .contact import MATH_OPS, ContactOptions
 from .drive import ElasticDrive
-from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
+from .drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
 from .equilibrium import SteadyInitialState  # re-exported: it lived here before
 from .presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, DriveFromParameters, DriveSideChain,
-                      MissingParameterError)
-from .profiles import ConstantSpeed, GravityLeverTorque
+                      LoadSideChain, MissingParameterError)
+from .profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
 from .results import SimulationResult
 from .solve import SolveDynamicInChunks, SolverDivergedError
 from .stepsize import CheckStepSize, RecommendedStepSize
 from ._checks import CheckBool, CheckPositive
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
+           'DefaultPhases', 'DefaultSimulatedTime',
            'SteadyInitialState', 'CheckRunSize', 'CheckReelChangerKeys', 'SolverSettings', 'DEFAULT_STEP_SIZE',
            'SOLVER_SETTINGS', 'MAX_STEPS']
 
@@ -111,7 +114,8 @@ def CheckRunSize(endTime: float, stepSize: float, maxSteps: int = MAX_STEPS, whe
 
 def CheckReelChangerKeys(parameters: Mapping[str, float], where: str) -> None:
     """Refuse a parameter set without the reel changer's own keys (``REEL_KEYS``: loadMass, leverArm,
-    motorSpeed), e.g. the ``chart`` preset, naming the missing ones and how to give them.
+    motorSpeed), e.g. the ``chart`` preset, naming the missing ones and how to give them; for another duty
+    (``loadType``, ``motorType``: :mod:`exudyn_worm.duty`) the keys that duty needs.
 
     Parameters
     ----------
@@ -128,7 +132,11 @@ def CheckReelChangerKeys(parameters: Mapping[str, float], where: str) -> None:
         If ``parameters`` is not a mapping or has an unknown key or two forms of one quantity
         (:func:`~exudyn_worm.presets.CheckParameterKeys`).
     """
+    from .duty import CheckDutyKeys, IsReelChangerDuty
     CheckParameterKeys(parameters, where)
+    if not IsReelChangerDuty(parameters):         # another duty (loadType / motorType): its own keys
+        CheckDutyKeys(parameters, where)
+        return
     missing = [k for k in REEL_KEYS if k not in parameters]
     if missing:
         raise MissingParameterError(f"{where}: the reel-changer simulation needs {', '.join(REEL_KEYS)}; missing "
@@ -151,17 +159,59 @@ def RotationPeriod(parameters: Mapping[str, float]) -> float:
     return 2 * math.pi * drive.gear.ratio / speed
 
 
+def DefaultPhases(parameters: Mapping[str, float], endTime: Optional[float] = None,
+                  minLength: float = 0.) -> List[Tuple[float, float, str]]:
+    """The phases of the duty up to ``endTime`` as ``(t0, t1, phase)``, phase ``'lift'``, ``'lower'`` or ``'idle'``.
+
+    The reel changer (a lever load at constant motor speed, the default duty): lift / lower / lift of every
+    rotation, [kT, kT + T/4], [kT + T/4, kT + 3T/4], [kT + 3T/4, (k+1)T] for k = 0, 1, ..., clipped to ``endTime``.
+    Any other duty (:mod:`exudyn_worm.duty`): the phases in which the load opposes the motion (lift), drives the
+    gear (lower) or is absent (idle), from the rigid kinematics (:func:`~exudyn_worm.duty.DutyPhases`).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set including the duty's keys (``motorSpeed`` in rad/s for the reel changer).
+    endTime : float, optional
+        Simulated time in s (default: :func:`DefaultSimulatedTime`, one rotation T for the reel changer).
+    minLength : float
+        Windows shorter than this (in s, after clipping) are dropped (another duty: merged into the one before);
+        the first window is always kept.
+
+    Returns
+    -------
+    list of (float, float, str)
+        Phases in time order.
+    """
+    from .duty import DutyPhases, IsReelChangerDuty
+    if not IsReelChangerDuty(parameters):
+        CheckReelChangerKeys(parameters, 'DefaultPhases')
+        endTime = DefaultSimulatedTime(parameters) if endTime is None else \
+            CheckPositive('DefaultPhases', 'endTime', endTime, 's')
+        return DutyPhases(parameters, DriveFromParameters(parameters).gear.ratio, endTime, minLength)
+    T = RotationPeriod(parameters)
+    endTime = T if endTime is None else CheckPositive('DefaultWindows', 'endTime', endTime, 's')
+    windows = []
+    for k in range(int(math.ceil(endTime / T - 1e-12))):
+        for a, b, phase in ((0., .25, 'lift'), (.25, .75, 'lower'), (.75, 1., 'lift')):
+            t0, t1 = (k + a) * T, min((k + b) * T, endTime)
+            if t0 < endTime and (not windows or t1 - t0 >= minLength):
+                windows.append((t0, t1, phase))
+    return windows
+
+
 def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = None,
                    minLength: float = 0.) -> List[Tuple[float, float]]:
-    """Lift / lower / lift phases of every rotation up to ``endTime``: [kT, kT + T/4], [kT + T/4, kT + 3T/4],
+    """The evaluation windows of ``simulate`` and ``sweep``: the phases of :func:`DefaultPhases` without their labels;
+    for the reel changer lift / lower / lift of every rotation: [kT, kT + T/4], [kT + T/4, kT + 3T/4],
     [kT + 3T/4, (k+1)T] for k = 0, 1, ..., clipped to ``endTime``.
 
     Parameters
     ----------
     parameters : mapping
-        Flat parameter set including ``motorSpeed`` in rad/s.
+        Flat parameter set including ``motorSpeed`` in rad/s (or another duty's keys).
     endTime : float, optional
-        Simulated time in s (default: one rotation T).
+        Simulated time in s (default: one rotation T; another duty: :func:`DefaultSimulatedTime`).
     minLength : float
         Windows shorter than this (in s, after clipping) are dropped; the first window is always kept.
 
@@ -170,15 +220,23 @@ def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = N
     list of (float, float)
         Windows in s, in time order.
     """
-    T = RotationPeriod(parameters)
-    endTime = T if endTime is None else CheckPositive('DefaultWindows', 'endTime', endTime, 's')
-    windows = []
-    for k in range(int(math.ceil(endTime / T - 1e-12))):
-        for a, b in ((0., .25), (.25, .75), (.75, 1.)):
-            t0, t1 = (k + a) * T, min((k + b) * T, endTime)
-            if t0 < endTime and (not windows or t1 - t0 >= minLength):
-                windows.append((t0, t1))
-    return windows
+    return [(t0, t1) for t0, t1, _ in DefaultPhases(parameters, endTime, minLength)]
+
+
+def DefaultSimulatedTime(parameters: Mapping[str, float]) -> float:
+    """Simulated time in s when none is given: one wheel rotation for the reel changer (:func:`RotationPeriod`),
+    else the end of the duty's tables and ramps (:func:`~exudyn_worm.duty.DefaultEndTime`).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    """
+    from .duty import DefaultEndTime, IsReelChangerDuty
+    if IsReelChangerDuty(parameters):
+        return RotationPeriod(parameters)
+    CheckReelChangerKeys(parameters, 'DefaultSimulatedTime')
+    return DefaultEndTime(parameters, DriveFromParameters(parameters).gear.ratio)
 
 
 def _CheckModelOptions(where: str, contactOptions, profile, useSymbolic, startFromEquilibrium) -> None:
@@ -219,17 +277,20 @@ class ReelChangerModel:
         The worm axial bearing of :func:`~exudyn_worm.connector.CreateWormAxialBearing` (None: rigid).
     chain : tuple of (float, float, float)
         The drive-side chain ``(J, k, d)`` of inertia4, spring-Damper4, ... (empty: none).
+    loadChain : tuple of (float, float, float)
+        The load-side chain ``(J, k, d)`` behind the wheel, wheel side first (empty: none).
     """
     systemContainer: Any
     mbs: Any
     drive: ElasticDrive
-    load: GravityLeverTorque
-    motorSpeed: float
+    load: Any                     # the duty's load law (GravityLeverTorque for the reel changer) or None
+    motorSpeed: float             # the motor speed at t = 0 in rad/s
     connector: WormGearConnector
     rotors: Dict[str, Dict]
     sensors: Dict[str, Any]
     axialBearing: Optional[Dict[str, Any]] = None
     chain: Tuple[Tuple[float, float, float], ...] = ()
+    loadChain: Tuple[Tuple[float, float, float], ...] = ()
 
 
 def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
@@ -240,8 +301,10 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     ----------
     parameters : mapping
         Flat parameter set (see :mod:`exudyn_worm.presets`), including ``loadMass`` (kg), ``leverArm`` (m)
-        and ``motorSpeed`` (rad/s); optional drive-side chain ``J4, k4, d4, J5, ...`` (rotors ``inertia4``,
-        ... and shafts ``springDamper4``, ...) and axial bearing ``kA, dA, mA``.
+        and ``motorSpeed`` (rad/s), or another duty (``loadType``, ``motorType``: :mod:`exudyn_worm.duty`; the
+        load acts where the lever would); optional drive-side chain ``J4, k4, d4, J5, ...`` (rotors ``inertia4``,
+        ... and shafts ``springDamper4``, ...), load-side chain ``JL1, kL1, dL1, ...`` (rotors ``loadInertia1``,
+        ... and shafts ``loadShaft1``, ...; the load acts on the last one) and axial bearing ``kA, dA, mA``.
     contactOptions : ContactOptions
         Options of the worm-gear contact law.
     useSymbolic : bool
@@ -251,7 +314,8 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
         all rotors start at rest with zero angles.
     profile : optional
         Motor motion: an object with ``AngleAndSpeed(t, ops)`` such as :class:`ConstantSpeed` or
-        :class:`~exudyn_worm.profiles.StartStopProfile` (default :class:`ConstantSpeed` at ``motorSpeed``).
+        :class:`~exudyn_worm.profiles.StartStopProfile` (default: the duty's motor,
+        :func:`~exudyn_worm.duty.MotorFromParameters`: :class:`ConstantSpeed` at ``motorSpeed`` for the reel changer).
 
     Returns
     -------
@@ -272,26 +336,42 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
     drive = DriveFromParameters(parameters)
     CheckReelChangerKeys(parameters, w)
-    motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
-    load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
-    profile = profile if profile is not None else ConstantSpeed(motorSpeed)
+    from .duty import LoadFromParameters, MotorFromParameters, MotorType, SteadyMotorSpeed
+    if MotorType(parameters) in ('constantSpeed', 'startStop'):
+        CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
+    load = LoadFromParameters(parameters, w)            # the duty: lever (reel changer), constant, table or None
+    characteristic = None                               # a free motor on its torque-speed line, else prescribed
+    if MotorType(parameters) == 'characteristic':
+        if profile is not None:
+            raise ValueError(f"{w}: 'profile' prescribes the motor, but the parameter set drives it by its "
+                             f"characteristic (motorType = characteristic); give one of them")
+        characteristic = MotorFromParameters(parameters, w)
+        profile = ConstantSpeed(SteadyMotorSpeed(parameters, w))          # its start: the steady speed
+    profile = profile if profile is not None else MotorFromParameters(parameters, w)
+    motorSpeed = float(profile.AngleAndSpeed(0., MATH_OPS)[1])         # the motor's speed at t = 0
     chain = tuple(DriveSideChain(parameters))
+    loadChain = tuple(LoadSideChain(parameters))
     bearing = AxialBearingFromParameters(parameters)
 
     if startFromEquilibrium:
-        init = SteadyInitialState(drive, load, motorSpeed, contactOptions, bearing, chain)
+        init = SteadyInitialState(drive, load or ConstantTorque(0.), motorSpeed, contactOptions, bearing, chain,
+                                  loadSide=loadChain)
         init0 = profile.AngleAndSpeed(0., MATH_OPS)
     else:
         init, init0 = {}, (0., 0.)
 
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    motor = CreateRotor(mbs, _MOTOR_INERTIA, initialAngle=init0[0], initialSpeed=init0[1], name='motor')
+    motor = CreateRotor(mbs, _MOTOR_INERTIA if characteristic is None else parameters['motorInertia'],
+                        initialAngle=init0[0], initialSpeed=init0[1], name='motor')
     worm = CreateRotor(mbs, drive.J1, initialAngle=init.get('phi1', 0.), initialSpeed=init.get('omega1', 0.),
                        name='worm')
     wheel = CreateRotor(mbs, drive.J2, initialAngle=init.get('phi2', 0.), initialSpeed=init.get('omega2', 0.),
                         name='wheel')
-    CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+    if characteristic is None:
+        CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+    else:
+        CreateRotorTorque(mbs, motor, characteristic, name='motorTorque', useSymbolic=useSymbolic)
     rotors = {'motor': motor, 'worm': worm, 'wheel': wheel}
     # drive-side chain, worm side first: worm --kT-- inertia4 --k4-- inertia5 ... --kn-- motor
     chainRotors = [CreateRotor(mbs, J, initialAngle=init.get(f'phi{i}', 0.), initialSpeed=init.get(f'omega{i}', 0.),
@@ -307,18 +387,23 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     connector = CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='wormGear',
                                contactOptions=contactOptions, useSymbolic=useSymbolic,
                                axialNodeNumber=None if axial is None else axial['nodeNumber'])
-    CreateRotorTorque(mbs, wheel, load, name='reelLoad', useSymbolic=useSymbolic)
+    # load-side chain, wheel side first: wheel --kL1-- loadInertia1 --kL2-- loadInertia2 ...; the load on the last
+    loadRotors = CreateLoadSideChain(mbs, wheel, loadChain, init)
+    rotors.update({f'loadInertia{i}': r for i, r in enumerate(loadRotors, start=1)})
+    if load is not None:
+        CreateRotorTorque(mbs, (loadRotors or [wheel])[-1], load, name='reelLoad', useSymbolic=useSymbolic)
 
     sensors = dict(connector.AddSensors(mbs))
     OVT = exu.OutputVariableType
-    for index, rotor in [('0', motor)] + [(str(i), r) for i, r in enumerate(chainRotors, start=4)]:
+    for index, rotor in ([('0', motor)] + [(str(i), r) for i, r in enumerate(chainRotors, start=4)]
+                         + [(f'L{i}', r) for i, r in enumerate(loadRotors, start=1)]):
         quantities = (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t))
         if index != '0':
             quantities += (('alpha', OVT.Coordinates_tt),)
         for prefix, ovt in quantities:
             sensors[prefix + index] = mbs.AddSensor(SensorNode(nodeNumber=rotor['nodeNumber'], outputVariableType=ovt,
                                                                storeInternal=True, writeToFile=False))
-    return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain)
+    return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain, loadChain)
 
 
 def _SolverCounters(mbs) -> Dict[str, Any]:
@@ -415,7 +500,8 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     parameters : mapping
         Flat parameter set (e.g. ``GetPreset('reel-P1')``).
     endTime : float, optional
-        Simulated time in s (default: one full rotation, 8 s for the paper's speed).
+        Simulated time in s (default: one full rotation, 8 s for the paper's speed; another duty:
+        :func:`DefaultSimulatedTime`).
     stepSize : float, optional
         Time step in s, > 0; refused above the hard limit and warned about above the soft limit of
         :func:`exudyn_worm.stepsize.CheckStepSize`. Default: the drive's own
@@ -460,7 +546,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     w = 'SimulateReelChanger'
     CheckReelChangerKeys(parameters, w)
     _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
-    endTime = RotationPeriod(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
+    endTime = DefaultSimulatedTime(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
     stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
     steps = CheckRunSize(endTime, stepSize, maxSteps, w)
     CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
@@ -501,7 +587,9 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     if model.axialBearing is not None:
         series['axialForce'] = mesh.axialForce
     return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
-                            steps=steps, info={'stepSize': stepSize, 'maxLoadTorque': model.load.maximum,
+                            steps=steps, info={'stepSize': stepSize,
+                                               'maxLoadTorque': model.load.maximum if model.load is not None else 0.,
+                                               'loadType': parameters.get('loadType', 'lever'),
                                                'frictionSpeed': contactOptions.frictionSpeed,
                                                'useSymbolic': useSymbolic, 'solver': _SolverCounters(mbs),
                                                'solveCpuSeconds': solveCpuSeconds})

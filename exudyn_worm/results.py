@@ -202,6 +202,7 @@ def SeriesUnit(name: str) -> str:
     if name in _UNITS:
         return _UNITS[name]
     for prefix, unit in _ROTOR_UNITS.items():
-        if name.startswith(prefix) and name[len(prefix):].isdigit():
-            return unit
+        rest = name[len(prefix):]
+        if name.startswith(prefix) and (rest.isdigit() or (rest[:1] == 'L' and rest[1:].isdigit())):
+            return unit                                  # phi4, ... (drive side), phiL1, ... (load side)
     raise KeyError(f"SeriesUnit: no unit known for the series '{name}'")

@@ -108,7 +108,7 @@ def _State(gear, mu: float, slidingSpeed) -> SelfLockingState:
                             efficiencyWheelDriving=etaWheel, selfLocking=gear.gamma < rho, rating=Rating(etaWorm))
 
 
-def SelfLocking(gear, slidingSpeed: Optional[float] = None) -> SelfLockingVerdict:
+def SelfLocking(gear: 'WormGear', slidingSpeed: Optional[float] = None) -> SelfLockingVerdict:
     """Static and dynamic self-locking of ``gear``.
 
     Parameters

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, Optional, Sequence
+from typing import Any, Dict, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -75,7 +75,7 @@ class OperatingPoint:
         return {'slidingSpeed': self.slidingSpeed, 'mu': self.mu, 'dmuDv': self.dmuDv, 'normalForce': self.normalForce}
 
 
-def OperatingPointAt(gear, motorSpeed: float, loadTorque: float) -> OperatingPoint:
+def OperatingPointAt(gear: 'WormGear', motorSpeed: float, loadTorque: float) -> OperatingPoint:
     """Operating point of steady lowering: worm speed ``motorSpeed``, wheel torque ``loadTorque`` (S = -1).
 
     v0 = r1 |motorSpeed| / cos(gamma); mu0, slope from the gear's friction law; the static normal force follows
@@ -106,7 +106,7 @@ def OperatingPointAt(gear, motorSpeed: float, loadTorque: float) -> OperatingPoi
     return OperatingPoint(slidingSpeed=v0, mu=mu0, dmuDv=float(law.Slope(v0)), normalForce=loadTorque / c4)
 
 
-def OperatingPointFromParameters(parameters, gear) -> Optional[OperatingPoint]:
+def OperatingPointFromParameters(parameters: Mapping[str, Any], gear: 'WormGear') -> Optional[OperatingPoint]:
     """:func:`OperatingPointAt` with ``motorSpeed`` and the load torque ``loadMass * g * leverArm`` of a flat
     parameter set; None if one of these keys is missing (no load or speed given).
 
@@ -128,7 +128,7 @@ def OperatingPointFromParameters(parameters, gear) -> Optional[OperatingPoint]:
                             parameters['loadMass'] * STANDARD_GRAVITY * parameters['leverArm'])
 
 
-def FrictionSlopeDamping(gear, operatingPoint: OperatingPoint):
+def FrictionSlopeDamping(gear: 'WormGear', operatingPoint: OperatingPoint) -> Tuple[float, float]:
     """Damping (e1, e3) in N*m*s/rad that the friction slope adds to the worm row and to the wheel row (worm
     speed column) of the linearized eqs. (1)-(2): e1 = Fn0 r1^2 mu', e3 = Fn0 r1 r2 tan(gamma) mu' (module text).
 

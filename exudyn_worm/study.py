@@ -213,7 +213,8 @@ class Study:
     windows : sequence of (float, float), optional
         Evaluation windows in s (default: the lift / lower / lift phases of each point's first rotation,
         :func:`~exudyn_worm.reelchanger.DefaultWindows`, clipped to ``endTime`` when that is shorter; the
-        columns of a window that does not exist stay empty).
+        columns of a window that does not exist stay empty). Required for a duty other than the reel changer's
+        (:mod:`exudyn_worm.duty`); a window then counts as lowering if its middle lies in a lowering phase.
     endTime : float, optional
         Simulated time in s (default: one rotation of each point, at least up to the last window).
     stepSize : float, optional
@@ -252,6 +253,11 @@ class Study:
             raise ValueError(f"Study: 'maxSteps' must be a whole number >= 1 (solver steps), got {self.maxSteps!r}")
         if self.windows is not None:      # a window beyond endTime would be judged on its missing part
             self.windows = CheckWindows(self.windows, self.endTime, 'Study')
+        from .duty import IsReelChangerDuty
+        if self.windows is None and not IsReelChangerDuty(self.base):
+            raise ValueError("Study: a duty other than the reel changer's (loadType, motorType) needs explicit "
+                             "'windows' (--windows): its lift / lower phases may differ from run to run, the "
+                             "columns of a study may not")
         self.points = StudyPoints(self.variations, self.zipped)
         ApplyOverrides(self.base, self.points[0])          # unknown keys raise here
 
@@ -385,7 +391,8 @@ def RunPoint(task: Mapping) -> Dict:
         failed before computing them).
     """
     from .linearization import DriveStability
-    from .reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, RotationPeriod, SimulateReelChanger
+    from .duty import IsReelChangerDuty
+    from .reelchanger import DEFAULT_STEP_SIZE, DefaultPhases, DefaultSimulatedTime, SimulateReelChanger
     from .stepsize import RecommendedStepSize
     start = time.perf_counter()
     p = dict(task['parameters'])
@@ -396,12 +403,13 @@ def RunPoint(task: Mapping) -> Dict:
         analysis = DriveStability(p)            # two-mass: eqs. (15)-(19); with a chain or bearing: the whole drive
         row['analyticStable'] = analysis.stable
         row['analyticStableLowering'] = analysis.State(-1).stable
-        period = RotationPeriod(p)
+        period = DefaultSimulatedTime(p)      # one rotation of the reel changer; another duty: its tables' end
         if task['windows'] is not None:
-            windows = task['windows']
-        else:        # the first rotation's lift / lower / lift, clipped to a shorter end time (fewer windows then)
-            windows = DefaultWindows(p, None if task['endTime'] is None else min(task['endTime'], period),
-                                     minLength=1e-3)
+            windows, phases = task['windows'], None
+        else:        # the first rotation's lift / lower / lift (or the duty's phases), clipped to a shorter end time
+            phases = DefaultPhases(p, None if task['endTime'] is None else min(task['endTime'], period),
+                                   minLength=1e-3)
+            windows = [(t0, t1) for t0, t1, _ in phases]
         endTime = task['endTime'] if task['endTime'] is not None else max(period, max(t1 for _, t1 in windows))
         stepSize = task['stepSize'] or min(DEFAULT_STEP_SIZE, RecommendedStepSize(p))
         row['stepSize'] = stepSize
@@ -419,8 +427,12 @@ def RunPoint(task: Mapping) -> Dict:
                 if not isinstance(value, bool) and not math.isfinite(value):
                     raise FloatingPointError(f"diverged: window {i} metric {name} = {value}")
                 row[f'w{i}.{name}'] = value
-        lowering = ([i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1] if task['windows'] is not None
-                    else [1][:len(windows) - 1])        # default windows: the second is the lowering phase
+        if phases is None and not IsReelChangerDuty(p):     # given windows: lowering where the duty lowers
+            duty = DefaultPhases(p, endTime)
+            phases = [(t0, t1, next((ph for a, b, ph in duty if a <= 0.5 * (t0 + t1) <= b), 'idle'))
+                      for t0, t1 in windows]
+        lowering = ([i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1] if phases is None
+                    else [i for i, (_, _, phase) in enumerate(phases) if phase == 'lower'])   # the load drives
         row['loweringChatter'] = bool(metrics[lowering[0]]['chatter']) if lowering else None
         row['status'] = 'ok'
     except Exception as err:            # a failing run is a result, not the end of the study

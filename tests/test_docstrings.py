@@ -84,6 +84,7 @@ UNHINTED = {
         'exudyn_worm.drivetrain.CreateRotor': ['mbs'],
         'exudyn_worm.drivetrain.CreateRotorTorque': ['mbs', 'rotor', 'law'],
         'exudyn_worm.drivetrain.CreateShaft': ['mbs', 'rotors'],
+        'exudyn_worm.drivetrain.CreateLoadSideChain': ['mbs', 'wheel'],
         'exudyn_worm.linearization.AnalyzeLinearStability': ['mbs'],
         'exudyn_worm.linearization.BuildLinearizationModel': ['->'],
         'exudyn_worm.reelchanger.SolverSettings': ['->'],

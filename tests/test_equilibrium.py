@@ -29,7 +29,7 @@ def _NetTorques(drive, state, load, chain, loadSide):
     torques = {'worm': mesh.wormTorque + passed[0]}
     for i in range(len(chain)):
         torques[f'J{i + 4}'] = passed[i + 1] - passed[i]
-    angles = [state['phi2']] + [state[f'phiLoad{i}'] for i in range(1, len(loadSide) + 1)]
+    angles = [state['phi2']] + [state[f'phiL{i}'] for i in range(1, len(loadSide) + 1)]
     end = angles[-1]
     loadTorque = load if isinstance(load, float) else load.Torque(end, state['omega2'], 0., MATH_OPS)
     springs = [k for _, k, *_ in loadSide]
@@ -49,14 +49,14 @@ def test_every_rotor_is_in_balance(load, loadSide, chain):
     torques, scale = _NetTorques(DRIVE, state, load, chain, loadSide)
     for name, torque in torques.items():
         assert abs(torque) < 1e-9 * scale, (name, torque, scale)
-    assert all(state[f'omegaLoad{i}'] == state['omega2'] for i in range(1, len(loadSide) + 1))
+    assert all(state[f'omegaL{i}'] == state['omega2'] for i in range(1, len(loadSide) + 1))
 
 
 @pytest.mark.parametrize('M', [-2000., 800.])
 def test_load_shafts_are_pretwisted_by_the_transmitted_torque(M):
     stages = [(0.5, 2e4), (1., 5e3), (3., 1e5)]
     state = SteadyInitialState(DRIVE, M, SPEED, loadSide=stages)
-    angles = [state['phi2']] + [state[f'phiLoad{i}'] for i in (1, 2, 3)]
+    angles = [state['phi2']] + [state[f'phiL{i}'] for i in (1, 2, 3)]
     for (_, k), a, b in zip(stages, angles, angles[1:]):
         assert (b - a) * k == pytest.approx(M, rel=1e-12)
     # the mesh side does not see the load side: the same load on the wheel directly gives the same worm and wheel
@@ -105,7 +105,7 @@ def test_docs_example_linearizes_and_stays_at_rest(tmp_path, monkeypatch, equili
     monkeypatch.chdir(tmp_path)
     code = _DocsExample()
     if not equilibrium:          # the user's mistake of issue 16: the load shaft started untwisted
-        code = code.replace("initialAngle=state['phiLoad1']", "initialAngle=state['phi2']")
+        code = code.replace("initialAngle=state['phiL1']", "initialAngle=state['phi2']")
     namespace = {}
     exec(compile(code, 'docs/equilibrium.md', 'exec'), namespace)
     analysis, mbs = namespace['analysis'], namespace['mbs']

@@ -23,7 +23,7 @@ def test_chart_axes(keys, expected):
 def test_sweep_map_puts_kT_across_and_J1_up(order, monkeypatch, tmp_path, capsys):
     from exudyn_worm import plot
     drawn = []
-    monkeypatch.setattr(plot, 'SaveFigure', lambda fig, path, dpi=150: drawn.append(fig))
+    monkeypatch.setattr(plot, 'SaveFigure', lambda fig, path, dpi=150: (drawn.append(fig), open(path, 'wb').close()))
     argv = ['sweep', '--vary', order[0], '--vary', order[1], '--windows', '0:0.5', '--end-time', '0.5', '--quiet',
             '--workers', '1', '--plot', str(tmp_path / 'map.png')]
     assert Main(argv) == 0, capsys.readouterr().err

@@ -138,8 +138,16 @@ def _Run(args: argparse.Namespace) -> int:
             CheckReelChangerKeys(parameters, 'check --simulate')
     elif args.step_size is not None:
         raise UsageError(f"--step-size {args.step_size:g} only applies with --simulate")
+    from ..loadside import LoadSideNotLumpable
     with BadInput():
-        result = DesignCheck(parameters, margin=args.margin, span=args.span)
+        try:
+            result = DesignCheck(parameters, margin=args.margin, span=args.span)
+        except LoadSideNotLumpable as err:       # a valid drive that the two-mass check does not describe
+            diagnosis = err.diagnosis
+        else:
+            diagnosis = None
+    if diagnosis is not None:
+        return _ReportWholeDrive(args, diagnosis, plotPath)
     if args.simulate:
         from ..progress import ProgressBar
         runs = 1 + len(result.recommendations) + (result.bestPair is not None)
@@ -160,6 +168,27 @@ def _Run(args: argparse.Namespace) -> int:
         print('\n'.join(FormatDesignCheck(result, title=f"exudyn-worm check: {SourceText(args)}")))
     if plotPath is not None:
         print(f"wrote {plotPath.resolve()}", file=sys.stderr)
+    return 0
+
+
+def _ReportWholeDrive(args: argparse.Namespace, diagnosis, plotPath) -> int:
+    """A drive whose load-side chain may not be lumped into J2: the whole drive's verdict and the stage that is the
+    cause; the two-mass recommendations, chart and simulations do not apply."""
+    if plotPath is not None or args.simulate:
+        raise UsageError(f"{'--plot' if plotPath is not None else '--simulate'}: the design chart and its "
+                         f"recommendations need the two-mass drive; {diagnosis.Text()}")
+    if args.json:
+        PrintJson({'stable': diagnosis.wholeStable, 'method': 'exudyn', 'loadSide': diagnosis.ToDict(),
+                   'recommendations': []})
+        return 0
+    verdict = 'STABLE' if diagnosis.wholeStable else 'UNSTABLE (chatter expected)'
+    lines = [f"exudyn-worm check: {SourceText(args)}", '',
+             f"Verdict (linearized whole drive): {verdict}",
+             f"Load side: {diagnosis.Text()}.",
+             '', "No recommendations: they come from the two-mass model (eqs. (15)-(19)), which does not describe "
+                 "this drive; `exudyn-worm stability` lists the whole drive's modes, `exudyn-worm sweep --vary "
+                 "kL1=...` scans the load shaft."]
+    print('\n'.join(lines))
     return 0
 
 

@@ -65,8 +65,9 @@ def _SaveFigures(result, folder: Path, subtitle: str = '', quiet=None) -> List[P
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--end-time', type=PositiveFloat('s'), default=None, metavar='S',
-                        help="simulated time in s (default: one full rotation, 8 s at the paper's speed, or the "
-                             "end of the last --windows)")
+                        help="simulated time in s (default: one full rotation, 8 s at the paper's speed; for "
+                             "another duty (loadType, motorType) the end of its tables and ramps; or the end of the "
+                             "last --windows)")
     parser.add_argument('--step-size', type=PositiveFloat('s'), default=None, metavar='S',
                         help='time step in s (default: from the drive, 0.039 / its highest natural frequency); refused '
                              'if it cannot resolve that frequency (rule in exudyn_worm/stepsize.py)')
@@ -75,7 +76,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                              'of results; 780 s simulated of P1 at its default step)')
     parser.add_argument('--windows', default=None, metavar='T0:T1,...',
                         help='evaluation windows in s (default: the lift / lower / lift phases of every '
-                             'rotation simulated, the last one clipped to the end time)')
+                             'rotation simulated, the last one clipped to the end time; for another duty its lift, '
+                             'lower and idle phases: lowering = the load drives the gear)')
     parser.add_argument('--plot', default=None, metavar='DIR',
                         help='write PNG figures into the folder DIR (created if missing; its parent must exist)')
     parser.add_argument('--csv', default=None, metavar='FILE',
@@ -88,7 +90,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, int, List[Tuple[float, float]]]:
     """End time, step size, step limit and windows of a run, checked before anything is computed."""
-    from ..reelchanger import MAX_STEPS, CheckReelChangerKeys, CheckRunSize, DefaultWindows, RotationPeriod
+    from ..reelchanger import MAX_STEPS, CheckReelChangerKeys, CheckRunSize, DefaultSimulatedTime, DefaultWindows
     from ..stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
     with BadInput():
         CheckReelChangerKeys(parameters, 'simulate')
@@ -104,7 +106,7 @@ def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, in
         userWindows = ParseWindows(args.windows) if args.windows is not None else None
         endTime = args.end_time
         if endTime is None:
-            endTime = max([RotationPeriod(parameters)] + [t1 for _, t1 in userWindows or []])
+            endTime = max([DefaultSimulatedTime(parameters)] + [t1 for _, t1 in userWindows or []])
         CheckRunSize(endTime, stepSize, maxSteps, 'simulate',
                      ('--end-time', '--step-size' if args.step_size is not None else 'the recommended step size',
                       '--max-steps'))

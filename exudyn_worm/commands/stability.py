@@ -28,8 +28,13 @@ def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra
     from ..linearization import DriveStability
     with StdoutToStderr(args.json), BadInput():
         analysis = DriveStability(parameters)          # the whole drive's linearization: it has extra components
+        loadSide = None
+        if 'a load-side chain (JL1, ...)' in extra:   # may the driven machine be lumped into J2? which stage is not?
+            from ..loadside import DiagnoseLoadSide
+            loadSide = DiagnoseLoadSide(parameters)
     if args.json:
-        PrintJson({**analysis.ToDict(), 'method': 'exudyn', 'components': extra})
+        PrintJson({**analysis.ToDict(), 'method': 'exudyn', 'components': extra,
+                   **({'loadSide': loadSide.ToDict()} if loadSide is not None else {})})
         return 0
     lines = [f"exudyn-worm stability: {SourceText(args)}, method exudyn (linearized Exudyn model of the whole "
              f"drive: it has {' and '.join(extra)})", '']
@@ -48,6 +53,8 @@ def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra
     lines.append('')
     lines.append('Stable in every contact state.' if analysis.stable else
                  'Unstable: the drive chatters where the unstable contact state occurs (S = -1: lowering).')
+    if loadSide is not None:
+        lines.append(f"Load side: {loadSide.Text()}.")
     print('\n'.join(lines))
     return 0
 

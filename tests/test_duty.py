@@ -1,0 +1,183 @@
+"""Duty cycles (issue 16, item 2): load and motor from a parameter set, in drive files and on the command line;
+the evaluation windows follow the duty (lowering = the load drives the gear)."""
+import json
+import math
+
+import numpy as np
+import pytest
+
+from exudyn_worm.config import ResolveParameters
+from exudyn_worm.contact import MATH_OPS, NUMPY_OPS
+from exudyn_worm.profiles import ConstantTorque, SpeedTable, TorqueTable
+
+
+def test_speed_table_angle_is_the_integral_of_its_speed():
+    table = SpeedTable([(0., 0.), (0.5, 40.), (1.5, 40.), (2., -10.)])
+    t = np.linspace(0., 3., 30001)
+    angle, speed = table.AngleAndSpeed(t, NUMPY_OPS)
+    integral = np.concatenate([[0.], np.cumsum(0.5 * (speed[1:] + speed[:-1]) * np.diff(t))])
+    np.testing.assert_allclose(angle, integral, atol=1e-6)
+    assert table.AngleAndSpeed(0.25, MATH_OPS)[1] == pytest.approx(20.)
+    assert table.AngleAndSpeed(5., MATH_OPS)[1] == -10.             # constant beyond the last row
+
+
+@pytest.mark.parametrize('points, message', [
+    ([(0.1, 1.)], "SpeedTable: the first row of 'points' must be at time 0 s"),
+    ([(0., 1.), (0., 2.)], "the time of 'points' must increase, got 0 then 0"),
+    ([], "'points' must hold at least one row"),
+    ([(0., 1., 2.)], "row 0 of 'points' must be (time, speed)"),
+])
+def test_bad_speed_table(points, message):
+    with pytest.raises(ValueError) as info:
+        SpeedTable(points)
+    assert message in str(info.value)
+
+
+def test_torque_table_interpolates_and_holds_its_ends():
+    table = TorqueTable([(0., -100.), (2., 100.), (3., 100.)], over='angle')
+    assert [table.Torque(x, 0., 0., MATH_OPS) for x in (-1., 0., 1., 2.5, 9.)] == [-100., -100., 0., 100., 100.]
+    assert table.maximum == 100. and ConstantTorque(-7.).maximum == 7.
+    with pytest.raises(ValueError, match="TorqueTable: 'over' must be 'time' or 'angle', got 'speed'"):
+        TorqueTable([(0., 1.)], over='speed')
+
+
+def test_reel_changer_phases_are_its_lift_lower_lift_quarters():
+    from exudyn_worm.reelchanger import DefaultPhases, RotationPeriod
+    p = ResolveParameters('reel-P1')
+    T = RotationPeriod(p)
+    phases = DefaultPhases(p, 1.5 * T)
+    assert [ph for _, _, ph in phases] == ['lift', 'lower', 'lift', 'lift', 'lower']
+    np.testing.assert_allclose([t for a, b, _ in phases for t in (a, b)],
+                               np.array([0, .25, .25, .75, .75, 1, 1, 1.25, 1.25, 1.5]) * T, rtol=1e-12)
+
+
+def test_duty_phases_follow_the_load_power():
+    """Lowering where the load drives the gear (M omega > 0): with the speed reversed at 1.5 s a constant
+    driving torque becomes a lifted one; the rigid kinematics put the switch where the speed passes zero."""
+    from exudyn_worm.reelchanger import DefaultPhases, DefaultSimulatedTime
+    p = ResolveParameters('reel-P1', sets=['loadType=constant', 'loadTorque=1500', 'motorType=speedTable',
+                                           'motorSpeedOverTime=[[0, 0], [0.5, 50], [1.5, 50], [2, -50]]'])
+    assert DefaultSimulatedTime(p) == 2.
+    (t0, t1, a), (t2, t3, b) = DefaultPhases(p)
+    assert (a, b) == ('lower', 'lift') and t0 == 0. and t3 == 2.
+    assert t1 == t2 == pytest.approx(1.75, abs=1e-9)
+    q = ResolveParameters('reel-P1', sets=['loadType=timeTable', 'loadTorqueOverTime=[[0, -1e3], [1, -1e3], [1.5, 1e3]]'])
+    (_, s1, a), (s2, _, b) = DefaultPhases(q, 3.)
+    assert (a, b) == ('lift', 'lower') and s1 == s2 == pytest.approx(1.25, abs=1e-9)
+    assert DefaultPhases(ResolveParameters('reel-P1', sets=['loadType=none']), 2.) == [(0., 2., 'idle')]
+
+
+def test_drive_file_gives_the_duty(tmp_path):
+    from exudyn_worm.duty import LoadFromParameters, MotorFromParameters
+    path = tmp_path / 'drive.toml'
+    path.write_text('preset = "reel-P1"\n[load]\ntype = "angleTable"\ntorqueOverAngle = [[0, "-2 kN*m"], '
+                    '["90 deg", 0], ["180 deg", "2 kN*m"]]\n[motor]\ntype = "startStop"\nspeed = "300 rpm"\n'
+                    'rampTime = "0.5 s"\nbrakeTime = 3\n')
+    p = ResolveParameters(config=path)
+    load, motor = LoadFromParameters(p), MotorFromParameters(p)
+    assert load.points == ((0., -2000.), (math.pi / 2, 0.), (math.pi, 2000.)) and load.over == 'angle'
+    assert (motor.speed, motor.rampTime, motor.brakeTime) == (pytest.approx(10 * math.pi), 0.5, 3.)
+
+
+def test_table_from_a_csv_file(tmp_path):
+    from exudyn_worm.duty import LoadFromParameters
+    (tmp_path / 'torque.csv').write_text('# time s, torque N*m\n0, -10\n1, 10\n')
+    p = ResolveParameters('reel-P1', sets=['loadType=timeTable', f"loadTorqueOverTime={tmp_path / 'torque.csv'}"])
+    assert LoadFromParameters(p).points == ((0., -10.), (1., 10.))
+
+
+@pytest.mark.parametrize('sets, fragment', [
+    (['loadType=constant'], "the duty (load constant, motor constantSpeed) needs loadTorque, motorSpeed; missing "
+                            "loadTorque"),
+    (['motorType=startStop'], "missing rampTime"),
+    (['loadType=timeTable', 'loadTorqueOverTime=[[0, 1], [0, 2]]'], "the time must increase"),
+    (['loadType=crane'], "'loadType' must be one of: lever, constant, timeTable, angleTable, none, got 'crane'"),
+    (['motorType=startStop', 'rampTime=1', 'brakeTime=0.5'], "'brakeTime' must be >= rampTime = 1 s"),
+])
+def test_bad_duty_is_one_line_exit_2(capsys, tmp_path, monkeypatch, sets, fragment):
+    from exudyn_worm.cli import Main
+    monkeypatch.chdir(tmp_path)
+    status = Main(['simulate', '--quiet', *[a for s in sets for a in ('--set', s)]])
+    out, err = capsys.readouterr()
+    assert status == 2 and out == '' and err.count('\n') == 1 and fragment in err, err
+    assert 'Traceback' not in err and list(tmp_path.iterdir()) == []
+
+
+def test_simulated_lowering_under_a_driving_torque_has_the_worm_braking(capsys, tmp_path, monkeypatch):
+    """A constant torque that drives the gear (the reel changer's 2060 N*m at most, here 1500 N*m): the whole run
+    is one lowering window, the contact is on the braking flank (S < 0) throughout; started and stopped by
+    ramps, the run begins from rest."""
+    from exudyn_worm.cli import Main
+    monkeypatch.chdir(tmp_path)
+    args = ['simulate', '--preset', 'reel-P2', '--quiet', '--json', '--set', 'loadType=constant', '--set',
+            'loadTorque=1500', '--set', 'motorType=startStop', '--set', 'rampTime=0.1', '--set', 'brakeTime=0.2']
+    assert Main(args) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data['endTime'] == pytest.approx(0.3)
+    (window,) = data['windows']
+    assert (window['t0'], window['t1']) == (0., pytest.approx(0.3)) and window['fractionSNegative'] > 0.99
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_simulation_with_each_duty_records_its_laws():
+    """Every duty builds with symbolic user functions (recorded laws are checked against Python at build time)."""
+    from exudyn_worm.reelchanger import SimulateReelChanger
+    for sets in (['loadType=angleTable', 'loadTorqueOverAngle=[[0, -2000], [3, 2000]]', 'motorType=speedTable',
+                  'motorSpeedOverTime=[[0, 0], [0.05, 49.5]]'],
+                 ['loadType=timeTable', 'loadTorqueOverTime=[[0, -2000], [0.1, 0]]'],
+                 ['loadType=none']):
+        p = ResolveParameters('reel-P2', sets=sets)
+        result = SimulateReelChanger(p, endTime=0.1)
+        assert np.all(np.isfinite(result.series['phi2'])), sets
+        assert result.info['loadType'] == p['loadType']
+
+
+def test_study_of_another_duty_needs_windows():
+    from exudyn_worm.study import ParseVariation, Study
+    p = ResolveParameters('reel-P1', sets=['loadType=constant', 'loadTorque=100'])
+    with pytest.raises(ValueError, match="Study: a duty other than the reel changer's"):
+        Study(p, [ParseVariation('J1=0.1,0.2')])
+    Study(p, [ParseVariation('J1=0.1,0.2')], windows=[(0., 1.)], endTime=1.)
+
+
+CHARACTERISTIC = ['motorType=characteristic', 'stallTorque=300', 'noLoadSpeed=500 rpm', 'motorInertia=0.05']
+
+
+def test_motor_characteristic_starts_where_its_line_carries_the_load():
+    """The steady speed: M(omega) = stallTorque (1 - omega / noLoadSpeed) equals the drive-shaft torque of the
+    equilibrium; the run starts there without a jump and the speed follows the lever's load."""
+    from exudyn_worm.duty import SteadyMotorSpeed
+    from exudyn_worm.reelchanger import SimulateReelChanger
+    p = ResolveParameters('reel-P2', sets=CHARACTERISTIC)
+    speed = SteadyMotorSpeed(p)
+    result = SimulateReelChanger(p, endTime=0.2)
+    torque = 300. * (1 - speed / p['noLoadSpeed'])
+    shaft = result.series['driveTorque'][0]
+    assert torque == pytest.approx(-shaft, rel=1e-6)            # the shaft pulls the worm with the motor's torque
+    assert result.series['omega0'][0] == pytest.approx(speed, rel=1e-12)
+    assert np.max(np.abs(np.diff(result.series['omega0'][:20]))) < 1e-3   # no start transient
+    with pytest.raises(ValueError, match='the motor cannot carry the load'):
+        SteadyMotorSpeed({**p, 'stallTorque': 20.})
+
+
+def test_motor_characteristic_in_the_linear_analysis():
+    """The free motor rotor is in the linearized drive: its inertia adds a mode, the line's slope damps the
+    drive's free rotation (a real eigenvalue -slope / (J0 + J1 + ...) reflected), one rigid-body angle remains."""
+    from exudyn_worm.linearization import DriveStability
+    from exudyn_worm.presets import ExtraComponents
+    p = ResolveParameters('reel-P2', sets=CHARACTERISTIC)
+    assert ExtraComponents(p) == ['a motor on its characteristic (motorType characteristic)']
+    state = DriveStability(p).State(1)
+    assert state.rigidBodyModes == 1
+    assert len(state.frequenciesHz) == 2 and any(m.eigenvalue.imag == 0 and m.eigenvalue.real < 0 for m in state.modes)
+
+
+def test_check_simulate_judges_the_lowering_phases_of_a_duty():
+    """check --simulate on another duty: chatter is looked for where the load drives the gear; a duty that only
+    lifts has no lowering to chatter in."""
+    from exudyn_worm.design import ChatterWhileLowering
+    lifting = ResolveParameters('reel-P7', sets=['loadType=constant', 'loadTorque=-2000', 'motorType=speedTable',
+                                                 'motorSpeedOverTime=[[0, 49.5], [1, 49.5]]'])
+    assert ChatterWhileLowering(lifting) is False
+    lowering = {**lifting, 'loadTorque': 2000.}
+    assert ChatterWhileLowering(lowering) is True          # P7 chatters while lowering (the paper's Figure 14)
