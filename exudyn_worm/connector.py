@@ -24,13 +24,16 @@ import numpy as np
 
 from ._checks import CheckBool, CheckName, CheckNonNegative, CheckPositive, CheckReal, CheckSystem
 from ._userfunctions import AddGenericForce, SetGenericForceLaw
-from .contact import NUMPY_OPS, ContactOptions, MeshContact, MeshState
+from .contact import (MATH_OPS, NUMPY_OPS, ContactOptions, FrictionState, MeshContact, MeshState, SlidingCoordinate,
+                      StickSlipUpdate)
 from .gear import WormGear
 
 __all__ = ['WormGearConnector', 'CreateWormGear', 'AxialBearing', 'CreateWormAxialBearing', 'CONNECTORS_KEY']
 
 #: ``mbs.variables`` key of the list of worm-gear connectors built in a system (found by the linear analysis)
 CONNECTORS_KEY = 'exudynWorm.connectors'
+#: ``mbs.variables`` key of the stick/slip states switched by the system's post-Newton user function
+_STICK_SLIP_KEY = 'exudynWorm.stickSlip'
 
 
 @dataclass(frozen=True)
@@ -100,6 +103,133 @@ def CreateWormAxialBearing(mbs, bearing: AxialBearing, initialDisplacement: floa
     return {'nodeNumber': nNode, 'objectNumber': oMass, 'markerNumber': mNode, 'springDamperNumber': oSpring}
 
 
+class _StickSlip:
+    """Stick/slip state of one connector with the sticking friction model, switched between time steps.
+
+    The state lives in Python (:attr:`state`, floats) and, for the symbolic (C++) law, in three named Exudyn
+    symbolic variables that the recorded law reads. The system's post-Newton user function calls
+    :meth:`PostNewton` after every converged step; the decision itself is the contact law's
+    :func:`~exudyn_worm.contact.StickSlipUpdate`. While the worm slides far from zero speed it reads the worm
+    speed only now and then (after a quarter of the time the worm would need to stop at its present
+    deceleration), so a drive that never stops pays about one Python call per step.
+    """
+
+    #: fraction of the time to stop (|omega1| / |alpha1|) after which a sliding worm is checked again
+    CHECK_FRACTION = 0.25
+    #: longest time in s between two checks of a sliding worm
+    CHECK_INTERVAL = 0.02
+    #: a sliding worm slower than this many ``frictionSpeed`` is checked after every step
+    CHECK_SPEEDS = 10.
+
+    def __init__(self, gear: WormGear, options: ContactOptions, nodes, references, initial: FrictionState,
+                 symbolic: bool):
+        self.gear, self.options = gear, options
+        self.nodes, self.references = list(nodes), list(references)
+        self.state = initial
+        self.variables = None
+        if symbolic:
+            import exudyn
+            esym = exudyn.symbolic
+            self.variables = FrictionState(*(esym.Real(name, float(getattr(initial, name)))
+                                             for name in ('stuck', 'direction', 'anchor')))
+        self.history = [(-np.inf, initial)]     # (time from which a state holds, state)
+        self.switches = 0
+        self._indices = None
+        self._lastTime = None
+        self._nextCheck = -np.inf
+        self._lastCheck = None
+
+    def LawState(self, ops):
+        """The state as the law reads it: the symbolic variables, or the current floats in plain Python."""
+        return self.state if ops is MATH_OPS or self.variables is None else self.variables
+
+    def _Set(self, state: FrictionState, t: float) -> None:
+        self.state = state
+        if self.variables is not None:
+            for name in ('stuck', 'direction', 'anchor'):
+                getattr(self.variables, name).SetValue(float(getattr(state, name)))
+        while len(self.history) > 1 and self.history[-1][0] >= t:    # a repeated step replaces its switch
+            self.history.pop()
+        self.history.append((t, state))
+        self.switches += 1
+
+    def StatesAt(self, times) -> FrictionState:
+        """The states in force at ``times`` (s), as arrays (from the recorded switches)."""
+        starts = np.array([h[0] for h in self.history])
+        k = np.searchsorted(starts, np.asarray(times, dtype=float), side='right') - 1
+        return FrictionState(*(np.array([getattr(h[1], name) for h in self.history])[np.maximum(k, 0)]
+                               for name in ('stuck', 'direction', 'anchor')))
+
+    def PostNewton(self, mbs, t: float) -> float:
+        """Switch the state after a converged step; return the jump of the friction force in N (0: no switch)."""
+        if not self.options.hasStickState:
+            return 0.
+        newStep = t != self._lastTime
+        if self._lastTime is not None and t < self._lastTime:     # a new solve from an earlier time
+            self._indices, self._nextCheck, self._lastCheck = None, -np.inf, None
+        self._lastTime = t
+        state = self.state
+        sliding = state.stuck < 0.5
+        if sliding and newStep and t < self._nextCheck:
+            return 0.
+        if self._indices is None:
+            self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
+        data = mbs.systemData
+        v = data.GetODE2Coordinates_t()
+        i1 = self._indices[0]
+        omega1 = float(v[i1])
+        if sliding and omega1 * state.direction > 0.:           # still sliding the same way: when to look again
+            rate = abs(float(data.GetODE2Coordinates_tt()[i1]))
+            if self._lastCheck is not None and t > self._lastCheck[0]:
+                rate = max(rate, abs(omega1 - self._lastCheck[1]) / (t - self._lastCheck[0]))
+            self._lastCheck = (t, omega1)
+            if abs(omega1) > self.CHECK_SPEEDS * self.options.frictionSpeed and rate > 0:
+                self._nextCheck = t + min(self.CHECK_FRACTION * abs(omega1) / rate, self.CHECK_INTERVAL)
+            else:
+                self._nextCheck = t
+            return 0.
+        self._lastCheck, self._nextCheck = None, t
+        q = data.GetODE2Coordinates()
+        x = [float(q[i]) + ref for i, ref in zip(self._indices, self.references)]
+        w = [float(v[i]) for i in self._indices]
+        axial = (x[2], w[2]) if len(x) == 3 else (None, None)
+        new, jump = StickSlipUpdate(self.gear, self.options, state, x[0], x[1], w[0], w[1], *axial)
+        if new is None:
+            return 0.
+        self._Set(new, t)
+        return jump
+
+
+def _AddStickSlip(mbs, stickSlip: _StickSlip) -> None:
+    """Register a connector's stick/slip state with the system's post-Newton user function (one per system)."""
+    items = mbs.variables.get(_STICK_SLIP_KEY)
+    if items is None:
+        items = mbs.variables[_STICK_SLIP_KEY] = []
+        noSwitch = [0., -1.]
+
+        def PostNewtonUserFunction(mbs, t):
+            """Exudyn's discontinuous iteration: [friction force jump in N, no step size recommendation]."""
+            error = 0.
+            for item in items:
+                error += item.PostNewton(mbs, t)
+            return [error, -1.] if error else noSwitch
+
+        mbs.SetPostNewtonUserFunction(PostNewtonUserFunction)
+    items.append(stickSlip)
+
+
+def _InitialFrictionState(gear: WormGear, mbs, nodes, references) -> FrictionState:
+    """Sliding in the direction of the worm's initial speed; stuck (without force) if the worm starts at rest."""
+    x, v = [], []
+    for node, ref in zip(nodes[:2], references[:2]):
+        info = mbs.GetNode(node)
+        x.append(float(np.ravel(info['initialCoordinates'])[0]) + ref)
+        v.append(float(np.ravel(info['initialVelocities'])[0]))
+    if v[0] != 0:
+        return FrictionState(0., float(np.sign(v[0])), SlidingCoordinate(gear, x[0], x[1]))
+    return FrictionState(1., 1., SlidingCoordinate(gear, x[0], x[1]))
+
+
 @dataclass
 class WormGearConnector:
     """What :func:`CreateWormGear` created, and the law to post-process its results.
@@ -118,6 +248,7 @@ class WormGearConnector:
     axialNodeNumber: Any = None
     axialReference: float = 0.
     useSymbolic: bool = True
+    stickSlip: Any = field(default=None, repr=False)
 
     @property
     def coordinateNodes(self) -> List[Any]:
@@ -140,11 +271,19 @@ class WormGearConnector:
         if not isinstance(options, ContactOptions):
             raise TypeError(f"WormGearConnector.SetContactOptions: 'options' must be a ContactOptions, got "
                             f"{type(options).__name__}")
+        if options.hasStickState and self.stickSlip is None:
+            self.stickSlip = _CreateStickSlip(mbs, self.gear, options, self.coordinateNodes,
+                                              self._References(), self.useSymbolic)
+        if self.stickSlip is not None:
+            self.stickSlip.options = options
         law = _WormGearLaw(self.gear, options, self.referenceAngles, self.axialNodeNumber is not None,
-                           self.axialReference)
+                           self.axialReference, self.stickSlip)
         self.userFunction = SetGenericForceLaw(mbs, self.objectNumber, len(self.coordinateNodes), law,
                                                self.useSymbolic)
         self.options = options
+
+    def _References(self) -> List[float]:
+        return list(self.referenceAngles) + ([] if self.axialNodeNumber is None else [self.axialReference])
 
     def InitialMeshState(self, mbs) -> MeshState:
         """Mesh quantities at the system's initial state (node initial coordinates and velocities).
@@ -161,21 +300,27 @@ class WormGearConnector:
         axial = values[2] if len(values) == 3 else (None, None)
         return self.Evaluate(values[0][0], values[1][0], values[0][1], values[1][1], *axial)
 
-    def Evaluate(self, phi1, phi2, omega1, omega2, xA=None, vA=None) -> MeshState:
+    def Evaluate(self, phi1, phi2, omega1, omega2, xA=None, vA=None, time=None) -> MeshState:
         """Mesh quantities (normal force, S, sf, torques, axial force, ...) for arrays of worm/wheel states.
 
         ``phi1, phi2`` (and ``xA``) are the node coordinates (the node reference values are added here);
         ``xA, vA``: the worm's axial displacement and speed, required if the connector has an axial node.
+        ``time``: the simulated times in s of the states; with the sticking friction model the stick/slip
+        state recorded during the solve at these times is used (None: the exact Coulomb law without a stick
+        state, which differs from the simulation only where the flanks stuck).
         """
         if (self.axialNodeNumber is None) != (xA is None):
             raise ValueError(f"WormGearConnector '{self.name}': give 'xA' (and 'vA') exactly when the connector has "
                              f"an axial node (axialNodeNumber = {self.axialNodeNumber!r})")
         axial = {} if xA is None else {'axialDisplacement': np.asarray(xA, dtype=float) + self.axialReference,
                                        'axialSpeed': np.asarray(vA, dtype=float)}
+        state = None
+        if time is not None and self.stickSlip is not None and self.options.hasStickState:
+            state = self.stickSlip.StatesAt(np.broadcast_to(np.asarray(time, dtype=float), np.shape(phi1)))
         return MeshContact(self.gear, np.asarray(phi1, dtype=float) + self.referenceAngles[0],
                            np.asarray(phi2, dtype=float) + self.referenceAngles[1],
                            np.asarray(omega1, dtype=float), np.asarray(omega2, dtype=float),
-                           self.options, NUMPY_OPS, **axial)
+                           self.options, NUMPY_OPS, frictionState=state, **axial)
 
     def AddSensors(self, mbs) -> Dict[str, Any]:
         """Add internally stored node sensors for the worm (1) and wheel (2): ``phi1, omega1, alpha1,
@@ -231,7 +376,7 @@ class WormGearConnector:
         :meth:`StoredStates`.
         """
         s = self.StoredStates(mbs)
-        state = self.Evaluate(s['phi1'], s['phi2'], s['omega1'], s['omega2'], s.get('xA'), s.get('vA'))
+        state = self.Evaluate(s['phi1'], s['phi2'], s['omega1'], s['omega2'], s.get('xA'), s.get('vA'), s['time'])
         state.time = s['time']
         return state
 
@@ -329,29 +474,43 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
         raise ValueError(f"CreateWormGear: worm, wheel (and axial) nodes must be different nodes, got nodeNumbers = "
                          f"{list(nodeNumbers)!r}" + ('' if axialNodeNumber is None else
                                                     f", axialNodeNumber = {axialNodeNumber!r}"))
-    law = _WormGearLaw(gear, contactOptions, [ref1, ref2], axialNodeNumber is not None, refA)
+    stickSlip = None
+    if contactOptions.hasStickState:
+        stickSlip = _CreateStickSlip(mbs, gear, contactOptions, nodes, [ref1, ref2, refA][:len(nodes)], useSymbolic)
+    law = _WormGearLaw(gear, contactOptions, [ref1, ref2], axialNodeNumber is not None, refA, stickSlip)
     oItem, userFunction = AddGenericForce(mbs, nodes, law, name=name, useSymbolic=useSymbolic, where='CreateWormGear')
     connector = WormGearConnector(objectNumber=oItem, nodeNumbers=list(nodeNumbers), gear=gear,
                                   options=contactOptions, name=name, userFunction=userFunction,
                                   referenceAngles=[ref1, ref2], axialNodeNumber=axialNodeNumber, axialReference=refA,
-                                  useSymbolic=useSymbolic)
+                                  useSymbolic=useSymbolic, stickSlip=stickSlip)
     mbs.variables.setdefault(CONNECTORS_KEY, []).append(connector)
     return connector
 
 
-def _WormGearLaw(gear, options, referenceAngles, axial, axialReference):
+def _CreateStickSlip(mbs, gear, options, nodes, references, useSymbolic) -> _StickSlip:
+    """The stick/slip state of a new sticking connector, registered with the system's post-Newton function."""
+    stickSlip = _StickSlip(gear, options, nodes, references, _InitialFrictionState(gear, mbs, nodes, references),
+                           useSymbolic)
+    _AddStickSlip(mbs, stickSlip)
+    return stickSlip
+
+
+def _WormGearLaw(gear, options, referenceAngles, axial, axialReference, stickSlip=None):
     """The connector's generalized forces as ``law(t, q, q_t, ops)`` for AddGenericForce."""
     ref1, ref2 = referenceAngles
     Shifted = lambda x, ref: x + ref if ref != 0 else x      # no '+ 0' node in the recorded expression
+    StateOf = (lambda ops: None) if stickSlip is None or not options.hasStickState else stickSlip.LawState
     if not axial:
         def WormGearLaw(t, q, q_t, ops):
             """Generalized forces [worm torque, wheel torque] of the mesh."""
-            state = MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops)
+            state = MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
+                                frictionState=StateOf(ops))
             return [state.wormTorque, state.wheelTorque]
     else:
         def WormGearLaw(t, q, q_t, ops):
             """Generalized forces [worm torque, wheel torque, worm axial force] of the mesh."""
             state = MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
-                                axialDisplacement=Shifted(q[2], axialReference), axialSpeed=q_t[2])
+                                axialDisplacement=Shifted(q[2], axialReference), axialSpeed=q_t[2],
+                                frictionState=StateOf(ops))
             return [state.wormTorque, state.wheelTorque, state.axialForce]
     return WormGearLaw

@@ -116,6 +116,12 @@ class WormGear:
         return self.rho
 
     @property
+    def muStatic(self) -> float:
+        """Friction coefficient at rest (sticking limit), dimensionless; equals ``mu`` for the constant law."""
+        # minimal stand-in: the `friction` branch replaces this property by the friction laws' muStatic
+        return self.mu
+
+    @property
     def selfLocking(self) -> bool:
         """True if the gear is self-locking: gamma < rho."""
         return self.gamma < self.rho

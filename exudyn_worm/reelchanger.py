@@ -522,7 +522,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     time = time[keep]
     series = {k: v[keep] for k, v in series.items()}
     mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'],
-                                    series.get('xA'), series.get('vA'))
+                                    series.get('xA'), series.get('vA'), time)
     drive = model.drive
     motorSide = '4' if model.chain else '0'            # the drive shaft (spring-Damper1) ends at inertia4 or the motor
     series.update(deltaPhi=mesh.deltaPhi, deltaS=mesh.deltaS, normalForce=mesh.normalForce, S=mesh.S, sf=mesh.sf,
@@ -536,5 +536,6 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
                             steps=steps, info={'stepSize': stepSize, 'maxLoadTorque': model.load.maximum,
                                                'frictionSpeed': contactOptions.frictionSpeed,
+                                               'frictionModel': contactOptions.frictionModel,
                                                'useSymbolic': useSymbolic, 'solver': _SolverCounters(mbs),
                                                'solveCpuSeconds': solveCpuSeconds})
