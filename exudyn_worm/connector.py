@@ -109,35 +109,50 @@ class _StickSlip:
     The state lives in Python (:attr:`state`, floats) and, for the symbolic (C++) law, in three named Exudyn
     symbolic variables that the recorded law reads. The system's post-Newton user function calls
     :meth:`PostNewton` after every converged step; the decision itself is the contact law's
-    :func:`~exudyn_worm.contact.StickSlipUpdate`. While the worm slides far from zero speed it reads the worm
-    speed only now and then (after a quarter of the time the worm would need to stop at its present
-    deceleration), so a drive that never stops pays about one Python call per step.
+    :func:`~exudyn_worm.contact.StickSlipUpdate`, with the friction and normal force evaluated by a second
+    recording of :func:`~exudyn_worm.contact.MeshContact` in C++ (symbolic connectors). While the worm slides
+    it is looked at again only after a tenth of the time it would need to stop at its present deceleration
+    (at most :attr:`CHECK_INTERVAL`), so a drive that never stops pays about one Python call per step.
     """
 
     #: fraction of the time to stop (|omega1| / |alpha1|) after which a sliding worm is checked again
-    CHECK_FRACTION = 0.25
+    CHECK_FRACTION = 0.1
     #: longest time in s between two checks of a sliding worm
     CHECK_INTERVAL = 0.02
-    #: a sliding worm slower than this many ``frictionSpeed`` is checked after every step
-    CHECK_SPEEDS = 10.
 
     def __init__(self, gear: WormGear, options: ContactOptions, nodes, references, initial: FrictionState,
                  symbolic: bool):
         self.gear, self.options = gear, options
         self.nodes, self.references = list(nodes), list(references)
         self.state = initial
-        self.variables = None
+        self.variables = self._probe = None
         if symbolic:
-            import exudyn
-            esym = exudyn.symbolic
-            self.variables = FrictionState(*(esym.Real(name, float(getattr(initial, name)))
-                                             for name in ('stuck', 'direction', 'anchor')))
+            self._Record(initial)
         self.history = [(-np.inf, initial)]     # (time from which a state holds, state)
         self.switches = 0
         self._indices = None
         self._lastTime = None
         self._nextCheck = -np.inf
         self._lastCheck = None
+
+    def _Record(self, initial: FrictionState) -> None:
+        """Named symbolic state variables, and (friction force, normal force) recorded in C++ for the checks."""
+        import exudyn
+        from .contact import SymbolicOps
+        esym = exudyn.symbolic
+        self.variables = FrictionState(*(esym.Real(name, float(getattr(initial, name)))
+                                         for name in ('stuck', 'direction', 'anchor')))
+        n = len(self.nodes)
+        recording = esym.GetRecording()
+        esym.SetRecording(True)
+        try:
+            x = esym.Vector('x', [0.] * (2 * n))        # coordinates (with references), then speeds
+            axial = {} if n == 2 else {'axialDisplacement': x[2], 'axialSpeed': x[5]}
+            mesh = MeshContact(self.gear, x[0], x[1], x[n], x[n + 1], self.options, SymbolicOps(),
+                               frictionState=self.variables, **axial)
+            self._probe = (x, esym.Vector([mesh.frictionForce, mesh.normalForce]))
+        finally:
+            esym.SetRecording(recording)
 
     def LawState(self, ops):
         """The state as the law reads it: the symbolic variables, or the current floats in plain Python."""
@@ -160,6 +175,15 @@ class _StickSlip:
         return FrictionState(*(np.array([getattr(h[1], name) for h in self.history])[np.maximum(k, 0)]
                                for name in ('stuck', 'direction', 'anchor')))
 
+    def _ScheduleCheck(self, data, t: float, omega1: float) -> None:
+        """Next time a worm sliding at ``omega1`` (same direction) is checked for a reversal."""
+        last, self._lastCheck = self._lastCheck, (t, omega1)
+        rate = abs(omega1 - last[1]) / (t - last[0]) if last is not None and t > last[0] else 0.
+        horizon = self.CHECK_FRACTION * abs(omega1)
+        if last is None or horizon > rate * (t - last[0]):        # may skip: confirm with the acceleration
+            rate = max(rate, abs(float(data.GetODE2Coordinates_tt()[self._indices[0]])))
+        self._nextCheck = t + (min(horizon / rate, self.CHECK_INTERVAL) if rate > 0 else self.CHECK_INTERVAL)
+
     def PostNewton(self, mbs, t: float) -> float:
         """Switch the state after a converged step; return the jump of the friction force in N (0: no switch)."""
         if not self.options.hasStickState:
@@ -176,27 +200,26 @@ class _StickSlip:
             self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
         data = mbs.systemData
         v = data.GetODE2Coordinates_t()
-        i1 = self._indices[0]
-        omega1 = float(v[i1])
-        if sliding and omega1 * state.direction > 0.:           # still sliding the same way: when to look again
-            rate = abs(float(data.GetODE2Coordinates_tt()[i1]))
-            if self._lastCheck is not None and t > self._lastCheck[0]:
-                rate = max(rate, abs(omega1 - self._lastCheck[1]) / (t - self._lastCheck[0]))
-            self._lastCheck = (t, omega1)
-            if abs(omega1) > self.CHECK_SPEEDS * self.options.frictionSpeed and rate > 0:
-                self._nextCheck = t + min(self.CHECK_FRACTION * abs(omega1) / rate, self.CHECK_INTERVAL)
-            else:
-                self._nextCheck = t
+        omega1 = float(v[self._indices[0]])
+        if sliding and omega1 * state.direction >= 0.:          # still sliding the same way
+            self._ScheduleCheck(data, t, omega1)
             return 0.
-        self._lastCheck, self._nextCheck = None, t
+        if sliding:
+            self._lastCheck, self._nextCheck = None, t
         q = data.GetODE2Coordinates()
         x = [float(q[i]) + ref for i, ref in zip(self._indices, self.references)]
         w = [float(v[i]) for i in self._indices]
+        forces = None
+        if self._probe is not None:
+            self._probe[0].SetVector(x + w)
+            forces = self._probe[1].Evaluate()
         axial = (x[2], w[2]) if len(x) == 3 else (None, None)
-        new, jump = StickSlipUpdate(self.gear, self.options, state, x[0], x[1], w[0], w[1], *axial)
+        new, jump = StickSlipUpdate(self.gear, self.options, state, x[0], x[1], w[0], w[1], *axial, forces=forces)
         if new is None:
             return 0.
+        self._lastCheck, self._nextCheck = None, t
         self._Set(new, t)
+        mbs.solverSignalJacobianUpdate = True       # the tangential stiffness changed: modified Newton renews it
         return jump
 
 

@@ -15,9 +15,8 @@ Law (paper eqs. (1)-(2), (4)-(5), (8)-(12)), with ``lever = r1 cos(alphaN) sin(g
 - flank friction, two models (:class:`ContactOptions` ``frictionModel``):
 
   * ``'sticking'`` (default): Coulomb friction with a true stick state (docs/friction-sticking.md). While the
-    worm slides in direction ``m = +-1`` the friction force on the flank is ``Phi = mu sf Fn`` with
-    ``sf = sat(phi1'/frictionSpeed + m)`` (``sf = m`` exactly as long as the worm does not turn back; the ramp
-    only smooths a reversal that the stick/slip update has not seen yet). When the worm turns back it sticks:
+    worm slides in direction ``m = +-1`` the friction force on the flank is ``Phi = mu m Fn`` (``sf = m``, held
+    fixed during Newton's iteration as Exudyn's own dry-friction connector does). When the worm turns back it sticks:
     ``Phi = kStick (s - sAnchor) + dStick ds/dt``, a tangential spring on the sliding coordinate
     ``s = r1 cos(gamma) phi1 + r2 sin(gamma) phi2`` (:func:`SlidingCoordinate`), which holds without creep;
     it breaks away when ``|Phi| > muStatic Fn`` (:func:`StickSlipUpdate`). The state
@@ -92,11 +91,9 @@ class ContactOptions:
     Parameters
     ----------
     frictionSpeed : float
-        Worm speed in rad/s. ``'regularized'``: below it the flank friction is regularized linearly
-        (``sf = phi1'/frictionSpeed``); 0 gives the discontinuous sign law. ``'sticking'``: width of the
-        ramp over which the sliding friction turns when the worm reverses before the stick state is
-        switched (``sf = sat(phi1'/frictionSpeed + m)``); it does not act while the worm keeps its direction.
-        Default 0.05 rad/s (0.1 % of the reel changer's worm speed).
+        Worm speed in rad/s below which the flank friction of the ``'regularized'`` model is regularized
+        linearly (``sf = phi1'/frictionSpeed``); 0 gives the discontinuous sign law. Default 0.05 rad/s
+        (0.1 % of the reel changer's worm speed). Not used by the ``'sticking'`` model.
     dampingCanPull : bool
         If True, use the paper's linear law in which the damping force may make the normal force
         negative (the mesh pulls). Default False: the normal force is clipped at zero.
@@ -377,11 +374,7 @@ def _FrictionForce(gear, options, ops, sigma, fn, phi1, phi2, omega1, omega2, st
     if state is None:                                      # exact Coulomb law, no stick state
         sf = ops.sign(omega1)
         return mu * sf * fn, sf, 0.
-    m = state.direction
-    if options.frictionSpeed > 0:
-        sfSlip = ops.max(-1., ops.min(1., omega1 * (1. / options.frictionSpeed) + m))
-    else:
-        sfSlip = ops.where(omega1 * m < 0., -m, m)
+    sfSlip = state.direction           # held during Newton's iteration; a reversal is a switch to sticking
     slip = mu * sfSlip * fn
     stick = options.StickingStiffness(gear) * (SlidingCoordinate(gear, phi1, phi2) - state.anchor) \
         + options.StickingDamping(gear) * SlidingCoordinate(gear, omega1, omega2)
@@ -397,13 +390,15 @@ def _FrictionForce(gear, options, ops, sigma, fn, phi1, phi2, omega1, omega2, st
 
 
 def StickSlipUpdate(gear: WormGear, options: ContactOptions, state: FrictionState, phi1: float, phi2: float,
-                    omega1: float, omega2: float, axialDisplacement=None, axialSpeed=None):
+                    omega1: float, omega2: float, axialDisplacement=None, axialSpeed=None, forces=None):
     """One stick/slip decision of the sticking model after a converged time step (plain floats).
 
     Rules (as Exudyn's ``ObjectConnectorCoordinateSpringDamperExt`` does for its dry friction):
 
-    - sliding in direction ``m`` and the worm has turned back (``phi1' m < 0``): the flanks stick; the
-      anchor is placed so that the stuck flanks carry the sliding friction ``mu Fn m`` of the moment;
+    - sliding in direction ``m`` and the worm has turned back (``phi1' m < 0``): the flanks stick from the
+      next step on; the anchor is placed so that the stuck flanks carry the sliding friction ``mu Fn m`` of the
+      moment, so the friction force does not jump (repeating the step with the stuck flanks was tried: it
+      makes the reel changer's P7 peaks depend erratically on the step size, docs/friction-sticking.md);
     - stuck and the friction force needed exceeds the static limit ``|Phi| > muStatic Fn``: the flanks break
       away and slide in the direction of ``Phi`` (the direction the load pushes the worm).
 
@@ -419,6 +414,9 @@ def StickSlipUpdate(gear: WormGear, options: ContactOptions, state: FrictionStat
         Worm and wheel angles (rad, including the node reference values) and speeds (rad/s) at the end of the step.
     axialDisplacement, axialSpeed : float, optional
         The worm's axial state, as for :func:`MeshContact`.
+    forces : (float, float), optional
+        ``(frictionForce, normalForce)`` of :func:`MeshContact` at this state, if already evaluated (e.g.
+        by the law recorded in C++); None: evaluated here.
 
     Returns
     -------
@@ -427,16 +425,18 @@ def StickSlipUpdate(gear: WormGear, options: ContactOptions, state: FrictionStat
         this state (the discontinuous error: the step is repeated when it exceeds Exudyn's
         ``timeIntegration.discontinuous.iterationTolerance``).
     """
-    mesh = MeshContact(gear, phi1, phi2, omega1, omega2, options, MATH_OPS, axialDisplacement, axialSpeed, state)
-    fn = abs(mesh.normalForce)
-    if state.stuck > 0.5:
-        if abs(mesh.frictionForce) <= gear.muStatic * fn:
-            return None, 0.
-        m = 1. if mesh.frictionForce > 0 else -1.
-        return FrictionState(0., m, state.anchor), abs(mesh.frictionForce - gear.mu * fn * m)
-    if omega1 * state.direction >= 0.:
+    if state.stuck < 0.5 and omega1 * state.direction >= 0.:
         return None, 0.
+    if forces is None:
+        mesh = MeshContact(gear, phi1, phi2, omega1, omega2, options, MATH_OPS, axialDisplacement, axialSpeed, state)
+        forces = (mesh.frictionForce, mesh.normalForce)
+    frictionForce, fn = forces[0], abs(forces[1])
+    if state.stuck > 0.5:
+        if abs(frictionForce) <= gear.muStatic * fn:
+            return None, 0.
+        m = 1. if frictionForce > 0 else -1.
+        return FrictionState(0., m, state.anchor), abs(frictionForce - gear.mu * fn * m)
     target = gear.mu * fn * state.direction            # the sliding friction before the reversal
     rate = options.StickingDamping(gear) * SlidingCoordinate(gear, omega1, omega2)
     anchor = SlidingCoordinate(gear, phi1, phi2) - (target - rate) / options.StickingStiffness(gear)
-    return FrictionState(1., state.direction, anchor), abs(target - mesh.frictionForce)
+    return FrictionState(1., state.direction, anchor), abs(target - frictionForce)
