@@ -111,12 +111,13 @@ class _StickSlip:
     :meth:`PostNewton` after every converged step; the decision itself is the contact law's
     :func:`~exudyn_worm.contact.StickSlipUpdate`, with the friction and normal force evaluated by a second
     recording of :func:`~exudyn_worm.contact.MeshContact` in C++ (symbolic connectors). While the worm slides
-    it is looked at again only after a tenth of the time it would need to stop at its present deceleration
-    (at most :attr:`CHECK_INTERVAL`), so a drive that never stops pays about one Python call per step.
+    it is looked at again only after a fifth of the time it would need to stop at the largest deceleration seen
+    in the solve (at most :attr:`CHECK_INTERVAL`), so a drive that never stops pays about one Python call per
+    step.
     """
 
     #: fraction of the time to stop (|omega1| / |alpha1|) after which a sliding worm is checked again
-    CHECK_FRACTION = 0.1
+    CHECK_FRACTION = 0.2
     #: longest time in s between two checks of a sliding worm
     CHECK_INTERVAL = 0.02
 
@@ -134,6 +135,7 @@ class _StickSlip:
         self._lastTime = None
         self._nextCheck = -np.inf
         self._lastCheck = None
+        self._maxRate = 0.
 
     def _Record(self, initial: FrictionState) -> None:
         """Named symbolic state variables, and (friction force, normal force) recorded in C++ for the checks."""
@@ -182,6 +184,9 @@ class _StickSlip:
         horizon = self.CHECK_FRACTION * abs(omega1)
         if last is None or horizon > rate * (t - last[0]):        # may skip: confirm with the acceleration
             rate = max(rate, abs(float(data.GetODE2Coordinates_tt()[self._indices[0]])))
+        # the largest deceleration seen in this solve: a worm that once decelerated hard may do so again, and a
+        # missed reversal would let the friction push the worm the wrong way until the next check
+        self._maxRate = rate = max(rate, self._maxRate)
         self._nextCheck = t + (min(horizon / rate, self.CHECK_INTERVAL) if rate > 0 else self.CHECK_INTERVAL)
 
     def PostNewton(self, mbs, t: float) -> float:
@@ -190,7 +195,7 @@ class _StickSlip:
             return 0.
         newStep = t != self._lastTime
         if self._lastTime is not None and t < self._lastTime:     # a new solve from an earlier time
-            self._indices, self._nextCheck, self._lastCheck = None, -np.inf, None
+            self._indices, self._nextCheck, self._lastCheck, self._maxRate = None, -np.inf, None, 0.
         self._lastTime = t
         state = self.state
         sliding = state.stuck < 0.5
