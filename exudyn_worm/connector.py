@@ -6,6 +6,12 @@ Exudyn symbolic user function and evaluated in C++; ``useSymbolic=False`` gives 
 function for debugging (same law, same results, about 3 times slower on the reel changer;
 see benchmarks/README.md).
 
+Flank friction (:class:`~exudyn_worm.contact.ContactOptions` ``frictionModel``): by default the worm sticks
+at zero sliding speed. The stick/slip state of each mesh lives in named symbolic variables read by the
+recorded law and is switched between time steps by the system's post-Newton user function, which
+:func:`CreateWormGear` installs (the decision is :func:`exudyn_worm.contact.StickSlipUpdate`;
+docs/friction-sticking.md). ``frictionModel='regularized'`` gives the stateless law of earlier versions.
+
 Supported nodes: nodes with exactly one ODE2 coordinate that is a rotation angle, i.e. ``Node1D``
 (with ``ObjectRotationalMass1D``) and ``NodeGenericODE2`` with one coordinate. 3D rigid-body nodes
 are not supported: their rotation parameters wrap at +-pi (see docs/exudyn notes).
@@ -120,6 +126,8 @@ class _StickSlip:
     CHECK_FRACTION = 0.2
     #: longest time in s between two checks of a sliding worm
     CHECK_INTERVAL = 0.02
+    #: a check at most this many s before a reversal also keeps the sliding coordinate, to locate the reversal
+    REVERSAL_WINDOW = 0.002
 
     def __init__(self, gear: WormGear, options: ContactOptions, nodes, references, initial: FrictionState,
                  symbolic: bool):
@@ -179,7 +187,7 @@ class _StickSlip:
 
     def _ScheduleCheck(self, data, t: float, omega1: float) -> None:
         """Next time a worm sliding at ``omega1`` (same direction) is checked for a reversal."""
-        last, self._lastCheck = self._lastCheck, (t, omega1)
+        last, self._lastCheck = self._lastCheck, (t, omega1, None)
         rate = abs(omega1 - last[1]) / (t - last[0]) if last is not None and t > last[0] else 0.
         horizon = self.CHECK_FRACTION * abs(omega1)
         if last is None or horizon > rate * (t - last[0]):        # may skip: confirm with the acceleration
@@ -188,6 +196,18 @@ class _StickSlip:
         # missed reversal would let the friction push the worm the wrong way until the next check
         self._maxRate = rate = max(rate, self._maxRate)
         self._nextCheck = t + (min(horizon / rate, self.CHECK_INTERVAL) if rate > 0 else self.CHECK_INTERVAL)
+        if self._nextCheck - t < self.REVERSAL_WINDOW:      # a reversal may come: keep s to locate it
+            q = data.GetODE2Coordinates()
+            x = [float(q[i]) + ref for i, ref in zip(self._indices[:2], self.references[:2])]
+            self._lastCheck = (t, omega1, SlidingCoordinate(self.gear, *x))
+
+    def _ReversalCoordinate(self, t: float, omega1: float, s: float):
+        """Sliding coordinate at which the worm turned back, interpolated linearly in time between the last
+        check (if it was at most :attr:`REVERSAL_WINDOW` ago) and now; None if unknown."""
+        last = self._lastCheck
+        if last is None or last[2] is None or not 0. < t - last[0] <= self.REVERSAL_WINDOW or last[1] == omega1:
+            return None
+        return last[2] + (s - last[2]) * last[1] / (last[1] - omega1)
 
     def PostNewton(self, mbs, t: float) -> float:
         """Switch the state after a converged step; return the jump of the friction force in N (0: no switch)."""
@@ -209,17 +229,19 @@ class _StickSlip:
         if sliding and omega1 * state.direction >= 0.:          # still sliding the same way
             self._ScheduleCheck(data, t, omega1)
             return 0.
-        if sliding:
-            self._lastCheck, self._nextCheck = None, t
         q = data.GetODE2Coordinates()
         x = [float(q[i]) + ref for i, ref in zip(self._indices, self.references)]
         w = [float(v[i]) for i in self._indices]
+        reversal = self._ReversalCoordinate(t, omega1, SlidingCoordinate(self.gear, x[0], x[1])) if sliding else None
+        if sliding:
+            self._lastCheck, self._nextCheck = None, t
         forces = None
         if self._probe is not None:
             self._probe[0].SetVector(x + w)
             forces = self._probe[1].Evaluate()
         axial = (x[2], w[2]) if len(x) == 3 else (None, None)
-        new, jump = StickSlipUpdate(self.gear, self.options, state, x[0], x[1], w[0], w[1], *axial, forces=forces)
+        new, jump = StickSlipUpdate(self.gear, self.options, state, x[0], x[1], w[0], w[1], *axial, forces=forces,
+                                    reversalCoordinate=reversal)
         if new is None:
             return 0.
         self._lastCheck, self._nextCheck = None, t
@@ -450,7 +472,10 @@ def CreateWormGear(mbs, nodeNumbers: Sequence[Any], gear: WormGear, name: str = 
     name : str
         Name of the Exudyn object.
     contactOptions : ContactOptions
-        Friction regularization, tension-free or linear law, fixed S for linearization.
+        Friction model (default: sticking, with a stick/slip state), tension-free or linear law, fixed S for
+        linearization. With the sticking model (and no fixed S) this installs the system's post-Newton user
+        function (``mbs.SetPostNewtonUserFunction``, one per system, shared by all sticking meshes), which
+        switches the stick/slip state between time steps; a post-Newton function set before is replaced.
     useSymbolic : bool
         True (default): C++-evaluated symbolic user function; False: plain Python user function.
     axialNodeNumber : optional

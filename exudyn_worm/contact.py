@@ -390,7 +390,8 @@ def _FrictionForce(gear, options, ops, sigma, fn, phi1, phi2, omega1, omega2, st
 
 
 def StickSlipUpdate(gear: WormGear, options: ContactOptions, state: FrictionState, phi1: float, phi2: float,
-                    omega1: float, omega2: float, axialDisplacement=None, axialSpeed=None, forces=None):
+                    omega1: float, omega2: float, axialDisplacement=None, axialSpeed=None, forces=None,
+                    reversalCoordinate: Optional[float] = None):
     """One stick/slip decision of the sticking model after a converged time step (plain floats).
 
     Rules (as Exudyn's ``ObjectConnectorCoordinateSpringDamperExt`` does for its dry friction):
@@ -417,6 +418,10 @@ def StickSlipUpdate(gear: WormGear, options: ContactOptions, state: FrictionStat
     forces : (float, float), optional
         ``(frictionForce, normalForce)`` of :func:`MeshContact` at this state, if already evaluated (e.g.
         by the law recorded in C++); None: evaluated here.
+    reversalCoordinate : float, optional
+        Sliding coordinate in m (:func:`SlidingCoordinate`) at which the worm turned back within the step,
+        if known: the stuck flanks then carry ``mu Fn m`` there (and less where the worm has come back
+        since); None: at the present state.
 
     Returns
     -------
@@ -437,6 +442,9 @@ def StickSlipUpdate(gear: WormGear, options: ContactOptions, state: FrictionStat
         m = 1. if frictionForce > 0 else -1.
         return FrictionState(0., m, state.anchor), abs(frictionForce - gear.mu * fn * m)
     target = gear.mu * fn * state.direction            # the sliding friction before the reversal
-    rate = options.StickingDamping(gear) * SlidingCoordinate(gear, omega1, omega2)
-    anchor = SlidingCoordinate(gear, phi1, phi2) - (target - rate) / options.StickingStiffness(gear)
+    if reversalCoordinate is None:
+        rate = options.StickingDamping(gear) * SlidingCoordinate(gear, omega1, omega2)
+        anchor = SlidingCoordinate(gear, phi1, phi2) - (target - rate) / options.StickingStiffness(gear)
+    else:
+        anchor = reversalCoordinate - target / options.StickingStiffness(gear)
     return FrictionState(1., state.direction, anchor), abs(target - frictionForce)

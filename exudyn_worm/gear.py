@@ -152,7 +152,7 @@ class WormGear:
     def LeverArms(self, S, ops=math):
         """Torque per unit normal force on worm and wheel, (c2, c4) of eqs. (10), (12), in m.
 
-        ``S`` may be +-1 or, for the regularized friction of the connector, any value in [-1, 1]
+        ``S`` may be +-1 or, for the connector's regularized friction model, any value in [-1, 1]
         (0 = frictionless); ``ops`` supplies ``sin``/``cos`` (``math``, ``numpy`` or Exudyn symbolic).
         """
         k = math.cos(self.alphaN) / math.cos(self.rho)
