@@ -179,6 +179,18 @@ def SlidingCoordinate(gear: WormGear, phi1, phi2):
     Its rate is the sliding speed along the thread, ``r1 phi1'/cos(gamma)`` when the mesh rolls without normal
     deflection (``r2 phi2' = r1 tan(gamma) phi1'``); the friction force acts on worm and wheel through its
     gradient ``(r1 cos(gamma), r2 sin(gamma))``. The same function converts speeds (pass ``phi1', phi2'``).
+
+    Parameters
+    ----------
+    gear : WormGear
+        The mesh (``r1``, ``r2``, ``gamma``).
+    phi1, phi2 : float, ndarray or symbolic
+        Worm and wheel angles in rad (or speeds in rad/s).
+
+    Returns
+    -------
+    float, ndarray or symbolic
+        ``s`` in m (or its rate in m/s).
     """
     return (gear.r1 * math.cos(gear.gamma)) * phi1 + (gear.r2 * math.sin(gear.gamma)) * phi2
 
