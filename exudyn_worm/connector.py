@@ -145,6 +145,7 @@ class _StickSlip:
         self._lastCheck = None
         self._maxRate = 0.
         self._data = None
+        self.clock = [-np.inf, -np.inf]         # the system's post-Newton clock (set by _AddStickSlip)
 
     def _Record(self, initial: FrictionState) -> None:
         """Named symbolic state variables, and (friction force, normal force) recorded in C++ for the checks."""
@@ -266,6 +267,7 @@ def _AddStickSlip(mbs, stickSlip: _StickSlip) -> None:
         items = mbs.variables[_STICK_SLIP_KEY] = []
         noSwitch = [0., -1.]
         clock = [-np.inf, -np.inf]          # time of the last call, earliest next check of all meshes
+        mbs.variables[_STICK_SLIP_KEY + '.clock'] = clock
 
         def PostNewtonUserFunction(mbs, t):
             """Exudyn's discontinuous iteration: [friction force jump in N, no step size recommendation]."""
@@ -280,6 +282,7 @@ def _AddStickSlip(mbs, stickSlip: _StickSlip) -> None:
             return [error, -1.] if error else noSwitch
 
         mbs.SetPostNewtonUserFunction(PostNewtonUserFunction)
+    stickSlip.clock = mbs.variables[_STICK_SLIP_KEY + '.clock']
     items.append(stickSlip)
 
 
@@ -341,6 +344,7 @@ class WormGearConnector:
                                               self._References(), self.useSymbolic)
         if self.stickSlip is not None:
             self.stickSlip.options = options
+            self.stickSlip.clock[1] = -np.inf      # look at every mesh after the next step
         law = _WormGearLaw(self.gear, options, self.referenceAngles, self.axialNodeNumber is not None,
                            self.axialReference, self.stickSlip)
         self.userFunction = SetGenericForceLaw(mbs, self.objectNumber, len(self.coordinateNodes), law,

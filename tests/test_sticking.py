@@ -152,3 +152,30 @@ def test_contact_options_friction_model_errors():
         ContactOptions(stickingStiffness=-1.)
     assert ContactOptions().frictionModel == 'sticking' and ContactOptions().hasStickState
     assert not ContactOptions(fixedS=1).hasStickState
+
+
+def test_linearization_options_and_back_keep_the_switching():
+    """Holding S for a linearization (fixed S, no stick state) and restoring the options: the mesh is checked
+    again after the next step, so a worm started at lowering speed still stops and holds."""
+    drive = DriveFromParameters(P1)
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    worm = CreateRotor(mbs, drive.J1, initialSpeed=-49.5)
+    wheel = CreateRotor(mbs, drive.J2, initialSpeed=-49.5 / drive.gear.ratio)
+    mesh = CreateWormGear(mbs, [worm, wheel], gear=drive.gear)
+    CreateRotorTorque(mbs, wheel, GravityLeverTorque(mass=P1['loadMass'], leverArm=P1['leverArm']))
+    mesh.AddSensors(mbs)
+    mesh.SetContactOptions(mbs, ContactOptions(fixedS=-1))
+    mbs.Assemble()
+    ss, solverType = SolverSettings(0.01, STEP)
+    mbs.SolveDynamic(ss, solverType=solverType)             # sets the clock far ahead: no stick state
+    mesh.SetContactOptions(mbs, ContactOptions())
+    mbs.Assemble()
+    ss, solverType = SolverSettings(2., STEP)
+    printing, exu.config.printToConsole = exu.config.printToConsole, False
+    try:
+        mbs.SolveDynamic(ss, solverType=solverType)
+    finally:
+        exu.config.printToConsole = printing
+    assert mesh.stickSlip.state.stuck == 1.
+    assert abs(mesh.StoredStates(mbs)['omega1'][-1]) < 1e-3        # stopped (the mesh still rings a little)
