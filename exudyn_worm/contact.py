@@ -352,7 +352,7 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
     if gear.backlash > 0:                        # inside the backlash there is no force at all
         fn = ops.where(ops.abs(d) > 0.5 * gear.backlash / lever, fn, 0.)
     normalForce = sigma * fn
-    if options.frictionModel == 'regularized':
+    if options.frictionModel == 'regularized' or options.fixedS is not None:   # eqs. (10), (12) as printed
         if options.frictionSpeed > 0:
             sf = ops.max(-1., ops.min(1., omega1 * (1. / options.frictionSpeed)))
         else:
@@ -366,7 +366,7 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
     else:
         frictionForce, sf, stuck = _FrictionForce(gear, options, ops, sigma, fn, phi1, phi2, omega1, omega2,
                                                   frictionState)
-        S = sigma * sf if options.fixedS is None else float(options.fixedS)
+        S = sigma * sf
         # eqs. (10), (12) with the friction force written out (module text): levers of normal and friction force
         wormTorque = -((gear.r1 * math.cos(gear.alphaN) * math.sin(gear.gamma)) * normalForce
                        + (gear.r1 * math.cos(gear.gamma)) * frictionForce)
@@ -380,9 +380,6 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
 def _FrictionForce(gear, options, ops, sigma, fn, phi1, phi2, omega1, omega2, state):
     """Friction force (N), sf and the stuck flag of the sticking model (see the module text)."""
     mu = gear.mu
-    if options.fixedS is not None:
-        sf = float(options.fixedS) * sigma                 # S = sigma sf held: friction mu S sigma Fn
-        return mu * sf * fn, sf, 0.
     if state is None:                                      # exact Coulomb law, no stick state
         sf = ops.sign(omega1)
         return mu * sf * fn, sf, 0.
