@@ -31,6 +31,10 @@ from exudyn_worm.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod
 from exudyn_worm.results import SimulationResult
 from scipy_reference import ReelChangerOde, ResultFromStates
 
+#: the reference models have no stick state: they use the regularized friction law (docs/friction-sticking.md);
+#: where the worm never stops (P1) it gives the same results as the package's default sticking law
+REGULARIZED = ContactOptions(frictionModel='regularized')
+
 __all__ = ['C_OPS', 'CExpr', 'ReelChangerC', 'CompiledReelChanger', 'SolveReelChangerCompiled']
 
 
@@ -260,7 +264,7 @@ void accelerations(const double *states, long n, double dtOut, double *alpha)
 """
 
 
-def ReelChangerC(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions()) -> str:
+def ReelChangerC(parameters: Mapping[str, float], contactOptions: ContactOptions = REGULARIZED) -> str:
     """C source of the reel changer (right-hand side generated from the package's laws + integrator).
 
     Parameters
@@ -291,7 +295,7 @@ class CompiledReelChanger:
         Options of the contact law.
     """
 
-    def __init__(self, parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions()):
+    def __init__(self, parameters: Mapping[str, float], contactOptions: ContactOptions = REGULARIZED):
         self.parameters, self.contactOptions = dict(parameters), contactOptions
         source = ReelChangerC(parameters, contactOptions)
         folder = tempfile.mkdtemp(prefix='exudyn_worm_bench_')
@@ -399,7 +403,7 @@ CompiledReelChanger.SolveGeneralizedAlpha = _SolveGeneralizedAlpha
 
 def SolveReelChangerCompiled(parameters: Mapping[str, float], endTime: Optional[float] = None, rtol: float = 1e-6,
                              atol: float = 1e-8, outputStep: float = DEFAULT_STEP_SIZE,
-                             contactOptions: ContactOptions = ContactOptions()) -> SimulationResult:
+                             contactOptions: ContactOptions = REGULARIZED) -> SimulationResult:
     """Build the compiled model and solve it once (see :class:`CompiledReelChanger`).
 
     Parameters

@@ -32,10 +32,14 @@ from exudyn_worm.profiles import ConstantSpeed, GravityLeverTorque
 from exudyn_worm.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SteadyInitialState
 from exudyn_worm.results import SimulationResult
 
+#: the reference models have no stick state: they use the regularized friction law (docs/friction-sticking.md);
+#: where the worm never stops (P1) it gives the same results as the package's default sticking law
+REGULARIZED = ContactOptions(frictionModel='regularized')
+
 __all__ = ['ReelChangerOde', 'SolveReelChangerScipy', 'ResultFromStates']
 
 
-def ReelChangerOde(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions()
+def ReelChangerOde(parameters: Mapping[str, float], contactOptions: ContactOptions = REGULARIZED
                    ) -> Tuple[Callable, np.ndarray, ElasticDrive, GravityLeverTorque, ConstantSpeed]:
     """Right-hand side ``f(t, y)`` of the reel changer, its initial state and the model pieces.
 
@@ -77,7 +81,7 @@ def ReelChangerOde(parameters: Mapping[str, float], contactOptions: ContactOptio
 def SolveReelChangerScipy(parameters: Mapping[str, float], endTime: Optional[float] = None,
                           method: str = 'LSODA', rtol: float = 1e-6, atol: float = 1e-9,
                           outputStep: float = DEFAULT_STEP_SIZE, maxStep: float = math.inf,
-                          contactOptions: ContactOptions = ContactOptions()) -> SimulationResult:
+                          contactOptions: ContactOptions = REGULARIZED) -> SimulationResult:
     """Integrate the reel changer with :func:`scipy.integrate.solve_ivp`.
 
     Parameters

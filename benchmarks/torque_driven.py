@@ -87,7 +87,7 @@ def SimulateTorqueDriven(parameters: Mapping[str, float], stepSize: float, endTi
         exu.config.printToConsole = printing
     series = connector.StoredStates(mbs)
     time = series.pop('time')
-    mesh = connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'])
+    mesh = connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'], time=time)
     series.update(deltaPhi=mesh.deltaPhi, deltaS=mesh.deltaS, normalForce=mesh.normalForce, S=mesh.S, sf=mesh.sf,
                   wormTorque=mesh.wormTorque, wheelTorque=mesh.wheelTorque)
     it = mbs.sys['dynamicSolver'].it

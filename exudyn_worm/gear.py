@@ -214,7 +214,7 @@ class WormGear:
     def LeverArms(self, S, ops=math, mu=None):
         """Torque per unit normal force on worm and wheel, (c2, c4) of eqs. (10), (12), in m.
 
-        ``S`` may be +-1 or, for the regularized friction of the connector, any value in [-1, 1]
+        ``S`` may be +-1 or, for the connector's regularized friction model, any value in [-1, 1]
         (0 = frictionless); ``ops`` supplies ``sin``/``cos`` (and ``atan`` with ``mu``) (``math``, ``numpy`` or
         Exudyn symbolic). ``mu`` (float, array or symbolic): evaluate at this friction coefficient, with
         rho = atan(mu / cos(alphaN)) (eq. (13)); None (default): at the gear's ``mu`` (its :attr:`rho`).

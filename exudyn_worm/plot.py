@@ -181,7 +181,7 @@ def _Decorate(ax, interval):
 #: label of the contact state as drawn: the paper's S = +-1 (eq. (8)) is the sign of the regularized S
 S_SIGN_LABEL = _S_LABEL = r'contact state sign$(S)$'
 #: the note under every figure that draws sign(S) (for your own figures of ``result.series['S']`` too)
-S_SIGN_NOTE = _S_NOTE = (r"$S = \sigma s_f$ is regularized (|S| < 1 while $|\dot\varphi_1|$ < frictionSpeed); "
+S_SIGN_NOTE = _S_NOTE = (r"$|S| = |\sigma s_f| < 1$ while the flanks stick (or, regularized, $|\dot\varphi_1|$ < frictionSpeed); "
                          r"drawn: its sign, the paper's $S = \pm 1$")
 
 
@@ -406,8 +406,9 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
                    subtitle: Optional[str] = None):
     """Plot the time functions of one simulation (the paper's Figures 8-11, 13-16, 18).
 
-    The contact parameter is drawn as the paper's S = +-1, the sign of the regularized S of the model
-    (``|S| < 1`` only while the worm speed is within the friction regularization speed of zero). Over a
+    The contact parameter is drawn as the paper's S = +-1, the sign of the model's S
+    (``|S| < 1`` only while the flanks stick, or with the regularized friction while the worm speed is within
+    frictionSpeed of zero). Over a
     whole run (``'driveTorque'``) it gets its own panel below the torque, so it never covers the torque;
     the normal force shows each flank in its own panel with its running mean over :data:`MEAN_WINDOW`.
 

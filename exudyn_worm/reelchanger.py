@@ -575,7 +575,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     time = time[keep]
     series = {k: v[keep] for k, v in series.items()}
     mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'],
-                                    series.get('xA'), series.get('vA'))
+                                    series.get('xA'), series.get('vA'), time)
     drive = model.drive
     motorSide = '4' if model.chain else '0'            # the drive shaft (spring-Damper1) ends at inertia4 or the motor
     series.update(deltaPhi=mesh.deltaPhi, deltaS=mesh.deltaS, normalForce=mesh.normalForce, S=mesh.S, sf=mesh.sf,
@@ -591,5 +591,6 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
                                                'maxLoadTorque': model.load.maximum if model.load is not None else 0.,
                                                'loadType': parameters.get('loadType', 'lever'),
                                                'frictionSpeed': contactOptions.frictionSpeed,
+                                               'frictionModel': contactOptions.frictionModel,
                                                'useSymbolic': useSymbolic, 'solver': _SolverCounters(mbs),
                                                'solveCpuSeconds': solveCpuSeconds})

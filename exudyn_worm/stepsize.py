@@ -24,7 +24,8 @@ For the paper's P1 (f_max = 50.4 Hz) that is 7.8e-4 s, 1.6e-3 s and 2.5e-3 s; fo
 5.1e-4 s, 1.0e-3 s and 1.6e-3 s. Measured on P1 (generalized-alpha, spectral radius 0.9): the
 chatter frequency is 40.3 Hz at h = 1e-3 s, 39.7 Hz at 2e-3 s, 37.5 Hz at 4e-3 s, 28.8 Hz at 0.01 s.
 
-The friction regularization (``sf = phi1'/frictionSpeed`` for ``|phi1'| < frictionSpeed``) acts on the
+The friction regularization of ``ContactOptions(frictionModel='regularized')`` (``sf = phi1'/frictionSpeed``
+for ``|phi1'| < frictionSpeed``; the default sticking model has none, docs/friction-sticking.md) acts on the
 worm like a viscous damper ``d = |dc2/dS| Fn / frictionSpeed``. Its time constant ``J1/d`` is about
 1e-5 s for P7 (it is returned by :func:`FrictionTimeConstant`), far below any affordable step; the
 implicit solver does not need to resolve it (the mode is damped, not oscillating) as long as the

@@ -46,12 +46,27 @@ def test_mesh_cannot_pull_unless_asked():
 
 @pytest.mark.physics
 def test_friction_state_and_contact_parameter():
-    opts = ContactOptions(frictionSpeed=0.05)
+    opts = ContactOptions(frictionSpeed=0.05, frictionModel='regularized')
     assert _AtDeltaS(GEAR, 1e-5, omega1=1.).sf == 1. and _AtDeltaS(GEAR, 1e-5, omega1=1.).S == 1.
     assert _AtDeltaS(GEAR, -1e-5, omega1=1.).S == -1.           # wheel drives: lowering, eq. (8)
     assert _AtDeltaS(GEAR, 1e-5, omega1=-1.).S == -1.
     assert _AtDeltaS(GEAR, 1e-5, omega1=0.025, options=opts).sf == pytest.approx(0.5)
-    assert _AtDeltaS(GEAR, 1e-5, omega1=0.025, options=ContactOptions(frictionSpeed=0.)).sf == 1.
+    assert _AtDeltaS(GEAR, 1e-5, omega1=0.025, options=ContactOptions(frictionSpeed=0.,
+                                                                      frictionModel='regularized')).sf == 1.
+    # sticking model without a state (evaluating the law): the exact Coulomb sign, whatever frictionSpeed
+    assert _AtDeltaS(GEAR, 1e-5, omega1=0.025).sf == 1. and _AtDeltaS(GEAR, 1e-5, omega1=-0.025).sf == -1.
+
+
+@pytest.mark.parametrize('S', [1, -1])
+def test_friction_force_form_equals_equations_10_12(S):
+    """The sticking model's torques (normal and friction force through their levers) are eqs. (10), (12) at S = +-1."""
+    omega1 = float(S)
+    a = _AtDeltaS(GEAR, 1e-5, omega1=omega1)
+    b = _AtDeltaS(GEAR, 1e-5, omega1=omega1, options=ContactOptions(frictionModel='regularized'))
+    assert a.wormTorque == pytest.approx(b.wormTorque, rel=1e-12)
+    assert a.wheelTorque == pytest.approx(b.wheelTorque, rel=1e-12)
+    assert a.frictionForce == pytest.approx(b.frictionForce, rel=1e-9)
+    assert a.frictionForce == pytest.approx(GEAR.mu * S * abs(a.normalForce), rel=1e-12)
 
 
 @pytest.mark.physics

@@ -129,9 +129,12 @@ def test_run_writes_only_when_asked(tmp_path, monkeypatch):
 #: wheel-circumference mesh reading. A new failure, or a fix, fails the test: update the pin with the report.
 SIMULATION_FAILURES = {
     *(f'{row}{reading}' for row in ('P1_force_factor', 'P1_backlash_0.25', 'P7_max_acceleration', 'P7_to_P1_ratio',
-                                    'P7_S_negative_lifting', 'P7_backlash_independence')
+                                    'P7_backlash_independence')
       for reading in ('', '@paperMesh')),
     'P1_backlash_0.5@paperMesh',
+    # with the sticking friction (issue 15) P7's share of S < 0 while lifting is within the paper's 40 +- 5 %
+    # under the normal reading (it was outside with the regularized law); the paper-mesh reading stays outside
+    'P7_S_negative_lifting@paperMesh',
 }
 
 

@@ -44,12 +44,13 @@ def PaperMeshConvention(parameters):
 
 @lru_cache(maxsize=None)
 def Simulate(preset: str, overrides: Tuple = (), stepSize: float = DEFAULT_STEP_SIZE,
-             frictionSpeed: float = _FRICTION_SPEED, paperMesh: bool = False):
+             frictionSpeed: float = _FRICTION_SPEED, paperMesh: bool = False, frictionModel: str = 'sticking'):
     """Cached simulation of one rotation of a reel preset with ``overrides`` ((key, value), ...)."""
     p = ApplyOverrides(GetPreset(preset), dict(overrides))
     if paperMesh:
         p = PaperMeshConvention(p)
-    return SimulateReelChanger(p, stepSize=stepSize, contactOptions=ContactOptions(frictionSpeed=frictionSpeed))
+    return SimulateReelChanger(p, stepSize=stepSize, contactOptions=ContactOptions(frictionSpeed=frictionSpeed,
+                                                                                   frictionModel=frictionModel))
 
 
 def _Metrics(preset, overrides=(), **kw):
@@ -115,9 +116,10 @@ def _PeakNormalForces(preset, m):
 
 
 def _RobustnessStudy(preset, m) -> List[Tuple[str, dict]]:
-    return [('default (step 5e-4 s, frictionSpeed 0.05 rad/s)', _Lowering(preset, paperMesh=m)),
+    return [('default (step 5e-4 s, sticking friction)', _Lowering(preset, paperMesh=m)),
             ('step halved', _Lowering(preset, stepSize=DEFAULT_STEP_SIZE / 2, paperMesh=m)),
-            ('frictionSpeed / 10', _Lowering(preset, frictionSpeed=_FRICTION_SPEED / 10, paperMesh=m))]
+            ('regularized friction, frictionSpeed / 10',
+             _Lowering(preset, frictionSpeed=_FRICTION_SPEED / 10, paperMesh=m, frictionModel='regularized'))]
 
 
 def _Robustness(preset):
