@@ -240,7 +240,7 @@ def test_declared_key_reaches_the_docs(declared):
 
 def test_registry_restored_after_the_declarations():
     assert 'testLaw' not in PARAMETER_UNITS and 'testFrictionLaw' not in DRIVE_FILE_TABLES['gear']
-    assert len(PARAMETERS.Keys()) == 25 and PARAMETERS.Get('testLaw') is None
+    assert len(PARAMETERS.Keys()) == 29 and PARAMETERS.Get('testLaw') is None
 
 
 def test_a_study_sweeps_numbers_only(declared):
