@@ -155,8 +155,9 @@ def _RejectAlternatives(values: Mapping[str, float], where: str, locations: Opti
         raise ValueError(f"{where}: both '{key}' and {others} are given, {what}")
 
 
-def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None) -> Dict:
-    """Check the content of a config (drive) file and parse its values (see :mod:`exudyn_worm.drivefile`)."""
+def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None, folder: Optional[str] = None) -> Dict:
+    """Check the content of a config (drive) file and parse its values (see :mod:`exudyn_worm.drivefile`); a
+    relative file path of a table (``frictionTable``) is taken relative to ``folder``, the file's folder."""
     preset, raw = FlattenDriveFile(data, where, text)
     if preset is not None and preset not in PRESETS:
         raise ValueError(f"{where}: unknown preset '{preset}'; expected one of: {', '.join(PRESETS)}")
@@ -168,6 +169,9 @@ def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None) -> Di
             raise ValueError(f"{location}: must be a number (SI) or a string with units, "
                              f"got {type(value).__name__} {value!r}")
         parameters[key] = _ParseQuantity(key, value, location)
+        if PARAMETERS[key].kind == 'table' and isinstance(parameters[key], str) and folder is not None \
+                and not os.path.isabs(os.path.expanduser(parameters[key])):
+            parameters[key] = os.path.join(folder, parameters[key])   # a table file beside the drive file
         CheckParameters({key: parameters[key]}, location)        # the range, named by the file's line and key
         locations[key] = location
     _RejectAlternatives(parameters, where, locations)
@@ -220,7 +224,7 @@ def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
         raise ValueError(f"{where}: not valid TOML: {err}") from None
     except UnicodeDecodeError as err:
         raise ValueError(f"{where}: not valid TOML (not UTF-8 text: {err.reason})") from None
-    return _ConfigFromData(data, where, text)
+    return _ConfigFromData(data, where, text, os.path.dirname(os.path.abspath(path)))
 
 
 def ResolveParameters(preset: Optional[str] = None,

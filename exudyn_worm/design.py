@@ -45,12 +45,12 @@ from .presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, Drive
                       LumpedLoadSide)
 from .charts import ChartCoordinates, ComputeStabilityChart
 from .stability import (CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzStable,
-                        PolynomialCoefficients)
+                        OperatingPointFromParameters, PolynomialCoefficients)
 
 __all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'LocalCharts', 'ChartGrid',
            'AxisScan', 'ScanParameter', 'Recommendation', 'PairRecommendation', 'DesignCheckResult',
            'DesignCheck', 'ChatterWhileLowering', 'ConfirmBySimulation',
-           'StableRange', 'NearestStableValue', 'StabilizingChanges']
+           'StableRange', 'NearestStableValue', 'StabilizingChanges', 'ScanMotorSpeed', 'SPEED_KEY']
 
 #: default margin in decades of a parameter factor (10^0.1 = 1.26: a 26 % error keeps the drive stable)
 DEFAULT_MARGIN = 0.1
@@ -104,11 +104,19 @@ def _Scaled(parameters: Mapping[str, float], changes: Mapping[str, float]) -> Di
     return ApplyOverrides(parameters, {k: parameters[k] * 10. ** t for k, t in changes.items()})
 
 
+def _OperatingPoint(parameters, drive):
+    """The operating point of steady lowering for a speed-dependent friction law (None for constant mu, where the
+    linear model does not depend on it, or without load and speed): the scans use mu(v0) and its slope there."""
+    return OperatingPointFromParameters(parameters, drive.gear) if drive.gear.speedDependentFriction else None
+
+
 def _StableAt(parameters, changes) -> bool:
     # Routh-Hurwitz on (16) is the same verdict as AnalyzeStability(...).stable without the polynomial roots
     # (10x faster; the stability command's hint evaluates about 100 drives at start-up)
-    drive = DriveFromParameters(_Scaled(parameters, changes))
-    return all(HurwitzStable(CharacteristicCoefficients(drive, S)) for S in CONTACT_STATES)
+    scaled = _Scaled(parameters, changes)
+    drive = DriveFromParameters(scaled)
+    op = _OperatingPoint(scaled, drive)
+    return all(HurwitzStable(CharacteristicCoefficients(drive, S, op)) for S in CONTACT_STATES)
 
 
 class _ScaledDrives:
@@ -121,6 +129,7 @@ class _ScaledDrives:
 
     def __init__(self, parameters: Mapping[str, float], keys: Sequence[str]):
         self.drive = DriveFromParameters(parameters)
+        self.operatingPoint = _OperatingPoint(parameters, self.drive)   # J1, J2, kT, dT, dV do not move it
         self.q0 = self._Quantities(self.drive)
         self.exponents = {}
         probe = 0.05       # decades: a small factor, so a drive at the edge of the allowed ranges is not refused
@@ -144,7 +153,7 @@ class _ScaledDrives:
              for i in range(len(_QUANTITIES))]
         stable = np.ones(shape, dtype=bool)
         for S in CONTACT_STATES:
-            stable &= HurwitzStable(PolynomialCoefficients(self.drive.gear, S, *q))
+            stable &= HurwitzStable(PolynomialCoefficients(self.drive.gear, S, *q, operatingPoint=self.operatingPoint))
         return stable
 
 
@@ -555,8 +564,51 @@ class DesignCheckResult:
 
 
 def _Changed(parameters, changes):
-    drive = DriveFromParameters(_Scaled(parameters, changes))
-    return _MaxRealPart(AnalyzeStability(drive)), ChartCoordinates(drive)
+    scaled = _Scaled(parameters, changes)
+    drive = DriveFromParameters(scaled)
+    return _MaxRealPart(AnalyzeStability(drive, _OperatingPoint(scaled, drive))), ChartCoordinates(drive)
+
+
+#: the motor speed, a design parameter when the friction depends on speed (:func:`ScanMotorSpeed`)
+SPEED_KEY = 'motorSpeed'
+_SPEED_STEP = 0.01          # grid step of the speed scan in decades (each point is a whole drive and operating point)
+
+
+def ScanMotorSpeed(parameters: Mapping[str, float], limit: float, step: float = _SPEED_STEP) -> AxisScan:
+    """Scan the stability of the drive with ``motorSpeed`` multiplied by 10**t for ``|t| <= limit``.
+
+    With a speed-dependent friction law the operating point (mu(v0), its slope, the normal force) moves with the
+    speed, so every point is a drive of its own (:func:`ScanParameter` scales J1, J2, kT, dT, dV only).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with ``motorSpeed``, ``loadMass`` and ``leverArm``.
+    limit : float
+        Scanned range in decades, > 0.
+    step : float, optional
+        Grid step in decades; boundaries are refined by bisection.
+
+    Returns
+    -------
+    AxisScan
+    """
+    w = 'ScanMotorSpeed'
+    CheckRange(w, SPEED_KEY, parameters.get(SPEED_KEY, 0.), low=0., lowOpen=True, unit='rad/s')
+    CheckRange(w, 'limit', limit, low=0., lowOpen=True)
+    t = _SymmetricGrid(limit, step)
+    stable = [_StableAt(parameters, {SPEED_KEY: ti}) for ti in t]
+    intervals, start = [], None
+    for i, s in enumerate(stable):
+        if s and start is None:
+            start = -limit if i == 0 else _Refine(parameters, SPEED_KEY, t[i - 1], t[i])
+        if not s and start is not None:
+            intervals.append((start, _Refine(parameters, SPEED_KEY, t[i], t[i - 1])))
+            start = None
+    if start is not None:
+        intervals.append((start, limit))
+    return AxisScan(SPEED_KEY, float(parameters[SPEED_KEY]), tuple((float(a), float(b)) for a, b in intervals),
+                    float(limit))
 
 
 def _BestPair(parameters, keys, margin, span) -> Optional[PairRecommendation]:
@@ -637,7 +689,7 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
         raise ValueError(f"{w}: the design check uses the two-mass model of Figure 2 (eqs. (15)-(19)); this "
                          f"parameter set has {' and '.join(extra)}, which that model does not include")
     drive = DriveFromParameters(parameters)
-    analysis = AnalyzeStability(drive)
+    analysis = AnalyzeStability(drive, _OperatingPoint(parameters, drive))
     keys = []
     for key in DesignParameters(parameters):
         if parameters[key] > 0:
@@ -646,6 +698,9 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
             notes.append(f"{key} = 0 cannot be changed by a factor; give it a value > 0 to include it")
     limit = math.log10(span) + margin
     scans = {key: ScanParameter(parameters, key, limit) for key in keys}
+    if _OperatingPoint(parameters, drive) is not None:       # the friction depends on speed: the speed is a remedy
+        scans[SPEED_KEY] = ScanMotorSpeed(parameters, limit)
+        keys.append(SPEED_KEY)
     short = [k for k in keys if not (analysis.stable and scans[k].Move(+1, margin, span) == 0.)]
     recommendations = []
     for key in short:
@@ -655,8 +710,9 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
                 maxRe, point = _Changed(parameters, {key: t})
                 recommendations.append(Recommendation(key, 10. ** t, parameters[key] * 10. ** t, maxRe, point))
     bestPair = None
-    if short and not recommendations and len(keys) >= 2:
-        bestPair = _BestPair(parameters, keys, margin, span)
+    pairKeys = [k for k in keys if k != SPEED_KEY]          # the pair search scales J1, J2, kT, dT, dV only
+    if short and not recommendations and len(pairKeys) >= 2:
+        bestPair = _BestPair(parameters, pairKeys, margin, span)
     distance, boundaryPoint = _ChartDistance(parameters)
     return DesignCheckResult(parameters, margin, span, analysis, ChartCoordinates(drive), distance, boundaryPoint,
                              scans, short, recommendations, bestPair, notes)

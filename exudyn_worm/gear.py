@@ -154,7 +154,8 @@ class WormGear:
         return self.mu if self.friction is None else float(self.friction.muStatic)
 
     def SlidingSpeed(self, omega1, ops=math):
-        """Sliding speed of the flanks v = r1 |omega1| / cos(gamma) in m/s for the worm speed ``omega1`` (rad/s).
+        """Sliding speed of the flanks ``v = r1 abs(omega1) / cos(gamma)`` in m/s for the worm speed ``omega1``
+        (rad/s).
 
         Parameters
         ----------

@@ -491,7 +491,9 @@ def DriveStability(parameters: Mapping[str, float], useSymbolic: bool = True
     """Linear stability of the drive a flat parameter set describes, by the one rule every command follows.
 
     The two-mass drive of Figure 2 gets the analytical model (eqs. (15)-(19),
-    :func:`~exudyn_worm.stability.AnalyzeStability`); a drive with components beyond it
+    :func:`~exudyn_worm.stability.AnalyzeStability`, at the operating point of steady lowering
+    :func:`~exudyn_worm.stability.OperatingPointFromParameters`, which matters for a speed-dependent friction law);
+    a drive with components beyond it
     (:func:`~exudyn_worm.presets.ExtraComponents`: a drive-side or load-side chain or a worm axial bearing) gets the
     linearized whole drive (:func:`LinearStabilityFromParameters`), which that model would silently leave out.
     ``exudyn-worm stability``, the verdict columns of ``exudyn-worm sweep``, the analytical map of its plot and
@@ -516,10 +518,12 @@ def DriveStability(parameters: Mapping[str, float], useSymbolic: bool = True
         For a missing or invalid parameter.
     """
     from .presets import DriveFromParameters, ExtraComponents
-    from .stability import AnalyzeStability
+    from .stability import AnalyzeStability, OperatingPointFromParameters
     if ExtraComponents(parameters):
         return LinearStabilityFromParameters(parameters, useSymbolic)
-    return AnalyzeStability(DriveFromParameters(parameters))
+    drive = DriveFromParameters(parameters)
+    # at the operating point of steady lowering (a speed-dependent friction law: mu(v0) and its slope there)
+    return AnalyzeStability(drive, OperatingPointFromParameters(parameters, drive.gear))
 
 
 def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> np.ndarray:

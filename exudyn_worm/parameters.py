@@ -837,6 +837,18 @@ PARAMETERS = ParameterRegistry([
               table='gear', fileKey='meshDampingMeasure'),
     Parameter('backlash', 'm', 'nonNegative', 'total normal backlash delta', table='gear', fileKey='backlash',
               displayUnit='mm', displayFactor=1e3),
+    # the friction law mu(v) over the sliding speed v = r1 |phi1'| / cos(gamma) (exudyn_worm.friction, docs/friction.md)
+    Parameter('frictionLaw', kind='choice', choices=('constant', 'stribeck', 'agma', 'table'),
+              description="friction law mu(v) of the flanks over the sliding speed (default constant: 'mu'; "
+              "stribeck: 'mu' kinetic, 'muStatic', 'stribeckVelocity'; agma: ANSI/AGMA 6034-B92; table: "
+              "'frictionTable')", table='gear', fileKey='frictionLaw'),
+    Parameter('muStatic', '', 'nonNegative', "friction coefficient at rest of the Stribeck law (>= the kinetic 'mu')",
+              table='gear', fileKey='staticFrictionCoefficient'),
+    Parameter('stribeckVelocity', 'm/s', 'positive', 'sliding speed of the Stribeck law over which mu falls from '
+              "'muStatic' to 'mu'", table='gear', fileKey='stribeckVelocity'),
+    Parameter('frictionTable', kind='table', columns=(('speed', 'm/s', 'nonNegative'), ('mu', '', 'nonNegative')),
+              description='measured (sliding speed, mu) points of the table law: a text file (relative to the drive '
+              'file) or rows', table='gear', fileKey='frictionTable'),
     # the two-mass drive, Figure 2
     Parameter('J1', 'kg*m^2', 'positive', 'inertia on the worm shaft (worm, coupling, motor rotor)', table='worm',
               fileKey='inertia'),

@@ -16,7 +16,8 @@ from typing import Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 __all__ = ['STIFFNESS_RATIO_LABEL', 'INERTIA_RATIO_LABEL', 'POINT_SIZE', 'HATCHES', 'ZOOM_DECADES',
-           'PlotStabilityChart', 'PlotStabilityCharts', 'PlotFirstCriterion', 'NearestBoundary', 'PointsToZoom']
+           'PlotStabilityChart', 'PlotStabilityCharts', 'PlotSpeedChart', 'PlotFirstCriterion', 'NearestBoundary',
+           'PointsToZoom']
 
 #: axis label of the abscissa of Figures 4 and 5
 STIFFNESS_RATIO_LABEL = r'stiffness ratio $k_T\,/\,(k_V\,r_1^2)$'
@@ -413,4 +414,46 @@ def PlotFirstCriterion(curves, ax=None, title: Optional[str] = None, mark: Optio
     ax.legend(loc='upper right', fontsize=9, title='friction angle', title_fontsize=9)
     ax.set_title(title if title is not None else
                  fr'First criterion (20) with $d_T$ = 0, $u$ = {curves.ratio:.4g}: stable above the lines')
+    return ax
+
+
+def PlotSpeedChart(chart: 'SpeedChart', ax=None, title: Optional[str] = None, log: bool = True):
+    """Largest real part of the lowering state against motor speed, unstable speeds shaded, mu(v0) on a twin axis.
+
+    Parameters
+    ----------
+    chart : SpeedChart
+        From :func:`exudyn_worm.speedchart.SpeedStabilityChart`.
+    ax : matplotlib Axes, optional
+        Draw into these axes; default a new figure.
+    title : str, optional
+        Axes title.
+    log : bool
+        Logarithmic speed axis (default).
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    from .speedchart import RPM, SpeedChart
+    if not isinstance(chart, SpeedChart):
+        raise TypeError(f"PlotSpeedChart: 'chart' must be a SpeedChart (SpeedStabilityChart), got {type(chart).__name__}")
+    ax = _Axes(ax, figsize=(7.5, 4.5))
+    rpm = chart.motorSpeeds / RPM
+    ax.axhline(0., color='0.4', lw=0.8)
+    ax.plot(rpm, chart.maxRealPart, color=_COLORS[0], lw=1.8, marker='.', label='largest real part, lowering (S = -1)')
+    for a, b in chart.unstableRanges:
+        ax.axvspan(a / RPM, b / RPM, color=_COLORS[0], alpha=0.12, lw=0)
+    for b in chart.Boundaries():
+        ax.axvline(b / RPM, color=_COLORS[0], ls='--', lw=0.8)
+    if log:
+        ax.set_xscale('log')
+    ax.set_xlabel('motor speed [rpm]')
+    ax.set_ylabel(r'max Re$(\lambda)$ [1/s]  (> 0: chatter while lowering)')
+    twin = ax.twinx()
+    twin.plot(rpm, chart.mu, color=_COLORS[2], lw=1.2, ls=':', label=r'$\mu(v_0)$')
+    twin.set_ylabel(r'friction coefficient $\mu(v_0)$', color=_COLORS[2])
+    lines = ax.get_lines()[1:2] + twin.get_lines()
+    ax.legend(lines, [l.get_label() for l in lines], loc='best', fontsize=9)
+    ax.set_title(title or f'stability over motor speed, {chart.frictionLaw} friction law', loc='left', fontsize=10)
     return ax

@@ -53,6 +53,7 @@ if TYPE_CHECKING:
 __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
            'ExtraComponents',
            'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
+           'FrictionLawFromParameters',
            'DriveFromParameters', 'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
            'AxialBearingFromParameters', 'MAX_RATE', 'MIN_RATE_SPREAD', 'MissingParameterError']
 
@@ -323,7 +324,9 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
     parameters : mapping
         Flat parameter dictionary (SI) with ``alphaN``, the geometry as ``r1 r2 gamma`` or ``a u gamma`` or
         ``mx z1 z2 q`` (:mod:`exudyn_worm.geometry`), ``kV``, ``mu`` or ``rho`` and, if ``meshDamping``,
-        ``dV`` or ``DV`` (with ``J2``).
+        ``dV`` or ``DV`` (with ``J2``); optionally the friction law ``frictionLaw`` (``muStatic``,
+        ``stribeckVelocity``, ``frictionTable``; see :func:`FrictionLawFromParameters`), which the gear carries
+        (:attr:`~exudyn_worm.gear.WormGear.friction`) into the connector and the analysis.
     meshDamping : bool, optional
         If False, the mesh damping is not required and the gear gets dV = 0 (for the stability charts,
         which set dV from the swept D_V).
@@ -355,14 +358,98 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
         dV = MeshDampingFromMeasure(p['DV'], p['kV'], r2, p['J2'])
     else:
         raise ValueError(f"{where}: give the mesh damping as 'dV' (N*s/m) or as the measure 'DV'")
-    return WormGear(alphaN=p['alphaN'], gamma=gamma, r1=r1, r2=r2, kV=p['kV'], dV=dV,
+    gear = WormGear(alphaN=p['alphaN'], gamma=gamma, r1=r1, r2=r2, kV=p['kV'], dV=dV,
                     backlash=p.get('backlash', 0.), mu=p.get('mu'), rho=p.get('rho'))
+    law = FrictionLawFromParameters(p, gear.mu, where)
+    return gear if law is None else gear.Replace(friction=law)
+
+
+#: the keys of the friction laws besides 'mu' (or 'rho'), and the laws that use each
+_LAW_KEYS = {'muStatic': ('stribeck',), 'stribeckVelocity': ('stribeck',), 'frictionTable': ('table',)}
+
+
+def FrictionLawFromParameters(parameters: Mapping[str, object], mu: float, where: str = 'FrictionLawFromParameters'
+                              ) -> Optional[object]:
+    """The friction law of a flat parameter set (keys ``frictionLaw muStatic stribeckVelocity frictionTable``).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary; ``frictionLaw`` absent or ``'constant'``: the constant ``mu`` (None is returned,
+        the gear keeps the paper's model); ``'stribeck'`` needs ``muStatic`` (>= ``mu``) and ``stribeckVelocity``
+        (m/s, > 0); ``'agma'`` needs nothing more; ``'table'`` needs ``frictionTable`` (a file path, read with
+        :func:`~exudyn_worm.friction.ReadFrictionTable`, or rows of (sliding speed in m/s, mu)).
+    mu : float
+        The gear's friction coefficient (from ``mu`` or ``rho``): the constant, or the kinetic value of Stribeck.
+    where : str, optional
+        Prefix of error messages.
+
+    Returns
+    -------
+    StribeckFriction, AgmaFriction, TableFriction or None
+        None for the constant law.
+
+    Raises
+    ------
+    ValueError
+        For a key that the chosen law does not use, a missing key, ``muStatic < mu``, or a table that cannot be
+        read or is not a valid table (fewer than 2 points, speeds not increasing).
+    """
+    from .friction import FrictionLaw
+    kind = parameters.get('frictionLaw', 'constant')
+    PARAMETERS.Check('frictionLaw', kind, where)
+    for key, laws in _LAW_KEYS.items():
+        if key in parameters and kind not in laws:
+            raise ValueError(f"{where}: '{key}' is used only with frictionLaw = {' or '.join(laws)}, got frictionLaw "
+                             f"= {kind!r}{'' if 'frictionLaw' in parameters else ' (the default)'}; set "
+                             f"frictionLaw={laws[0]} or remove '{key}'")
+    missing = [k for k, laws in _LAW_KEYS.items() if kind in laws and k not in parameters]
+    if missing:
+        raise MissingParameterError(f"{where}: frictionLaw = {kind!r} needs {', '.join(repr(k) for k in missing)}; "
+                                    f"give {'them' if len(missing) > 1 else 'it'} with --set KEY=VALUE or in the "
+                                    f"[gear] table of the drive file", missing)
+    if kind == 'constant':
+        return None
+    if kind == 'stribeck':
+        muStatic = parameters['muStatic']
+        if muStatic < mu:
+            raise ValueError(f"{where}: 'muStatic' (friction at rest, frictionLaw = stribeck) must be >= the kinetic "
+                             f"'mu' = {mu:g}, got {muStatic:g}")
+        return FrictionLaw('stribeck', mu=mu, muStatic=muStatic, stribeckVelocity=parameters['stribeckVelocity'])
+    if kind == 'agma':
+        return FrictionLaw('agma')
+    return FrictionLaw('table', table=_FrictionTable(parameters['frictionTable'], where).points)
+
+
+_TABLES: Dict[Tuple[str, int, int], object] = {}
+
+
+def _FrictionTable(value, where: str):
+    """The :class:`~exudyn_worm.friction.TableFriction` of a ``frictionTable`` value (a path: read once per
+    version of the file; design scans build a drive hundreds of times)."""
+    import os
+    from .friction import ReadFrictionTable
+    try:
+        if isinstance(value, (str, os.PathLike)):
+            try:
+                stat = os.stat(value)
+            except OSError:
+                return ReadFrictionTable(value)                 # raises, naming the file
+            key = (os.path.abspath(value), stat.st_mtime_ns, stat.st_size)
+            if key not in _TABLES:
+                _TABLES[key] = ReadFrictionTable(value)
+            return _TABLES[key]
+        return ReadFrictionTable(tuple(tuple(row) for row in value))
+    except (ValueError, TypeError) as err:
+        raise ValueError(f"{where}: 'frictionTable': {err}") from None
 
 
 def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     """Build the :class:`ElasticDrive` described by a flat parameter dictionary.
 
-    Damping: ``dT``, ``DT`` or ``DTV * DV`` (eq. (24)); ``dV`` or ``DV``. Friction: ``mu`` or ``rho`` (eq. (13)).
+    Damping: ``dT``, ``DT`` or ``DTV * DV`` (eq. (24)); ``dV`` or ``DV``. Friction: ``mu`` or ``rho`` (eq. (13)),
+    and optionally a speed-dependent law (``frictionLaw`` ..., :func:`FrictionLawFromParameters`) that the gear
+    (``.gear``) carries into :func:`~exudyn_worm.connector.CreateWormGear`.
     Each quantity in one form only: a set with two forms (``dV`` and ``DV``) is refused; to change the form,
     use :func:`ApplyOverrides`, which drops the other one.
 

@@ -49,7 +49,7 @@ class OperatingPoint:
     Attributes
     ----------
     slidingSpeed : float
-        Sliding speed of the flanks v0 = r1 |phi1'| / cos(gamma) in m/s.
+        Sliding speed of the flanks ``v0 = r1 abs(phi1') / cos(gamma)`` in m/s.
     mu : float
         Friction coefficient mu(v0).
     dmuDv : float
@@ -78,7 +78,7 @@ class OperatingPoint:
 def OperatingPointAt(gear: 'WormGear', motorSpeed: float, loadTorque: float) -> OperatingPoint:
     """Operating point of steady lowering: worm speed ``motorSpeed``, wheel torque ``loadTorque`` (S = -1).
 
-    v0 = r1 |motorSpeed| / cos(gamma); mu0, slope from the gear's friction law; the static normal force follows
+    ``v0 = r1 abs(motorSpeed) / cos(gamma)``; mu0, slope from the gear's friction law; the static normal force follows
     from the wheel's balance c4(S = -1, mu0) Fn0 = loadTorque (eq. (12); mesh damping does not act at steady
     speed).
 

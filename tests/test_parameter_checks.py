@@ -70,7 +70,8 @@ def test_backlash_above_the_worm_radius_suggests_the_unit():
 
 # --- keys of a parameter set: typos and two forms of one quantity (found by a QA pass) ---------------------------
 P1 = GetPreset('reel-P1')
-_KNOWN = "expected one of: alphaN gamma mu rho r1 r2 a u mx z1 z2 q kV dV DV backlash J1 J2 kT"
+_KNOWN = ("expected one of: alphaN gamma mu rho r1 r2 a u mx z1 z2 q kV dV DV backlash frictionLaw muStatic "
+          "stribeckVelocity frictionTable J1 J2 kT")
 
 
 def _Design(p):

@@ -384,6 +384,8 @@ CHECK_GROUPS: List[CheckGroup] = [
     CheckGroup('eigenvalues', 'validation.analytical:EigenvalueChecks', title='Published eigenvalues and frequencies (section 3.1)'),
     CheckGroup('forensics', 'validation.analytical:ForensicsChecks', title='Eigenvalue forensics'),
     CheckGroup('charts', 'validation.charts:ChartChecks', title='Stability charts: the statements of section 2.3 (Figures 4 and 5)'),
+    CheckGroup('friction', 'validation.friction:FrictionChecks',
+               title='Friction over sliding speed: the AGMA 6034 values at the speeds its source gives'),
     CheckGroup('simulation', 'validation.timedomain:SimulationChecks', level=1,
                title='Time domain: statements of section 3.2 (reel changer simulations), both mesh readings'),
     CheckGroup('forensics-slow', 'validation.analytical:ForensicsSlowChecks', level=2,

@@ -39,6 +39,11 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='draw the charts (one axes, one region per D_TV) into FILE (.png, .pdf or .svg)')
     AddOverwriteOption(parser, 'the --output file')
     parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
+    parser.add_argument('--speed', default=None, metavar='SPEC',
+                        help="instead of the J1-kT chart: the largest real part of the lowering state against motor "
+                             "speed (eq. (16) at each operating point; with a speed-dependent friction law the drive "
+                             "may chatter only in a speed range). SPEC as 'sweep --vary motorSpeed=SPEC' takes it: "
+                             "START:STOP:COUNT[:log] or a list, e.g. '20rpm:2000rpm:40:log'")
 
 
 def _PresetName(name: str) -> str:
@@ -63,7 +68,41 @@ def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
     raise UsageError("give --DV (the parameter set has neither 'DV' nor 'dV')")
 
 
+def _RunSpeed(args: argparse.Namespace) -> int:
+    """``chart --speed SPEC``: the lowering state's stability over motor speed (:mod:`exudyn_worm.speedchart`)."""
+    from ..speedchart import RPM, SpeedStabilityChart
+    from ..study import ParseVariation
+    output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
+    parameters = ParametersFromArgs(args)
+    with BadInput():
+        spec = args.speed.strip()
+        variation = ParseVariation(f'motorSpeed={spec}')
+        chart = SpeedStabilityChart(parameters, variation.values)
+    if output:
+        from ..plot import SaveFigure
+        ax = chart.plot(title=f'{SourceText(args)}: stability over motor speed ({chart.frictionLaw} friction)')
+        path = WriteAtomically(output, lambda tmp: SaveFigure(ax.figure, tmp))
+        print(f'wrote {path.resolve()}', file=sys.stderr)
+    if args.json:
+        PrintJson(chart.ToDict())
+        return 0
+    print(f"exudyn-worm chart --speed: {SourceText(args)}; {chart.frictionLaw} friction law, lowering (S = -1) "
+          f"at the operating point of each speed (eq. (16) extended by the friction slope)")
+    print(f"  {'motor [rpm]':>11} {'v0 [m/s]':>9} {'mu(v0)':>8} {'dmu/dv [s/m]':>13} {'max Re [1/s]':>13}  verdict")
+    for n, v, mu, slope, re in zip(chart.motorSpeeds / RPM, chart.slidingSpeeds, chart.mu, chart.dmuDv,
+                                   chart.maxRealPart):
+        print(f"  {n:11.4g} {v:9.4g} {mu:8.4g} {slope:13.4g} {re:13.4g}  {'CHATTER' if re > 0 else 'stable'}")
+    ranges = chart.unstableRanges
+    print('Chatter while lowering at ' + ', '.join(f'{a / RPM:.4g} to {b / RPM:.4g} rpm' for a, b in ranges)
+          + (' (of the speeds computed; boundaries near ' + ', '.join(f'{b / RPM:.4g}' for b in chart.Boundaries())
+             + ' rpm)' if chart.Boundaries() else '') if ranges else
+          'No chatter while lowering at any of these speeds.')
+    return 0
+
+
 def _Run(args: argparse.Namespace) -> int:
+    if args.speed is not None:
+        return _RunSpeed(args)
     from ..charts import ComputeStabilityChart, FormatChartTable, PresetChartPoints
     from ..presets import ExtraComponents, GearFromParameters, MissingParameterError
     from ..progress import ProgressBar
