@@ -17,6 +17,7 @@ from exudyn_worm.connector import CreateWormGear
 from exudyn_worm.contact import (MATH_OPS, ContactOptions, FrictionState, MeshContact, SlidingCoordinate,
                                  StickSlipUpdate)
 from exudyn_worm.drivetrain import CreateRotor, CreateRotorTorque
+from exudyn_worm.friction import StribeckFriction
 from exudyn_worm.presets import DriveFromParameters
 from exudyn_worm.profiles import GravityLeverTorque
 from exudyn_worm.reelchanger import SimulateReelChanger, SolverSettings
@@ -26,9 +27,11 @@ SETTLE, HOLD = 5., 18.         # s: settling of the mesh oscillation, then the h
 STEP = 1e-3
 
 
-def _Hold(options=ContactOptions(), omega1=0., mu=None, endTime=SETTLE + HOLD, wormTorque=None, useSymbolic=True):
+def _Hold(options=ContactOptions(), omega1=0., mu=None, endTime=SETTLE + HOLD, wormTorque=None, useSymbolic=True,
+          gear=None):
     drive = DriveFromParameters(P1)
-    gear = drive.gear if mu is None else drive.gear.Replace(mu=mu)
+    if gear is None:
+        gear = drive.gear if mu is None else drive.gear.Replace(mu=mu)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     worm = CreateRotor(mbs, drive.J1, initialSpeed=omega1, name='worm')
@@ -82,6 +85,26 @@ def test_gear_that_is_not_self_locking_runs_away():
     _, mesh, s = _Hold(mu=0.03, endTime=3.)
     assert not mesh.gear.selfLocking
     assert s['phi2'][-1] < -0.5                  # the load runs down
+
+
+def _StribeckGear():
+    """Issue 15, Done-when: mu 0.05 (kinetic, below tan(gamma) cos(alphaN): not self-locking once moving),
+    muStatic 0.15 (self-locking at rest), stribeckVelocity 0.1 m/s."""
+    return DriveFromParameters(P1).gear.Replace(mu=0.05).Replace(
+        friction=StribeckFriction(mu=0.05, muStatic=0.15, stribeckVelocity=0.1))
+
+
+def test_stribeck_gear_holds_from_rest():
+    gear = _StribeckGear()
+    assert gear.muStatic == 0.15 and gear.gamma > math.atan(0.05 / math.cos(gear.alphaN))
+    _, mesh, s = _Hold(gear=gear)
+    assert _Drift(s) < 1e-6                      # statically self-locking: holds without creep
+
+
+def test_stribeck_gear_keeps_running_from_lowering_speed():
+    _, mesh, s = _Hold(gear=_StribeckGear(), omega1=-49.5, endTime=1.)
+    assert s['omega1'][-1] < -49.5               # dynamically not self-locking: the load accelerates the drive
+    assert s['phi2'][-1] < -0.5                  # and runs down
 
 
 def _BreakawayTorque(gear, loadTorque):
