@@ -169,7 +169,7 @@ class ConstantTorque:
 
     @property
     def maximum(self) -> float:
-        """Largest |M| in N*m."""
+        """Largest ``|M|`` in N*m."""
         return abs(self.torque)
 
     def Torque(self, phi, omega, t, ops):
@@ -201,7 +201,7 @@ class TorqueTable:
 
     @property
     def maximum(self) -> float:
-        """Largest |M| of the table in N*m."""
+        """Largest ``|M|`` of the table in N*m."""
         return max(abs(y) for _, y in self.points)
 
     def Torque(self, phi, omega, t, ops):
