@@ -19,11 +19,10 @@ tests/test_example_friction_speed.py), drawn only when the file is run::
    gone (worm free): with constant mu = 0.132 the worm brakes to (nearly) zero speed; with the AGMA law the load
    drives the worm faster and faster: it runs away once moving.
 
-   **What the "holds at rest" half needs.** With today's regularized friction state (``sf = sat(phi1'/0.05 rad/s)``)
-   there is no friction at zero worm speed, so any gear lets its load creep down from rest, the AGMA gear as well
-   as the constant one. That the AGMA gear *holds* its load at rest (mu 0.150 > tan(gamma) cos(alphaN)) needs true
-   sticking at zero sliding speed (issue 15, item 2, another branch); the example then shows both halves: the same
-   gear holds from rest and runs away from lowering speed.
+   :func:`HoldAtRest`, the other half: the same AGMA gear started at rest holds its load without creep (true
+   sticking at zero sliding speed, the connector's default, ``docs/friction-sticking.md``): self-locking at rest
+   (mu 0.150 > tan(gamma) cos(alphaN)). Both halves together are the dangerous case: the brake-free gear holds the
+   reel while the drive stands, and lets it run away once it moves.
 """
 from __future__ import annotations
 
@@ -112,6 +111,42 @@ def ChatterAmplitudes(rpm: Sequence[float] = SIMULATED_RPM) -> Dict[str, np.ndar
     return {'rpm': np.asarray(rpm, dtype=float), 'amplitude': np.array(amplitude), 'chatter': np.array(chatter)}
 
 
+def _FreeWorm(law: str, omega1: float, endTime: float, stepSize: float, where: str) -> Dict[str, np.ndarray]:
+    """reel-P1's gear and inertias without drive shaft (the worm free), the reel's load torque on the wheel at
+    phi2 = pi (horizontal, lowering: the load drives), both shafts starting at worm speed ``omega1`` (rad/s)."""
+    import exudyn as exu
+    p = ew.GetPreset('reel-P1')
+    if law == 'agma':
+        p = {**p, 'frictionLaw': 'agma'}
+    elif law != 'constant':
+        raise ValueError(f"{where}: 'law' must be 'agma' or 'constant', got {law!r}")
+    drive = ew.DriveFromParameters(p)
+    u = drive.gear.ratio
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    worm = ew.CreateRotor(mbs, inertia=drive.J1, initialAngle=u * math.pi, initialSpeed=omega1)
+    wheel = ew.CreateRotor(mbs, inertia=drive.J2, initialAngle=math.pi, initialSpeed=omega1 / u)
+    mesh = ew.CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='mesh')
+    ew.CreateRotorTorque(mbs, wheel, ew.GravityLeverTorque(mass=p['loadMass'], leverArm=p['leverArm']))
+    sensors = dict(mesh.AddSensors(mbs))
+    mbs.Assemble()
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False
+    ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = endTime, int(round(endTime / stepSize))
+    ss.solution.sensors.writePeriod = stepSize
+    ss.timeIntegration.verboseMode = 0
+    printing = exu.config.printToConsole
+    exu.config.printToConsole = False
+    try:
+        mbs.SolveDynamic(ss)
+    finally:
+        exu.config.printToConsole = printing
+    speed = mbs.GetSensorStoredData(sensors['omega1'])
+    angle = mbs.GetSensorStoredData(sensors['phi2'])
+    verdict = ew.SelfLocking(drive.gear, drive.gear.SlidingSpeed(p['motorSpeed']))
+    return {'time': speed[:, 0], 'omega1': speed[:, 1], 'phi2': angle[:, 1], 'verdict': verdict}
+
+
 def RunAway(law: str = 'agma', endTime: float = 0.6, stepSize: float = 1e-4) -> Dict[str, np.ndarray]:
     """The reel at the horizontal while lowering, the motor gone: does the load stop or run away?
 
@@ -130,39 +165,31 @@ def RunAway(law: str = 'agma', endTime: float = 0.6, stepSize: float = 1e-4) -> 
     Returns
     -------
     dict
-        ``time`` (s), ``omega1`` (worm speed, rad/s), ``verdict`` of the gear (static and dynamic self-locking).
+        ``time`` (s), ``omega1`` (worm speed, rad/s), ``phi2`` (wheel angle, rad), ``verdict`` of the gear (static
+        and dynamic self-locking).
     """
-    import exudyn as exu
-    p = ew.GetPreset('reel-P1')
-    if law == 'agma':
-        p = {**p, 'frictionLaw': 'agma'}
-    elif law != 'constant':
-        raise ValueError(f"RunAway: 'law' must be 'agma' or 'constant', got {law!r}")
-    drive = ew.DriveFromParameters(p)
-    u = drive.gear.ratio
-    omega1 = p['motorSpeed']
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    worm = ew.CreateRotor(mbs, inertia=drive.J1, initialAngle=u * math.pi, initialSpeed=omega1)
-    wheel = ew.CreateRotor(mbs, inertia=drive.J2, initialAngle=math.pi, initialSpeed=omega1 / u)
-    mesh = ew.CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='mesh')
-    ew.CreateRotorTorque(mbs, wheel, ew.GravityLeverTorque(mass=p['loadMass'], leverArm=p['leverArm']))
-    sensors = mesh.AddSensors(mbs)
-    mbs.Assemble()
-    ss = exu.SimulationSettings()
-    ss.solution.file.write = False
-    ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps = endTime, int(round(endTime / stepSize))
-    ss.solution.sensors.writePeriod = stepSize
-    ss.timeIntegration.verboseMode = 0
-    printing = exu.config.printToConsole
-    exu.config.printToConsole = False
-    try:
-        mbs.SolveDynamic(ss)
-    finally:
-        exu.config.printToConsole = printing
-    data = mbs.GetSensorStoredData(dict(sensors)['omega1'])
-    verdict = ew.SelfLocking(drive.gear, drive.gear.SlidingSpeed(omega1))
-    return {'time': data[:, 0], 'omega1': data[:, 1], 'verdict': verdict}
+    return _FreeWorm(law, ew.GetPreset('reel-P1')['motorSpeed'], endTime, stepSize, 'RunAway')
+
+
+def HoldAtRest(law: str = 'agma', endTime: float = 8., stepSize: float = 1e-3) -> Dict[str, np.ndarray]:
+    """The same drive as :func:`RunAway`, started at rest: does the brake-free gear hold the reel?
+
+    Parameters
+    ----------
+    law : str
+        ``'agma'`` or ``'constant'``.
+    endTime : float
+        Simulated time in s.
+    stepSize : float
+        Time step in s.
+
+    Returns
+    -------
+    dict
+        As :func:`RunAway`; the wheel angle ``phi2`` stays at pi (to the mesh's elastic deflection) when the gear
+        holds.
+    """
+    return _FreeWorm(law, 0., endTime, stepSize, 'HoldAtRest')
 
 
 def _Plot(out: Path) -> None:
@@ -195,6 +222,8 @@ def _Plot(out: Path) -> None:
         ax.plot(r['time'], r['omega1'] / RPM, label=f'{law}')
     ax.set_xlabel('time [s]')
     ax.set_ylabel('worm speed [rpm]')
+    hold = HoldAtRest('agma')
+    ax.plot(hold['time'], hold['omega1'] / RPM, label='agma, from rest (holds)')
     ax.set_title('reel at the horizontal, lowering, motor gone', loc='left', fontsize=10)
     ax.legend()
     fig.savefig(out / 'run_away.png', dpi=120)

@@ -47,6 +47,14 @@ def test_statically_but_not_dynamically_self_locking_runs_away(example):
     assert abs(constant['omega1'][-1]) < 0.01 * start                   # constant mu brakes it (to a creep)
 
 
+def test_the_same_gear_holds_from_rest(example):
+    hold = example.HoldAtRest('agma', endTime=8.)
+    assert hold['verdict'].dangerous
+    k = int(np.searchsorted(hold['time'], 5.))      # after the mesh's own lightly damped oscillation decayed
+    assert np.max(np.abs(hold['phi2'][k:] - hold['phi2'][k])) < 1e-6     # no creep (issue 15: below 1e-6 rad)
+    assert abs(hold['phi2'][-1] - math.pi) < 1e-3                      # still at the horizontal
+
+
 def test_bad_law(example):
     with pytest.raises(ValueError, match="'law' must be 'agma' or 'constant', got 'stribek'"):
         example.RunAway('stribek')
