@@ -53,7 +53,8 @@ def _StepCheckLine(check: dict) -> str:
                else f"{margin} < {check['smallMargin']:g}, near the stability boundary")
         return (f"step check: verdicts compared with a run at half the step ({check['halfStepSize']:g} s; {why}); "
                 f"'unresolved' where they differ")
-    why = '--no-check-step' if check['reason'] == 'option' else f"{margin} >= {check['smallMargin']:g}"
+    why = {'option': '--no-check-step', 'maxSteps': 'the run at half the step would exceed --max-steps'}.get(
+        check['reason'], f"{margin} >= {check['smallMargin']:g}")
     return f"step check: off ({why}); --check-step compares with a run at half the step"
 
 _SIMULATE_FIGURES = ('overview', 'acceleration', 'speed', 'normalForce', 'driveTorque')
@@ -123,7 +124,7 @@ def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: f
                 raise UsageError(str(err)) from None
             print(f"exudyn-worm: warning: no step check (the run at half the step would exceed --max-steps "
                   f"{maxSteps}); verdicts not checked", file=sys.stderr)
-            check['checked'] = False
+            check['checked'], check['reason'] = False, 'maxSteps'
     return check
 
 
