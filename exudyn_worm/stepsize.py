@@ -260,7 +260,7 @@ def FrictionTimeConstant(parameters: Mapping[str, float], frictionSpeed: float, 
 # ---------------------------------------------------------------------------------------------------------------
 # the step check: a verdict that changes when the step is halved is 'unresolved'
 
-#: |Re lambda| / |lambda| of the least stable mode (the rightmost eigenvalue of either contact state) below which
+#: ``|Re lambda| / |lambda|`` of the least stable mode (the rightmost eigenvalue of either contact state) below which
 #: the linear margin counts as small and ``simulate`` / ``sweep`` check their verdicts at half the step by default:
 #: the mode then grows or decays by less than about 2 pi * 2 % = 12 % per cycle, so whether a window's second half
 #: still vibrates depends on the amplitude that the nonlinear events before it (load reversal, contact flips,
