@@ -106,7 +106,9 @@ def test_explicit_step_check_beyond_the_step_limit_is_refused(capsys, tmp_path, 
     status, out, err = _Run(capsys, 'simulate', '--quiet', '--check-step', *SHORT, '--max-steps', limit)
     assert status == 2 and err.count('\n') == 1 and 'half the step (--check-step)' in err and 'Traceback' not in err
     status, out, err = _Run(capsys, 'simulate', '--quiet', *SHORT, '--max-steps', limit)   # default: skipped, said
-    assert status == 0 and 'no step check' in err and 'step check: off (the run at half the step' in out
+    assert status == 0 and err == '' and 'step check: off (the run at half the step would exceed' in out
+    status, out, err = _Run(capsys, 'simulate', '--quiet', '--json', *SHORT, '--max-steps', limit)
+    assert json.loads(out)['stepCheck']['reason'] == 'maxSteps' and not json.loads(out)['stepCheck']['checked']
 
 
 def test_a_verdict_that_flips_with_the_step_is_unresolved_in_sweep(monkeypatch):

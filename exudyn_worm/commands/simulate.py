@@ -122,9 +122,7 @@ def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: f
         except ValueError as err:
             if args.check_step:
                 raise UsageError(str(err)) from None
-            print(f"exudyn-worm: warning: no step check (the run at half the step would exceed --max-steps "
-                  f"{maxSteps}); verdicts not checked", file=sys.stderr)
-            check['checked'], check['reason'] = False, 'maxSteps'
+            check['checked'], check['reason'] = False, 'maxSteps'      # said in the output (_StepCheckLine)
     return check
 
 
