@@ -637,6 +637,29 @@ def _BestPair(parameters, keys, margin, span) -> Optional[PairRecommendation]:
     return None
 
 
+_CHARACTERISTIC = 'a motor on its characteristic (motorType characteristic)'     # as ExtraComponents names it
+
+
+def _CharacteristicNote(parameters: Mapping[str, float], where: str) -> str:
+    """The note for a drive with a motor on its characteristic, checked as the two-mass drive (the motor holding its
+    speed); raises if the linearized whole drive with the free motor has another verdict in either contact state."""
+    from .linearization import DriveStability
+    from .stability import CONTACT_STATES
+    whole, rigid = DriveStability(parameters), AnalyzeStability(DriveFromParameters(parameters))
+    words = {True: 'stable', False: 'unstable'}
+    for S in CONTACT_STATES:
+        if whole.State(S).stable != rigid.State(S).stable:
+            raise ValueError(
+                f"{where}: the motor's characteristic changes the verdict for S = {S:+d} (the whole drive with the "
+                f"free motor, motorInertia and the slope stallTorque/noLoadSpeed, is {words[whole.State(S).stable]}; "
+                f"the two-mass model of the design check, whose motor holds its speed, is "
+                f"{words[rigid.State(S).stable]}), so the check cannot recommend changes for it; "
+                f"'exudyn-worm stability' analyses the whole drive")
+    return ("the motor on its characteristic is checked as a motor holding its speed (the two-mass model): the "
+            "linearized whole drive with the free motor has the same verdict for S = +1 and S = -1; confirm a "
+            "recommended change with 'exudyn-worm stability'")
+
+
 def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
                 span: float = DEFAULT_SPAN) -> DesignCheckResult:
     """Check a drive for chatter and recommend the smallest changes that make it stable with a margin.
@@ -663,7 +686,9 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
     ------
     ValueError, TypeError
         For a bad parameter set, margin or span, or a parameter set with components the two-mass model
-        does not include (a drive-side chain J4, ... or a worm axial bearing kA > 0).
+        does not include (a drive-side chain J4, ... or a worm axial bearing kA > 0), or a motor on its
+        characteristic that changes the verdict of the two-mass model (motor holding its speed) in a contact
+        state; where it does not, the drive is checked as the two-mass drive with a note.
     LoadSideNotLumpable
         A ValueError: the parameter set has a load-side chain (JL1, ...) that may not be lumped into J2
         (:func:`~exudyn_worm.loadside.DiagnoseLoadSide`); the message and its ``diagnosis`` name the stage that is
@@ -685,6 +710,8 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
         parameters = LumpedLoadSide(parameters)
         notes.append(f"the load-side chain is lumped into J2 = {parameters['J2']:.4g} kg*m^2 (changes of J2 are "
                      f"changes of wheel and driven machine): {diagnosis.Text()}")
+    elif extra == [_CHARACTERISTIC]:      # the two-mass model holds a motor at its speed: valid if the verdict stays
+        notes.append(_CharacteristicNote(parameters, w))
     elif extra:
         raise ValueError(f"{w}: the design check uses the two-mass model of Figure 2 (eqs. (15)-(19)); this "
                          f"parameter set has {' and '.join(extra)}, which that model does not include")

@@ -130,7 +130,8 @@ def PlotMetric(result, x: str, metric: str = 'w1.maxAbsWheelAcceleration', ax=No
         text = ', '.join([label] * bool(label) + [f'{k} = {v:.3g}' for k, v in zip(others, group)]) or None
         color = f'C{len(ax.lines) // 3 % 10}'
         ax.plot(xs, ys, '-', color=color, lw=1., label=text)
-        chatter = np.array([bool(r.get(f'{window}.chatter')) for r in rows]) if window else np.zeros(len(rows), bool)
+        chatter = (np.array([r.get(f'{window}.chatter') is True for r in rows]) if window    # 'unresolved': open
+                   else np.zeros(len(rows), bool))
         ax.plot(xs[chatter], ys[chatter], 'o', color=color, ms=5)
         ax.plot(xs[~chatter], ys[~chatter], 'o', mfc='white', color=color, ms=5)
     if not ax.lines:                    # every run failed or lacks the metric: say so instead of empty axes
@@ -275,15 +276,19 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
         if np.any(growth > 0) and np.any(growth <= 0):
             ax.contour(gx * xf, gy * yf, growth, levels=[0.], colors=[_C_BOUNDARY], linewidths=1.2)
         source = 'linearized whole drive' if wholeDrive else 'linear model'
-    ok = [r for r in result.rows if r['status'] == 'ok' and r['loweringChatter'] is not None]
+    ok = [r for r in result.rows if r['status'] == 'ok' and r['loweringChatter'] in (True, False)]
     chatter = [r for r in ok if r['loweringChatter']]
     quiet = [r for r in ok if not r['loweringChatter']]
-    failed = [r for r in result.rows if r not in ok]
+    unresolved = [r for r in result.rows if r['status'] == 'ok' and r['loweringChatter'] == 'unresolved']
+    failed = [r for r in result.rows if r not in ok and r not in unresolved]
     differ = [r for r in ok if r['analyticStableLowering'] is not None
               and r['loweringChatter'] == r['analyticStableLowering']]
     pts = lambda rows: (np.array([r[x] for r in rows]) * xf, np.array([r[y] for r in rows]) * yf)
     ax.plot(*pts(chatter), 'o', color=_C_CHATTER, ms=5, label='simulation: chatter while lowering')
     ax.plot(*pts(quiet), 'o', mfc='white', color=_C_QUIET, ms=5, label='simulation: no chatter')
+    if unresolved:
+        ax.plot(*pts(unresolved), 'D', mfc='white', color=_C_FAILED, ms=5,
+                label='simulation: unresolved (changes at half the step)')
     if failed:
         ax.plot(*pts(failed), 'x', color=_C_FAILED, ms=6, label='failed run')
     if differ:

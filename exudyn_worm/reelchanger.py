@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 import time as _time
 from dataclasses import dataclass
-from typing import Any, Dict, List, Mapping, Optional, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -32,7 +32,7 @@ from .stepsize import CheckStepSize, RecommendedStepSize
 from ._checks import CheckBool, CheckPositive
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
-           'DefaultPhases', 'DefaultSimulatedTime',
+           'DefaultPhases', 'DefaultSimulatedTime', 'WindowPhases', 'PhaseLabel',
            'SteadyInitialState', 'CheckRunSize', 'CheckReelChangerKeys', 'SolverSettings', 'DEFAULT_STEP_SIZE',
            'SOLVER_SETTINGS', 'MAX_STEPS']
 
@@ -221,6 +221,55 @@ def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = N
         Windows in s, in time order.
     """
     return [(t0, t1) for t0, t1, _ in DefaultPhases(parameters, endTime, minLength)]
+
+
+def WindowPhases(parameters: Mapping[str, float], windows: Sequence[Tuple[float, float]],
+                 endTime: Optional[float] = None) -> List[str]:
+    """The duty's phase in each window: ``'lift'``, ``'lower'`` (the load drives the gear) or ``'idle'``, or the
+    phases a window spans joined by ``'+'`` (e.g. ``'lift+lower'``).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (the duty's keys, :func:`DefaultPhases`).
+    windows : sequence of (float, float)
+        Windows in s.
+    endTime : float, optional
+        Simulated time in s (default: the end of the last window or :func:`DefaultSimulatedTime`, the later).
+
+    Returns
+    -------
+    list of str
+        One label per window.
+    """
+    windows = [(float(t0), float(t1)) for t0, t1 in windows]
+    if endTime is None:
+        endTime = max([DefaultSimulatedTime(parameters)] + [t1 for _, t1 in windows])
+    phases = DefaultPhases(parameters, max([endTime] + [t1 for _, t1 in windows]))
+    labels = []
+    for t0, t1 in windows:
+        tol = 1e-9 * max(t1 - t0, 1e-300)
+        inside = [ph for a, b, ph in phases if min(b, t1) - max(a, t0) > tol]
+        labels.append('+'.join(dict.fromkeys(inside)) or phases[-1][2])
+    return labels
+
+
+def PhaseLabel(parameters: Mapping[str, float], phase: str) -> str:
+    """The words for a phase of :func:`WindowPhases` in a table: ``lift`` / ``lower`` for the reel changer; for
+    another duty ``motor drives`` / ``load drives`` / ``no load`` (``lift`` / ``lower`` / ``idle``).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    phase : str
+        A label of :func:`WindowPhases`.
+    """
+    from .duty import IsReelChangerDuty
+    if IsReelChangerDuty(parameters):
+        return phase
+    words = {'lift': 'motor drives', 'lower': 'load drives', 'idle': 'no load'}
+    return '+'.join(words.get(part, part) for part in phase.split('+'))
 
 
 def DefaultSimulatedTime(parameters: Mapping[str, float]) -> float:

@@ -49,18 +49,21 @@ from ._checks import CheckPositive
 
 __all__ = ['Variation', 'ParseVariation', 'StudyPoints', 'Study', 'ParseShard', 'ShardIndices', 'RunPoint',
            'StudyResult', 'RunStudy', 'ReadResults', 'StudySidecarPath', 'VibrationSeconds', 'WINDOW_METRICS',
-           'RUN_COLUMNS', 'ENGINES', 'DefaultWorkers']
+           'RUN_COLUMNS', 'HALF_STEP_METRICS', 'ENGINES', 'DefaultWorkers']
 
 #: metrics written per window (those of ``SimulationResult.WindowMetrics`` plus ``vibrationSeconds``)
 WINDOW_METRICS = ('t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
                   'fractionSNegative', 'minWormSpeed', 'chatter', 'vibrationSeconds')
 #: per-run columns of the results table, before the varied parameters and the window metrics
 RUN_COLUMNS = ('run', 'status', 'error', 'seconds', 'solveSeconds', 'stepSize', 'analyticStable',
-               'analyticStableLowering', 'loweringChatter')
+               'analyticStableLowering', 'loweringChatter', 'stepChecked')
+#: metrics of the run at half the step written per window as ``w{i}.halfStep.{metric}`` (where the step is checked,
+#: :func:`~exudyn_worm.stepsize.CompareHalfStep`; a window's ``chatter`` is then ``'unresolved'`` where they differ)
+HALF_STEP_METRICS = ('maxAbsWheelAcceleration', 'dominantFrequencyHz', 'chatter')
 #: execution engines of :func:`RunStudy`
 ENGINES = ('process', 'mpi')
 
-_BOOL_COLUMNS = {'analyticStable', 'analyticStableLowering', 'loweringChatter', 'chatter'}
+_BOOL_COLUMNS = {'analyticStable', 'analyticStableLowering', 'loweringChatter', 'chatter', 'stepChecked'}
 _NUMBER_OF_DEFAULT_WINDOWS = 3          # DefaultWindows: lift, lower, lift
 
 
@@ -213,20 +216,24 @@ class Study:
     windows : sequence of (float, float), optional
         Evaluation windows in s (default: the lift / lower / lift phases of each point's first rotation,
         :func:`~exudyn_worm.reelchanger.DefaultWindows`, clipped to ``endTime`` when that is shorter; the
-        columns of a window that does not exist stay empty). Required for a duty other than the reel changer's
-        (:mod:`exudyn_worm.duty`); a window then counts as lowering if its middle lies in a lowering phase.
+        columns of a window that does not exist stay empty). For a duty other than the reel changer's
+        (:mod:`exudyn_worm.duty`) the default is the phases of the first point's duty up to ``endTime`` (or its
+        :func:`~exudyn_worm.reelchanger.DefaultSimulatedTime`), the same windows for every run (the columns of a
+        study are fixed); a window counts as lowering if its middle lies in a lowering phase of the run's duty.
     endTime : float, optional
         Simulated time in s (default: one rotation of each point, at least up to the last window).
     stepSize : float, optional
-        Time step in s (default, per run: :data:`~exudyn_worm.reelchanger.DEFAULT_STEP_SIZE` or the drive's
-        :func:`~exudyn_worm.stepsize.RecommendedStepSize` where that is smaller: the validation's step, finer
-        than the recommended step that ``simulate`` and ``check --simulate`` use, so study peaks may differ
-        from theirs by a few 0.1 %, e.g. P7 798.8 against 801.5 rad/s^2).
+        Time step in s (default, per run: the drive's :func:`~exudyn_worm.stepsize.RecommendedStepSize`, the
+        step ``simulate`` and ``check --simulate`` use, so a run and ``simulate`` of the same drive agree).
     source : str, optional
         Where the base set came from (for the record).
     maxSteps : int, optional
         Refuse (record as failed) runs of more solver steps than this (default, None:
         :data:`~exudyn_worm.reelchanger.MAX_STEPS`, as ``simulate``).
+    checkStep : bool, optional
+        Run each point again at half the step and record a window whose chatter verdict changes as
+        ``'unresolved'`` (True), never (False), or (None, default) where the point's linear margin is small
+        (:func:`~exudyn_worm.stepsize.StepCheckByDefault`), as ``simulate``.
     """
     base: Mapping[str, float]
     variations: Sequence[Variation] = ()
@@ -236,6 +243,7 @@ class Study:
     stepSize: Optional[float] = None
     source: str = ''
     maxSteps: Optional[int] = None
+    checkStep: Optional[bool] = None
     points: List[Dict[str, float]] = field(init=False, repr=False)
 
     def __post_init__(self):
@@ -253,13 +261,15 @@ class Study:
             raise ValueError(f"Study: 'maxSteps' must be a whole number >= 1 (solver steps), got {self.maxSteps!r}")
         if self.windows is not None:      # a window beyond endTime would be judged on its missing part
             self.windows = CheckWindows(self.windows, self.endTime, 'Study')
-        from .duty import IsReelChangerDuty
-        if self.windows is None and not IsReelChangerDuty(self.base):
-            raise ValueError("Study: a duty other than the reel changer's (loadType, motorType) needs explicit "
-                             "'windows' (--windows): its lift / lower phases may differ from run to run, the "
-                             "columns of a study may not")
+        if self.checkStep is not None and not isinstance(self.checkStep, bool):
+            raise TypeError(f"Study: 'checkStep' must be True, False or None (by the linear margin), "
+                            f"got {self.checkStep!r}")
         self.points = StudyPoints(self.variations, self.zipped)
-        ApplyOverrides(self.base, self.points[0])          # unknown keys raise here
+        first = ApplyOverrides(self.base, self.points[0])          # unknown keys raise here
+        from .duty import IsReelChangerDuty
+        if self.windows is None and not IsReelChangerDuty(first):   # the phases of the first point's duty
+            from .reelchanger import DefaultWindows
+            self.windows = DefaultWindows(first, self.endTime, minLength=1e-3)
 
     @property
     def keys(self) -> List[str]:
@@ -279,7 +289,7 @@ class Study:
         """The picklable work item of point ``run`` for :func:`RunPoint` (plain data only)."""
         return {'run': run, 'parameters': self.Parameters(run), 'varied': dict(self.points[run]),
                 'windows': self.windows, 'endTime': self.endTime, 'stepSize': self.stepSize,
-                'maxSteps': self.maxSteps}
+                'maxSteps': self.maxSteps, 'checkStep': self.checkStep}
 
     def ToDict(self) -> Dict:
         """JSON-ready definition: base set, variations, pairing, windows, times, number of runs."""
@@ -287,7 +297,7 @@ class Study:
                 'variations': [v.ToDict() for v in self.variations], 'zipped': self.zipped,
                 'windows': None if self.windows is None else [list(w) for w in self.windows],
                 'endTime': self.endTime, 'stepSize': self.stepSize, 'maxSteps': self.maxSteps,
-                'runs': len(self.points)}
+                'checkStep': self.checkStep, 'runs': len(self.points)}
 
     def Identity(self) -> Dict:
         """What must match for a results file to be resumed: the definition without its free-text parts."""
@@ -380,24 +390,27 @@ def RunPoint(task: Mapping) -> Dict:
     ----------
     task : mapping
         A work item of :meth:`Study.Task`: ``run`` (index), ``parameters`` (full set), ``varied``,
-        ``windows`` (None: default), ``endTime`` (None: one rotation), ``stepSize`` (None: the default or the
-        drive's recommended step, whichever is smaller), ``maxSteps`` (optional; None: the default limit).
+        ``windows`` (None: default), ``endTime`` (None: one rotation), ``stepSize`` (None: the drive's
+        recommended step), ``maxSteps`` (optional; None: the default limit), ``checkStep`` (optional; None: by
+        the linear margin, :func:`~exudyn_worm.stepsize.StepCheckByDefault`).
 
     Returns
     -------
     dict
         A flat row of the results table: the columns :data:`RUN_COLUMNS`, the varied keys and
         ``w{i}.{metric}`` for each window i and each metric of :data:`WINDOW_METRICS` (None where a run
-        failed before computing them).
+        failed before computing them), and ``w{i}.halfStep.{metric}`` (:data:`HALF_STEP_METRICS`) where the
+        step was checked (``stepChecked``).
     """
     from .linearization import DriveStability
     from .duty import IsReelChangerDuty
-    from .reelchanger import DEFAULT_STEP_SIZE, DefaultPhases, DefaultSimulatedTime, SimulateReelChanger
-    from .stepsize import RecommendedStepSize
+    from .reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedTime, SimulateReelChanger
+    from .stepsize import UNRESOLVED, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
     start = time.perf_counter()
     p = dict(task['parameters'])
     row = {'run': int(task['run']), 'status': 'failed', 'error': '', 'seconds': None, 'solveSeconds': None,
-           'stepSize': None, 'analyticStable': None, 'analyticStableLowering': None, 'loweringChatter': None}
+           'stepSize': None, 'analyticStable': None, 'analyticStableLowering': None, 'loweringChatter': None,
+           'stepChecked': None}
     row.update(task['varied'])
     try:
         analysis = DriveStability(p)            # two-mass: eqs. (15)-(19); with a chain or bearing: the whole drive
@@ -411,29 +424,44 @@ def RunPoint(task: Mapping) -> Dict:
                                    minLength=1e-3)
             windows = [(t0, t1) for t0, t1, _ in phases]
         endTime = task['endTime'] if task['endTime'] is not None else max(period, max(t1 for _, t1 in windows))
-        stepSize = task['stepSize'] or min(DEFAULT_STEP_SIZE, RecommendedStepSize(p))
+        stepSize = task['stepSize'] or RecommendedStepSize(p)       # the rule of simulate
         row['stepSize'] = stepSize
-        # no bar per run: the study draws one bar for all runs
-        result = SimulateReelChanger(p, endTime=endTime, stepSize=stepSize, progress=False,
-                                     **({} if task.get('maxSteps') is None else {'maxSteps': task['maxSteps']}))
+        maxSteps = MAX_STEPS if task.get('maxSteps') is None else task['maxSteps']
+        check = task.get('checkStep')
+        if check is None:      # by the linear margin, unless the run at half the step would exceed the limit
+            check = StepCheckByDefault(p) and 2 * endTime / stepSize <= maxSteps
+        row['stepChecked'] = bool(check)
+
+        def Simulate(h):       # no bar per run: the study draws one bar for all runs
+            result = SimulateReelChanger(p, endTime=endTime, stepSize=h, progress=False, maxSteps=maxSteps)
+            if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
+                raise FloatingPointError('diverged: non-finite state in the solution'
+                                         + (' at half the step' if h != stepSize else ''))
+            return result
+        result = Simulate(stepSize)
         row['solveSeconds'] = result.solveSeconds
-        if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
-            raise FloatingPointError('diverged: non-finite state in the solution')
         metrics = result.WindowMetrics(windows)
+        if check:
+            half = Simulate(0.5 * stepSize)
+            row['solveSeconds'] += half.solveSeconds
+            metrics = CompareHalfStep(metrics, half.WindowMetrics(windows))
         for i, (m, (t0, t1)) in enumerate(zip(metrics, windows)):
             m = dict(m, vibrationSeconds=VibrationSeconds(result, t0, t1))
             for name in WINDOW_METRICS:
                 value = m[name]
-                if not isinstance(value, bool) and not math.isfinite(value):
+                if not isinstance(value, (bool, str)) and not math.isfinite(value):
                     raise FloatingPointError(f"diverged: window {i} metric {name} = {value}")
                 row[f'w{i}.{name}'] = value
+            for name in HALF_STEP_METRICS if check else ():
+                row[f'w{i}.halfStep.{name}'] = m['halfStep'][name]
         if phases is None and not IsReelChangerDuty(p):     # given windows: lowering where the duty lowers
             duty = DefaultPhases(p, endTime)
             phases = [(t0, t1, next((ph for a, b, ph in duty if a <= 0.5 * (t0 + t1) <= b), 'idle'))
                       for t0, t1 in windows]
         lowering = ([i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1] if phases is None
                     else [i for i, (_, _, phase) in enumerate(phases) if phase == 'lower'])   # the load drives
-        row['loweringChatter'] = bool(metrics[lowering[0]]['chatter']) if lowering else None
+        verdict = metrics[lowering[0]]['chatter'] if lowering else None
+        row['loweringChatter'] = verdict if verdict in (None, UNRESOLVED) else bool(verdict)
         row['status'] = 'ok'
     except Exception as err:            # a failing run is a result, not the end of the study
         if IsInterrupt(err):            # ... but Ctrl-C is the end of it
@@ -462,7 +490,8 @@ def _WorkerInit() -> None:
 
 def _Columns(study: Study) -> List[str]:
     return list(RUN_COLUMNS) + study.keys + [f'w{i}.{name}' for i in range(study.numberOfWindows)
-                                             for name in WINDOW_METRICS]
+                                             for name in WINDOW_METRICS + tuple(f'halfStep.{m}' for m in
+                                                                                HALF_STEP_METRICS)]
 
 
 def _CsvText(value) -> str:
@@ -481,9 +510,11 @@ def _FromCsv(column: str, text: str):
     if column == 'run':
         return int(text)
     if column in _BOOL_COLUMNS or column.endswith('.chatter'):
-        if text not in ('True', 'False'):
-            raise ValueError(f"column {column}: expected True or False, got {text!r}")
-        return text == 'True'
+        verdict = column == 'loweringChatter' or column.endswith('.chatter')
+        if text not in ('True', 'False') and not (verdict and text == 'unresolved'):
+            raise ValueError(f"column {column}: expected True or False{' or unresolved' if verdict else ''}, "
+                             f"got {text!r}")
+        return text if text == 'unresolved' else text == 'True'
     return float(text)
 
 
@@ -566,6 +597,7 @@ def _Identity(definition: Mapping) -> Dict:
     d = json.loads(json.dumps(definition))
     d.pop('source', None)
     d.setdefault('maxSteps', None)           # files written before the option existed: the default limit
+    d.setdefault('checkStep', None)
     for v in d.get('variations', []):
         v.pop('text', None)
     return d
@@ -574,7 +606,8 @@ def _Identity(definition: Mapping) -> Dict:
 #: the option of ``exudyn-worm sweep`` behind each entry of a study definition (for messages)
 _DEFINITION_OPTIONS = {'base': '--preset/--config/--set', 'variations': '--vary', 'zipped': '--zip',
                        'windows': '--windows', 'endTime': '--end-time', 'stepSize': '--step-size',
-                       'maxSteps': '--max-steps', 'runs': '--vary', 'shard': '--shard'}
+                       'maxSteps': '--max-steps', 'checkStep': '--check-step/--no-check-step', 'runs': '--vary',
+                       'shard': '--shard'}
 
 
 def _Text(value) -> str:
@@ -613,7 +646,7 @@ def _StudyFromDict(d: Mapping) -> Study:
     return Study(base=d['base'], variations=[Variation(v['key'], tuple(v['values']), v.get('text', ''))
                                              for v in d['variations']],
                  zipped=d['zipped'], windows=d['windows'], endTime=d['endTime'], stepSize=d['stepSize'],
-                 source=d.get('source', ''))
+                 source=d.get('source', ''), checkStep=d.get('checkStep'))
 
 
 @dataclass
@@ -643,8 +676,9 @@ class StudyResult:
     @property
     def agreement(self) -> Optional[float]:
         """Fraction of finished runs whose chatter while lowering matches the analytical S = -1 verdict
-        (chatter iff unstable); None if no finished run has a lowering window."""
-        judged = [r for r in self.finished if r['loweringChatter'] is not None
+        (chatter iff unstable); None if no finished run has a lowering window. Runs whose verdict is
+        ``'unresolved'`` (it changes at half the step) are left out."""
+        judged = [r for r in self.finished if r['loweringChatter'] in (True, False)
                   and r['analyticStableLowering'] is not None]
         if not judged:
             return None
@@ -663,11 +697,13 @@ class StudyResult:
             if row.get(f'w{i}.t0') is None:
                 break
             windows.append({name: row[f'w{i}.{name}'] for name in WINDOW_METRICS})
+            if row.get('stepChecked'):
+                windows[-1]['halfStep'] = {name: row.get(f'w{i}.halfStep.{name}') for name in HALF_STEP_METRICS}
         return {'run': row['run'], 'parameters': {k: row[k] for k in self.study.keys},
                 'status': row['status'], 'error': row['error'] or None, 'seconds': row['seconds'],
                 'solveSeconds': row['solveSeconds'], 'stepSize': row['stepSize'], 'windows': windows,
                 'analyticStable': row['analyticStable'], 'analyticStableLowering': row['analyticStableLowering'],
-                'loweringChatter': row['loweringChatter']}
+                'loweringChatter': row['loweringChatter'], 'stepChecked': row.get('stepChecked')}
 
     def ToDict(self) -> Dict:
         """``{"runs": [...], "agreement": float or None}`` (the schema of ``exudyn-worm sweep --json``)."""

@@ -26,9 +26,12 @@ def test_simulate_json_p1(capsys, tmp_path, monkeypatch):
     status, out, err = _Run(capsys, 'simulate', '--preset', 'reel-P1', '--json')
     assert status == 0
     data = json.loads(out)                                    # exactly one JSON object on stdout
-    assert set(data) == {'source', 'endTime', 'stepSize', 'steps', 'solveSeconds', 'windows'}
+    assert set(data) == {'source', 'endTime', 'stepSize', 'steps', 'solveSeconds', 'stepCheck', 'windows'}
     assert data['source'] == {'preset': 'reel-P1', 'presetFrom': '--preset', 'config': None, 'overrides': []}
-    assert [set(w) for w in data['windows']] == [WINDOW_KEYS] * 3
+    # P1's S = +1 mode has |Re lambda|/|lambda| = 0.011 < SMALL_MARGIN: checked at half the step by default
+    assert data['stepCheck']['checked'] and data['stepCheck']['reason'] == 'default'
+    assert [set(w) for w in data['windows']] == [WINDOW_KEYS | {'phase', 'halfStep'}] * 3
+    assert [w['phase'] for w in data['windows']] == ['lift', 'lower', 'lift']
     assert [w['chatter'] for w in data['windows']] == [False, True, False]   # paper section 3.2.2
     assert os.listdir(tmp_path) == []                         # nothing written unless asked
 

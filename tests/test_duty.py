@@ -132,12 +132,42 @@ def test_simulation_with_each_duty_records_its_laws():
         assert result.info['loadType'] == p['loadType']
 
 
-def test_study_of_another_duty_needs_windows():
-    from exudyn_worm.study import ParseVariation, Study
-    p = ResolveParameters('reel-P1', sets=['loadType=constant', 'loadTorque=100'])
-    with pytest.raises(ValueError, match="Study: a duty other than the reel changer's"):
-        Study(p, [ParseVariation('J1=0.1,0.2')])
-    Study(p, [ParseVariation('J1=0.1,0.2')], windows=[(0., 1.)], endTime=1.)
+# a load torque going linearly from lifting (-1500 N*m, against the motion) to lowering (+1500 N*m) over 0.3 s
+RAMPED_LOAD = ['loadType=timeTable', 'loadTorqueOverTime=[[0, -1500], [0.3, 1500]]']
+
+
+def test_sweep_of_another_duty_takes_its_phases_as_windows(capsys, tmp_path, monkeypatch):
+    """Without --windows a sweep of a non-reel duty evaluates the duty's own phases (the sign change of the load
+    power at 0.15 s), as simulate does, and judges the lowering in the phase where the load drives."""
+    from exudyn_worm.cli import Main
+    from exudyn_worm.reelchanger import DefaultPhases
+    monkeypatch.chdir(tmp_path)
+    p = ResolveParameters('reel-P2', sets=RAMPED_LOAD)
+    phases = DefaultPhases(p)
+    assert [ph for _, _, ph in phases] == ['lift', 'lower'] and phases[0][1] == pytest.approx(0.15, rel=1e-6)
+    args = ['sweep', '--preset', 'reel-P2', '--quiet', '--json', '--workers', '1', '--no-check-step',
+            '--vary', 'J1=0.1,0.2', *[a for s in RAMPED_LOAD for a in ('--set', s)]]
+    assert Main(args) == 0
+    runs = json.loads(capsys.readouterr().out)['runs']
+    for run in runs:
+        assert run['status'] == 'ok', run['error']
+        assert [(w['t0'], w['t1']) for w in run['windows']] == [pytest.approx((t0, t1)) for t0, t1, _ in phases]
+        assert run['loweringChatter'] in (True, False)          # the second window is a lowering one
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_simulate_labels_each_window_with_its_phase(capsys, tmp_path, monkeypatch):
+    """The text table names the phase of each window: lift / lower for the reel changer, motor drives / load
+    drives for another duty; a window over two phases names both."""
+    from exudyn_worm.cli import Main
+    monkeypatch.chdir(tmp_path)
+    assert Main(['simulate', '--preset', 'reel-P2', '--quiet', '--no-check-step',
+                 *[a for s in RAMPED_LOAD for a in ('--set', s)]]) == 0
+    rows = [line for line in capsys.readouterr().out.splitlines() if line.strip()[:1].isdigit()]
+    assert [r.split()[3:5] for r in rows] == [['motor', 'drives'], ['load', 'drives']]
+    assert Main(['simulate', '--quiet', '--no-check-step', '--end-time', '3', '--windows', '0:1,1:3']) == 0
+    rows = [line for line in capsys.readouterr().out.splitlines() if line.strip()[:1].isdigit()]
+    assert [r.split()[3] for r in rows] == ['lift', 'lift+lower']          # P1: lowering from T/4 = 2 s
 
 
 CHARACTERISTIC = ['motorType=characteristic', 'stallTorque=300', 'noLoadSpeed=500 rpm', 'motorInertia=0.05']
@@ -181,3 +211,37 @@ def test_check_simulate_judges_the_lowering_phases_of_a_duty():
     assert ChatterWhileLowering(lifting) is False
     lowering = {**lifting, 'loadTorque': 2000.}
     assert ChatterWhileLowering(lowering) is True          # P7 chatters while lowering (the paper's Figure 14)
+
+
+@pytest.mark.parametrize('preset, stable', [('reel-P2', True), ('reel-P7', False)])
+def test_check_of_a_characteristic_motor_with_the_verdict_of_the_two_mass_model(capsys, tmp_path, monkeypatch,
+                                                                                preset, stable):
+    """Where the whole drive with the free motor has the two-mass model's verdict in both contact states, the
+    design check runs on the two-mass model and says so."""
+    from exudyn_worm.cli import Main
+    from exudyn_worm.linearization import DriveStability
+    monkeypatch.chdir(tmp_path)
+    p = ResolveParameters(preset, sets=CHARACTERISTIC)
+    assert DriveStability(p).stable is stable
+    status = Main(['check', '--preset', preset, '--json', *[a for s in CHARACTERISTIC for a in ('--set', s)]])
+    out, err = capsys.readouterr()
+    assert status == 0, err
+    data = json.loads(out)
+    assert any('checked as a motor holding its speed' in n for n in data['notes'])
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_check_refuses_a_characteristic_motor_that_changes_the_verdict(capsys, tmp_path, monkeypatch):
+    """P1 with the motor on its characteristic: the whole drive is stable while lowering, the two-mass model (motor
+    holding its speed) is not; the check says so in one line and exits 2."""
+    from exudyn_worm.cli import Main
+    from exudyn_worm.linearization import DriveStability
+    from exudyn_worm.stability import AnalyzeStability
+    from exudyn_worm.presets import DriveFromParameters
+    monkeypatch.chdir(tmp_path)
+    p = ResolveParameters('reel-P1', sets=CHARACTERISTIC)
+    assert DriveStability(p).State(-1).stable and not AnalyzeStability(DriveFromParameters(p)).State(-1).stable
+    status = Main(['check', '--preset', 'reel-P1', *[a for s in CHARACTERISTIC for a in ('--set', s)]])
+    out, err = capsys.readouterr()
+    assert status == 2 and out == '' and err.count('\n') == 1 and 'Traceback' not in err
+    assert "the motor's characteristic changes the verdict for S = -1" in err and 'exudyn-worm stability' in err

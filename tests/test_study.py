@@ -18,7 +18,7 @@ from exudyn_worm.config import ResolveParameters
 from exudyn_worm.linearization import LinearStabilityFromParameters
 from exudyn_worm.presets import DriveFromParameters
 from exudyn_worm.stability import AnalyzeStability
-from exudyn_worm.study import (RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunPoint,
+from exudyn_worm.study import (HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunPoint,
                                RunStudy, ShardIndices, Study, StudyPoints, StudyResult, StudySidecarPath, Variation)
 
 # short runs: 1 s of the reel changer (lifting), two windows
@@ -115,7 +115,8 @@ def test_csv_json_and_read_back(tmp_path):
     result = RunStudy(study, out, workers=2, quiet=True)
     with out.open(newline='') as f:
         table = list(csv.DictReader(f))
-    columns = list(RUN_COLUMNS) + ['J1', 'backlash'] + [f'w{i}.{m}' for i in range(2) for m in WINDOW_METRICS]
+    columns = list(RUN_COLUMNS) + ['J1', 'backlash'] + [f'w{i}.{m}' for i in range(2) for m in
+                                                        WINDOW_METRICS + tuple(f'halfStep.{h}' for h in HALF_STEP_METRICS)]
     assert list(table[0]) == columns
     assert sorted(int(r['run']) for r in table) == [0, 1, 2, 3]
     assert {(float(r['J1']), float(r['backlash'])) for r in table} == {(0.01, 0.), (0.01, 5e-4), (0.1, 0.), (0.1, 5e-4)}
@@ -129,7 +130,8 @@ def test_csv_json_and_read_back(tmp_path):
     d = result.ToDict()
     assert set(d) == {'runs', 'agreement'}
     assert d['runs'][1]['parameters'] == {'J1': 0.01, 'backlash': 5e-4}
-    assert set(d['runs'][0]['windows'][0]) == set(WINDOW_METRICS)
+    checked = d['runs'][0]['stepChecked']                 # P1's S = +1 margin 0.011 < 0.02: checked by default
+    assert checked and set(d['runs'][0]['windows'][0]) == set(WINDOW_METRICS) | {'halfStep'}
     # the file holds exactly what the study returned (floats round-trip)
     assert ReadResults(out).ToDict() == d
     json.dumps(d, allow_nan=False)

@@ -41,8 +41,22 @@ def ParseWindows(text: str) -> List[Tuple[float, float]]:
     return windows
 
 
-_SIMULATE_HEADER = '{:>12} {:>20} {:>10} {:>7} {:>6} {:>16}  chatter'.format(
-    'window [s]', "max|phi2''| rad/s^2", 'max Fn kN', 'f Hz', 'S<0 %', "min phi1' rad/s")
+_SIMULATE_HEADER = '{:>12}  {:<12}{:>20} {:>10} {:>7} {:>6} {:>16}  chatter'.format(
+    'window [s]', 'phase', "max|phi2''| rad/s^2", 'max Fn kN', 'f Hz', 'S<0 %', "min phi1' rad/s")
+
+
+def _StepCheckLine(check: dict) -> str:
+    """One line saying whether and why the verdicts were checked at half the step."""
+    margin = f"linear margin |Re lambda|/|lambda| = {check['margin']:.3g}"
+    if check['checked']:
+        why = ('--check-step' if check['reason'] == 'option'
+               else f"{margin} < {check['smallMargin']:g}, near the stability boundary")
+        return (f"step check: verdicts compared with a run at half the step ({check['halfStepSize']:g} s; {why}); "
+                f"'unresolved' where they differ")
+    why = {'option': '--no-check-step', 'maxSteps': 'the run at half the step would exceed --max-steps'}.get(
+        check['reason'], f"{margin} >= {check['smallMargin']:g}")
+    return f"step check: off ({why}); --check-step compares with a run at half the step"
+
 _SIMULATE_FIGURES = ('overview', 'acceleration', 'speed', 'normalForce', 'driveTorque')
 
 
@@ -78,6 +92,10 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='evaluation windows in s (default: the lift / lower / lift phases of every '
                              'rotation simulated, the last one clipped to the end time; for another duty its lift, '
                              'lower and idle phases: lowering = the load drives the gear)')
+    parser.add_argument('--check-step', action=argparse.BooleanOptionalAction, default=None,
+                        help="run again at half the step and report a window whose chatter verdict changes as "
+                             "'unresolved' (default: on where the linear margin is small, |Re lambda|/|lambda| of "
+                             "the least stable mode < 0.02; rule in docs/command-line.md)")
     parser.add_argument('--plot', default=None, metavar='DIR',
                         help='write PNG figures into the folder DIR (created if missing; its parent must exist)')
     parser.add_argument('--csv', default=None, metavar='FILE',
@@ -86,6 +104,26 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
     parser.add_argument('--python-user-functions', action='store_true',
                         help='evaluate the connector in Python instead of C++ (debugging; same results, slower)')
+
+
+def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: float, maxSteps: int) -> dict:
+    """Whether the verdicts are checked at half the step, and why (--check-step, or the linear margin)."""
+    from ..reelchanger import CheckRunSize
+    from ..stepsize import SMALL_MARGIN, LinearMargin
+    with BadInput():
+        margin = LinearMargin(parameters)
+    check = {'checked': margin['small'] if args.check_step is None else args.check_step,
+             'halfStepSize': 0.5 * stepSize, 'margin': margin['margin'], 'smallMargin': SMALL_MARGIN,
+             'reason': 'option' if args.check_step is not None else 'default'}
+    if check['checked']:
+        try:
+            CheckRunSize(endTime, 0.5 * stepSize, maxSteps, 'simulate',
+                         ('--end-time', 'half the step (--check-step)', '--max-steps'))
+        except ValueError as err:
+            if args.check_step:
+                raise UsageError(str(err)) from None
+            check['checked'], check['reason'] = False, 'maxSteps'      # said in the output (_StepCheckLine)
+    return check
 
 
 def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, int, List[Tuple[float, float]]]:
@@ -135,31 +173,49 @@ def _Run(args: argparse.Namespace) -> int:
     plots = (CheckOutputPath(args.plot, '--plot', 'folder', overwrite=args.overwrite,
                              contents=[f'{kind}.png' for kind in _SIMULATE_FIGURES]) if args.plot is not None else None)
     endTime, stepSize, maxSteps, windows = _RunSettings(args, parameters)
-    from ..reelchanger import SimulateReelChanger
+    stepCheck = _StepCheck(args, parameters, endTime, stepSize, maxSteps)
+    from ..reelchanger import PhaseLabel, SimulateReelChanger, WindowPhases
     from ..solve import SolverDivergedError
-    from ..stepsize import CoarseStepWarning
-    try:
-        with StdoutToStderr(args.json), warnings.catch_warnings():
-            warnings.simplefilter('ignore', CoarseStepWarning)      # reported above
-            result = SimulateReelChanger(parameters, endTime=endTime, stepSize=stepSize, maxSteps=maxSteps,
-                                         useSymbolic=not args.python_user_functions,
-                                         progress=False if args.quiet else None)
-    except SolverDivergedError as err:
-        raise UsageError(f"simulation failed: {str(err).removeprefix('SimulateReelChanger: ')}") from err
+    from ..stepsize import CoarseStepWarning, CompareHalfStep, UNRESOLVED
+
+    def Simulate(h):
+        try:
+            with StdoutToStderr(args.json), warnings.catch_warnings():
+                warnings.simplefilter('ignore', CoarseStepWarning)      # reported above
+                return SimulateReelChanger(parameters, endTime=endTime, stepSize=h, maxSteps=maxSteps,
+                                           useSymbolic=not args.python_user_functions,
+                                           progress=False if args.quiet else None)
+        except SolverDivergedError as err:
+            raise UsageError(f"simulation failed{' at half the step (--check-step)' if h != stepSize else ''}: "
+                             f"{str(err).removeprefix('SimulateReelChanger: ')}") from err
+
+    result = Simulate(stepSize)
     metrics = result.WindowMetrics(windows)
+    if stepCheck['checked']:
+        metrics = CompareHalfStep(metrics, Simulate(0.5 * stepSize).WindowMetrics(windows))
+    phases = WindowPhases(parameters, windows, endTime)
+    for m, phase in zip(metrics, phases):
+        m['phase'] = phase
     source = SourceText(args)
     if args.json:
         PrintJson({'source': SourceInfo(args), 'endTime': result.endTime, 'stepSize': stepSize, 'steps': result.steps,
-                   'solveSeconds': result.solveSeconds, 'windows': metrics})
+                   'solveSeconds': result.solveSeconds, 'stepCheck': stepCheck, 'windows': metrics})
     else:
         print(f"exudyn-worm simulate: {source}")
         print(f"simulated {result.endTime:g} s in {result.steps} steps of {stepSize:g} s, "
               f"solver time {result.solveSeconds:.3f} s")
+        print(_StepCheckLine(stepCheck))
         print(_SIMULATE_HEADER)
         for m in metrics:
-            print(f"{m['t0']:>5.2f} - {m['t1']:<5.2f}{m['maxAbsWheelAcceleration']:>20.1f} {m['maxNormalForce'] / 1e3:>10.1f} "
+            verdict = {True: 'YES', False: 'no'}.get(m['chatter'], m['chatter'])
+            if m['chatter'] == UNRESOLVED:
+                verdict += (f" (h: {'YES' if not m['halfStep']['chatter'] else 'no'}, "
+                            f"h/2: {'YES' if m['halfStep']['chatter'] else 'no'}; max|phi2''| at h/2 "
+                            f"{m['halfStep']['maxAbsWheelAcceleration']:.1f})")
+            print(f"{m['t0']:>5.2f} - {m['t1']:<5.2f} {PhaseLabel(parameters, m['phase']):<12}"
+                  f"{m['maxAbsWheelAcceleration']:>20.1f} {m['maxNormalForce'] / 1e3:>10.1f} "
                   f"{m['dominantFrequencyHz']:>7.1f} {100 * m['fractionSNegative']:>6.0f} {m['minWormSpeed']:>16.2f}  "
-                  f"{'YES' if m['chatter'] else 'no'}")
+                  f"{verdict}")
         sys.stdout.flush()
     written = []
     if csv is not None:

@@ -35,12 +35,17 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='run only the runs i, i+N, i+2N, ... (0 <= i < N), e.g. one task of a job array')
     parser.add_argument('--end-time', type=float, default=None, metavar='S',
                         help='simulated time in s (default: one rotation of each run)')
-    parser.add_argument('--step-size', type=float, default=None, metavar='S', help="time step in s (default: 5e-4 or the drive's recommended step, whichever is smaller; finer "
-                             "than simulate's default, the recommended step)")
+    parser.add_argument('--step-size', type=float, default=None, metavar='S',
+                        help="time step in s (default: each run's recommended step, 0.039 / its highest natural "
+                             "frequency, as simulate)")
+    parser.add_argument('--check-step', action=argparse.BooleanOptionalAction, default=None,
+                        help="run each point again at half the step; a window whose chatter verdict changes is "
+                             "'unresolved' (default: on for the runs whose linear margin is small, as simulate)")
     parser.add_argument('--max-steps', type=PositiveInt('steps'), default=None, metavar='N',
                         help='record as failed the runs of more solver steps than N (default 1e6, as simulate)')
     parser.add_argument('--windows', default=None, metavar='T0:T1,...',
-                        help='evaluation windows in s (default: the lift / lower / lift phases of each run)')
+                        help='evaluation windows in s (default: the lift / lower / lift phases of each run; for '
+                             'another duty the phases of the first run\'s duty, the same windows for every run)')
     parser.add_argument('--plot', default=None, metavar='FILE.png',
                         help='one varied key: --metric against it; two: the chatter map over them (a stiffness '
                              'across and an inertia up, as the stability charts)')
@@ -74,7 +79,8 @@ def _Study(args: argparse.Namespace):
         if windows and args.end_time is not None and max(t1 for _, t1 in windows) > args.end_time:
             raise ValueError(f"--windows: a window ends after --end-time = {args.end_time:g} s")
         return Study(parameters, variations, zipped=args.zip, windows=windows, endTime=args.end_time,
-                     stepSize=args.step_size, source=SourceText(args), maxSteps=args.max_steps)
+                     stepSize=args.step_size, source=SourceText(args), maxSteps=args.max_steps,
+                     checkStep=args.check_step)
 
 
 def _CheckPlot(args, study) -> None:
@@ -138,6 +144,10 @@ def _Run(args: argparse.Namespace) -> int:
     return 1 if result.rows and failed == len(result.rows) else 0
 
 
+#: the chatter cell of a window in the table: chatter, none, unresolved (changes at half the step), not computed
+_VERDICT_CELLS = {True: 'YES', False: 'no', 'unresolved': 'UNR', None: '-'}
+
+
 def FormatStudy(result, title: str = 'Study') -> List[str]:
     """Human-readable table of a study: one line per run (varied values, status, chatter per window,
     verdict of the linear model as ``exudyn-worm stability`` gives it: the analytical two-mass model or the
@@ -163,14 +173,17 @@ def FormatStudy(result, title: str = 'Study') -> List[str]:
                                   + ['status', 'chatter per window'.ljust(max(18, 4 * n)), 'S=-1 linear  ',
                                      'seconds'])]
     for r in result.rows:
-        chatter = ' '.join('-' if r.get(f'w{i}.chatter') is None else 'YES' if r[f'w{i}.chatter'] else 'no'
-                           for i in range(n))
+        chatter = ' '.join(_VERDICT_CELLS.get(r.get(f'w{i}.chatter'), '?') for i in range(n))
         verdict = {None: '-', True: 'stable', False: 'UNSTABLE'}[r['analyticStableLowering']]
         cells = [f"{r['run']:>5d}"] + [f"{r[k]:>{w}.5g}" for k, w in zip(keys, widths)]
         cells += [f"{r['status']:<6}", chatter.ljust(max(18, 4 * n)), f"{verdict:<13}", f"{r['seconds']:7.2f}"]
         lines.append('  '.join(cells) + (f"  {r['error']}" if r['error'] else ''))
     agreement = result.agreement
-    lines += ['', f"{len(result.rows)} runs: {len(result.finished)} ok, {len(result.failed)} failed; "
+    unresolved = sum(any(r.get(f'w{i}.chatter') == 'unresolved' for i in range(n)) for r in result.rows)
+    checked = sum(bool(r.get('stepChecked')) for r in result.rows)
+    lines += ['', f"step check (a second run at half the step): {checked} of {len(result.rows)} runs; "
+                  f"{unresolved} with an unresolved verdict (UNR: it changes when the step is halved)"]
+    lines += [f"{len(result.rows)} runs: {len(result.finished)} ok, {len(result.failed)} failed; "
                   f"agreement of chatter while lowering with the linear model's S = -1 verdict (as "
                   f"'exudyn-worm stability'): "
                   + ('n/a (no lowering window)' if agreement is None else f"{100 * agreement:.0f} %")]
