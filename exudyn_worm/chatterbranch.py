@@ -220,7 +220,10 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
                                 onPoint=onPoint)
         halves.append(branch)
         result.messages += [f"towards {'lower' if direction < 0 else 'higher'} {name}: {r}" for r in branch.stopReason]
-    result.points = list(reversed(halves[0].points)) + halves[1].points[1:]
+    result.points = [p for p in list(reversed(halves[0].points)) + halves[1].points[1:] if low <= p.value <= high]
+    if not roots:
+        result.messages.append(f"the drive is linearly unstable for every {name} in [{low:g}, {high:g}]: the range "
+                               f"crosses no linear boundary, so the branch has no Hopf point in it")
     # Hopf points: ends at which the orbit shrank into the linear range
     for branch in halves:
         end = branch.points[-1]
