@@ -382,6 +382,15 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 0.5, 
             raise ShootingError(f"{w}: the lowering phase settles to rest after {settleTime:g} s (worm speed swing "
                                 f"{swing:.3g} rad/s): no steady chatter at these parameters")
         period = _PeriodFromSignal(s['time'], s['omega1'])
+        # start where the mesh is deepest in contact in the last period: far from the switches of the law
+        # (contact loss, clipped force), so the finite-difference monodromy does not straddle one
+        t = s['time']
+        last = np.nonzero(t >= t[-1] - period)[0]
+        mesh = model.connector.Evaluate(s['phi1'][last], s['phi2'][last], s['omega1'][last], s['omega2'][last])
+        k = last[int(np.argmax(np.abs(mesh.normalForce)))]
+        u = model.drive.gear.ratio
+        w1, w2 = model.motorSpeed, model.motorSpeed / u
+        x = np.array([s['phi1'][k] - w1 * t[k], s['phi2'][k] - w2 * t[k], s['omega1'][k] - w1, s['omega2'][k] - w2])
     else:
         x, period = np.asarray(start[0], dtype=float), float(start[1])
     flow = _LoweringFlow(model, stepsPerPeriod)
