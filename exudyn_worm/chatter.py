@@ -27,7 +27,7 @@ from .orbits import FindPeriodicOrbit, PeriodicOrbit, ShootingError
 from ._checks import CheckPositive, CheckReal
 
 __all__ = ['ConstantTorque', 'LoweringModel', 'BuildLoweringModel', 'ExudynFlow', 'FindSteadyChatter',
-           'OrbitAmplitude', 'SettleLowering', 'StateScale', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS']
+           'OrbitAmplitude', 'SettleLowering', 'StateScale', 'LongSimulationAmplitude', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS']
 
 #: solver steps per chatter period of the shooting runs (about 2 % change in the P1 amplitude to 800 steps,
 #: measured, see docs/chatter-amplitude.md)
@@ -332,7 +332,7 @@ def OrbitAmplitude(model: LoweringModel, flow: ExudynFlow, state, period: float)
             'minWormSpeed': float(np.min(s['omega1']))}
 
 
-def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 0.5, stepsPerPeriod: int = STEPS_PER_PERIOD,
+def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, stepsPerPeriod: int = STEPS_PER_PERIOD,
                       contactOptions: ContactOptions = ContactOptions(), start=None, maxIterations: int = 30,
                       tolerance: float = 1e-8, model: Optional[LoweringModel] = None) -> PeriodicOrbit:
     """Steady chatter of the lowering phase: the periodic orbit of the Exudyn model, by shooting.
@@ -374,13 +374,17 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 0.5, 
         CheckPositive(w, 'settleTime', settleTime, 's')
         # settle, then record a few periods to estimate the period
         x, _ = SettleLowering(model, settleTime)
-        probe = _LoweringFlow(model, 2000)
-        x = probe.Solve(x, 0.2, storeSensors=True)
+        probe = _LoweringFlow(model, 4000)
+        x = probe.Solve(x, 0.4, storeSensors=True)
         s = model.connector.StoredStates(model.mbs)
-        swing = np.ptp(s['omega1'][len(s['omega1']) // 2:])
-        if not swing > 1e-4 * model.motorSpeed:
-            raise ShootingError(f"{w}: the lowering phase settles to rest after {settleTime:g} s (worm speed swing "
-                                f"{swing:.3g} rad/s): no steady chatter at these parameters")
+        quarter = len(s['omega1']) // 4
+        first, swing = np.ptp(s['omega1'][:quarter]), np.ptp(s['omega1'][-quarter:])
+        from .linearization import DriveStability
+        linearlyStable = DriveStability(model.parameters).State(-1).stable
+        if not swing > 1e-4 * model.motorSpeed or (swing < 0.7 * first and linearlyStable):
+            raise ShootingError(f"{w}: the lowering phase settles to rest (after {settleTime:g} s the worm speed swing "
+                                f"still shrinks, {first:.3g} -> {swing:.3g} rad/s in 0.3 s): no steady chatter at these "
+                                f"parameters (a larger disturbance may still start one where rest and chatter coexist)")
         period = _PeriodFromSignal(s['time'], s['omega1'])
         # start where the mesh is deepest in contact in the last period: far from the switches of the law
         # (contact loss, clipped force), so the finite-difference monodromy does not straddle one
@@ -407,3 +411,54 @@ def StateScale(model: LoweringModel) -> np.ndarray:
     deflection = max(model.staticNormalForce / g.kV, 1e-9) / g.normalLever         # worm angle of the deflection
     angles = np.array([deflection, deflection / g.ratio])
     return np.concatenate([angles, angles * 2 * math.pi * 40.])
+
+
+def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3.0, stepSize: float = 1e-4,
+                            kick: float = 0.01, window: float = 0.25,
+                            contactOptions: ContactOptions = ContactOptions()) -> Dict[str, float]:
+    """Steady amplitude of the lowering phase by brute force: a long time simulation with the time simulations'
+    solver settings (:data:`~exudyn_worm.reelchanger.SOLVER_SETTINGS`: modified Newton, tolerance 1e-6), measured
+    over its last ``window`` seconds; the check of the orbits found by shooting.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with the reel changer's keys.
+    duration : float
+        Simulated time in s.
+    stepSize : float
+        Time step in s.
+    kick : float
+        Initial worm speed disturbance as a fraction of the motor speed.
+    window : float
+        Final part of the run in s over which the amplitude is measured.
+    contactOptions : ContactOptions
+        Options of the contact law.
+
+    Returns
+    -------
+    dict
+        ``forceFactor``, ``maxWheelAcceleration`` (rad/s^2), ``frequencyHz`` (nan at rest), ``seconds`` (solver time).
+    """
+    import time
+    from .reelchanger import SOLVER_SETTINGS
+    w = 'LongSimulationAmplitude'
+    duration = CheckPositive(w, 'duration', duration, 's')
+    stepSize = CheckPositive(w, 'stepSize', stepSize, 's')
+    window = CheckPositive(w, 'window', window, 's')
+    model = BuildLoweringModel(parameters, contactOptions)
+    steps = max(10, int(round(duration / stepSize)))
+    flow = _LoweringFlow(model, steps)
+    flow = ExudynFlow(model.mbs, flow.coordinates, flow.speeds, steps, solverSettings=SOLVER_SETTINGS)
+    flow.q0[model.mbs.GetNodeODE2Index(model.rotors['motor']['nodeNumber'])] = 0.
+    x = flow.StartState()
+    x[2] += kick * model.motorSpeed
+    t0 = time.perf_counter()
+    flow.Solve(x, duration, storeSensors=True)
+    seconds = time.perf_counter() - t0
+    s = model.connector.StoredStates(model.mbs)
+    last = s['time'] >= s['time'][-1] - window
+    mesh = model.connector.Evaluate(s['phi1'][last], s['phi2'][last], s['omega1'][last], s['omega2'][last])
+    return {'forceFactor': float(np.max(np.abs(mesh.normalForce)) / model.staticNormalForce),
+            'maxWheelAcceleration': float(np.max(np.abs(s['alpha2'][last]))),
+            'frequencyHz': 1. / _PeriodFromSignal(s['time'][last], s['omega1'][last]), 'seconds': seconds}

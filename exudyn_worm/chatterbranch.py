@@ -133,8 +133,8 @@ def LinearBoundaries(parameters: Mapping[str, float], name: str, low: float, hig
 
 
 def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float, high: float,
-                         maxPoints: int = 60, settleTime: float = 1.0, onPoint: Optional[Callable] = None
-                         ) -> ChatterBranch:
+                         maxPoints: int = 60, settleTime: float = 1.0, onPoint: Optional[Callable] = None,
+                         restarts: int = 3) -> ChatterBranch:
     """Branch of steady chatter of the lowering phase in parameter ``name`` over ``[low, high]``.
 
     Parameters
@@ -151,6 +151,9 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         Time simulation in s before the first shooting.
     onPoint : callable, optional
         Called with each new :class:`~exudyn_worm.continuation.BranchPoint`.
+    restarts : int
+        How often a direction may start again from a time simulation a little further on when the corrector is
+        stuck (at a kink of the non-smooth map); each restart is noted in ``messages``.
 
     Returns
     -------
@@ -215,11 +218,37 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     scaleP = (high - low) / 25.
     halves = []
     for direction in (-1, 1):
+        side = 'lower' if direction < 0 else 'higher'
         branch = ContinueOrbits(FlowAt, orbit, start, (low, high), scale, scaleP, name, direction=direction,
-                                stepLength=0.5, maxStepLength=2., maxPoints=maxPoints, measure=Measure, stop=Stop,
-                                onPoint=onPoint)
+                                stepLength=0.5, maxStepLength=2., minStepLength=0.02, maxPoints=maxPoints,
+                                measure=Measure, stop=Stop, onPoint=onPoint)
+        result.messages += [f"towards {side} {name}: {r}" for r in branch.stopReason]
+        for _ in range(restarts):
+            last = branch.points[-1]
+            if not branch.stopReason[-1].startswith('the corrector did not converge') or len(branch.points) > maxPoints:
+                break
+            # the corrector is stuck at a kink of the map (e.g. the orbit starts to touch the other flank): start
+            # again from a time simulation a little further on, and continue from there
+            value = last.value + direction * scaleP
+            if not low <= value <= high:
+                break
+            m, _ = ModelAt(value)
+            try:
+                again = FindSteadyChatter({**base, name: value}, settleTime=settleTime, model=m)
+            except ShootingError:
+                result.messages.append(f"towards {side} {name}: no steady chatter found again at {name} = {value:.6g}")
+                break
+            current['flow'] = again.info['flow']
+            result.messages.append(f"towards {side} {name}: restarted from a time simulation at {name} = {value:.6g}")
+            more = ContinueOrbits(FlowAt, again, value, (low, high), scale, scaleP, name, direction=direction,
+                                  stepLength=0.5, maxStepLength=2., minStepLength=0.02,
+                                  maxPoints=maxPoints - len(branch.points), measure=Measure, stop=Stop,
+                                  onPoint=onPoint)
+            branch.points += more.points
+            branch.folds += more.folds
+            branch.stopReason = more.stopReason
+            result.messages += [f"towards {side} {name}: {r}" for r in more.stopReason]
         halves.append(branch)
-        result.messages += [f"towards {'lower' if direction < 0 else 'higher'} {name}: {r}" for r in branch.stopReason]
     result.points = [p for p in list(reversed(halves[0].points)) + halves[1].points[1:] if low <= p.value <= high]
     if not roots:
         result.messages.append(f"the drive is linearly unstable for every {name} in [{low:g}, {high:g}]: the range "

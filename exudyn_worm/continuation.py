@@ -3,10 +3,10 @@
 The unknowns are ``y = (x0, T, p)``: a point of the orbit, its period and the parameter. The equations are the
 shooting equations of :mod:`exudyn_worm.orbits` at parameter ``p`` (``x(T; x0, p) - x0 = 0`` and the phase
 condition against the previous point) and the arclength condition ``t . (y - y_pred) = 0``, in scaled variables
-(state / stateScale, T / T0, p / parameterScale). Predictor: the tangent ``t`` (null vector of the Jacobian of the
-shooting equations), oriented along the previous tangent, so the branch is followed through folds (turning
-points in ``p``, where the parameter component of the tangent changes sign). After the first step the tangent is
-the secant through the last two points, which is robust to errors of the finite-difference Jacobian. The step length adapts: halved when
+(state / stateScale, T / T0, p / parameterScale). The first step changes the parameter alone; after it the
+predictor follows the secant through the last two points (robust to the errors of the finite-difference
+Jacobian through the mesh's switches), so the branch is followed through folds (turning points in ``p``, where
+the parameter component of the secant changes sign). The step length adapts: halved when
 the corrector fails, grown by 1.5 after an easy step.
 
 The flow at parameter ``p`` comes from ``flowAt(p)``, which may change the model in place or build a new one.
@@ -49,15 +49,23 @@ class Branch:
 
 
 def _Newton(F, J, y, tol, maxIterations):
+    """Newton with backtracking: a step that does not lower the residual is halved (up to 6 times), which stops the
+    two-cycle Newton falls into across a kink of the non-smooth one-period map."""
+    r = F(y)
     for k in range(maxIterations):
-        r = F(y)
-        if np.max(np.abs(r)) <= tol:
+        norm = float(np.max(np.abs(r)))
+        if norm <= tol:
             return y, k, True
-        A = J(y)
-        dy = np.linalg.lstsq(A, -r, rcond=None)[0]
-        step = max(1., float(np.max(np.abs(dy))) / 0.5)
-        y = y + dy / step
-    return y, maxIterations, np.max(np.abs(F(y))) <= tol
+        dy = np.linalg.lstsq(J(y), -r, rcond=None)[0]
+        dy /= max(1., float(np.max(np.abs(dy))) / 0.5)
+        for _ in range(7):
+            yTrial = y + dy
+            rTrial = F(yTrial)
+            if float(np.max(np.abs(rTrial))) < norm:
+                break
+            dy *= 0.5
+        y, r = yTrial, rTrial
+    return y, maxIterations, float(np.max(np.abs(r))) <= tol
 
 
 def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, value: float, bounds: Tuple[float, float],
@@ -135,36 +143,42 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
         r = np.concatenate([(xT - x) / scale, [fRef @ (x - xRef) / wn]])
         return r, (A, M, velocity)
 
-    def Tangent(A, previous):
-        t = np.linalg.svd(A)[2][-1]
-        if previous is not None and t @ previous < 0:
-            t = -t
-        return t / np.linalg.norm(t)
-
     y = np.concatenate([start.state / scale, [1., value / parameterScale]])
     reference = (start.state.copy(), start.velocity.copy())
-    _, (A, _, _) = Shooting(y, reference, True)
-    tangent = Tangent(A, None)
-    if tangent[n + 1] * direction < 0:
-        tangent = -tangent
+    # first step: parameter changed alone (natural continuation), then the secant through the two points
+    tangent = np.zeros(n + 2)
+    tangent[n + 1] = 1. if direction > 0 else -1.
+    first = True
     points = [BranchPoint(value, start, measure(value, start) if measure else {})]
     branch = Branch(parameter, points)
     h = stepLength
     while len(points) <= maxPoints:
         yPred = y + h * tangent
         cache = {}
+        row = tangent
+        pPred = yPred[n + 1] * parameterScale
+        if first:
+            row = np.zeros(n + 2)
+            row[n + 1] = 1.
+        if not low <= pPred <= high and abs(tangent[n + 1]) > 1e-3:
+            # the step would leave the range: land on its end instead (parameter fixed there)
+            end = low if pPred < low else high
+            yPred = y + (end / parameterScale - y[n + 1]) / tangent[n + 1] * tangent
+            yPred[n + 1] = end / parameterScale
+            row = np.zeros(n + 2)
+            row[n + 1] = 1.
 
         def F(z):
             r, _ = Shooting(z, reference, False)
-            return np.concatenate([r, [tangent @ (z - yPred)]])
+            return np.concatenate([r, [row @ (z - yPred)]])
 
         def J(z):
             r, (A, M, v) = Shooting(z, reference, True)
             cache['last'] = (z.copy(), A, M, v)
-            return np.vstack([A, tangent])
+            return np.vstack([A, row])
 
         try:
-            yNew, iterations, ok = _Newton(F, J, yPred, tolerance, 8)
+            yNew, iterations, ok = _Newton(F, J, yPred, tolerance, 12)
         except Exception as err:            # a solver failure on the way counts as a failed step
             ok, iterations, yNew = False, 8, yPred
             cache['error'] = str(err)
@@ -190,9 +204,9 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
         points.append(point)
         if onPoint is not None:
             onPoint(point)
-        y, tangent, reference = yNew, newTangent, (x.copy(), velocity.copy())
-        if not low <= p <= high:
-            branch.stopReason.append(f"left the range at {parameter} = {p:.6g}")
+        y, tangent, reference, first = yNew, newTangent, (x.copy(), velocity.copy()), False
+        if not low < p < high:
+            branch.stopReason.append(f"reached the end of the range at {parameter} = {p:.6g}")
             break
         reason = stop(point) if stop else None
         if reason:

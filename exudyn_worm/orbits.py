@@ -221,8 +221,9 @@ def FindPeriodicOrbit(flow: Callable, x0: Sequence[float], period: float, stateS
     fRef = None if referenceVelocity is None else np.asarray(referenceVelocity, dtype=float).ravel()
     n = x.size
     residual, orbit = math.inf, None
+    xT = None
     for iteration in range(maxIterations + 1):
-        xT, M, velocity = ShootingJacobian(flow, x, T, scale, perturbation)
+        xT, M, velocity = ShootingJacobian(flow, x, T, scale, perturbation, xT)
         if fRef is None:
             fRef = velocity.copy()
         r = xT - x
@@ -244,10 +245,17 @@ def FindPeriodicOrbit(flow: Callable, x0: Sequence[float], period: float, stateS
             dy = np.linalg.solve(A, b)
         except np.linalg.LinAlgError:
             dy = np.linalg.lstsq(A, b, rcond=None)[0]
-        # damped step: at most half the state scale per component and 30 % of the period
-        step = max(1., float(np.max(np.abs(dy[:n]))) / 0.5, abs(dy[n]) / 0.3)
-        x = x + dy[:n] * scale / step
-        T = T * (1. + dy[n] / step)
+        # damped step: at most half the state scale per component and 30 % of the period; halved while it does
+        # not lower the residual (stops Newton's two-cycle across a kink of a non-smooth map)
+        dy /= max(1., float(np.max(np.abs(dy[:n]))) / 0.5, abs(dy[n]) / 0.3)
+        for _ in range(7):
+            xTrial, TTrial = x + dy[:n] * scale, T * (1. + dy[n])
+            if TTrial > 0 and np.all(np.isfinite(xTrial)):
+                xT = np.asarray(flow(xTrial, TTrial), dtype=float)
+                if float(np.max(np.abs(xT - xTrial) / scale)) < residual:
+                    break
+            dy *= 0.5
+        x, T = xTrial, TTrial
         if not (T > 0 and np.all(np.isfinite(x))):
             raise ShootingError(f"{where}: the shooting iteration diverged (period {T:g} s) after {iteration + 1} "
                                 f"Newton steps; start closer to the orbit (e.g. from a longer time simulation)",
