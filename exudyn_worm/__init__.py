@@ -21,6 +21,8 @@ _LAZY = {'WormGear': 'gear',
          **dict.fromkeys(('AnalyzeLinearStability', 'AnalyzeStabilityExudyn', 'LinearStability'), 'linearization'),
          **dict.fromkeys(('BuildReelChanger', 'SimulateReelChanger'), 'reelchanger'),
          'SimulationResult': 'results',
+         **dict.fromkeys(('FindPeriodicOrbit', 'PeriodicOrbit'), 'orbits'),
+         'FindSteadyChatter': 'chatter', 'AnalyzeChatterBranch': 'chatterbranch',
          **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'stepsize')}
 
 
@@ -46,6 +48,7 @@ __all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMea
            'LinearMotorCharacteristic', 'StartStopProfile', 'ApplyOverrides', 'DriveFromParameters', 'GetPreset',
            'PRESETS', 'AnalyzeStabilityExudyn', 'AnalyzeLinearStability', 'LinearStability', 'BuildReelChanger',
            'SimulateReelChanger', 'SimulationResult', 'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods',
+           'FindPeriodicOrbit', 'PeriodicOrbit', 'FindSteadyChatter', 'AnalyzeChatterBranch',
            '__version__']
 
 _MAIN_SYSTEM_METHODS = ('CreateWormGear', 'CreateWormAxialBearing', 'CreateRotor', 'CreateShaft',

@@ -12,7 +12,7 @@ over time T (fixed number of steps), read the end state. :func:`FindSteadyChatte
 simulation that has settled (or from the unstable eigenvector of the linearization) and shoots
 (:func:`~exudyn_worm.orbits.FindPeriodicOrbit`). :func:`OrbitAmplitude` simulates the converged orbit once and
 reports the largest normal-force factor (largest normal force / static normal force) and the largest
-|phi2''|.
+``|phi2''|``.
 """
 from __future__ import annotations
 
@@ -52,7 +52,7 @@ class ConstantTorque:
 
     @property
     def maximum(self) -> float:
-        """|value| in N*m."""
+        """``abs(value)`` in N*m."""
         return abs(self.value)
 
 
@@ -322,7 +322,7 @@ def OrbitAmplitude(model: LoweringModel, flow: ExudynFlow, state, period: float)
     -------
     dict
         ``forceFactor`` (largest normal force over the static normal force), ``maxWheelAcceleration`` (largest
-        |phi2''| in rad/s^2), ``minWormSpeed`` (rad/s).
+        ``|phi2''|`` in rad/s^2), ``minWormSpeed`` (rad/s).
     """
     flow.Solve(state, period, storeSensors=True)
     s = model.connector.StoredStates(model.mbs)

@@ -5,7 +5,7 @@ drive is linearly unstable, follows it by pseudo-arclength continuation
 (:func:`~exudyn_worm.continuation.ContinueOrbits`) in both directions until the orbit shrinks into the linear
 range of the mesh (its largest normal force below twice the static force: the orbit no longer loses contact,
 it is one of the neutral orbits of the linearized drive, i.e. the branch has reached its Hopf point) or leaves
-the range, and reports per point the amplitude (normal-force factor, largest |phi2''|), the frequency and the
+the range, and reports per point the amplitude (normal-force factor, largest ``|phi2''|``), the frequency and the
 Floquet stability; for the branch the Hopf points beside the linear boundaries (roots of the largest real part
 of the S = -1 eigenvalues, :func:`~exudyn_worm.linearization.DriveStability`), their type, the folds and the
 ranges in which rest and stable chatter coexist.

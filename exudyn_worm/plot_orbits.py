@@ -12,7 +12,7 @@ __all__ = ['PlotChatterBranch']
 
 
 def PlotChatterBranch(branch, fileName: Optional[str] = None, ax=None):
-    """Draw the normal-force factor and the largest |phi2''| of a branch over its parameter.
+    """Draw the normal-force factor and the largest ``|phi2''|`` of a branch over its parameter.
 
     Stable orbits are solid lines, unstable ones dashed; Hopf points are marked, the linear boundaries are
     dotted vertical lines, folds are marked with x, coexistence ranges are shaded.
