@@ -27,7 +27,7 @@ from .orbits import FindPeriodicOrbit, PeriodicOrbit, ShootingError
 from ._checks import CheckPositive, CheckReal
 
 __all__ = ['ConstantTorque', 'LoweringModel', 'BuildLoweringModel', 'ExudynFlow', 'FindSteadyChatter',
-           'OrbitAmplitude', 'SettleLowering', 'StateScale', 'LongSimulationAmplitude', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS']
+           'OrbitAmplitude', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LongSimulationAmplitude', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS']
 
 #: solver steps per chatter period of the shooting runs (about 2 % change in the P1 amplitude to 800 steps,
 #: measured, see docs/chatter-amplitude.md)
@@ -164,7 +164,9 @@ def UpdateLoweringModel(model: LoweringModel, parameters: Mapping[str, float]) -
     mbs.SetObjectParameter(model.rotors['driveShaft']['objectNumber'], 'stiffness', drive.kT)
     mbs.SetObjectParameter(model.rotors['driveShaft']['objectNumber'], 'damping', drive.dT)
     mbs.Assemble()
+    from .reelchanger import SteadyInitialState
     model.drive, model.parameters = drive, dict(parameters)
+    model.steady = SteadyInitialState(drive, ConstantTorque(model.loadTorque), model.motorSpeed, model.contactOptions)
     return model
 
 
@@ -264,9 +266,10 @@ def _LoweringFlow(model: LoweringModel, stepsPerPeriod: int) -> ExudynFlow:
     return flow
 
 
-def SettleLowering(model: LoweringModel, duration: float, kick: float = 0.01, stepSize: float = 1e-4):
+def SettleLowering(model: LoweringModel, duration: float, kick: float = 0.01, stepSize: float = 1e-4,
+                   store: bool = False):
     """Time simulation of the lowering phase from the steady state with the worm speed kicked by ``kick``
-    (relative to the motor speed); returns the flow state at the end and the stored worm speed deviation.
+    (relative to the motor speed); returns the flow state at the end and the flow used.
 
     Parameters
     ----------
@@ -277,6 +280,8 @@ def SettleLowering(model: LoweringModel, duration: float, kick: float = 0.01, st
         Initial worm speed disturbance as a fraction of the motor speed.
     stepSize : float
         Time step in s.
+    store : bool
+        Keep the sensors' samples of every step (read them with ``model.connector.StoredStates(model.mbs)``).
 
     Returns
     -------
@@ -284,9 +289,19 @@ def SettleLowering(model: LoweringModel, duration: float, kick: float = 0.01, st
     """
     steps = max(10, int(round(duration / stepSize)))
     flow = _LoweringFlow(model, steps)
-    x = flow.StartState()
+    x = EquilibriumState(model)
     x[2] += kick * model.motorSpeed
-    return flow.Solve(x, duration), flow
+    return flow.Solve(x, duration, storeSensors=store), flow
+
+
+def EquilibriumState(model: LoweringModel) -> np.ndarray:
+    """The static equilibrium of the lowering phase in flow coordinates (relative angles, speed deviations 0).
+
+    Parameters
+    ----------
+    model : LoweringModel
+    """
+    return np.array([model.steady['phi1'], model.steady['phi2'], 0., 0.])
 
 
 def _PeriodFromSignal(t, y) -> float:
@@ -334,7 +349,8 @@ def OrbitAmplitude(model: LoweringModel, flow: ExudynFlow, state, period: float)
 
 def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, stepsPerPeriod: int = STEPS_PER_PERIOD,
                       contactOptions: ContactOptions = ContactOptions(), start=None, maxIterations: int = 30,
-                      tolerance: float = 1e-8, model: Optional[LoweringModel] = None) -> PeriodicOrbit:
+                      tolerance: float = 1e-8, model: Optional[LoweringModel] = None, kick: float = 0.01,
+                      initialState=None) -> PeriodicOrbit:
     """Steady chatter of the lowering phase: the periodic orbit of the Exudyn model, by shooting.
 
     Parameters
@@ -356,6 +372,12 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
         Shooting tolerance (relative to the state scale).
     model : LoweringModel, optional
         A model already built from ``parameters``.
+    kick : float
+        Initial worm-speed disturbance of the settling simulation, as a fraction of the motor speed (a large one
+        finds chatter that coexists with a stable rest).
+    initialState : array_like, optional
+        Flow state the settling simulation starts from instead of the kicked equilibrium (e.g. an orbit of a
+        neighbouring parameter value).
 
     Returns
     -------
@@ -373,18 +395,27 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
     if start is None:
         CheckPositive(w, 'settleTime', settleTime, 's')
         # settle, then record a few periods to estimate the period
-        x, _ = SettleLowering(model, settleTime)
+        if initialState is None:
+            x, _ = SettleLowering(model, settleTime, kick=kick)
+        else:
+            x = _LoweringFlow(model, max(10, int(round(settleTime / 1e-4)))).Solve(np.asarray(initialState, float),
+                                                                               settleTime)
         probe = _LoweringFlow(model, 4000)
         x = probe.Solve(x, 0.4, storeSensors=True)
         s = model.connector.StoredStates(model.mbs)
         quarter = len(s['omega1']) // 4
         first, swing = np.ptp(s['omega1'][:quarter]), np.ptp(s['omega1'][-quarter:])
+        tail = model.connector.Evaluate(s['phi1'][-quarter:], s['phi2'][-quarter:], s['omega1'][-quarter:],
+                                        s['omega2'][-quarter:])
+        inContact = float(np.max(np.abs(tail.normalForce))) < 2. * model.staticNormalForce
         from .linearization import DriveStability
         linearlyStable = DriveStability(model.parameters).State(-1).stable
-        if not swing > 1e-4 * model.motorSpeed or (swing < 0.7 * first and linearlyStable):
+        # rest: no swing left, or a linearly stable drive whose swing shrinks while the mesh stays in contact
+        if not swing > 1e-4 * model.motorSpeed or (linearlyStable and inContact and swing < 0.95 * first):
             raise ShootingError(f"{w}: the lowering phase settles to rest (after {settleTime:g} s the worm speed swing "
-                                f"still shrinks, {first:.3g} -> {swing:.3g} rad/s in 0.3 s): no steady chatter at these "
-                                f"parameters (a larger disturbance may still start one where rest and chatter coexist)")
+                                f"still shrinks, {first:.3g} -> {swing:.3g} rad/s in 0.3 s, the mesh stays in contact): "
+                                f"no steady chatter at these parameters (a larger disturbance may still start one "
+                                f"where rest and chatter coexist)")
         period = _PeriodFromSignal(s['time'], s['omega1'])
         # start where the mesh is deepest in contact in the last period: far from the switches of the law
         # (contact loss, clipped force), so the finite-difference monodromy does not straddle one
@@ -451,7 +482,7 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
     flow = _LoweringFlow(model, steps)
     flow = ExudynFlow(model.mbs, flow.coordinates, flow.speeds, steps, solverSettings=SOLVER_SETTINGS)
     flow.q0[model.mbs.GetNodeODE2Index(model.rotors['motor']['nodeNumber'])] = 0.
-    x = flow.StartState()
+    x = EquilibriumState(model)
     x[2] += kick * model.motorSpeed
     t0 = time.perf_counter()
     flow.Solve(x, duration, storeSensors=True)

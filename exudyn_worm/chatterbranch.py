@@ -24,11 +24,13 @@ from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import ShootingError
 
 __all__ = ['CONTINUABLE', 'ChatterBranchError', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch',
-           'SmallestDisturbance', 'REST_FORCE_FACTOR']
+           'SmallestDisturbance', 'REST_FORCE_FACTOR', 'COEXISTENCE_KICK']
 
 #: parameters that can be continued (flat parameter keys, SI units)
 CONTINUABLE = ('J1', 'J2', 'kT', 'dT', 'DT', 'DTV', 'kV', 'dV', 'DV', 'mu', 'backlash', 'motorSpeed', 'loadMass',
                'leverArm')
+#: worm-speed kick (fraction of the motor speed) tried when the drive is linearly stable on the whole range
+COEXISTENCE_KICK = 0.5
 #: an orbit whose largest normal force is below this multiple of the static force stays in contact all the time:
 #: it is an orbit of the linearized drive, so the branch has reached its Hopf point (the linear boundary)
 REST_FORCE_FACTOR = 1.9
@@ -63,6 +65,9 @@ class ChatterBranch:
         Parameter values where the branch turns.
     coexistence : list of (float, float)
         Ranges where the drive is linearly stable and a stable chatter orbit exists.
+    disturbances : list of dict
+        In the middle of each coexistence range: ``value``, the smallest initial worm-speed disturbance that ends
+        in chatter as a fraction of the motor speed (``wormSpeedFraction``) and in rad/s (``wormSpeed``).
     messages : list of str
         Why each end of the branch stopped, and anything the user should know.
     """
@@ -73,6 +78,7 @@ class ChatterBranch:
     hopf: List[Dict] = field(default_factory=list)
     folds: List[float] = field(default_factory=list)
     coexistence: List[Tuple[float, float]] = field(default_factory=list)
+    disturbances: List[Dict] = field(default_factory=list)
     messages: List[str] = field(default_factory=list)
 
     def ToDict(self) -> Dict:
@@ -82,6 +88,7 @@ class ChatterBranch:
                 'hopf': ({'value': self.hopf[0]['value'], 'type': self.hopf[0]['type']} if self.hopf else None),
                 'hopfPoints': [dict(h) for h in self.hopf], 'linearBoundaries': list(self.linearBoundaries),
                 'folds': list(self.folds), 'coexistence': [list(c) for c in self.coexistence],
+                'disturbances': [dict(d) for d in self.disturbances],
                 'points': [{'value': float(p.value),
                             'amplitude': {'forceFactor': p.info.get('forceFactor'),
                                           'maxWheelAcceleration': p.info.get('maxWheelAcceleration')},
@@ -180,18 +187,26 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     # start in the middle of the widest linearly unstable interval
     edges = [low] + roots + [high]
     unstable = [(a, b) for a, b in zip(edges[:-1], edges[1:]) if Growth(0.5 * (a + b)) > 0]
-    if not unstable:
-        raise ChatterBranchError(f"{w}: the drive is linearly stable for every {name} in [{low:g}, {high:g}] (largest "
-                                 f"real part {max(Growth(low), Growth(high)):.3g} 1/s at the ends), so there is no "
-                                 f"chatter branch to start from; widen the range or pick a parameter set that chatters "
-                                 f"(e.g. reel-P1)", result)
-    a, b = max(unstable, key=lambda ab: ab[1] - ab[0])
-    start = 0.5 * (a + b)
+    if unstable:
+        a, b = max(unstable, key=lambda ab: ab[1] - ab[0])
+        start, kick = 0.5 * (a + b), 0.01
+    else:
+        # linearly stable everywhere: chatter can still coexist with rest; look for it after a large kick
+        start, kick = 0.5 * (low + high), COEXISTENCE_KICK
     model = BuildLoweringModel({**base, name: start})
     try:
-        orbit = FindSteadyChatter({**base, name: start}, settleTime=settleTime, model=model)
+        orbit = FindSteadyChatter({**base, name: start}, settleTime=settleTime, model=model, kick=kick)
     except ShootingError as err:
+        if not unstable:
+            raise ChatterBranchError(f"{w}: the drive is linearly stable for every {name} in [{low:g}, {high:g}] "
+                                     f"(largest real part {max(Growth(low), Growth(high)):.3g} 1/s at the ends), and "
+                                     f"a worm-speed kick of {COEXISTENCE_KICK:.0%} of the motor speed at {name} = "
+                                     f"{start:g} dies out: no chatter found on this range; widen the range or pick a "
+                                     f"parameter set that chatters (e.g. reel-P1)", result) from err
         raise ChatterBranchError(f"{w}: no steady chatter found at {name} = {start:g}: {err}", result) from err
+    if not unstable:
+        result.messages.append(f"linearly stable on the whole range; chatter found at {name} = {start:g} after a kick "
+                               f"of {kick:.0%} of the motor speed")
     scale = StateScale(model)
     current = {'model': model, 'flow': orbit.info['flow']}
 
@@ -228,13 +243,14 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
             if not branch.stopReason[-1].startswith('the corrector did not converge') or len(branch.points) > maxPoints:
                 break
             # the corrector is stuck at a kink of the map (e.g. the orbit starts to touch the other flank): start
-            # again from a time simulation a little further on, and continue from there
+            # again from a time simulation a little further on (from the last orbit), and continue from there
             value = last.value + direction * scaleP
             if not low <= value <= high:
                 break
             m, _ = ModelAt(value)
             try:
-                again = FindSteadyChatter({**base, name: value}, settleTime=settleTime, model=m)
+                again = FindSteadyChatter({**base, name: value}, settleTime=settleTime, model=m,
+                                          initialState=last.orbit.state)
             except ShootingError:
                 result.messages.append(f"towards {side} {name}: no steady chatter found again at {name} = {value:.6g}")
                 break
@@ -250,7 +266,7 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
             result.messages += [f"towards {side} {name}: {r}" for r in more.stopReason]
         halves.append(branch)
     result.points = [p for p in list(reversed(halves[0].points)) + halves[1].points[1:] if low <= p.value <= high]
-    if not roots:
+    if not roots and unstable:
         result.messages.append(f"the drive is linearly unstable for every {name} in [{low:g}, {high:g}]: the range "
                                f"crosses no linear boundary, so the branch has no Hopf point in it")
     # Hopf points: ends at which the orbit shrank into the linear range
@@ -266,14 +282,18 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         result.hopf.append({'value': float(end.value), 'type': 'supercritical' if side > 0 else 'subcritical',
                             'linearBoundary': float(nearest),
                             'relativeDifference': float(abs(end.value - nearest) / abs(nearest))})
-    # folds: a fold of periodic orbits has a Floquet multiplier through +1, so the stability changes there; turning
-    # points without a stability change (the finite-difference Jacobian through the mesh's switches lets the
+    for r in roots:
+        if not any(abs(h['linearBoundary'] - r) <= 1e-9 * abs(r) for h in result.hopf):
+            result.messages.append(f"the branch has no Hopf point at the linear boundary {name} = {r:.6g} (it passes "
+                                   f"it or ends before); the small unstable orbits born there are not followed")
+    # folds: a fold of periodic orbits has a Floquet multiplier through +1, so an orbit beside it is unstable;
+    # turning points among stable orbits only (the finite-difference Jacobian through the mesh's switches lets the
     # corrector step back and forth where the branch is flat) and the vertical part at a Hopf point are left out
     real, ignored = [], 0
     for half in halves:
         for a, b, c in zip(half.points, half.points[1:], half.points[2:]):
             if (b.value - a.value) * (c.value - b.value) < 0 and b.info.get('forceFactor', 0.) >= 2.:
-                if a.stable != c.stable:
+                if not (a.stable and b.stable and c.stable):
                     real.append(float(b.value))
                 else:
                     ignored += 1
@@ -285,20 +305,28 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
               and Growth(p.value) < 0]
     if inside:
         result.coexistence.append((float(min(inside)), float(max(inside))))
+    for lo, hi in result.coexistence:
+        middle = 0.5 * (lo + hi)
+        kick = SmallestDisturbance({**base, name: middle})
+        result.disturbances.append({'value': middle, 'wormSpeedFraction': kick,
+                                    'wormSpeed': kick * float(base['motorSpeed'])})
     return result
 
 
-def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 1.0, largest: float = 0.5,
+def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 3.0, largest: float = 0.5,
                         steps: int = 8) -> float:
     """Smallest initial worm-speed disturbance (fraction of the motor speed) after which the lowering phase ends
     in chatter, by bisection on time simulations from the steady state; ``math.inf`` if ``largest`` does not.
+
+    A run ends in chatter if the mesh still loses contact (largest normal force at least twice the static force)
+    in its last 0.2 s. The basin of chatter need not be an interval of kicks; the bisection assumes it is.
 
     Parameters
     ----------
     parameters : mapping
         Flat parameter set (a drive that is linearly stable but may chatter).
     duration : float
-        Simulated time in s per trial.
+        Simulated time in s per trial, >= 0.5.
     largest : float
         Largest disturbance tried.
     steps : int
@@ -308,11 +336,18 @@ def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 1.0, 
     -------
     float
     """
+    if not duration >= 0.5:
+        raise ValueError(f"SmallestDisturbance: 'duration' must be >= 0.5 s, got {duration!r}")
     model = BuildLoweringModel(parameters)
 
     def Chatters(kick):
-        x, _ = SettleLowering(model, duration, kick=kick)
-        return abs(x[2]) + abs(x[3]) * model.drive.gear.ratio > 0.05 * abs(kick) * model.motorSpeed + 1e-3
+        # chatter: the mesh still loses contact (largest normal force >= twice the static force) in the last 0.2 s;
+        # a decaying transient of a linearly stable drive has long stayed in contact by then
+        SettleLowering(model, duration, kick=kick, store=True)
+        s = model.connector.StoredStates(model.mbs)
+        last = s['time'] >= s['time'][-1] - 0.2
+        mesh = model.connector.Evaluate(s['phi1'][last], s['phi2'][last], s['omega1'][last], s['omega2'][last])
+        return float(np.max(np.abs(mesh.normalForce))) >= 2. * model.staticNormalForce
 
     if not Chatters(largest):
         return math.inf

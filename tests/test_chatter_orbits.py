@@ -152,3 +152,39 @@ def test_cli_json_and_plot(capsys, tmp_path):
     assert data['hopf']['value'] == pytest.approx(data['hopfPoints'][0]['linearBoundary'], rel=0.005)
     assert all(6000 <= p['value'] <= 9500 for p in data['points'])
     assert math.isfinite(data['points'][0]['amplitude']['forceFactor'])
+
+
+def test_smallest_disturbance_unstable_and_stable_drive():
+    from exudyn_worm.chatterbranch import SmallestDisturbance
+    # linearly unstable P1: the smallest kick tried already ends in chatter
+    assert SmallestDisturbance(P1, steps=3) <= 0.5 / 2**3
+    # P2 (J1 = 0.3) is linearly stable and its branch has no coexistence: even half the motor speed decays
+    assert SmallestDisturbance(ew.GetPreset('reel-P2'), steps=3) == math.inf
+
+
+def test_settle_starts_from_the_equilibrium_every_time():
+    from exudyn_worm.chatter import EquilibriumState, SettleLowering
+    model = BuildLoweringModel(P1)
+    x0 = EquilibriumState(model)
+    SettleLowering(model, 0.05, kick=0.3)
+    again, _ = SettleLowering(model, 0.05, kick=0.)
+    np.testing.assert_allclose(again, x0, atol=1e-9)          # no kick left over from the first run
+    UpdateLoweringModel(model, {**P1, 'kT': 14000.})
+    assert EquilibriumState(model)[0] != x0[0]                  # the shaft twist follows kT
+
+
+@pytest.mark.slow
+def test_backlash_rest_and_chatter_coexist():
+    # J1 = 0.25 kg m^2 with 0.5 mm backlash: linearly stable (backlash does not enter the linearization), yet a
+    # large worm-speed kick ends in chatter; the orbit found by shooting is that chatter (long run within 2 %),
+    # and a small kick dies out
+    p = {**P1, 'J1': 0.25, 'backlash': 5e-4}
+    from exudyn_worm.linearization import DriveStability
+    assert DriveStability(p).State(-1).stable
+    orbit = FindSteadyChatter(p, kick=0.5)
+    assert orbit.stable and orbit.info['forceFactor'] > 4.
+    chatter = LongSimulationAmplitude(p, duration=4.0, stepSize=2e-4, kick=0.3)
+    assert orbit.info['forceFactor'] == pytest.approx(chatter['forceFactor'], rel=0.02)
+    assert orbit.info['maxWheelAcceleration'] == pytest.approx(chatter['maxWheelAcceleration'], rel=0.02)
+    rest = LongSimulationAmplitude(p, duration=4.0, stepSize=2e-4, kick=0.01)
+    assert rest['forceFactor'] < 1.01

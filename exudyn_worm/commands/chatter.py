@@ -73,6 +73,9 @@ def FormatBranch(branch, title: str) -> List[str]:
     for lo, hi in branch.coexistence:
         lines.append(f"Rest and chatter coexist for {branch.parameter} in [{lo:.6g}, {hi:.6g}]: linearly stable, "
                      f"but a disturbance can start chatter")
+    for d in branch.disturbances:
+        lines.append(f"  at {branch.parameter} = {d['value']:.6g}: linearly stable, but chatters after a worm-speed "
+                     f"disturbance of {d['wormSpeed']:.3g} rad/s ({d['wormSpeedFraction']:.1%} of the motor speed)")
     if not branch.coexistence:
         lines.append('No range in which rest and stable chatter coexist was found on this branch.')
     lines += [f"Note: {m}" for m in branch.messages]
