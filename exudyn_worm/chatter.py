@@ -437,7 +437,13 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
 
 def StateScale(model: LoweringModel) -> np.ndarray:
     """Typical size of the flow state's components: the static mesh deflection as angles, times the chatter
-    angular frequency (2 pi 40 Hz) as speeds."""
+    angular frequency (2 pi 40 Hz) as speeds.
+
+    Parameters
+    ----------
+    model : LoweringModel
+        The lowering model (its gear and static normal force).
+    """
     g = model.drive.gear
     deflection = max(model.staticNormalForce / g.kV, 1e-9) / g.normalLever         # worm angle of the deflection
     angles = np.array([deflection, deflection / g.ratio])
