@@ -107,7 +107,7 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
     extra = ExtraComponents(parameters)
     if extra:
         raise ValueError(f"{w}: the periodic-orbit analysis covers the two-mass drive of Figure 2; this parameter set "
-                         f"also has {extra} (not supported yet)")
+                         f"also has {' and '.join(extra)} (not supported yet); leave those keys out")
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
     drive = DriveFromParameters(parameters)
@@ -452,7 +452,7 @@ def StateScale(model: LoweringModel) -> np.ndarray:
 
 def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3.0, stepSize: float = 1e-4,
                             kick: float = 0.01, window: float = 0.25,
-                            contactOptions: ContactOptions = ContactOptions()) -> Dict[str, float]:
+                            contactOptions: ContactOptions = ContactOptions(), initialState=None) -> Dict[str, float]:
     """Steady amplitude of the lowering phase by brute force: a long time simulation with the time simulations'
     solver settings (:data:`~exudyn_worm.reelchanger.SOLVER_SETTINGS`: modified Newton, tolerance 1e-6), measured
     over its last ``window`` seconds; the check of the orbits found by shooting.
@@ -471,6 +471,9 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
         Final part of the run in s over which the amplitude is measured.
     contactOptions : ContactOptions
         Options of the contact law.
+    initialState : array_like, optional
+        Flow state to start from (the worm-speed ``kick`` is added to it) instead of the equilibrium, e.g. a
+        point of an orbit where rest and chatter coexist.
 
     Returns
     -------
@@ -488,7 +491,7 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
     flow = _LoweringFlow(model, steps)
     flow = ExudynFlow(model.mbs, flow.coordinates, flow.speeds, steps, solverSettings=SOLVER_SETTINGS)
     flow.q0[model.mbs.GetNodeODE2Index(model.rotors['motor']['nodeNumber'])] = 0.
-    x = EquilibriumState(model)
+    x = EquilibriumState(model) if initialState is None else np.array(initialState, dtype=float)
     x[2] += kick * model.motorSpeed
     t0 = time.perf_counter()
     flow.Solve(x, duration, storeSensors=True)
