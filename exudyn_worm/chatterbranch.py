@@ -24,7 +24,8 @@ from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import ShootingError
 
 __all__ = ['CONTINUABLE', 'ChatterBranchError', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch',
-           'SmallestDisturbance', 'REST_FORCE_FACTOR', 'COEXISTENCE_KICK']
+           'SmallestDisturbance', 'REST_FORCE_FACTOR', 'COEXISTENCE_KICK', 'DisturbanceVerdict',
+           'ChattersAfterDisturbance']
 
 #: parameters that can be continued (flat parameter keys, SI units)
 CONTINUABLE = ('J1', 'J2', 'kT', 'dT', 'DT', 'DTV', 'kV', 'dV', 'DV', 'mu', 'backlash', 'motorSpeed', 'loadMass',
@@ -356,3 +357,69 @@ def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 3.0, 
         m = 0.5 * (a + b)
         a, b = (a, m) if Chatters(m) else (m, b)
     return b
+
+
+@dataclass
+class DisturbanceVerdict:
+    """Result of :func:`ChattersAfterDisturbance`.
+
+    Attributes
+    ----------
+    linearlyStable : bool
+        Verdict of the linearized lowering phase (S = -1).
+    chatterFound : bool
+        Whether a steady chatter orbit was found (after a kick of :data:`COEXISTENCE_KICK` if linearly stable).
+    smallestDisturbance : float
+        Smallest worm-speed kick in rad/s that ends in chatter (``inf`` if none up to the largest tried; 0 if the
+        drive is linearly unstable).
+    forceFactor, maxWheelAcceleration, frequencyHz : float
+        Amplitude and frequency of the chatter orbit (nan if none).
+    text : str
+        One line for a report, e.g. "linearly stable, but chatters after a worm-speed disturbance of 8.3 rad/s".
+    """
+    linearlyStable: bool
+    chatterFound: bool
+    smallestDisturbance: float
+    forceFactor: float
+    maxWheelAcceleration: float
+    frequencyHz: float
+    text: str
+
+
+def ChattersAfterDisturbance(parameters: Mapping[str, float]) -> DisturbanceVerdict:
+    """Does a drive chatter in the lowering phase, and if it is linearly stable, after which disturbance?
+
+    Meant for a design check: a linearly stable drive may still chatter after a disturbance where rest and chatter
+    coexist (e.g. with backlash, see docs/chatter-amplitude.md).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with the reel changer's keys (two-mass drive).
+
+    Returns
+    -------
+    DisturbanceVerdict
+    """
+    from .linearization import DriveStability
+    stable = bool(DriveStability(parameters).State(-1).stable)
+    nan = math.nan
+    try:
+        orbit = FindSteadyChatter(parameters, kick=COEXISTENCE_KICK if stable else 0.01)
+    except ShootingError:
+        text = ('linearly stable, and a worm-speed kick of {:.0%} of the motor speed dies out'.format(COEXISTENCE_KICK)
+                if stable else 'linearly unstable, but no steady chatter orbit was found')
+        return DisturbanceVerdict(stable, False, math.inf if stable else nan, nan, nan, nan, text)
+    speed = float(parameters['motorSpeed'])
+    kick = SmallestDisturbance(parameters) * speed if stable else 0.
+    amplitude = (f"normal force up to {orbit.info['forceFactor']:.2f} times the static force, |phi2''| up to "
+                 f"{orbit.info['maxWheelAcceleration']:.3g} rad/s^2, {orbit.frequencyHz:.1f} Hz")
+    if not stable:
+        text = f"linearly unstable: chatters ({amplitude})"
+    elif math.isfinite(kick):
+        text = f"linearly stable, but chatters after a worm-speed disturbance of {kick:.3g} rad/s ({amplitude})"
+    else:
+        text = (f"linearly stable; a chatter orbit exists ({amplitude}), but no kick from rest up to "
+                f"{0.5 * speed:.3g} rad/s reached it")
+    return DisturbanceVerdict(stable, True, kick, orbit.info['forceFactor'], orbit.info['maxWheelAcceleration'],
+                              orbit.frequencyHz, text)

@@ -188,3 +188,9 @@ def test_backlash_rest_and_chatter_coexist():
     assert orbit.info['maxWheelAcceleration'] == pytest.approx(chatter['maxWheelAcceleration'], rel=0.02)
     rest = LongSimulationAmplitude(p, duration=4.0, stepSize=2e-4, kick=0.01)
     assert rest['forceFactor'] < 1.01
+    # the one-line verdict for a design check; the threshold kick lies between the 1 % and 30 % runs above
+    from exudyn_worm.chatterbranch import ChattersAfterDisturbance
+    verdict = ChattersAfterDisturbance(p)
+    assert verdict.linearlyStable and verdict.chatterFound
+    assert 0.01 * p['motorSpeed'] < verdict.smallestDisturbance < 0.3 * p['motorSpeed']
+    assert verdict.text.startswith('linearly stable, but chatters after a worm-speed disturbance of')
