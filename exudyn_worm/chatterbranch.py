@@ -94,7 +94,8 @@ class ChatterBranch:
                             'amplitude': {'forceFactor': p.info.get('forceFactor'),
                                           'maxWheelAcceleration': p.info.get('maxWheelAcceleration')},
                             'frequencyHz': float(p.orbit.frequencyHz), 'stable': bool(p.stable),
-                            'multipliers': [abs(complex(m)) for m in p.orbit.nontrivialMultipliers]}
+                            'multipliers': [abs(complex(m)) for m in p.orbit.nontrivialMultipliers],
+                            'trivialMultiplierError': p.orbit.trivialMultiplierError}
                            for p in self.points],
                 'messages': list(self.messages)}
 

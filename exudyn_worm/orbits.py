@@ -97,6 +97,14 @@ class PeriodicOrbit:
         return np.delete(mu, int(np.argmin(np.abs(mu - 1.)))) if mu.size else mu
 
     @property
+    def trivialMultiplierError(self) -> float:
+        """``|mu - 1|`` of the trivial multiplier (the one closest to 1): 0 in exact arithmetic, so a measure of the
+        accuracy of the monodromy matrix; trust a verdict only if the other multipliers are farther from the unit
+        circle than this."""
+        mu = self.multipliers
+        return float(np.min(np.abs(mu - 1.))) if mu.size else 0.
+
+    @property
     def stable(self) -> bool:
         """True if every non-trivial multiplier has modulus < 1 (orbitally stable)."""
         mu = self.nontrivialMultipliers

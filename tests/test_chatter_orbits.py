@@ -194,3 +194,10 @@ def test_backlash_rest_and_chatter_coexist():
     assert verdict.linearlyStable and verdict.chatterFound
     assert 0.01 * p['motorSpeed'] < verdict.smallestDisturbance < 0.3 * p['motorSpeed']
     assert verdict.text.startswith('linearly stable, but chatters after a worm-speed disturbance of')
+
+
+def test_trivial_multiplier_near_one(orbitP1):
+    # the trivial multiplier is 1 in exact arithmetic; the finite-difference monodromy across the flank change
+    # (a force jump resolved to one step) gives it to a few hundredths (docs/chatter-amplitude.md)
+    assert orbitP1.trivialMultiplierError < 0.06
+    assert max(abs(orbitP1.nontrivialMultipliers)) < 1. - orbitP1.trivialMultiplierError
