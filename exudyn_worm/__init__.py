@@ -27,6 +27,8 @@ _LAZY = {'WormGear': 'gear',
                          'friction'),
          **dict.fromkeys(('OperatingPoint', 'OperatingPointAt'), 'stability'),
          'SelfLocking': 'selflocking',
+         **dict.fromkeys(('FindPeriodicOrbit', 'PeriodicOrbit'), 'orbits'),
+         'FindSteadyChatter': 'chatter', 'AnalyzeChatterBranch': 'chatterbranch',
          **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'stepsize')}
 
 
@@ -54,7 +56,8 @@ __all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMea
            'PRESETS', 'AnalyzeStabilityExudyn', 'AnalyzeLinearStability', 'LinearStability', 'BuildReelChanger',
            'SimulateReelChanger', 'SteadyInitialState', 'SimulationResult', 'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods',
            'ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction', 'FrictionLaw', 'OperatingPoint',
-           'OperatingPointAt', 'SelfLocking', '__version__']
+           'OperatingPointAt', 'SelfLocking', 'FindPeriodicOrbit', 'PeriodicOrbit', 'FindSteadyChatter',
+           'AnalyzeChatterBranch', '__version__']
 
 _MAIN_SYSTEM_METHODS = ('CreateWormGear', 'CreateWormAxialBearing', 'CreateRotor', 'CreateShaft',
                         'CreatePrescribedRotation', 'CreateRotorTorque')

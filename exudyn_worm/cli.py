@@ -483,7 +483,7 @@ def SourceText(args: argparse.Namespace) -> str:
 
 
 #: built-in subcommands: modules of :mod:`exudyn_worm.commands`, in the order of ``exudyn-worm --help``
-COMMAND_MODULES: Tuple[str, ...] = ('stability', 'check', 'chart', 'simulate', 'sweep')
+COMMAND_MODULES: Tuple[str, ...] = ('stability', 'check', 'chart', 'simulate', 'sweep', 'chatter')
 #: further subcommands registered at run time (plugins, tests), after the built-in ones
 SUBCOMMANDS: List[Subcommand] = []
 

@@ -99,6 +99,7 @@ UNHINTED = {
         'exudyn_worm.plot_charts.PlotStabilityChart': ['chart', 'ax', '->'],
         'exudyn_worm.plot_charts.PlotStabilityCharts': ['ax', '->'],
         'exudyn_worm.plot_charts.PlotSpeedChart': ['ax', '->'],
+        'exudyn_worm.plot_orbits.PlotChatterBranch': ['ax', '->'],
         'exudyn_worm.plot_design.PlotDesignCheck': ['result', 'ax', '->'],
         'exudyn_worm.plot_study.PlotChatterMap': ['result', 'ax', '->'],
         'exudyn_worm.plot_study.PlotMetric': ['result', 'ax', '->'],
