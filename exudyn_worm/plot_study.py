@@ -10,7 +10,7 @@ from typing import Dict, Mapping, Optional, Tuple
 import numpy as np
 
 from .parameters import PARAMETERS
-from .studymap import IsLogSpaced
+from ._spacing import IsLogSpaced
 
 __all__ = ['PlotMetric', 'PlotChatterMap', 'AxisLabel', 'ChartAxes']
 

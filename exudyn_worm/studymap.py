@@ -9,10 +9,11 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, List, Mapping, Optional, Tuple
 
 import numpy as np
 
+from ._spacing import IsLogSpaced
 from .charts import ChartCoordinates, ComputeStabilityChart
 from .linearization import DriveStability
 from .presets import ApplyOverrides, DriveFromParameters, ExtraComponents
@@ -20,30 +21,11 @@ from .presets import ApplyOverrides, DriveFromParameters, ExtraComponents
 if TYPE_CHECKING:
     from .study import StudyResult
 
-__all__ = ['ChatterMap', 'ComputeChatterMap', 'AnalyticalMap', 'IsLogSpaced', 'WHOLE_DRIVE_RESOLUTION']
+__all__ = ['ChatterMap', 'ComputeChatterMap', 'AnalyticalMap', 'WHOLE_DRIVE_RESOLUTION']
 
 #: points per axis of the map of the linearized whole drive (a drive with a chain or an axial bearing) in
 #: :func:`ComputeChatterMap`: one Exudyn linearization a point, so 400 points take about 12 s
 WHOLE_DRIVE_RESOLUTION = 20
-
-
-def IsLogSpaced(values: Union[Sequence[float], np.ndarray]) -> bool:
-    """True for at least three positive, log-spaced (and not linearly spaced) values.
-
-    Parameters
-    ----------
-    values : array_like
-        The values of one varied key.
-
-    Returns
-    -------
-    bool
-    """
-    v = np.unique(np.asarray(values, float))
-    if v.size < 3 or np.any(v <= 0):
-        return False
-    ratios = v[1:] / v[:-1]
-    return bool(np.allclose(ratios, ratios[0], rtol=1e-6) and not np.allclose(np.diff(v), np.diff(v)[0], rtol=1e-6))
 
 
 def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -> np.ndarray:
