@@ -143,7 +143,7 @@ def ComputeChatterMap(result: 'StudyResult', x: str, y: str, resolution: int = 6
     keys = result.study.keys
     for name, key in (('x', x), ('y', y)):
         if key not in keys:
-            raise ValueError(f"PlotChatterMap: '{name}' must be a varied key ({', '.join(keys)}), got {key!r}")
+            raise ValueError(f"ComputeChatterMap: '{name}' must be a varied key ({', '.join(keys)}), got {key!r}")
     xs, ys = result.Values(x), result.Values(y)
     # log axes for log-spaced values or positive values spanning more than 50x (the grid and the axis alike)
     logX, logY = (IsLogSpaced(v) or bool(np.nanmin(v) > 0 and np.nanmax(v) / np.nanmin(v) > 50) for v in (xs, ys))

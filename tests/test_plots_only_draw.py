@@ -153,3 +153,13 @@ def test_chart_points_are_resolved_before_drawing():
     vertex = chart.boundaries[0][len(chart.boundaries[0]) // 2]
     assert chart.NearestBoundary(tuple(vertex)) == 0.
     assert 0. < chart.NearestBoundary((vertex[0] * 10 ** 0.5, vertex[1])) <= 0.5
+
+
+@pytest.mark.messages
+def test_chatter_map_names_itself_for_a_key_not_varied():
+    from exudyn_worm.config import ResolveParameters
+    from exudyn_worm.study import ParseVariation, Study, StudyResult
+    from exudyn_worm.studymap import ComputeChatterMap
+    study = Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.1,0.2'), ParseVariation('kT=7000,8000')])
+    with pytest.raises(ValueError, match=r"ComputeChatterMap: 'y' must be a varied key \(J1, kT\), got 'kV'"):
+        ComputeChatterMap(StudyResult(study, []), 'J1', 'kV')
