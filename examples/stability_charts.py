@@ -33,8 +33,9 @@ from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 
-from exudyn_worm.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, FormatChartTable,
-                                PresetChartPoints, StabilityChart)
+from exudyn_worm.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, PresetChartPoints,
+                                StabilityChart)
+from exudyn_worm.charttable import FormatChartTable
 from exudyn_worm._checks import CheckOutputFolder
 from exudyn_worm.plot_charts import ZOOM_DECADES, PointsToZoom
 from exudyn_worm.presets import GearFromParameters, GetPreset

@@ -24,8 +24,9 @@ sign is the Hurwitz verdict, interpolated linearly in log10 coordinates.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -36,7 +37,7 @@ from .stability import CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, H
 
 __all__ = ['StabilityChart', 'ComputeStabilityChart', 'ChartCoordinates', 'ChartCoefficients',
            'UnstableGrid', 'MaxRealPartGrid', 'MaxRealPart', 'ContourLines',
-           'PresetChartPoints', 'FormatChartTable', 'FirstCriterionCurves', 'FirstCriterionChart', 'DEFAULT_X_RANGE', 'DEFAULT_Y_RANGE',
+           'ChartPoints', 'PresetChartPoints', 'FirstCriterionCurves', 'FirstCriterionChart', 'DEFAULT_X_RANGE', 'DEFAULT_Y_RANGE',
            'DEFAULT_RESOLUTION']
 
 #: default stiffness-ratio range kT/(kV r1^2) (validation/README.md fixes this chart domain)
@@ -148,6 +149,58 @@ def ChartCoordinates(drive: ElasticDrive) -> Dict[str, float]:
         raise TypeError(f"ChartCoordinates: 'drive' must be an ElasticDrive, got {type(drive).__name__}")
     return {'x': float(drive.stiffnessRatio), 'y': float(drive.inertiaRatio), 'DV': float(drive.DV),
             'DTV': float(drive.DTV)}
+
+
+def ChartPoints(points: Union[Mapping, Sequence[str], None], where: str = 'ChartPoints') -> Dict[str, Tuple[float, float]]:
+    """Points to mark on a chart as ``{label: (x, y)}`` chart coordinates, for the plotting functions of
+    :mod:`exudyn_worm.plot_charts` (which only draw).
+
+    Parameters
+    ----------
+    points : mapping or list of str or None
+        ``{label: point}`` with a point as (x, y), as a dict with 'x' and 'y' (e.g. from
+        :func:`ChartCoordinates`) or as an ElasticDrive; or a list of preset names (``['reel-P1', 'P7']``;
+        ``'P1'`` stands for ``'reel-P1'``), at their chart coordinates (:func:`PresetChartPoints`).
+    where : str, optional
+        Name of the caller in error messages.
+
+    Returns
+    -------
+    dict
+        ``{label: (x, y)}`` (empty for None).
+
+    Raises
+    ------
+    TypeError, ValueError
+        For ``points`` of another form or with an unknown preset name.
+    """
+    if points is None:
+        return {}
+    if not isinstance(points, Mapping):
+        from .presets import PRESETS   # lazy, as in PresetChartPoints: the presets only for named points
+        if isinstance(points, str) or not isinstance(points, (list, tuple)) or \
+                not all(isinstance(p, str) for p in points):
+            raise TypeError(f"{where}: 'points' must be a mapping {{label: (x, y), a dict with 'x' and 'y', or an "
+                            f"ElasticDrive}} or a list of preset names (e.g. ['reel-P1', 'reel-P7']), got "
+                            f"{type(points).__name__} {points!r}")
+        names = []
+        for p in points:
+            name = p if p in PRESETS else f'reel-{p}' if f'reel-{p}' in PRESETS else None
+            if name is None:
+                raise ValueError(f"{where}: 'points': unknown preset {p!r}; expected preset names: "
+                                 f"{', '.join(PRESETS)} (or P1 ... P7 for reel-P1 ... reel-P7)")
+            names.append(name)
+        points = PresetChartPoints(names)
+    out = {}
+    for label, value in points.items():
+        if isinstance(value, ElasticDrive):
+            value = ChartCoordinates(value)
+        if isinstance(value, Mapping):
+            out[label] = (float(value['x']), float(value['y']))
+        else:
+            x, y = value
+            out[label] = (float(x), float(y))
+    return out
 
 
 def PresetChartPoints(names: Sequence[str]) -> Dict[str, Dict[str, float]]:
@@ -569,6 +622,23 @@ class StabilityChart:
         """
         return UnstableGrid(self.gear, self.J2, x, y, self.DV, self.DTV, self.S)
 
+    def NearestBoundary(self, point: Tuple[float, float]) -> float:
+        """Distance in decades (Euclidean in log10 x, log10 y) from a point to the nearest boundary vertex of
+        this chart; inf for a chart without boundary.
+
+        Parameters
+        ----------
+        point : (float, float)
+            Stiffness and inertia ratios (x, y), > 0.
+
+        Returns
+        -------
+        float
+        """
+        x, y = point
+        return min((float(np.min(np.hypot(np.log10(line[:, 0] / x), np.log10(line[:, 1] / y))))
+                    for line in self.boundaries), default=math.inf)
+
     def ToDict(self, boundaries: bool = False) -> Dict:
         """JSON-ready summary (the entries of ``exudyn-worm chart --json``).
 
@@ -597,7 +667,7 @@ class StabilityChart:
             Axes to draw into (default: a new figure).
         points : mapping or list of str, optional
             ``{label: (x, y)}`` or ``{label: ElasticDrive}`` points to mark, or a list of preset names
-            (``['reel-P1', 'P7']``) marked at their chart coordinates.
+            (``['reel-P1', 'P7']``) marked at their chart coordinates (resolved by :func:`ChartPoints`).
         **kwargs
             Passed on to :func:`~exudyn_worm.plot_charts.PlotStabilityChart`.
 
@@ -605,8 +675,8 @@ class StabilityChart:
         -------
         matplotlib.axes.Axes
         """
-        from .plot_charts import PlotStabilityChart
-        return PlotStabilityChart(self, ax=ax, points=points, **kwargs)
+        from .plot_charts import PlotStabilityChart   # lazy: matplotlib only when drawing
+        return PlotStabilityChart(self, ax=ax, points=ChartPoints(points, 'PlotStabilityChart'), **kwargs)
 
 
 def _Resolution(where, resolution) -> Tuple[int, int]:
@@ -694,36 +764,6 @@ def ComputeStabilityChart(gear: WormGear, J2: float, DV: float, DTV: float,
     return StabilityChart(gear=gear, J2=J2, DV=DV, DTV=DTV, S=S, x=x, y=y, unstable=unstable, margin=_Margin(b))
 
 
-def FormatChartTable(charts: Sequence[StabilityChart], points: Optional[Dict[str, Dict[str, float]]] = None
-                     ) -> List[str]:
-    """Text table of charts: D_V, D_TV, unstable x and y ranges, unstable fraction, clipped sides, and the
-    verdict at each point.
-
-    Parameters
-    ----------
-    charts : sequence of StabilityChart
-        The charts, one row each.
-    points : dict, optional
-        ``{label: {'x', 'y', ...}}`` (e.g. :func:`PresetChartPoints`): each chart's exact verdict at the
-        point's (x, y) is listed (U unstable, s stable).
-
-    Returns
-    -------
-    list of str
-        The lines.
-    """
-    r = lambda t: 'none' if t is None else f'{t[0]:.4g} .. {t[1]:.4g}'
-    points = points or {}
-    head = (f"{'D_V':>7} {'D_TV':>6} {'S':>3}  {'unstable kT/(kV r1^2)':>22}  {'unstable J1/J2':>22}  "
-            f"{'fraction':>8}  {'clipped at':<12}" + ''.join(f' {k:>3}' for k in points))
-    lines = [head]
-    for c in charts:
-        marks = ''.join(f" {'U' if c.IsUnstable(p['x'], p['y']) else 's':>3}" for p in points.values())
-        lines.append(f"{c.DV:>7.4g} {c.DTV:>6g} {c.S:>+3d}  {r(c.unstableXRange):>22}  {r(c.unstableYRange):>22}  "
-                     f"{c.unstableFraction:>8.4f}  {', '.join(c.clippedSides) or '-':<12}" + marks)
-    return lines
-
-
 # --- Figure 3: the first criterion (20) with dT = 0 -----------------------------------------------------------
 @dataclass(frozen=True)
 class FirstCriterionCurves:
@@ -803,3 +843,13 @@ def FirstCriterionChart(gear: WormGear, gamma: Sequence[float], rho: Sequence[fl
             mesh = gear.Replace(gamma=g, rho=r, r2=u * gear.r1 * math.tan(g), dV=1., friction=None)
             limit[i, j] = FirstCriterionLimit(ElasticDrive(mesh, J1=1., J2=1., kT=1., dT=0.))
     return FirstCriterionCurves(gamma=gamma, rho=rho, ratio=u, limit=limit)
+
+
+def __getattr__(name: str):
+    """``charts.FormatChartTable``, deprecated: the text table moved to :mod:`exudyn_worm.charttable`."""
+    if name == 'FormatChartTable':
+        warnings.warn("exudyn_worm.charts.FormatChartTable moved to exudyn_worm.charttable.FormatChartTable",
+                      DeprecationWarning, stacklevel=2)
+        from .charttable import FormatChartTable   # lazy: only for the deprecated name
+        return FormatChartTable
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -559,8 +559,8 @@ class DesignCheckResult:
         -------
         matplotlib.figure.Figure
         """
-        from .plot_design import PlotDesignCheck
-        return PlotDesignCheck(self, ax=ax, title=title)
+        from .plot_design import PlotDesignCheck   # lazy: matplotlib only when drawing
+        return PlotDesignCheck(self, LocalCharts(self.parameters), ax=ax, title=title)
 
 
 def _Changed(parameters, changes):

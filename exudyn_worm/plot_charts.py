@@ -36,12 +36,7 @@ def _Axes(ax, figsize=(7.5, 5.8)):
 
 
 def _PointXY(value):
-    """(x, y) of a point given as (x, y), as a dict with 'x' and 'y', or as an ElasticDrive."""
-    from .charts import ChartCoordinates
-    from .drive import ElasticDrive
-    if isinstance(value, ElasticDrive):
-        c = ChartCoordinates(value)
-        return c['x'], c['y']
+    """(x, y) of a point given as (x, y) or as a dict with 'x' and 'y'."""
     if isinstance(value, Mapping):
         return float(value['x']), float(value['y'])
     x, y = value
@@ -49,25 +44,22 @@ def _PointXY(value):
 
 
 def _Points(where: str, points) -> Mapping:
-    """``points`` as ``{label: point}``: a mapping as it is, or a sequence of preset names (``'reel-P1'``, or
-    ``'P1'`` for ``'reel-P1'``) as their chart coordinates (:func:`~exudyn_worm.charts.PresetChartPoints`)."""
-    if points is None or isinstance(points, Mapping):
-        return points or {}
-    from .presets import PRESETS
-    if isinstance(points, str) or not isinstance(points, (list, tuple)) or \
-            not all(isinstance(p, str) for p in points):
-        raise TypeError(f"{where}: 'points' must be a mapping {{label: (x, y), a dict with 'x' and 'y', or an "
-                        f"ElasticDrive}} or a list of preset names (e.g. ['reel-P1', 'reel-P7']), got "
-                        f"{type(points).__name__} {points!r}")
-    names = []
-    for p in points:
-        name = p if p in PRESETS else f'reel-{p}' if f'reel-{p}' in PRESETS else None
-        if name is None:
-            raise ValueError(f"{where}: 'points': unknown preset {p!r}; expected preset names: {', '.join(PRESETS)} "
-                             f"(or P1 ... P7 for reel-P1 ... reel-P7)")
-        names.append(name)
-    from .charts import PresetChartPoints
-    return PresetChartPoints(names)
+    """``points`` as ``{label: (x, y)}``; only draws, so preset names and drives must be resolved before
+    (:func:`~exudyn_worm.charts.ChartPoints`, which :meth:`StabilityChart.plot
+    <exudyn_worm.charts.StabilityChart.plot>` calls)."""
+    if points is None:
+        return {}
+    form = ("a mapping {label: (x, y) or a dict with 'x' and 'y'}; preset names and ElasticDrives are resolved by "
+            "exudyn_worm.charts.ChartPoints (StabilityChart.plot does it)")
+    if not isinstance(points, Mapping):
+        raise TypeError(f"{where}: 'points' must be {form}, got {type(points).__name__} {points!r}")
+    out = {}
+    for label, value in points.items():
+        try:
+            out[label] = _PointXY(value)
+        except (TypeError, ValueError, KeyError):
+            raise TypeError(f"{where}: 'points' must be {form}, got {type(value).__name__} for {label!r}") from None
+    return out
 
 
 #: marker size of the points on a chart (small: a point near a boundary stays clear of the line)
@@ -127,16 +119,15 @@ def NearestBoundary(chart: 'StabilityChartData', point: Tuple[float, float]) -> 
     ----------
     chart : StabilityChart
         The chart.
-    point : (float, float) or mapping or ElasticDrive
-        The point, as for :func:`PlotStabilityChart`.
+    point : (float, float) or mapping
+        The point, as (x, y) or a dict with 'x' and 'y' (:meth:`StabilityChart.NearestBoundary
+        <exudyn_worm.charts.StabilityChart.NearestBoundary>` computes it).
 
     Returns
     -------
     float
     """
-    x, y = _PointXY(point)
-    return min((float(np.min(np.hypot(np.log10(line[:, 0] / x), np.log10(line[:, 1] / y))))
-                for line in chart.boundaries), default=math.inf)
+    return chart.NearestBoundary(_PointXY(point))
 
 
 def _Decorate(ax, chart):
@@ -178,10 +169,11 @@ def PlotStabilityChart(chart, ax=None, points: Optional[Mapping] = None, color: 
         From :func:`~exudyn_worm.charts.ComputeStabilityChart`.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into (default: a new figure).
-    points : mapping or list of str, optional
-        ``{label: point}`` with a point as (x, y), as a dict with 'x' and 'y' (e.g. from
-        :func:`~exudyn_worm.charts.ChartCoordinates`) or as an ElasticDrive; or a list of preset names
-        (``['reel-P1', 'P7']``; ``'P1'`` stands for ``'reel-P1'``), marked at their chart coordinates.
+    points : mapping, optional
+        ``{label: point}`` with a point as (x, y) or as a dict with 'x' and 'y' (e.g. from
+        :func:`~exudyn_worm.charts.ChartCoordinates`). Preset names and ElasticDrives are resolved before
+        drawing by :func:`~exudyn_worm.charts.ChartPoints` (as :meth:`StabilityChart.plot
+        <exudyn_worm.charts.StabilityChart.plot>` does).
     color : str, optional
         Colour of region and boundary.
     label : str, optional
@@ -200,7 +192,7 @@ def PlotStabilityChart(chart, ax=None, points: Optional[Mapping] = None, color: 
     Raises
     ------
     TypeError, ValueError
-        For a ``chart`` that is not a StabilityChart, or ``points`` of another form or with an unknown preset name.
+        For a ``chart`` that is not a StabilityChart, or ``points`` of another form.
     """
     from .charts import StabilityChart
     if not isinstance(chart, StabilityChart):
@@ -238,8 +230,8 @@ def PlotStabilityCharts(charts: Sequence, points: Optional[Mapping] = None, titl
     ----------
     charts : sequence of StabilityChart
         Charts on the same grid (e.g. D_TV = 1, 5, 25).
-    points : mapping or list of str, optional
-        Points to mark, as for :func:`PlotStabilityChart` (a mapping or a list of preset names).
+    points : mapping, optional
+        Points to mark, as for :func:`PlotStabilityChart`.
     title : str, optional
         Axes title.
     ax : matplotlib.axes.Axes, optional

@@ -5,6 +5,7 @@ Imports matplotlib inside the function (as :mod:`exudyn_worm.plot`), so importin
 from __future__ import annotations
 
 import math
+from typing import Mapping
 
 import numpy as np
 
@@ -13,9 +14,11 @@ __all__ = ['PlotDesignCheck']
 _C_PLUS, _C_POINT, _C_MOVE, _C_PAIR = '#b9770e', '#1f4e79', '#2e7d32', '#8e24aa'
 
 
-def PlotDesignCheck(result, ax=None, title: str = ''):
+def PlotDesignCheck(result, charts: Mapping[int, 'StabilityChart'], ax=None, title: str = ''):
     """Draw a :class:`~exudyn_worm.design.DesignCheckResult` on the chart plane (x = kT/(kV r1^2), y = J1/J2).
 
+    Only draws: the charts are computed by the caller (:meth:`DesignCheckResult.plot
+    <exudyn_worm.design.DesignCheckResult.plot>` passes :func:`~exudyn_worm.design.LocalCharts`).
     The drive's stability charts at its D_V and D_TV (:func:`~exudyn_worm.design.LocalCharts`, drawn with
     :func:`~exudyn_worm.plot_charts.PlotStabilityChart`; S = +1 only where it has an unstable point) within
     2 decades of the drive's point; recommended changes of J1, J2 and kT are
@@ -27,6 +30,9 @@ def PlotDesignCheck(result, ax=None, title: str = ''):
     ----------
     result : DesignCheckResult
         From :func:`~exudyn_worm.design.DesignCheck`.
+    charts : mapping of int to StabilityChart
+        ``{-1: chart, +1: chart}``, the drive's local charts (:func:`~exudyn_worm.design.LocalCharts` of
+        ``result.parameters``).
     ax : matplotlib.axes.Axes, optional
         Axes to draw into (default: a new figure).
     title : str, optional
@@ -36,11 +42,13 @@ def PlotDesignCheck(result, ax=None, title: str = ''):
     -------
     matplotlib.figure.Figure
     """
-    from .design import DesignCheckResult, LocalCharts
+    from .design import DesignCheckResult
     from .plot_charts import PlotStabilityChart
     if not isinstance(result, DesignCheckResult):
         raise TypeError(f"PlotDesignCheck: 'result' must be a DesignCheckResult, got {type(result).__name__}")
-    charts = LocalCharts(result.parameters)
+    if not isinstance(charts, Mapping) or set(charts) != {-1, +1}:
+        raise TypeError(f"PlotDesignCheck: 'charts' must be a mapping {{-1: StabilityChart, +1: StabilityChart}} "
+                        f"(design.LocalCharts(result.parameters)), got {type(charts).__name__}")
     ax = PlotStabilityChart(charts[-1], ax=ax, label='$S = -1$: unstable region (shaded), boundary')
     if charts[+1].unstable.any():
         PlotStabilityChart(charts[+1], ax=ax, color=_C_PLUS, hatch='///',

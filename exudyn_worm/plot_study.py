@@ -5,18 +5,14 @@ matplotlib is imported inside the functions only (through :mod:`exudyn_worm.plot
 """
 from __future__ import annotations
 
-import itertools
 from typing import Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
 from .parameters import PARAMETERS
+from ._spacing import IsLogSpaced
 
-__all__ = ['PlotMetric', 'PlotChatterMap', 'AnalyticalMap', 'AxisLabel', 'ChartAxes', 'WHOLE_DRIVE_RESOLUTION']
-
-#: points per axis of the map of the linearized whole drive (a drive with a chain or an axial bearing) in
-#: :func:`PlotChatterMap`: one Exudyn linearization a point, so 400 points take about 12 s
-WHOLE_DRIVE_RESOLUTION = 20
+__all__ = ['PlotMetric', 'PlotChatterMap', 'AxisLabel', 'ChartAxes']
 
 _C_CHATTER, _C_QUIET, _C_FAILED, _C_BOUNDARY = '#c0392b', '#1f4e79', '#7f7f7f', '#2c2c2c'
 _METRIC_LABELS = {'maxAbsWheelAcceleration': (r"max $|\ddot\varphi_2|$", 'rad/s²', 1.),
@@ -66,14 +62,6 @@ def ChartAxes(x: str, y: str) -> Tuple[str, str]:
     inertia = lambda key: key.startswith('J')
     stiffness = lambda key: key.startswith('k')
     return (y, x) if inertia(x) and stiffness(y) else (x, y)
-
-
-def _IsLog(values) -> bool:
-    v = np.unique(np.asarray(values, float))
-    if v.size < 3 or np.any(v <= 0):
-        return False
-    ratios = v[1:] / v[:-1]
-    return bool(np.allclose(ratios, ratios[0], rtol=1e-6) and not np.allclose(np.diff(v), np.diff(v)[0], rtol=1e-6))
 
 
 def _Axes(ax, figsize):
@@ -137,7 +125,7 @@ def PlotMetric(result, x: str, metric: str = 'w1.maxAbsWheelAcceleration', ax=No
     if not ax.lines:                    # every run failed or lacks the metric: say so instead of empty axes
         ax.text(0.5, 0.5, f'no successful run with a value of {metric}', transform=ax.transAxes,
                 ha='center', va='center', color='0.3')
-    if _IsLog([r[x] for r in result.rows]):
+    if IsLogSpaced([r[x] for r in result.rows]):
         ax.set_xscale('log')
     ax.set_xlabel(xLabel)
     ax.set_ylabel(yLabel)
@@ -149,65 +137,16 @@ def PlotMetric(result, x: str, metric: str = 'w1.maxAbsWheelAcceleration', ax=No
     return fig
 
 
-def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -> np.ndarray:
-    """Largest real part (1/s) of the S = -1 eigenvalues of the linear model over a grid of two parameters, the
-    others as in ``base``: > 0 means chatter predicted while lowering. The model is that of
-    :func:`~exudyn_worm.linearization.DriveStability` at each point: eqs. (15)-(16) for the two-mass drive, the
-    linearized whole drive (about 30 ms a point) for one with a drive-side chain or a worm axial bearing.
-
-    Parameters
-    ----------
-    base : mapping
-        Flat parameter set.
-    x, y : str
-        Parameter keys.
-    xValues, yValues : array_like
-        Grid values (SI).
-
-    Returns
-    -------
-    numpy.ndarray
-        Shape (len(yValues), len(xValues)).
-    """
-    from .linearization import DriveStability
-    from .presets import ApplyOverrides
-    out = np.empty((len(yValues), len(xValues)))
-    for (i, yv), (j, xv) in itertools.product(enumerate(yValues), enumerate(xValues)):
-        out[i, j] = DriveStability(ApplyOverrides(base, {x: float(xv), y: float(yv)})).State(-1).maxRealPart
-    return out
-
-
-def _Chart(base, x, xValues, y, yValues, resolution):
-    """The stability chart (:func:`~exudyn_worm.charts.ComputeStabilityChart`) over a J1-kT map, in the map's
-    coordinates: ``(xGrid, yGrid, unstable, [(xLine, yLine), ...])``; None unless the map's keys are J1 and kT,
-    the damping is given as measures (D_T or D_TV, D_V), which is what a chart holds fixed, and the drive is the
-    two-mass drive the chart describes (no drive-side chain, no axial bearing)."""
-    from .presets import DriveFromParameters, ExtraComponents
-    if {x, y} != {'J1', 'kT'} or 'dT' in base or 'dV' in base or ExtraComponents(base):
-        return None
-    from .charts import ChartCoordinates, ComputeStabilityChart
-    drive = DriveFromParameters(base)
-    c = ChartCoordinates(drive)
-    g = drive.gear
-    scale = {'kT': g.kV * g.r1**2, 'J1': drive.J2}             # x = kT/(kV r1^2), y = J1/J2
-    kT, J1 = (xValues, yValues) if x == 'kT' else (yValues, xValues)
-    chart = ComputeStabilityChart(g, drive.J2, c['DV'], c['DTV'], xRange=(kT[0] / scale['kT'], kT[-1] / scale['kT']),
-                                  yRange=(J1[0] / scale['J1'], J1[-1] / scale['J1']), resolution=resolution, S=-1)
-    kTGrid, J1Grid = np.asarray(chart.x) * scale['kT'], np.asarray(chart.y) * scale['J1']
-    lines = [(line[:, 0] * scale['kT'], line[:, 1] * scale['J1']) for line in chart.boundaries]
-    unstable = np.asarray(chart.unstable)                      # shape (len(y), len(x)) of the chart
-    if x == 'kT':
-        return kTGrid, J1Grid, unstable, lines
-    return J1Grid, kTGrid, unstable.T, [(b, a) for a, b in lines]
-
-
-def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str, Tuple[float, float]]] = None,
-                   resolution: int = 60, title: Optional[str] = None, subtitle: str = ''):
+def PlotChatterMap(result, chatterMap: 'ChatterMap', ax=None,
+                   labels: Optional[Mapping[str, Tuple[float, float]]] = None, title: Optional[str] = None,
+                   subtitle: str = ''):
     """Chatter while lowering of every run over two varied parameters, over the analytical S = -1 region.
 
-    The shaded region and its boundary line are where the linear model (eqs. (15)-(16), S = -1) predicts
-    chatter: for a map of J1 and kT at fixed damping measures the stability chart of
-    :func:`~exudyn_worm.charts.ComputeStabilityChart`, else :func:`AnalyticalMap` on a finer grid; red filled dots: the simulation chatters
+    Only draws: the region is computed by :func:`~exudyn_worm.studymap.ComputeChatterMap` (which
+    :meth:`StudyResult.plot <exudyn_worm.study.StudyResult.plot>` calls). The shaded region and its boundary
+    line are where the linear model (eqs. (15)-(16), S = -1) predicts chatter: for a map of J1 and kT at fixed
+    damping measures the stability chart of :func:`~exudyn_worm.charts.ComputeStabilityChart`, else
+    :func:`~exudyn_worm.studymap.AnalyticalMap` on a finer grid; red filled dots: the simulation chatters
     while lowering; blue open circles: it does not; grey crosses: failed runs. Runs whose simulated verdict
     differs from the analytical one are ringed.
 
@@ -215,14 +154,12 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
     ----------
     result : StudyResult
         Result of :func:`~exudyn_worm.study.RunStudy` with a lowering window.
-    x, y : str
-        Varied keys on the horizontal and vertical axis.
+    chatterMap : ChatterMap
+        The analytical map over two varied keys, from :func:`~exudyn_worm.studymap.ComputeChatterMap`.
     ax : matplotlib.axes.Axes, optional
         Draw into these axes (default: a new figure).
     labels : mapping, optional
         Named points to mark, ``{'P1': (xValue, yValue), ...}`` (SI).
-    resolution : int, optional
-        Points per axis of the analytical grid (the stability chart is vectorized and gets at least 300).
     title : str, optional
         Axes title (default: what is drawn and the agreement).
     subtitle : str, optional
@@ -232,50 +169,20 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
     -------
     matplotlib.figure.Figure
     """
-    from .presets import ExtraComponents
-    keys = result.study.keys
-    for name, key in (('x', x), ('y', y)):
-        if key not in keys:
-            raise ValueError(f"PlotChatterMap: '{name}' must be a varied key ({', '.join(keys)}), got {key!r}")
+    from .studymap import ChatterMap
+    if not isinstance(chatterMap, ChatterMap):
+        raise TypeError(f"PlotChatterMap: 'chatterMap' must be a ChatterMap (studymap.ComputeChatterMap), "
+                        f"got {type(chatterMap).__name__}")
+    m = chatterMap
+    x, y = m.x, m.y
     fig, ax = _Axes(ax, (6.4, 6.))
-    xs, ys = result.Values(x), result.Values(y)
-    # log axes for log-spaced values or positive values spanning more than 50x (the grid and the axis alike)
-    logX, logY = (_IsLog(v) or bool(np.nanmin(v) > 0 and np.nanmax(v) / np.nanmin(v) > 50) for v in (xs, ys))
-
-    def grid(v, log, count=resolution):
-        lo, hi = np.nanmin(v), np.nanmax(v)
-        n = len(np.unique(np.asarray(v)[np.isfinite(v)]))
-        if lo == hi:                                    # one value only: show a factor 2 around it
-            lo, hi = (lo / 2, hi * 2) if lo > 0 else (lo - 1, hi + 1)
-        if n > 1:              # half a grid step (at most 15 % of the span) beyond the outer runs: no clipped markers
-            share = min(0.5 / (n - 1), 0.15)
-            if log:
-                pad = (hi / lo) ** share
-                lo, hi = lo / pad, hi * pad
-            else:
-                pad = (hi - lo) * share
-                lo, hi = (lo - pad if lo <= 0 or lo > pad else lo / 2), hi + pad   # a positive key stays positive
-        return np.geomspace(lo, hi, count) if log else np.linspace(lo, hi, count)
-
-    gx, gy = grid(xs, logX), grid(ys, logY)
     (xLabel, xf), (yLabel, yf) = AxisLabel(x), AxisLabel(y)
-    chart = _Chart(result.study.base, x, gx, y, gy, max(resolution, 300))
-    if chart is not None:                   # J1 and kT at fixed damping measures: the stability chart itself
-        cx, cy, unstable, lines = chart
-        ax.contourf(cx * xf, cy * yf, unstable.astype(float), levels=[0.5, 1.5], colors=['#f6d5d1'])
-        for lx, ly in lines:
-            ax.plot(lx * xf, ly * yf, color=_C_BOUNDARY, lw=1.2)
-        source = 'stability chart'
-    else:
-        wholeDrive = bool(ExtraComponents(result.study.base))
-        if wholeDrive:              # one Exudyn linearization a point (about 30 ms): a coarser grid
-            count = min(resolution, WHOLE_DRIVE_RESOLUTION)
-            gx, gy = grid(xs, logX, count), grid(ys, logY, count)
-        growth = AnalyticalMap(result.study.base, x, gx, y, gy)
-        ax.contourf(gx * xf, gy * yf, (growth > 0).astype(float), levels=[0.5, 1.5], colors=['#f6d5d1'])
-        if np.any(growth > 0) and np.any(growth <= 0):
-            ax.contour(gx * xf, gy * yf, growth, levels=[0.], colors=[_C_BOUNDARY], linewidths=1.2)
-        source = 'linearized whole drive' if wholeDrive else 'linear model'
+    ax.contourf(m.xGrid * xf, m.yGrid * yf, m.unstable.astype(float), levels=[0.5, 1.5], colors=['#f6d5d1'])
+    for lx, ly in m.lines:
+        ax.plot(lx * xf, ly * yf, color=_C_BOUNDARY, lw=1.2)
+    if m.growth is not None and np.any(m.growth > 0) and np.any(m.growth <= 0):
+        ax.contour(m.xGrid * xf, m.yGrid * yf, m.growth, levels=[0.], colors=[_C_BOUNDARY], linewidths=1.2)
+    source = m.source
     ok = [r for r in result.rows if r['status'] == 'ok' and r['loweringChatter'] in (True, False)]
     chatter = [r for r in ok if r['loweringChatter']]
     quiet = [r for r in ok if not r['loweringChatter']]
@@ -297,12 +204,12 @@ def PlotChatterMap(result, x: str, y: str, ax=None, labels: Optional[Mapping[str
     for name, (px, py) in (labels or {}).items():
         ax.plot(px * xf, py * yf, '*', color='#e69f00', ms=11, mec='black', mew=0.5)
         ax.annotate(name, (px * xf, py * yf), xytext=(4, 4), textcoords='offset points', fontsize='small')
-    if logX:
+    if m.logX:
         ax.set_xscale('log')
-    if logY:
+    if m.logY:
         ax.set_yscale('log')
-    ax.set_xlim(gx[0] * xf, gx[-1] * xf)
-    ax.set_ylim(gy[0] * yf, gy[-1] * yf)
+    ax.set_xlim(m.xLimits[0] * xf, m.xLimits[1] * xf)
+    ax.set_ylim(m.yLimits[0] * yf, m.yLimits[1] * yf)
     ax.set_xlabel(xLabel)
     ax.set_ylabel(yLabel)
     agreement = result.agreement

@@ -6,6 +6,7 @@ connector uses (:func:`exudyn_worm.contact.MeshContact` on numpy arrays).
 from __future__ import annotations
 
 import csv
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple
@@ -138,10 +139,38 @@ class SimulationResult:
             w.writerows(data.tolist())
         return path
 
-    def Plot(self, kind: str = 'overview', **kwargs):
-        """Plot with :mod:`exudyn_worm.plot` (matplotlib is imported only here)."""
-        from . import plot
+    def plot(self, kind: str = 'overview', **kwargs):
+        """Plot with :func:`exudyn_worm.plot.PlotSimulation` (matplotlib is imported only there).
+
+        Parameters
+        ----------
+        kind : str, optional
+            Kind of figure, as for :func:`~exudyn_worm.plot.PlotSimulation`.
+        **kwargs
+            Passed on to :func:`~exudyn_worm.plot.PlotSimulation`.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        from . import plot                         # lazy: matplotlib only when drawing
         return plot.PlotSimulation(self, kind=kind, **kwargs)
+
+    def Plot(self, *args, **kwargs):
+        """Deprecated spelling of :meth:`plot` (warns; removed in the next release).
+
+        Parameters
+        ----------
+        *args, **kwargs
+            As for :meth:`plot`.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        warnings.warn("SimulationResult.Plot is deprecated; use SimulationResult.plot", DeprecationWarning,
+                      stacklevel=2)
+        return self.plot(*args, **kwargs)
 
 
 _UNITS = {'deltaPhi': 'rad', 'deltaS': 'm', 'normalForce': 'N', 'S': '-', 'sf': '-', 'wormTorque': 'N*m',

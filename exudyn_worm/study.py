@@ -34,6 +34,7 @@ import platform
 import signal
 import sys
 import time
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
@@ -45,6 +46,7 @@ from .parameters import PARAMETERS
 from .presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys
 from .results import CheckWindows
 from .solve import IsInterrupt
+from .studymap import ComputeChatterMap
 from ._checks import CheckPositive
 
 __all__ = ['Variation', 'ParseVariation', 'StudyPoints', 'Study', 'ParseShard', 'ShardIndices', 'RunPoint',
@@ -720,9 +722,11 @@ class StudyResult:
         """
         return np.array([np.nan if r.get(column) is None else float(r[column]) for r in self.rows])
 
-    def Plot(self, x: str, y: Optional[str] = None, metric: str = 'w1.maxAbsWheelAcceleration', **kwargs):
+    def plot(self, x: str, y: Optional[str] = None, metric: str = 'w1.maxAbsWheelAcceleration',
+             resolution: int = 60, **kwargs):
         """Plot with :mod:`exudyn_worm.plot_study` (matplotlib is imported only there): ``metric`` against
-        parameter ``x``, or, with ``y``, the chatter map over ``x`` and ``y``.
+        parameter ``x``, or, with ``y``, the chatter map over ``x`` and ``y`` over the analytical region of
+        :func:`~exudyn_worm.studymap.ComputeChatterMap`.
 
         Parameters
         ----------
@@ -732,13 +736,34 @@ class StudyResult:
             Second varied key: draw the 2-D chatter map.
         metric : str, optional
             Column for the 1-D plot.
+        resolution : int, optional
+            Points per axis of the chatter map's analytical grid (the stability chart gets at least 300).
         **kwargs
             Passed on to the plotting function.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
         """
-        from . import plot_study
+        from . import plot_study                   # lazy: matplotlib only when drawing
         if y is None:
             return plot_study.PlotMetric(self, x, metric, **kwargs)
-        return plot_study.PlotChatterMap(self, x, y, **kwargs)
+        return plot_study.PlotChatterMap(self, ComputeChatterMap(self, x, y, resolution), **kwargs)
+
+    def Plot(self, *args, **kwargs):
+        """Deprecated spelling of :meth:`plot` (warns; removed in the next release).
+
+        Parameters
+        ----------
+        *args, **kwargs
+            As for :meth:`plot`.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+        """
+        warnings.warn("StudyResult.Plot is deprecated; use StudyResult.plot", DeprecationWarning, stacklevel=2)
+        return self.plot(*args, **kwargs)
 
 
 # ---------------------------------------------------------------------------------------------------------------

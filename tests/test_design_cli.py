@@ -178,9 +178,10 @@ def test_check_plot_reads_well():
     the legend off the chart."""
     import re
     import numpy as np
-    from exudyn_worm.design import DesignCheck
+    from exudyn_worm.design import DesignCheck, LocalCharts
     from exudyn_worm.plot_design import PlotDesignCheck, _Dense
-    fig = PlotDesignCheck(DesignCheck(GetPreset('reel-P1')), title='reel-P1')
+    result = DesignCheck(GetPreset('reel-P1'))
+    fig = PlotDesignCheck(result, LocalCharts(result.parameters), title='reel-P1')
     ax = fig.axes[0]
     legend = ax.get_legend()
     texts = [t.get_text() for t in legend.get_texts()]

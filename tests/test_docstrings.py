@@ -119,7 +119,7 @@ UNHINTED = {
         'exudyn_worm.stability.HurwitzStable': ['->'],
         'exudyn_worm.stability.LinearMatrices': ['->'],
         'exudyn_worm.stability.PolynomialCoefficients': ['gear', 'J1', 'J2', 'kT', 'dT', 'dV'],
-        'exudyn_worm.plot_study.AnalyticalMap': ['xValues', 'yValues'],
+        'exudyn_worm.studymap.AnalyticalMap': ['xValues', 'yValues'],
     },
     _TODO: {
         'exudyn_worm.charts.ComputeStabilityChart': ['resolution'],

@@ -36,7 +36,7 @@ def test_every_kind_returns_a_figure(result, kind, tmp_path):
 
 
 def test_result_plot_method_and_zoom(result):
-    fig = result.Plot('zoom', tZoom=(1.2, 1.3))
+    fig = result.plot('zoom', tZoom=(1.2, 1.3))
     ax = fig.axes[0]
     assert ax.get_xlim() == pytest.approx((1.2, 1.3))
     assert 'rad/s²' in ax.get_ylabel()

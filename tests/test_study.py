@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from hypothesis import given, strategies as st
 
-from exudyn_worm import plot_study
+from exudyn_worm import studymap
 from exudyn_worm.config import ResolveParameters
 from exudyn_worm.linearization import LinearStabilityFromParameters
 from exudyn_worm.presets import DriveFromParameters
@@ -246,7 +246,7 @@ def test_chatter_map_axes_follow_the_grid():
     (it was linear from 0 to 250000 N*m/rad); the outer runs lie inside the axes by 15 % of the span."""
     matplotlib.use('Agg')
     result = RunStudy(_Study('J1=0.05,0.1', 'kT=350,28000'), workers=1, quiet=True)
-    ax = result.Plot('J1', 'kT').axes[0]
+    ax = result.plot('J1', 'kT').axes[0]
     assert ax.get_yscale() == 'log' and ax.get_xscale() == 'linear'
     low, high = ax.get_ylim()
     assert low == pytest.approx(350. / 80. ** 0.15) and high == pytest.approx(28000. * 80. ** 0.15)
@@ -279,21 +279,21 @@ def test_verdict_of_a_drive_beyond_two_masses_is_that_of_stability(base, varied)
 
 
 def test_chatter_map_of_a_drive_beyond_two_masses_uses_the_whole_drive():
-    """plot_study: the stability-chart shortcut only for the two-mass drive; the map's linear model is the whole
+    """studymap: the stability-chart shortcut only for the two-mass drive; the map's linear model is the whole
     drive's (the two-mass model says the opposite at both J1 here)."""
     pytest.importorskip('matplotlib')
     bearing = ResolveParameters('reel-P1', sets=['kA=5e8', 'mA=5'])
-    growth = plot_study.AnalyticalMap(bearing, 'J1', [0.1, 0.2], 'kT', [7000.])
+    growth = studymap.AnalyticalMap(bearing, 'J1', [0.1, 0.2], 'kT', [7000.])
     assert growth.shape == (1, 2) and growth[0, 0] < 0 < growth[0, 1]       # as `stability`: J1 = 0.1 stable
-    twoMass = plot_study.AnalyticalMap(ResolveParameters('reel-P1'), 'J1', [0.1, 0.2], 'kT', [7000.])
+    twoMass = studymap.AnalyticalMap(ResolveParameters('reel-P1'), 'J1', [0.1, 0.2], 'kT', [7000.])
     assert twoMass[0, 0] > 0 > twoMass[0, 1]
     grid = np.geomspace(0.05, 0.4, 5), np.geomspace(3000., 20000., 5)
-    assert plot_study._Chart(ResolveParameters('reel-P1'), 'J1', grid[0], 'kT', grid[1], 50) is not None
-    assert plot_study._Chart(bearing, 'J1', grid[0], 'kT', grid[1], 50) is None
+    assert studymap._Chart(ResolveParameters('reel-P1'), 'J1', grid[0], 'kT', grid[1], 50) is not None
+    assert studymap._Chart(bearing, 'J1', grid[0], 'kT', grid[1], 50) is None
     study = Study(bearing, [ParseVariation('J1=0.1,0.2'), ParseVariation('kT=7000,8000')])
     rows = [{'run': i, 'status': 'ok', 'loweringChatter': p['J1'] > 0.15, 'analyticStableLowering': p['J1'] < 0.15,
              **p} for i, p in enumerate(study.points)]
-    fig = plot_study.PlotChatterMap(StudyResult(study, rows), 'J1', 'kT', resolution=8)
+    fig = StudyResult(study, rows).plot('J1', 'kT', resolution=8)
     labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert any('linearized whole drive' in t for t in labels), labels
 

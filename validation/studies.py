@@ -365,9 +365,9 @@ def _Figures(results, figures: Path) -> Dict[str, Path]:
     paths = {}
     for DV in MAP_DV:
         result = results[f'map_DV{DV}']['result']
-        fig = plot_study.PlotChatterMap(result, 'kT', 'J1', labels=_PaperPoints(DV),
-                                        title=f'D_V = {DV}, D_TV = 1: simulated chatter while lowering\nover the '
-                                              f'analytical S = -1 region (agreement {100 * result.agreement:.0f} %)')
+        fig = result.plot('kT', 'J1', labels=_PaperPoints(DV),
+                          title=f'D_V = {DV}, D_TV = 1: simulated chatter while lowering\nover the '
+                                f'analytical S = -1 region (agreement {100 * result.agreement:.0f} %)')
         paths[f'map_DV{DV}'] = plot.SaveFigure(fig, figures / f'stability_map_DV{DV}.png')
     fig, axes = _NewFigure(2, 2, figsize=(10., 7.), sharex=True)
     for ax, metric in zip(axes.flat, ('w1.maxNormalForce', 'w2.maxNormalForce', 'w1.maxAbsWheelAcceleration',

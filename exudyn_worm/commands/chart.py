@@ -103,7 +103,8 @@ def _RunSpeed(args: argparse.Namespace) -> int:
 def _Run(args: argparse.Namespace) -> int:
     if args.speed is not None:
         return _RunSpeed(args)
-    from ..charts import ComputeStabilityChart, FormatChartTable, PresetChartPoints
+    from ..charts import ComputeStabilityChart, PresetChartPoints
+    from ..charttable import FormatChartTable
     from ..presets import ExtraComponents, GearFromParameters, MissingParameterError
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None

@@ -124,8 +124,8 @@ def _Run(args: argparse.Namespace) -> int:
         from .. import plot
         from ..plot_study import ChartAxes            # kT across, J1 up, as the stability charts
         subtitle = f"exudyn-worm sweep: {SourceText(args)}"
-        figure = (result.Plot(study.keys[0], metric=args.metric, subtitle=subtitle) if len(study.keys) == 1
-                  else result.Plot(*ChartAxes(study.keys[0], study.keys[1]), subtitle=subtitle))
+        figure = (result.plot(study.keys[0], metric=args.metric, subtitle=subtitle) if len(study.keys) == 1
+                  else result.plot(*ChartAxes(study.keys[0], study.keys[1]), subtitle=subtitle))
         WriteAtomically(args.plot, lambda tmp: plot.SaveFigure(figure, tmp))
         written.append(Path(args.plot))
     if args.json:

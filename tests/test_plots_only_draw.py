@@ -1,0 +1,165 @@
+"""Plots only draw (issue 17, item 3): the plotting modules take results and draw; every analysis lives on the
+analysis side with its result object; numerical modules never import matplotlib; one spelling, ``.plot()``."""
+import ast
+import importlib
+import inspect
+import pkgutil
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import exudyn_worm
+
+PACKAGE = Path(exudyn_worm.__file__).parent
+PLOT_MODULES = sorted(p.stem for p in PACKAGE.glob('plot*.py'))
+NON_PLOT_MODULES = sorted(m.name for m in pkgutil.walk_packages(exudyn_worm.__path__, 'exudyn_worm.')
+                          if not m.name.rsplit('.', 1)[-1].startswith('plot'))
+#: modules a plotting module may take anything from: the other plotting modules and pure helpers (labels, spacing)
+DRAWING_HELPERS = {'parameters', '_spacing'}
+
+
+def _InternalImports(stem: str):
+    """``(module, name)`` of every relative import in a plotting module, at its top or inside a function."""
+    tree = ast.parse((PACKAGE / f'{stem}.py').read_text())
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.level == 1:
+            for alias in node.names:
+                yield node.module, alias.name
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and (node.module or '').startswith('exudyn_worm'):
+            for alias in node.names:
+                yield node.module.removeprefix('exudyn_worm').lstrip('.') or alias.name, alias.name
+        elif isinstance(node, ast.Import):
+            assert not any(a.name.startswith('exudyn_worm') for a in node.names), f'{stem}: import {node.names}'
+
+
+def test_the_plot_modules_are_found():
+    assert {'plot', 'plot_charts', 'plot_design', 'plot_study'} <= set(PLOT_MODULES)
+
+
+@pytest.mark.parametrize('stem', PLOT_MODULES)
+def test_plot_module_imports_no_computation(stem):
+    """From an analysis module a plotting module takes only result types (for its isinstance checks) and
+    constants (units, labels), never a function: no linearization, chart, preset or design check is run
+    while drawing (plot_study ran linearizations, plot_design recomputed LocalCharts, plot_charts resolved preset
+    names)."""
+    imports = list(_InternalImports(stem))
+    assert imports, stem
+    for module, name in imports:
+        if module is None or module.startswith('plot') or module in DRAWING_HELPERS:
+            continue
+        obj = getattr(importlib.import_module(f'exudyn_worm.{module}'), name)
+        assert not (inspect.isfunction(obj) or inspect.ismodule(obj)), \
+            f'{stem} imports the {"module" if inspect.ismodule(obj) else "function"} {module}.{name}'
+
+
+def test_the_rule_catches_a_computation(tmp_path, monkeypatch):
+    """The check above is not vacuous: the import plot_study had before fails it."""
+    monkeypatch.setattr(sys.modules[__name__], 'PACKAGE', tmp_path)
+    (tmp_path / 'plot_old.py').write_text(textwrap.dedent('''
+        def AnalyticalMap():
+            from .linearization import DriveStability
+            from .presets import ApplyOverrides
+    '''))
+    with pytest.raises(AssertionError, match='function linearization.DriveStability'):
+        test_plot_module_imports_no_computation('plot_old')
+
+
+def test_no_numerical_module_imports_matplotlib():
+    """Import every module of the package except the plotting ones, one after the other in a fresh
+    interpreter: none pulls in matplotlib."""
+    code = textwrap.dedent(f'''
+        import importlib, sys
+        for name in {NON_PLOT_MODULES!r}:
+            importlib.import_module(name)
+            if 'matplotlib' in sys.modules:
+                print(name)
+                break
+        else:
+            print('none', len({NON_PLOT_MODULES!r}))
+    ''')
+    out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout.split()
+    assert out == ['none', str(len(NON_PLOT_MODULES))], f'{out[0]} imports matplotlib'
+    assert {'exudyn_worm.charts', 'exudyn_worm.studymap', 'exudyn_worm.design', 'exudyn_worm.study',
+            'exudyn_worm.results', 'exudyn_worm.charttable'} <= set(NON_PLOT_MODULES)
+
+
+def _SimulationResult():
+    from exudyn_worm.results import SimulationResult
+    return object.__new__(SimulationResult)     # the spelling is tested, not the drawing: no data needed
+
+
+def _StudyResult():
+    from exudyn_worm.study import StudyResult
+    return object.__new__(StudyResult)
+
+
+@pytest.mark.parametrize('make', [_SimulationResult, _StudyResult], ids=['SimulationResult', 'StudyResult'])
+def test_capital_Plot_is_a_deprecated_alias_of_plot(make, monkeypatch):
+    result = make()
+    calls = []
+    monkeypatch.setattr(type(result), 'plot', lambda self, *args, **kwargs: calls.append((args, kwargs)) or 'fig')
+    with pytest.warns(DeprecationWarning, match=rf'{type(result).__name__}\.Plot is deprecated; use '
+                                                rf'{type(result).__name__}\.plot'):
+        assert result.Plot('J1', 'kT', title='t') == 'fig'
+    assert calls == [(('J1', 'kT'), {'title': 't'})]
+
+
+def test_every_result_object_spells_plot_in_lower_case():
+    """The result objects of the analyses draw with ``.plot()``; ``.Plot`` exists only as the deprecated alias."""
+    from exudyn_worm.charts import FirstCriterionCurves, StabilityChart
+    from exudyn_worm.design import DesignCheckResult
+    from exudyn_worm.results import SimulationResult
+    from exudyn_worm.speedchart import SpeedChart
+    from exudyn_worm.study import StudyResult
+    for cls in (SimulationResult, StudyResult, StabilityChart, FirstCriterionCurves, SpeedChart, DesignCheckResult):
+        assert callable(getattr(cls, 'plot', None)), cls.__name__
+    assert all(cls.Plot.__doc__.startswith('Deprecated') for cls in (SimulationResult, StudyResult))
+
+
+def test_format_chart_table_moved_to_charttable():
+    from exudyn_worm import charts, charttable
+    assert 'FormatChartTable' not in charts.__all__
+    with pytest.warns(DeprecationWarning, match='charttable.FormatChartTable'):
+        assert charts.FormatChartTable is charttable.FormatChartTable
+    with pytest.raises(AttributeError):
+        charts.NoSuchName
+
+
+def test_chart_points_are_resolved_before_drawing():
+    """charts.ChartPoints turns preset names and drives into chart coordinates; the plotting function only
+    takes coordinates and names the resolver for anything else."""
+    pytest.importorskip('matplotlib')
+    from exudyn_worm.charts import ChartCoordinates, ChartPoints, ComputeStabilityChart, PresetChartPoints
+    from exudyn_worm.plot_charts import PlotStabilityChart
+    from exudyn_worm.presets import DriveFromParameters, GetPreset
+    drive = DriveFromParameters(GetPreset('reel-P7'))
+    c = ChartCoordinates(drive)
+    p1 = PresetChartPoints(['reel-P1'])['P1']
+    assert ChartPoints({'d': drive, 'q': {'x': 2., 'y': 3.}, 't': (4, 5)}) == \
+        {'d': (c['x'], c['y']), 'q': (2., 3.), 't': (4., 5.)}
+    assert ChartPoints(['P1']) == {'P1': (p1['x'], p1['y'])}
+    assert ChartPoints(None) == {}
+    chart = ComputeStabilityChart(drive.gear, drive.J2, c['DV'], c['DTV'], resolution=20)
+    for points in (['P1'], {'d': drive}):
+        with pytest.raises(TypeError, match='resolved by exudyn_worm.charts.ChartPoints'):
+            PlotStabilityChart(chart, points=points)
+    ax = chart.plot(points={'d': drive})
+    assert [line.get_xydata()[0].tolist() for line in ax.lines if line.get_gid() == 'point d'] == \
+        [[c['x'], c['y']]]
+    vertex = chart.boundaries[0][len(chart.boundaries[0]) // 2]
+    assert chart.NearestBoundary(tuple(vertex)) == 0.
+    assert 0. < chart.NearestBoundary((vertex[0] * 10 ** 0.5, vertex[1])) <= 0.5
+
+
+@pytest.mark.messages
+def test_chatter_map_names_itself_for_a_key_not_varied():
+    from exudyn_worm.config import ResolveParameters
+    from exudyn_worm.study import ParseVariation, Study, StudyResult
+    from exudyn_worm.studymap import ComputeChatterMap
+    study = Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.1,0.2'), ParseVariation('kT=7000,8000')])
+    with pytest.raises(ValueError, match=r"ComputeChatterMap: 'y' must be a varied key \(J1, kT\), got 'kV'"):
+        ComputeChatterMap(StudyResult(study, []), 'J1', 'kV')
