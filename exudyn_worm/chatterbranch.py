@@ -394,6 +394,20 @@ class DisturbanceVerdict:
     frequencyHz: float
     text: str
 
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary (the ``disturbance`` object of ``exudyn-worm check --json``); infinite or
+        undefined numbers are None.
+
+        Returns
+        -------
+        dict
+        """
+        finite = lambda x: float(x) if math.isfinite(x) else None
+        return {'linearlyStable': self.linearlyStable, 'chatterFound': self.chatterFound,
+                'smallestDisturbance': finite(self.smallestDisturbance), 'forceFactor': finite(self.forceFactor),
+                'maxWheelAcceleration': finite(self.maxWheelAcceleration), 'frequencyHz': finite(self.frequencyHz),
+                'text': self.text}
+
 
 def ChattersAfterDisturbance(parameters: Mapping[str, float]) -> DisturbanceVerdict:
     """Does a drive chatter in the lowering phase, and if it is linearly stable, after which disturbance?

@@ -203,3 +203,32 @@ def test_check_plot_reads_well():
         inside = ((boundary[:, 0] >= box.x0) & (boundary[:, 0] <= box.x1) &
                   (boundary[:, 1] >= box.y0) & (boundary[:, 1] <= box.y1))
         assert not inside.any(), text.get_text()
+
+
+@pytest.mark.slow
+def test_check_states_chatter_after_a_disturbance(capsys):
+    # J1 = 0.25 kg m^2 with 0.5 mm backlash: the linear check calls the drive stable with margin, yet rest and
+    # chatter coexist (docs/chatter-amplitude.md); by default the check of a drive with backlash says so
+    backlash = ('check', '--preset', 'reel-P1', '--set', 'J1=0.25', '--set', 'backlash=0.0005')
+    data = Json(capsys, *backlash)
+    assert data['stable'] is True
+    d = data['disturbance']
+    assert d['linearlyStable'] is True and d['chatterFound'] is True
+    # the threshold lies between kicks of 1 % (ends at rest) and 30 % (ends in chatter) of the motor speed
+    speed = GetPreset('reel-P1')['motorSpeed']
+    assert 0.01 * speed < d['smallestDisturbance'] < 0.3 * speed
+    assert d['forceFactor'] > 4.
+    assert d['text'].startswith('linearly stable, but chatters after a worm-speed disturbance of')
+    rc, out, _ = Run(capsys, *backlash)
+    assert rc == 0 and 'After a disturbance (lowering, nonlinear mesh): linearly stable, but chatters' in out
+    assert 'disturbance' not in Json(capsys, *backlash, '--no-disturbance')
+
+
+def test_check_disturbance_only_when_asked_or_backlash(capsys):
+    assert 'disturbance' not in Json(capsys, 'check', '--preset', 'reel-P1')     # no backlash: not by default
+    d = Json(capsys, 'check', '--preset', 'reel-P2', '--disturbance')['disturbance']
+    assert d['linearlyStable'] is True and d['chatterFound'] is False and d['smallestDisturbance'] is None
+    d = Json(capsys, 'check', '--preset', 'reel-P1', '--disturbance')['disturbance']
+    assert d['linearlyStable'] is False and d['chatterFound'] is True and d['smallestDisturbance'] == 0.
+    rc, _, err = Run(capsys, 'check', '--preset', 'reel-P1', '--disturbance', '--no-disturbance')
+    assert rc == 2 and err.count('\n') == 1

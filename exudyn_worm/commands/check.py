@@ -28,6 +28,14 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                              'leverArm and motorSpeed')
     parser.add_argument('--step-size', type=PositiveFloat('s'), default=None, metavar='S',
                         help='time step of the --simulate runs in s (default: each drive\'s recommended step, as simulate)')
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument('--disturbance', dest='disturbance', action='store_const', const='yes', default='auto',
+                       help='also say whether a linearly stable drive chatters after a worm-speed disturbance '
+                            '(steady chatter found by shooting, smallest kick by bisection on simulations; up to '
+                            'about 10 s). Default: only for a drive with backlash, where rest and chatter can coexist; '
+                            'needs loadMass, leverArm and motorSpeed')
+    group.add_argument('--no-disturbance', dest='disturbance', action='store_const', const='no',
+                       help='skip the disturbance verdict (also for a drive with backlash)')
     parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
 
 
@@ -155,6 +163,7 @@ def _Run(args: argparse.Namespace) -> int:
                          quiet=True if getattr(args, 'quiet', False) else None) as bar:
             with BadInput(), StdoutToStderr(args.json):
                 result = ConfirmBySimulation(result, stepSize=args.step_size, progress=bar.update)
+    disturbance = _DisturbanceVerdict(args, parameters, result)
     if plotPath is not None:
         from ..plot import SaveFigure
         try:
@@ -163,12 +172,43 @@ def _Run(args: argparse.Namespace) -> int:
         except OSError as err:
             raise UsageError(f"--plot {plotPath}: cannot write: {err.strerror or err}") from err
     if args.json:
-        PrintJson(result.ToDict())
+        data = result.ToDict()
+        if disturbance is not None:
+            data['disturbance'] = disturbance.ToDict()
+        PrintJson(data)
     else:
-        print('\n'.join(FormatDesignCheck(result, title=f"exudyn-worm check: {SourceText(args)}")))
+        lines = FormatDesignCheck(result, title=f"exudyn-worm check: {SourceText(args)}")
+        if disturbance is not None:
+            lines.insert(3, f"After a disturbance (lowering, nonlinear mesh): {disturbance.text}")
+        print('\n'.join(lines))
     if plotPath is not None:
         print(f"wrote {plotPath.resolve()}", file=sys.stderr)
     return 0
+
+
+def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
+    """:func:`~exudyn_worm.chatterbranch.ChattersAfterDisturbance` of the drive, or None where it is not asked
+    for: ``--no-disturbance``; by default only for a drive with backlash that is linearly stable while lowering
+    (S = -1) and has the reel changer's keys. ``--disturbance`` asks for it for any drive (missing keys: exit 2)."""
+    if args.disturbance == 'no':
+        return None
+    if args.disturbance == 'auto':
+        from ..reelchanger import REEL_KEYS
+        if not (float(parameters.get('backlash', 0.)) > 0. and result.analysis.contact[-1].stable
+                and all(k in parameters for k in REEL_KEYS)):
+            return None
+    from ..chatterbranch import ChattersAfterDisturbance
+    from ..reelchanger import CheckReelChangerKeys
+    if args.disturbance == 'auto':
+        try:
+            with StdoutToStderr(args.json):
+                return ChattersAfterDisturbance(parameters)
+        except ValueError:          # a drive the lowering model refuses (chain, axial bearing): the check as before
+            return None
+    with BadInput():
+        CheckReelChangerKeys(parameters, 'check --disturbance')
+        with StdoutToStderr(args.json):
+            return ChattersAfterDisturbance(parameters)
 
 
 def _ReportWholeDrive(args: argparse.Namespace, diagnosis, plotPath) -> int:
