@@ -10,7 +10,7 @@ def _Row(value, orbit, long, stable=True):
 
 def _Branch(rows, kicks=()):
     return {'study': 'J1', 'parameter': 'J1', 'range': (0.05, 0.3), 'points': 10, 'seconds': 1.,
-            'linearBoundaries': [0.0763820], 'folds': [], 'coexistence': [], 'disturbances': [],
+            'linearBoundaries': [0.0763820], 'unstableOrbits': 0, 'folds': [], 'coexistence': [], 'disturbances': [],
             'hopf': [{'value': 0.0763821, 'type': 'supercritical', 'linearBoundary': 0.0763820,
                       'relativeDifference': 1.3e-6}], 'kicks': list(kicks), 'rows': rows}
 

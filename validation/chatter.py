@@ -50,6 +50,9 @@ _BACKLASH = np.linspace(0., 1e-3, 8)
 #: reel-P3 with a Stribeck law (linearly unstable between about 85 and 610 rpm); speeds in rpm
 _FRICTION = {'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2, 'stribeckVelocity': 0.9}
 _FRICTION_RPM = (92., 140., 200., 300., 450.)
+#: the friction-limited orbits grow slowly: their long simulations run longer (at 140 rpm the force factor is
+#: 1.905 after 4 s, 1.909 after 6 s, 1.913 after 10 s)
+_FRICTION_SECONDS = 8.
 _CSV_FIELDS = ('study', 'parameter', 'value', 'stable', 'orbitForceFactor', 'longForceFactor',
                'orbitWheelAcceleration', 'longWheelAcceleration', 'orbitFrequencyHz', 'longFrequencyHz')
 
@@ -67,7 +70,8 @@ def _Branch(study: str, name: str, low: float, high: float, changes: Dict, check
     t0 = time.perf_counter()
     branch = AnalyzeChatterBranch(p, name, low, high)
     seconds = time.perf_counter() - t0
-    chattering = sorted((q for q in branch.points if q.info['forceFactor'] >= 2.), key=lambda q: q.value)
+    # only stable orbits are steady states a long simulation can reach (the unstable ones between folds are not)
+    chattering = sorted((q for q in branch.points if q.info['forceFactor'] >= 2. and q.stable), key=lambda q: q.value)
     picks = [chattering[int(round(k))] for k in np.linspace(0, len(chattering) - 1, min(checks, len(chattering)))]
     rows = []
     for q in picks:
@@ -83,13 +87,14 @@ def _Branch(study: str, name: str, low: float, high: float, changes: Dict, check
             kicks.append({'value': d['value'], 'kick': kick, 'threshold': d['wormSpeedFraction'],
                           'forceFactor': long['forceFactor']})
     return {'study': study, 'parameter': name, 'range': (low, high), 'points': len(branch.points),
-            'seconds': seconds, 'linearBoundaries': branch.linearBoundaries, 'hopf': branch.hopf,
+            'seconds': seconds, 'unstableOrbits': sum(not q.stable for q in branch.points),
+            'linearBoundaries': branch.linearBoundaries, 'hopf': branch.hopf,
             'folds': branch.folds, 'coexistence': branch.coexistence, 'disturbances': branch.disturbances,
             'kicks': kicks, 'rows': rows}
 
 
 def _Sweep(study: str, name: str, base: Dict, values, checks: int, settleTime: float = 1.0,
-           maxIterations: int = 30) -> Dict:
+           maxIterations: int = 30, duration: float = _LONG['duration']) -> Dict:
     rows, failed = [], []
     t0 = time.perf_counter()
     for v in values:
@@ -99,10 +104,11 @@ def _Sweep(study: str, name: str, base: Dict, values, checks: int, settleTime: f
         except ShootingError as err:
             failed.append((float(v), str(err).split(';')[0]))
             continue
-        long = LongSimulationAmplitude(q, **_LONG)
+        long = LongSimulationAmplitude(q, duration=duration, stepSize=_LONG['stepSize'])
         rows.append(_Row(study, name, v, orbit, orbit.info, long))
     keep = [rows[int(round(k))] for k in np.linspace(0, len(rows) - 1, min(checks, len(rows)))] if rows else []
-    return {'study': study, 'parameter': name, 'seconds': time.perf_counter() - t0, 'rows': keep, 'failed': failed}
+    return {'study': study, 'parameter': name, 'seconds': time.perf_counter() - t0, 'rows': keep, 'failed': failed,
+            'duration': duration}
 
 
 def RunChatterStudies(checks: int = 8) -> List[Dict]:
@@ -123,7 +129,7 @@ def RunChatterStudies(checks: int = 8) -> List[Dict]:
     studies.append(_Sweep('backlash at P1', 'backlash', ew.GetPreset('reel-P1'), _BACKLASH, checks))
     friction = {**ew.GetPreset('reel-P3'), **_FRICTION}
     sweep = _Sweep('reel-P3, Stribeck friction', 'motorSpeed', friction, np.array(_FRICTION_RPM) * RPM, checks,
-                   settleTime=3.0, maxIterations=60)
+                   settleTime=3.0, maxIterations=60, duration=_FRICTION_SECONDS)
     chart = SpeedStabilityChart(friction, np.linspace(60., 700., 321) * RPM)
     sweep['unstableRanges'] = [(a / RPM, b / RPM) for a, b in chart.unstableRanges]
     studies.append(sweep)
@@ -199,6 +205,8 @@ def WriteReport(studies: List[Dict], path: Path = HERE / 'CHATTER.md', csvPath: 
                 lines.append(f"- Hopf point {h['value']:.7g} ({h['type']}) at the linear boundary "
                              f"{h['linearBoundary']:.7g}: relative difference {h['relativeDifference']:.1e} "
                              f"({'within' if h['relativeDifference'] <= 0.005 else 'NOT within'} 0.5 %).")
+            lines.append(f"- Unstable orbits on the branch (not compared: a long simulation cannot stay on them): "
+                         f"{s['unstableOrbits']}.")
             lines.append(f"- Folds: {', '.join(f'{x:.5g}' for x in s['folds']) or 'none'}; rest and chatter "
                          f"coexist on: {', '.join(f'{a:.4g}-{b:.4g}' for a, b in s['coexistence']) or 'nowhere'}.")
             for d in s['disturbances']:
@@ -211,7 +219,8 @@ def WriteReport(studies: List[Dict], path: Path = HERE / 'CHATTER.md', csvPath: 
                              f"{k['forceFactor']:.3f}); expected {expected}: {'PASS' if end == expected else 'FAIL'}")
                 verdicts[-1] = verdicts[-1] and end == expected
         else:
-            lines.append(f"{len(s['rows'])} orbits compared ({s['seconds']:.0f} s with the long simulations).")
+            lines.append(f"{len(s['rows'])} orbits compared ({s['seconds']:.0f} s with the long simulations, "
+                         f"{s['duration']:g} s each).")
             for v, why in s.get('failed', []):
                 lines.append(f"- no orbit at {s['parameter']} = {v:.4g}: {why}")
             if 'unstableRanges' in s:
