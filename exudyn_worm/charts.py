@@ -34,6 +34,7 @@ from ._checks import CheckArray, CheckRange
 from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from .gear import WormGear
 from .stability import CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, HurwitzStable, PolynomialCoefficients
+from .presets import PRESETS, DriveFromParameters, GetPreset
 
 __all__ = ['StabilityChart', 'ComputeStabilityChart', 'ChartCoordinates', 'ChartCoefficients',
            'UnstableGrid', 'MaxRealPartGrid', 'MaxRealPart', 'ContourLines',
@@ -177,7 +178,6 @@ def ChartPoints(points: Union[Mapping, Sequence[str], None], where: str = 'Chart
     if points is None:
         return {}
     if not isinstance(points, Mapping):
-        from .presets import PRESETS   # lazy, as in PresetChartPoints: the presets only for named points
         if isinstance(points, str) or not isinstance(points, (list, tuple)) or \
                 not all(isinstance(p, str) for p in points):
             raise TypeError(f"{where}: 'points' must be a mapping {{label: (x, y), a dict with 'x' and 'y', or an "
@@ -217,7 +217,6 @@ def PresetChartPoints(names: Sequence[str]) -> Dict[str, Dict[str, float]]:
     dict
         ``{label: {'x', 'y', 'DV', 'DTV'}}`` in the order given.
     """
-    from .presets import DriveFromParameters, GetPreset
     return {name.replace('reel-', ''): ChartCoordinates(DriveFromParameters(GetPreset(name))) for name in names}
 
 

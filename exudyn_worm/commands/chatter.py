@@ -5,7 +5,9 @@ import argparse
 import sys
 from typing import List, Tuple
 
-from ..cli import CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+from ..cli import (BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand,
+                   UsageError)
+from ..chatterbranch import AnalyzeChatterBranch, ChatterBranchError
 
 __all__ = ['COMMAND', 'ParseVary', 'FormatBranch']
 
@@ -83,8 +85,6 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
 
 
 def _Run(args: argparse.Namespace) -> int:
-    from ..cli import BadInput
-    from ..chatterbranch import AnalyzeChatterBranch, ChatterBranchError
     name, low, high = ParseVary(args.vary)
     parameters = ParametersFromArgs(args)
     if args.plot:
