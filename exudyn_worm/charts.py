@@ -35,6 +35,7 @@ from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMea
 from .gear import WormGear
 from .stability import CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, HurwitzStable, PolynomialCoefficients
 from .presets import PRESETS, DriveFromParameters, GetPreset
+from . import charttable   # for the deprecated charts.FormatChartTable (module __getattr__ below)
 
 __all__ = ['StabilityChart', 'ComputeStabilityChart', 'ChartCoordinates', 'ChartCoefficients',
            'UnstableGrid', 'MaxRealPartGrid', 'MaxRealPart', 'ContourLines',
@@ -849,6 +850,5 @@ def __getattr__(name: str):
     if name == 'FormatChartTable':
         warnings.warn("exudyn_worm.charts.FormatChartTable moved to exudyn_worm.charttable.FormatChartTable",
                       DeprecationWarning, stacklevel=2)
-        from .charttable import FormatChartTable   # lazy: only for the deprecated name
-        return FormatChartTable
+        return charttable.FormatChartTable
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
