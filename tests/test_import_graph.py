@@ -38,6 +38,23 @@ ALLOWED: Dict[Tuple[str, str], str] = {
 }
 
 
+#: the layers of docs/development.md, lowest first: a module imports (at module level) only modules of its own
+#: or a lower layer; a new module is added to the layer it belongs to
+LAYERS = (
+    ('helpers', '_checks _roots _spacing progress drives charttable'),
+    ('parameters and laws', 'parameters friction profiles selflocking solve orbits geometry drivefile plausibility '
+                            'continuation'),
+    ('gear model', 'gear contact drive stability results _userfunctions'),
+    ('Exudyn items', 'connector drivetrain equilibrium'),
+    ('parameter sets', 'presets config duty'),
+    ('analyses', 'charts linearization speedchart loadside stepsize studymap reelchanger chatter chatterbranch '
+                 'design study'),
+    ('plotting', 'plot plot_charts plot_design plot_orbits plot_study'),
+    ('command line', 'cli commands commands.chart commands.chatter commands.check commands.simulate '
+                     'commands.stability commands.sweep __main__'),
+)
+
+
 class Import(NamedTuple):
     module: str          # importing module, e.g. 'exudyn_worm.study'
     target: str          # imported module, e.g. 'exudyn_worm.presets' or 'numpy'
@@ -177,6 +194,20 @@ def test_every_module_is_parsed():
 
 def test_no_cycle_among_module_level_imports():
     assert _Cycle(ModuleGraph()) == []
+
+
+def test_every_module_has_a_layer():
+    layered = [f'{PACKAGE}.{name}' for _, names in LAYERS for name in names.split()]
+    assert sorted(set(MODULES) - {PACKAGE}) == sorted(layered)
+
+
+def test_module_level_imports_go_down_the_layers():
+    layer = {f'{PACKAGE}.{name}': i for i, (_, names) in enumerate(LAYERS) for name in names.split()}
+    layer[PACKAGE] = -1       # the package's __init__: lazy attributes only, it imports no submodule
+    upward = sorted(f'{module} ({LAYERS[layer[module]][0]}) imports {target} ({LAYERS[layer[target]][0]})'
+                    for module, targets in ModuleGraph().items() for target in targets
+                    if layer[target] > layer[module])
+    assert upward == []
 
 
 def test_cycle_finder_finds_a_cycle():
