@@ -11,15 +11,6 @@ from typing import Dict, List
 
 from ..cli import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceText,
                    Subcommand, UsageError, WriteAtomically)
-from ..charts import DEFAULT_RESOLUTION, DEFAULT_X_RANGE, DEFAULT_Y_RANGE, PresetChartPoints
-from ..charttable import FormatChartTable
-from ..drive import MeshDampingMeasure
-from ..plot_charts import PlotStabilityCharts
-from ..presets import PRESETS, ExtraComponents, GearFromParameters, MissingParameterError
-from ..progress import ProgressBar
-from ..speedchart import RPM, SpeedStabilityChart
-from ..study import ParseVariation
-from .. import charts, plot
 
 __all__ = ['COMMAND', 'PAPER_DTV']
 
@@ -28,6 +19,8 @@ PAPER_DTV = (1., 5., 25.)
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..charts import DEFAULT_RESOLUTION, DEFAULT_X_RANGE, DEFAULT_Y_RANGE
     parser.add_argument('--DV', type=float, default=None, metavar='D_V',
                         help="mesh damping measure D_V of eq. (23) (default: the parameter set's, from DV or dV)")
     parser.add_argument('--DTV', type=float, nargs='+', default=list(PAPER_DTV), metavar='D_TV',
@@ -55,6 +48,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _PresetName(name: str) -> str:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..presets import PRESETS
     # a point needs J1 and kT: the 'chart' preset has neither (it is the gear the chart is drawn for)
     drives = [p for p in PRESETS if p != 'chart']
     if name in drives:
@@ -67,6 +62,8 @@ def _PresetName(name: str) -> str:
 
 
 def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..drive import MeshDampingMeasure
     if 'DV' in parameters:
         return parameters['DV']
     if 'dV' in parameters:
@@ -76,6 +73,9 @@ def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
 
 def _RunSpeed(args: argparse.Namespace) -> int:
     """``chart --speed SPEC``: the lowering state's stability over motor speed (:mod:`exudyn_worm.speedchart`)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..speedchart import RPM, SpeedStabilityChart
+    from ..study import ParseVariation
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
     parameters = ParametersFromArgs(args)
     with BadInput():
@@ -83,8 +83,10 @@ def _RunSpeed(args: argparse.Namespace) -> int:
         variation = ParseVariation(f'motorSpeed={spec}')
         chart = SpeedStabilityChart(parameters, variation.values)
     if output:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..plot import SaveFigure
         ax = chart.plot(title=f'{SourceText(args)}: stability over motor speed ({chart.frictionLaw} friction)')
-        path = WriteAtomically(output, lambda tmp: plot.SaveFigure(ax.figure, tmp))
+        path = WriteAtomically(output, lambda tmp: SaveFigure(ax.figure, tmp))
         print(f'wrote {path.resolve()}', file=sys.stderr)
     if args.json:
         PrintJson(chart.ToDict())
@@ -106,6 +108,11 @@ def _RunSpeed(args: argparse.Namespace) -> int:
 def _Run(args: argparse.Namespace) -> int:
     if args.speed is not None:
         return _RunSpeed(args)
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..charts import ComputeStabilityChart, PresetChartPoints
+    from ..charttable import FormatChartTable
+    from ..presets import ExtraComponents, GearFromParameters, MissingParameterError
+    from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
     parameters = ParametersFromArgs(args)
     with BadInput():
@@ -117,30 +124,33 @@ def _Run(args: argparse.Namespace) -> int:
         DV = args.DV if args.DV is not None else _MeshDampingMeasure(parameters, gear)
         points = PresetChartPoints([_PresetName(n) for n in args.points])
         # every argument is checked before the first chart is computed
-        charts.ComputeStabilityChart(gear, J2, DV, args.DTV[0], xRange=args.x_range, yRange=args.y_range,
-                                     resolution=2, S=args.S)
+        ComputeStabilityChart(gear, J2, DV, args.DTV[0], xRange=args.x_range, yRange=args.y_range, resolution=2,
+                              S=args.S)
         for DTV in args.DTV[1:]:
-            charts.ComputeStabilityChart(gear, J2, DV, DTV, resolution=2, S=args.S)
+            ComputeStabilityChart(gear, J2, DV, DTV, resolution=2, S=args.S)
         if not 2 <= args.resolution <= 20000:
-            charts.ComputeStabilityChart(gear, J2, DV, args.DTV[0], resolution=args.resolution)
+            ComputeStabilityChart(gear, J2, DV, args.DTV[0], resolution=args.resolution)
     extra = ExtraComponents(parameters)
     if extra:
         print(f"exudyn-worm chart: note: the chart is the two-mass drive of Figure 2 with this gear and J2; "
               f"{' and '.join(extra)} of the parameter set is not in it", file=sys.stderr)
-    computed = []
+    charts = []
     with ProgressBar(total=len(args.DTV), desc='charts', unit='chart', quiet=True if args.quiet else None) as bar:
         for DTV in args.DTV:
-            computed.append(charts.ComputeStabilityChart(gear, J2, DV, DTV, xRange=args.x_range,
-                                                         yRange=args.y_range, resolution=args.resolution, S=args.S))
+            charts.append(ComputeStabilityChart(gear, J2, DV, DTV, xRange=args.x_range, yRange=args.y_range,
+                                                resolution=args.resolution, S=args.S))
             bar.update(1)
     if output:
-        ax = PlotStabilityCharts(computed, points={k: (p['x'], p['y']) for k, p in points.items()},
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..plot import SaveFigure
+        from ..plot_charts import PlotStabilityCharts
+        ax = PlotStabilityCharts(charts, points={k: (p['x'], p['y']) for k, p in points.items()},
                                  note=f'gear: {SourceText(args)}, J2 = {J2:g} kg*m^2')
-        path = WriteAtomically(output, lambda tmp: plot.SaveFigure(ax.figure, tmp))
+        path = WriteAtomically(output, lambda tmp: SaveFigure(ax.figure, tmp))
         print(f'wrote {path.resolve()}', file=sys.stderr)
     if args.json:
         entries: List[Dict] = []
-        for c in computed:
+        for c in charts:
             d = c.ToDict()
             if points:
                 d['pointsUnstable'] = {k: bool(c.IsUnstable(p['x'], p['y'])) for k, p in points.items()}
@@ -153,7 +163,7 @@ def _Run(args: argparse.Namespace) -> int:
     print(f"exudyn-worm chart: {SourceText(args)}; J2 = {J2:g} kg*m^2, {args.resolution} x {args.resolution} log grid, "
           f"x = kT/(kV r1^2) in [{args.x_range[0]:g}, {args.x_range[1]:g}], y = J1/J2 in "
           f"[{args.y_range[0]:g}, {args.y_range[1]:g}]")
-    print('\n'.join(FormatChartTable(computed, points)))
+    print('\n'.join(FormatChartTable(charts, points)))
     if points:
         print('points (U: unstable, s: stable on that chart, at the point\'s x and y): '
               + ', '.join(f"{k} x = {p['x']:.4g}, y = {p['y']:.4g} (own D_V = {p['DV']:.4g}, D_TV = {p['DTV']:.4g})"

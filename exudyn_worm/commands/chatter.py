@@ -5,9 +5,8 @@ import argparse
 import sys
 from typing import List, Tuple
 
-from ..cli import (BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand,
-                   UsageError)
-from ..chatterbranch import AnalyzeChatterBranch, ChatterBranchError
+from ..cli import (BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr,
+                   Subcommand, UsageError)
 
 __all__ = ['COMMAND', 'ParseVary', 'FormatBranch']
 
@@ -85,6 +84,8 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
 
 
 def _Run(args: argparse.Namespace) -> int:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..chatterbranch import AnalyzeChatterBranch, ChatterBranchError
     name, low, high = ParseVary(args.vary)
     parameters = ParametersFromArgs(args)
     if args.plot:

@@ -9,17 +9,12 @@ from typing import List
 
 from ..cli import (AddOverwriteOption, BadInput, CheckFigurePath, DriveFromArgs, PositiveFloat, PrintJson, SourceText,
                    StdoutToStderr, Subcommand, UsageError, WriteAtomically)
-from ..design import DEFAULT_MARGIN, DEFAULT_SPAN, ConfirmBySimulation
-from ..loadside import LoadSideNotLumpable
-from ..progress import ProgressBar
-from ..reelchanger import CheckReelChangerKeys
-from ..stability import CONTACT_STATES
-from .. import design
-from .. import plot
 
 __all__ = ['COMMAND', 'FormatDesignCheck']
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..design import DEFAULT_MARGIN, DEFAULT_SPAN
     parser.add_argument('--margin', type=float, default=DEFAULT_MARGIN, metavar='DECADES',
                         help=f'stability margin in decades of the changed parameter (default {DEFAULT_MARGIN:g}: '
                              f'the drive stays stable if that parameter is off by a factor {10 ** DEFAULT_MARGIN:.2f})')
@@ -69,6 +64,8 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
     list of str
         The lines, without trailing newlines.
     """
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..stability import CONTACT_STATES
     a = result.analysis
     p = result.chartPoint
     lines = [title, '']
@@ -134,16 +131,22 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
 
 
 def _Run(args: argparse.Namespace) -> int:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..design import ConfirmBySimulation, DesignCheck
     plotPath = CheckFigurePath(args.plot, '--plot', args.overwrite) if args.plot is not None else None
     parameters, _ = DriveFromArgs(args)
     if args.simulate:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..reelchanger import CheckReelChangerKeys
         with BadInput():
             CheckReelChangerKeys(parameters, 'check --simulate')
     elif args.step_size is not None:
         raise UsageError(f"--step-size {args.step_size:g} only applies with --simulate")
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..loadside import LoadSideNotLumpable
     with BadInput():
         try:
-            result = design.DesignCheck(parameters, margin=args.margin, span=args.span)
+            result = DesignCheck(parameters, margin=args.margin, span=args.span)
         except LoadSideNotLumpable as err:       # a valid drive that the two-mass check does not describe
             diagnosis = err.diagnosis
         else:
@@ -151,15 +154,19 @@ def _Run(args: argparse.Namespace) -> int:
     if diagnosis is not None:
         return _ReportWholeDrive(args, diagnosis, plotPath)
     if args.simulate:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..progress import ProgressBar
         runs = 1 + len(result.recommendations) + (result.bestPair is not None)
         with ProgressBar(total=runs, desc='check --simulate', unit='run',
                          quiet=True if getattr(args, 'quiet', False) else None) as bar:
             with BadInput(), StdoutToStderr(args.json):
                 result = ConfirmBySimulation(result, stepSize=args.step_size, progress=bar.update)
     if plotPath is not None:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..plot import SaveFigure
         try:
             figure = result.plot(title=f'exudyn-worm check: {SourceText(args)}')
-            WriteAtomically(plotPath, lambda tmp: plot.SaveFigure(figure, tmp))
+            WriteAtomically(plotPath, lambda tmp: SaveFigure(figure, tmp))
         except OSError as err:
             raise UsageError(f"--plot {plotPath}: cannot write: {err.strerror or err}") from err
     if args.json:

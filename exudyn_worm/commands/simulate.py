@@ -10,13 +10,6 @@ from typing import List, Tuple
 
 from ..cli import (AddOverwriteOption, BadInput, CheckOutputPath, DriveFromArgs, PositiveFloat, PositiveInt,
                    PrintJson, SourceInfo, SourceText, StdoutToStderr, Subcommand, UsageError, WriteAtomically)
-from ..progress import ProgressBar
-from ..reelchanger import (MAX_STEPS, CheckReelChangerKeys, CheckRunSize, DefaultSimulatedTime, DefaultWindows,
-                           PhaseLabel, WindowPhases)
-from ..solve import SolverDivergedError
-from ..stepsize import (SMALL_MARGIN, UNRESOLVED, CheckStepSize, CoarseStepWarning, CompareHalfStep, LinearMargin,
-                        RecommendedStepSize)
-from .. import plot, reelchanger
 
 __all__ = ['COMMAND', 'ParseWindows']
 
@@ -70,6 +63,9 @@ _SIMULATE_FIGURES = ('overview', 'acceleration', 'speed', 'normalForce', 'driveT
 def _SaveFigures(result, folder: Path, subtitle: str = '', quiet=None) -> List[Path]:
     """Write the standard figures of a simulation as PNG files into ``folder`` (created if missing;
     its parent was checked by :func:`~exudyn_worm.cli.CheckOutputPath`)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from .. import plot
+    from ..progress import ProgressBar
     folder.mkdir(exist_ok=True)
     paths = []
     with ProgressBar(total=len(_SIMULATE_FIGURES), desc='figures', unit='figure', quiet=quiet, delay=2.) as bar:
@@ -113,6 +109,9 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: float, maxSteps: int) -> dict:
     """Whether the verdicts are checked at half the step, and why (--check-step, or the linear margin)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..reelchanger import CheckRunSize
+    from ..stepsize import SMALL_MARGIN, LinearMargin
     with BadInput():
         margin = LinearMargin(parameters)
     check = {'checked': margin['small'] if args.check_step is None else args.check_step,
@@ -131,6 +130,9 @@ def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: f
 
 def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, int, List[Tuple[float, float]]]:
     """End time, step size, step limit and windows of a run, checked before anything is computed."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..reelchanger import MAX_STEPS, CheckReelChangerKeys, CheckRunSize, DefaultSimulatedTime, DefaultWindows
+    from ..stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
     with BadInput():
         CheckReelChangerKeys(parameters, 'simulate')
         stepSize = args.step_size if args.step_size is not None else RecommendedStepSize(parameters)
@@ -175,14 +177,18 @@ def _Run(args: argparse.Namespace) -> int:
                              contents=[f'{kind}.png' for kind in _SIMULATE_FIGURES]) if args.plot is not None else None)
     endTime, stepSize, maxSteps, windows = _RunSettings(args, parameters)
     stepCheck = _StepCheck(args, parameters, endTime, stepSize, maxSteps)
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..reelchanger import PhaseLabel, SimulateReelChanger, WindowPhases
+    from ..solve import SolverDivergedError
+    from ..stepsize import CoarseStepWarning, CompareHalfStep, UNRESOLVED
 
     def Simulate(h):
         try:
             with StdoutToStderr(args.json), warnings.catch_warnings():
                 warnings.simplefilter('ignore', CoarseStepWarning)      # reported above
-                return reelchanger.SimulateReelChanger(parameters, endTime=endTime, stepSize=h, maxSteps=maxSteps,
-                                                       useSymbolic=not args.python_user_functions,
-                                                       progress=False if args.quiet else None)
+                return SimulateReelChanger(parameters, endTime=endTime, stepSize=h, maxSteps=maxSteps,
+                                           useSymbolic=not args.python_user_functions,
+                                           progress=False if args.quiet else None)
         except SolverDivergedError as err:
             raise UsageError(f"simulation failed{' at half the step (--check-step)' if h != stepSize else ''}: "
                              f"{str(err).removeprefix('SimulateReelChanger: ')}") from err

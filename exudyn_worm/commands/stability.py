@@ -6,14 +6,12 @@ import dataclasses
 import math
 from typing import Dict, List
 
-from ..cli import (BadInput, DriveFromArgs, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand,
-                   UsageError)
+from ..cli import (BadInput, DriveFromArgs, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr,
+                   Subcommand, UsageError)
 from ..design import StabilizingChanges
 from ..geometry import DescribeGeometry, GeometryForm
 from ..presets import ExtraComponents
 from ..stability import CONTACT_STATES, AnalyzeStability, OperatingPointFromParameters, StabilityAnalysis
-from ..linearization import DriveStability
-from ..loadside import DiagnoseLoadSide
 
 __all__ = ['COMMAND', 'FormatStability', 'StabilityHint', 'StabilityHintData']
 
@@ -27,10 +25,14 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra: List[str]) -> int:
     """A drive beyond two masses: the linearized Exudyn model of the whole drive, every contact state."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..linearization import DriveStability
     with StdoutToStderr(args.json), BadInput():
         analysis = DriveStability(parameters)          # the whole drive's linearization: it has extra components
         loadSide = None
         if 'a load-side chain (JL1, ...)' in extra:   # may the driven machine be lumped into J2? which stage is not?
+            # lazy: start-up (exudyn-worm --help imports every command module)
+            from ..loadside import DiagnoseLoadSide
             loadSide = DiagnoseLoadSide(parameters)
     if args.json:
         PrintJson({**analysis.ToDict(), 'method': 'exudyn', 'components': extra,
@@ -73,6 +75,7 @@ def _Run(args: argparse.Namespace) -> int:
         operatingPoint = OperatingPointFromParameters(parameters, drive.gear)
     if args.method == 'exudyn':
         try:
+            # lazy: start-up (exudyn-worm --help imports every command module)
             from ..linearization import AnalyzeStabilityExudyn
         except ImportError as err:
             raise UsageError(f"--method exudyn is not available: cannot import "

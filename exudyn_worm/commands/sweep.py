@@ -9,11 +9,6 @@ from typing import List
 from ..cli import (INTERRUPTED_STATUS, BadInput, CheckFigurePath, CheckOutputPath, ParametersFromArgs, PositiveInt,
                    PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WriteAtomically)
 from ..parameters import PARAMETERS
-from ..plot_study import ChartAxes
-from ..reelchanger import CheckReelChangerKeys
-from .. import plot
-from ..study import RUN_COLUMNS, WINDOW_METRICS, ParseVariation, RunStudy, Study, StudySidecarPath
-from .simulate import ParseWindows
 
 __all__ = ['COMMAND', 'FormatStudy']
 
@@ -61,6 +56,10 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _Study(args: argparse.Namespace):
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..reelchanger import CheckReelChangerKeys
+    from ..study import ParseVariation, Study
+    from .simulate import ParseWindows
     parameters = ParametersFromArgs(args)
     if args.overwrite and not (args.output or args.plot):
         raise UsageError("--overwrite only applies with --output FILE.csv or --plot FILE.png")
@@ -91,6 +90,8 @@ def _CheckPlot(args, study) -> None:
     CheckFigurePath(args.plot, '--plot', args.overwrite)
     if len(study.keys) not in (1, 2):
         raise UsageError(f"--plot needs one or two varied keys, got {len(study.keys)}")
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..study import RUN_COLUMNS, WINDOW_METRICS
     if len(study.keys) == 1:
         names = [f'w{i}.{m}' for i in range(study.numberOfWindows) for m in WINDOW_METRICS] + list(RUN_COLUMNS[3:6])
         if args.metric not in names:
@@ -98,6 +99,8 @@ def _CheckPlot(args, study) -> None:
 
 
 def _Run(args: argparse.Namespace) -> int:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..study import RunStudy, StudySidecarPath
     study = _Study(args)
     if args.output:
         # an existing results file is resumed (same study) or refused naming what differs (RunStudy)
@@ -121,6 +124,9 @@ def _Run(args: argparse.Namespace) -> int:
     if args.output:
         written += [Path(args.output), StudySidecarPath(args.output)]
     if args.plot:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from .. import plot
+        from ..plot_study import ChartAxes            # kT across, J1 up, as the stability charts
         subtitle = f"exudyn-worm sweep: {SourceText(args)}"
         figure = (result.plot(study.keys[0], metric=args.metric, subtitle=subtitle) if len(study.keys) == 1
                   else result.plot(*ChartAxes(study.keys[0], study.keys[1]), subtitle=subtitle))
