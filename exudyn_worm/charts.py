@@ -34,6 +34,8 @@ from ._checks import CheckArray, CheckRange
 from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from .gear import WormGear
 from .stability import CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, HurwitzStable, PolynomialCoefficients
+from .presets import PRESETS, DriveFromParameters, GetPreset
+from . import charttable   # for the deprecated charts.FormatChartTable (module __getattr__ below)
 
 __all__ = ['StabilityChart', 'ComputeStabilityChart', 'ChartCoordinates', 'ChartCoefficients',
            'UnstableGrid', 'MaxRealPartGrid', 'MaxRealPart', 'ContourLines',
@@ -177,7 +179,6 @@ def ChartPoints(points: Union[Mapping, Sequence[str], None], where: str = 'Chart
     if points is None:
         return {}
     if not isinstance(points, Mapping):
-        from .presets import PRESETS   # lazy, as in PresetChartPoints: the presets only for named points
         if isinstance(points, str) or not isinstance(points, (list, tuple)) or \
                 not all(isinstance(p, str) for p in points):
             raise TypeError(f"{where}: 'points' must be a mapping {{label: (x, y), a dict with 'x' and 'y', or an "
@@ -217,7 +218,6 @@ def PresetChartPoints(names: Sequence[str]) -> Dict[str, Dict[str, float]]:
     dict
         ``{label: {'x', 'y', 'DV', 'DTV'}}`` in the order given.
     """
-    from .presets import DriveFromParameters, GetPreset
     return {name.replace('reel-', ''): ChartCoordinates(DriveFromParameters(GetPreset(name))) for name in names}
 
 
@@ -850,6 +850,5 @@ def __getattr__(name: str):
     if name == 'FormatChartTable':
         warnings.warn("exudyn_worm.charts.FormatChartTable moved to exudyn_worm.charttable.FormatChartTable",
                       DeprecationWarning, stacklevel=2)
-        from .charttable import FormatChartTable   # lazy: only for the deprecated name
-        return FormatChartTable
+        return charttable.FormatChartTable
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

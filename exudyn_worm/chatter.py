@@ -17,6 +17,7 @@ reports the largest normal-force factor (largest normal force / static normal fo
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 from typing import Any, Dict, Mapping, Optional, Sequence, Tuple
 
@@ -24,8 +25,14 @@ import numpy as np
 
 from .contact import MATH_OPS, ContactOptions
 from .orbits import FindPeriodicOrbit, PeriodicOrbit, ShootingError
-from .profiles import ConstantTorque
+from .profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
 from ._checks import CheckPositive, CheckReal
+from .connector import CreateWormGear
+from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
+from .linearization import DriveStability
+from .presets import DriveFromParameters, ExtraComponents
+from .reelchanger import SOLVER_SETTINGS, CheckReelChangerKeys, SolverSettings, SteadyInitialState
+from .solve import SolverDivergedError
 
 __all__ = ['LoweringModel', 'BuildLoweringModel', 'ExudynFlow', 'FindSteadyChatter',
            'OrbitAmplitude', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LongSimulationAmplitude', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS']
@@ -109,11 +116,6 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
         For a bad parameter set, or one with components beyond the two-mass drive.
     """
     import exudyn as exu
-    from .connector import CreateWormGear
-    from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
-    from .presets import DriveFromParameters, ExtraComponents
-    from .profiles import ConstantSpeed, GravityLeverTorque
-    from .reelchanger import CheckReelChangerKeys, SteadyInitialState
     w = 'BuildLoweringModel'
     CheckReelChangerKeys(parameters, w)
     extra = ExtraComponents(parameters)
@@ -163,7 +165,6 @@ def UpdateLoweringModel(model: LoweringModel, parameters: Mapping[str, float]) -
     -------
     LoweringModel
     """
-    from .presets import DriveFromParameters
     changed = {k for k in set(parameters) | set(model.parameters) if parameters.get(k) != model.parameters.get(k)}
     if not changed:
         return model
@@ -176,7 +177,6 @@ def UpdateLoweringModel(model: LoweringModel, parameters: Mapping[str, float]) -
     mbs.SetObjectParameter(model.rotors['driveShaft']['objectNumber'], 'stiffness', drive.kT)
     mbs.SetObjectParameter(model.rotors['driveShaft']['objectNumber'], 'damping', drive.dT)
     mbs.Assemble()
-    from .reelchanger import SteadyInitialState
     model.drive, model.parameters = drive, dict(parameters)
     model.steady = SteadyInitialState(drive, ConstantTorque(model.loadTorque), model.motorSpeed, model.contactOptions)
     return model
@@ -206,7 +206,6 @@ class ExudynFlow:
     def __init__(self, mbs: Any, coordinates: Sequence[int], steadySpeeds: Sequence[float],
                  stepsPerPeriod: int = STEPS_PER_PERIOD, solverSettings: Optional[Mapping[str, Any]] = None):
         import exudyn as exu
-        from .reelchanger import SolverSettings
         self.mbs = mbs
         self.coordinates = np.asarray(coordinates, dtype=int)
         self.speeds = np.asarray(steadySpeeds, dtype=float)
@@ -240,7 +239,6 @@ class ExudynFlow:
     def Solve(self, x, T: float, storeSensors: bool = False):
         """Simulate time ``T`` from flow state ``x``; returns the end state (flow coordinates)."""
         import exudyn as exu
-        from .solve import SolverDivergedError
         x = np.asarray(x, dtype=float)
         self._SetInitial(x)
         ss = self._ss
@@ -420,7 +418,6 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
         tail = model.connector.Evaluate(s['phi1'][-quarter:], s['phi2'][-quarter:], s['omega1'][-quarter:],
                                         s['omega2'][-quarter:])
         inContact = float(np.max(np.abs(tail.normalForce))) < 2. * model.staticNormalForce
-        from .linearization import DriveStability
         linearlyStable = DriveStability(model.parameters).State(-1).stable
         # rest: no swing left, or a linearly stable drive whose swing shrinks while the mesh stays in contact
         if not swing > 1e-4 * model.motorSpeed or (linearlyStable and inContact and swing < 0.95 * first):
@@ -493,8 +490,6 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
     dict
         ``forceFactor``, ``maxWheelAcceleration`` (rad/s^2), ``frequencyHz`` (nan at rest), ``seconds`` (solver time).
     """
-    import time
-    from .reelchanger import SOLVER_SETTINGS
     w = 'LongSimulationAmplitude'
     duration = CheckPositive(w, 'duration', duration, 's')
     stepSize = CheckPositive(w, 'stepSize', stepSize, 's')

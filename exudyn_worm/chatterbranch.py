@@ -22,6 +22,7 @@ from .chatter import (BuildLoweringModel, FindSteadyChatter, OrbitAmplitude, Set
                       UpdateLoweringModel, _LoweringFlow)
 from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import ShootingError
+from .linearization import DriveStability
 
 __all__ = ['CONTINUABLE', 'ChatterBranchError', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch',
            'SmallestDisturbance', 'REST_FORCE_FACTOR', 'COEXISTENCE_KICK', 'DisturbanceVerdict',
@@ -114,7 +115,6 @@ class ChatterBranch:
 
 
 def _MaxRealPart(parameters) -> float:
-    from .linearization import DriveStability
     return float(DriveStability(parameters).State(-1).maxRealPart)
 
 
@@ -424,7 +424,6 @@ def ChattersAfterDisturbance(parameters: Mapping[str, float]) -> DisturbanceVerd
     -------
     DisturbanceVerdict
     """
-    from .linearization import DriveStability
     stable = bool(DriveStability(parameters).State(-1).stable)
     nan = math.nan
     try:

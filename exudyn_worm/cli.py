@@ -48,11 +48,14 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
-from .config import DEFAULT_PRESET, ResolveParameters
+from . import __version__
+from .config import DEFAULT_PRESET, LoadConfig, ResolveParameters
 from .plausibility import ImplausibleValueWarning
 from .drive import ElasticDrive
-from .presets import PRESETS, DriveFromParameters
+from .presets import PRESETS, DriveFromParameters, MissingParameterError
 from .solve import IsInterrupt
+from .drivefile import FileKeyOf
+from .drives import ConfigArgument, DocPath, ShippedDrives
 
 __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'SUBCOMMANDS', 'Subcommands',
            'AddParameterOptions', 'ParametersFromArgs', 'DriveFromArgs', 'SourceText', 'SourceInfo',
@@ -329,7 +332,6 @@ def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
     group.add_argument('--preset', metavar='NAME', default=None,
                        help=f"parameter preset, one of: {', '.join(PRESETS)} "
                             f"(default: the config file's preset, else {DEFAULT_PRESET})")
-    from .drives import ConfigArgument, DocPath, ShippedDrives
     group.add_argument('--config', metavar='FILE.toml', default=None, type=ConfigArgument,
                        help=f"whole-drive TOML file or one with a [parameters] table (format: "
                             f"{DocPath('drive-files.md')}), or the name of a shipped drive: "
@@ -446,7 +448,6 @@ def SourceInfo(args: argparse.Namespace) -> Dict:
     else:
         preset, wholeDrive = None, False
         if args.config:
-            from .config import LoadConfig
             with BadInput():
                 config = LoadConfig(args.config)
             preset, wholeDrive = config['preset'], config['wholeDrive']
@@ -507,7 +508,6 @@ def BuildParser() -> argparse.ArgumentParser:
     argparse.ArgumentParser
         Parse errors raise :class:`UsageError` instead of printing usage and exiting.
     """
-    from . import __version__
     parser = _Parser(prog=PROG, description='Chatter analysis of self-locking worm gears with Exudyn.')
     parser.add_argument('--version', action='version', version=f'%(prog)s {__version__}')
     sub = parser.add_subparsers(dest='command', metavar='COMMAND', required=True, parser_class=_Parser)
@@ -534,14 +534,12 @@ def _ShowWarning(message, category, filename, lineno, file=None, line=None) -> N
 
 def _WhereToAdd(err: BaseException, args: Optional[argparse.Namespace]) -> str:
     """For parameters missing from a run with a drive file: the file and the tables to add them to."""
-    from .presets import MissingParameterError
     cause = err.__cause__
     while cause is not None and not isinstance(cause, MissingParameterError):
         cause = cause.__cause__
     config = getattr(args, 'config', None)
     if cause is None or not config:
         return ''
-    from .drivefile import FileKeyOf
     return (f"; to describe the drive in '{config}', add " + ', '.join(f"{FileKeyOf(k)} ({k})" for k in cause.keys)
             + (' (a file with component tables inherits no preset unless it names one)'
                if not getattr(args, 'preset', None) else ''))

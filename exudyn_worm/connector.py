@@ -31,7 +31,7 @@ import numpy as np
 from ._checks import CheckBool, CheckName, CheckNonNegative, CheckPositive, CheckReal, CheckSystem
 from ._userfunctions import AddGenericForce, SetGenericForceLaw
 from .contact import (MATH_OPS, NUMPY_OPS, ContactOptions, FrictionState, MeshContact, MeshState, SlidingCoordinate,
-                      StickSlipUpdate)
+                      StickSlipUpdate, SymbolicOps)
 from .gear import WormGear
 
 __all__ = ['WormGearConnector', 'CreateWormGear', 'AxialBearing', 'CreateWormAxialBearing', 'CONNECTORS_KEY']
@@ -151,7 +151,6 @@ class _StickSlip:
     def _Record(self, initial: FrictionState) -> None:
         """Named symbolic state variables, and (friction force, normal force) recorded in C++ for the checks."""
         import exudyn
-        from .contact import SymbolicOps
         esym = exudyn.symbolic
         self.variables = FrictionState(*(esym.Real(name, float(getattr(initial, name)))
                                          for name in ('stuck', 'direction', 'anchor')))

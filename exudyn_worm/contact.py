@@ -55,7 +55,9 @@ from typing import Any, Optional, Tuple
 
 import numpy as np
 
+from .friction import MATH_OPS, NUMPY_OPS  # the arithmetic backends live in friction.py, below gear and contact
 from .gear import WormGear
+from ._checks import CheckBool, CheckNonNegative, CheckPositive, Suggest
 
 __all__ = ['MATH_OPS', 'NUMPY_OPS', 'SymbolicOps', 'MeshState', 'MeshContact', 'ContactOptions',
            'NormalForceFlanks', 'FRICTION_MODELS', 'FrictionState', 'SlidingCoordinate', 'StickSlipUpdate',
@@ -63,18 +65,6 @@ __all__ = ['MATH_OPS', 'NUMPY_OPS', 'SymbolicOps', 'MeshState', 'MeshContact', '
 
 #: friction models of :class:`ContactOptions` (``frictionModel``)
 FRICTION_MODELS = ('sticking', 'regularized')
-
-
-def _Sign(x):
-    return float(x > 0) - float(x < 0)      # also for numpy scalars (their bools do not subtract)
-
-
-#: plain-Python backend (floats)
-MATH_OPS = SimpleNamespace(sin=math.sin, cos=math.cos, abs=abs, sign=_Sign, max=max, min=min,
-                           where=lambda c, a, b: a if c else b, exp=math.exp, atan=math.atan)
-#: numpy backend (arrays, element-wise)
-NUMPY_OPS = SimpleNamespace(sin=np.sin, cos=np.cos, abs=np.abs, sign=np.sign, max=np.maximum, min=np.minimum,
-                            where=np.where, exp=np.exp, atan=np.arctan)
 
 
 def SymbolicOps():
@@ -130,7 +120,6 @@ class ContactOptions:
     stickingDamping: Optional[float] = None
 
     def __post_init__(self):
-        from ._checks import CheckBool, CheckNonNegative, CheckPositive, Suggest
         w = 'ContactOptions'
         object.__setattr__(self, 'frictionSpeed', CheckNonNegative(w, 'frictionSpeed', self.frictionSpeed, 'rad/s'))
         object.__setattr__(self, 'dampingCanPull', CheckBool(w, 'dampingCanPull', self.dampingCanPull))

@@ -46,6 +46,11 @@ from .presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, Drive
 from .charts import ChartCoordinates, ComputeStabilityChart
 from .stability import (CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzStable,
                         OperatingPointFromParameters, PolynomialCoefficients)
+from .linearization import DriveStability
+from .loadside import DiagnoseLoadSide, LoadSideNotLumpable
+from .reelchanger import CheckReelChangerKeys, DefaultPhases
+from .selflocking import SelfLocking
+from . import reelchanger
 
 __all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'LocalCharts', 'ChartGrid',
            'AxisScan', 'ScanParameter', 'Recommendation', 'PairRecommendation', 'DesignCheckResult',
@@ -513,7 +518,6 @@ class DesignCheckResult:
     def selfLockingVerdict(self):
         """Static and dynamic self-locking (:func:`~exudyn_worm.selflocking.SelfLocking`), the dynamic one at the
         sliding speed of ``motorSpeed`` if the parameter set gives it."""
-        from .selflocking import SelfLocking
         gear = self.analysis.drive.gear
         speed = self.parameters.get('motorSpeed')
         return SelfLocking(gear, None if speed is None else gear.SlidingSpeed(speed))
@@ -643,8 +647,6 @@ _CHARACTERISTIC = 'a motor on its characteristic (motorType characteristic)'    
 def _CharacteristicNote(parameters: Mapping[str, float], where: str) -> str:
     """The note for a drive with a motor on its characteristic, checked as the two-mass drive (the motor holding its
     speed); raises if the linearized whole drive with the free motor has another verdict in either contact state."""
-    from .linearization import DriveStability
-    from .stability import CONTACT_STATES
     whole, rigid = DriveStability(parameters), AnalyzeStability(DriveFromParameters(parameters))
     words = {True: 'stable', False: 'unstable'}
     for S in CONTACT_STATES:
@@ -702,7 +704,6 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
     extra = ExtraComponents(parameters)
     notes = []
     if extra == ['a load-side chain (JL1, ...)']:      # the two-mass model holds if the load may be lumped into J2
-        from .loadside import DiagnoseLoadSide, LoadSideNotLumpable
         diagnosis = DiagnoseLoadSide(parameters, margin)
         if not diagnosis.lumpingSafe:
             raise LoadSideNotLumpable(f"{w}: {diagnosis.Text()}; the two-mass model of the design check (eqs. "
@@ -771,12 +772,11 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
     ValueError
         For a parameter set without the reel-changer keys, or a ``stepSize`` the simulation refuses.
     """
-    from .reelchanger import CheckReelChangerKeys, DefaultPhases, SimulateReelChanger
     CheckReelChangerKeys(parameters, 'ChatterWhileLowering')
     lowering = [(t0, t1) for t0, t1, phase in DefaultPhases(parameters) if phase == 'lower']   # the load drives
     if not lowering:
         return False
-    result = SimulateReelChanger(parameters, stepSize=stepSize)          # the default time the phases cover
+    result = reelchanger.SimulateReelChanger(parameters, stepSize=stepSize)          # the default time the phases cover
     return any(result.Chatter(t0, t1) for t0, t1 in lowering)
 
 

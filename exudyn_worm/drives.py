@@ -7,6 +7,7 @@ In a source checkout or an editable install, the checkout's folders are used. Ev
 """
 from __future__ import annotations
 
+import argparse
 import os
 from pathlib import Path
 from typing import Dict, Optional, Union
@@ -108,7 +109,6 @@ def ConfigArgument(text: str) -> str:
     text : str
         The argument.
     """
-    import argparse
     path = ConfigPath(text)
     if path is text and not Path(text).exists() and not Path(text).suffix and len(Path(text).parts) == 1:
         raise argparse.ArgumentTypeError(

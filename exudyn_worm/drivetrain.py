@@ -11,6 +11,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from ._checks import CheckBool, CheckName, CheckNonNegative, CheckPositive, CheckReal, CheckSystem
 from ._userfunctions import AddGenericForce, CheckOffsetLaw, CheckPlainOffsetLaw, SetOffsetFunction
+from .profiles import ConstantSpeed
 
 __all__ = ['CreateRotor', 'CreateShaft', 'CreateLoadSideChain', 'CreatePrescribedRotation', 'CreateRotorTorque']
 
@@ -233,7 +234,6 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
 def _ConstantSpeedFromStart(mbs, rotor, profile):
     """The speed of a :class:`~exudyn_worm.profiles.ConstantSpeed` profile if the rotor starts exactly on it
     (initial angle and speed equal the profile's), else None (then the angle is prescribed by a user function)."""
-    from .profiles import ConstantSpeed
     if type(profile) is not ConstantSpeed:
         return None
     node = mbs.GetNode(mbs.GetMarker(rotor['markerNumber'])['nodeNumber'])

@@ -35,9 +35,12 @@ from typing import Any, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .presets import MissingParameterError
+from .presets import (AxialBearingFromParameters, DriveFromParameters, DriveSideChain, LoadSideChain,
+                      MissingParameterError)
 from .profiles import (ConstantSpeed, ConstantTorque, GravityLeverTorque, LinearMotorCharacteristic, SpeedTable,
                        StartStopProfile, TorqueTable)
+from .contact import MATH_OPS
+from .equilibrium import SteadyInitialState
 
 __all__ = ['LOAD_TYPES', 'MOTOR_TYPES', 'LoadType', 'MotorType', 'DutyKeys', 'CheckDutyKeys', 'LoadFromParameters',
            'MotorFromParameters', 'MotorMotion', 'SteadyMotorSpeed', 'IsReelChangerDuty', 'DefaultEndTime',
@@ -223,8 +226,6 @@ def SteadyMotorSpeed(parameters: Mapping, where: str = 'SteadyMotorSpeed') -> fl
     ValueError
         If the motor cannot carry the load (the required torque reaches the stall torque).
     """
-    from .presets import DriveFromParameters, DriveSideChain, LoadSideChain, AxialBearingFromParameters
-    from .equilibrium import SteadyInitialState
     motor = MotorFromParameters(parameters, where)
     drive = DriveFromParameters(parameters)
     load = LoadFromParameters(parameters, where) or ConstantTorque(0.)
@@ -322,7 +323,6 @@ def DutyPhases(parameters: Mapping, ratio: float, endTime: float, minLength: flo
     list of (float, float, str)
         ``(t0, t1, phase)`` in time order, covering [0, endTime].
     """
-    from .contact import MATH_OPS
     motor, load = MotorMotion(parameters, 'DutyPhases'), LoadFromParameters(parameters, 'DutyPhases')
     if load is None:
         return [(0., float(endTime), 'idle')]

@@ -36,9 +36,12 @@ Laws (``kind``)
 """
 from __future__ import annotations
 
+import math
 import os
+import re
 import warnings
 from dataclasses import dataclass, field
+from types import SimpleNamespace
 from typing import Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -54,6 +57,18 @@ FRICTION_LAWS = ('constant', 'stribeck', 'agma', 'table')
 FT_PER_MIN = 0.3048 / 60.
 
 
+def _Sign(x):
+    return float(x > 0) - float(x < 0)      # also for numpy scalars (their bools do not subtract)
+
+
+#: plain-Python backend (floats)
+MATH_OPS = SimpleNamespace(sin=math.sin, cos=math.cos, abs=abs, sign=_Sign, max=max, min=min,
+                           where=lambda c, a, b: a if c else b, exp=math.exp, atan=math.atan)
+#: numpy backend (arrays, element-wise)
+NUMPY_OPS = SimpleNamespace(sin=np.sin, cos=np.cos, abs=np.abs, sign=np.sign, max=np.maximum, min=np.minimum,
+                            where=np.where, exp=np.exp, atan=np.arctan)
+
+
 class FrictionTableRangeWarning(UserWarning):
     """A friction table was evaluated outside its speed range: the end value was held."""
 
@@ -61,7 +76,6 @@ class FrictionTableRangeWarning(UserWarning):
 def _Ops(ops):
     """The backend: ``None`` means plain Python floats, :data:`~exudyn_worm.contact.MATH_OPS`."""
     if ops is None:
-        from .contact import MATH_OPS      # contact imports gear, which imports this module: import when used
         return MATH_OPS
     return ops
 
@@ -437,8 +451,6 @@ def ReadFrictionTable(source: Union[str, os.PathLike, Sequence[Sequence[float]]]
         If the file cannot be read or a line is not two numbers (the message gives the file and line), or the
         table is invalid (:class:`TableFriction`).
     """
-    import os
-    import re
     if not isinstance(source, (str, os.PathLike)):
         return TableFriction(tuple(source))
     w = 'ReadFrictionTable'

@@ -33,7 +33,7 @@ import math
 from typing import Dict, Mapping, Tuple
 
 from ._checks import CheckAngle, CheckPositive
-from .parameters import PARAMETERS
+from .parameters import PARAMETERS, MissingParameterError
 
 __all__ = ['GEOMETRY_FORMS', 'GEOMETRY_KEYS', 'GeometryForm', 'RadiiFromCentreDistance', 'RadiiFromDesignation',
            'DesignationFromRadii', 'GeometryFromParameters', 'MissingGeometryKeys', 'DescribeGeometry',
@@ -205,7 +205,6 @@ def GeometryFromParameters(parameters: Mapping[str, float], where: str = 'Geomet
     MissingParameterError
         (a ValueError) if the form is incomplete; it names the missing keys and the three forms.
     """
-    from .presets import MissingParameterError
     form = GeometryForm(parameters)
     missing = MissingGeometryKeys(parameters)
     if missing:

@@ -33,7 +33,10 @@ from .contact import ContactOptions
 from .drive import ElasticDrive
 from .drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft
 from .profiles import ConstantSpeed
-from .stability import CONTACT_STATES, ContactStability, OperatingPoint, StabilityAnalysis, _Finite, _SortEigenvalues
+from .stability import (CONTACT_STATES, _Finite, _SortEigenvalues, AnalyzeStability, ContactStability,
+                        OperatingPoint, OperatingPointFromParameters, StabilityAnalysis)
+from .presets import AxialBearingFromParameters, DriveSideChain, ExtraComponents, LoadSideChain
+from . import presets
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
            'BuildLinearizationModel', 'LinearStabilityFromParameters', 'DriveStability', 'ExudynEigenvalues',
@@ -466,9 +469,7 @@ def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: 
         steady lowering (:func:`~exudyn_worm.stability.OperatingPointFromParameters`); a speed-dependent friction
         law is then linearized there (one model per contact state, :func:`BuildLinearizationModel`).
     """
-    from .presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain, LoadSideChain
-    from .stability import OperatingPointFromParameters
-    drive = DriveFromParameters(parameters)
+    drive = presets.DriveFromParameters(parameters)
     operatingPoint = OperatingPointFromParameters(parameters, drive.gear)
     motor = None
     if parameters.get('motorType') == 'characteristic':      # a free motor: its inertia, the line's slope
@@ -517,11 +518,9 @@ def DriveStability(parameters: Mapping[str, float], useSymbolic: bool = True
     ValueError
         For a missing or invalid parameter.
     """
-    from .presets import DriveFromParameters, ExtraComponents
-    from .stability import AnalyzeStability, OperatingPointFromParameters
     if ExtraComponents(parameters):
         return LinearStabilityFromParameters(parameters, useSymbolic)
-    drive = DriveFromParameters(parameters)
+    drive = presets.DriveFromParameters(parameters)
     # at the operating point of steady lowering (a speed-dependent friction law: mu(v0) and its slope there)
     return AnalyzeStability(drive, OperatingPointFromParameters(parameters, drive.gear))
 

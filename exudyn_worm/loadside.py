@@ -25,6 +25,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Mapping, Optional, Tuple
+from ._checks import CheckRange
+from .linearization import DriveStability, LinearStabilityFromParameters
+from .presets import LoadSideChain, LumpedLoadSide
 
 __all__ = ['WHEEL_SHARE', 'LoadSideStage', 'LoadSideDiagnosis', 'DiagnoseLoadSide', 'LoadSideNotLumpable']
 
@@ -202,9 +205,6 @@ def DiagnoseLoadSide(parameters: Mapping[str, float], margin: float = 0.1) -> Lo
     ValueError
         For a parameter set without a load-side chain or with an invalid one, or a margin out of range.
     """
-    from ._checks import CheckRange
-    from .linearization import DriveStability, LinearStabilityFromParameters
-    from .presets import LoadSideChain, LumpedLoadSide
     w = 'DiagnoseLoadSide'
     margin = CheckRange(w, 'margin', margin, low=0., high=1., unit='decades')
     chain = LoadSideChain(parameters)

@@ -35,17 +35,36 @@ from __future__ import annotations
 
 import functools
 import math
+import pathlib
 import re
 import sys
+import tokenize
 from collections.abc import Mapping as _MappingABC
 from dataclasses import dataclass
 from numbers import Real
-from typing import Any, Dict, Iterator, List, Mapping, Optional, Tuple
+from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Tuple
 
 from ._checks import CheckAngle, CheckNonNegative, CheckPositive, CheckRange, CheckReal, Suggest
 
 __all__ = ['KINDS', 'RANGES', 'Parameter', 'ParameterRegistry', 'PARAMETERS', 'ParametersMarkdown',
            'WithGeneratedTables']
+
+
+class MissingParameterError(ValueError):
+    """A parameter set lacks parameters a model needs; ``keys`` names them (the CLI adds where to put them).
+
+    Parameters
+    ----------
+    message : str
+        The error message.
+    keys : iterable of str
+        The missing parameter keys (kept as the tuple ``keys``).
+    """
+
+    def __init__(self, message: str, keys: Iterable[str]):
+        super().__init__(message)
+        self.keys = tuple(keys)
+
 
 #: kinds of value a parameter may take
 KINDS = ('number', 'choice', 'table')
@@ -694,7 +713,6 @@ def _UnitRegistry():
 
 def _PintErrors() -> tuple:
     """Exceptions pint's unit parser raises for malformed text."""
-    import tokenize
     import pint  # lazy, see _UnitRegistry
     return (pint.errors.PintError, ValueError, TypeError, AttributeError, AssertionError, SyntaxError,
             ZeroDivisionError, OverflowError, tokenize.TokenError)
@@ -790,9 +808,9 @@ def _CheckNumber(where: str, key: str, value, rangeName: str, unit: str) -> floa
 def _InlineArray(key: str, text: str, where: str):
     """An inline TOML array such as ``[[0, 0.1], [1, 0.05]]`` (a table value given on the command line)."""
     if sys.version_info >= (3, 11):
-        import tomllib
+        import tomllib  # lazy: tomllib from Python 3.11, tomli before
     else:  # pragma: no cover - Python 3.10
-        import tomli as tomllib
+        import tomli as tomllib  # lazy: tomllib from Python 3.11, tomli before
     try:
         return tomllib.loads(f'value = {text.strip()}')['value']
     except tomllib.TOMLDecodeError as err:
@@ -980,7 +998,6 @@ def WithGeneratedTables(text: str, registry: Optional[ParameterRegistry] = None)
 
 def _WriteDocs(folder: str) -> None:
     """Write docs/parameters.md and the generated tables of the other pages of ``folder``."""
-    import pathlib
     docs = pathlib.Path(folder)
     (docs / 'parameters.md').write_text(ParametersMarkdown())
     for page in sorted(docs.glob('*.md')):

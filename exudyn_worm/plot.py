@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
+from .results import _UNITS
 
 __all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'MEAN_WINDOW', 'S_SIGN_LABEL', 'S_SIGN_NOTE',
            'DENSE_SWITCHES_PER_INCH', 'PlotSimulation', 'PlotComparison', 'SaveFigure', 'TorqueSignNote']
@@ -73,7 +74,6 @@ def _Label(name: str) -> str:
     if name in _AXES:
         text, unit, _ = _AXES[name]
         return f'{text} [{unit}]'
-    from .results import _UNITS
     return f"{name} [{_UNITS.get(name, '–')}]"
 
 

@@ -14,6 +14,9 @@ import math
 from typing import Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
+from .charts import FirstCriterionCurves, StabilityChart
+from .plot import _NewFigure
+from .speedchart import RPM, SpeedChart
 
 __all__ = ['STIFFNESS_RATIO_LABEL', 'INERTIA_RATIO_LABEL', 'POINT_SIZE', 'HATCHES', 'ZOOM_DECADES',
            'PlotStabilityChart', 'PlotStabilityCharts', 'PlotSpeedChart', 'PlotFirstCriterion', 'NearestBoundary',
@@ -30,7 +33,6 @@ _COLORS = ('#c0392b', '#1e8449', '#1f4e79', '#b9770e', '#7d3c98', '#17a589')
 def _Axes(ax, figsize=(7.5, 5.8)):
     if ax is not None:
         return ax
-    from .plot import _NewFigure
     _, axes = _NewFigure(figsize=figsize)
     return axes[0, 0]
 
@@ -194,7 +196,6 @@ def PlotStabilityChart(chart, ax=None, points: Optional[Mapping] = None, color: 
     TypeError, ValueError
         For a ``chart`` that is not a StabilityChart, or ``points`` of another form.
     """
-    from .charts import StabilityChart
     if not isinstance(chart, StabilityChart):
         raise TypeError(f"PlotStabilityChart: 'chart' must be a StabilityChart, got {type(chart).__name__}")
     points = _Points('PlotStabilityChart', points)
@@ -385,7 +386,6 @@ def PlotFirstCriterion(curves, ax=None, title: Optional[str] = None, mark: Optio
     -------
     matplotlib.axes.Axes
     """
-    from .charts import FirstCriterionCurves
     if not isinstance(curves, FirstCriterionCurves):
         raise TypeError(f"PlotFirstCriterion: 'curves' must be FirstCriterionCurves, got {type(curves).__name__}")
     ax = _Axes(ax, figsize=(7.5, 5.2))
@@ -427,7 +427,6 @@ def PlotSpeedChart(chart: 'SpeedChart', ax=None, title: Optional[str] = None, lo
     -------
     matplotlib Axes
     """
-    from .speedchart import RPM, SpeedChart
     if not isinstance(chart, SpeedChart):
         raise TypeError(f"PlotSpeedChart: 'chart' must be a SpeedChart (SpeedStabilityChart), got {type(chart).__name__}")
     ax = _Axes(ax, figsize=(7.5, 4.5))

@@ -8,6 +8,8 @@ import math
 from typing import Mapping
 
 import numpy as np
+from .design import DesignCheckResult
+from .plot_charts import _Legend, PlotStabilityChart
 
 __all__ = ['PlotDesignCheck']
 
@@ -42,8 +44,6 @@ def PlotDesignCheck(result, charts: Mapping[int, 'StabilityChart'], ax=None, tit
     -------
     matplotlib.figure.Figure
     """
-    from .design import DesignCheckResult
-    from .plot_charts import PlotStabilityChart
     if not isinstance(result, DesignCheckResult):
         raise TypeError(f"PlotDesignCheck: 'result' must be a DesignCheckResult, got {type(result).__name__}")
     if not isinstance(charts, Mapping) or set(charts) != {-1, +1}:
@@ -93,7 +93,6 @@ def PlotDesignCheck(result, charts: Mapping[int, 'StabilityChart'], ax=None, tit
     ax.set_title((f"{title}\n" if title else '') + f"Design check at $D_V$ = {_Fmt(p['DV'])}, "
                  f"$D_{{TV}}$ = {_Fmt(p['DTV'])} (margin {result.margin:g} decades)", fontsize=10)
     # one legend below the axes (it covers no part of the chart): the regions with their shading, then the rest
-    from .plot_charts import _Legend
     handles, labels = ax.get_legend_handles_labels()
     _Legend(ax, list(getattr(ax, '_chartEntries', [])) + list(zip(handles, labels)), fontsize=8,
             loc='upper center', bbox_to_anchor=(0.5, -0.11), ncols=1, frameon=False)

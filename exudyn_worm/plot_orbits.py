@@ -8,6 +8,8 @@ from typing import Optional
 
 import numpy as np
 
+from . import plot
+
 __all__ = ['PlotChatterBranch']
 
 
@@ -63,6 +65,5 @@ def PlotChatterBranch(branch: 'ChatterBranch', fileName: Optional[str] = None, a
     axes[1].set_xlabel(branch.parameter)
     axes[0].set_title(f'steady chatter of the lowering phase over {branch.parameter}')
     if fileName is not None:
-        from .plot import SaveFigure
-        SaveFigure(fig, fileName)
+        plot.SaveFigure(fig, fileName)
     return axes

@@ -11,6 +11,8 @@ import numpy as np
 
 from .parameters import PARAMETERS
 from ._spacing import IsLogSpaced
+from .plot import _NewFigure
+from .studymap import ChatterMap
 
 __all__ = ['PlotMetric', 'PlotChatterMap', 'AxisLabel', 'ChartAxes']
 
@@ -65,7 +67,6 @@ def ChartAxes(x: str, y: str) -> Tuple[str, str]:
 
 
 def _Axes(ax, figsize):
-    from .plot import _NewFigure
     if ax is not None:
         return ax.figure, ax
     fig, axes = _NewFigure(figsize=figsize)
@@ -169,7 +170,6 @@ def PlotChatterMap(result, chatterMap: 'ChatterMap', ax=None,
     -------
     matplotlib.figure.Figure
     """
-    from .studymap import ChatterMap
     if not isinstance(chatterMap, ChatterMap):
         raise TypeError(f"PlotChatterMap: 'chatterMap' must be a ChatterMap (studymap.ComputeChatterMap), "
                         f"got {type(chatterMap).__name__}")

@@ -37,6 +37,7 @@ Optional components beyond the two-mass drive (absent = the drive of Figure 2):
 from __future__ import annotations
 
 import math
+import os
 from typing import TYPE_CHECKING, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
@@ -45,7 +46,10 @@ from ._checks import CheckMapping, CheckNonNegative
 from .drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from .gear import WormGear
 from .geometry import GEOMETRY_FORMS, GEOMETRY_KEYS, GeometryForm, GeometryFromParameters, MissingGeometryKeys
-from .parameters import PARAMETERS
+from .parameters import PARAMETERS, MissingParameterError
+from .connector import AxialBearing
+from .friction import FrictionLaw, ReadFrictionTable
+from .stability import CharacteristicCoefficients
 
 if TYPE_CHECKING:
     from .connector import AxialBearing
@@ -229,22 +233,6 @@ def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, floa
     return out
 
 
-class MissingParameterError(ValueError):
-    """A parameter set lacks parameters a model needs; ``keys`` names them (the CLI adds where to put them).
-
-    Parameters
-    ----------
-    message : str
-        The error message.
-    keys : iterable of str
-        The missing parameter keys (kept as the tuple ``keys``).
-    """
-
-    def __init__(self, message: str, keys):
-        super().__init__(message)
-        self.keys = tuple(keys)
-
-
 def _Require(parameters, keys, what):
     missing = [k for k in keys if k not in parameters]
     if missing:
@@ -294,7 +282,6 @@ MIN_RATE_SPREAD = 1e-6
 
 def _CheckScale(drive: ElasticDrive, where: str) -> None:
     """The rates of the characteristic polynomial (eq. (16)) must be finite and below :data:`MAX_RATE`."""
-    from .stability import CharacteristicCoefficients
     with np.errstate(over='ignore', invalid='ignore'):
         rates = [abs(b) ** (1. / (i + 1)) for S in (1, -1)
                  for i, b in enumerate(CharacteristicCoefficients(drive, S))]
@@ -395,7 +382,6 @@ def FrictionLawFromParameters(parameters: Mapping[str, object], mu: float, where
         For a key that the chosen law does not use, a missing key, ``muStatic < mu``, or a table that cannot be
         read or is not a valid table (fewer than 2 points, speeds not increasing).
     """
-    from .friction import FrictionLaw
     kind = parameters.get('frictionLaw', 'constant')
     PARAMETERS.Check('frictionLaw', kind, where)
     for key, laws in _LAW_KEYS.items():
@@ -427,8 +413,6 @@ _TABLES: Dict[Tuple[str, int, int], object] = {}
 def _FrictionTable(value, where: str):
     """The :class:`~exudyn_worm.friction.TableFriction` of a ``frictionTable`` value (a path: read once per
     version of the file; design scans build a drive hundreds of times)."""
-    import os
-    from .friction import ReadFrictionTable
     try:
         if isinstance(value, (str, os.PathLike)):
             try:
@@ -652,7 +636,6 @@ def AxialBearingFromParameters(parameters: Mapping[str, float]) -> Optional['Axi
     ValueError
         If ``kA`` > 0 without ``mA`` or a value is out of range.
     """
-    from .connector import AxialBearing
     w = 'AxialBearingFromParameters'
     kA = CheckNonNegative(w, 'kA', parameters.get('kA', 0.), 'N/m')
     if kA == 0.:

@@ -59,7 +59,7 @@ def ProgressBar(total=None, desc='', unit='it', quiet=None, **kwargs):
     ...     for _ in range(3):
     ...         bar.update(1)
     """
-    from tqdm import tqdm         # imported when a bar is made: `import exudyn_worm` stays light
+    from tqdm import tqdm         # lazy: start-up (tests/test_startup.py), imported when a bar is made
     kwargs.setdefault('file', sys.stderr)
     kwargs.setdefault('dynamic_ncols', True)
     return tqdm(total=total, desc=desc, unit=unit, disable=not ProgressEnabled(quiet), **kwargs)

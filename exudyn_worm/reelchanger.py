@@ -30,6 +30,9 @@ from .results import SimulationResult
 from .solve import SolveDynamicInChunks, SolverDivergedError
 from .stepsize import CheckStepSize, RecommendedStepSize
 from ._checks import CheckBool, CheckPositive
+from .duty import (CheckDutyKeys, DefaultEndTime, DutyPhases, IsReelChangerDuty, LoadFromParameters,
+                   MotorFromParameters, MotorType, SteadyMotorSpeed)
+from .stability import CharacteristicCoefficients, EigenvaluesFromPolynomial
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
            'DefaultPhases', 'DefaultSimulatedTime', 'WindowPhases', 'PhaseLabel',
@@ -132,7 +135,6 @@ def CheckReelChangerKeys(parameters: Mapping[str, float], where: str) -> None:
         If ``parameters`` is not a mapping or has an unknown key or two forms of one quantity
         (:func:`~exudyn_worm.presets.CheckParameterKeys`).
     """
-    from .duty import CheckDutyKeys, IsReelChangerDuty
     CheckParameterKeys(parameters, where)
     if not IsReelChangerDuty(parameters):         # another duty (loadType / motorType): its own keys
         CheckDutyKeys(parameters, where)
@@ -183,7 +185,6 @@ def DefaultPhases(parameters: Mapping[str, float], endTime: Optional[float] = No
     list of (float, float, str)
         Phases in time order.
     """
-    from .duty import DutyPhases, IsReelChangerDuty
     if not IsReelChangerDuty(parameters):
         CheckReelChangerKeys(parameters, 'DefaultPhases')
         endTime = DefaultSimulatedTime(parameters) if endTime is None else \
@@ -265,7 +266,6 @@ def PhaseLabel(parameters: Mapping[str, float], phase: str) -> str:
     phase : str
         A label of :func:`WindowPhases`.
     """
-    from .duty import IsReelChangerDuty
     if IsReelChangerDuty(parameters):
         return phase
     words = {'lift': 'motor drives', 'lower': 'load drives', 'idle': 'no load'}
@@ -281,7 +281,6 @@ def DefaultSimulatedTime(parameters: Mapping[str, float]) -> float:
     parameters : mapping
         Flat parameter set.
     """
-    from .duty import DefaultEndTime, IsReelChangerDuty
     if IsReelChangerDuty(parameters):
         return RotationPeriod(parameters)
     CheckReelChangerKeys(parameters, 'DefaultSimulatedTime')
@@ -385,7 +384,6 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
     drive = DriveFromParameters(parameters)
     CheckReelChangerKeys(parameters, w)
-    from .duty import LoadFromParameters, MotorFromParameters, MotorType, SteadyMotorSpeed
     if MotorType(parameters) in ('constantSpeed', 'startStop'):
         CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     load = LoadFromParameters(parameters, w)            # the duty: lever (reel changer), constant, table or None
@@ -524,7 +522,6 @@ def SolverSettings(endTime: float, stepSize: float, solverOptions: Optional[Mapp
 
 def _LikelyCause(drive: ElasticDrive, stepSize: float) -> str:
     """Why a run of ``drive`` at ``stepSize`` may have failed, from the linearized drive's fastest eigenvalue."""
-    from .stability import CharacteristicCoefficients, EigenvaluesFromPolynomial
     rate = max(float(np.max(np.abs(EigenvaluesFromPolynomial(CharacteristicCoefficients(drive, S)))))
                for S in (1, -1))
     if stepSize * rate > 0.5:

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
+from .contact import NormalForceFlanks
 
 __all__ = ['SimulationResult', 'SeriesUnit', 'CheckWindows', 'CHATTER_TORQUE_FRACTION', 'CHATTER_MIN_MESH_TORQUE']
 
@@ -73,7 +74,6 @@ class SimulationResult:
     def normalForceFlanks(self) -> Tuple[np.ndarray, np.ndarray]:
         """Normal force magnitudes in N (both >= 0) on the flank pushed by a leading worm (Delta s > 0) and on
         the other flank (:func:`~exudyn_worm.contact.NormalForceFlanks`); ``normalForce`` itself is signed."""
-        from .contact import NormalForceFlanks
         return NormalForceFlanks(self.series['normalForce'])
 
     def _Window(self, t0, t1):

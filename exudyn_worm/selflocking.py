@@ -20,6 +20,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from typing import Dict, Optional
+from ._checks import CheckNonNegative
 
 __all__ = ['GREY_ZONE', 'SelfLockingState', 'SelfLockingVerdict', 'SelfLocking', 'Rating']
 
@@ -123,7 +124,6 @@ def SelfLocking(gear: 'WormGear', slidingSpeed: Optional[float] = None) -> SelfL
     -------
     SelfLockingVerdict
     """
-    from ._checks import CheckNonNegative
     static = _State(gear, gear.muStatic, 0.)
     if slidingSpeed is None:
         dynamic = None if gear.speedDependentFriction else _State(gear, gear.mu, None)

@@ -17,6 +17,10 @@ from dataclasses import dataclass
 from typing import Dict, List, Mapping, Sequence, Tuple
 
 import numpy as np
+from ._checks import CheckPositive
+from .presets import ApplyOverrides, DriveFromParameters, ExtraComponents, MissingParameterError
+from .profiles import STANDARD_GRAVITY
+from .stability import AnalyzeStability, OperatingPointAt
 
 __all__ = ['RPM', 'SpeedChart', 'SpeedStabilityChart']
 
@@ -117,10 +121,6 @@ def SpeedStabilityChart(parameters: Mapping[str, object], motorSpeeds: Sequence[
         For a bad parameter set, a set without ``loadMass``/``leverArm``, one with components beyond the
         two-mass drive, or a speed that is not > 0.
     """
-    from ._checks import CheckPositive
-    from .presets import ApplyOverrides, DriveFromParameters, ExtraComponents, MissingParameterError
-    from .profiles import STANDARD_GRAVITY
-    from .stability import AnalyzeStability, OperatingPointAt
     w = 'SpeedStabilityChart'
     if isinstance(motorSpeeds, (str, bytes)) or not hasattr(motorSpeeds, '__len__') or len(motorSpeeds) == 0:
         raise ValueError(f"{w}: 'motorSpeeds' must be a non-empty sequence of speeds in rad/s, got {motorSpeeds!r}")

@@ -27,6 +27,9 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from .drive import ElasticDrive
+from ._checks import CheckNonNegative, CheckReal
+from .profiles import STANDARD_GRAVITY
+from .selflocking import SelfLocking
 
 __all__ = ['OperatingPoint', 'OperatingPointAt', 'OperatingPointFromParameters', 'FrictionSlopeDamping',
            'PolynomialCoefficients', 'CharacteristicCoefficients', 'HurwitzConditions', 'HurwitzStable',
@@ -63,7 +66,6 @@ class OperatingPoint:
     normalForce: float
 
     def __post_init__(self):
-        from ._checks import CheckNonNegative, CheckReal
         w = 'OperatingPoint'
         object.__setattr__(self, 'slidingSpeed', CheckNonNegative(w, 'slidingSpeed', self.slidingSpeed, 'm/s'))
         object.__setattr__(self, 'mu', CheckNonNegative(w, 'mu', self.mu, ''))
@@ -95,7 +97,6 @@ def OperatingPointAt(gear: 'WormGear', motorSpeed: float, loadTorque: float) -> 
     -------
     OperatingPoint
     """
-    from ._checks import CheckNonNegative, CheckReal
     w = 'OperatingPointAt'
     motorSpeed = CheckReal(w, 'motorSpeed', motorSpeed, 'rad/s')
     loadTorque = CheckNonNegative(w, 'loadTorque', loadTorque, 'N*m')
@@ -121,7 +122,6 @@ def OperatingPointFromParameters(parameters: Mapping[str, Any], gear: 'WormGear'
     -------
     OperatingPoint or None
     """
-    from .profiles import STANDARD_GRAVITY
     if any(k not in parameters for k in ('loadMass', 'leverArm', 'motorSpeed')):
         return None
     return OperatingPointAt(gear, parameters['motorSpeed'],
@@ -498,7 +498,6 @@ class StabilityAnalysis:
     def selfLockingVerdict(self):
         """Static and dynamic self-locking (:func:`~exudyn_worm.selflocking.SelfLocking`), the dynamic one at the
         operating point's sliding speed."""
-        from .selflocking import SelfLocking
         return SelfLocking(self.drive.gear, None if self.operatingPoint is None else self.operatingPoint.slidingSpeed)
 
     def ToDict(self) -> Dict:

@@ -58,6 +58,9 @@ from typing import List, Mapping, Sequence
 import numpy as np
 
 from ._checks import CheckPositive
+from .linearization import DriveStability
+from .stability import CONTACT_STATES, StabilityAnalysis, StateMatrix
+from .presets import DriveFromParameters
 
 __all__ = ['RECOMMENDED_CYCLES', 'SOFT_CYCLES', 'HARD_CYCLES', 'SMALL_MARGIN', 'UNRESOLVED', 'PeriodError',
            'LinearizedFrequencies', 'RecommendedStepSize', 'StepSizeLimits', 'CheckStepSize', 'FrictionTimeConstant',
@@ -120,8 +123,6 @@ def _WholeDriveEigenvalues(analysis, S: int) -> np.ndarray:
 def _Eigenvalues(parameters: Mapping[str, float]) -> dict:
     """Eigenvalues per contact state S of the drive :func:`~exudyn_worm.linearization.DriveStability` analyses:
     eqs. (1)-(2) for the two-mass drive, else the linearized whole drive without the worm's axial mode."""
-    from .linearization import DriveStability
-    from .stability import CONTACT_STATES, StabilityAnalysis, StateMatrix
     analysis = DriveStability(parameters)
     if isinstance(analysis, StabilityAnalysis):            # two-mass drive: eqs. (1)-(2)
         return {S: np.linalg.eigvals(StateMatrix(analysis.drive, S)) for S in CONTACT_STATES}
@@ -249,7 +250,6 @@ def FrictionTimeConstant(parameters: Mapping[str, float], frictionSpeed: float, 
     normalForce : float
         Normal force in N, > 0.
     """
-    from .presets import DriveFromParameters
     drive = DriveFromParameters(parameters)
     g = drive.gear
     frictionSpeed = CheckPositive('FrictionTimeConstant', 'frictionSpeed', frictionSpeed, 'rad/s')

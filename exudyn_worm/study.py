@@ -26,16 +26,21 @@ No matplotlib here: plots are in :mod:`exudyn_worm.plot_study`.
 from __future__ import annotations
 
 import csv
+import importlib
 import itertools
 import json
 import math
+import multiprocessing
 import os
 import platform
 import signal
+import subprocess
 import sys
 import time
 import warnings
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
+from importlib import metadata
 from pathlib import Path
 from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -44,10 +49,16 @@ import numpy as np
 from .config import ParseQuantity
 from .parameters import PARAMETERS
 from .presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys
-from .results import CheckWindows
+from .results import CHATTER_TORQUE_FRACTION, CheckWindows
 from .solve import IsInterrupt
 from .studymap import ComputeChatterMap
 from ._checks import CheckPositive
+from .duty import IsReelChangerDuty
+from .linearization import DriveStability
+from .progress import ProgressBar
+from .reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedTime, DefaultWindows
+from .stepsize import UNRESOLVED, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
+from . import reelchanger
 
 __all__ = ['Variation', 'ParseVariation', 'StudyPoints', 'Study', 'ParseShard', 'ShardIndices', 'RunPoint',
            'StudyResult', 'RunStudy', 'ReadResults', 'StudySidecarPath', 'VibrationSeconds', 'WINDOW_METRICS',
@@ -268,9 +279,7 @@ class Study:
                             f"got {self.checkStep!r}")
         self.points = StudyPoints(self.variations, self.zipped)
         first = ApplyOverrides(self.base, self.points[0])          # unknown keys raise here
-        from .duty import IsReelChangerDuty
         if self.windows is None and not IsReelChangerDuty(first):   # the phases of the first point's duty
-            from .reelchanger import DefaultWindows
             self.windows = DefaultWindows(first, self.endTime, minLength=1e-3)
 
     @property
@@ -371,7 +380,6 @@ def VibrationSeconds(result, t0: float, t1: float) -> float:
     t0, t1 : float
         The window in s.
     """
-    from .results import CHATTER_TORQUE_FRACTION
     t = result.time
     m = (t >= t0) & (t <= t1)
     if not m.any():
@@ -404,10 +412,6 @@ def RunPoint(task: Mapping) -> Dict:
         failed before computing them), and ``w{i}.halfStep.{metric}`` (:data:`HALF_STEP_METRICS`) where the
         step was checked (``stepChecked``).
     """
-    from .linearization import DriveStability
-    from .duty import IsReelChangerDuty
-    from .reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedTime, SimulateReelChanger
-    from .stepsize import UNRESOLVED, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
     start = time.perf_counter()
     p = dict(task['parameters'])
     row = {'run': int(task['run']), 'status': 'failed', 'error': '', 'seconds': None, 'solveSeconds': None,
@@ -435,7 +439,7 @@ def RunPoint(task: Mapping) -> Dict:
         row['stepChecked'] = bool(check)
 
         def Simulate(h):       # no bar per run: the study draws one bar for all runs
-            result = SimulateReelChanger(p, endTime=endTime, stepSize=h, progress=False, maxSteps=maxSteps)
+            result = reelchanger.SimulateReelChanger(p, endTime=endTime, stepSize=h, progress=False, maxSteps=maxSteps)
             if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
                 raise FloatingPointError('diverged: non-finite state in the solution'
                                          + (' at half the step' if h != stepSize else ''))
@@ -778,7 +782,6 @@ def DefaultWorkers() -> int:
 
 
 def _Versions(engine: str) -> Dict[str, str]:
-    from importlib import metadata
     versions = {'python': platform.python_version(), 'platform': platform.platform()}
     for name in ('exudyn-worm', 'exudyn', 'numpy', 'scipy') + (('mpi4py',) if engine == 'mpi' else ()):
         try:
@@ -786,7 +789,6 @@ def _Versions(engine: str) -> Dict[str, str]:
         except metadata.PackageNotFoundError:
             versions[name] = None
     try:                                                  # a source checkout: which commit computed the table
-        import subprocess
         git = ['git', '-C', str(Path(__file__).resolve().parent)]
         head = subprocess.run(git + ['rev-parse', 'HEAD'], capture_output=True, text=True, timeout=10)
         if head.returncode == 0:
@@ -802,14 +804,11 @@ def _Versions(engine: str) -> Dict[str, str]:
 def _Executor(engine: str, workers: Optional[int]):
     if engine == 'mpi':
         try:
-            from mpi4py.futures import MPIPoolExecutor
+            from mpi4py.futures import MPIPoolExecutor  # lazy: optional dependency (the mpi extra) and an MPI runtime
         except ImportError as err:
             raise ValueError(f"RunStudy: engine 'mpi' needs mpi4py and an MPI runtime "
                              f"(pip install 'exudyn-worm[mpi]'): {err}") from None
         return MPIPoolExecutor(max_workers=workers, initializer=_WorkerInit)
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-    import importlib
     for module in ('exudyn', f'{__package__}.reelchanger'):   # imported once here, inherited by forked workers
         importlib.import_module(module)
     if sys.platform.startswith('linux'):
@@ -975,7 +974,6 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     previousHandler = None
     try:
         if todo:
-            from .progress import ProgressBar
             try:
                 previousHandler = signal.signal(signal.SIGTERM, _RaiseTerminated)
             except ValueError:                        # not the main thread
@@ -983,7 +981,6 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
             executor = _Executor(engine, None if workers is None else min(workers, len(todo)))
             try:
                 futures = [executor.submit(RunPoint, study.Task(i)) for i in todo]
-                from concurrent.futures import as_completed
                 with ProgressBar(total=len(todo), desc='sweep', unit='run', quiet=quiet) as bar:
                     for future in as_completed(futures):
                         Record(future.result())

@@ -133,7 +133,6 @@ UNHINTED = {
         'exudyn_worm.design.ConfirmBySimulation': ['progress'],
         'exudyn_worm.design.LocalCharts': ['->'],
         'exudyn_worm.parameters.ParameterRegistry': ['parameters'],
-        'exudyn_worm.presets.MissingParameterError': ['keys'],
         'exudyn_worm.presets.UnknownParameterMessage': ['key'],
         'exudyn_worm.progress.ProgressBar': ['total', 'desc', 'unit', 'quiet', '->'],
         'exudyn_worm.progress.ProgressEnabled': ['quiet'],

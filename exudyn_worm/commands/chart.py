@@ -19,6 +19,7 @@ PAPER_DTV = (1., 5., 25.)
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..charts import DEFAULT_RESOLUTION, DEFAULT_X_RANGE, DEFAULT_Y_RANGE
     parser.add_argument('--DV', type=float, default=None, metavar='D_V',
                         help="mesh damping measure D_V of eq. (23) (default: the parameter set's, from DV or dV)")
@@ -47,6 +48,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _PresetName(name: str) -> str:
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..presets import PRESETS
     # a point needs J1 and kT: the 'chart' preset has neither (it is the gear the chart is drawn for)
     drives = [p for p in PRESETS if p != 'chart']
@@ -60,6 +62,7 @@ def _PresetName(name: str) -> str:
 
 
 def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..drive import MeshDampingMeasure
     if 'DV' in parameters:
         return parameters['DV']
@@ -70,6 +73,7 @@ def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
 
 def _RunSpeed(args: argparse.Namespace) -> int:
     """``chart --speed SPEC``: the lowering state's stability over motor speed (:mod:`exudyn_worm.speedchart`)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..speedchart import RPM, SpeedStabilityChart
     from ..study import ParseVariation
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
@@ -79,6 +83,7 @@ def _RunSpeed(args: argparse.Namespace) -> int:
         variation = ParseVariation(f'motorSpeed={spec}')
         chart = SpeedStabilityChart(parameters, variation.values)
     if output:
+        # lazy: start-up (exudyn-worm --help imports every command module)
         from ..plot import SaveFigure
         ax = chart.plot(title=f'{SourceText(args)}: stability over motor speed ({chart.frictionLaw} friction)')
         path = WriteAtomically(output, lambda tmp: SaveFigure(ax.figure, tmp))
@@ -103,6 +108,7 @@ def _RunSpeed(args: argparse.Namespace) -> int:
 def _Run(args: argparse.Namespace) -> int:
     if args.speed is not None:
         return _RunSpeed(args)
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..charts import ComputeStabilityChart, PresetChartPoints
     from ..charttable import FormatChartTable
     from ..presets import ExtraComponents, GearFromParameters, MissingParameterError
@@ -135,6 +141,7 @@ def _Run(args: argparse.Namespace) -> int:
                                                 resolution=args.resolution, S=args.S))
             bar.update(1)
     if output:
+        # lazy: start-up (exudyn-worm --help imports every command module)
         from ..plot import SaveFigure
         from ..plot_charts import PlotStabilityCharts
         ax = PlotStabilityCharts(charts, points={k: (p['x'], p['y']) for k, p in points.items()},

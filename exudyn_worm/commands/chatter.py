@@ -5,7 +5,8 @@ import argparse
 import sys
 from typing import List, Tuple
 
-from ..cli import CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+from ..cli import (BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr,
+                   Subcommand, UsageError)
 
 __all__ = ['COMMAND', 'ParseVary', 'FormatBranch']
 
@@ -83,7 +84,7 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
 
 
 def _Run(args: argparse.Namespace) -> int:
-    from ..cli import BadInput
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..chatterbranch import AnalyzeChatterBranch, ChatterBranchError
     name, low, high = ParseVary(args.vary)
     parameters = ParametersFromArgs(args)

@@ -13,6 +13,7 @@ from ..cli import (AddOverwriteOption, BadInput, CheckFigurePath, DriveFromArgs,
 __all__ = ['COMMAND', 'FormatDesignCheck']
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..design import DEFAULT_MARGIN, DEFAULT_SPAN
     parser.add_argument('--margin', type=float, default=DEFAULT_MARGIN, metavar='DECADES',
                         help=f'stability margin in decades of the changed parameter (default {DEFAULT_MARGIN:g}: '
@@ -71,6 +72,7 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
     list of str
         The lines, without trailing newlines.
     """
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..stability import CONTACT_STATES
     a = result.analysis
     p = result.chartPoint
@@ -137,15 +139,18 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
 
 
 def _Run(args: argparse.Namespace) -> int:
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..design import ConfirmBySimulation, DesignCheck
     plotPath = CheckFigurePath(args.plot, '--plot', args.overwrite) if args.plot is not None else None
     parameters, _ = DriveFromArgs(args)
     if args.simulate:
+        # lazy: start-up (exudyn-worm --help imports every command module)
         from ..reelchanger import CheckReelChangerKeys
         with BadInput():
             CheckReelChangerKeys(parameters, 'check --simulate')
     elif args.step_size is not None:
         raise UsageError(f"--step-size {args.step_size:g} only applies with --simulate")
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..loadside import LoadSideNotLumpable
     with BadInput():
         try:
@@ -157,6 +162,7 @@ def _Run(args: argparse.Namespace) -> int:
     if diagnosis is not None:
         return _ReportWholeDrive(args, diagnosis, plotPath)
     if args.simulate:
+        # lazy: start-up (exudyn-worm --help imports every command module)
         from ..progress import ProgressBar
         runs = 1 + len(result.recommendations) + (result.bestPair is not None)
         with ProgressBar(total=runs, desc='check --simulate', unit='run',
@@ -165,6 +171,7 @@ def _Run(args: argparse.Namespace) -> int:
                 result = ConfirmBySimulation(result, stepSize=args.step_size, progress=bar.update)
     disturbance = _DisturbanceVerdict(args, parameters, result)
     if plotPath is not None:
+        # lazy: start-up (exudyn-worm --help imports every command module)
         from ..plot import SaveFigure
         try:
             figure = result.plot(title=f'exudyn-worm check: {SourceText(args)}')

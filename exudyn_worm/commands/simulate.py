@@ -63,6 +63,7 @@ _SIMULATE_FIGURES = ('overview', 'acceleration', 'speed', 'normalForce', 'driveT
 def _SaveFigures(result, folder: Path, subtitle: str = '', quiet=None) -> List[Path]:
     """Write the standard figures of a simulation as PNG files into ``folder`` (created if missing;
     its parent was checked by :func:`~exudyn_worm.cli.CheckOutputPath`)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from .. import plot
     from ..progress import ProgressBar
     folder.mkdir(exist_ok=True)
@@ -108,6 +109,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: float, maxSteps: int) -> dict:
     """Whether the verdicts are checked at half the step, and why (--check-step, or the linear margin)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..reelchanger import CheckRunSize
     from ..stepsize import SMALL_MARGIN, LinearMargin
     with BadInput():
@@ -128,6 +130,7 @@ def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: f
 
 def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, int, List[Tuple[float, float]]]:
     """End time, step size, step limit and windows of a run, checked before anything is computed."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..reelchanger import MAX_STEPS, CheckReelChangerKeys, CheckRunSize, DefaultSimulatedTime, DefaultWindows
     from ..stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
     with BadInput():
@@ -174,6 +177,7 @@ def _Run(args: argparse.Namespace) -> int:
                              contents=[f'{kind}.png' for kind in _SIMULATE_FIGURES]) if args.plot is not None else None)
     endTime, stepSize, maxSteps, windows = _RunSettings(args, parameters)
     stepCheck = _StepCheck(args, parameters, endTime, stepSize, maxSteps)
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..reelchanger import PhaseLabel, SimulateReelChanger, WindowPhases
     from ..solve import SolverDivergedError
     from ..stepsize import CoarseStepWarning, CompareHalfStep, UNRESOLVED

@@ -6,7 +6,8 @@ import dataclasses
 import math
 from typing import Dict, List
 
-from ..cli import DriveFromArgs, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError
+from ..cli import (BadInput, DriveFromArgs, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr,
+                   Subcommand, UsageError)
 from ..design import StabilizingChanges
 from ..geometry import DescribeGeometry, GeometryForm
 from ..presets import ExtraComponents
@@ -24,12 +25,13 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra: List[str]) -> int:
     """A drive beyond two masses: the linearized Exudyn model of the whole drive, every contact state."""
-    from ..cli import BadInput
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..linearization import DriveStability
     with StdoutToStderr(args.json), BadInput():
         analysis = DriveStability(parameters)          # the whole drive's linearization: it has extra components
         loadSide = None
         if 'a load-side chain (JL1, ...)' in extra:   # may the driven machine be lumped into J2? which stage is not?
+            # lazy: start-up (exudyn-worm --help imports every command module)
             from ..loadside import DiagnoseLoadSide
             loadSide = DiagnoseLoadSide(parameters)
     if args.json:
@@ -69,11 +71,11 @@ def _Run(args: argparse.Namespace) -> int:
         return _RunWholeDrive(args, parameters, extra)
     args.method = args.method or 'analytical'
     parameters, drive = DriveFromArgs(args)
-    from ..cli import BadInput
     with BadInput():        # steady lowering at motorSpeed under loadMass * g * leverArm, if the set gives them
         operatingPoint = OperatingPointFromParameters(parameters, drive.gear)
     if args.method == 'exudyn':
         try:
+            # lazy: start-up (exudyn-worm --help imports every command module)
             from ..linearization import AnalyzeStabilityExudyn
         except ImportError as err:
             raise UsageError(f"--method exudyn is not available: cannot import "

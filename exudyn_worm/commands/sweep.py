@@ -56,6 +56,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _Study(args: argparse.Namespace):
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..reelchanger import CheckReelChangerKeys
     from ..study import ParseVariation, Study
     from .simulate import ParseWindows
@@ -89,6 +90,7 @@ def _CheckPlot(args, study) -> None:
     CheckFigurePath(args.plot, '--plot', args.overwrite)
     if len(study.keys) not in (1, 2):
         raise UsageError(f"--plot needs one or two varied keys, got {len(study.keys)}")
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..study import RUN_COLUMNS, WINDOW_METRICS
     if len(study.keys) == 1:
         names = [f'w{i}.{m}' for i in range(study.numberOfWindows) for m in WINDOW_METRICS] + list(RUN_COLUMNS[3:6])
@@ -97,6 +99,7 @@ def _CheckPlot(args, study) -> None:
 
 
 def _Run(args: argparse.Namespace) -> int:
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..study import RunStudy, StudySidecarPath
     study = _Study(args)
     if args.output:
@@ -121,6 +124,7 @@ def _Run(args: argparse.Namespace) -> int:
     if args.output:
         written += [Path(args.output), StudySidecarPath(args.output)]
     if args.plot:
+        # lazy: start-up (exudyn-worm --help imports every command module)
         from .. import plot
         from ..plot_study import ChartAxes            # kT across, J1 up, as the stability charts
         subtitle = f"exudyn-worm sweep: {SourceText(args)}"

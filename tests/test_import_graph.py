@@ -1,0 +1,247 @@
+"""The layers of the package: the graph of its internal imports (issue 17, "layers you can see").
+
+Every module of ``exudyn_worm`` is parsed with :mod:`ast`. An import at module level (outside every function;
+``if TYPE_CHECKING:`` blocks are left out, they never run) is an edge of the import graph; an import inside a
+function is *lazy*. The rules, also written down in docs/development.md:
+
+- the module-level graph has no cycle;
+- a lazy import is of exudyn, scipy, matplotlib or pint (or a submodule), or it is the ``plot`` method of a
+  result object importing its ``plot*`` module, or it says why on the same line or the line above with a
+  comment ``# lazy: <reason>``. A cycle is not a reason (break it instead); a reason that names the start-up
+  (tests/test_startup.py) must be true: the imported module pulls in a heavy package at module level.
+
+The lazy imports that break these rules today are listed in ``ALLOWED`` with their reason. The list may only
+shrink: an entry that is no longer needed fails the test too.
+"""
+import ast
+import re
+from pathlib import Path
+from typing import Dict, List, NamedTuple, Set, Tuple
+
+import pytest
+
+from test_startup import HEAVY
+
+PACKAGE = 'exudyn_worm'
+ROOT = Path(__file__).resolve().parents[1] / PACKAGE
+#: lazy imports of these packages need no comment (issue 17: exudyn, scipy, matplotlib, pint)
+LAZY_PACKAGES = ('exudyn', 'scipy', 'matplotlib', 'pint')
+_LAZY_COMMENT = re.compile(r'#\s*lazy\b\W*(.*)', re.IGNORECASE)
+
+#: (importing module, imported module) -> why the lazy import is still there. May only shrink.
+ALLOWED: Dict[Tuple[str, str], str] = {
+}
+
+
+#: the layers of docs/development.md, lowest first: a module imports (at module level) only modules of its own
+#: or a lower layer; a new module is added to the layer it belongs to
+LAYERS = (
+    ('helpers', '_checks _roots _spacing progress drives charttable'),
+    ('parameters and laws', 'parameters friction profiles selflocking solve orbits geometry drivefile plausibility '
+                            'continuation'),
+    ('gear model', 'gear contact drive stability results _userfunctions'),
+    ('Exudyn items', 'connector drivetrain equilibrium'),
+    ('parameter sets', 'presets config duty'),
+    ('analyses', 'charts linearization speedchart loadside stepsize studymap reelchanger chatter chatterbranch '
+                 'design study'),
+    ('plotting', 'plot plot_charts plot_design plot_orbits plot_study'),
+    ('command line', 'cli commands commands.chart commands.chatter commands.check commands.simulate '
+                     'commands.stability commands.sweep __main__'),
+)
+
+
+class Import(NamedTuple):
+    module: str          # importing module, e.g. 'exudyn_worm.study'
+    target: str          # imported module, e.g. 'exudyn_worm.presets' or 'numpy'
+    function: str        # enclosing function ('' at module level)
+    line: int
+    comment: str         # the reason of a '# lazy: ...' comment on the line or the line above, else ''
+
+
+def _ModuleName(path: Path) -> str:
+    parts = list(path.relative_to(ROOT.parent).with_suffix('').parts)
+    return '.'.join(parts[:-1] if parts[-1] == '__init__' else parts)
+
+
+MODULES = {_ModuleName(path): path for path in sorted(ROOT.rglob('*.py'))}
+
+
+def _Targets(module: str, node) -> List[str]:
+    if isinstance(node, ast.Import):
+        return [alias.name for alias in node.names]
+    if node.level == 0:
+        base = node.module
+    else:
+        base = module if MODULES[module].name == '__init__.py' else module.rsplit('.', 1)[0]
+        for _ in range(node.level - 1):
+            base = base.rsplit('.', 1)[0]
+        if node.module:
+            base = f'{base}.{node.module}'
+    # 'from . import plot' imports the module exudyn_worm.plot; 'from .presets import X' the module presets
+    return [f'{base}.{alias.name}' if f'{base}.{alias.name}' in MODULES else base for alias in node.names]
+
+
+def _Comment(lines: List[str], line: int) -> str:
+    """The reason on the import's line or the line above; for a block of imports, the comment above the block."""
+    index = line - 1
+    while True:
+        match = _LAZY_COMMENT.search(lines[index])
+        if match:
+            return match.group(1).strip()
+        index -= 1
+        if index < 0 or not (index == line - 2 or lines[index + 1].strip().startswith(('from ', 'import '))):
+            return ''
+        if not lines[index].strip().startswith(('from ', 'import ', '#')):
+            return ''
+
+
+def _Imports(module: str) -> List[Import]:
+    source = MODULES[module].read_text(encoding='utf-8')
+    lines = source.splitlines()
+    found = []
+
+    def Walk(node, function):
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.If) and 'TYPE_CHECKING' in ast.unparse(child.test):
+                continue
+            if isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+                Walk(child, getattr(child, 'name', '<lambda>'))
+            elif isinstance(child, (ast.Import, ast.ImportFrom)):
+                comment = _Comment(lines, child.lineno) if function else ''
+                found.extend(Import(module, target, function, child.lineno, comment)
+                             for target in _Targets(module, child) if target != module)
+            else:
+                Walk(child, function)
+    Walk(ast.parse(source), '')
+    return found
+
+
+IMPORTS = [item for module in MODULES for item in _Imports(module)]
+
+
+def _Internal(target: str) -> bool:
+    return target == PACKAGE or target.startswith(PACKAGE + '.')
+
+
+def ModuleGraph() -> Dict[str, Set[str]]:
+    """Internal imports at module level: module -> the internal modules it imports."""
+    graph = {module: set() for module in MODULES}
+    for item in IMPORTS:
+        if not item.function and _Internal(item.target):
+            graph[item.module].add(item.target)
+    return graph
+
+
+def _Cycle(graph: Dict[str, Set[str]]) -> List[str]:
+    state: Dict[str, int] = {}    # 1 on the path, 2 done
+    path: List[str] = []
+
+    def Visit(node):
+        state[node] = 1
+        path.append(node)
+        for nxt in sorted(graph.get(node, ())):
+            if state.get(nxt) == 1:
+                return path[path.index(nxt):] + [nxt]
+            if nxt not in state:
+                cycle = Visit(nxt)
+                if cycle:
+                    return cycle
+        state[node] = 2
+        path.pop()
+        return []
+    for node in sorted(graph):
+        if node not in state:
+            cycle = Visit(node)
+            if cycle:
+                return cycle
+    return []
+
+
+def _HeavyAtModuleLevel(target: str, graph: Dict[str, Set[str]]) -> bool:
+    """Whether importing ``target`` imports a heavy package (tests/test_startup.py) at module level."""
+    if not _Internal(target):
+        return target.split('.')[0] in HEAVY
+    seen, todo = set(), [target]
+    while todo:
+        module = todo.pop()
+        if module in seen or module not in MODULES:
+            continue
+        seen.add(module)
+        todo.extend(graph[module])
+    return any(item.module in seen and not item.function and item.target.split('.')[0] in HEAVY
+               for item in IMPORTS)
+
+
+def _Problem(item: Import, graph: Dict[str, Set[str]]) -> str:
+    """Why a lazy import breaks the rule ('' when it does not)."""
+    if item.target.split('.')[0] in LAZY_PACKAGES:
+        return ''
+    if (item.function == 'plot' and _Internal(item.target)
+            and item.target.rsplit('.', 1)[-1].startswith('plot')):
+        return ''
+    if not item.comment:
+        return 'no "# lazy: <reason>" comment'
+    if 'cycle' in item.comment.lower():
+        return 'an import cycle is no reason: break the cycle'
+    if re.search(r'start-?up', item.comment, re.IGNORECASE) and not _HeavyAtModuleLevel(item.target, graph):
+        # `exudyn-worm --help` imports every command module: its run function may defer the analyses it calls
+        if not item.module.startswith(f'{PACKAGE}.commands.'):
+            return (f'the reason names the start-up, but {item.target} imports no heavy package {HEAVY} at '
+                    f'module level')
+        if item.target in graph[item.module]:
+            return f'the reason names the start-up, but {item.module} imports {item.target} at module level anyway'
+    return ''
+
+
+def test_every_module_is_parsed():
+    assert f'{PACKAGE}.cli' in MODULES and f'{PACKAGE}.commands.simulate' in MODULES
+    assert any(item.function for item in IMPORTS) or not ALLOWED
+
+
+def test_no_cycle_among_module_level_imports():
+    assert _Cycle(ModuleGraph()) == []
+
+
+def test_every_module_has_a_layer():
+    layered = [f'{PACKAGE}.{name}' for _, names in LAYERS for name in names.split()]
+    assert sorted(set(MODULES) - {PACKAGE}) == sorted(layered)
+
+
+def test_module_level_imports_go_down_the_layers():
+    layer = {f'{PACKAGE}.{name}': i for i, (_, names) in enumerate(LAYERS) for name in names.split()}
+    layer[PACKAGE] = -1       # the package's __init__: lazy attributes only, it imports no submodule
+    upward = sorted(f'{module} ({LAYERS[layer[module]][0]}) imports {target} ({LAYERS[layer[target]][0]})'
+                    for module, targets in ModuleGraph().items() for target in targets
+                    if layer[target] > layer[module])
+    assert upward == []
+
+
+def test_cycle_finder_finds_a_cycle():
+    assert _Cycle({'a': {'b'}, 'b': {'c'}, 'c': {'a'}}) == ['a', 'b', 'c', 'a']
+    assert _Cycle({'a': {'b'}, 'b': set(), 'c': {'a', 'b'}}) == []
+
+
+def test_lazy_imports_are_heavy_plot_or_say_why():
+    graph = ModuleGraph()
+    problems = sorted(f'{item.module}:{item.line} imports {item.target} in {item.function}(): {why}'
+                      for item in IMPORTS if item.function and (item.module, item.target) not in ALLOWED
+                      for why in [_Problem(item, graph)] if why)
+    assert problems == []
+
+
+def test_allowed_list_only_shrinks():
+    graph = ModuleGraph()
+    needed = {(item.module, item.target) for item in IMPORTS if item.function and _Problem(item, graph)}
+    assert sorted(set(ALLOWED) - needed) == [], 'no longer needed: remove these entries from ALLOWED'
+
+
+@pytest.mark.parametrize('comment, target, ok', [
+    ('', 'exudyn_worm.presets', False),
+    ('cycle with presets', 'exudyn_worm.presets', False),
+    ('start-up (tests/test_startup.py)', 'tqdm', True),
+    ('start-up (tests/test_startup.py)', 'exudyn_worm._checks', False),
+    ('optional dependency (the mpi extra)', 'mpi4py.futures', True),
+])
+def test_rule_on_examples(comment, target, ok):
+    item = Import('exudyn_worm.study', target, 'RunStudy', 1, comment)
+    assert (_Problem(item, ModuleGraph()) == '') is ok
