@@ -200,10 +200,12 @@ def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
     if args.disturbance == 'no':
         return None
     if args.disturbance == 'auto':
+        # lazy: start-up (exudyn-worm --help imports every command module)
         from ..reelchanger import REEL_KEYS
         if not (float(parameters.get('backlash', 0.)) > 0. and result.analysis.contact[-1].stable
                 and all(k in parameters for k in REEL_KEYS)):
             return None
+    # lazy: start-up (exudyn-worm --help imports every command module)
     from ..chatterbranch import ChattersAfterDisturbance
     from ..reelchanger import CheckReelChangerKeys
     if args.disturbance == 'auto':
