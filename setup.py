@@ -1,7 +1,7 @@
 """Build hook: the wheel carries the example drive files and the user documentation.
 
 ``examples/drives/*.toml`` are copied to ``exudyn_worm/drives/`` and ``docs/*.md`` to ``exudyn_worm/docs/``
-of the built package (:mod:`exudyn_worm.drives` finds them there; in a checkout it reads the originals, so
+of the built package (:mod:`exudyn_worm.params.drives` finds them there; in a checkout it reads the originals, so
 the repository keeps one copy of each). Everything else is in pyproject.toml.
 """
 import shutil

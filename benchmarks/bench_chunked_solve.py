@@ -1,4 +1,4 @@
-"""Cost of the chunked solve that makes the progress bar possible (exudyn_worm.solve.SolveDynamicInChunks).
+"""Cost of the chunked solve that makes the progress bar possible (exudyn_worm.items.solve.SolveDynamicInChunks).
 
 Compares, for the reel changer's P1 and P7 (one rotation, SimulateReelChanger's settings and recommended step):
 (a) one ``mbs.SolveDynamic`` call, (b) ``SolveDynamicInChunks`` with the bar off, (c) with the bar drawn (into
@@ -20,9 +20,9 @@ def Solve(preset: str, mode: str):
     """CPU seconds and Newton statistics of one solve of ``preset`` in ``mode`` ('one', 'chunks', 'bar')."""
     import exudyn as exu
     from exudyn_worm import GetPreset
-    from exudyn_worm.reelchanger import BuildReelChanger, RotationPeriod, SolverSettings
-    from exudyn_worm.solve import SolveDynamicInChunks
-    from exudyn_worm.stepsize import RecommendedStepSize
+    from exudyn_worm.analysis.reelchanger import BuildReelChanger, RotationPeriod, SolverSettings
+    from exudyn_worm.items.solve import SolveDynamicInChunks
+    from exudyn_worm.analysis.stepsize import RecommendedStepSize
     p = GetPreset(preset)
     endTime, h = RotationPeriod(p), RecommendedStepSize(p)
     model = BuildReelChanger(p)

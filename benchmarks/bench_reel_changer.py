@@ -46,14 +46,14 @@ import scipy                                         # noqa: E402
 
 import exudyn as exu                                 # noqa: E402
 import exudyn_worm                                   # noqa: E402
-from exudyn_worm.presets import GetPreset            # noqa: E402
-from exudyn_worm.reelchanger import (BuildReelChanger, DefaultWindows, RotationPeriod,  # noqa: E402
+from exudyn_worm.setups.presets import GetPreset            # noqa: E402
+from exudyn_worm.analysis.reelchanger import (BuildReelChanger, DefaultWindows, RotationPeriod,  # noqa: E402
                                      SimulateReelChanger, SolverSettings)
-from exudyn_worm.stepsize import RecommendedStepSize  # noqa: E402
+from exudyn_worm.analysis.stepsize import RecommendedStepSize  # noqa: E402
 from scipy_reference import SolveReelChangerScipy    # noqa: E402
 from compiled_reference import CompiledReelChanger   # noqa: E402
 from torque_driven import SimulateTorqueDriven       # noqa: E402
-from exudyn_worm.contact import ContactOptions       # noqa: E402
+from exudyn_worm.model.contact import ContactOptions       # noqa: E402
 
 __all__ = ['SCIPY_SETTINGS', 'REFERENCE_SETTINGS', 'TARGETS', 'EnvironmentInfo', 'RunBenchmark',
            'ScanTolerances', 'ProfileExudyn', 'FormatReport', 'Main']
@@ -318,7 +318,7 @@ class _MotorAngleByUserFunction:
     offset user functions (how the motor was driven before the velocity-level constraint)."""
 
     def __init__(self, speed: float):
-        from exudyn_worm.profiles import ConstantSpeed
+        from exudyn_worm.model.profiles import ConstantSpeed
         self.AngleAndSpeed = ConstantSpeed(speed).AngleAndSpeed
 
 

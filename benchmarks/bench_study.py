@@ -1,4 +1,4 @@
-"""Benchmark of parameter studies (exudyn_worm.study): parallel speed-up, per-run overhead, the 144-point map.
+"""Benchmark of parameter studies (exudyn_worm.analysis.study): parallel speed-up, per-run overhead, the 144-point map.
 
 Measures, in one process on this machine:
 
@@ -37,10 +37,10 @@ sys.dont_write_bytecode = True
 
 import numpy as np                                                  # noqa: E402
 
-from exudyn_worm.config import ResolveParameters                   # noqa: E402
-from exudyn_worm.presets import DriveFromParameters, GetPreset      # noqa: E402
-from exudyn_worm.stability import AnalyzeStability                  # noqa: E402
-from exudyn_worm.study import ParseVariation, RunStudy, Study, VibrationSeconds  # noqa: E402
+from exudyn_worm.setups.config import ResolveParameters                   # noqa: E402
+from exudyn_worm.setups.presets import DriveFromParameters, GetPreset      # noqa: E402
+from exudyn_worm.model.stability import AnalyzeStability                  # noqa: E402
+from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study, VibrationSeconds  # noqa: E402
 
 __all__ = ['SpeedUp', 'Overhead', 'MapWallTime', 'Main']
 
@@ -90,7 +90,7 @@ def SpeedUp(repeat: int = 3) -> Dict:
 def Overhead(repeat: int = 5) -> Dict:
     """Per-run overhead of a P1 run, by stage, against its solve time (best of ``repeat`` per stage)."""
     import exudyn as exu
-    from exudyn_worm.reelchanger import BuildReelChanger, DefaultWindows, RotationPeriod
+    from exudyn_worm.analysis.reelchanger import BuildReelChanger, DefaultWindows, RotationPeriod
     p = GetPreset('reel-P1')
     stages = {k: [] for k in ('buildPython', 'buildSymbolic', 'assemble', 'solve', 'postProcess', 'writeRow')}
     for _ in range(repeat):
@@ -125,7 +125,7 @@ def Overhead(repeat: int = 5) -> Dict:
         model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'])
         stages['postProcess'].append(time.perf_counter() - t0)
     # window metrics, vibration durations and the analytical verdict on a finished result
-    from exudyn_worm.reelchanger import SimulateReelChanger
+    from exudyn_worm.analysis.reelchanger import SimulateReelChanger
     result = SimulateReelChanger(p)
     metrics = []
     for _ in range(repeat):

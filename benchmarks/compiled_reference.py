@@ -1,7 +1,7 @@
 """The compiled limit of the benchmark: equations (1)-(2) of the reel changer in C, built at benchmark time.
 
 Not part of the package. The right-hand side is *generated* from the package's own laws, not re-written:
-:func:`exudyn_worm.contact.MeshContact`, :meth:`ConstantSpeed.AngleAndSpeed` and
+:func:`exudyn_worm.model.contact.MeshContact`, :meth:`ConstantSpeed.AngleAndSpeed` and
 :meth:`GravityLeverTorque.Torque` are evaluated with a backend (:data:`C_OPS`) whose numbers are C
 expressions, exactly as the Exudyn connector records them as symbolic expressions. The C file holds that
 right-hand side and an adaptive Dormand-Prince 5(4) integrator (the method of scipy's ``RK45``, with its
@@ -26,9 +26,9 @@ from typing import Mapping, Optional
 
 import numpy as np
 
-from exudyn_worm.contact import ContactOptions, MeshContact
-from exudyn_worm.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod
-from exudyn_worm.results import SimulationResult
+from exudyn_worm.model.contact import ContactOptions, MeshContact
+from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod
+from exudyn_worm.items.results import SimulationResult
 from scipy_reference import ReelChangerOde, ResultFromStates
 
 #: the reference models have no stick state: they use the regularized friction law (docs/friction-sticking.md);

@@ -30,15 +30,15 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from exudyn_worm import GetPreset                                           # noqa: E402
-from exudyn_worm._userfunctions import AddGenericForce                      # noqa: E402
-from exudyn_worm.connector import CreateWormGear                            # noqa: E402
-from exudyn_worm.contact import NUMPY_OPS, ContactOptions, MeshContact, SlidingCoordinate  # noqa: E402
-from exudyn_worm.drivetrain import CreateRotor, CreateRotorTorque           # noqa: E402
-from exudyn_worm.presets import DriveFromParameters                         # noqa: E402
-from exudyn_worm.profiles import ConstantSpeed, GravityLeverTorque          # noqa: E402
-from exudyn_worm.reelchanger import RotationPeriod, SolverSettings, SteadyInitialState  # noqa: E402
-from exudyn_worm.results import SimulationResult                            # noqa: E402
-from exudyn_worm.stepsize import RecommendedStepSize                        # noqa: E402
+from exudyn_worm.items._userfunctions import AddGenericForce                      # noqa: E402
+from exudyn_worm.items.connector import CreateWormGear                            # noqa: E402
+from exudyn_worm.model.contact import NUMPY_OPS, ContactOptions, MeshContact, SlidingCoordinate  # noqa: E402
+from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque           # noqa: E402
+from exudyn_worm.setups.presets import DriveFromParameters                         # noqa: E402
+from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque          # noqa: E402
+from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings, SteadyInitialState  # noqa: E402
+from exudyn_worm.items.results import SimulationResult                            # noqa: E402
+from exudyn_worm.analysis.stepsize import RecommendedStepSize                        # noqa: E402
 
 #: bristle mass (kg-equivalent of the z equation) and damper: relaxation time 1e-5 s, below every step used
 LUGRE_MASS, LUGRE_DAMPER = 1e-5, 1.

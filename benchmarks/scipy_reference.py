@@ -6,14 +6,14 @@ as a first-order system with state ``y = [phi1, phi2, omega1, omega2]``:
     J1 phi1'' = kT (phi0 - phi1) + dT (omega0 - omega1) + M_worm(phi1, phi2, omega1, omega2)
     J2 phi2'' = M_wheel(phi1, phi2, omega1, omega2) + M2(phi2)
 
-with the prescribed motor angle ``phi0(t) = motorSpeed * t`` (:class:`~exudyn_worm.profiles.ConstantSpeed`),
-the mesh torques from :func:`exudyn_worm.contact.MeshContact` with the plain-Python backend ``MATH_OPS``
+with the prescribed motor angle ``phi0(t) = motorSpeed * t`` (:class:`~exudyn_worm.model.profiles.ConstantSpeed`),
+the mesh torques from :func:`exudyn_worm.model.contact.MeshContact` with the plain-Python backend ``MATH_OPS``
 (the same law the Exudyn connector records; nothing is re-derived here), the load torque
 ``M2 = -m g l cos(phi2)`` from :meth:`GravityLeverTorque.Torque` and the same initial state as the
-Exudyn model (:func:`exudyn_worm.reelchanger.SteadyInitialState`).
+Exudyn model (:func:`exudyn_worm.analysis.reelchanger.SteadyInitialState`).
 
-The result is a :class:`exudyn_worm.results.SimulationResult` with the same series names as
-:func:`exudyn_worm.reelchanger.SimulateReelChanger`, so both are evaluated by the same
+The result is a :class:`exudyn_worm.items.results.SimulationResult` with the same series names as
+:func:`exudyn_worm.analysis.reelchanger.SimulateReelChanger`, so both are evaluated by the same
 ``WindowMetrics``. Accelerations are the right-hand side evaluated at the output points.
 """
 from __future__ import annotations
@@ -25,12 +25,12 @@ from typing import Callable, Mapping, Optional, Tuple
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from exudyn_worm.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact
-from exudyn_worm.drive import ElasticDrive
-from exudyn_worm.presets import DriveFromParameters
-from exudyn_worm.profiles import ConstantSpeed, GravityLeverTorque
-from exudyn_worm.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SteadyInitialState
-from exudyn_worm.results import SimulationResult
+from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact
+from exudyn_worm.model.drive import ElasticDrive
+from exudyn_worm.setups.presets import DriveFromParameters
+from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque
+from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SteadyInitialState
+from exudyn_worm.items.results import SimulationResult
 
 #: the reference models have no stick state: they use the regularized friction law (docs/friction-sticking.md);
 #: where the worm never stops (P1) it gives the same results as the package's default sticking law

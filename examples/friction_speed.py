@@ -9,7 +9,7 @@ tests/test_example_friction_speed.py), drawn only when the file is run::
    (reel-P3 with ``mu = 0.092``, ``muStatic = 0.2``, ``stribeckVelocity = 0.9 m/s``: mu = 0.132 at the paper's
    472.5 rpm, v0 = 0.897 m/s) and the AGMA 6034 curve.
 2. :func:`SpeedChart`: the largest real part of the lowering state against motor speed, eq. (16) extended by the
-   friction slope at each operating point (:func:`exudyn_worm.speedchart.SpeedStabilityChart`). With constant mu
+   friction slope at each operating point (:func:`exudyn_worm.analysis.speedchart.SpeedStabilityChart`). With constant mu
    it does not depend on speed; with the Stribeck law reel-P3 chatters between about 84 and 630 rpm.
 3. :func:`ChatterAmplitudes`: the simulated chatter amplitude against speed: J2 max abs(phi2'') in the lowering
    phase of the reel-changer simulation (one run per speed, ending with the lowering phase).
@@ -34,9 +34,9 @@ from typing import Dict, Sequence
 import numpy as np
 
 import exudyn_worm as ew
-from exudyn_worm.friction import AgmaFriction, ConstantFriction, StribeckFriction
-from exudyn_worm.reelchanger import RotationPeriod, SimulateReelChanger
-from exudyn_worm.speedchart import RPM, SpeedStabilityChart
+from exudyn_worm.model.friction import NUMPY_OPS, AgmaFriction, ConstantFriction, StribeckFriction
+from exudyn_worm.analysis.reelchanger import RotationPeriod, SimulateReelChanger
+from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
 
 #: reel-P3 with the Stribeck law of docs/friction.md: mu(v0) = 0.132 at 472.5 rpm
 PARAMETERS = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,
@@ -62,7 +62,7 @@ def FrictionCurves(v: Sequence[float]) -> Dict[str, np.ndarray]:
     laws = {'constant': ConstantFriction(0.132),
             'stribeck': StribeckFriction(PARAMETERS['mu'], PARAMETERS['muStatic'], PARAMETERS['stribeckVelocity']),
             'agma': AgmaFriction()}
-    return {name: np.asarray(law.Mu(v, ew.contact.NUMPY_OPS), dtype=float) * np.ones_like(v)
+    return {name: np.asarray(law.Mu(v, NUMPY_OPS), dtype=float) * np.ones_like(v)
             for name, law in laws.items()}
 
 

@@ -33,9 +33,9 @@ import sys
 from pathlib import Path
 from typing import Dict, Iterable, List, Mapping, Optional, Sequence
 
-from exudyn_worm.presets import REEL_KEYS, ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SimulateReelChanger
-from exudyn_worm.results import SimulationResult
+from exudyn_worm.setups.presets import REEL_KEYS, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SimulateReelChanger
+from exudyn_worm.items.results import SimulationResult
 
 __all__ = ['PAPER_FIGURES', 'BACKLASH_STUDY', 'RPM', 'CaseParameters', 'RunPaperCases', 'Summary',
            'FormatSummary', 'WriteFigures', 'main']
@@ -275,7 +275,7 @@ def WriteFigures(results: Mapping[str, SimulationResult], outDir, figures: Optio
     list of Path
         The files written, in figure order.
     """
-    from exudyn_worm.plot import PlotComparison, PlotSimulation, SaveFigure
+    from exudyn_worm.plotting.plot import PlotComparison, PlotSimulation, SaveFigure
 
     outDir = Path(outDir)
     main = _Short(preset)

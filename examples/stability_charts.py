@@ -33,12 +33,12 @@ from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 
-from exudyn_worm.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, PresetChartPoints,
+from exudyn_worm.analysis.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, PresetChartPoints,
                                 StabilityChart)
-from exudyn_worm.charttable import FormatChartTable
+from exudyn_worm.analysis.charttable import FormatChartTable
 from exudyn_worm._checks import CheckOutputFolder
-from exudyn_worm.plot_charts import ZOOM_DECADES, PointsToZoom
-from exudyn_worm.presets import GearFromParameters, GetPreset
+from exudyn_worm.plotting.plot_charts import ZOOM_DECADES, PointsToZoom
+from exudyn_worm.setups.presets import GearFromParameters, GetPreset
 
 __all__ = ['CHART_PRESET', 'FIGURE_DV', 'DTV_VALUES', 'POINT_PRESETS', 'FIGURE3_RHO_DEG', 'ZOOM_DECADES',
            'ComputeFigures', 'Summary', 'FormatSummary', 'DrawFigures', 'WriteFigures', 'PointsToZoom', 'main']
@@ -120,7 +120,7 @@ def DrawFigures(figures: Dict) -> Dict[str, object]:
     dict
         ``{file name: matplotlib Figure}``.
     """
-    from exudyn_worm.plot_charts import PlotFirstCriterion, PlotStabilityCharts
+    from exudyn_worm.plotting.plot_charts import PlotFirstCriterion, PlotStabilityCharts
 
     curves: FirstCriterionCurves = figures[3]
     gear = GearFromParameters(GetPreset(CHART_PRESET), meshDamping=False)
@@ -163,7 +163,7 @@ def WriteFigures(figures: Dict, outDir) -> List[Path]:
     list of Path
         The files written.
     """
-    from exudyn_worm.plot import SaveFigure
+    from exudyn_worm.plotting.plot import SaveFigure
     return [SaveFigure(fig, Path(outDir) / name) for name, fig in DrawFigures(figures).items()]
 
 

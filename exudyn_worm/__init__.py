@@ -2,34 +2,45 @@
 
 Analytical theory (:func:`AnalyzeStability`), the Exudyn worm-gear connector (:func:`CreateWormGear`),
 drivetrain builders, the paper's reel changer (:func:`SimulateReelChanger`) and presets. SI units,
-angles in rad. Plotting lives in :mod:`exudyn_worm.plot` (the only module importing matplotlib).
+angles in rad. Plotting lives in :mod:`exudyn_worm.plotting` (the only subpackage importing matplotlib).
+
+The subpackages are the layers of the package, lowest first (docs/development.md): :mod:`~exudyn_worm.params`
+(the parameter registry and drive files), :mod:`~exudyn_worm.model` (gear, contact and friction laws, the
+analytical theory), :mod:`~exudyn_worm.items` (the Exudyn items and the solver), :mod:`~exudyn_worm.setups`
+(presets, config files, duty cycles: a parameter set resolved into a drive), :mod:`~exudyn_worm.analysis`
+(linearization, charts, design check, studies, simulations, periodic orbits), :mod:`~exudyn_worm.plotting`
+and :mod:`~exudyn_worm.cli`.
 """
 import importlib
 
+from ._moved import InstallMovedModuleFinder
+
+InstallMovedModuleFinder()      # old module paths (exudyn_worm.presets, ...) still import, with a DeprecationWarning
+
 #: public name -> submodule that defines it; imported on first access (PEP 562), so that
-#: ``import exudyn_worm.cli`` and light subcommands do not pay for exudyn, scipy, pint or matplotlib
-_LAZY = {'WormGear': 'gear',
+#: ``import exudyn_worm.cli.main`` and light subcommands do not pay for exudyn, scipy, pint or matplotlib
+_LAZY = {'WormGear': 'model.gear',
          **dict.fromkeys(('ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMeasure', 'TorsionalDampingFromMeasure',
-                          'TorsionalDampingMeasure'), 'drive'),
-         **dict.fromkeys(('AnalyzeStability', 'StabilityAnalysis', 'ContactStability'), 'stability'),
-         **dict.fromkeys(('ContactOptions', 'MeshContact', 'MeshState'), 'contact'),
-         **dict.fromkeys(('AxialBearing', 'CreateWormAxialBearing', 'CreateWormGear', 'WormGearConnector'), 'connector'),
+                          'TorsionalDampingMeasure'), 'model.drive'),
+         **dict.fromkeys(('AnalyzeStability', 'StabilityAnalysis', 'ContactStability'), 'model.stability'),
+         **dict.fromkeys(('ContactOptions', 'MeshContact', 'MeshState'), 'model.contact'),
+         **dict.fromkeys(('AxialBearing', 'CreateWormAxialBearing', 'CreateWormGear', 'WormGearConnector'), 'items.connector'),
          **dict.fromkeys(('CreatePrescribedRotation', 'CreateRotor', 'CreateShaft', 'CreateRotorTorque',
-                          'CreateLoadSideChain'), 'drivetrain'),
+                          'CreateLoadSideChain'), 'items.drivetrain'),
          **dict.fromkeys(('ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque', 'LinearMotorCharacteristic',
-                          'StartStopProfile'), 'profiles'),
-         **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'GetPreset', 'PRESETS', 'LoadSideChain'), 'presets'),
-         **dict.fromkeys(('AnalyzeLinearStability', 'AnalyzeStabilityExudyn', 'LinearStability'), 'linearization'),
-         **dict.fromkeys(('BuildReelChanger', 'SimulateReelChanger'), 'reelchanger'),
-         'SteadyInitialState': 'equilibrium',
-         'SimulationResult': 'results',
+                          'StartStopProfile'), 'model.profiles'),
+         **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'GetPreset', 'PRESETS', 'LoadSideChain'), 'setups.presets'),
+         **dict.fromkeys(('AnalyzeLinearStability', 'AnalyzeStabilityExudyn', 'LinearStability'), 'analysis.linearization'),
+         **dict.fromkeys(('BuildReelChanger', 'SimulateReelChanger'), 'analysis.reelchanger'),
+         'SteadyInitialState': 'items.equilibrium',
+         'SimulationResult': 'items.results',
          **dict.fromkeys(('ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction', 'FrictionLaw'),
-                         'friction'),
-         **dict.fromkeys(('OperatingPoint', 'OperatingPointAt'), 'stability'),
-         'SelfLocking': 'selflocking',
-         **dict.fromkeys(('FindPeriodicOrbit', 'PeriodicOrbit'), 'orbits'),
-         'FindSteadyChatter': 'chatter', 'AnalyzeChatterBranch': 'chatterbranch',
-         **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'stepsize')}
+                         'model.friction'),
+         **dict.fromkeys(('OperatingPoint', 'OperatingPointAt'), 'model.stability'),
+         'SelfLocking': 'model.selflocking',
+         **dict.fromkeys(('FindPeriodicOrbit', 'PeriodicOrbit'), 'analysis.orbits'),
+         'FindSteadyChatter': 'analysis.chatter', 'AnalyzeChatterBranch': 'analysis.chatterbranch',
+         **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'analysis.stepsize')}
 
 
 def __getattr__(name):

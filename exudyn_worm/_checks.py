@@ -149,7 +149,7 @@ def CheckName(where: str, name: str, value) -> str:
 def CheckSystem(where: str, mbs, name: str = 'mbs'):
     """Return ``mbs`` if it is an ``exudyn.MainSystem``; raise ``TypeError`` otherwise.
 
-    An object with a MainSystem attribute ``mbs`` (e.g. a :class:`~exudyn_worm.reelchanger.ReelChangerModel`)
+    An object with a MainSystem attribute ``mbs`` (e.g. a :class:`~exudyn_worm.analysis.reelchanger.ReelChangerModel`)
     is named in the message, so that the caller can pass ``model.mbs``.
     """
     import exudyn

@@ -1,5 +1,5 @@
-"""How a varied key's values are spaced: shared by the chatter map's grid (:mod:`exudyn_worm.studymap`) and
-the axes of the study plots (:mod:`exudyn_worm.plot_study`). numpy only."""
+"""How a varied key's values are spaced: shared by the chatter map's grid (:mod:`exudyn_worm.analysis.studymap`) and
+the axes of the study plots (:mod:`exudyn_worm.plotting.plot_study`). numpy only."""
 from __future__ import annotations
 
 from typing import Sequence, Union

@@ -9,11 +9,11 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.charts import ComputeStabilityChart, PresetChartPoints
-from exudyn_worm.contact import MeshContact, NUMPY_OPS
-from exudyn_worm.design import DesignCheck
-from exudyn_worm.linearization import AnalyzeLinearStability
-from exudyn_worm.presets import GearFromParameters
+from exudyn_worm.analysis.charts import ComputeStabilityChart, PresetChartPoints
+from exudyn_worm.model.contact import MeshContact, NUMPY_OPS
+from exudyn_worm.analysis.design import DesignCheck
+from exudyn_worm.analysis.linearization import AnalyzeLinearStability
+from exudyn_worm.setups.presets import GearFromParameters
 
 P1 = ew.GetPreset('reel-P1')
 

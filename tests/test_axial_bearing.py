@@ -5,12 +5,12 @@ import os
 import numpy as np
 import pytest
 
-from exudyn_worm.config import ParseSetOption
-from exudyn_worm.connector import AxialBearing
-from exudyn_worm.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact
-from exudyn_worm.presets import (PARAMETER_UNITS, ApplyOverrides, AxialBearingFromParameters, DriveFromParameters,
+from exudyn_worm.setups.config import ParseSetOption
+from exudyn_worm.items.connector import AxialBearing
+from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact
+from exudyn_worm.setups.presets import (PARAMETER_UNITS, ApplyOverrides, AxialBearingFromParameters, DriveFromParameters,
                                  DriveSideChain, GetPreset)
-from exudyn_worm.reelchanger import BuildReelChanger, SimulateReelChanger
+from exudyn_worm.analysis.reelchanger import BuildReelChanger, SimulateReelChanger
 
 P1 = GetPreset('reel-P1')
 

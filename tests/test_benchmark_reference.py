@@ -7,8 +7,8 @@ the chatter after the load reverses at 2 s. Only results are compared, never wal
 import numpy as np
 import pytest
 
-from exudyn_worm.presets import GetPreset
-from exudyn_worm.reelchanger import DEFAULT_STEP_SIZE, SimulateReelChanger
+from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, SimulateReelChanger
 
 from conftest import LoadScript
 

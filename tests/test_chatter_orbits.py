@@ -1,5 +1,5 @@
-"""Steady chatter of the lowering phase as a periodic orbit of the Exudyn model (exudyn_worm.chatter,
-exudyn_worm.continuation, exudyn_worm.chatterbranch) and the ``exudyn-worm chatter`` command.
+"""Steady chatter of the lowering phase as a periodic orbit of the Exudyn model (exudyn_worm.analysis.chatter,
+exudyn_worm.analysis.continuation, exudyn_worm.analysis.chatterbranch) and the ``exudyn-worm chatter`` command.
 
 Independent checks: the orbit's amplitude against a long time simulation with the time simulations' own
 solver settings (modified Newton, tolerance 1e-6, a different step); the Hopf points of the branch against the
@@ -13,12 +13,12 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.chatter import (BuildLoweringModel, ConstantTorque, FindSteadyChatter, LongSimulationAmplitude,
+from exudyn_worm.analysis.chatter import (BuildLoweringModel, ConstantTorque, FindSteadyChatter, LongSimulationAmplitude,
                                  UpdateLoweringModel)
-from exudyn_worm.chatterbranch import AnalyzeChatterBranch, ChatterBranchError, LinearBoundaries
-from exudyn_worm.cli import Main
-from exudyn_worm.contact import MATH_OPS
-from exudyn_worm.profiles import STANDARD_GRAVITY
+from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, ChatterBranchError, LinearBoundaries
+from exudyn_worm.cli.main import Main
+from exudyn_worm.model.contact import MATH_OPS
+from exudyn_worm.model.profiles import STANDARD_GRAVITY
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
@@ -155,7 +155,7 @@ def test_cli_json_and_plot(capsys, tmp_path):
 
 
 def test_smallest_disturbance_unstable_and_stable_drive():
-    from exudyn_worm.chatterbranch import SmallestDisturbance
+    from exudyn_worm.analysis.chatterbranch import SmallestDisturbance
     # linearly unstable P1: the smallest kick tried already ends in chatter
     assert SmallestDisturbance(P1, steps=3) <= 0.5 / 2**3
     # P2 (J1 = 0.3) is linearly stable and its branch has no coexistence: even half the motor speed decays
@@ -163,7 +163,7 @@ def test_smallest_disturbance_unstable_and_stable_drive():
 
 
 def test_settle_starts_from_the_equilibrium_every_time():
-    from exudyn_worm.chatter import EquilibriumState, SettleLowering
+    from exudyn_worm.analysis.chatter import EquilibriumState, SettleLowering
     model = BuildLoweringModel(P1)
     x0 = EquilibriumState(model)
     SettleLowering(model, 0.05, kick=0.3)
@@ -179,7 +179,7 @@ def test_backlash_rest_and_chatter_coexist():
     # large worm-speed kick ends in chatter; the orbit found by shooting is that chatter (long run within 2 %),
     # and a small kick dies out
     p = {**P1, 'J1': 0.25, 'backlash': 5e-4}
-    from exudyn_worm.linearization import DriveStability
+    from exudyn_worm.analysis.linearization import DriveStability
     assert DriveStability(p).State(-1).stable
     orbit = FindSteadyChatter(p, kick=0.5)
     assert orbit.stable and orbit.info['forceFactor'] > 4.
@@ -189,7 +189,7 @@ def test_backlash_rest_and_chatter_coexist():
     rest = LongSimulationAmplitude(p, duration=4.0, stepSize=2e-4, kick=0.01)
     assert rest['forceFactor'] < 1.01
     # the one-line verdict for a design check; the threshold kick lies between the 1 % and 30 % runs above
-    from exudyn_worm.chatterbranch import ChattersAfterDisturbance
+    from exudyn_worm.analysis.chatterbranch import ChattersAfterDisturbance
     verdict = ChattersAfterDisturbance(p)
     assert verdict.linearlyStable and verdict.chatterFound
     assert 0.01 * p['motorSpeed'] < verdict.smallestDisturbance < 0.3 * p['motorSpeed']

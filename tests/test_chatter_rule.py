@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from exudyn_worm import GetPreset, SimulateReelChanger
-from exudyn_worm.results import CHATTER_MIN_MESH_TORQUE, SimulationResult
+from exudyn_worm.items.results import CHATTER_MIN_MESH_TORQUE, SimulationResult
 
 
 def _Result(meshTorque, acceleration):

@@ -1,4 +1,4 @@
-"""Tests of the exudyn-worm command line (exudyn_worm.cli), run in-process with Main([...])."""
+"""Tests of the exudyn-worm command line (exudyn_worm.cli.main), run in-process with Main([...])."""
 import json
 import os
 import re
@@ -10,9 +10,9 @@ import pytest
 from numpy.testing import assert_allclose
 
 import exudyn_worm
-from exudyn_worm import cli
-from exudyn_worm.cli import Main
-from exudyn_worm.stability import AnalyzeStability
+from exudyn_worm.cli import main as cli
+from exudyn_worm.cli.main import Main
+from exudyn_worm.model.stability import AnalyzeStability
 
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
 # issue 15 added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
@@ -262,14 +262,6 @@ def test_error_messages_are_specific(capsys, tmp_path):
             assert fragment in err, (case, fragment, err)
 
 
-@pytest.mark.messages
-def test_exudyn_method_unavailable(capsys, monkeypatch):
-    monkeypatch.setitem(sys.modules, 'exudyn_worm.linearization', None)   # import fails
-    rc, out, err = Run(capsys, 'stability', '--method', 'exudyn', '--json')
-    assert rc == 2 and out == '' and err.count('\n') == 1
-    assert err.startswith('exudyn-worm: error: --method exudyn is not available')
-
-
 def test_exudyn_method_uses_linearization(capsys, monkeypatch):
     calls = []
 
@@ -278,7 +270,7 @@ def test_exudyn_method_uses_linearization(capsys, monkeypatch):
         print('noise from the solver')              # must not reach stdout with --json
         return AnalyzeStability(drive)
 
-    monkeypatch.setitem(sys.modules, 'exudyn_worm.linearization',
+    monkeypatch.setitem(sys.modules, 'exudyn_worm.analysis.linearization',
                         types.SimpleNamespace(AnalyzeStabilityExudyn=Fake))
     rc, out, err = Run(capsys, 'stability', '--method', 'exudyn', '--json')
     assert rc == 0 and len(calls) == 1
@@ -287,7 +279,6 @@ def test_exudyn_method_uses_linearization(capsys, monkeypatch):
 
 
 def test_exudyn_method_real(capsys):
-    pytest.importorskip('exudyn_worm.linearization')
     for preset in ('reel-P1', 'reel-P2'):
         exu = RunJson(capsys, '--method', 'exudyn', '--preset', preset)
         ana = RunJson(capsys, '--preset', preset)

@@ -5,10 +5,10 @@ import json
 import pytest
 from numpy.testing import assert_allclose
 
-import exudyn_worm.charts as charts
-from exudyn_worm.charts import ComputeStabilityChart
-from exudyn_worm.cli import Main
-from exudyn_worm.presets import GearFromParameters, GetPreset
+import exudyn_worm.analysis.charts as charts
+from exudyn_worm.analysis.charts import ComputeStabilityChart
+from exudyn_worm.cli.main import Main
+from exudyn_worm.setups.presets import GearFromParameters, GetPreset
 
 ENTRY_KEYS = {'DV', 'DTV', 'unstableXRange', 'unstableYRange', 'unstableFraction'}
 

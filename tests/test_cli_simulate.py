@@ -4,12 +4,12 @@ import os
 
 import pytest
 
-import exudyn_worm.reelchanger as reelchanger
+import exudyn_worm.analysis.reelchanger as reelchanger
 from exudyn_worm import GetPreset, SimulateReelChanger
-from exudyn_worm.cli import Main
-from exudyn_worm.commands.simulate import ParseWindows
-from exudyn_worm.reelchanger import DefaultWindows, RotationPeriod
-from exudyn_worm.solve import SolverDivergedError
+from exudyn_worm.cli.main import Main
+from exudyn_worm.cli.simulate import ParseWindows
+from exudyn_worm.analysis.reelchanger import DefaultWindows, RotationPeriod
+from exudyn_worm.items.solve import SolverDivergedError
 
 WINDOW_KEYS = {'t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
                'fractionSNegative', 'minWormSpeed', 'chatter'}

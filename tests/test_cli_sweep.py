@@ -8,9 +8,9 @@ import time
 
 import pytest
 
-from exudyn_worm.cli import Main
-from exudyn_worm.presets import GetPreset
-from exudyn_worm.study import ReadResults
+from exudyn_worm.cli.main import Main
+from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.analysis.study import ReadResults
 
 SHORT = ['--windows', '0:0.5,0.5:1', '--end-time', '1', '--quiet']
 

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
-from exudyn_worm import cli
-from exudyn_worm.cli import Main
-from exudyn_worm.config import ResolveParameters
-from exudyn_worm.linearization import LinearStabilityFromParameters
+from exudyn_worm.cli import main as cli
+from exudyn_worm.cli.main import Main
+from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
 
 ROOT = Path(__file__).resolve().parents[1]
 FIGURE19 = ROOT / 'examples' / 'drives' / 'figure19.toml'

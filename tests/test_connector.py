@@ -7,11 +7,11 @@ import pytest
 import exudyn as exu
 from exudyn.itemInterface import NodePoint
 from exudyn_worm import AnalyzeStability
-from exudyn_worm.connector import CreateWormGear
-from exudyn_worm.drivetrain import CreateRotor, CreateShaft
-from exudyn_worm.linearization import AnalyzeStabilityExudyn, ExudynEigenvalues
-from exudyn_worm.presets import PRESETS, ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.reelchanger import BuildReelChanger, SimulateReelChanger
+from exudyn_worm.items.connector import CreateWormGear
+from exudyn_worm.items.drivetrain import CreateRotor, CreateShaft
+from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn, ExudynEigenvalues
+from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.analysis.reelchanger import BuildReelChanger, SimulateReelChanger
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 

@@ -5,9 +5,9 @@ import json
 
 import pytest
 
-from exudyn_worm.cli import Main
-from exudyn_worm.config import ResolveParameters
-from exudyn_worm.study import ParseVariation, RunStudy, Study
+from exudyn_worm.cli.main import Main
+from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')   # nothing written to the cwd
 
@@ -122,9 +122,9 @@ OUTPUT_CASES = ['simulate --csv', 'simulate --plot', 'chart --output', 'check --
 
 @pytest.mark.parametrize('case', OUTPUT_CASES)
 def test_existing_output_is_refused_without_overwrite(capsys, tmp_path, monkeypatch, case):
-    import exudyn_worm.design as design
-    import exudyn_worm.reelchanger as reelchanger
-    import exudyn_worm.charts as charts
+    import exudyn_worm.analysis.design as design
+    import exudyn_worm.analysis.reelchanger as reelchanger
+    import exudyn_worm.analysis.charts as charts
     for module, name in ((design, 'DesignCheck'), (reelchanger, 'SimulateReelChanger'),
                          (charts, 'ComputeStabilityChart')):     # refused before anything is computed
         monkeypatch.setattr(module, name, lambda *a, **k: pytest.fail('computed before the output check'))

@@ -1,4 +1,4 @@
-"""Design check (exudyn_worm.design): recommendations for the paper's P1, the margin rule, the chart point.
+"""Design check (exudyn_worm.analysis.design): recommendations for the paper's P1, the margin rule, the chart point.
 
 Every recommendation is re-checked here with the scalar analytical model (AnalyzeStability of the changed
 parameter set), independently of the vectorized scan that found it.
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from exudyn_worm import AnalyzeStability, ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.design import (DEFAULT_MARGIN, ConfirmBySimulation, DesignCheck, DesignParameters,
+from exudyn_worm.analysis.design import (DEFAULT_MARGIN, ConfirmBySimulation, DesignCheck, DesignParameters,
                                 NearestStableValue, StabilizingChanges)
 
 

@@ -3,8 +3,9 @@ import json
 
 import pytest
 
-from exudyn_worm import AnalyzeStability, ApplyOverrides, DriveFromParameters, GetPreset, design
-from exudyn_worm.cli import Main
+from exudyn_worm import AnalyzeStability, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.analysis import design
+from exudyn_worm.cli.main import Main
 from paper_model import BoundaryDecades, HurwitzStable
 
 
@@ -178,8 +179,8 @@ def test_check_plot_reads_well():
     the legend off the chart."""
     import re
     import numpy as np
-    from exudyn_worm.design import DesignCheck, LocalCharts
-    from exudyn_worm.plot_design import PlotDesignCheck, _Dense
+    from exudyn_worm.analysis.design import DesignCheck, LocalCharts
+    from exudyn_worm.plotting.plot_design import PlotDesignCheck, _Dense
     result = DesignCheck(GetPreset('reel-P1'))
     fig = PlotDesignCheck(result, LocalCharts(result.parameters), title='reel-P1')
     ax = fig.axes[0]

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.contact import MATH_OPS, NUMPY_OPS
-from exudyn_worm.drivetrain import _ConstantSpeedFromStart
-from exudyn_worm.profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque,
+from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS
+from exudyn_worm.items.drivetrain import _ConstantSpeedFromStart
+from exudyn_worm.model.profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque,
                                   LinearMotorCharacteristic, StartStopProfile)
 
 

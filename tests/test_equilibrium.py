@@ -1,4 +1,4 @@
-"""The static equilibrium under load (issue 16, item 4): exudyn_worm.equilibrium.SteadyInitialState."""
+"""The static equilibrium under load (issue 16, item 4): exudyn_worm.items.equilibrium.SteadyInitialState."""
 import math
 import re
 from pathlib import Path
@@ -6,11 +6,11 @@ from pathlib import Path
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.connector import AxialBearing
-from exudyn_worm.contact import MATH_OPS, ContactOptions, MeshContact
-from exudyn_worm.equilibrium import SteadyInitialState
-from exudyn_worm.presets import DriveFromParameters, DriveSideChain, GetPreset
-from exudyn_worm.profiles import GravityLeverTorque
+from exudyn_worm.items.connector import AxialBearing
+from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
+from exudyn_worm.items.equilibrium import SteadyInitialState
+from exudyn_worm.setups.presets import DriveFromParameters, DriveSideChain, GetPreset
+from exudyn_worm.model.profiles import GravityLeverTorque
 
 DOCS = Path(__file__).resolve().parents[1] / 'docs'
 P1 = GetPreset('reel-P1')
@@ -68,7 +68,7 @@ def test_reel_changer_keeps_its_equilibrium():
     """BuildReelChanger starts from the same state (the function moved from reelchanger.py, results unchanged;
     the old and the new code were compared bit for bit on all reel presets with and without chain, bearing and
     backlash when it moved)."""
-    from exudyn_worm.reelchanger import SteadyInitialState as Old
+    from exudyn_worm.analysis.reelchanger import SteadyInitialState as Old
     assert Old is SteadyInitialState
     load = GravityLeverTorque(P1['loadMass'], P1['leverArm'])
     p = {**P1, 'J4': 0.05, 'k4': 2000., 'kA': 1e8, 'mA': 3.}

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.linearization import AnalyzeLinearStability
+from exudyn_worm.analysis.linearization import AnalyzeLinearStability
 
 from conftest import LoadScript
 

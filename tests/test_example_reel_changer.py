@@ -129,7 +129,7 @@ def test_figure_8_title_says_what_was_simulated(example, tmp_path):
     matplotlib.use('Agg')
     results = example.RunPaperCases(figures=[8], endTime=4., progress=False)
     titles = []
-    with mock.patch('exudyn_worm.plot.SaveFigure', side_effect=lambda fig, path: titles.append(
+    with mock.patch('exudyn_worm.plotting.plot.SaveFigure', side_effect=lambda fig, path: titles.append(
             fig.axes[0].get_title() or fig._suptitle.get_text()) or path):
         example.WriteFigures(results, tmp_path, [8])
     assert '(0.5 rotations, 4 s)' in titles[0] and 'one full rotation' not in titles[0]

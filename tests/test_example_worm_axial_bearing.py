@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.stability import _SortEigenvalues
+from exudyn_worm.model.stability import _SortEigenvalues
 
 from conftest import LoadScript
 

@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 
 import exudyn as exu
-from exudyn_worm.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact, SymbolicOps
-from exudyn_worm.friction import (FT_PER_MIN, AgmaFriction, ConstantFriction, FrictionLaw, FrictionTableRangeWarning,
+from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact, SymbolicOps
+from exudyn_worm.model.friction import (FT_PER_MIN, AgmaFriction, ConstantFriction, FrictionLaw, FrictionTableRangeWarning,
                                   StribeckFriction, TableFriction)
-from exudyn_worm.gear import WormGear
-from exudyn_worm.presets import DriveFromParameters, GetPreset
+from exudyn_worm.model.gear import WormGear
+from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
 
 STRIBECK = StribeckFriction(mu=0.05, muStatic=0.15, stribeckVelocity=0.1)
 TABLE = TableFriction([(0., 0.15), (0.05, 0.10), (0.5, 0.06), (2., 0.04)])
@@ -209,7 +209,7 @@ def test_friction_law_factory():
 
 
 def test_read_friction_table(tmp_path):
-    from exudyn_worm.friction import ReadFrictionTable
+    from exudyn_worm.model.friction import ReadFrictionTable
     path = tmp_path / 'rig.csv'
     path.write_text('# test rig, oil X\nv_m_s, mu\n0, 0.15\n0.05; 0.10\n\n0.5 0.06\n2.0,0.04\n')
     assert ReadFrictionTable(path) == TABLE

@@ -7,12 +7,12 @@ import sys
 
 import pytest
 
-from exudyn_worm.config import LoadConfig, ResolveParameters
-from exudyn_worm.friction import AgmaFriction, StribeckFriction, TableFriction
-from exudyn_worm.parameters import PARAMETERS
-from exudyn_worm.presets import (ApplyOverrides, DriveFromParameters, GearFromParameters, GetPreset,
+from exudyn_worm.setups.config import LoadConfig, ResolveParameters
+from exudyn_worm.model.friction import AgmaFriction, StribeckFriction, TableFriction
+from exudyn_worm.params.parameters import PARAMETERS
+from exudyn_worm.setups.presets import (ApplyOverrides, DriveFromParameters, GearFromParameters, GetPreset,
                                  MissingParameterError)
-from exudyn_worm.stability import OperatingPointFromParameters
+from exudyn_worm.model.stability import OperatingPointFromParameters
 
 STRIBECK = {'frictionLaw': 'stribeck', 'muStatic': 0.15, 'stribeckVelocity': 0.1}
 

@@ -5,12 +5,12 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_worm.contact import MATH_OPS, ContactOptions, MeshContact
-from exudyn_worm.friction import StribeckFriction, TableFriction
-from exudyn_worm.linearization import AnalyzeStabilityExudyn
-from exudyn_worm.presets import DriveFromParameters, GetPreset
-from exudyn_worm.selflocking import GREY_ZONE, Rating, SelfLocking
-from exudyn_worm.stability import (AnalyzeStability, CharacteristicCoefficients, EigenvaluesFromPolynomial,
+from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
+from exudyn_worm.model.friction import StribeckFriction, TableFriction
+from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn
+from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
+from exudyn_worm.model.selflocking import GREY_ZONE, Rating, SelfLocking
+from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoefficients, EigenvaluesFromPolynomial,
                                    EigenvaluesFromStateMatrix, LinearMatrices, OperatingPoint, OperatingPointAt,
                                    OperatingPointFromParameters, PolynomialCoefficients)
 
@@ -172,7 +172,7 @@ def test_operating_point_rejects_bad_input():
 
 def _LoweringOscillation(monkeypatch, law):
     """J2 max|phi2''| (N*m) per half second of the reel-P3 simulation, the connector using ``law``."""
-    import exudyn_worm.reelchanger as rc
+    import exudyn_worm.analysis.reelchanger as rc
     original = rc.DriveFromParameters
 
     def WithLaw(parameters):            # the parameter keys of the law are plumbed elsewhere: attach it here
@@ -199,8 +199,8 @@ def test_simulation_grows_where_the_linear_analysis_says_unstable(monkeypatch):
 def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
     """LinearStabilityFromParameters (the whole-drive path of `stability`) linearizes a speed-dependent law at the
     operating point: for the two-mass drive it equals the extended eq. (16)."""
-    import exudyn_worm.presets as presets
-    from exudyn_worm.linearization import LinearStabilityFromParameters
+    import exudyn_worm.setups.presets as presets
+    from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
     original = presets.DriveFromParameters
     monkeypatch.setattr(presets, 'DriveFromParameters', lambda p: Stribeck(original(p)))
     linear = LinearStabilityFromParameters(P3)
@@ -215,7 +215,7 @@ def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
 
 def test_first_criterion_limit_includes_the_slope():
     """(20) with the slope: at J1/J2 = FirstCriterionLimit the b1 of S = -1 vanishes."""
-    from exudyn_worm.stability import FirstCriterionLimit
+    from exudyn_worm.model.stability import FirstCriterionLimit
     drive = Stribeck()
     op = OperatingPointFromParameters(P3, drive.gear)
     limit = FirstCriterionLimit(drive, op)

@@ -6,12 +6,12 @@ import pytest
 from hypothesis import given, settings, strategies as st
 from numpy.testing import assert_allclose
 
-from exudyn_worm.drive import (ElasticDrive, MeshDampingFromMeasure, MeshDampingMeasure,
+from exudyn_worm.model.drive import (ElasticDrive, MeshDampingFromMeasure, MeshDampingMeasure,
                                TorsionalDampingFromMeasure, TorsionalDampingMeasure)
-from exudyn_worm.gear import WormGear
+from exudyn_worm.model.gear import WormGear
 
 # random gears of the property tests include worms larger than their wheels: warned, not wrong here
-pytestmark = pytest.mark.filterwarnings('ignore::exudyn_worm.plausibility.ImplausibleValueWarning')
+pytestmark = pytest.mark.filterwarnings('ignore::exudyn_worm.params.plausibility.ImplausibleValueWarning')
 
 deg = math.radians
 
@@ -181,7 +181,7 @@ angles = st.floats(min_value=0.5, max_value=45., allow_nan=False)
        r2=st.floats(5e-3, 1.), S=st.sampled_from([+1, -1]))
 def test_c3_c4_positive(alphaN, gamma, rho, r1, r2, S):
     """c3, c4 > 0 for every valid gear with gamma + rho < 90 deg (section 2.2); a ratio u < 1 is refused as no
-    worm gear (exudyn_worm/plausibility.py), so it is left out here."""
+    worm gear (exudyn_worm/params/plausibility.py), so it is left out here."""
     if gamma + rho >= 89.9 or r2 < r1 * math.tan(deg(gamma)):
         return
     g = WormGear(alphaN=deg(alphaN), gamma=deg(gamma), r1=r1, r2=r2, kV=1e8, dV=0., rho=deg(rho))

@@ -1,4 +1,4 @@
-"""Gear geometry from its designation (issue 16, item 3): exudyn_worm/geometry.py and the [gear] forms."""
+"""Gear geometry from its designation (issue 16, item 3): exudyn_worm/model/geometry.py and the [gear] forms."""
 import json
 import math
 import subprocess
@@ -7,11 +7,11 @@ import sys
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from exudyn_worm.config import ResolveParameters
-from exudyn_worm.contact import ContactOptions, MeshContact
-from exudyn_worm.geometry import (DescribeGeometry, DesignationFromRadii, GeometryFromParameters,
+from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.model.contact import ContactOptions, MeshContact
+from exudyn_worm.model.geometry import (DescribeGeometry, DesignationFromRadii, GeometryFromParameters,
                                   MeshStiffnessFromWheelTorsion, RadiiFromCentreDistance, RadiiFromDesignation)
-from exudyn_worm.presets import (ApplyOverrides, CheckParameterKeys, DriveFromParameters, GetPreset,
+from exudyn_worm.setups.presets import (ApplyOverrides, CheckParameterKeys, DriveFromParameters, GetPreset,
                                  MissingParameterError)
 
 deg = math.radians

@@ -33,26 +33,34 @@ ALLOWED: Dict[Tuple[str, str], str] = {
 }
 
 
-#: the layers of docs/development.md, lowest first: a module imports (at module level) only modules of its own
-#: or a lower layer; a new module is added to the layer it belongs to
+#: the layers of docs/development.md, lowest first: the subpackages of issue 17 (item 2) and the helpers below them.
+#: A module imports (at module level) only modules of its own or a lower layer; inside a subpackage any module may
+#: import any other, as long as there is no cycle. A new module goes into the subpackage it belongs to.
 LAYERS = (
-    ('helpers', '_checks _roots _spacing progress drives charttable'),
-    ('parameters and laws', 'parameters friction profiles selflocking solve orbits geometry drivefile plausibility '
-                            'continuation'),
-    ('gear model', 'gear contact drive stability results _userfunctions'),
-    ('Exudyn items', 'connector drivetrain equilibrium'),
-    ('parameter sets', 'presets config duty'),
-    ('analyses', 'charts linearization speedchart loadside stepsize studymap reelchanger chatter chatterbranch '
-                 'design study'),
-    ('plotting', 'plot plot_charts plot_design plot_orbits plot_study'),
-    ('command line', 'cli commands commands.chart commands.chatter commands.check commands.simulate '
-                     'commands.stability commands.sweep __main__'),
+    ('helpers', '_checks _moved _roots _spacing progress'),
+    ('parameters and files', 'params'),
+    ('gear model', 'model'),
+    ('Exudyn items', 'items'),
+    ('parameter sets', 'setups'),
+    ('analyses', 'analysis'),
+    ('plotting', 'plotting'),
+    ('command line', 'cli __main__'),
 )
 
 
+def LayerOf(module: str) -> int:
+    """Index in :data:`LAYERS` of a module (``exudyn_worm.x.y``): the layer of its subpackage or its own name."""
+    parts = module.split('.')[1:]
+    for index, (_, names) in enumerate(LAYERS):
+        for name in names.split():
+            if parts[:len(name.split('.'))] == name.split('.'):
+                return index
+    raise KeyError(module)
+
+
 class Import(NamedTuple):
-    module: str          # importing module, e.g. 'exudyn_worm.study'
-    target: str          # imported module, e.g. 'exudyn_worm.presets' or 'numpy'
+    module: str          # importing module, e.g. 'exudyn_worm.analysis.study'
+    target: str          # imported module, e.g. 'exudyn_worm.setups.presets' or 'numpy'
     function: str        # enclosing function ('' at module level)
     line: int
     comment: str         # the reason of a '# lazy: ...' comment on the line or the line above, else ''
@@ -77,7 +85,7 @@ def _Targets(module: str, node) -> List[str]:
             base = base.rsplit('.', 1)[0]
         if node.module:
             base = f'{base}.{node.module}'
-    # 'from . import plot' imports the module exudyn_worm.plot; 'from .presets import X' the module presets
+    # 'from . import plot' imports the module exudyn_worm.plotting.plot; 'from .presets import X' the module presets
     return [f'{base}.{alias.name}' if f'{base}.{alias.name}' in MODULES else base for alias in node.names]
 
 
@@ -185,7 +193,7 @@ def _Problem(item: Import, graph: Dict[str, Set[str]]) -> str:
         return 'an import cycle is no reason: break the cycle'
     if re.search(r'start-?up', item.comment, re.IGNORECASE) and not _HeavyAtModuleLevel(item.target, graph):
         # `exudyn-worm --help` imports every command module: its run function may defer the analyses it calls
-        if not item.module.startswith(f'{PACKAGE}.commands.'):
+        if not item.module.startswith(f'{PACKAGE}.cli.') or item.module == f'{PACKAGE}.cli.main':
             return (f'the reason names the start-up, but {item.target} imports no heavy package {HEAVY} at '
                     f'module level')
         if item.target in graph[item.module]:
@@ -194,7 +202,7 @@ def _Problem(item: Import, graph: Dict[str, Set[str]]) -> str:
 
 
 def test_every_module_is_parsed():
-    assert f'{PACKAGE}.cli' in MODULES and f'{PACKAGE}.commands.simulate' in MODULES
+    assert f'{PACKAGE}.cli.main' in MODULES and f'{PACKAGE}.cli.simulate' in MODULES
     assert any(item.function for item in IMPORTS) or not ALLOWED
 
 
@@ -203,13 +211,24 @@ def test_no_cycle_among_module_level_imports():
 
 
 def test_every_module_has_a_layer():
-    layered = [f'{PACKAGE}.{name}' for _, names in LAYERS for name in names.split()]
-    assert sorted(set(MODULES) - {PACKAGE}) == sorted(layered)
+    missing = []
+    for module in sorted(set(MODULES) - {PACKAGE}):
+        try:
+            LayerOf(module)
+        except KeyError:
+            missing.append(module)
+    assert missing == []
+
+
+def test_the_package_has_no_flat_modules_beyond_the_helpers():
+    # issue 17, item 2: the layers show as subpackages
+    flat = sorted(m for m in MODULES if m.count('.') == 1 and not (ROOT / m.split('.')[1]).is_dir())
+    assert flat == [f'{PACKAGE}.{name}' for name in sorted('__main__ _checks _moved _roots _spacing progress'.split())]
 
 
 def test_module_level_imports_go_down_the_layers():
-    layer = {f'{PACKAGE}.{name}': i for i, (_, names) in enumerate(LAYERS) for name in names.split()}
-    layer[PACKAGE] = -1       # the package's __init__: lazy attributes only, it imports no submodule
+    layer = {module: LayerOf(module) for module in MODULES if module != PACKAGE}
+    layer[PACKAGE] = 0        # the package's __init__: lazy attributes; it imports only a helper (_moved) at module level
     upward = sorted(f'{module} ({LAYERS[layer[module]][0]}) imports {target} ({LAYERS[layer[target]][0]})'
                     for module, targets in ModuleGraph().items() for target in targets
                     if layer[target] > layer[module])
@@ -236,12 +255,12 @@ def test_allowed_list_only_shrinks():
 
 
 @pytest.mark.parametrize('comment, target, ok', [
-    ('', 'exudyn_worm.presets', False),
-    ('cycle with presets', 'exudyn_worm.presets', False),
+    ('', 'exudyn_worm.setups.presets', False),
+    ('cycle with presets', 'exudyn_worm.setups.presets', False),
     ('start-up (tests/test_startup.py)', 'tqdm', True),
     ('start-up (tests/test_startup.py)', 'exudyn_worm._checks', False),
     ('optional dependency (the mpi extra)', 'mpi4py.futures', True),
 ])
 def test_rule_on_examples(comment, target, ok):
-    item = Import('exudyn_worm.study', target, 'RunStudy', 1, comment)
+    item = Import('exudyn_worm.analysis.study', target, 'RunStudy', 1, comment)
     assert (_Problem(item, ModuleGraph()) == '') is ok

@@ -12,8 +12,8 @@ from pathlib import Path
 
 import pytest
 
-from exudyn_worm.cli import INTERRUPTED_STATUS, Main, WriteAtomically
-from exudyn_worm.solve import Interruptible, IsInterrupt
+from exudyn_worm.cli.main import INTERRUPTED_STATUS, Main, WriteAtomically
+from exudyn_worm.items.solve import Interruptible, IsInterrupt
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -61,11 +61,11 @@ def _AssertInterrupted(status, out, err):
 def _InterruptCases(tmp_path, monkeypatch):
     """name -> (argv, patch): patch() installs the interrupt; the files the run must not leave behind are
     checked by the test (the folder tmp_path must stay empty)."""
-    import exudyn_worm.plot as plot
-    import exudyn_worm.reelchanger as reelchanger
-    import exudyn_worm.results as results
-    import exudyn_worm.charts as charts
-    import exudyn_worm.design as design
+    import exudyn_worm.plotting.plot as plot
+    import exudyn_worm.analysis.reelchanger as reelchanger
+    import exudyn_worm.items.results as results
+    import exudyn_worm.analysis.charts as charts
+    import exudyn_worm.analysis.design as design
     short = ['--end-time', '0.3', '--quiet']
     return {
         'simulate: in the solver (Exudyn SystemError)': (
@@ -92,7 +92,7 @@ def _InterruptCases(tmp_path, monkeypatch):
                 KeyboardInterrupt()))),
         'stability: while computing': (
             ['stability', '--preset', 'reel-P1', '--json'],
-            lambda: monkeypatch.setattr('exudyn_worm.commands.stability.AnalyzeStability', lambda *a, **k: (_ for _ in ()).throw(
+            lambda: monkeypatch.setattr('exudyn_worm.cli.stability.AnalyzeStability', lambda *a, **k: (_ for _ in ()).throw(
                 KeyboardInterrupt()))),
         'sweep: while writing --plot': (
             ['sweep', '--vary', 'J1=0.1,0.2', '--windows', '0:0.1,0.1:0.2', '--end-time', '0.2', '--quiet', '--workers', '1',
@@ -192,7 +192,7 @@ def _Sleep(seconds):
 def test_cancel_terminates_running_workers_and_drops_queued_runs():
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
-    from exudyn_worm.study import _Cancel
+    from exudyn_worm.analysis.study import _Cancel
     executor = ProcessPoolExecutor(max_workers=2, mp_context=multiprocessing.get_context('fork'))
     futures = [executor.submit(_Sleep, 60.) for _ in range(5)]
     while not all(f.running() for f in futures[:2]):
@@ -208,9 +208,9 @@ def test_cancel_terminates_running_workers_and_drops_queued_runs():
 
 
 def test_a_study_run_draws_no_bar_of_its_own(monkeypatch):
-    import exudyn_worm.reelchanger as reelchanger
-    from exudyn_worm.config import ResolveParameters
-    from exudyn_worm.study import RunPoint, Study, Variation
+    import exudyn_worm.analysis.reelchanger as reelchanger
+    from exudyn_worm.setups.config import ResolveParameters
+    from exudyn_worm.analysis.study import RunPoint, Study, Variation
     seen = {}
 
     def Capture(p, **kwargs):
@@ -244,10 +244,10 @@ def _Interrupt(process, after: float):
 def test_sigint_during_simulate(folder):
     csv = folder / 'long.csv'
     process = _Started(
-        "import sys, signal, exudyn_worm.cli, exudyn_worm.reelchanger\n"
+        "import sys, signal, exudyn_worm.cli.main, exudyn_worm.analysis.reelchanger\n"
         "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         "print('ready', file=sys.stderr, flush=True)\n"
-        f"raise SystemExit(exudyn_worm.cli.Main(['simulate', '--end-time', '600', '--csv', {str(csv)!r}]))",
+        f"raise SystemExit(exudyn_worm.cli.main.Main(['simulate', '--end-time', '600', '--csv', {str(csv)!r}]))",
         folder)
     status, out, err = _Interrupt(process, 1.5)
     _AssertInterrupted(status, out, err)
@@ -256,13 +256,13 @@ def test_sigint_during_simulate(folder):
 
 @pytest.mark.skipif(os.name != 'posix', reason='POSIX signals')
 def test_sigint_during_sweep_keeps_the_finished_runs(folder):
-    from exudyn_worm.study import ReadResults, StudySidecarPath
+    from exudyn_worm.analysis.study import ReadResults, StudySidecarPath
     output = folder / 'runs.csv'
     process = _Started(
-        "import sys, signal, exudyn_worm.cli, exudyn_worm.reelchanger\n"
+        "import sys, signal, exudyn_worm.cli.main, exudyn_worm.analysis.reelchanger\n"
         "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         "print('ready', file=sys.stderr, flush=True)\n"
-        "raise SystemExit(exudyn_worm.cli.Main(['sweep', '--vary', 'J1=0.01:0.4:400', '--workers', '2', "
+        "raise SystemExit(exudyn_worm.cli.main.Main(['sweep', '--vary', 'J1=0.01:0.4:400', '--workers', '2', "
         f"'--output', {str(output)!r}]))",
         folder)
     status, out, err = _Interrupt(process, 4.)

@@ -6,8 +6,8 @@ import pytest
 
 import exudyn as exu
 import exudyn_worm as ew
-from exudyn_worm.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStabilityFromParameters
-from exudyn_worm.presets import PRESETS, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.analysis.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStabilityFromParameters
+from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, DriveFromParameters, GetPreset
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 

@@ -6,8 +6,8 @@ import exudyn as exu
 import numpy as np
 
 import exudyn_worm as ew
-from exudyn_worm.contact import MeshState, NormalForceFlanks
-from exudyn_worm.solve import SolveDynamicInChunks
+from exudyn_worm.model.contact import MeshState, NormalForceFlanks
+from exudyn_worm.items.solve import SolveDynamicInChunks
 
 
 def test_every_field_documented_with_a_unit_or_sign():

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from exudyn_worm.cli import Main
-from exudyn_worm.drives import ConfigPath, DocPath, ShippedDrive, ShippedDrives
+from exudyn_worm.cli.main import Main
+from exudyn_worm.params.drives import ConfigPath, DocPath, ShippedDrive, ShippedDrives
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -5,11 +5,11 @@ from pathlib import Path
 import pytest
 
 from exudyn_worm import ApplyOverrides, DriveFromParameters, GetPreset, SimulateReelChanger, WormGear
-from exudyn_worm.cli import Main
-from exudyn_worm.config import ResolveParameters
-from exudyn_worm.design import DesignCheck
-from exudyn_worm.presets import CheckParameterKeys, GearFromParameters, PRESETS
-from exudyn_worm.study import Study
+from exudyn_worm.cli.main import Main
+from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.analysis.design import DesignCheck
+from exudyn_worm.setups.presets import CheckParameterKeys, GearFromParameters, PRESETS
+from exudyn_worm.analysis.study import Study
 
 
 @pytest.mark.messages

@@ -1,4 +1,4 @@
-"""The parameter registry (exudyn_worm.parameters): each key declared once, and everything derived from it.
+"""The parameter registry (exudyn_worm.params.parameters): each key declared once, and everything derived from it.
 
 The test-only keys below (``testLaw``, ``testSpeed``, ``testTable``, ...) stand for the friction keys of issue 15:
 a choice, a number in m/s and a table of (speed, mu) rows. They prove that a key declared in the registry alone
@@ -9,12 +9,12 @@ from pathlib import Path
 
 import pytest
 
-from exudyn_worm.config import LoadConfig, ParseQuantity, ParseSetOption, ResolveParameters
-from exudyn_worm.drivefile import DRIVE_FILE_TABLES, FileKeyOf, FlattenDriveFile
-from exudyn_worm.parameters import PARAMETERS, Parameter, ParameterRegistry, ParametersMarkdown, WithGeneratedTables
-from exudyn_worm.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, CheckParameters, GetPreset,
+from exudyn_worm.setups.config import LoadConfig, ParseQuantity, ParseSetOption, ResolveParameters
+from exudyn_worm.params.drivefile import DRIVE_FILE_TABLES, FileKeyOf, FlattenDriveFile
+from exudyn_worm.params.parameters import PARAMETERS, Parameter, ParameterRegistry, ParametersMarkdown, WithGeneratedTables
+from exudyn_worm.setups.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, CheckParameters, GetPreset,
                                  UnknownParameterMessage)
-from exudyn_worm.study import ParseVariation
+from exudyn_worm.analysis.study import ParseVariation
 
 DOCS = Path(__file__).resolve().parents[1] / 'docs'
 
@@ -58,13 +58,13 @@ def declared():
 
 def test_docs_page_is_generated_from_the_registry():
     assert (DOCS / 'parameters.md').read_text() == ParametersMarkdown(), \
-        'docs/parameters.md is stale: run python -m exudyn_worm.parameters docs'
+        'docs/parameters.md is stale: run python -m exudyn_worm.params.parameters docs'
 
 
 def test_drive_file_page_table_is_generated_from_the_registry():
     text = (DOCS / 'drive-files.md').read_text()
     assert '<!-- begin generated: drive-file-table -->' in text
-    assert WithGeneratedTables(text) == text, 'docs/drive-files.md is stale: run python -m exudyn_worm.parameters docs'
+    assert WithGeneratedTables(text) == text, 'docs/drive-files.md is stale: run python -m exudyn_worm.params.parameters docs'
 
 
 def test_public_tables_derive_from_the_registry():

@@ -7,9 +7,9 @@ import warnings
 
 import pytest
 
-from exudyn_worm.gear import WormGear
-from exudyn_worm.plausibility import ImplausibleValueWarning
-from exudyn_worm.presets import PRESETS, DriveFromParameters, GearFromParameters, GetPreset
+from exudyn_worm.model.gear import WormGear
+from exudyn_worm.params.plausibility import ImplausibleValueWarning
+from exudyn_worm.setups.presets import PRESETS, DriveFromParameters, GearFromParameters, GetPreset
 
 deg = math.radians
 GEAR = dict(alphaN=deg(20), gamma=deg(5.3228), r1=0.01805, r2=0.10595, kV=2e8, dV=21470., mu=0.132)

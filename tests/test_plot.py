@@ -1,4 +1,4 @@
-"""exudyn_worm.plot: every kind draws a Figure without a display; bad arguments raise named errors."""
+"""exudyn_worm.plotting.plot: every kind draws a Figure without a display; bad arguments raise named errors."""
 import subprocess
 import sys
 
@@ -9,8 +9,8 @@ pytest.importorskip('matplotlib')
 
 from matplotlib.figure import Figure                                  # noqa: E402
 
-from exudyn_worm import plot                                          # noqa: E402
-from exudyn_worm.results import SimulationResult                      # noqa: E402
+from exudyn_worm.plotting import plot                                          # noqa: E402
+from exudyn_worm.items.results import SimulationResult                      # noqa: E402
 
 
 @pytest.fixture(scope='module')
@@ -65,6 +65,6 @@ def test_bad_arguments_raise_named_errors(result, call, error, fragment):
 
 
 def test_package_import_does_not_import_matplotlib():
-    code = "import sys, exudyn_worm, exudyn_worm.results, exudyn_worm.plot; print('matplotlib' in sys.modules)"
+    code = "import sys, exudyn_worm, exudyn_worm.items.results, exudyn_worm.plotting.plot; print('matplotlib' in sys.modules)"
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == 'False'

@@ -15,20 +15,23 @@ import pytest
 import exudyn_worm
 
 PACKAGE = Path(exudyn_worm.__file__).parent
-PLOT_MODULES = sorted(p.stem for p in PACKAGE.glob('plot*.py'))
+PLOT_DIR = PACKAGE / 'plotting'
+PLOT_MODULES = sorted(p.stem for p in PLOT_DIR.glob('plot*.py'))
 NON_PLOT_MODULES = sorted(m.name for m in pkgutil.walk_packages(exudyn_worm.__path__, 'exudyn_worm.')
                           if not m.name.rsplit('.', 1)[-1].startswith('plot'))
 #: modules a plotting module may take anything from: the other plotting modules and pure helpers (labels, spacing)
-DRAWING_HELPERS = {'parameters', '_spacing'}
+DRAWING_HELPERS = {'params.parameters', '_spacing'}
 
 
 def _InternalImports(stem: str):
     """``(module, name)`` of every relative import in a plotting module, at its top or inside a function."""
-    tree = ast.parse((PACKAGE / f'{stem}.py').read_text())
+    tree = ast.parse((PLOT_DIR / f'{stem}.py').read_text())
     for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom) and node.level == 1:
+        if isinstance(node, ast.ImportFrom) and node.level in (1, 2):      # .plot (plotting), ..analysis.charts
+            base = 'plotting' if node.level == 1 else ''
             for alias in node.names:
-                yield node.module, alias.name
+                module = '.'.join(part for part in (base, node.module) if part)
+                yield module or alias.name, alias.name
         elif isinstance(node, ast.ImportFrom) and node.level == 0 and (node.module or '').startswith('exudyn_worm'):
             for alias in node.names:
                 yield node.module.removeprefix('exudyn_worm').lstrip('.') or alias.name, alias.name
@@ -49,7 +52,7 @@ def test_plot_module_imports_no_computation(stem):
     imports = list(_InternalImports(stem))
     assert imports, stem
     for module, name in imports:
-        if module is None or module.startswith('plot') or module in DRAWING_HELPERS:
+        if module.startswith('plotting') or module in DRAWING_HELPERS:
             continue
         obj = getattr(importlib.import_module(f'exudyn_worm.{module}'), name)
         assert not (inspect.isfunction(obj) or inspect.ismodule(obj)), \
@@ -58,13 +61,13 @@ def test_plot_module_imports_no_computation(stem):
 
 def test_the_rule_catches_a_computation(tmp_path, monkeypatch):
     """The check above is not vacuous: the import plot_study had before fails it."""
-    monkeypatch.setattr(sys.modules[__name__], 'PACKAGE', tmp_path)
+    monkeypatch.setattr(sys.modules[__name__], 'PLOT_DIR', tmp_path)
     (tmp_path / 'plot_old.py').write_text(textwrap.dedent('''
         def AnalyticalMap():
-            from .linearization import DriveStability
-            from .presets import ApplyOverrides
+            from ..analysis.linearization import DriveStability
+            from ..setups.presets import ApplyOverrides
     '''))
-    with pytest.raises(AssertionError, match='function linearization.DriveStability'):
+    with pytest.raises(AssertionError, match='function analysis.linearization.DriveStability'):
         test_plot_module_imports_no_computation('plot_old')
 
 
@@ -83,17 +86,17 @@ def test_no_numerical_module_imports_matplotlib():
     ''')
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout.split()
     assert out == ['none', str(len(NON_PLOT_MODULES))], f'{out[0]} imports matplotlib'
-    assert {'exudyn_worm.charts', 'exudyn_worm.studymap', 'exudyn_worm.design', 'exudyn_worm.study',
-            'exudyn_worm.results', 'exudyn_worm.charttable'} <= set(NON_PLOT_MODULES)
+    assert {'exudyn_worm.analysis.charts', 'exudyn_worm.analysis.studymap', 'exudyn_worm.analysis.design', 'exudyn_worm.analysis.study',
+            'exudyn_worm.items.results', 'exudyn_worm.analysis.charttable'} <= set(NON_PLOT_MODULES)
 
 
 def _SimulationResult():
-    from exudyn_worm.results import SimulationResult
+    from exudyn_worm.items.results import SimulationResult
     return object.__new__(SimulationResult)     # the spelling is tested, not the drawing: no data needed
 
 
 def _StudyResult():
-    from exudyn_worm.study import StudyResult
+    from exudyn_worm.analysis.study import StudyResult
     return object.__new__(StudyResult)
 
 
@@ -110,18 +113,19 @@ def test_capital_Plot_is_a_deprecated_alias_of_plot(make, monkeypatch):
 
 def test_every_result_object_spells_plot_in_lower_case():
     """The result objects of the analyses draw with ``.plot()``; ``.Plot`` exists only as the deprecated alias."""
-    from exudyn_worm.charts import FirstCriterionCurves, StabilityChart
-    from exudyn_worm.design import DesignCheckResult
-    from exudyn_worm.results import SimulationResult
-    from exudyn_worm.speedchart import SpeedChart
-    from exudyn_worm.study import StudyResult
+    from exudyn_worm.analysis.charts import FirstCriterionCurves, StabilityChart
+    from exudyn_worm.analysis.design import DesignCheckResult
+    from exudyn_worm.items.results import SimulationResult
+    from exudyn_worm.analysis.speedchart import SpeedChart
+    from exudyn_worm.analysis.study import StudyResult
     for cls in (SimulationResult, StudyResult, StabilityChart, FirstCriterionCurves, SpeedChart, DesignCheckResult):
         assert callable(getattr(cls, 'plot', None)), cls.__name__
     assert all(cls.Plot.__doc__.startswith('Deprecated') for cls in (SimulationResult, StudyResult))
 
 
 def test_format_chart_table_moved_to_charttable():
-    from exudyn_worm import charts, charttable
+    from exudyn_worm.analysis import charts
+    from exudyn_worm.analysis import charttable
     assert 'FormatChartTable' not in charts.__all__
     with pytest.warns(DeprecationWarning, match='charttable.FormatChartTable'):
         assert charts.FormatChartTable is charttable.FormatChartTable
@@ -133,9 +137,9 @@ def test_chart_points_are_resolved_before_drawing():
     """charts.ChartPoints turns preset names and drives into chart coordinates; the plotting function only
     takes coordinates and names the resolver for anything else."""
     pytest.importorskip('matplotlib')
-    from exudyn_worm.charts import ChartCoordinates, ChartPoints, ComputeStabilityChart, PresetChartPoints
-    from exudyn_worm.plot_charts import PlotStabilityChart
-    from exudyn_worm.presets import DriveFromParameters, GetPreset
+    from exudyn_worm.analysis.charts import ChartCoordinates, ChartPoints, ComputeStabilityChart, PresetChartPoints
+    from exudyn_worm.plotting.plot_charts import PlotStabilityChart
+    from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
     drive = DriveFromParameters(GetPreset('reel-P7'))
     c = ChartCoordinates(drive)
     p1 = PresetChartPoints(['reel-P1'])['P1']
@@ -145,7 +149,7 @@ def test_chart_points_are_resolved_before_drawing():
     assert ChartPoints(None) == {}
     chart = ComputeStabilityChart(drive.gear, drive.J2, c['DV'], c['DTV'], resolution=20)
     for points in (['P1'], {'d': drive}):
-        with pytest.raises(TypeError, match='resolved by exudyn_worm.charts.ChartPoints'):
+        with pytest.raises(TypeError, match='resolved by exudyn_worm.analysis.charts.ChartPoints'):
             PlotStabilityChart(chart, points=points)
     ax = chart.plot(points={'d': drive})
     assert [line.get_xydata()[0].tolist() for line in ax.lines if line.get_gid() == 'point d'] == \
@@ -157,9 +161,9 @@ def test_chart_points_are_resolved_before_drawing():
 
 @pytest.mark.messages
 def test_chatter_map_names_itself_for_a_key_not_varied():
-    from exudyn_worm.config import ResolveParameters
-    from exudyn_worm.study import ParseVariation, Study, StudyResult
-    from exudyn_worm.studymap import ComputeChatterMap
+    from exudyn_worm.setups.config import ResolveParameters
+    from exudyn_worm.analysis.study import ParseVariation, Study, StudyResult
+    from exudyn_worm.analysis.studymap import ComputeChatterMap
     study = Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.1,0.2'), ParseVariation('kT=7000,8000')])
     with pytest.raises(ValueError, match=r"ComputeChatterMap: 'y' must be a varied key \(J1, kT\), got 'kV'"):
         ComputeChatterMap(StudyResult(study, []), 'J1', 'kV')

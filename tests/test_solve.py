@@ -6,8 +6,8 @@ import pytest
 
 import exudyn_worm as ew
 from exudyn_worm import GetPreset, SimulateReelChanger
-from exudyn_worm.reelchanger import BuildReelChanger, SolverSettings
-from exudyn_worm.solve import SolveDynamicInChunks, SolverDivergedError
+from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
+from exudyn_worm.items.solve import SolveDynamicInChunks, SolverDivergedError
 
 
 def _Plain(parameters, endTime, stepSize):

@@ -8,12 +8,12 @@ import sys
 import numpy as np
 import pytest
 
-from exudyn_worm.design import SPEED_KEY, DesignCheck
-from exudyn_worm.linearization import DriveStability
-from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.profiles import STANDARD_GRAVITY
-from exudyn_worm.speedchart import RPM, SpeedChart, SpeedStabilityChart
-from exudyn_worm.stability import AnalyzeStability, OperatingPointAt
+from exudyn_worm.analysis.design import SPEED_KEY, DesignCheck
+from exudyn_worm.analysis.linearization import DriveStability
+from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.model.profiles import STANDARD_GRAVITY
+from exudyn_worm.analysis.speedchart import RPM, SpeedChart, SpeedStabilityChart
+from exudyn_worm.model.stability import AnalyzeStability, OperatingPointAt
 
 #: reel-P3 with the steep Stribeck law of docs/friction.md (mu(v0) = 0.132 at 472.5 rpm)
 P3 = {**GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2, 'stribeckVelocity': 0.9}

@@ -6,17 +6,17 @@ import pytest
 from hypothesis import assume, given, settings, strategies as st
 from numpy.testing import assert_allclose
 
-from exudyn_worm.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
-from exudyn_worm.gear import WormGear
-from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.stability import (AnalyzeStability, CharacteristicCoefficients, ContactStability,
+from exudyn_worm.model.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
+from exudyn_worm.model.gear import WormGear
+from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoefficients, ContactStability,
                                    EigenvaluesFromPolynomial, EigenvaluesFromStateMatrix, FirstCriterionLimit,
                                    FuesgenLimit, HurwitzConditions, HurwitzStable, StateMatrix)
 from validation.analytical import GEOMETRY_28
 from validation.runner import InputRounding, ReadingInterval
 
 # random gears of the property tests include worms larger than their wheels: warned, not wrong here
-pytestmark = pytest.mark.filterwarnings('ignore::exudyn_worm.plausibility.ImplausibleValueWarning')
+pytestmark = pytest.mark.filterwarnings('ignore::exudyn_worm.params.plausibility.ImplausibleValueWarning')
 
 deg = math.radians
 

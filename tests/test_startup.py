@@ -26,12 +26,12 @@ def _HeavyModulesAfter(code: str):
 
 
 @pytest.mark.parametrize('code', [
-    'import exudyn_worm.cli',
+    'import exudyn_worm.cli.main',
     'import exudyn_worm',
     'from exudyn_worm import SimulateReelChanger, AnalyzeStability',
-    'from exudyn_worm.cli import BuildParser; BuildParser()',
-    'from exudyn_worm.cli import Main; Main(["stability", "--preset", "reel-P1"])',
-    'from exudyn_worm.cli import Main; Main(["stability", "--preset", "reel-P1", "--json"])',
+    'from exudyn_worm.cli.main import BuildParser; BuildParser()',
+    'from exudyn_worm.cli.main import Main; Main(["stability", "--preset", "reel-P1"])',
+    'from exudyn_worm.cli.main import Main; Main(["stability", "--preset", "reel-P1", "--json"])',
 ])
 def test_light_paths_import_no_heavy_module(code):
     assert _HeavyModulesAfter(code) == []

@@ -1,4 +1,4 @@
-"""Step size from the drive (exudyn_worm.stepsize) and the coarse-step refusal."""
+"""Step size from the drive (exudyn_worm.analysis.stepsize) and the coarse-step refusal."""
 import json
 import math
 import warnings
@@ -7,12 +7,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from exudyn_worm.cli import Main
-from exudyn_worm.config import ResolveParameters
-from exudyn_worm.linearization import LinearStabilityFromParameters
-from exudyn_worm.presets import ApplyOverrides, GetPreset
-from exudyn_worm.reelchanger import SimulateReelChanger
-from exudyn_worm.stepsize import (HARD_CYCLES, RECOMMENDED_CYCLES, SOFT_CYCLES, CheckStepSize, CoarseStepWarning,
+from exudyn_worm.cli.main import Main
+from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
+from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
+from exudyn_worm.analysis.reelchanger import SimulateReelChanger
+from exudyn_worm.analysis.stepsize import (HARD_CYCLES, RECOMMENDED_CYCLES, SOFT_CYCLES, CheckStepSize, CoarseStepWarning,
                                   LinearizedFrequencies, PeriodError, RecommendedStepSize, StepSizeLimits)
 from paper_model import AxialBearingEigenvalues, ChainEigenvalues, Eigenvalues
 

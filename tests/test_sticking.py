@@ -13,14 +13,14 @@ import pytest
 exu = pytest.importorskip('exudyn')
 
 from exudyn_worm import GetPreset
-from exudyn_worm.connector import CreateWormGear
-from exudyn_worm.contact import (MATH_OPS, ContactOptions, FrictionState, MeshContact, SlidingCoordinate,
+from exudyn_worm.items.connector import CreateWormGear
+from exudyn_worm.model.contact import (MATH_OPS, ContactOptions, FrictionState, MeshContact, SlidingCoordinate,
                                  StickSlipUpdate)
-from exudyn_worm.drivetrain import CreateRotor, CreateRotorTorque
-from exudyn_worm.friction import StribeckFriction
-from exudyn_worm.presets import DriveFromParameters
-from exudyn_worm.profiles import GravityLeverTorque
-from exudyn_worm.reelchanger import SimulateReelChanger, SolverSettings
+from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque
+from exudyn_worm.model.friction import StribeckFriction
+from exudyn_worm.setups.presets import DriveFromParameters
+from exudyn_worm.model.profiles import GravityLeverTorque
+from exudyn_worm.analysis.reelchanger import SimulateReelChanger, SolverSettings
 
 P1 = GetPreset('reel-P1')
 SETTLE, HOLD = 5., 18.         # s: settling of the mesh oscillation, then the hold time of the issue

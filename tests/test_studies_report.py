@@ -4,8 +4,8 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_worm.presets import PRESETS
-from exudyn_worm.study import RunStudy, Study, Variation
+from exudyn_worm.setups.presets import PRESETS
+from exudyn_worm.analysis.study import RunStudy, Study, Variation
 from validation import studies
 
 

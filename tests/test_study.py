@@ -1,4 +1,4 @@
-"""Parameter studies (exudyn_worm.study): parsing, points, shards, failed runs, results files, resume."""
+"""Parameter studies (exudyn_worm.analysis.study): parsing, points, shards, failed runs, results files, resume."""
 import csv
 import json
 import os
@@ -13,12 +13,12 @@ import numpy as np
 import pytest
 from hypothesis import given, strategies as st
 
-from exudyn_worm import studymap
-from exudyn_worm.config import ResolveParameters
-from exudyn_worm.linearization import LinearStabilityFromParameters
-from exudyn_worm.presets import DriveFromParameters
-from exudyn_worm.stability import AnalyzeStability
-from exudyn_worm.study import (HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunPoint,
+from exudyn_worm.analysis import studymap
+from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
+from exudyn_worm.setups.presets import DriveFromParameters
+from exudyn_worm.model.stability import AnalyzeStability
+from exudyn_worm.analysis.study import (HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunPoint,
                                RunStudy, ShardIndices, Study, StudyPoints, StudyResult, StudySidecarPath, Variation)
 
 # short runs: 1 s of the reel changer (lifting), two windows
@@ -194,8 +194,8 @@ def test_shards_together_give_the_whole_study(tmp_path):
 
 _KILLABLE = textwrap.dedent('''
     import sys
-    from exudyn_worm.config import ResolveParameters
-    from exudyn_worm.study import ParseVariation, RunStudy, Study
+    from exudyn_worm.setups.config import ResolveParameters
+    from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study
     study = Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.02:0.3:12:log')],
                   windows=[(0., 0.5), (0.5, 1.)], endTime=1.)
     RunStudy(study, sys.argv[1], workers=1, quiet=True)

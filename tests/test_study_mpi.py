@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from exudyn_worm.cli import Main
+from exudyn_worm.cli.main import Main
 
 pytest.importorskip('mpi4py')
 MPIEXEC = shutil.which('mpiexec', path=os.pathsep.join([str(Path(sys.executable).parent), os.environ.get('PATH', '')]))

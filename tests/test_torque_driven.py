@@ -3,8 +3,8 @@ SimulateReelChanger (motor prescribed through a constraint): results compared, n
 import numpy as np
 import pytest
 
-from exudyn_worm.presets import GetPreset
-from exudyn_worm.reelchanger import SimulateReelChanger
+from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 
 from conftest import LoadScript
 

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.stability import CharacteristicCoefficients
+from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.model.stability import CharacteristicCoefficients
 from validation import runner
 from validation.paper import eigenvalue_forensics
 from validation.report import Report

@@ -12,11 +12,11 @@ from typing import Dict, List
 
 import numpy as np
 
-from exudyn_worm.drive import (MeshDampingFromMeasure, MeshDampingMeasure, TorsionalDampingFromMeasure,
+from exudyn_worm.model.drive import (MeshDampingFromMeasure, MeshDampingMeasure, TorsionalDampingFromMeasure,
                     TorsionalDampingMeasure)
-from exudyn_worm.gear import WormGear
-from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.stability import AnalyzeStability, CharacteristicCoefficients, ContactStability, HurwitzConditions
+from exudyn_worm.model.gear import WormGear
+from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.model.stability import AnalyzeStability, CharacteristicCoefficients, ContactStability, HurwitzConditions
 from .paper import eigenvalue_forensics
 from .runner import PAPER_MU, Check, HalfUnit, InputRounding, ValidationContext
 

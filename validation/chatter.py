@@ -5,7 +5,7 @@ Run from the repository root::
     python -m validation.chatter                 # writes validation/chatter/chatter.csv and validation/CHATTER.md
     python -m validation.chatter --checks 4      # fewer long simulations per study
 
-It computes, with :mod:`exudyn_worm.chatterbranch` (docs/chatter-amplitude.md), for the reel changer P1
+It computes, with :mod:`exudyn_worm.analysis.chatterbranch` (docs/chatter-amplitude.md), for the reel changer P1
 
 * the branch of steady chatter in J1 (0.05-0.3 kg m^2) and in kT (2000-20000 N m/rad), zero backlash: Hopf
   points against the linear boundaries, their type, folds, coexistence;
@@ -16,7 +16,7 @@ It computes, with :mod:`exudyn_worm.chatterbranch` (docs/chatter-amplitude.md), 
 * reel-P3 with a Stribeck friction law over the motor speed (single orbits, see the report for why no branch).
 
 At ``--checks`` orbits spread along each study a long time simulation
-(:func:`~exudyn_worm.chatter.LongSimulationAmplitude`: 4 s, step 2e-4 s, the time simulations' solver settings;
+(:func:`~exudyn_worm.analysis.chatter.LongSimulationAmplitude`: 4 s, step 2e-4 s, the time simulations' solver settings;
 where rest and chatter coexist it starts on the orbit with a 1 % worm-speed kick) gives the steady amplitude; the
 orbit must equal it within 2 % (issue 18). Every sentence of the report is generated from the numbers.
 """
@@ -32,10 +32,10 @@ from typing import Dict, List, Optional
 import numpy as np
 
 import exudyn_worm as ew
-from exudyn_worm.chatter import FindSteadyChatter, LongSimulationAmplitude
-from exudyn_worm.chatterbranch import AnalyzeChatterBranch
-from exudyn_worm.orbits import ShootingError
-from exudyn_worm.speedchart import RPM, SpeedStabilityChart
+from exudyn_worm.analysis.chatter import FindSteadyChatter, LongSimulationAmplitude
+from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch
+from exudyn_worm.analysis.orbits import ShootingError
+from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
 
 __all__ = ['TOLERANCE', 'RunChatterStudies', 'WriteCsv', 'WriteReport', 'Main']
 

@@ -136,7 +136,7 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     int
         Exit status (130 after Ctrl-C: one line on stderr, no traceback).
     """
-    from exudyn_worm.solve import IsInterrupt
+    from exudyn_worm.items.solve import IsInterrupt
     try:
         parser = _Parser(prog=PROG, description='check exudyn-worm against the numbers published '
                                             'in the paper (run from the root of the source checkout)')

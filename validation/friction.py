@@ -4,7 +4,7 @@ Rows in ``validation/agma/reference.csv``; reading rule ``printed`` (half a unit
 with the rows before our values were computed. The source gives a formula, not a table: the values it prints at
 the speeds it names are mu at rest (0.15), the factor of the low branch (0.124, mu just above rest), the switch
 speed (0.0508 m/s) and the exponent factors of its metric form (2.233 and 1.185 with V in m/s). Our curve is the
-ft/min form of :class:`exudyn_worm.friction.AgmaFriction`; the factors are recovered from our mu(v), so the rows
+ft/min form of :class:`exudyn_worm.model.friction.AgmaFriction`; the factors are recovered from our mu(v), so the rows
 check the unit conversion too.
 """
 from __future__ import annotations
@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import List
 
-from exudyn_worm.friction import FT_PER_MIN, AgmaFriction
+from exudyn_worm.model.friction import FT_PER_MIN, AgmaFriction
 
 from .runner import Check, ValidationContext
 

@@ -38,9 +38,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
-from exudyn_worm.cli import WriteAtomically
-from exudyn_worm.presets import PRESETS
-from exudyn_worm.solve import IsInterrupt
+from exudyn_worm.cli.main import WriteAtomically
+from exudyn_worm.setups.presets import PRESETS
+from exudyn_worm.items.solve import IsInterrupt
 
 from .model import (KINDS, READINGS, RULES, VERDICTS, Check, CheckGroup, Fmt, GroupFunction, HeadLine, ReferenceRow,
                     ValidationSummary)
@@ -527,7 +527,7 @@ def RunValidation(reportPath: Optional[Union[str, Path]] = None, quick: bool = F
 
 def WriteText(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` so that the file is complete or absent (temporary file, then renamed; an
-    interrupt removes the temporary file): :func:`exudyn_worm.cli.WriteAtomically`, the package's one rule.
+    interrupt removes the temporary file): :func:`exudyn_worm.cli.main.WriteAtomically`, the package's one rule.
 
     Parameters
     ----------

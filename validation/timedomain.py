@@ -13,10 +13,10 @@ from typing import Callable, Dict, List, Tuple
 
 import numpy as np
 
-from exudyn_worm.contact import ContactOptions
-from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
-from exudyn_worm.stability import AnalyzeStability
+from exudyn_worm.model.contact import ContactOptions
+from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
+from exudyn_worm.model.stability import AnalyzeStability
 
 from .paper.eigenvalue_forensics import WheelCircumferenceFactor
 from .runner import READINGS, Fmt
@@ -218,7 +218,7 @@ def SimulationChecks(ctx):
                      f'{Fmt(n.computed, n.row.publishedText)} | {n.verdict} | '
                      f'{Fmt(p.computed, p.row.publishedText)} | {p.verdict} | {"yes" if p.inSample else "no"} |')
     ctx.AddSection('Time domain: both mesh readings side by side', f'''
-All runs: the reel changer of `exudyn_worm.reelchanger` (motor with prescribed constant speed, elastic shaft
+All runs: the reel changer of `exudyn_worm.analysis.reelchanger` (motor with prescribed constant speed, elastic shaft
 kT/dT, worm J1, the worm-gear connector, wheel J2, load -m2 g l2 cos(phi2)), one full rotation starting in the
 static equilibrium at full speed, generalized-alpha with step 5e-4 s, friction regularized below 0.05 rad/s.
 "Chatter" in a window: in its second half the wheel inertia torque J2 max|phi2''| exceeds 10 % of the largest

@@ -42,9 +42,9 @@ from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from exudyn_worm.drive import ElasticDrive
-from exudyn_worm.presets import ApplyOverrides, DriveFromParameters, GetPreset
-from exudyn_worm.stability import CharacteristicCoefficients, ContactStability, EigenvaluesFromPolynomial
+from exudyn_worm.model.drive import ElasticDrive
+from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.model.stability import CharacteristicCoefficients, ContactStability, EigenvaluesFromPolynomial
 
 # the friction coefficient the printed b1..b4 and (19) were computed with (see validation/REPORT.md)
 from ..runner import PAPER_MU
@@ -92,14 +92,14 @@ def PrintedEigenvalues(path: Path = REFERENCE_CSV) -> Dict[int, np.ndarray]:
 def BaseParameters(**overrides) -> Dict[str, float]:
     """Parameter set (28) as the paper computed it: preset ``reel-P1`` with mu = 0.132.
 
-    ``overrides`` are applied with :func:`exudyn_worm.presets.ApplyOverrides`.
+    ``overrides`` are applied with :func:`exudyn_worm.setups.presets.ApplyOverrides`.
     """
     return ApplyOverrides(GetPreset('reel-P1'), {'mu': PAPER_MU, **overrides})
 
 
 def P7Parameters(**overrides) -> Dict[str, float]:
     """Parameter set P7 of section 3.2.3 (J1 and kT ten times smaller than (28)), mu = 0.132; ``overrides`` are
-    applied with :func:`exudyn_worm.presets.ApplyOverrides`."""
+    applied with :func:`exudyn_worm.setups.presets.ApplyOverrides`."""
     return ApplyOverrides(GetPreset('reel-P7'), {'mu': PAPER_MU, **overrides})
 
 

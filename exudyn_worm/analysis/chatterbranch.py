@@ -1,0 +1,447 @@
+"""How strong the chatter gets along one parameter: the branch of steady chatter orbits of the lowering phase.
+
+:func:`AnalyzeChatterBranch` finds the steady chatter (:func:`~exudyn_worm.analysis.chatter.FindSteadyChatter`) where the
+drive is linearly unstable, follows it by pseudo-arclength continuation
+(:func:`~exudyn_worm.analysis.continuation.ContinueOrbits`) in both directions until the orbit shrinks into the linear
+range of the mesh (its largest normal force below twice the static force: the orbit no longer loses contact,
+it is one of the neutral orbits of the linearized drive, i.e. the branch has reached its Hopf point) or leaves
+the range, and reports per point the amplitude (normal-force factor, largest ``|phi2''|``), the frequency and the
+Floquet stability; for the branch the Hopf points beside the linear boundaries (roots of the largest real part
+of the S = -1 eigenvalues, :func:`~exudyn_worm.analysis.linearization.DriveStability`), their type, the folds and the
+ranges in which rest and stable chatter coexist.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable, Dict, List, Mapping, Optional, Tuple
+
+import numpy as np
+
+from .chatter import (BuildLoweringModel, FindSteadyChatter, OrbitAmplitude, SettleLowering, StateScale,
+                      UpdateLoweringModel, _LoweringFlow)
+from .continuation import Branch, BranchPoint, ContinueOrbits
+from .orbits import ShootingError
+from .linearization import DriveStability
+
+__all__ = ['CONTINUABLE', 'ChatterBranchError', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch',
+           'SmallestDisturbance', 'REST_FORCE_FACTOR', 'COEXISTENCE_KICK', 'DisturbanceVerdict',
+           'ChattersAfterDisturbance']
+
+#: parameters that can be continued (flat parameter keys, SI units)
+CONTINUABLE = ('J1', 'J2', 'kT', 'dT', 'DT', 'DTV', 'kV', 'dV', 'DV', 'mu', 'backlash', 'motorSpeed', 'loadMass',
+               'leverArm')
+#: worm-speed kick (fraction of the motor speed) tried when the drive is linearly stable on the whole range
+COEXISTENCE_KICK = 0.5
+#: an orbit whose largest normal force is below this multiple of the static force stays in contact all the time:
+#: it is an orbit of the linearized drive, so the branch has reached its Hopf point (the linear boundary)
+REST_FORCE_FACTOR = 1.9
+
+
+class ChatterBranchError(ValueError):
+    """The branch could not be computed; ``.branch`` holds what was computed so far (or None).
+
+    Parameters
+    ----------
+    message : str
+        The error message.
+    branch : ChatterBranch or None
+        What was computed so far.
+    """
+
+    def __init__(self, message: str, branch: Optional['ChatterBranch'] = None):
+        super().__init__(message)
+        self.branch = branch
+
+
+@dataclass
+class ChatterBranch:
+    """Result of :func:`AnalyzeChatterBranch`.
+
+    Attributes
+    ----------
+    parameter : str
+        The continued parameter.
+    bounds : (float, float)
+        The range.
+    points : list of BranchPoint
+        Orbits along the branch, ordered along the arclength; ``info`` holds ``forceFactor``,
+        ``maxWheelAcceleration`` (rad/s^2), ``minWormSpeed`` (rad/s).
+    linearBoundaries : list of float
+        Parameter values in the range where the linearized drive (S = -1) changes stability.
+    hopf : list of dict
+        ``value``, ``type`` ('supercritical' or 'subcritical'), ``linearBoundary`` and ``relativeDifference``.
+    folds : list of float
+        Parameter values where the branch turns.
+    coexistence : list of (float, float)
+        Ranges where the drive is linearly stable and a stable chatter orbit exists.
+    disturbances : list of dict
+        In the middle of each coexistence range: ``value``, the smallest initial worm-speed disturbance that ends
+        in chatter as a fraction of the motor speed (``wormSpeedFraction``) and in rad/s (``wormSpeed``).
+    messages : list of str
+        Why each end of the branch stopped, and anything the user should know.
+    """
+    parameter: str
+    bounds: Tuple[float, float]
+    points: List[BranchPoint] = field(default_factory=list)
+    linearBoundaries: List[float] = field(default_factory=list)
+    hopf: List[Dict] = field(default_factory=list)
+    folds: List[float] = field(default_factory=list)
+    coexistence: List[Tuple[float, float]] = field(default_factory=list)
+    disturbances: List[Dict] = field(default_factory=list)
+    messages: List[str] = field(default_factory=list)
+
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary: ``{"parameter", "hopf": {"value", "type"}, "folds", "points": [...], ...}``
+        (``hopf`` is the first Hopf point or None; ``hopfPoints`` lists all)."""
+        return {'parameter': self.parameter, 'range': list(self.bounds),
+                'hopf': ({'value': self.hopf[0]['value'], 'type': self.hopf[0]['type']} if self.hopf else None),
+                'hopfPoints': [dict(h) for h in self.hopf], 'linearBoundaries': list(self.linearBoundaries),
+                'folds': list(self.folds), 'coexistence': [list(c) for c in self.coexistence],
+                'disturbances': [dict(d) for d in self.disturbances],
+                'points': [{'value': float(p.value),
+                            'amplitude': {'forceFactor': p.info.get('forceFactor'),
+                                          'maxWheelAcceleration': p.info.get('maxWheelAcceleration')},
+                            'frequencyHz': float(p.orbit.frequencyHz), 'stable': bool(p.stable),
+                            'multipliers': [abs(complex(m)) for m in p.orbit.nontrivialMultipliers],
+                            'trivialMultiplierError': p.orbit.trivialMultiplierError}
+                           for p in self.points],
+                'messages': list(self.messages)}
+
+    def plot(self, fileName: Optional[str] = None, **kwargs):
+        """Draw the branch (:func:`exudyn_worm.plotting.plot_orbits.PlotChatterBranch`)."""
+        from ..plotting.plot_orbits import PlotChatterBranch
+        return PlotChatterBranch(self, fileName=fileName, **kwargs)
+
+
+def _MaxRealPart(parameters) -> float:
+    return float(DriveStability(parameters).State(-1).maxRealPart)
+
+
+def LinearBoundaries(parameters: Mapping[str, float], name: str, low: float, high: float, samples: int = 41
+                     ) -> Tuple[List[float], Callable[[float], float]]:
+    """Where the linearized drive (S = -1, the lowering phase) changes stability on ``[low, high]``.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    name : str
+        Parameter varied.
+    low, high : float
+        Range.
+    samples : int
+        Scan points before the roots are refined (brentq).
+
+    Returns
+    -------
+    (list of float, callable)
+        The boundaries, and ``growth(value)``: the largest real part in 1/s at a value (> 0: unstable).
+    """
+    from scipy.optimize import brentq
+
+    def Growth(v):
+        return _MaxRealPart({**parameters, name: v})
+    grid = np.linspace(low, high, samples)
+    values = [Growth(v) for v in grid]
+    roots = [brentq(Growth, a, b, xtol=1e-12 * max(1., abs(b)), rtol=1e-12)
+             for a, b, fa, fb in zip(grid[:-1], grid[1:], values[:-1], values[1:]) if fa * fb < 0]
+    return roots, Growth
+
+
+def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float, high: float,
+                         maxPoints: int = 60, settleTime: float = 1.0, onPoint: Optional[Callable] = None,
+                         restarts: int = 3) -> ChatterBranch:
+    """Branch of steady chatter of the lowering phase in parameter ``name`` over ``[low, high]``.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with the reel changer's keys (e.g. ``GetPreset('reel-P1')``).
+    name : str
+        The parameter, one of :data:`CONTINUABLE`.
+    low, high : float
+        Range of the parameter in its SI unit, ``low < high``.
+    maxPoints : int
+        Largest number of orbits per direction.
+    settleTime : float
+        Time simulation in s before the first shooting.
+    onPoint : callable, optional
+        Called with each new :class:`~exudyn_worm.analysis.continuation.BranchPoint`.
+    restarts : int
+        How often a direction may start again from a time simulation a little further on when the corrector is
+        stuck (at a kink of the non-smooth map); each restart is noted in ``messages``.
+
+    Returns
+    -------
+    ChatterBranch
+
+    Raises
+    ------
+    ValueError
+        For a parameter that cannot be continued or a bad range.
+    ChatterBranchError
+        If the drive is linearly stable on the whole range (no chatter to follow), or the first orbit cannot be
+        found; ``.branch`` keeps what was computed.
+    """
+    w = 'AnalyzeChatterBranch'
+    if name not in CONTINUABLE:
+        raise ValueError(f"{w}: parameter {name!r} cannot be continued; choose one of {', '.join(CONTINUABLE)}")
+    low, high = float(low), float(high)
+    if not (math.isfinite(low) and math.isfinite(high) and low < high):
+        raise ValueError(f"{w}: the range of {name} must be two finite numbers low < high, got {low:g}:{high:g}")
+    base = dict(parameters)
+    BuildLoweringModel({**base, name: low})           # checks the parameter set and the low end early
+    roots, Growth = LinearBoundaries(base, name, low, high)
+    result = ChatterBranch(name, (low, high), linearBoundaries=roots)
+    # start in the middle of the widest linearly unstable interval
+    edges = [low] + roots + [high]
+    unstable = [(a, b) for a, b in zip(edges[:-1], edges[1:]) if Growth(0.5 * (a + b)) > 0]
+    if unstable:
+        a, b = max(unstable, key=lambda ab: ab[1] - ab[0])
+        start, kick = 0.5 * (a + b), 0.01
+    else:
+        # linearly stable everywhere: chatter can still coexist with rest; look for it after a large kick
+        start, kick = 0.5 * (low + high), COEXISTENCE_KICK
+    model = BuildLoweringModel({**base, name: start})
+    try:
+        orbit = FindSteadyChatter({**base, name: start}, settleTime=settleTime, model=model, kick=kick)
+    except ShootingError as err:
+        if not unstable:
+            raise ChatterBranchError(f"{w}: the drive is linearly stable for every {name} in [{low:g}, {high:g}] "
+                                     f"(largest real part {max(Growth(low), Growth(high)):.3g} 1/s at the ends), and "
+                                     f"a worm-speed kick of {COEXISTENCE_KICK:.0%} of the motor speed at {name} = "
+                                     f"{start:g} dies out: no chatter found on this range; widen the range or pick a "
+                                     f"parameter set that chatters (e.g. reel-P1)", result) from err
+        raise ChatterBranchError(f"{w}: no steady chatter found at {name} = {start:g}: {err}", result) from err
+    if not unstable:
+        result.messages.append(f"linearly stable on the whole range; chatter found at {name} = {start:g} after a kick "
+                               f"of {kick:.0%} of the motor speed")
+    scale = StateScale(model)
+    current = {'model': model, 'flow': orbit.info['flow']}
+
+    def ModelAt(v):
+        m = current['model']
+        new = UpdateLoweringModel(m, {**base, name: v})
+        if new is not m:
+            current['flow'] = _LoweringFlow(new, current['flow'].steps)
+            current['model'] = new
+        return current['model'], current['flow']
+
+    def FlowAt(v):
+        return ModelAt(v)[1]
+
+    def Measure(v, orb):
+        m, flow = ModelAt(v)
+        return OrbitAmplitude(m, flow, orb.state, orb.period)
+
+    def Stop(point):
+        if point.info['forceFactor'] < REST_FORCE_FACTOR:
+            return f"reached the linear boundary at {name} = {point.value:.6g} (the orbit stays in contact)"
+        return None
+
+    scaleP = (high - low) / 25.
+    halves = []
+    for direction in (-1, 1):
+        side = 'lower' if direction < 0 else 'higher'
+        branch = ContinueOrbits(FlowAt, orbit, start, (low, high), scale, scaleP, name, direction=direction,
+                                stepLength=0.5, maxStepLength=2., minStepLength=0.02, maxPoints=maxPoints,
+                                measure=Measure, stop=Stop, onPoint=onPoint)
+        result.messages += [f"towards {side} {name}: {r}" for r in branch.stopReason]
+        for _ in range(restarts):
+            last = branch.points[-1]
+            if not branch.stopReason[-1].startswith('the corrector did not converge') or len(branch.points) > maxPoints:
+                break
+            # the corrector is stuck at a kink of the map (e.g. the orbit starts to touch the other flank): start
+            # again from a time simulation a little further on (from the last orbit), and continue from there
+            value = last.value + direction * scaleP
+            if not low <= value <= high:
+                break
+            m, _ = ModelAt(value)
+            try:
+                again = FindSteadyChatter({**base, name: value}, settleTime=settleTime, model=m,
+                                          initialState=last.orbit.state)
+            except ShootingError:
+                result.messages.append(f"towards {side} {name}: no steady chatter found again at {name} = {value:.6g}")
+                break
+            current['flow'] = again.info['flow']
+            result.messages.append(f"towards {side} {name}: restarted from a time simulation at {name} = {value:.6g}")
+            more = ContinueOrbits(FlowAt, again, value, (low, high), scale, scaleP, name, direction=direction,
+                                  stepLength=0.5, maxStepLength=2., minStepLength=0.02,
+                                  maxPoints=maxPoints - len(branch.points), measure=Measure, stop=Stop,
+                                  onPoint=onPoint)
+            branch.points += more.points
+            branch.folds += more.folds
+            branch.stopReason = more.stopReason
+            result.messages += [f"towards {side} {name}: {r}" for r in more.stopReason]
+        halves.append(branch)
+    result.points = [p for p in list(reversed(halves[0].points)) + halves[1].points[1:] if low <= p.value <= high]
+    if not roots and unstable:
+        result.messages.append(f"the drive is linearly unstable for every {name} in [{low:g}, {high:g}]: the range "
+                               f"crosses no linear boundary, so the branch has no Hopf point in it")
+    # Hopf points: ends at which the orbit shrank into the linear range
+    for branch in halves:
+        end = branch.points[-1]
+        if end.info.get('forceFactor', math.inf) >= REST_FORCE_FACTOR:
+            continue
+        nearest = min(roots, key=lambda r: abs(r - end.value)) if roots else math.nan
+        # type: the last orbit before the vertical part that still loses contact lies on the linearly unstable
+        # side (the branch comes out of the unstable range: supercritical) or on the stable side (subcritical)
+        outer = [p for p in branch.points if p.info.get('forceFactor', 0.) >= 2.]
+        side = Growth(outer[-1].value) if outer else math.nan
+        result.hopf.append({'value': float(end.value), 'type': 'supercritical' if side > 0 else 'subcritical',
+                            'linearBoundary': float(nearest),
+                            'relativeDifference': float(abs(end.value - nearest) / abs(nearest))})
+    for r in roots:
+        if not any(abs(h['linearBoundary'] - r) <= 1e-9 * abs(r) for h in result.hopf):
+            result.messages.append(f"the branch has no Hopf point at the linear boundary {name} = {r:.6g} (it passes "
+                                   f"it or ends before); the small unstable orbits born there are not followed")
+    # folds: a fold of periodic orbits has a Floquet multiplier through +1, so an orbit beside it is unstable;
+    # turning points among stable orbits only (the finite-difference Jacobian through the mesh's switches lets the
+    # corrector step back and forth where the branch is flat) and the vertical part at a Hopf point are left out
+    real, ignored = [], 0
+    for half in halves:
+        for a, b, c in zip(half.points, half.points[1:], half.points[2:]):
+            if (b.value - a.value) * (c.value - b.value) < 0 and b.info.get('forceFactor', 0.) >= 2.:
+                if not (a.stable and b.stable and c.stable):
+                    real.append(float(b.value))
+                else:
+                    ignored += 1
+    result.folds = sorted(real)
+    if ignored:
+        result.messages.append(f"{ignored} turning point(s) without a change of stability ignored (numerical)")
+    # coexistence: stable orbits where the drive is linearly stable
+    inside = [p.value for p in result.points if p.stable and p.info.get('forceFactor', 0.) >= 2.
+              and Growth(p.value) < 0]
+    if inside:
+        result.coexistence.append((float(min(inside)), float(max(inside))))
+    for lo, hi in result.coexistence:
+        middle = 0.5 * (lo + hi)
+        kick = SmallestDisturbance({**base, name: middle})
+        result.disturbances.append({'value': middle, 'wormSpeedFraction': kick,
+                                    'wormSpeed': kick * float(base['motorSpeed'])})
+    return result
+
+
+def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 3.0, largest: float = 0.5,
+                        steps: int = 8) -> float:
+    """Smallest initial worm-speed disturbance (fraction of the motor speed) after which the lowering phase ends
+    in chatter, by bisection on time simulations from the steady state; ``math.inf`` if ``largest`` does not.
+
+    A run ends in chatter if the mesh still loses contact (largest normal force at least twice the static force)
+    in its last 0.2 s. The basin of chatter need not be an interval of kicks; the bisection assumes it is.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (a drive that is linearly stable but may chatter).
+    duration : float
+        Simulated time in s per trial, >= 0.5.
+    largest : float
+        Largest disturbance tried.
+    steps : int
+        Bisection steps.
+
+    Returns
+    -------
+    float
+    """
+    if not duration >= 0.5:
+        raise ValueError(f"SmallestDisturbance: 'duration' must be >= 0.5 s, got {duration!r}")
+    model = BuildLoweringModel(parameters)
+
+    def Chatters(kick):
+        # chatter: the mesh still loses contact (largest normal force >= twice the static force) in the last 0.2 s;
+        # a decaying transient of a linearly stable drive has long stayed in contact by then
+        SettleLowering(model, duration, kick=kick, store=True)
+        s = model.connector.StoredStates(model.mbs)
+        last = s['time'] >= s['time'][-1] - 0.2
+        mesh = model.connector.Evaluate(s['phi1'][last], s['phi2'][last], s['omega1'][last], s['omega2'][last])
+        return float(np.max(np.abs(mesh.normalForce))) >= 2. * model.staticNormalForce
+
+    if not Chatters(largest):
+        return math.inf
+    a, b = 0., largest
+    for _ in range(steps):
+        m = 0.5 * (a + b)
+        a, b = (a, m) if Chatters(m) else (m, b)
+    return b
+
+
+@dataclass
+class DisturbanceVerdict:
+    """Result of :func:`ChattersAfterDisturbance`.
+
+    Attributes
+    ----------
+    linearlyStable : bool
+        Verdict of the linearized lowering phase (S = -1).
+    chatterFound : bool
+        Whether a steady chatter orbit was found (after a kick of :data:`COEXISTENCE_KICK` if linearly stable).
+    smallestDisturbance : float
+        Smallest worm-speed kick in rad/s that ends in chatter (``inf`` if none up to the largest tried; 0 if the
+        drive is linearly unstable).
+    forceFactor, maxWheelAcceleration, frequencyHz : float
+        Amplitude and frequency of the chatter orbit (nan if none).
+    text : str
+        One line for a report, e.g. "linearly stable, but chatters after a worm-speed disturbance of 8.3 rad/s".
+    """
+    linearlyStable: bool
+    chatterFound: bool
+    smallestDisturbance: float
+    forceFactor: float
+    maxWheelAcceleration: float
+    frequencyHz: float
+    text: str
+
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary (the ``disturbance`` object of ``exudyn-worm check --json``); infinite or
+        undefined numbers are None.
+
+        Returns
+        -------
+        dict
+        """
+        finite = lambda x: float(x) if math.isfinite(x) else None
+        return {'linearlyStable': self.linearlyStable, 'chatterFound': self.chatterFound,
+                'smallestDisturbance': finite(self.smallestDisturbance), 'forceFactor': finite(self.forceFactor),
+                'maxWheelAcceleration': finite(self.maxWheelAcceleration), 'frequencyHz': finite(self.frequencyHz),
+                'text': self.text}
+
+
+def ChattersAfterDisturbance(parameters: Mapping[str, float]) -> DisturbanceVerdict:
+    """Does a drive chatter in the lowering phase, and if it is linearly stable, after which disturbance?
+
+    Meant for a design check: a linearly stable drive may still chatter after a disturbance where rest and chatter
+    coexist (e.g. with backlash, see docs/chatter-amplitude.md).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with the reel changer's keys (two-mass drive).
+
+    Returns
+    -------
+    DisturbanceVerdict
+    """
+    stable = bool(DriveStability(parameters).State(-1).stable)
+    nan = math.nan
+    try:
+        orbit = FindSteadyChatter(parameters, kick=COEXISTENCE_KICK if stable else 0.01)
+    except ShootingError:
+        text = ('linearly stable, and a worm-speed kick of {:.0%} of the motor speed dies out'.format(COEXISTENCE_KICK)
+                if stable else 'linearly unstable, but no steady chatter orbit was found')
+        return DisturbanceVerdict(stable, False, math.inf if stable else nan, nan, nan, nan, text)
+    speed = float(parameters['motorSpeed'])
+    kick = SmallestDisturbance(parameters) * speed if stable else 0.
+    amplitude = (f"normal force up to {orbit.info['forceFactor']:.2f} times the static force, |phi2''| up to "
+                 f"{orbit.info['maxWheelAcceleration']:.3g} rad/s^2, {orbit.frequencyHz:.1f} Hz")
+    if not stable:
+        text = f"linearly unstable: chatters ({amplitude})"
+    elif math.isfinite(kick):
+        text = f"linearly stable, but chatters after a worm-speed disturbance of {kick:.3g} rad/s ({amplitude})"
+    else:
+        text = (f"linearly stable; a chatter orbit exists ({amplitude}), but no kick from rest up to "
+                f"{0.5 * speed:.3g} rad/s reached it")
+    return DisturbanceVerdict(stable, True, kick, orbit.info['forceFactor'], orbit.info['maxWheelAcceleration'],
+                              orbit.frequencyHz, text)

@@ -1,0 +1,644 @@
+"""The paper's paper-reel changer (section 3.2): model building and simulation.
+
+Motor (prescribed rotation phi0) -- elastic shaft kT, dT -- worm J1 -- worm-gear mesh -- wheel and
+frame J2 -- load torque of the reel, M2 = -m2 g l2 cos(phi2) (eq. (27)). The frame is horizontal at
+t = 0 and is lifted first; one full rotation of the wheel takes 2 pi u / motorSpeed (8 s in the paper).
+
+Optional (see :mod:`exudyn_worm.setups.presets`): the drive-side chain of Figure 19 (``J4, k4, d4, J5, ...``:
+worm --kT-- J4 --k4-- J5 ... -- motor), the load-side chain (``JL1, kL1, dL1, JL2, ...``: wheel --kL1-- JL1
+--kL2-- JL2 ...; the reel's load torque then acts on the last inertia) and the worm's axial bearing
+(``kA, dA, mA``).
+"""
+from __future__ import annotations
+
+import math
+import time as _time
+from dataclasses import dataclass
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
+
+import numpy as np
+
+from ..items.connector import CreateWormAxialBearing, CreateWormGear, WormGearConnector
+from ..model.contact import MATH_OPS, ContactOptions
+from ..model.drive import ElasticDrive
+from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
+from ..items.equilibrium import SteadyInitialState  # re-exported: it lived here before
+from ..setups.presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, DriveFromParameters, DriveSideChain,
+                      LoadSideChain, MissingParameterError)
+from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
+from ..items.results import SimulationResult
+from ..items.solve import SolveDynamicInChunks, SolverDivergedError
+from .stepsize import CheckStepSize, RecommendedStepSize
+from .._checks import CheckBool, CheckPositive
+from ..setups.duty import (CheckDutyKeys, DefaultEndTime, DutyPhases, IsReelChangerDuty, LoadFromParameters,
+                   MotorFromParameters, MotorType, SteadyMotorSpeed)
+from ..model.stability import CharacteristicCoefficients, EigenvaluesFromPolynomial
+
+__all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
+           'DefaultPhases', 'DefaultSimulatedTime', 'WindowPhases', 'PhaseLabel',
+           'SteadyInitialState', 'CheckRunSize', 'CheckReelChangerKeys', 'SolverSettings', 'DEFAULT_STEP_SIZE',
+           'SOLVER_SETTINGS', 'MAX_STEPS']
+
+#: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change
+#: < 1 % when it is halved, see validation/REPORT.md); SimulateReelChanger's default is the drive's own
+#: RecommendedStepSize
+DEFAULT_STEP_SIZE = 5e-4
+#: generalized-alpha settings of :func:`SimulateReelChanger` (paths in ``exudyn.SimulationSettings``), chosen by
+#: the lever measurements in benchmarks/README.md: modified Newton, at most 10 iterations before the Jacobian is
+#: renewed or the step halved (Exudyn's 25 let a stuck iteration run on), relative tolerance 1e-6, spectral
+#: radius 0.8 (damps the stiff friction-regularization mode; 0.9 made P1's peak 0.3 % high at 5e-4 s)
+SOLVER_SETTINGS = {'timeIntegration.newton.useModifiedNewton': True, 'timeIntegration.newton.maxIterations': 10,
+                   'timeIntegration.newton.relativeTolerance': 1e-6,
+                   'timeIntegration.generalizedAlpha.spectralRadius': 0.8}
+_MOTOR_INERTIA = 1e-3   # kg*m^2; the motor node is prescribed, its inertia does not matter
+
+#: default limit of solver steps (= stored samples, one per step) of one run: 1e6 steps is about 0.4 GB of
+#: stored results and 15 s (P1) to 3.5 min (P7) of solving (780 s simulated of P1 at its recommended step);
+#: raise it with ``maxSteps`` (``--max-steps``) for longer runs
+MAX_STEPS = 1_000_000
+#: solver time per step in s measured for the reel changer (P1 without chatter in most steps, P7 with the
+#: worm speed through zero), used to say how long a refused run would take
+_SECONDS_PER_STEP = (1.5e-5, 2e-4)
+#: memory per stored step in bytes (8 sensors of 2 doubles in Exudyn, about 20 post-processed series)
+_BYTES_PER_STEP = 400
+
+
+def _Duration(seconds: float) -> str:
+    for unit, size in (('h', 3600.), ('min', 60.), ('s', 1.)):
+        if seconds >= size:
+            return f"{seconds / size:.2g} {unit}"
+    return f"{seconds:.2g} s"
+
+
+def CheckRunSize(endTime: float, stepSize: float, maxSteps: int = MAX_STEPS, where: str = 'SimulateReelChanger',
+                 names=('endTime', 'stepSize', 'maxSteps')) -> int:
+    """Number of solver steps of a run; refuse runs longer than ``maxSteps`` before they start.
+
+    Parameters
+    ----------
+    endTime : float
+        Simulated time in s, > 0.
+    stepSize : float
+        Time step in s, > 0 and <= endTime.
+    maxSteps : int
+        Largest number of steps (and stored samples) allowed, >= 1 (default :data:`MAX_STEPS`).
+    where : str
+        Caller named in the messages.
+    names : (str, str, str)
+        How the caller calls end time, step size and step limit (``--end-time`` ... on the command line).
+
+    Returns
+    -------
+    int
+        ``round(endTime / stepSize)``.
+
+    Raises
+    ------
+    ValueError
+        For a bad value or a run above ``maxSteps``; the message says how long the run would take and how
+        much memory its results would need.
+    """
+    nEnd, nStep, nMax = names
+    endTime = CheckPositive(where, nEnd, endTime, 's')
+    stepSize = CheckPositive(where, nStep, stepSize, 's')
+    if isinstance(maxSteps, bool) or not isinstance(maxSteps, int) or maxSteps < 1:
+        raise ValueError(f"{where}: '{nMax}' must be an integer >= 1, got {maxSteps!r}")
+    if stepSize > endTime:
+        raise ValueError(f"{where}: '{nStep}' must be <= {nEnd} = {endTime:g} s, got {stepSize:g} s")
+    ratio = endTime / stepSize
+    if not ratio <= maxSteps:           # also catches an overflow to inf
+        fast, slow = (ratio * s for s in _SECONDS_PER_STEP)
+        raise ValueError(f"{where}: {nEnd} {endTime:g} s at {nStep} {stepSize:g} s needs {ratio:.3g} solver steps, "
+                         f"more than the limit {nMax} = {maxSteps:g}; it would take about {_Duration(fast)} to "
+                         f"{_Duration(slow)} and store about {ratio * _BYTES_PER_STEP / 1e9:.2g} GB of results. "
+                         f"Raise {nMax} to run it anyway")
+    return max(1, int(round(ratio)))
+
+
+def CheckReelChangerKeys(parameters: Mapping[str, float], where: str) -> None:
+    """Refuse a parameter set without the reel changer's own keys (``REEL_KEYS``: loadMass, leverArm,
+    motorSpeed), e.g. the ``chart`` preset, naming the missing ones and how to give them; for another duty
+    (``loadType``, ``motorType``: :mod:`exudyn_worm.setups.duty`) the keys that duty needs.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    where : str
+        Who needs them (function or command), first in the message.
+
+    Raises
+    ------
+    MissingParameterError
+        A ValueError naming the missing keys, if a key is missing.
+    ValueError, TypeError
+        If ``parameters`` is not a mapping or has an unknown key or two forms of one quantity
+        (:func:`~exudyn_worm.setups.presets.CheckParameterKeys`).
+    """
+    CheckParameterKeys(parameters, where)
+    if not IsReelChangerDuty(parameters):         # another duty (loadType / motorType): its own keys
+        CheckDutyKeys(parameters, where)
+        return
+    missing = [k for k in REEL_KEYS if k not in parameters]
+    if missing:
+        raise MissingParameterError(f"{where}: the reel-changer simulation needs {', '.join(REEL_KEYS)}; missing "
+                                    f"{', '.join(missing)} (use a reel-P* preset or give them with --set KEY=VALUE "
+                                    f"or in the config file)", missing)
+
+
+def RotationPeriod(parameters: Mapping[str, float]) -> float:
+    """Duration in s of one full wheel rotation: 2 pi u / motorSpeed.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set including ``motorSpeed`` in rad/s.
+    """
+    drive = DriveFromParameters(parameters)
+    if 'motorSpeed' not in parameters:
+        CheckReelChangerKeys(parameters, 'RotationPeriod')
+    speed = CheckPositive('RotationPeriod', 'motorSpeed', parameters['motorSpeed'], 'rad/s')
+    return 2 * math.pi * drive.gear.ratio / speed
+
+
+def DefaultPhases(parameters: Mapping[str, float], endTime: Optional[float] = None,
+                  minLength: float = 0.) -> List[Tuple[float, float, str]]:
+    """The phases of the duty up to ``endTime`` as ``(t0, t1, phase)``, phase ``'lift'``, ``'lower'`` or ``'idle'``.
+
+    The reel changer (a lever load at constant motor speed, the default duty): lift / lower / lift of every
+    rotation, [kT, kT + T/4], [kT + T/4, kT + 3T/4], [kT + 3T/4, (k+1)T] for k = 0, 1, ..., clipped to ``endTime``.
+    Any other duty (:mod:`exudyn_worm.setups.duty`): the phases in which the load opposes the motion (lift), drives the
+    gear (lower) or is absent (idle), from the rigid kinematics (:func:`~exudyn_worm.setups.duty.DutyPhases`).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set including the duty's keys (``motorSpeed`` in rad/s for the reel changer).
+    endTime : float, optional
+        Simulated time in s (default: :func:`DefaultSimulatedTime`, one rotation T for the reel changer).
+    minLength : float
+        Windows shorter than this (in s, after clipping) are dropped (another duty: merged into the one before);
+        the first window is always kept.
+
+    Returns
+    -------
+    list of (float, float, str)
+        Phases in time order.
+    """
+    if not IsReelChangerDuty(parameters):
+        CheckReelChangerKeys(parameters, 'DefaultPhases')
+        endTime = DefaultSimulatedTime(parameters) if endTime is None else \
+            CheckPositive('DefaultPhases', 'endTime', endTime, 's')
+        return DutyPhases(parameters, DriveFromParameters(parameters).gear.ratio, endTime, minLength)
+    T = RotationPeriod(parameters)
+    endTime = T if endTime is None else CheckPositive('DefaultWindows', 'endTime', endTime, 's')
+    windows = []
+    for k in range(int(math.ceil(endTime / T - 1e-12))):
+        for a, b, phase in ((0., .25, 'lift'), (.25, .75, 'lower'), (.75, 1., 'lift')):
+            t0, t1 = (k + a) * T, min((k + b) * T, endTime)
+            if t0 < endTime and (not windows or t1 - t0 >= minLength):
+                windows.append((t0, t1, phase))
+    return windows
+
+
+def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = None,
+                   minLength: float = 0.) -> List[Tuple[float, float]]:
+    """The evaluation windows of ``simulate`` and ``sweep``: the phases of :func:`DefaultPhases` without their labels;
+    for the reel changer lift / lower / lift of every rotation: [kT, kT + T/4], [kT + T/4, kT + 3T/4],
+    [kT + 3T/4, (k+1)T] for k = 0, 1, ..., clipped to ``endTime``.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set including ``motorSpeed`` in rad/s (or another duty's keys).
+    endTime : float, optional
+        Simulated time in s (default: one rotation T; another duty: :func:`DefaultSimulatedTime`).
+    minLength : float
+        Windows shorter than this (in s, after clipping) are dropped; the first window is always kept.
+
+    Returns
+    -------
+    list of (float, float)
+        Windows in s, in time order.
+    """
+    return [(t0, t1) for t0, t1, _ in DefaultPhases(parameters, endTime, minLength)]
+
+
+def WindowPhases(parameters: Mapping[str, float], windows: Sequence[Tuple[float, float]],
+                 endTime: Optional[float] = None) -> List[str]:
+    """The duty's phase in each window: ``'lift'``, ``'lower'`` (the load drives the gear) or ``'idle'``, or the
+    phases a window spans joined by ``'+'`` (e.g. ``'lift+lower'``).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (the duty's keys, :func:`DefaultPhases`).
+    windows : sequence of (float, float)
+        Windows in s.
+    endTime : float, optional
+        Simulated time in s (default: the end of the last window or :func:`DefaultSimulatedTime`, the later).
+
+    Returns
+    -------
+    list of str
+        One label per window.
+    """
+    windows = [(float(t0), float(t1)) for t0, t1 in windows]
+    if endTime is None:
+        endTime = max([DefaultSimulatedTime(parameters)] + [t1 for _, t1 in windows])
+    phases = DefaultPhases(parameters, max([endTime] + [t1 for _, t1 in windows]))
+    labels = []
+    for t0, t1 in windows:
+        tol = 1e-9 * max(t1 - t0, 1e-300)
+        inside = [ph for a, b, ph in phases if min(b, t1) - max(a, t0) > tol]
+        labels.append('+'.join(dict.fromkeys(inside)) or phases[-1][2])
+    return labels
+
+
+def PhaseLabel(parameters: Mapping[str, float], phase: str) -> str:
+    """The words for a phase of :func:`WindowPhases` in a table: ``lift`` / ``lower`` for the reel changer; for
+    another duty ``motor drives`` / ``load drives`` / ``no load`` (``lift`` / ``lower`` / ``idle``).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    phase : str
+        A label of :func:`WindowPhases`.
+    """
+    if IsReelChangerDuty(parameters):
+        return phase
+    words = {'lift': 'motor drives', 'lower': 'load drives', 'idle': 'no load'}
+    return '+'.join(words.get(part, part) for part in phase.split('+'))
+
+
+def DefaultSimulatedTime(parameters: Mapping[str, float]) -> float:
+    """Simulated time in s when none is given: one wheel rotation for the reel changer (:func:`RotationPeriod`),
+    else the end of the duty's tables and ramps (:func:`~exudyn_worm.setups.duty.DefaultEndTime`).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set.
+    """
+    if IsReelChangerDuty(parameters):
+        return RotationPeriod(parameters)
+    CheckReelChangerKeys(parameters, 'DefaultSimulatedTime')
+    return DefaultEndTime(parameters, DriveFromParameters(parameters).gear.ratio)
+
+
+def _CheckModelOptions(where: str, contactOptions, profile, useSymbolic, startFromEquilibrium) -> None:
+    """The options of :func:`BuildReelChanger` and :func:`SimulateReelChanger`, checked before anything is built."""
+    if not isinstance(contactOptions, ContactOptions):
+        raise TypeError(f"{where}: 'contactOptions' must be a ContactOptions (e.g. ContactOptions(frictionSpeed=0.05)), "
+                        f"got {type(contactOptions).__name__} {contactOptions!r}")
+    if profile is not None and not callable(getattr(profile, 'AngleAndSpeed', None)):
+        raise TypeError(f"{where}: 'profile' must be None (constant motor speed) or have AngleAndSpeed(t, ops) "
+                        f"(e.g. ConstantSpeed, StartStopProfile), got {type(profile).__name__} {profile!r}")
+    CheckBool(where, 'useSymbolic', useSymbolic)
+    CheckBool(where, 'startFromEquilibrium', startFromEquilibrium)
+
+
+@dataclass
+class ReelChangerModel:
+    """The Exudyn system of the reel changer and what is needed to read its results.
+
+    Attributes
+    ----------
+    systemContainer : exudyn.SystemContainer
+        The container of ``mbs`` (kept alive with it).
+    mbs : exudyn.MainSystem
+        The system, assembled.
+    drive : ElasticDrive
+        The two-mass drive of eqs. (1)-(2).
+    load : GravityLeverTorque
+        The reel's load torque, eq. (27).
+    motorSpeed : float
+        Nominal motor speed in rad/s.
+    connector : WormGearConnector
+        The worm-gear mesh.
+    rotors : dict
+        Rotor dicts of :func:`~exudyn_worm.items.drivetrain.CreateRotor` by name (``'worm'``, ``'wheel'``, ...).
+    sensors : dict
+        Sensors by name.
+    axialBearing : dict or None
+        The worm axial bearing of :func:`~exudyn_worm.items.connector.CreateWormAxialBearing` (None: rigid).
+    chain : tuple of (float, float, float)
+        The drive-side chain ``(J, k, d)`` of inertia4, spring-Damper4, ... (empty: none).
+    loadChain : tuple of (float, float, float)
+        The load-side chain ``(J, k, d)`` behind the wheel, wheel side first (empty: none).
+    """
+    systemContainer: Any
+    mbs: Any
+    drive: ElasticDrive
+    load: Any                     # the duty's load law (GravityLeverTorque for the reel changer) or None
+    motorSpeed: float             # the motor speed at t = 0 in rad/s
+    connector: WormGearConnector
+    rotors: Dict[str, Dict]
+    sensors: Dict[str, Any]
+    axialBearing: Optional[Dict[str, Any]] = None
+    chain: Tuple[Tuple[float, float, float], ...] = ()
+    loadChain: Tuple[Tuple[float, float, float], ...] = ()
+
+
+def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
+                     useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None) -> ReelChangerModel:
+    """Build the reel changer of section 3.2 in a new Exudyn system.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (see :mod:`exudyn_worm.setups.presets`), including ``loadMass`` (kg), ``leverArm`` (m)
+        and ``motorSpeed`` (rad/s), or another duty (``loadType``, ``motorType``: :mod:`exudyn_worm.setups.duty`; the
+        load acts where the lever would); optional drive-side chain ``J4, k4, d4, J5, ...`` (rotors ``inertia4``,
+        ... and shafts ``springDamper4``, ...), load-side chain ``JL1, kL1, dL1, ...`` (rotors ``loadInertia1``,
+        ... and shafts ``loadShaft1``, ...; the load acts on the last one) and axial bearing ``kA, dA, mA``.
+    contactOptions : ContactOptions
+        Options of the worm-gear contact law.
+    useSymbolic : bool
+        C++ symbolic user functions (default) or plain Python.
+    startFromEquilibrium : bool
+        Start in the static equilibrium under the initial load at nominal speed (default); otherwise
+        all rotors start at rest with zero angles.
+    profile : optional
+        Motor motion: an object with ``AngleAndSpeed(t, ops)`` such as :class:`ConstantSpeed` or
+        :class:`~exudyn_worm.model.profiles.StartStopProfile` (default: the duty's motor,
+        :func:`~exudyn_worm.setups.duty.MotorFromParameters`: :class:`ConstantSpeed` at ``motorSpeed`` for the reel changer).
+
+    Returns
+    -------
+    ReelChangerModel
+
+    Raises
+    ------
+    ValueError, TypeError
+        For a bad parameter set (:func:`~exudyn_worm.setups.presets.DriveFromParameters`, :func:`CheckReelChangerKeys`),
+        ``contactOptions`` that is not a :class:`~exudyn_worm.model.contact.ContactOptions`, or a ``profile`` without
+        ``AngleAndSpeed``.
+    """
+    import exudyn as exu
+    from exudyn.itemInterface import SensorNode
+
+    w = 'BuildReelChanger'
+    CheckParameterKeys(parameters, w)
+    _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
+    drive = DriveFromParameters(parameters)
+    CheckReelChangerKeys(parameters, w)
+    if MotorType(parameters) in ('constantSpeed', 'startStop'):
+        CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
+    load = LoadFromParameters(parameters, w)            # the duty: lever (reel changer), constant, table or None
+    characteristic = None                               # a free motor on its torque-speed line, else prescribed
+    if MotorType(parameters) == 'characteristic':
+        if profile is not None:
+            raise ValueError(f"{w}: 'profile' prescribes the motor, but the parameter set drives it by its "
+                             f"characteristic (motorType = characteristic); give one of them")
+        characteristic = MotorFromParameters(parameters, w)
+        profile = ConstantSpeed(SteadyMotorSpeed(parameters, w))          # its start: the steady speed
+    profile = profile if profile is not None else MotorFromParameters(parameters, w)
+    motorSpeed = float(profile.AngleAndSpeed(0., MATH_OPS)[1])         # the motor's speed at t = 0
+    chain = tuple(DriveSideChain(parameters))
+    loadChain = tuple(LoadSideChain(parameters))
+    bearing = AxialBearingFromParameters(parameters)
+
+    if startFromEquilibrium:
+        init = SteadyInitialState(drive, load or ConstantTorque(0.), motorSpeed, contactOptions, bearing, chain,
+                                  loadSide=loadChain)
+        init0 = profile.AngleAndSpeed(0., MATH_OPS)
+    else:
+        init, init0 = {}, (0., 0.)
+
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    motor = CreateRotor(mbs, _MOTOR_INERTIA if characteristic is None else parameters['motorInertia'],
+                        initialAngle=init0[0], initialSpeed=init0[1], name='motor')
+    worm = CreateRotor(mbs, drive.J1, initialAngle=init.get('phi1', 0.), initialSpeed=init.get('omega1', 0.),
+                       name='worm')
+    wheel = CreateRotor(mbs, drive.J2, initialAngle=init.get('phi2', 0.), initialSpeed=init.get('omega2', 0.),
+                        name='wheel')
+    if characteristic is None:
+        CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+    else:
+        CreateRotorTorque(mbs, motor, characteristic, name='motorTorque', useSymbolic=useSymbolic)
+    rotors = {'motor': motor, 'worm': worm, 'wheel': wheel}
+    # drive-side chain, worm side first: worm --kT-- inertia4 --k4-- inertia5 ... --kn-- motor
+    chainRotors = [CreateRotor(mbs, J, initialAngle=init.get(f'phi{i}', 0.), initialSpeed=init.get(f'omega{i}', 0.),
+                               name=f'inertia{i}') for i, (J, _, _) in enumerate(chain, start=4)]
+    rotors.update({f'inertia{i}': r for i, r in enumerate(chainRotors, start=4)})
+    CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT, name='driveShaft')
+    for i, (rotor, motorSide, (_, k, d)) in enumerate(zip(chainRotors, chainRotors[1:] + [motor], chain), start=4):
+        CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d, name=f'springDamper{i}')
+    axial = None
+    if bearing is not None:
+        axial = CreateWormAxialBearing(mbs, bearing, initialDisplacement=init.get('xA', 0.),
+                                       initialSpeed=init.get('vA', 0.), name='wormAxial')
+    connector = CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='wormGear',
+                               contactOptions=contactOptions, useSymbolic=useSymbolic,
+                               axialNodeNumber=None if axial is None else axial['nodeNumber'])
+    # load-side chain, wheel side first: wheel --kL1-- loadInertia1 --kL2-- loadInertia2 ...; the load on the last
+    loadRotors = CreateLoadSideChain(mbs, wheel, loadChain, init)
+    rotors.update({f'loadInertia{i}': r for i, r in enumerate(loadRotors, start=1)})
+    if load is not None:
+        CreateRotorTorque(mbs, (loadRotors or [wheel])[-1], load, name='reelLoad', useSymbolic=useSymbolic)
+
+    sensors = dict(connector.AddSensors(mbs))
+    OVT = exu.OutputVariableType
+    for index, rotor in ([('0', motor)] + [(str(i), r) for i, r in enumerate(chainRotors, start=4)]
+                         + [(f'L{i}', r) for i, r in enumerate(loadRotors, start=1)]):
+        quantities = (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t))
+        if index != '0':
+            quantities += (('alpha', OVT.Coordinates_tt),)
+        for prefix, ovt in quantities:
+            sensors[prefix + index] = mbs.AddSensor(SensorNode(nodeNumber=rotor['nodeNumber'], outputVariableType=ovt,
+                                                               storeInternal=True, writeToFile=False))
+    return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain, loadChain)
+
+
+def _SolverCounters(mbs) -> Dict[str, Any]:
+    """Work counters of the last solve: steps taken, Newton iterations, Jacobians, rejected (halved) steps."""
+    it = mbs.sys['dynamicSolver'].it
+    steps = mbs.sys['dynamicSolverSteps'] if 'dynamicSolverSteps' in mbs.sys else int(it.currentStepIndex) - 1
+    return {'steps': steps, 'newtonIterations': int(it.newtonStepsCount),
+            'jacobians': int(it.newtonJacobiCount), 'rejectedSteps': int(it.rejectedModifiedNewtonSteps),
+            'minStepSize': float(it.minStepSize)}
+
+
+def _ApplySolverOptions(ss, options: Mapping[str, Any], where: str):
+    """Set dotted ``SimulationSettings`` paths of ``options`` on ``ss``; return the solver type."""
+    import exudyn as exu
+    options = dict(options)
+    name = options.pop('solverType', 'GeneralizedAlpha')
+    if not hasattr(exu.DynamicSolverType, str(name)):
+        raise ValueError(f"{where}: solverOptions['solverType'] must name an exudyn.DynamicSolverType, got {name!r}")
+    for path, value in options.items():
+        *parents, leaf = path.split('.')
+        target = ss
+        for part in parents:
+            target = getattr(target, part, None)
+        if target is None or not hasattr(target, leaf):
+            raise ValueError(f"{where}: solverOptions key {path!r} is not a SimulationSettings path")
+        setattr(target, leaf, value)
+    return getattr(exu.DynamicSolverType, str(name))
+
+
+def SolverSettings(endTime: float, stepSize: float, solverOptions: Optional[Mapping[str, Any]] = None,
+                   where: str = 'SolverSettings'):
+    """The ``exudyn.SimulationSettings`` of :func:`SimulateReelChanger`: one place for the run settings.
+
+    Nothing is written to disk, sensors store every step, Exudyn is silent, and :data:`SOLVER_SETTINGS`
+    (overridden by ``solverOptions``) is applied.
+
+    Parameters
+    ----------
+    endTime : float
+        Simulated time in s, > 0.
+    stepSize : float
+        Time step in s, > 0 (the number of steps is ``round(endTime / stepSize)``, at least 1).
+    solverOptions : mapping, optional
+        Dotted ``SimulationSettings`` paths and values, and optionally ``'solverType'`` (the name of an
+        ``exudyn.DynamicSolverType``), applied over :data:`SOLVER_SETTINGS`.
+    where : str, optional
+        Name used in error messages.
+
+    Returns
+    -------
+    (exudyn.SimulationSettings, exudyn.DynamicSolverType)
+
+    Raises
+    ------
+    ValueError
+        For a ``solverOptions`` key that is not a settings path or an unknown solver type.
+    """
+    import exudyn as exu
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False                 # never litter the user's current directory
+    ss.timeIntegration.endTime = endTime
+    ss.timeIntegration.numberOfSteps = max(1, int(round(endTime / stepSize)))
+    # a sample every step: a hair below the solver's step (endTime / numberOfSteps), or round-off skips the
+    # sample at t = h (the sensor is written once t - tLastWrite >= writePeriod)
+    ss.solution.sensors.writePeriod = endTime / ss.timeIntegration.numberOfSteps * (1. - 1e-9)
+    ss.timeIntegration.verboseMode = 0
+    return ss, _ApplySolverOptions(ss, {**SOLVER_SETTINGS, **(solverOptions or {})}, where)
+
+
+def _LikelyCause(drive: ElasticDrive, stepSize: float) -> str:
+    """Why a run of ``drive`` at ``stepSize`` may have failed, from the linearized drive's fastest eigenvalue."""
+    rate = max(float(np.max(np.abs(EigenvaluesFromPolynomial(CharacteristicCoefficients(drive, S)))))
+               for S in (1, -1))
+    if stepSize * rate > 0.5:
+        return (f"likely cause: the stiffest mode of the linearized drive (|lambda|max = {rate:.3g} 1/s) is far "
+                f"faster than the step resolves (step * |lambda|max = {stepSize * rate:.2g}); resolving it needs a "
+                f"step below about {0.1 / rate:.2g} s; if that is unreasonably small, a parameter is out of a "
+                f"physical range (check values and units)")
+    return (f"likely cause: parameters out of a physical range or a contact too stiff for the step "
+            f"(step * |lambda|max = {stepSize * rate:.2g} of the linearized drive); check the parameters, "
+            f"then try a smaller step size")
+
+
+def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float] = None,
+                        stepSize: Optional[float] = None, contactOptions: ContactOptions = ContactOptions(),
+                        useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
+                        solverOptions: Optional[Mapping[str, Any]] = None, maxSteps: int = MAX_STEPS,
+                        progress: Optional[bool] = None) -> SimulationResult:
+    """Build and simulate the reel changer with Exudyn's generalized-alpha solver.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (e.g. ``GetPreset('reel-P1')``).
+    endTime : float, optional
+        Simulated time in s (default: one full rotation, 8 s for the paper's speed; another duty:
+        :func:`DefaultSimulatedTime`).
+    stepSize : float, optional
+        Time step in s, > 0; refused above the hard limit and warned about above the soft limit of
+        :func:`exudyn_worm.analysis.stepsize.CheckStepSize`. Default: the drive's own
+        :func:`~exudyn_worm.analysis.stepsize.RecommendedStepSize` (7.8e-4 s for P1, 5.1e-4 s for P7).
+    contactOptions : ContactOptions
+        Options of the worm-gear contact law (see :func:`BuildReelChanger`).
+    useSymbolic : bool
+        C++ symbolic user functions (default) or plain Python.
+    startFromEquilibrium : bool
+        Start in the static equilibrium under the initial load (default); see :func:`BuildReelChanger`.
+    profile : optional
+        Motor motion with ``AngleAndSpeed(t, ops)`` (default: constant ``motorSpeed``); see
+        :func:`BuildReelChanger`.
+    solverOptions : mapping, optional
+        Changes to the solver settings, keyed by their path in ``exudyn.SimulationSettings`` (e.g.
+        ``{'timeIntegration.newton.maxIterations': 10}``), and ``'solverType'`` (a name of
+        ``exudyn.DynamicSolverType``, default ``'GeneralizedAlpha'``), applied over :data:`SOLVER_SETTINGS`.
+        For benchmarks and studies.
+    maxSteps : int
+        Refuse a run of more than this many steps (:func:`CheckRunSize`, default :data:`MAX_STEPS`).
+    progress : bool or None
+        Progress bar on stderr: True shown, False never, None (default) shown when stderr is a terminal
+        and the run takes longer than about 2 s (:func:`~exudyn_worm.items.solve.SolveDynamicInChunks`). The
+        numbers do not depend on it.
+
+    Returns
+    -------
+    SimulationResult
+        Nothing is written to disk.
+
+    Raises
+    ------
+    ValueError
+        For bad arguments or parameters, or a run above ``maxSteps``.
+    TypeError
+        If ``parameters`` is not a mapping (a preset name: use ``GetPreset(name)``), ``contactOptions`` is not a
+        :class:`~exudyn_worm.model.contact.ContactOptions` or ``profile`` has no ``AngleAndSpeed``.
+    SolverDivergedError
+        If the solver fails; the message gives the simulated time reached and the likely cause.
+    """
+    import exudyn as exu
+    w = 'SimulateReelChanger'
+    CheckReelChangerKeys(parameters, w)
+    _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
+    endTime = DefaultSimulatedTime(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
+    stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
+    steps = CheckRunSize(endTime, stepSize, maxSteps, w)
+    CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
+    model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
+    mbs = model.mbs
+    mbs.Assemble()
+    ss, solverType = SolverSettings(endTime, stepSize, solverOptions, w)
+    printing = exu.config.printToConsole
+    exu.config.printToConsole = False   # silences Exudyn's note on ObjectGenericODE2 allocations per step
+    try:
+        t0, c0 = _time.perf_counter(), _time.process_time()
+        SolveDynamicInChunks(mbs, ss, solverType, progress=progress, desc=w)
+        solveSeconds, solveCpuSeconds = _time.perf_counter() - t0, _time.process_time() - c0
+    except SolverDivergedError as err:
+        raise SolverDivergedError(f"{w}: {err}; {_LikelyCause(model.drive, stepSize)}",
+                                  err.timeReached, err.endTime, err.stepSize) from err
+    finally:
+        exu.config.printToConsole = printing
+
+    series = model.connector.StoredStates(mbs)
+    time = series.pop('time')
+    for key in [k for k in model.sensors if k not in model.connector.sensors]:
+        series[key] = mbs.GetSensorStoredData(model.sensors[key])[:, 1]
+    # each chunk of the solve stores its start once more: keep one sample per time
+    keep = np.concatenate([[True], np.diff(time) > 1e-6 * stepSize])
+    time = time[keep]
+    series = {k: v[keep] for k, v in series.items()}
+    mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'],
+                                    series.get('xA'), series.get('vA'), time)
+    drive = model.drive
+    motorSide = '4' if model.chain else '0'            # the drive shaft (spring-Damper1) ends at inertia4 or the motor
+    series.update(deltaPhi=mesh.deltaPhi, deltaS=mesh.deltaS, normalForce=mesh.normalForce, S=mesh.S, sf=mesh.sf,
+                  wormTorque=mesh.wormTorque, wheelTorque=mesh.wheelTorque,
+                  # eq. (6): torque in the drive shaft; eq. (7): tangential force at the wheel
+                  driveTorque=drive.kT * (series['phi1'] - series['phi' + motorSide])
+                  + drive.dT * (series['omega1'] - series['omega' + motorSide]),
+                  tangentialForce=mesh.wheelTorque / drive.gear.r2)
+    if model.axialBearing is not None:
+        series['axialForce'] = mesh.axialForce
+    return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
+                            steps=steps, info={'stepSize': stepSize,
+                                               'maxLoadTorque': model.load.maximum if model.load is not None else 0.,
+                                               'loadType': parameters.get('loadType', 'lever'),
+                                               'frictionSpeed': contactOptions.frictionSpeed,
+                                               'frictionModel': contactOptions.frictionModel,
+                                               'useSymbolic': useSymbolic, 'solver': _SolverCounters(mbs),
+                                               'solveCpuSeconds': solveCpuSeconds,
+                                               # the duty's lift / lower / idle phases, shaded by the plots
+                                               'phases': DefaultPhases(parameters, float(time[-1]))})

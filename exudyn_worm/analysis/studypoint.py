@@ -1,0 +1,143 @@
+"""One run of a parameter study, executed in a worker process: the reel-changer simulation of one parameter set,
+its window metrics and chatter verdicts, and the linear verdict of the same set. A failing run is a result: it is
+recorded with its reason and never raises."""
+from __future__ import annotations
+
+import math
+import time
+from typing import Dict, Mapping
+
+import numpy as np
+
+from ..items.results import CHATTER_TORQUE_FRACTION
+from ..items.solve import IsInterrupt
+from ..setups.duty import IsReelChangerDuty
+from .linearization import DriveStability
+from .reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedTime
+from .stepsize import UNRESOLVED, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
+from . import reelchanger
+
+__all__ = ['WINDOW_METRICS', 'RUN_COLUMNS', 'HALF_STEP_METRICS', 'VibrationSeconds', 'RunPoint']
+
+
+#: metrics written per window (those of ``SimulationResult.WindowMetrics`` plus ``vibrationSeconds``)
+WINDOW_METRICS = ('t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
+                  'fractionSNegative', 'minWormSpeed', 'chatter', 'vibrationSeconds')
+#: per-run columns of the results table, before the varied parameters and the window metrics
+RUN_COLUMNS = ('run', 'status', 'error', 'seconds', 'solveSeconds', 'stepSize', 'analyticStable',
+               'analyticStableLowering', 'loweringChatter', 'stepChecked')
+#: metrics of the run at half the step written per window as ``w{i}.halfStep.{metric}`` (where the step is checked,
+#: :func:`~exudyn_worm.analysis.stepsize.CompareHalfStep`; a window's ``chatter`` is then ``'unresolved'`` where they differ)
+HALF_STEP_METRICS = ('maxAbsWheelAcceleration', 'dominantFrequencyHz', 'chatter')
+def VibrationSeconds(result, t0: float, t1: float) -> float:
+    """How long into window [t0, t1] the wheel vibrates: the time after t0 of the last instant at which the
+    wheel inertia torque J2*|phi2''| exceeds the chatter threshold of
+    :meth:`~exudyn_worm.items.results.SimulationResult.Chatter` (a fraction
+    :data:`~exudyn_worm.items.results.CHATTER_TORQUE_FRACTION` of the largest mesh torque in the window); 0 if never.
+
+    Parameters
+    ----------
+    result : SimulationResult
+        A simulation.
+    t0, t1 : float
+        The window in s.
+    """
+    t = result.time
+    m = (t >= t0) & (t <= t1)
+    if not m.any():
+        return 0.
+    threshold = CHATTER_TORQUE_FRACTION * np.max(np.abs(result.series['wheelTorque'][m]))
+    above = np.nonzero(result.J2 * np.abs(result.series['alpha2'][m]) > threshold)[0]
+    return float(t[m][above[-1]] - t0) if above.size else 0.
+
+
+def _OneLine(err: BaseException) -> str:
+    return ' '.join(f"{type(err).__name__}: {err}".split())
+
+
+def RunPoint(task: Mapping) -> Dict:
+    """Run one point of a study; never raises for a failing run (it is recorded as failed with its reason).
+
+    Parameters
+    ----------
+    task : mapping
+        A work item of :meth:`Study.Task`: ``run`` (index), ``parameters`` (full set), ``varied``,
+        ``windows`` (None: default), ``endTime`` (None: one rotation), ``stepSize`` (None: the drive's
+        recommended step), ``maxSteps`` (optional; None: the default limit), ``checkStep`` (optional; None: by
+        the linear margin, :func:`~exudyn_worm.analysis.stepsize.StepCheckByDefault`).
+
+    Returns
+    -------
+    dict
+        A flat row of the results table: the columns :data:`RUN_COLUMNS`, the varied keys and
+        ``w{i}.{metric}`` for each window i and each metric of :data:`WINDOW_METRICS` (None where a run
+        failed before computing them), and ``w{i}.halfStep.{metric}`` (:data:`HALF_STEP_METRICS`) where the
+        step was checked (``stepChecked``).
+    """
+    start = time.perf_counter()
+    p = dict(task['parameters'])
+    row = {'run': int(task['run']), 'status': 'failed', 'error': '', 'seconds': None, 'solveSeconds': None,
+           'stepSize': None, 'analyticStable': None, 'analyticStableLowering': None, 'loweringChatter': None,
+           'stepChecked': None}
+    row.update(task['varied'])
+    try:
+        analysis = DriveStability(p)            # two-mass: eqs. (15)-(19); with a chain or bearing: the whole drive
+        row['analyticStable'] = analysis.stable
+        row['analyticStableLowering'] = analysis.State(-1).stable
+        period = DefaultSimulatedTime(p)      # one rotation of the reel changer; another duty: its tables' end
+        if task['windows'] is not None:
+            windows, phases = task['windows'], None
+        else:        # the first rotation's lift / lower / lift (or the duty's phases), clipped to a shorter end time
+            phases = DefaultPhases(p, None if task['endTime'] is None else min(task['endTime'], period),
+                                   minLength=1e-3)
+            windows = [(t0, t1) for t0, t1, _ in phases]
+        endTime = task['endTime'] if task['endTime'] is not None else max(period, max(t1 for _, t1 in windows))
+        stepSize = task['stepSize'] or RecommendedStepSize(p)       # the rule of simulate
+        row['stepSize'] = stepSize
+        maxSteps = MAX_STEPS if task.get('maxSteps') is None else task['maxSteps']
+        check = task.get('checkStep')
+        if check is None:      # by the linear margin, unless the run at half the step would exceed the limit
+            check = StepCheckByDefault(p) and 2 * endTime / stepSize <= maxSteps
+        row['stepChecked'] = bool(check)
+
+        def Simulate(h):       # no bar per run: the study draws one bar for all runs
+            result = reelchanger.SimulateReelChanger(p, endTime=endTime, stepSize=h, progress=False, maxSteps=maxSteps)
+            if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
+                raise FloatingPointError('diverged: non-finite state in the solution'
+                                         + (' at half the step' if h != stepSize else ''))
+            return result
+        result = Simulate(stepSize)
+        row['solveSeconds'] = result.solveSeconds
+        metrics = result.WindowMetrics(windows)
+        if check:
+            half = Simulate(0.5 * stepSize)
+            row['solveSeconds'] += half.solveSeconds
+            metrics = CompareHalfStep(metrics, half.WindowMetrics(windows))
+        for i, (m, (t0, t1)) in enumerate(zip(metrics, windows)):
+            m = dict(m, vibrationSeconds=VibrationSeconds(result, t0, t1))
+            for name in WINDOW_METRICS:
+                value = m[name]
+                if not isinstance(value, (bool, str)) and not math.isfinite(value):
+                    raise FloatingPointError(f"diverged: window {i} metric {name} = {value}")
+                row[f'w{i}.{name}'] = value
+            for name in HALF_STEP_METRICS if check else ():
+                row[f'w{i}.halfStep.{name}'] = m['halfStep'][name]
+        if phases is None and not IsReelChangerDuty(p):     # given windows: lowering where the duty lowers
+            duty = DefaultPhases(p, endTime)
+            phases = [(t0, t1, next((ph for a, b, ph in duty if a <= 0.5 * (t0 + t1) <= b), 'idle'))
+                      for t0, t1 in windows]
+        lowering = ([i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1] if phases is None
+                    else [i for i, (_, _, phase) in enumerate(phases) if phase == 'lower'])   # the load drives
+        verdict = metrics[lowering[0]]['chatter'] if lowering else None
+        row['loweringChatter'] = verdict if verdict in (None, UNRESOLVED) else bool(verdict)
+        row['status'] = 'ok'
+    except Exception as err:            # a failing run is a result, not the end of the study
+        if IsInterrupt(err):            # ... but Ctrl-C is the end of it
+            raise KeyboardInterrupt() from None
+        row['error'] = _OneLine(err)
+        for key in [k for k in row if k.startswith('w') and '.' in k]:
+            del row[key]
+    row['seconds'] = time.perf_counter() - start
+    return row
+
+

@@ -1,0 +1,175 @@
+"""``exudyn-worm chart``: stability charts (Figures 4 and 5) of the gear of a parameter set.
+
+The gear (angles, friction, r1, r2, kV) and J2 come from the preset/config/``--set``; J1, kT and the damping
+constants are what the chart sweeps (x = kT/(kV r1^2), y = J1/J2, D_T = D_TV D_V), so they need not be given.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Dict, List
+
+from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceText,
+                   Subcommand, UsageError, WriteAtomically)
+
+__all__ = ['COMMAND', 'PAPER_DTV']
+
+#: D_TV values of the paper's Figures 4 and 5 (the default of --DTV)
+PAPER_DTV = (1., 5., 25.)
+
+
+def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.charts import DEFAULT_RESOLUTION, DEFAULT_X_RANGE, DEFAULT_Y_RANGE
+    parser.add_argument('--DV', type=float, default=None, metavar='D_V',
+                        help="mesh damping measure D_V of eq. (23) (default: the parameter set's, from DV or dV)")
+    parser.add_argument('--DTV', type=float, nargs='+', default=list(PAPER_DTV), metavar='D_TV',
+                        help='one or more damping ratios D_TV = D_T/D_V, one chart each (default: 1 5 25)')
+    parser.add_argument('--x-range', type=float, nargs=2, default=list(DEFAULT_X_RANGE), metavar=('MIN', 'MAX'),
+                        help='stiffness-ratio range kT/(kV r1^2) (default: %(default)s)')
+    parser.add_argument('--y-range', type=float, nargs=2, default=list(DEFAULT_Y_RANGE), metavar=('MIN', 'MAX'),
+                        help='inertia-ratio range J1/J2 (default: %(default)s)')
+    parser.add_argument('--resolution', type=int, default=DEFAULT_RESOLUTION, metavar='N',
+                        help='grid points per axis (default: %(default)s)')
+    parser.add_argument('--S', type=int, choices=(-1, 1), default=-1, dest='S',
+                        help='contact state: -1 (load lowering, the paper\'s charts; default) or +1')
+    parser.add_argument('--points', nargs='+', default=[], metavar='NAME',
+                        help='presets to mark at their chart coordinates, e.g. reel-P1 reel-P2 (or P1 P2); '
+                             'their verdict on each chart is listed')
+    parser.add_argument('--output', default=None, metavar='FILE.png',
+                        help='draw the charts (one axes, one region per D_TV) into FILE (.png, .pdf or .svg)')
+    AddOverwriteOption(parser, 'the --output file')
+    parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
+    parser.add_argument('--speed', default=None, metavar='SPEC',
+                        help="instead of the J1-kT chart: the largest real part of the lowering state against motor "
+                             "speed (eq. (16) at each operating point; with a speed-dependent friction law the drive "
+                             "may chatter only in a speed range). SPEC as 'sweep --vary motorSpeed=SPEC' takes it: "
+                             "START:STOP:COUNT[:log] or a list, e.g. '20rpm:2000rpm:40:log'")
+
+
+def _PresetName(name: str) -> str:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..setups.presets import PRESETS
+    # a point needs J1 and kT: the 'chart' preset has neither (it is the gear the chart is drawn for)
+    drives = [p for p in PRESETS if p != 'chart']
+    if name in drives:
+        return name
+    if f'reel-{name}' in drives:
+        return f'reel-{name}'
+    why = " ('chart' is the gear of the chart, it has no J1 or kT to mark)" if name == 'chart' else ''
+    raise UsageError(f"--points: '{name}' is not a drive to mark{why}; expected one of: {', '.join(drives)} "
+                     f"(or P1 ... P7 for reel-P1 ... reel-P7)")
+
+
+def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..model.drive import MeshDampingMeasure
+    if 'DV' in parameters:
+        return parameters['DV']
+    if 'dV' in parameters:
+        return MeshDampingMeasure(parameters['dV'], gear.kV, gear.r2, parameters['J2'])
+    raise UsageError("give --DV (the parameter set has neither 'DV' nor 'dV')")
+
+
+def _RunSpeed(args: argparse.Namespace) -> int:
+    """``chart --speed SPEC``: the lowering state's stability over motor speed (:mod:`exudyn_worm.analysis.speedchart`)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.speedchart import RPM, SpeedStabilityChart
+    from ..analysis.study import ParseVariation
+    output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
+    parameters = ParametersFromArgs(args)
+    with BadInput():
+        spec = args.speed.strip()
+        variation = ParseVariation(f'motorSpeed={spec}')
+        chart = SpeedStabilityChart(parameters, variation.values)
+    if output:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..plotting.plot import SaveFigure
+        ax = chart.plot(title=f'{SourceText(args)}: stability over motor speed ({chart.frictionLaw} friction)')
+        path = WriteAtomically(output, lambda tmp: SaveFigure(ax.figure, tmp))
+        print(f'wrote {path.resolve()}', file=sys.stderr)
+    if args.json:
+        PrintJson(chart.ToDict())
+        return 0
+    print(f"exudyn-worm chart --speed: {SourceText(args)}; {chart.frictionLaw} friction law, lowering (S = -1) "
+          f"at the operating point of each speed (eq. (16) extended by the friction slope)")
+    print(f"  {'motor [rpm]':>11} {'v0 [m/s]':>9} {'mu(v0)':>8} {'dmu/dv [s/m]':>13} {'max Re [1/s]':>13}  verdict")
+    for n, v, mu, slope, re in zip(chart.motorSpeeds / RPM, chart.slidingSpeeds, chart.mu, chart.dmuDv,
+                                   chart.maxRealPart):
+        print(f"  {n:11.4g} {v:9.4g} {mu:8.4g} {slope:13.4g} {re:13.4g}  {'CHATTER' if re > 0 else 'stable'}")
+    ranges = chart.unstableRanges
+    print('Chatter while lowering at ' + ', '.join(f'{a / RPM:.4g} to {b / RPM:.4g} rpm' for a, b in ranges)
+          + (' (of the speeds computed; boundaries near ' + ', '.join(f'{b / RPM:.4g}' for b in chart.Boundaries())
+             + ' rpm)' if chart.Boundaries() else '') if ranges else
+          'No chatter while lowering at any of these speeds.')
+    return 0
+
+
+def _Run(args: argparse.Namespace) -> int:
+    if args.speed is not None:
+        return _RunSpeed(args)
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.charts import ComputeStabilityChart, PresetChartPoints
+    from ..analysis.charttable import FormatChartTable
+    from ..setups.presets import ExtraComponents, GearFromParameters, MissingParameterError
+    from ..progress import ProgressBar
+    output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
+    parameters = ParametersFromArgs(args)
+    with BadInput():
+        gear = GearFromParameters(parameters, meshDamping=False, where='chart')
+        if 'J2' not in parameters:
+            raise MissingParameterError("chart: missing parameter J2 (kg*m^2); give it with --set J2=VALUE or in the "
+                                        "config file", ['J2'])
+        J2 = parameters['J2']
+        DV = args.DV if args.DV is not None else _MeshDampingMeasure(parameters, gear)
+        points = PresetChartPoints([_PresetName(n) for n in args.points])
+        # every argument is checked before the first chart is computed
+        ComputeStabilityChart(gear, J2, DV, args.DTV[0], xRange=args.x_range, yRange=args.y_range, resolution=2,
+                              S=args.S)
+        for DTV in args.DTV[1:]:
+            ComputeStabilityChart(gear, J2, DV, DTV, resolution=2, S=args.S)
+        if not 2 <= args.resolution <= 20000:
+            ComputeStabilityChart(gear, J2, DV, args.DTV[0], resolution=args.resolution)
+    extra = ExtraComponents(parameters)
+    if extra:
+        print(f"exudyn-worm chart: note: the chart is the two-mass drive of Figure 2 with this gear and J2; "
+              f"{' and '.join(extra)} of the parameter set is not in it", file=sys.stderr)
+    charts = []
+    with ProgressBar(total=len(args.DTV), desc='charts', unit='chart', quiet=True if args.quiet else None) as bar:
+        for DTV in args.DTV:
+            charts.append(ComputeStabilityChart(gear, J2, DV, DTV, xRange=args.x_range, yRange=args.y_range,
+                                                resolution=args.resolution, S=args.S))
+            bar.update(1)
+    if output:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..plotting.plot import SaveFigure
+        from ..plotting.plot_charts import PlotStabilityCharts
+        ax = PlotStabilityCharts(charts, points={k: (p['x'], p['y']) for k, p in points.items()},
+                                 note=f'gear: {SourceText(args)}, J2 = {J2:g} kg*m^2')
+        path = WriteAtomically(output, lambda tmp: SaveFigure(ax.figure, tmp))
+        print(f'wrote {path.resolve()}', file=sys.stderr)
+    if args.json:
+        entries: List[Dict] = []
+        for c in charts:
+            d = c.ToDict()
+            if points:
+                d['pointsUnstable'] = {k: bool(c.IsUnstable(p['x'], p['y'])) for k, p in points.items()}
+            entries.append(d)
+        data = {'charts': entries}
+        if points:
+            data['points'] = points
+        PrintJson(data)
+        return 0
+    print(f"exudyn-worm chart: {SourceText(args)}; J2 = {J2:g} kg*m^2, {args.resolution} x {args.resolution} log grid, "
+          f"x = kT/(kV r1^2) in [{args.x_range[0]:g}, {args.x_range[1]:g}], y = J1/J2 in "
+          f"[{args.y_range[0]:g}, {args.y_range[1]:g}]")
+    print('\n'.join(FormatChartTable(charts, points)))
+    if points:
+        print('points (U: unstable, s: stable on that chart, at the point\'s x and y): '
+              + ', '.join(f"{k} x = {p['x']:.4g}, y = {p['y']:.4g} (own D_V = {p['DV']:.4g}, D_TV = {p['DTV']:.4g})"
+                          for k, p in points.items()))
+    return 0
+
+
+COMMAND = Subcommand('chart', 'stability charts (Figures 4, 5): unstable region over kT/(kV r1^2) and J1/J2',
+                     _AddArguments, _Run)

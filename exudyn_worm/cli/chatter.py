@@ -1,0 +1,119 @@
+"""``exudyn-worm chatter``: how strong the steady chatter of the lowering phase gets along one parameter."""
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import List, Tuple
+
+from .main import (BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr,
+                   Subcommand, UsageError)
+
+__all__ = ['COMMAND', 'ParseVary', 'FormatBranch']
+
+
+def ParseVary(text: str) -> Tuple[str, float, float]:
+    """``NAME=LOW:HIGH`` (SI units) -> (name, low, high).
+
+    Parameters
+    ----------
+    text : str
+        The ``--vary`` value, e.g. ``J1=0.05:0.3``.
+
+    Raises
+    ------
+    UsageError
+        If it is malformed or ``LOW >= HIGH``.
+    """
+    name, sep, rest = text.partition('=')
+    parts = rest.split(':')
+    try:
+        if not sep or len(parts) != 2 or not name.strip():
+            raise ValueError
+        low, high = (float(p) for p in parts)
+    except ValueError:
+        raise UsageError(f"--vary must be NAME=LOW:HIGH in SI units (e.g. J1=0.05:0.3), got {text!r}") from None
+    if not low < high:
+        raise UsageError(f"--vary {text}: LOW must be below HIGH, got {low:g}:{high:g}")
+    return name.strip(), low, high
+
+
+def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--vary', metavar='NAME=LOW:HIGH', required=True,
+                        help='the parameter to continue and its range in SI units, e.g. J1=0.05:0.3')
+    parser.add_argument('--plot', metavar='FILE', default=None,
+                        help='draw the branch (stable solid, unstable dashed, linear boundary dotted) into FILE')
+    parser.add_argument('--max-points', type=int, default=60, dest='max_points',
+                        help='largest number of orbits in each direction (default 60)')
+
+
+def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
+    """Table of a :class:`~exudyn_worm.analysis.chatterbranch.ChatterBranch`.
+
+    Parameters
+    ----------
+    branch : ChatterBranch
+        The result.
+    title : str
+        First line.
+
+    Returns
+    -------
+    list of str
+    """
+    lines = [title, '', f"  {branch.parameter:>12} {'Fn/Fstatic':>11} {'|phi2dd| rad/s2':>16} {'f Hz':>8}  orbit"]
+    for p in branch.points:
+        lines.append(f"  {p.value:12.6g} {p.info.get('forceFactor', float('nan')):11.3f} "
+                     f"{p.info.get('maxWheelAcceleration', float('nan')):16.1f} {p.orbit.frequencyHz:8.2f}  "
+                     f"{'stable' if p.stable else 'unstable'}")
+    lines.append('')
+    for h in branch.hopf:
+        lines.append(f"Hopf point at {branch.parameter} = {h['value']:.6g} ({h['type']}); linear boundary "
+                     f"{h['linearBoundary']:.6g} (difference {h['relativeDifference']:.2%})")
+    if branch.folds:
+        lines.append('Folds at ' + ', '.join(f'{f:.6g}' for f in branch.folds))
+    for lo, hi in branch.coexistence:
+        lines.append(f"Rest and chatter coexist for {branch.parameter} in [{lo:.6g}, {hi:.6g}]: linearly stable, "
+                     f"but a disturbance can start chatter")
+    for d in branch.disturbances:
+        lines.append(f"  at {branch.parameter} = {d['value']:.6g}: linearly stable, but chatters after a worm-speed "
+                     f"disturbance of {d['wormSpeed']:.3g} rad/s ({d['wormSpeedFraction']:.1%} of the motor speed)")
+    if not branch.coexistence:
+        lines.append('No range in which rest and stable chatter coexist was found on this branch.')
+    lines += [f"Note: {m}" for m in branch.messages]
+    return lines
+
+
+def _Run(args: argparse.Namespace) -> int:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.chatterbranch import AnalyzeChatterBranch, ChatterBranchError
+    name, low, high = ParseVary(args.vary)
+    parameters = ParametersFromArgs(args)
+    if args.plot:
+        with BadInput():
+            CheckOutputPath(args.plot, '--plot')
+    if args.max_points < 1:
+        raise UsageError(f"--max-points must be >= 1, got {args.max_points}")
+    try:
+        with StdoutToStderr(args.json), BadInput():
+            branch = AnalyzeChatterBranch(parameters, name, low, high, maxPoints=args.max_points)
+    except UsageError as err:
+        partial = getattr(err.__cause__, 'branch', None)
+        if partial is not None and partial.points:                 # keep the points computed so far
+            if args.json:
+                PrintJson(partial.ToDict())
+            else:
+                print('\n'.join(FormatBranch(partial, 'exudyn-worm chatter (incomplete)')))
+        raise
+    if args.plot:
+        path = branch.plot(args.plot)
+        print(f'wrote {args.plot}', file=sys.stderr)
+    if args.json:
+        PrintJson(branch.ToDict())
+        return 0
+    print('\n'.join(FormatBranch(branch, f"exudyn-worm chatter: {SourceText(args)}, {name} in [{low:g}, {high:g}], "
+                                         f"lowering phase (constant load torque)")))
+    return 0
+
+
+COMMAND = Subcommand('chatter', 'steady chatter amplitude along one parameter: periodic orbits, Floquet stability, '
+                     'continuation', _AddArguments, _Run)

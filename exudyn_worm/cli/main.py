@@ -1,0 +1,596 @@
+"""The ``exudyn-worm`` command line (also ``python -m exudyn_worm``).
+
+This module holds what every subcommand shares (errors, the shared parameter options, JSON output);
+each subcommand lives in its own module of :mod:`exudyn_worm.cli` and is listed in
+:data:`COMMAND_MODULES`. A command module defines ``COMMAND``, a :class:`Subcommand` with a name, a
+one-line help text, a function that adds its arguments to its ``argparse`` subparser and a function
+that runs it and returns the exit status. To add a subcommand ``demo``, write
+``exudyn_worm/cli/demo.py``::
+
+    from .main import DriveFromArgs, Subcommand
+
+    def _AddArguments(parser):
+        parser.add_argument('--duration', type=float, default=8., help='simulated time in s')
+
+    def _Run(args):
+        parameters, drive = DriveFromArgs(args)      # --preset/--config/--set, bad input -> exit 2
+        ...                                          # compute, then print (or JSON if args.json)
+        return 0
+
+    COMMAND = Subcommand('demo', 'one-line help', _AddArguments, _Run)
+
+and add ``'demo'`` to :data:`COMMAND_MODULES`. Command modules import heavy packages (exudyn, scipy,
+matplotlib) inside their run function, so that ``exudyn-worm --help`` and light subcommands start fast.
+Extra subcommands (plugins, tests) can be appended to :data:`SUBCOMMANDS`.
+
+With ``parameterOptions=True`` (the default) the subparser gets the shared options of
+:func:`AddParameterOptions` (``--preset``, ``--config``, ``--set KEY=VALUE``, ``--json``). A run function
+signals bad user input by raising :class:`UsageError` (or a ``ValueError``/``TypeError`` inside
+``with BadInput():``); :func:`Main` prints it as one line ``exudyn-worm: error: ...`` on stderr and
+returns 2. Other exceptions are internal errors and propagate with their traceback.
+
+Exit status: 0 success (for ``stability`` whatever the verdict), 1 failed runs, 2 bad input, 130 interrupted
+(Ctrl-C: one line on stderr, no traceback; files are written with :func:`WriteAtomically`, so none is left
+half-written). An existing output file is refused unless ``--overwrite`` (:func:`CheckOutputPath`).
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import importlib
+import json
+import math
+import os
+import re
+import sys
+import warnings
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
+
+from .. import __version__
+from ..setups.config import DEFAULT_PRESET, LoadConfig, ResolveParameters
+from ..params.plausibility import ImplausibleValueWarning
+from ..model.drive import ElasticDrive
+from ..setups.presets import PRESETS, DriveFromParameters, MissingParameterError
+from ..items.solve import IsInterrupt
+from ..params.drivefile import FileKeyOf
+from ..params.drives import ConfigArgument, DocPath, ShippedDrives
+
+__all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'SUBCOMMANDS', 'Subcommands',
+           'AddParameterOptions', 'ParametersFromArgs', 'DriveFromArgs', 'SourceText', 'SourceInfo',
+           'StdoutToStderr', 'PrintJson', 'CheckOutputPath', 'CheckFigurePath', 'FIGURE_SUFFIXES',
+           'AddOverwriteOption', 'WriteAtomically',
+           'INTERRUPTED_STATUS', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
+
+#: program name used in help and error messages
+PROG = 'exudyn-worm'
+#: exit status after Ctrl-C (SIGINT): 128 + 2, the shell's convention
+INTERRUPTED_STATUS = 130
+
+
+class UsageError(Exception):
+    """Bad user input: :func:`Main` prints it as one line on stderr and exits with status 2."""
+
+
+@contextlib.contextmanager
+def BadInput() -> Iterator[None]:
+    """Context manager: a ``ValueError``/``TypeError`` raised inside the block becomes a :class:`UsageError`.
+
+    Raises
+    ------
+    UsageError
+        With the message of the original error (chained).
+    """
+    try:
+        yield
+    except (ValueError, TypeError) as err:
+        raise UsageError(str(err)) from err
+
+
+class _Parser(argparse.ArgumentParser):
+    """ArgumentParser whose errors become one-line :class:`UsageError` instead of usage + exit.
+
+    Negative numbers in any float notation (``-1e-3``, ``-.5``, ``-inf``) are read as values, not as
+    options, so that ``--step-size -1e-3`` reaches the range check instead of "expected one argument".
+    """
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = re.compile(r'^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-inf(inity)?$',
+                                                   re.IGNORECASE)
+
+    def error(self, message: str):
+        raise UsageError(f"{message} (see '{self.prog} --help')")
+
+
+def _NumberType(kind, unit: str, low: float, lowOpen: bool):
+    name = 'an integer' if kind is int else 'a finite number'
+    bound = f"{'>' if lowOpen else '>='} {low:g}{' ' + unit if unit else ''}"
+
+    def Parse(text: str):
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not math.isfinite(value) or (kind is int and not value.is_integer()):
+            raise argparse.ArgumentTypeError(f"expected {name}{' in ' + unit if unit else ''}, got '{text}'")
+        if value < low or (lowOpen and value == low):
+            raise argparse.ArgumentTypeError(f"must be {bound}, got {text}{' ' + unit if unit else ''}")
+        return kind(value)
+    Parse.__name__ = f'{kind.__name__} {bound}'
+    return Parse
+
+
+def PositiveFloat(unit: str = ''):
+    """An ``argparse`` type: a finite float > 0 (``--step-size``, ``--end-time``).
+
+    Parameters
+    ----------
+    unit : str
+        Unit named in the error message, e.g. ``'s'``.
+
+    Returns
+    -------
+    callable
+        ``type=`` argument of ``add_argument``; a bad value gives one line such as
+        ``argument --step-size: must be > 0 s, got -1e-3 s``.
+    """
+    return _NumberType(float, unit, 0., True)
+
+
+def PositiveInt(unit: str = ''):
+    """An ``argparse`` type: an integer >= 1, also written as ``1e7``.
+
+    Parameters
+    ----------
+    unit : str
+        Unit named in the error message, e.g. ``'steps'``.
+
+    Returns
+    -------
+    callable
+        ``type=`` argument of ``add_argument``.
+    """
+    return _NumberType(int, unit, 1, False)
+
+
+def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = False,
+                    contents: Sequence[str] = ()) -> Path:
+    """Check, before any computation, that an output named on the command line can be written.
+
+    One rule for every subcommand: the output you name (a file, or a folder for ``kind='folder'``) is
+    created; an existing file is refused unless ``--overwrite`` is given (``overwrite=True``); the folder
+    that holds it must already exist. Nothing is created here.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The path given by the user.
+    option : str
+        The option that named it, for the message (e.g. ``'--csv'``).
+    kind : {'file', 'folder'}
+        What the path is to be.
+    overwrite : bool, optional
+        Allow replacing an existing file (for a folder: the files of ``contents`` in it).
+    contents : sequence of str, optional
+        For ``kind='folder'``: the names of the files that will be written into it (an existing folder is
+        fine; these files in it are refused unless ``overwrite``).
+
+    Returns
+    -------
+    pathlib.Path
+        The path (unchanged).
+
+    Raises
+    ------
+    UsageError
+        If the path is empty, is a folder where a file is wanted or the other way round, exists without
+        ``overwrite``, its parent is missing or not a folder, or it is not writable.
+    """
+    if kind not in ('file', 'folder'):
+        raise ValueError(f"CheckOutputPath: 'kind' must be 'file' or 'folder', got {kind!r}")
+    text = os.fspath(path)
+    p = Path(text)
+    if not text.strip():
+        raise UsageError(f"{option}: expected a {kind} name, got ''")
+    if p.exists():
+        if kind == 'file' and p.is_dir():
+            raise UsageError(f"{option} {text}: is a folder; give a file name (e.g. {Path(text) / 'out.csv'})"
+                             if option == '--csv' else f"{option} {text}: is a folder; give a file name")
+        if kind == 'folder' and not p.is_dir():
+            raise UsageError(f"{option} {text}: is a file, expected a folder (the figures are written into it)")
+        if not os.access(p, os.W_OK):
+            raise UsageError(f"{option} {text}: not writable")
+        existing = [p] if kind == 'file' else [p / name for name in contents if (p / name).exists()]
+        if existing and not overwrite:
+            what = 'exists' if kind == 'file' else \
+                f"holds {', '.join(e.name for e in existing[:3])}{' ...' if len(existing) > 3 else ''}"
+            raise UsageError(f"{option} {text}: {what}; give --overwrite to replace "
+                             f"{'it' if len(existing) == 1 else 'them'}, or choose another name")
+        return p
+    parent = p.parent
+    if not parent.exists():
+        raise UsageError(f"{option} {text}: the folder {parent} does not exist (create it first; "
+                         f"{PROG} creates only the {kind} you name)")
+    if not parent.is_dir():
+        raise UsageError(f"{option} {text}: {parent} is not a folder")
+    if not os.access(parent, os.W_OK):
+        raise UsageError(f"{option} {text}: cannot write into the folder {parent} (permission denied)")
+    return p
+
+
+#: file formats of the figure options (``--plot``, ``--output`` of ``chart``)
+FIGURE_SUFFIXES = ('.png', '.pdf', '.svg')
+
+
+def CheckFigurePath(path: Union[str, os.PathLike], option: str, overwrite: bool = False) -> Path:
+    """:func:`CheckOutputPath` for a figure file: also its format (a suffix of :data:`FIGURE_SUFFIXES`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The path given by the user.
+    option : str
+        The option that named it (e.g. ``'--plot'``).
+    overwrite : bool, optional
+        Allow replacing an existing file.
+
+    Returns
+    -------
+    pathlib.Path
+
+    Raises
+    ------
+    UsageError
+        For another suffix, or what :func:`CheckOutputPath` refuses.
+    """
+    if Path(os.fspath(path)).suffix.lower() not in FIGURE_SUFFIXES:
+        raise UsageError(f"{option}: expected a file ending in {', '.join(FIGURE_SUFFIXES)}, got '{os.fspath(path)}'")
+    return CheckOutputPath(path, option, overwrite=overwrite)
+
+
+def AddOverwriteOption(parser: argparse.ArgumentParser, what: str = 'the output files') -> None:
+    """Add ``--overwrite``: the one switch that lets a subcommand replace existing output files.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The subcommand's parser.
+    what : str, optional
+        What is replaced, for the help text.
+    """
+    parser.add_argument('--overwrite', action='store_true',
+                        help=f'replace {what} if they exist (without it an existing output file is refused)')
+
+
+def WriteAtomically(path: Union[str, os.PathLike], write: Callable[[Path], object]) -> Path:
+    """Write a file so that it is either complete or absent: into a temporary file beside it, then renamed.
+
+    An interrupt (Ctrl-C) or error during ``write`` removes the temporary file and leaves ``path`` as it was.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    write : callable
+        ``write(temporaryPath)`` writes the whole file to the path it is given (same folder and suffix as
+        ``path``, so that a format is chosen from the suffix as for ``path``).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    path = Path(path)
+    tmp = path.with_name(f'.{path.stem}.{os.getpid()}.partial{path.suffix}')
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise
+    return path
+
+
+@dataclass(frozen=True)
+class Subcommand:
+    """One entry of the subcommand registry.
+
+    Parameters
+    ----------
+    name : str
+        Subcommand name on the command line.
+    help : str
+        One-line description for ``exudyn-worm --help``.
+    addArguments : callable
+        ``addArguments(parser)`` adds the subcommand's own options to its subparser.
+    run : callable
+        ``run(args) -> int`` runs it and returns the exit status.
+    parameterOptions : bool, optional
+        Add the shared options of :func:`AddParameterOptions` (default True).
+    """
+    name: str
+    help: str
+    addArguments: Callable[[argparse.ArgumentParser], None]
+    run: Callable[[argparse.Namespace], int]
+    parameterOptions: bool = True
+
+
+def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
+    """Add the options shared by every subcommand that works on a parameter set.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The subcommand's parser; it gets ``--preset NAME``, ``--config FILE.toml``, ``--set KEY=VALUE``
+        (repeatable, stored as the list ``args.set``) and ``--json``. Read them back with
+        :func:`ParametersFromArgs` / :func:`DriveFromArgs`.
+    """
+    group = parser.add_argument_group('parameter set (preset, then config file, then --set)')
+    group.add_argument('--preset', metavar='NAME', default=None,
+                       help=f"parameter preset, one of: {', '.join(PRESETS)} "
+                            f"(default: the config file's preset, else {DEFAULT_PRESET})")
+    group.add_argument('--config', metavar='FILE.toml', default=None, type=ConfigArgument,
+                       help=f"whole-drive TOML file or one with a [parameters] table (format: "
+                            f"{DocPath('drive-files.md')}), or the name of a shipped drive: "
+                            f"{', '.join(ShippedDrives()) or 'none found'}")
+    group.add_argument('--set', metavar='KEY=VALUE', action='append', default=[], dest='set',
+                       help="override one parameter; VALUE is SI (angles in rad) or has units, "
+                            "e.g. --set 'backlash=0.5 mm' --set 'kT=7 kN*m' (repeatable)")
+    parser.add_argument('--json', action='store_true',
+                        help='print exactly one JSON object on stdout instead of the table')
+
+
+def ParametersFromArgs(args: argparse.Namespace) -> Dict[str, float]:
+    """Resolve the parameter set of the shared options with :func:`~exudyn_worm.setups.config.ResolveParameters`.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments of a subcommand with :func:`AddParameterOptions`.
+
+    Returns
+    -------
+    dict
+        Flat parameter dictionary, SI.
+
+    Raises
+    ------
+    UsageError
+        For any bad input (unknown preset or key, malformed value, wrong unit, bad config file).
+    """
+    with BadInput():
+        return ResolveParameters(preset=args.preset, config=args.config, sets=args.set)
+
+
+def DriveFromArgs(args: argparse.Namespace) -> Tuple[Dict[str, float], ElasticDrive]:
+    """Resolve the parameter set and build its :class:`ElasticDrive`.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments of a subcommand with :func:`AddParameterOptions`.
+
+    Returns
+    -------
+    (dict, ElasticDrive)
+        The flat parameter dictionary and the drive built from it.
+
+    Raises
+    ------
+    UsageError
+        For bad input or parameters the model rejects (its ``ValueError``/``TypeError``).
+    """
+    parameters = ParametersFromArgs(args)
+    with BadInput():
+        return parameters, DriveFromParameters(parameters)
+
+
+@contextlib.contextmanager
+def StdoutToStderr(active: bool) -> Iterator[None]:
+    """Send anything printed inside the block (Python and C level) to stderr, keeping stdout for JSON.
+
+    Parameters
+    ----------
+    active : bool
+        Redirect only if True (e.g. ``args.json``).
+    """
+    if not active:
+        yield
+        return
+    sys.stdout.flush()
+    try:
+        saved = os.dup(1)
+        os.dup2(2, 1)
+    except OSError:
+        saved = None
+    try:
+        with contextlib.redirect_stdout(sys.stderr):
+            yield
+    finally:
+        sys.stderr.flush()
+        if saved is not None:
+            os.dup2(saved, 1)
+            os.close(saved)
+
+
+def PrintJson(data) -> None:
+    """Print ``data`` as one JSON object on stdout (no NaN or infinity: JSON has none).
+
+    Parameters
+    ----------
+    data : dict
+        JSON-ready data.
+    """
+    print(json.dumps(data, indent=2, allow_nan=False))
+
+
+def SourceInfo(args: argparse.Namespace) -> Dict:
+    """Which parameter set a run used, for JSON output: the preset, the config file and the overrides.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments of a subcommand with :func:`AddParameterOptions` (already resolved once, so
+        the config file is known to be valid).
+
+    Returns
+    -------
+    dict
+        ``preset`` (the name used, None for a whole-drive file that names none), ``presetFrom``
+        (``'--preset'``, ``'config'``, ``'default'`` or None), ``config`` (path or None) and ``overrides``
+        (the ``--set`` texts, in order).
+    """
+    if args.preset:
+        preset, source = args.preset, '--preset'
+    else:
+        preset, wholeDrive = None, False
+        if args.config:
+            with BadInput():
+                config = LoadConfig(args.config)
+            preset, wholeDrive = config['preset'], config['wholeDrive']
+        if preset:
+            source = 'config'
+        elif wholeDrive:                 # a whole-drive file inherits no preset
+            source = None
+        else:
+            preset, source = DEFAULT_PRESET, 'default'
+    return {'preset': preset, 'presetFrom': source, 'config': os.fspath(args.config) if args.config else None,
+            'overrides': list(args.set)}
+
+
+def SourceText(args: argparse.Namespace) -> str:
+    """Which parameter set a run used: preset, config file and ``--set`` overrides, as one phrase.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments of a subcommand with :func:`AddParameterOptions`.
+
+    Returns
+    -------
+    str
+        E.g. ``preset reel-P1 (default), --set J1=0.3``.
+    """
+    info = SourceInfo(args)
+    parts = [None if info['preset'] is None else
+             f"preset {info['preset']}" + {'--preset': '', 'config': ' (from the config)',
+                                           'default': ' (default)'}[info['presetFrom']],
+             f"config {info['config']}" if info['config'] else None,
+             f"--set {' '.join(info['overrides'])}" if info['overrides'] else None]
+    return ', '.join(p for p in parts if p)
+
+
+#: built-in subcommands: modules of :mod:`exudyn_worm.cli`, in the order of ``exudyn-worm --help``
+COMMAND_MODULES: Tuple[str, ...] = ('stability', 'check', 'chart', 'simulate', 'sweep', 'chatter')
+#: further subcommands registered at run time (plugins, tests), after the built-in ones
+SUBCOMMANDS: List[Subcommand] = []
+
+
+def Subcommands() -> List[Subcommand]:
+    """All subcommands: the ``COMMAND`` of each module in :data:`COMMAND_MODULES`, then :data:`SUBCOMMANDS`.
+
+    Returns
+    -------
+    list of Subcommand
+    """
+    return [importlib.import_module(f'{__package__}.{name}').COMMAND
+            for name in COMMAND_MODULES] + list(SUBCOMMANDS)
+
+
+def BuildParser() -> argparse.ArgumentParser:
+    """Build the argument parser: one subparser per entry of :data:`SUBCOMMANDS`.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        Parse errors raise :class:`UsageError` instead of printing usage and exiting.
+    """
+    parser = _Parser(prog=PROG, description='Chatter analysis of self-locking worm gears with Exudyn.')
+    parser.add_argument('--version', action='version', version=f'%(prog)s {__version__}')
+    sub = parser.add_subparsers(dest='command', metavar='COMMAND', required=True, parser_class=_Parser)
+    for command in Subcommands():
+        p = sub.add_parser(command.name, help=command.help, description=command.help)
+        if command.parameterOptions:
+            AddParameterOptions(p)
+        command.addArguments(p)
+        p.set_defaults(run=command.run)
+    return parser
+
+
+#: the warnings printed in this run of :func:`Main` (each message once, however often it is issued)
+_SHOWN: set = set()
+
+
+def _ShowWarning(message, category, filename, lineno, file=None, line=None) -> None:
+    """Print a Python warning as one line ``exudyn-worm: warning: ...`` on stderr (no source path), once per run."""
+    text = f"{PROG}: warning: {' '.join(str(message).split())}"
+    if text not in _SHOWN:
+        _SHOWN.add(text)
+        print(text, file=sys.stderr)
+
+
+def _WhereToAdd(err: BaseException, args: Optional[argparse.Namespace]) -> str:
+    """For parameters missing from a run with a drive file: the file and the tables to add them to."""
+    cause = err.__cause__
+    while cause is not None and not isinstance(cause, MissingParameterError):
+        cause = cause.__cause__
+    config = getattr(args, 'config', None)
+    if cause is None or not config:
+        return ''
+    return (f"; to describe the drive in '{config}', add " + ', '.join(f"{FileKeyOf(k)} ({k})" for k in cause.keys)
+            + (' (a file with component tables inherits no preset unless it names one)'
+               if not getattr(args, 'preset', None) else ''))
+
+
+def _Interrupted() -> None:
+    """The one line after Ctrl-C (a second Ctrl-C while printing it is ignored)."""
+    with contextlib.suppress(KeyboardInterrupt, OSError, ValueError):
+        sys.stderr.flush()
+        print(f"{PROG}: interrupted (Ctrl-C); no output file was left half-written", file=sys.stderr)
+
+
+def Main(argv: Optional[Sequence[str]] = None) -> int:
+    """Run the command line; return the exit status.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments without the program name (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        0 on success, 1 if a validation failed, 2 for bad input (one line ``exudyn-worm: error: ...``
+        on stderr), 130 after Ctrl-C (one line ``exudyn-worm: interrupted ...`` on stderr, no traceback).
+    """
+    args = None
+    _SHOWN.clear()
+    try:
+        args = BuildParser().parse_args(argv)
+        with warnings.catch_warnings():
+            warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
+            warnings.simplefilter('always', ImplausibleValueWarning)  # shown once per run by _ShowWarning
+            return int(args.run(args) or 0)
+    except UsageError as err:
+        if IsInterrupt(err):
+            _Interrupted()
+            return INTERRUPTED_STATUS
+        message = ' '.join((str(err) + _WhereToAdd(err, args)).split())
+        print(f"{PROG}: error: {message}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:          # Ctrl-C: one line, no traceback; outputs are written atomically
+        _Interrupted()
+        return INTERRUPTED_STATUS
+    except BrokenPipeError:            # output piped into e.g. `head`: stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+    except SystemExit as err:          # --help, --version
+        return err.code if isinstance(err.code, int) else 0 if err.code is None else 2
+    except Exception as err:           # e.g. Exudyn's SystemError around a pending Ctrl-C
+        if not IsInterrupt(err):
+            raise                      # an internal error: its traceback is for the bug report
+        _Interrupted()
+        return INTERRUPTED_STATUS

@@ -1,0 +1,198 @@
+"""``exudyn-worm sweep``: a parameter study of the reel changer on every core, on an MPI cluster or as a job array."""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import List
+
+from .main import (INTERRUPTED_STATUS, BadInput, CheckFigurePath, CheckOutputPath, ParametersFromArgs, PositiveInt,
+                   PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WriteAtomically)
+from ..params.parameters import PARAMETERS
+
+__all__ = ['COMMAND', 'FormatStudy']
+
+_DEFAULT_METRIC = 'w1.maxAbsWheelAcceleration'
+
+
+def _AddArguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument('--vary', action='append', default=[], metavar='KEY=SPEC', required=True,
+                        help="vary one parameter: a grid KEY=START:STOP:COUNT (e.g. J1=0.01:0.4:8) or a list "
+                             "with units (e.g. 'backlash=0,0.25mm,0.5mm'); repeatable: full factorial")
+    parser.add_argument('--log', action='store_true', help='log spacing for the grids (or append :log to one grid)')
+    parser.add_argument('--zip', action='store_true', help='pair the --vary values instead of the full factorial')
+    parser.add_argument('--output', metavar='FILE.csv', default=None,
+                        help='results table, one row per run, written as runs finish, with the sidecar '
+                             'FILE.study.json; an existing one of the same study is resumed')
+    parser.add_argument('--overwrite', action='store_true',
+                        help='start --output afresh instead of resuming it; replace an existing --plot file')
+    parser.add_argument('--workers', type=int, default=None, metavar='N',
+                        help='worker processes (default: every available CPU)')
+    parser.add_argument('--engine', choices=('process', 'mpi'), default='process',
+                        help="process: a pool on this machine (default); mpi: mpi4py.futures.MPIPoolExecutor, run "
+                             "under 'mpiexec -n N python -m mpi4py.futures -m exudyn_worm sweep ...'")
+    parser.add_argument('--shard', metavar='i/N', default=None,
+                        help='run only the runs i, i+N, i+2N, ... (0 <= i < N), e.g. one task of a job array')
+    parser.add_argument('--end-time', type=float, default=None, metavar='S',
+                        help='simulated time in s (default: one rotation of each run)')
+    parser.add_argument('--step-size', type=float, default=None, metavar='S',
+                        help="time step in s (default: each run's recommended step, 0.039 / its highest natural "
+                             "frequency, as simulate)")
+    parser.add_argument('--check-step', action=argparse.BooleanOptionalAction, default=None,
+                        help="run each point again at half the step; a window whose chatter verdict changes is "
+                             "'unresolved' (default: on for the runs whose linear margin is small, as simulate)")
+    parser.add_argument('--max-steps', type=PositiveInt('steps'), default=None, metavar='N',
+                        help='record as failed the runs of more solver steps than N (default 1e6, as simulate)')
+    parser.add_argument('--windows', default=None, metavar='T0:T1,...',
+                        help='evaluation windows in s (default: the lift / lower / lift phases of each run; for '
+                             'another duty the phases of the first run\'s duty, the same windows for every run)')
+    parser.add_argument('--plot', default=None, metavar='FILE.png',
+                        help='one varied key: --metric against it; two: the chatter map over them (a stiffness '
+                             'across and an inertia up, as the stability charts)')
+    parser.add_argument('--metric', default=_DEFAULT_METRIC, metavar='COLUMN',
+                        help=f"column plotted against one varied key (default {_DEFAULT_METRIC}: the largest "
+                             f"|phi2''| in window 1, the lowering)")
+    parser.add_argument('--quiet', action='store_true', help='no progress bar')
+
+
+def _Study(args: argparse.Namespace):
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.reelchanger import CheckReelChangerKeys
+    from ..analysis.study import ParseVariation, Study
+    from .simulate import ParseWindows
+    parameters = ParametersFromArgs(args)
+    if args.overwrite and not (args.output or args.plot):
+        raise UsageError("--overwrite only applies with --output FILE.csv or --plot FILE.png")
+    if args.metric != _DEFAULT_METRIC and not args.plot:
+        raise UsageError(f"--metric {args.metric} only applies with --plot FILE.png")
+    with BadInput():
+        variations = [ParseVariation(text, log=args.log) for text in args.vary]
+        fixed = {text.split('=', 1)[0].strip() for text in args.set}
+        both = [v.key for v in variations if v.key in fixed]
+        if both:
+            raise ValueError(f"'{both[0]}' is both set (--set) and varied (--vary); give it only once")
+        CheckReelChangerKeys({**parameters, **{v.key: v.values[0] for v in variations}}, 'sweep')
+        windows = ParseWindows(args.windows) if args.windows else None
+        for name in ('end_time', 'step_size'):
+            value = getattr(args, name)
+            if value is not None and not value > 0:
+                raise ValueError(f"--{name.replace('_', '-')} must be > 0 s, got {value:g}")
+        if windows and args.end_time is not None and max(t1 for _, t1 in windows) > args.end_time:
+            raise ValueError(f"--windows: a window ends after --end-time = {args.end_time:g} s")
+        return Study(parameters, variations, zipped=args.zip, windows=windows, endTime=args.end_time,
+                     stepSize=args.step_size, source=SourceText(args), maxSteps=args.max_steps,
+                     checkStep=args.check_step)
+
+
+def _CheckPlot(args, study) -> None:
+    if not args.plot:
+        return
+    CheckFigurePath(args.plot, '--plot', args.overwrite)
+    if len(study.keys) not in (1, 2):
+        raise UsageError(f"--plot needs one or two varied keys, got {len(study.keys)}")
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.study import RUN_COLUMNS, WINDOW_METRICS
+    if len(study.keys) == 1:
+        names = [f'w{i}.{m}' for i in range(study.numberOfWindows) for m in WINDOW_METRICS] + list(RUN_COLUMNS[3:6])
+        if args.metric not in names:
+            raise UsageError(f"--metric: unknown column '{args.metric}'; expected one of: {' '.join(names)}")
+
+
+def _Run(args: argparse.Namespace) -> int:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.study import RunStudy, StudySidecarPath
+    study = _Study(args)
+    if args.output:
+        # an existing results file is resumed (same study) or refused naming what differs (RunStudy)
+        CheckOutputPath(args.output, '--output', overwrite=True)
+    _CheckPlot(args, study)
+    if args.workers is not None and args.workers < 1:
+        raise UsageError(f"--workers must be >= 1, got {args.workers}")
+    try:
+        with BadInput(), StdoutToStderr(args.json):
+            result = RunStudy(study, output=args.output, workers=args.workers, engine=args.engine,
+                              shard=args.shard, quiet=True if args.quiet else None, overwrite=args.overwrite)
+    except KeyboardInterrupt:
+        if args.output:
+            print(f"exudyn-worm: interrupted: finished runs are saved in '{args.output}'; run the same command "
+                  f"again to resume", file=sys.stderr)
+        else:
+            print("exudyn-worm: interrupted: nothing was saved (give --output FILE.csv to keep finished runs and "
+                  "resume)", file=sys.stderr)
+        return INTERRUPTED_STATUS
+    written = []
+    if args.output:
+        written += [Path(args.output), StudySidecarPath(args.output)]
+    if args.plot:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..plotting import plot
+        from ..plotting.plot_study import ChartAxes            # kT across, J1 up, as the stability charts
+        subtitle = f"exudyn-worm sweep: {SourceText(args)}"
+        figure = (result.plot(study.keys[0], metric=args.metric, subtitle=subtitle) if len(study.keys) == 1
+                  else result.plot(*ChartAxes(study.keys[0], study.keys[1]), subtitle=subtitle))
+        WriteAtomically(args.plot, lambda tmp: plot.SaveFigure(figure, tmp))
+        written.append(Path(args.plot))
+    if args.json:
+        PrintJson(result.ToDict())
+    else:
+        print('\n'.join(FormatStudy(result, title=f"exudyn-worm sweep: {SourceText(args)}")))
+    for path in written:
+        print(f"wrote {path.resolve()}", file=sys.stderr)
+    failed = sum(r['status'] != 'ok' for r in result.rows)
+    if failed:
+        print(f"exudyn-worm: warning: {failed} of {len(result.rows)} runs failed; their reason is in the "
+              f"'error' column{' of ' + repr(str(args.output)) if args.output else ' (--json or --output)'}"
+              + ('; runs longer than the step limit are refused: raise it with --max-steps N'
+                 if any('more than the limit maxSteps' in (r['error'] or '') for r in result.rows) else ''),
+              file=sys.stderr)
+    return 1 if result.rows and failed == len(result.rows) else 0
+
+
+#: the chatter cell of a window in the table: chatter, none, unresolved (changes at half the step), not computed
+_VERDICT_CELLS = {True: 'YES', False: 'no', 'unresolved': 'UNR', None: '-'}
+
+
+def FormatStudy(result, title: str = 'Study') -> List[str]:
+    """Human-readable table of a study: one line per run (varied values, status, chatter per window,
+    verdict of the linear model as ``exudyn-worm stability`` gives it: the analytical two-mass model or the
+    linearized whole drive; time) and a summary with the agreement.
+
+    Parameters
+    ----------
+    result : StudyResult
+        Result of :func:`~exudyn_worm.analysis.study.RunStudy`.
+    title : str, optional
+        First line.
+
+    Returns
+    -------
+    list of str
+        The lines, without trailing newlines.
+    """
+    keys = result.study.keys
+    n = result.study.numberOfWindows
+    heads = [PARAMETERS.AxisLabel(k, display=False, dash='-')[0] for k in keys]
+    widths = [max(12, len(h)) for h in heads]
+    lines = [title, '', '  '.join(['run'.rjust(5)] + [h.rjust(w) for h, w in zip(heads, widths)]
+                                  + ['status', 'chatter per window'.ljust(max(18, 4 * n)), 'S=-1 linear  ',
+                                     'seconds'])]
+    for r in result.rows:
+        chatter = ' '.join(_VERDICT_CELLS.get(r.get(f'w{i}.chatter'), '?') for i in range(n))
+        verdict = {None: '-', True: 'stable', False: 'UNSTABLE'}[r['analyticStableLowering']]
+        cells = [f"{r['run']:>5d}"] + [f"{r[k]:>{w}.5g}" for k, w in zip(keys, widths)]
+        cells += [f"{r['status']:<6}", chatter.ljust(max(18, 4 * n)), f"{verdict:<13}", f"{r['seconds']:7.2f}"]
+        lines.append('  '.join(cells) + (f"  {r['error']}" if r['error'] else ''))
+    agreement = result.agreement
+    unresolved = sum(any(r.get(f'w{i}.chatter') == 'unresolved' for i in range(n)) for r in result.rows)
+    checked = sum(bool(r.get('stepChecked')) for r in result.rows)
+    lines += ['', f"step check (a second run at half the step): {checked} of {len(result.rows)} runs; "
+                  f"{unresolved} with an unresolved verdict (UNR: it changes when the step is halved)"]
+    lines += [f"{len(result.rows)} runs: {len(result.finished)} ok, {len(result.failed)} failed; "
+                  f"agreement of chatter while lowering with the linear model's S = -1 verdict (as "
+                  f"'exudyn-worm stability'): "
+                  + ('n/a (no lowering window)' if agreement is None else f"{100 * agreement:.0f} %")]
+    return lines
+
+
+COMMAND = Subcommand('sweep', 'parameter study: many simulations over a grid, on every core or an MPI cluster',
+                     _AddArguments, _Run)
