@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import Any, Dict, Mapping, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -629,3 +629,168 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
     return {'forceFactor': float(np.max(np.abs(mesh.normalForce)) / model.staticNormalForce),
             'maxWheelAcceleration': float(np.max(np.abs(s['alpha2'][last]))),
             'frequencyHz': 1. / _PeriodFromSignal(s['time'][last], s['omega1'][last]), 'seconds': seconds}
+
+
+def _HeldCoordinates(mbs) -> List[int]:
+    """ODE2 coordinates held by a coordinate constraint (``ObjectConnectorCoordinate``, e.g. a motor prescribed by
+    :func:`~exudyn_worm.drivetrain.CreatePrescribedRotation`)."""
+    owner = {node: first for first, (node, column) in _CoordinateOwners(mbs).items() if column == 0}
+    held = []
+    for i in range(mbs.systemData.NumberOfObjects()):
+        item = mbs.GetObject(i)
+        if item.get('objectType') != 'ConnectorCoordinate':
+            continue
+        for m in item['markerNumbers']:
+            marker = mbs.GetMarker(m)
+            if marker.get('markerType') == 'NodeCoordinate' and int(marker['nodeNumber']) in owner:
+                held.append(owner[int(marker['nodeNumber'])] + int(marker['coordinate']))
+    return sorted(set(held))
+
+
+def LoweringModelOfSystem(mbs: Any, connector: WormGearConnector,
+                          coordinates: Optional[Sequence[int]] = None) -> LoweringModel:
+    """The model the orbit functions work on, for your own Exudyn system with a worm-gear connector.
+
+    The system must be autonomous relative to its steady rotation, as the lowering phase is: motors held at
+    constant speed, loads constant (not depending on angles or time), and it must start in that steady state:
+    every coordinate at its steady speed (its initial velocity), the mesh deflected by the load and every shaft
+    pre-twisted by the torque it carries (:func:`~exudyn_worm.equilibrium.SteadyInitialState`). The flow state
+    is then ``(q - v0 t, q' - v0)`` over ``coordinates`` (:class:`ExudynFlow`).
+
+    Node sensors for the state's coordinates (and the connector's own, :meth:`WormGearConnector.AddSensors`, if it
+    has none) are added to ``mbs`` and the system is assembled again; its initial state is kept.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The assembled system, in its steady state.
+    connector : WormGearConnector
+        The mesh of ``mbs`` (:func:`~exudyn_worm.connector.CreateWormGear`) whose chatter is looked for; its worm
+        must turn (initial worm speed != 0).
+    coordinates : sequence of int, optional
+        ODE2 coordinate indices of the flow state; default: every ODE2 coordinate not held by a coordinate
+        constraint (``ObjectConnectorCoordinate``, e.g. the motor of ``CreatePrescribedRotation``). The worm's
+        and the wheel's come first.
+
+    Returns
+    -------
+    LoweringModel
+        ``drive`` is None, ``parameters`` empty, ``motorSpeed`` the worm's steady speed (kicks are fractions of
+        it), ``loadTorque`` nan.
+
+    Raises
+    ------
+    TypeError
+        If ``mbs`` is not an ``exudyn.MainSystem`` or ``connector`` not a WormGearConnector of ``mbs``.
+    ValueError
+        If the system is not assembled, the worm does not turn, the mesh carries no load at the initial state, or
+        ``coordinates`` is not a set of ODE2 indices with the worm's and the wheel's.
+    """
+    w = 'LoweringModelOfSystem'
+    CheckSystem(w, mbs)
+    if not isinstance(connector, WormGearConnector) or connector not in mbs.variables.get(CONNECTORS_KEY, []):
+        raise TypeError(f"{w}: 'connector' must be a WormGearConnector built in 'mbs' by CreateWormGear, got "
+                        f"{type(connector).__name__}")
+    size = mbs.systemData.ODE2Size()
+    if not size:
+        raise ValueError(f"{w}: 'mbs' has no ODE2 coordinates: call mbs.Assemble() first")
+    C = _Configuration()
+    q0 = np.array(mbs.systemData.GetODE2Coordinates(configuration=C.Initial), dtype=float)
+    v0 = np.array(mbs.systemData.GetODE2Coordinates_t(configuration=C.Initial), dtype=float)
+    worm, wheel = (int(mbs.GetNodeODE2Index(n)) for n in connector.nodeNumbers)
+    if v0[worm] == 0.:
+        raise ValueError(f"{w}: the worm's initial speed must be its steady speed (!= 0 rad/s): start the system in "
+                         f"the steady rotation (SteadyInitialState), got 0 rad/s")
+    if coordinates is None:
+        held = set(_HeldCoordinates(mbs))
+        coordinates = [i for i in range(size) if i not in held]
+    if isinstance(coordinates, (str, bytes)) or not hasattr(coordinates, '__iter__'):
+        raise TypeError(f"{w}: 'coordinates' must be a sequence of ODE2 indices, got {type(coordinates).__name__}")
+    chosen = list(coordinates)
+    if (any(isinstance(i, bool) or not isinstance(i, (int, np.integer)) or not 0 <= i < size for i in chosen)
+            or len(set(chosen)) != len(chosen) or worm not in chosen or wheel not in chosen):
+        raise ValueError(f"{w}: 'coordinates' must be distinct ODE2 indices in [0, {size - 1}] including the worm's "
+                         f"({worm}) and the wheel's ({wheel}), got {chosen!r}")
+    index = [worm, wheel] + sorted(int(i) for i in chosen if i not in (worm, wheel))
+    sensors = _AddFlowSensors(mbs, index)               # first: it reads the assembled system's nodes
+    if not connector.sensors:
+        connector.AddSensors(mbs)
+    mbs.Assemble()
+    mbs.systemData.SetODE2Coordinates(q0.tolist(), configuration=C.Initial)
+    mbs.systemData.SetODE2Coordinates_t(v0.tolist(), configuration=C.Initial)
+    keys = ['phi1', 'phi2'] + [f'q{i}' for i in index[2:]]
+    steady = {k: float(q0[i]) for k, i in zip(keys, index)}
+    steady.update(omega1=float(v0[worm]), omega2=float(v0[wheel]))
+    if connector.axialNodeNumber is not None:
+        a = int(mbs.GetNodeODE2Index(connector.axialNodeNumber))
+        steady.update(xA=float(q0[a]), vA=float(v0[a]))
+    force = abs(float(_MeshAt(connector, steady).normalForce))
+    if not force > 0:
+        raise ValueError(f"{w}: the mesh carries no load at the initial state (normal force 0 N): start the system "
+                         f"in the static equilibrium under its load (SteadyInitialState)")
+    return LoweringModel(None, mbs, None, connector, {}, steady, abs(float(v0[worm])), math.nan, force,
+                         connector.options, {}, tuple(index), v0, tuple(keys), q0, sensors)
+
+
+def SteadyChatterOfSystem(mbs: Any, connector: WormGearConnector, coordinates: Optional[Sequence[int]] = None,
+                          settleTime: float = 1.0, stepsPerPeriod: int = STEPS_PER_PERIOD, kick: float = 0.01,
+                          start: Optional[Any] = None, maxIterations: int = 30, tolerance: float = 1e-8,
+                          initialState: Optional[Sequence[float]] = None) -> PeriodicOrbit:
+    """Steady chatter of your own Exudyn system with a worm-gear connector: its periodic orbit, by shooting on the
+    system itself, with Floquet multipliers (as :func:`FindSteadyChatter` for a parameter set).
+
+    The system must run in a steady rotation and start in it (:func:`LoweringModelOfSystem` says what that
+    means); the chatter is looked for after a time simulation from that state with the worm speed kicked by
+    ``kick`` times its steady speed.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The assembled system, in its steady state.
+    connector : WormGearConnector
+        Its mesh.
+    coordinates : sequence of int, optional
+        ODE2 indices of the flow state (default: every coordinate not held by a coordinate constraint).
+    settleTime : float
+        Duration in s of the settling simulation, > 0.
+    stepsPerPeriod : int
+        Solver steps per period in the shooting runs.
+    kick : float
+        Initial worm-speed disturbance as a fraction of the worm's steady speed.
+    start : (array_like, float), optional
+        Start guess ``(state, period)`` in flow coordinates instead of the settling simulation.
+    maxIterations : int
+        Newton steps at most.
+    tolerance : float
+        Shooting tolerance (relative to the state scale).
+    initialState : array_like, optional
+        Flow state the settling simulation starts from instead of the kicked steady state.
+
+    Returns
+    -------
+    PeriodicOrbit
+        ``state`` is ``(q - v0 t, q' - v0)`` over ``info['model'].coordinates`` (worm, wheel, the others);
+        ``info`` holds ``forceFactor`` (largest normal force over the steady one), ``maxWheelAcceleration``
+        (rad/s^2), ``minWormSpeed`` (rad/s), ``model`` and ``flow``.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For a system or connector that does not fit (:func:`LoweringModelOfSystem`).
+    ShootingError
+        If the system settles to rest (no chatter to find) or Newton fails.
+
+    Examples
+    --------
+    A three-mass drive built by hand (motor, shaft, worm, mesh, wheel, load shaft, load) in
+    ``tests/test_chatter_chains.py``; in short::
+
+        state = SteadyInitialState(drive, load=M, motorSpeed=w, loadSide=[(JL, kL)])
+        # ... CreateRotor / CreatePrescribedRotation / CreateShaft / CreateWormGear / CreateRotorTorque at state
+        mbs.Assemble()
+        orbit = SteadyChatterOfSystem(mbs, connector)
+        orbit.frequencyHz, orbit.info['forceFactor'], orbit.stable
+    """
+    model = LoweringModelOfSystem(mbs, connector, coordinates)
+    return _FindChatter(model, 'SteadyChatterOfSystem', 'the system', settleTime, stepsPerPeriod, start,
+                        maxIterations, tolerance, kick, initialState)
