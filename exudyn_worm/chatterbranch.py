@@ -19,7 +19,7 @@ from typing import Callable, Dict, List, Mapping, Optional, Tuple
 import numpy as np
 
 from .chatter import (BuildLoweringModel, FindSteadyChatter, OrbitAmplitude, SettleLowering, StateScale,
-                      UpdateLoweringModel, _LoweringFlow)
+                      UpdateLoweringModel, _LoweringFlow, _MeshAt)
 from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import ShootingError
 from .linearization import DriveStability
@@ -356,7 +356,7 @@ def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 3.0, 
         SettleLowering(model, duration, kick=kick, store=True)
         s = model.connector.StoredStates(model.mbs)
         last = s['time'] >= s['time'][-1] - 0.2
-        mesh = model.connector.Evaluate(s['phi1'][last], s['phi2'][last], s['omega1'][last], s['omega2'][last])
+        mesh = _MeshAt(model.connector, s, last)
         return float(np.max(np.abs(mesh.normalForce))) >= 2. * model.staticNormalForce
 
     if not Chatters(largest):

@@ -65,6 +65,19 @@ def test_stiff_load_shaft_gives_the_two_mass_orbit(orbitP1):
     assert stiff.frequencyHz == pytest.approx(orbitP1.frequencyHz, rel=0.02)
 
 
+def test_stiff_axial_bearing_gives_the_two_mass_orbit(orbitP1):
+    # the worm's axial bearing at 5e10 N/m (the mesh's kV is 2e8 N/m): nearly the axially rigid worm of Figure 2;
+    # the flow state holds the axial coordinate, the mesh is evaluated with it
+    p = {**P1, 'kA': 5e10, 'mA': 2., 'dA': 100.}
+    orbit = FindSteadyChatter(p)
+    assert orbit.info['model'].stateKeys[-1] == 'xA' and len(orbit.state) == 6
+    assert orbit.info['forceFactor'] == pytest.approx(orbitP1.info['forceFactor'], rel=0.02)
+    assert orbit.info['maxWheelAcceleration'] == pytest.approx(orbitP1.info['maxWheelAcceleration'], rel=0.02)
+    # and the disturbance search reads the mesh with the axial coordinate too: P1 is linearly unstable
+    from exudyn_worm.chatterbranch import SmallestDisturbance
+    assert SmallestDisturbance(p, duration=0.5, steps=1) <= 0.25
+
+
 @pytest.mark.slow
 def test_chain_orbit_matches_long_simulation(orbitChain):
     long = LongSimulationAmplitude(CHAIN, duration=4.0, stepSize=2e-4)
