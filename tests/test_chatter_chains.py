@@ -177,3 +177,16 @@ def test_cli_chatter_names_the_unsupported_component(capsys):
     assert code == 2
     assert 'a motor on its characteristic (motorType characteristic)' in err and 'Traceback' not in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_branch_in_a_load_shaft_stiffness():
+    from exudyn_worm.chatterbranch import AnalyzeChatterBranch
+    branch = AnalyzeChatterBranch(CHAIN, 'kL1', 8e6, 1.2e7, maxPoints=2)
+    assert branch.parameter == 'kL1' and len(branch.points) >= 2
+    # each value rebuilds the lowering model with its own load shaft: the amplitude changes along the branch
+    values = {round(p.value, 3): p.info['forceFactor'] for p in branch.points}
+    assert len(set(values.values())) == len(values) and min(values.values()) > 2.
+    # a stage the drive does not have cannot be continued; the message lists the drive's own keys
+    with pytest.raises(ValueError, match=r"parameter 'kL2' cannot be continued; .* or a key of this drive's chains "
+                                         r"and axial bearing \(JL1, kL1\)"):
+        AnalyzeChatterBranch(CHAIN, 'kL2', 1e6, 1e7)
