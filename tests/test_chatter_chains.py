@@ -190,3 +190,16 @@ def test_branch_in_a_load_shaft_stiffness():
     with pytest.raises(ValueError, match=r"parameter 'kL2' cannot be continued; .* or a key of this drive's chains "
                                          r"and axial bearing \(JL1, kL1\)"):
         AnalyzeChatterBranch(CHAIN, 'kL2', 1e6, 1e7)
+
+
+def test_own_system_at_rest_is_reported():
+    # J1 = 0.3 kg m^2: the chain drive is linearly stable (its own linearization decides, as DriveStability for a
+    # parameter set); the kick dies out and the message says so
+    p = {**CHAIN, 'J1': 0.3}
+    assert DriveStability(p).State(-1).stable
+    SC, mbs, connector = _HandBuiltThreeMass(p)
+    from exudyn_worm.chatter import _LinearlyStable
+    assert _LinearlyStable(LoweringModelOfSystem(mbs, connector))
+    SC, mbs, connector = _HandBuiltThreeMass(p)
+    with pytest.raises(ValueError, match=r"SteadyChatterOfSystem: the system settles to rest"):
+        SteadyChatterOfSystem(mbs, connector, settleTime=0.3)
