@@ -5,7 +5,9 @@ The lowering phase is modelled as the linear analysis sees it: the motor turns a
 forward (the reel changer's load -m g l cos(phi2) at phi2 = pi, the middle of the lowering phase). With the
 angles taken relative to the steady rotation (``phi - omega t``) and the speeds relative to the steady speeds,
 the drive is then autonomous, and the steady chatter is a periodic orbit in the state
-``(phi1 - omega1 t, phi2 - omega2 t, phi1' - omega1, phi2' - omega2)``.
+``(phi1 - omega1 t, phi2 - omega2 t, phi1' - omega1, phi2' - omega2)``, extended by every other free coordinate
+of the drive (drive-side and load-side chain rotors, the worm's axial coordinate: :func:`BuildLoweringModel`).
+:func:`SteadyChatterOfSystem` does the same for your own Exudyn system with a worm-gear connector.
 
 :class:`ExudynFlow` is the one-period map of any Exudyn system: set the initial state, ``mbs.SolveDynamic``
 over time T (fixed number of steps), read the end state. :func:`FindSteadyChatter` starts from a short time
