@@ -47,9 +47,12 @@ def test_lowering_model_starts_in_equilibrium():
     assert g.ratio * model.steady['omega2'] == pytest.approx(P1['motorSpeed'], rel=1e-12)
 
 
-def test_lowering_model_refuses_extra_components():
-    with pytest.raises(ValueError, match=r"BuildLoweringModel: .*two-mass drive.*drive-side chain"):
-        BuildLoweringModel({**P1, 'J4': 0.05, 'k4': 2e4})
+def test_lowering_model_refuses_a_motor_on_its_characteristic():
+    # the chains and the axial bearing are built (tests/test_chatter_chains.py); a free motor is not: named
+    p = {**P1, 'motorType': 'characteristic', 'stallTorque': 300., 'noLoadSpeed': 52.36, 'motorInertia': 0.05}
+    with pytest.raises(ValueError, match=r"BuildLoweringModel: .*constant speed.*a motor on its characteristic "
+                                         r"\(motorType characteristic\) \(not supported\)"):
+        BuildLoweringModel(p)
 
 
 def test_update_in_place_changes_inertia_and_shaft():

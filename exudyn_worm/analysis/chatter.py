@@ -5,7 +5,9 @@ The lowering phase is modelled as the linear analysis sees it: the motor turns a
 forward (the reel changer's load -m g l cos(phi2) at phi2 = pi, the middle of the lowering phase). With the
 angles taken relative to the steady rotation (``phi - omega t``) and the speeds relative to the steady speeds,
 the drive is then autonomous, and the steady chatter is a periodic orbit in the state
-``(phi1 - omega1 t, phi2 - omega2 t, phi1' - omega1, phi2' - omega2)``.
+``(phi1 - omega1 t, phi2 - omega2 t, phi1' - omega1, phi2' - omega2)``, extended by every other free coordinate
+of the drive (drive-side and load-side chain rotors, the worm's axial coordinate: :func:`BuildLoweringModel`).
+:func:`SteadyChatterOfSystem` does the same for your own Exudyn system with a worm-gear connector.
 
 :class:`ExudynFlow` is the one-period map of any Exudyn system: set the initial state, ``mbs.SolveDynamic``
 over time T (fixed number of steps), read the end state. :func:`FindSteadyChatter` starts from a short time
@@ -19,23 +21,25 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import Any, Dict, Mapping, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
 from ..model.contact import MATH_OPS, ContactOptions
 from .orbits import FindPeriodicOrbit, PeriodicOrbit, ShootingError
 from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
-from .._checks import CheckPositive, CheckReal
-from ..items.connector import CreateWormGear
-from ..items.drivetrain import CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
-from .linearization import DriveStability
-from ..setups.presets import DriveFromParameters, ExtraComponents
-from .reelchanger import SOLVER_SETTINGS, CheckReelChangerKeys, SolverSettings, SteadyInitialState
+from .._checks import CheckPositive, CheckReal, CheckSystem
+from ..items.connector import CONNECTORS_KEY, WormGearConnector
+from .linearization import AnalyzeLinearStability, DriveStability
+from ..setups.presets import (AxialBearingFromParameters, DriveFromParameters, DriveSideChain, ExtraComponents,
+                      LoadSideChain)
+from .reelchanger import (SOLVER_SETTINGS, BuildReelChanger, CheckReelChangerKeys, SolverSettings,
+                          SteadyInitialState)
 from ..items.solve import SolverDivergedError
 
 __all__ = ['LoweringModel', 'BuildLoweringModel', 'ExudynFlow', 'FindSteadyChatter',
-           'OrbitAmplitude', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LongSimulationAmplitude', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS']
+           'OrbitAmplitude', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LongSimulationAmplitude', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS',
+           'LoweringModelOfSystem', 'SteadyChatterOfSystem']
 
 #: solver steps per chatter period of the shooting runs (about 2 % change in the P1 amplitude to 800 steps,
 #: measured, see docs/chatter-amplitude.md)
@@ -76,7 +80,19 @@ class LoweringModel:
     contactOptions : ContactOptions
         Options of the contact law.
     parameters : dict of str to float
-        The flat parameter set the model was built from.
+        The flat parameter set the model was built from (empty for :func:`LoweringModelOfSystem`).
+    coordinates : tuple of int
+        ODE2 coordinate indices of the flow state: the worm's, the wheel's, then every other free coordinate
+        (drive-side and load-side chain rotors, the worm's axial coordinate, ...).
+    steadySpeeds : ndarray
+        Steady speed of every ODE2 coordinate of ``mbs`` (rad/s or m/s; 0 for a coordinate at rest).
+    stateKeys : tuple of str
+        Key of ``steady`` that holds the equilibrium position of each coordinate of ``coordinates``.
+    initialCoordinates : ndarray
+        ODE2 coordinates of the steady state at t = 0 (a prescribed motor's angle among them).
+    nodeSensors : tuple of (int, int, int)
+        Per coordinate of ``coordinates``: the node sensors of its node's positions and velocities and the
+        coordinate's column in them.
     """
     systemContainer: Any
     mbs: Any
@@ -89,18 +105,30 @@ class LoweringModel:
     staticNormalForce: float
     contactOptions: ContactOptions
     parameters: Dict[str, float]
+    coordinates: Tuple[int, ...] = ()
+    steadySpeeds: Any = None
+    stateKeys: Tuple[str, ...] = ()
+    initialCoordinates: Any = None
+    nodeSensors: Tuple[Tuple[int, int, int], ...] = ()
 
 
 def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
                        useSymbolic: bool = True) -> LoweringModel:
     """Exudyn model of the reel changer's lowering phase: motor at constant speed, constant load torque
-    ``loadMass * g * leverArm`` driving the wheel, starting in the steady state (static mesh deflection).
+    ``loadMass * g * leverArm`` driving the wheel (the last rotor of a load-side chain), starting in the steady
+    state (static mesh deflection, every shaft of the chains pre-twisted by the torque it carries).
+
+    The system is the time simulation's own (:func:`~exudyn_worm.analysis.reelchanger.BuildReelChanger` with the duty
+    ``loadType = constant``, ``loadTorque = loadMass * g * leverArm`` and the motor at ``motorSpeed``), so the
+    drive-side chain (``J4, k4, d4, ...``), the load-side chain (``JL1, kL1, dL1, ...``) and the worm's axial
+    bearing (``kA, dA, mA``) are built as a simulation builds them. The flow state holds every free ODE2
+    coordinate (``LoweringModel.coordinates``).
 
     Parameters
     ----------
     parameters : mapping
-        Flat parameter set with the reel changer's keys (e.g. ``GetPreset('reel-P1')``); the two-mass drive of
-        Figure 2 (a drive-side chain or an axial bearing is refused).
+        Flat parameter set with the reel changer's keys (e.g. ``GetPreset('reel-P1')``), with or without the
+        chains and the axial bearing; a motor on its characteristic (``motorType = characteristic``) is refused.
     contactOptions : ContactOptions
         Options of the contact law.
     useSymbolic : bool
@@ -113,38 +141,112 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
     Raises
     ------
     ValueError, TypeError
-        For a bad parameter set, or one with components beyond the two-mass drive.
+        For a bad parameter set, or one with a component the lowering model does not have (a motor on its
+        characteristic: the lowering phase holds the motor at constant speed).
     """
-    import exudyn as exu
     w = 'BuildLoweringModel'
     CheckReelChangerKeys(parameters, w)
-    extra = ExtraComponents(parameters)
-    if extra:
-        raise ValueError(f"{w}: the periodic-orbit analysis covers the two-mass drive of Figure 2; this parameter set "
-                         f"also has {' and '.join(extra)} (not supported yet); leave those keys out")
+    unsupported = ExtraComponents({k: parameters[k] for k in ('motorType',) if k in parameters})
+    if unsupported:
+        raise ValueError(f"{w}: the periodic-orbit analysis holds the motor at constant speed 'motorSpeed' (the "
+                         f"lowering phase of the linear analysis); this parameter set has {' and '.join(unsupported)} "
+                         f"(not supported); leave those keys out")
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
     drive = DriveFromParameters(parameters)
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     loadTorque = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm']).maximum
-    load = ConstantTorque(loadTorque)
-    steady = SteadyInitialState(drive, load, motorSpeed, contactOptions)
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    motor = CreateRotor(mbs, 1e-3, initialAngle=0., initialSpeed=motorSpeed, name='motor')
-    worm = CreateRotor(mbs, drive.J1, initialAngle=steady['phi1'], initialSpeed=steady['omega1'], name='worm')
-    wheel = CreateRotor(mbs, drive.J2, initialAngle=steady['phi2'], initialSpeed=steady['omega2'], name='wheel')
-    CreatePrescribedRotation(mbs, motor, ConstantSpeed(motorSpeed), name='motorDrive', useSymbolic=useSymbolic)
-    shaft = CreateShaft(mbs, [motor, worm], stiffness=drive.kT, damping=drive.dT, name='driveShaft')
-    connector = CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='wormGear',
-                               contactOptions=contactOptions, useSymbolic=useSymbolic)
-    CreateRotorTorque(mbs, wheel, load, name='lowerLoad', useSymbolic=useSymbolic)
-    connector.AddSensors(mbs)
+    # the time simulation's builder, with the lowering phase as its duty: one assembly of the chains
+    reel = BuildReelChanger({**parameters, 'loadType': 'constant', 'loadTorque': loadTorque}, contactOptions,
+                            useSymbolic, startFromEquilibrium=True, profile=ConstantSpeed(motorSpeed))
+    mbs = reel.mbs
+    mbs.Assemble()                                  # coordinate indices and sizes exist from here on
+    steady = _SteadyState(drive, parameters, loadTorque, motorSpeed, contactOptions)
+    # the flow state: worm, wheel, then the chains' rotors and the worm's axial coordinate, each with the key of
+    # its equilibrium position in ``steady`` (SteadyInitialState's names) and of its steady speed
+    nodes = [(reel.rotors['worm'], 'phi1', 'omega1'), (reel.rotors['wheel'], 'phi2', 'omega2')]
+    nodes += [(reel.rotors[f'inertia{i}'], f'phi{i}', f'omega{i}') for i in range(4, 4 + len(reel.chain))]
+    nodes += [(reel.rotors[f'loadInertia{i}'], f'phiL{i}', f'omegaL{i}') for i in range(1, 1 + len(reel.loadChain))]
+    if reel.axialBearing is not None:
+        nodes.append((reel.axialBearing, 'xA', 'vA'))
+    index = [mbs.GetNodeODE2Index(node['nodeNumber']) for node, _, _ in nodes]
+    speeds = np.zeros(mbs.systemData.ODE2Size())
+    speeds[mbs.GetNodeODE2Index(reel.rotors['motor']['nodeNumber'])] = motorSpeed
+    speeds[index] = [steady[v] for _, _, v in nodes]
+    sensors = _AddFlowSensors(mbs, index)
     mbs.Assemble()
-    static = connector.Evaluate(steady['phi1'], steady['phi2'], steady['omega1'], steady['omega2'])
-    return LoweringModel(SC, mbs, drive, connector, {'motor': motor, 'worm': worm, 'wheel': wheel,
-                                                      'driveShaft': shaft}, steady,
-                         motorSpeed, loadTorque, abs(float(static.normalForce)), contactOptions, dict(parameters))
+    static = _MeshAt(reel.connector, steady)
+    rotors = {**reel.rotors, 'driveShaft': {'objectNumber': mbs.GetObjectNumber('driveShaft')}}
+    initial = np.array(mbs.systemData.GetODE2Coordinates(configuration=_Configuration().Initial), dtype=float)
+    return LoweringModel(reel.systemContainer, mbs, drive, reel.connector, rotors, steady, motorSpeed, loadTorque,
+                         abs(float(static.normalForce)), contactOptions, dict(parameters), tuple(index), speeds,
+                         tuple(p for _, p, _ in nodes), initial, sensors)
+
+
+def _Configuration():
+    import exudyn as exu
+    return exu.ConfigurationType
+
+
+def _SteadyState(drive, parameters: Mapping[str, float], loadTorque: float, motorSpeed: float,
+                 contactOptions: ContactOptions) -> Dict[str, float]:
+    """The steady state of lowering with the parameter set's chains and axial bearing, as
+    :func:`~exudyn_worm.analysis.reelchanger.BuildReelChanger` starts its system."""
+    return SteadyInitialState(drive, ConstantTorque(loadTorque), motorSpeed, contactOptions,
+                              AxialBearingFromParameters(parameters), tuple(DriveSideChain(parameters)),
+                              loadSide=tuple(LoadSideChain(parameters)))
+
+
+def _MeshAt(connector, state: Mapping[str, Any], mask=None):
+    """The connector's mesh quantities for the states in ``state`` (keys ``phi1, phi2, omega1, omega2`` and, with
+    an axial node, ``xA, vA``: a steady state or stored sensor series), at ``mask`` (None: all)."""
+    keys = ('phi1', 'phi2', 'omega1', 'omega2') + (() if connector.axialNodeNumber is None else ('xA', 'vA'))
+    values = [np.asarray(state[k]) if mask is None else np.asarray(state[k])[mask] for k in keys]
+    return connector.Evaluate(*values)
+
+
+def _AddFlowSensors(mbs, coordinates: Sequence[int]) -> Tuple[Tuple[int, int, int], ...]:
+    """Node sensors (positions, velocities; stored, not written) for the nodes of the ODE2 ``coordinates``;
+    per coordinate ``(positionSensor, velocitySensor, column)``. Call ``mbs.Assemble()`` afterwards."""
+    import exudyn as exu
+    from exudyn.itemInterface import SensorNode
+    OVT = exu.OutputVariableType
+    owner = _CoordinateOwners(mbs)
+    made, out = {}, []
+    for i in coordinates:
+        node, column = owner[int(i)]
+        if node not in made:
+            made[node] = tuple(mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=ovt, storeInternal=True,
+                                                        writeToFile=False))
+                               for ovt in (OVT.Coordinates, OVT.Coordinates_t))
+        out.append((int(made[node][0]), int(made[node][1]), column))
+    return tuple(out)
+
+
+def _CoordinateOwners(mbs) -> Dict[int, Tuple[int, int]]:
+    """ODE2 coordinate index -> (node number, coordinate of the node), for the nodes with ODE2 coordinates."""
+    import exudyn as exu
+    owner = {}
+    for n in range(mbs.systemData.NumberOfNodes()):
+        try:
+            count = np.size(mbs.GetNodeOutput(n, exu.OutputVariableType.Coordinates_t))   # a float for a 1D node
+        except Exception:          # a node without velocities (ground, data node) has no ODE2 coordinates
+            count = 0
+        if count:
+            first = int(mbs.GetNodeODE2Index(n))
+            owner.update({first + k: (n, k) for k in range(count)})
+    return owner
+
+
+def _StoredFlowStates(model: LoweringModel) -> Tuple[np.ndarray, np.ndarray]:
+    """Times (s, from the start of the last solve) and flow states (one row per stored step) of the last solve
+    with stored sensors."""
+    data = {s: np.asarray(model.mbs.GetSensorStoredData(s)) for sensors in model.nodeSensors for s in sensors[:2]}
+    t = data[model.nodeSensors[0][0]][:, 0]
+    q = np.column_stack([data[p][:, 1 + c] for p, _, c in model.nodeSensors])
+    v = np.column_stack([data[u][:, 1 + c] for _, u, c in model.nodeSensors])
+    speeds = model.steadySpeeds[np.asarray(model.coordinates)]
+    return t, np.hstack([q - np.outer(t, speeds), v - speeds])
 
 
 #: parameters that :func:`UpdateLoweringModel` changes in the built system (others rebuild it)
@@ -178,7 +280,7 @@ def UpdateLoweringModel(model: LoweringModel, parameters: Mapping[str, float]) -
     mbs.SetObjectParameter(model.rotors['driveShaft']['objectNumber'], 'damping', drive.dT)
     mbs.Assemble()
     model.drive, model.parameters = drive, dict(parameters)
-    model.steady = SteadyInitialState(drive, ConstantTorque(model.loadTorque), model.motorSpeed, model.contactOptions)
+    model.steady = _SteadyState(drive, parameters, model.loadTorque, model.motorSpeed, model.contactOptions)
     return model
 
 
@@ -264,15 +366,10 @@ class ExudynFlow:
     __call__ = Solve
 
 
-def _LoweringFlow(model: LoweringModel, stepsPerPeriod: int) -> ExudynFlow:
-    mbs = model.mbs
-    nodes = [model.rotors[k]['nodeNumber'] for k in ('motor', 'worm', 'wheel')]
-    index = [mbs.GetNodeODE2Index(n) for n in nodes]
-    speeds = np.zeros(mbs.systemData.ODE2Size())
-    u = model.drive.gear.ratio
-    speeds[index] = [model.motorSpeed, model.motorSpeed, model.motorSpeed / u]
-    flow = ExudynFlow(mbs, index[1:], speeds, stepsPerPeriod)
-    flow.q0[index[0]] = 0.
+def _LoweringFlow(model: LoweringModel, stepsPerPeriod: int,
+                  solverSettings: Optional[Mapping[str, Any]] = None) -> ExudynFlow:
+    flow = ExudynFlow(model.mbs, model.coordinates, model.steadySpeeds, stepsPerPeriod, solverSettings=solverSettings)
+    flow.q0 = np.array(model.initialCoordinates, dtype=float)     # coordinates outside the state (the motor)
     return flow
 
 
@@ -300,7 +397,7 @@ def SettleLowering(model: LoweringModel, duration: float, kick: float = 0.01, st
     steps = max(10, int(round(duration / stepSize)))
     flow = _LoweringFlow(model, steps)
     x = EquilibriumState(model)
-    x[2] += kick * model.motorSpeed
+    x[len(model.coordinates)] += kick * model.motorSpeed          # the worm's speed
     return flow.Solve(x, duration, storeSensors=store), flow
 
 
@@ -311,7 +408,7 @@ def EquilibriumState(model: LoweringModel) -> np.ndarray:
     ----------
     model : LoweringModel
     """
-    return np.array([model.steady['phi1'], model.steady['phi2'], 0., 0.])
+    return np.concatenate([[model.steady[k] for k in model.stateKeys], np.zeros(len(model.coordinates))])
 
 
 def _PeriodFromSignal(t, y) -> float:
@@ -351,7 +448,7 @@ def OrbitAmplitude(model: LoweringModel, flow: ExudynFlow, state: Sequence[float
     """
     flow.Solve(state, period, storeSensors=True)
     s = model.connector.StoredStates(model.mbs)
-    mesh = model.connector.Evaluate(s['phi1'], s['phi2'], s['omega1'], s['omega2'])
+    mesh = _MeshAt(model.connector, s)
     return {'forceFactor': float(np.max(np.abs(mesh.normalForce)) / model.staticNormalForce),
             'maxWheelAcceleration': float(np.max(np.abs(s['alpha2']))),
             'minWormSpeed': float(np.min(s['omega1']))}
@@ -399,8 +496,32 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
     ShootingError
         If the settled simulation does not oscillate (the drive is at rest: no chatter to find) or Newton fails.
     """
-    w = 'FindSteadyChatter'
     model = BuildLoweringModel(parameters, contactOptions) if model is None else model
+    return _FindChatter(model, 'FindSteadyChatter', 'the lowering phase', settleTime, stepsPerPeriod, start,
+                        maxIterations, tolerance, kick, initialState)
+
+
+def _LinearlyStable(model: LoweringModel) -> bool:
+    """The linear verdict at the model's steady state: :func:`~exudyn_worm.analysis.linearization.DriveStability` (S = -1,
+    lowering) for a parameter set; for a user's system its own linearization in the contact state of its steady
+    state (False if it cannot be linearized there, so that a drive is never called at rest on that ground)."""
+    if model.parameters:
+        return bool(DriveStability(model.parameters).State(-1).stable)
+    S = int(np.sign(float(_MeshAt(model.connector, model.steady).S))) or -1
+    mbs, C = model.mbs, _Configuration()
+    mbs.systemData.SetODE2Coordinates(model.initialCoordinates.tolist(), configuration=C.Initial)
+    mbs.systemData.SetODE2Coordinates_t(model.steadySpeeds.tolist(), configuration=C.Initial)
+    try:
+        return bool(AnalyzeLinearStability(mbs, [model.connector], contactStates=[(S,)]).State(S).stable)
+    except ValueError:              # e.g. the mesh is not in contact at the steady state
+        return False
+
+
+def _FindChatter(model: LoweringModel, where: str, what: str, settleTime: float, stepsPerPeriod: int,
+                 start: Optional[Any], maxIterations: int, tolerance: float, kick: float,
+                 initialState: Optional[Sequence[float]]) -> PeriodicOrbit:
+    """:func:`FindSteadyChatter` on a built model (``what`` names the system in messages)."""
+    w = where
     scale = StateScale(model)
     if start is None:
         CheckPositive(w, 'settleTime', settleTime, 's')
@@ -415,13 +536,11 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
         s = model.connector.StoredStates(model.mbs)
         quarter = len(s['omega1']) // 4
         first, swing = np.ptp(s['omega1'][:quarter]), np.ptp(s['omega1'][-quarter:])
-        tail = model.connector.Evaluate(s['phi1'][-quarter:], s['phi2'][-quarter:], s['omega1'][-quarter:],
-                                        s['omega2'][-quarter:])
+        tail = _MeshAt(model.connector, s, slice(-quarter, None))
         inContact = float(np.max(np.abs(tail.normalForce))) < 2. * model.staticNormalForce
-        linearlyStable = DriveStability(model.parameters).State(-1).stable
         # rest: no swing left, or a linearly stable drive whose swing shrinks while the mesh stays in contact
-        if not swing > 1e-4 * model.motorSpeed or (linearlyStable and inContact and swing < 0.95 * first):
-            raise ShootingError(f"{w}: the lowering phase settles to rest (after {settleTime:g} s the worm speed swing "
+        if not swing > 1e-4 * model.motorSpeed or (inContact and swing < 0.95 * first and _LinearlyStable(model)):
+            raise ShootingError(f"{w}: {what} settles to rest (after {settleTime:g} s the worm speed swing "
                                 f"still shrinks, {first:.3g} -> {swing:.3g} rad/s in 0.3 s, the mesh stays in contact): "
                                 f"no steady chatter at these parameters (a larger disturbance may still start one "
                                 f"where rest and chatter coexist)")
@@ -430,11 +549,9 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
         # (contact loss, clipped force), so the finite-difference monodromy does not straddle one
         t = s['time']
         last = np.nonzero(t >= t[-1] - period)[0]
-        mesh = model.connector.Evaluate(s['phi1'][last], s['phi2'][last], s['omega1'][last], s['omega2'][last])
+        mesh = _MeshAt(model.connector, s, last)
         k = last[int(np.argmax(np.abs(mesh.normalForce)))]
-        u = model.drive.gear.ratio
-        w1, w2 = model.motorSpeed, model.motorSpeed / u
-        x = np.array([s['phi1'][k] - w1 * t[k], s['phi2'][k] - w2 * t[k], s['omega1'][k] - w1, s['omega2'][k] - w2])
+        x = _StoredFlowStates(model)[1][k]
     else:
         x, period = np.asarray(start[0], dtype=float), float(start[1])
     flow = _LoweringFlow(model, stepsPerPeriod)
@@ -445,24 +562,27 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
 
 
 def StateScale(model: LoweringModel) -> np.ndarray:
-    """Typical size of the flow state's components: the static mesh deflection as angles, times the chatter
-    angular frequency (2 pi 40 Hz) as speeds.
+    """Typical size of the flow state's components: the static mesh deflection as angles (each coordinate's in
+    proportion to its steady speed: the worm's, the wheel's divided by the ratio; a coordinate at rest, such as
+    the worm's axial one, the deflection as a length), times the chatter angular frequency (2 pi 40 Hz) as speeds.
 
     Parameters
     ----------
     model : LoweringModel
-        The lowering model (its gear and static normal force).
+        The lowering model (its gear, static normal force and steady speeds).
     """
-    g = model.drive.gear
+    g = model.connector.gear
     deflection = max(model.staticNormalForce / g.kV, 1e-9) / g.normalLever         # worm angle of the deflection
-    angles = np.array([deflection, deflection / g.ratio])
+    speeds = np.abs(model.steadySpeeds[np.asarray(model.coordinates)])
+    angles = np.where(speeds > 0, deflection * speeds / speeds[0], deflection * g.normalLever)
     return np.concatenate([angles, angles * 2 * math.pi * 40.])
 
 
 def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3.0, stepSize: float = 1e-4,
                             kick: float = 0.01, window: float = 0.25,
                             contactOptions: ContactOptions = ContactOptions(),
-                            initialState: Optional[Sequence[float]] = None) -> Dict[str, float]:
+                            initialState: Optional[Sequence[float]] = None,
+                            model: Optional[LoweringModel] = None) -> Dict[str, float]:
     """Steady amplitude of the lowering phase by brute force: a long time simulation with the time simulations'
     solver settings (:data:`~exudyn_worm.analysis.reelchanger.SOLVER_SETTINGS`: modified Newton, tolerance 1e-6), measured
     over its last ``window`` seconds; the check of the orbits found by shooting.
@@ -484,6 +604,9 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
     initialState : array_like, optional
         Flow state to start from (the worm-speed ``kick`` is added to it) instead of the equilibrium, e.g. a
         point of an orbit where rest and chatter coexist.
+    model : LoweringModel, optional
+        A model to simulate instead of one built from ``parameters`` (e.g. :func:`LoweringModelOfSystem`: then
+        ``parameters`` is not read).
 
     Returns
     -------
@@ -494,19 +617,182 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
     duration = CheckPositive(w, 'duration', duration, 's')
     stepSize = CheckPositive(w, 'stepSize', stepSize, 's')
     window = CheckPositive(w, 'window', window, 's')
-    model = BuildLoweringModel(parameters, contactOptions)
+    model = BuildLoweringModel(parameters, contactOptions) if model is None else model
     steps = max(10, int(round(duration / stepSize)))
-    flow = _LoweringFlow(model, steps)
-    flow = ExudynFlow(model.mbs, flow.coordinates, flow.speeds, steps, solverSettings=SOLVER_SETTINGS)
-    flow.q0[model.mbs.GetNodeODE2Index(model.rotors['motor']['nodeNumber'])] = 0.
+    flow = _LoweringFlow(model, steps, SOLVER_SETTINGS)
     x = EquilibriumState(model) if initialState is None else np.array(initialState, dtype=float)
-    x[2] += kick * model.motorSpeed
+    x[len(model.coordinates)] += kick * model.motorSpeed          # the worm's speed
     t0 = time.perf_counter()
     flow.Solve(x, duration, storeSensors=True)
     seconds = time.perf_counter() - t0
     s = model.connector.StoredStates(model.mbs)
     last = s['time'] >= s['time'][-1] - window
-    mesh = model.connector.Evaluate(s['phi1'][last], s['phi2'][last], s['omega1'][last], s['omega2'][last])
+    mesh = _MeshAt(model.connector, s, last)
     return {'forceFactor': float(np.max(np.abs(mesh.normalForce)) / model.staticNormalForce),
             'maxWheelAcceleration': float(np.max(np.abs(s['alpha2'][last]))),
             'frequencyHz': 1. / _PeriodFromSignal(s['time'][last], s['omega1'][last]), 'seconds': seconds}
+
+
+def _HeldCoordinates(mbs) -> List[int]:
+    """ODE2 coordinates held by a coordinate constraint (``ObjectConnectorCoordinate``, e.g. a motor prescribed by
+    :func:`~exudyn_worm.items.drivetrain.CreatePrescribedRotation`)."""
+    owner = {node: first for first, (node, column) in _CoordinateOwners(mbs).items() if column == 0}
+    held = []
+    for i in range(mbs.systemData.NumberOfObjects()):
+        item = mbs.GetObject(i)
+        if item.get('objectType') != 'ConnectorCoordinate':
+            continue
+        for m in item['markerNumbers']:
+            marker = mbs.GetMarker(m)
+            if marker.get('markerType') == 'NodeCoordinate' and int(marker['nodeNumber']) in owner:
+                held.append(owner[int(marker['nodeNumber'])] + int(marker['coordinate']))
+    return sorted(set(held))
+
+
+def LoweringModelOfSystem(mbs: Any, connector: WormGearConnector,
+                          coordinates: Optional[Sequence[int]] = None) -> LoweringModel:
+    """The model the orbit functions work on, for your own Exudyn system with a worm-gear connector.
+
+    The system must be autonomous relative to its steady rotation, as the lowering phase is: motors held at
+    constant speed, loads constant (not depending on angles or time), and it must start in that steady state:
+    every coordinate at its steady speed (its initial velocity), the mesh deflected by the load and every shaft
+    pre-twisted by the torque it carries (:func:`~exudyn_worm.items.equilibrium.SteadyInitialState`). The flow state
+    is then ``(q - v0 t, q' - v0)`` over ``coordinates`` (:class:`ExudynFlow`).
+
+    Node sensors for the state's coordinates (and the connector's own, :meth:`WormGearConnector.AddSensors`, if it
+    has none) are added to ``mbs`` and the system is assembled again; its initial state is kept.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The assembled system, in its steady state.
+    connector : WormGearConnector
+        The mesh of ``mbs`` (:func:`~exudyn_worm.items.connector.CreateWormGear`) whose chatter is looked for; its worm
+        must turn (initial worm speed != 0).
+    coordinates : sequence of int, optional
+        ODE2 coordinate indices of the flow state; default: every ODE2 coordinate not held by a coordinate
+        constraint (``ObjectConnectorCoordinate``, e.g. the motor of ``CreatePrescribedRotation``). The worm's
+        and the wheel's come first.
+
+    Returns
+    -------
+    LoweringModel
+        ``drive`` is None, ``parameters`` empty, ``motorSpeed`` the worm's steady speed (kicks are fractions of
+        it), ``loadTorque`` nan.
+
+    Raises
+    ------
+    TypeError
+        If ``mbs`` is not an ``exudyn.MainSystem`` or ``connector`` not a WormGearConnector of ``mbs``.
+    ValueError
+        If the system is not assembled, the worm does not turn, the mesh carries no load at the initial state, or
+        ``coordinates`` is not a set of ODE2 indices with the worm's and the wheel's.
+    """
+    w = 'LoweringModelOfSystem'
+    CheckSystem(w, mbs)
+    if not isinstance(connector, WormGearConnector) or connector not in mbs.variables.get(CONNECTORS_KEY, []):
+        raise TypeError(f"{w}: 'connector' must be a WormGearConnector built in 'mbs' by CreateWormGear, got "
+                        f"{type(connector).__name__}")
+    size = mbs.systemData.ODE2Size()
+    if not size:
+        raise ValueError(f"{w}: 'mbs' has no ODE2 coordinates: call mbs.Assemble() first")
+    C = _Configuration()
+    q0 = np.array(mbs.systemData.GetODE2Coordinates(configuration=C.Initial), dtype=float)
+    v0 = np.array(mbs.systemData.GetODE2Coordinates_t(configuration=C.Initial), dtype=float)
+    worm, wheel = (int(mbs.GetNodeODE2Index(n)) for n in connector.nodeNumbers)
+    if v0[worm] == 0.:
+        raise ValueError(f"{w}: the worm's initial speed must be its steady speed (!= 0 rad/s): start the system in "
+                         f"the steady rotation (SteadyInitialState), got 0 rad/s")
+    if coordinates is None:
+        held = set(_HeldCoordinates(mbs))
+        coordinates = [i for i in range(size) if i not in held]
+    if isinstance(coordinates, (str, bytes)) or not hasattr(coordinates, '__iter__'):
+        raise TypeError(f"{w}: 'coordinates' must be a sequence of ODE2 indices, got {type(coordinates).__name__}")
+    chosen = list(coordinates)
+    if (any(isinstance(i, bool) or not isinstance(i, (int, np.integer)) or not 0 <= i < size for i in chosen)
+            or len(set(chosen)) != len(chosen) or worm not in chosen or wheel not in chosen):
+        raise ValueError(f"{w}: 'coordinates' must be distinct ODE2 indices in [0, {size - 1}] including the worm's "
+                         f"({worm}) and the wheel's ({wheel}), got {chosen!r}")
+    index = [worm, wheel] + sorted(int(i) for i in chosen if i not in (worm, wheel))
+    sensors = _AddFlowSensors(mbs, index)               # first: it reads the assembled system's nodes
+    if not connector.sensors:
+        connector.AddSensors(mbs)
+    mbs.Assemble()
+    mbs.systemData.SetODE2Coordinates(q0.tolist(), configuration=C.Initial)
+    mbs.systemData.SetODE2Coordinates_t(v0.tolist(), configuration=C.Initial)
+    keys = ['phi1', 'phi2'] + [f'q{i}' for i in index[2:]]
+    steady = {k: float(q0[i]) for k, i in zip(keys, index)}
+    steady.update(omega1=float(v0[worm]), omega2=float(v0[wheel]))
+    if connector.axialNodeNumber is not None:
+        a = int(mbs.GetNodeODE2Index(connector.axialNodeNumber))
+        steady.update(xA=float(q0[a]), vA=float(v0[a]))
+    force = abs(float(_MeshAt(connector, steady).normalForce))
+    if not force > 0:
+        raise ValueError(f"{w}: the mesh carries no load at the initial state (normal force 0 N): start the system "
+                         f"in the static equilibrium under its load (SteadyInitialState)")
+    return LoweringModel(None, mbs, None, connector, {}, steady, abs(float(v0[worm])), math.nan, force,
+                         connector.options, {}, tuple(index), v0, tuple(keys), q0, sensors)
+
+
+def SteadyChatterOfSystem(mbs: Any, connector: WormGearConnector, coordinates: Optional[Sequence[int]] = None,
+                          settleTime: float = 1.0, stepsPerPeriod: int = STEPS_PER_PERIOD, kick: float = 0.01,
+                          start: Optional[Any] = None, maxIterations: int = 30, tolerance: float = 1e-8,
+                          initialState: Optional[Sequence[float]] = None) -> PeriodicOrbit:
+    """Steady chatter of your own Exudyn system with a worm-gear connector: its periodic orbit, by shooting on the
+    system itself, with Floquet multipliers (as :func:`FindSteadyChatter` for a parameter set).
+
+    The system must run in a steady rotation and start in it (:func:`LoweringModelOfSystem` says what that
+    means); the chatter is looked for after a time simulation from that state with the worm speed kicked by
+    ``kick`` times its steady speed.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The assembled system, in its steady state.
+    connector : WormGearConnector
+        Its mesh.
+    coordinates : sequence of int, optional
+        ODE2 indices of the flow state (default: every coordinate not held by a coordinate constraint).
+    settleTime : float
+        Duration in s of the settling simulation, > 0.
+    stepsPerPeriod : int
+        Solver steps per period in the shooting runs.
+    kick : float
+        Initial worm-speed disturbance as a fraction of the worm's steady speed.
+    start : (array_like, float), optional
+        Start guess ``(state, period)`` in flow coordinates instead of the settling simulation.
+    maxIterations : int
+        Newton steps at most.
+    tolerance : float
+        Shooting tolerance (relative to the state scale).
+    initialState : array_like, optional
+        Flow state the settling simulation starts from instead of the kicked steady state.
+
+    Returns
+    -------
+    PeriodicOrbit
+        ``state`` is ``(q - v0 t, q' - v0)`` over ``info['model'].coordinates`` (worm, wheel, the others);
+        ``info`` holds ``forceFactor`` (largest normal force over the steady one), ``maxWheelAcceleration``
+        (rad/s^2), ``minWormSpeed`` (rad/s), ``model`` and ``flow``.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For a system or connector that does not fit (:func:`LoweringModelOfSystem`).
+    ShootingError
+        If the system settles to rest (no chatter to find) or Newton fails.
+
+    Examples
+    --------
+    A three-mass drive built by hand (motor, shaft, worm, mesh, wheel, load shaft, load) in
+    ``tests/test_chatter_chains.py``; in short::
+
+        state = SteadyInitialState(drive, load=M, motorSpeed=w, loadSide=[(JL, kL)])
+        # ... CreateRotor / CreatePrescribedRotation / CreateShaft / CreateWormGear / CreateRotorTorque at state
+        mbs.Assemble()
+        orbit = SteadyChatterOfSystem(mbs, connector)
+        orbit.frequencyHz, orbit.info['forceFactor'], orbit.stable
+    """
+    model = LoweringModelOfSystem(mbs, connector, coordinates)
+    return _FindChatter(model, 'SteadyChatterOfSystem', 'the system', settleTime, stepsPerPeriod, start,
+                        maxIterations, tolerance, kick, initialState)

@@ -19,10 +19,14 @@ from typing import Callable, Dict, List, Mapping, Optional, Tuple
 import numpy as np
 
 from .chatter import (BuildLoweringModel, FindSteadyChatter, OrbitAmplitude, SettleLowering, StateScale,
-                      UpdateLoweringModel, _LoweringFlow)
+                      UpdateLoweringModel, _LoweringFlow, _MeshAt)
 from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import ShootingError
 from .linearization import DriveStability
+from ..params.parameters import PARAMETERS
+
+# prefixes of the chain keys (``J4, k4, d4``, ``JL1, kL1, dL1``, ...)
+_SERIES_PREFIXES = tuple(p for table in PARAMETERS.arrayTables.values() for p in table.values())
 
 __all__ = ['CONTINUABLE', 'ChatterBranchError', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch',
            'SmallestDisturbance', 'REST_FORCE_FACTOR', 'COEXISTENCE_KICK', 'DisturbanceVerdict',
@@ -149,6 +153,15 @@ def LinearBoundaries(parameters: Mapping[str, float], name: str, low: float, hig
     return roots, Growth
 
 
+def _ComponentKeys(parameters: Mapping[str, float]) -> List[str]:
+    """The keys of the parameter set's drive-side and load-side chain stages and axial bearing (``J4, k4, d4, ...,
+    JL1, kL1, dL1, ..., kA, dA, mA``) that can be continued too (each value rebuilds the lowering model)."""
+    keys = [k for k in parameters if (PARAMETERS.SeriesIndex(k) or ('',))[0] in _SERIES_PREFIXES]
+    if float(parameters.get('kA', 0.)) > 0:
+        keys += [k for k in ('kA', 'dA', 'mA') if k in parameters]
+    return keys
+
+
 def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float, high: float,
                          maxPoints: int = 60, settleTime: float = 1.0, onPoint: Optional[Callable] = None,
                          restarts: int = 3) -> ChatterBranch:
@@ -159,7 +172,8 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     parameters : mapping
         Flat parameter set with the reel changer's keys (e.g. ``GetPreset('reel-P1')``).
     name : str
-        The parameter, one of :data:`CONTINUABLE`.
+        The parameter, one of :data:`CONTINUABLE`, or a key of the parameter set's drive-side or load-side chain
+        (``J4, k4, d4, ...``, ``JL1, kL1, dL1, ...``) or axial bearing (``kA, dA, mA``).
     low, high : float
         Range of the parameter in its SI unit, ``low < high``.
     maxPoints : int
@@ -185,8 +199,10 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         found; ``.branch`` keeps what was computed.
     """
     w = 'AnalyzeChatterBranch'
-    if name not in CONTINUABLE:
-        raise ValueError(f"{w}: parameter {name!r} cannot be continued; choose one of {', '.join(CONTINUABLE)}")
+    if name not in CONTINUABLE and name not in _ComponentKeys(parameters):
+        extra = ', '.join(_ComponentKeys(parameters))
+        raise ValueError(f"{w}: parameter {name!r} cannot be continued; choose one of {', '.join(CONTINUABLE)}"
+                         + (f" or a key of this drive's chains and axial bearing ({extra})" if extra else ''))
     low, high = float(low), float(high)
     if not (math.isfinite(low) and math.isfinite(high) and low < high):
         raise ValueError(f"{w}: the range of {name} must be two finite numbers low < high, got {low:g}:{high:g}")
@@ -356,7 +372,7 @@ def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 3.0, 
         SettleLowering(model, duration, kick=kick, store=True)
         s = model.connector.StoredStates(model.mbs)
         last = s['time'] >= s['time'][-1] - 0.2
-        mesh = model.connector.Evaluate(s['phi1'][last], s['phi2'][last], s['omega1'][last], s['omega2'][last])
+        mesh = _MeshAt(model.connector, s, last)
         return float(np.max(np.abs(mesh.normalForce))) >= 2. * model.staticNormalForce
 
     if not Chatters(largest):

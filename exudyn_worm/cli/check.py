@@ -212,7 +212,7 @@ def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
         try:
             with StdoutToStderr(args.json):
                 return ChattersAfterDisturbance(parameters)
-        except ValueError:          # a drive the lowering model refuses (chain, axial bearing): the check as before
+        except ValueError:          # a drive the lowering model refuses (a motor on its characteristic): as before
             return None
     with BadInput():
         CheckReelChangerKeys(parameters, 'check --disturbance')
