@@ -39,7 +39,7 @@ _LAZY = {'WormGear': 'model.gear',
          **dict.fromkeys(('OperatingPoint', 'OperatingPointAt'), 'model.stability'),
          'SelfLocking': 'model.selflocking',
          **dict.fromkeys(('FindPeriodicOrbit', 'PeriodicOrbit'), 'analysis.orbits'),
-         'FindSteadyChatter': 'analysis.chatter', 'AnalyzeChatterBranch': 'analysis.chatterbranch',
+         'FindSteadyChatter': 'analysis.chatter', 'SteadyChatterOfSystem': 'analysis.chatter', 'AnalyzeChatterBranch': 'analysis.chatterbranch',
          **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'analysis.stepsize')}
 
 
@@ -68,7 +68,7 @@ __all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMea
            'SimulateReelChanger', 'SteadyInitialState', 'SimulationResult', 'RecommendedStepSize', 'CheckStepSize', 'AddMainSystemMethods',
            'ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction', 'FrictionLaw', 'OperatingPoint',
            'OperatingPointAt', 'SelfLocking', 'FindPeriodicOrbit', 'PeriodicOrbit', 'FindSteadyChatter',
-           'AnalyzeChatterBranch', '__version__']
+           'AnalyzeChatterBranch', 'SteadyChatterOfSystem', '__version__']
 
 _MAIN_SYSTEM_METHODS = ('CreateWormGear', 'CreateWormAxialBearing', 'CreateRotor', 'CreateShaft',
                         'CreatePrescribedRotation', 'CreateRotorTorque')
