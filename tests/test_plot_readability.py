@@ -66,7 +66,11 @@ def _Record(seconds=2., chatterHz=40., omegaSign=1.):
               'deltaPhi': chatter, 'deltaS': 1e-6 * chatter, 'normalForce': 2e4 * np.abs(np.cos(phi2)),
               'S': np.sign(chatter) + (chatter == 0), 'sf': 1 + 0 * t, 'wormTorque': 0 * t, 'wheelTorque': 0 * t,
               'driveTorque': -80 * np.cos(phi2) ** 2 - 10, 'tangentialForce': 0 * t}
-    return SimulationResult(time=t, series=series, J2=33., r2=0.106, info={'maxLoadTorque': 2060.})
+    # the phases a reel-changer simulation records (info['phases']): lifting while the load opposes the motion
+    lifting = np.cos(phi2) > 0
+    edges = np.concatenate([[0], np.flatnonzero(np.diff(lifting.astype(int))) + 1, [t.size - 1]])
+    phases = [(t[a], t[b], 'lift' if lifting[a] else 'lower') for a, b in zip(edges[:-1], edges[1:])]
+    return SimulationResult(time=t, series=series, J2=33., r2=0.106, info={'maxLoadTorque': 2060., 'phases': phases})
 
 
 @pytest.mark.parametrize('kind', ['acceleration', 'speed', 'normalForce', 'driveTorque', 'zoom'])
