@@ -18,10 +18,12 @@ from typing import Callable, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .chatter import (BuildLoweringModel, FindSteadyChatter, OrbitAmplitude, SettleLowering, StateScale,
+from .chatter import (MONODROMY_PERTURBATION, BuildLoweringModel, FindSteadyChatter, OrbitAmplitude, SettleLowering,
+                      StateScale,
                       UpdateLoweringModel, _LoweringFlow)
 from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import ShootingError
+from ._checks import CheckPositive
 from .linearization import DriveStability
 
 __all__ = ['CONTINUABLE', 'ChatterBranchError', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch',
@@ -151,7 +153,7 @@ def LinearBoundaries(parameters: Mapping[str, float], name: str, low: float, hig
 
 def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float, high: float,
                          maxPoints: int = 60, settleTime: float = 1.0, onPoint: Optional[Callable] = None,
-                         restarts: int = 3) -> ChatterBranch:
+                         restarts: int = 3, stepLength: float = 0.5) -> ChatterBranch:
     """Branch of steady chatter of the lowering phase in parameter ``name`` over ``[low, high]``.
 
     Parameters
@@ -171,6 +173,10 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     restarts : int
         How often a direction may start again from a time simulation a little further on when the corrector is
         stuck (at a kink of the non-smooth map); each restart is noted in ``messages``.
+    stepLength : float
+        First continuation step in scaled units (the parameter in units of 1/25 of the range, the state in units
+        of :func:`~exudyn_worm.chatter.StateScale`), > 0; the step grows to at most 4 times this after easy steps
+        (a smaller value gives more orbits along the branch).
 
     Returns
     -------
@@ -190,6 +196,7 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     low, high = float(low), float(high)
     if not (math.isfinite(low) and math.isfinite(high) and low < high):
         raise ValueError(f"{w}: the range of {name} must be two finite numbers low < high, got {low:g}:{high:g}")
+    stepLength = CheckPositive(w, 'stepLength', stepLength)
     base = dict(parameters)
     BuildLoweringModel({**base, name: low})           # checks the parameter set and the low end early
     roots, Growth = LinearBoundaries(base, name, low, high)
@@ -245,8 +252,10 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     for direction in (-1, 1):
         side = 'lower' if direction < 0 else 'higher'
         branch = ContinueOrbits(FlowAt, orbit, start, (low, high), scale, scaleP, name, direction=direction,
-                                stepLength=0.5, maxStepLength=2., minStepLength=0.02, maxPoints=maxPoints,
-                                measure=Measure, stop=Stop, onPoint=onPoint)
+                                stepLength=stepLength, maxStepLength=4. * stepLength,
+                                minStepLength=0.02, maxPoints=maxPoints,
+                                measure=Measure, stop=Stop, onPoint=onPoint,
+                                monodromyPerturbation=MONODROMY_PERTURBATION)
         result.messages += [f"towards {side} {name}: {r}" for r in branch.stopReason]
         for _ in range(restarts):
             last = branch.points[-1]
@@ -267,9 +276,10 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
             current['flow'] = again.info['flow']
             result.messages.append(f"towards {side} {name}: restarted from a time simulation at {name} = {value:.6g}")
             more = ContinueOrbits(FlowAt, again, value, (low, high), scale, scaleP, name, direction=direction,
-                                  stepLength=0.5, maxStepLength=2., minStepLength=0.02,
+                                  stepLength=stepLength, maxStepLength=4. * stepLength,
+                                minStepLength=0.02,
                                   maxPoints=maxPoints - len(branch.points), measure=Measure, stop=Stop,
-                                  onPoint=onPoint)
+                                  onPoint=onPoint, monodromyPerturbation=MONODROMY_PERTURBATION)
             branch.points += more.points
             branch.folds += more.folds
             branch.stopReason = more.stopReason
