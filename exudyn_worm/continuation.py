@@ -9,6 +9,10 @@ Jacobian through the mesh's switches), so the branch is followed through folds (
 the parameter component of the secant changes sign). The step length adapts: halved when
 the corrector fails, grown by 1.5 after an easy step.
 
+The corrector is Newton's method with Broyden updates: it starts from the previous orbit's Jacobian (its
+monodromy matrix, velocity and parameter derivative, computed there anyway) and renews it by finite differences
+only when convergence slows, so a step costs a few flow runs instead of ``n + 2`` per Newton step.
+
 The flow at parameter ``p`` comes from ``flowAt(p)``, which may change the model in place or build a new one.
 """
 from __future__ import annotations
@@ -71,6 +75,9 @@ class Branch:
     stopReason: List[str] = field(default_factory=list)
 
 
+#: a corrector that converged in at most this many Broyden steps from the previous orbit's Jacobian, without
+#: renewing it, made an easy step: the next step is 1.5 times longer (as after at most 2 Newton steps)
+EASY_BROYDEN_STEPS = 5
 #: the corrector gives up after this many slow steps with a freshly computed Jacobian (stuck at a kink of the map:
 #: a shorter continuation step is cheaper than more Newton steps)
 MAX_STALLS = 3
@@ -80,16 +87,19 @@ def _Newton(F, Jacobian, y, tol, maxIterations, A=None):
     """Newton's method with Broyden updates: the Jacobian ``A`` (e.g. the previous orbit's) is corrected by every
     step (:func:`~exudyn_worm.orbits.BroydenUpdate`) and renewed by finite differences (``Jacobian(y)``) only
     when a step lowers the residual by less than :data:`~exudyn_worm.orbits.SLOW_CONVERGENCE` or finds no
-    descent; it gives up after :data:`MAX_STALLS` slow steps with fresh Jacobians. A step that does not lower the residual is halved (up to 6 times), which stops the two-cycle Newton
-    falls into across a kink of the non-smooth one-period map. Returns ``(y, iterations, converged)``."""
+    descent; it gives up after :data:`MAX_STALLS` slow steps with fresh Jacobians. A step that does not lower the
+    residual is halved (up to 6 times), which stops the two-cycle Newton falls into across a kink of the non-smooth
+    one-period map. Returns ``(y, iterations, converged, renewals)`` (renewals: finite-difference Jacobians
+    computed)."""
     r = F(y)
-    fresh, stalls = False, 0
+    fresh, stalls, renewals = False, 0, 0
     for k in range(maxIterations):
         norm = float(np.max(np.abs(r)))
         if norm <= tol:
-            return y, k, True
+            return y, k, True, renewals
         if A is None:
             A, fresh = Jacobian(y), True
+            renewals += 1
         dy = np.linalg.lstsq(A, -r, rcond=None)[0]
         dy /= max(1., float(np.max(np.abs(dy))) / 0.5)
         improved = False
@@ -108,10 +118,10 @@ def _Newton(F, Jacobian, y, tol, maxIterations, A=None):
         if trial > SLOW_CONVERGENCE * norm:
             stalls += fresh
             if stalls >= MAX_STALLS:    # stuck at a kink even with fresh Jacobians: let the caller shorten the step
-                return yTrial, k + 1, trial <= tol
+                return yTrial, k + 1, trial <= tol, renewals
             A = None
         y, r, fresh = yTrial, rTrial, False
-    return y, maxIterations, float(np.max(np.abs(r))) <= tol
+    return y, maxIterations, float(np.max(np.abs(r))) <= tol, renewals
 
 
 def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, value: float, bounds: Tuple[float, float],
@@ -235,10 +245,10 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
             return np.vstack([Shooting(z, reference, True)[1][0], row])
 
         try:
-            yNew, iterations, ok = _Newton(F, J, yPred, tolerance, 12,
+            yNew, iterations, ok, renewals = _Newton(F, J, yPred, tolerance, 12,
                                            None if jacobian is None else np.vstack([jacobian, row]))
         except Exception as err:            # a solver failure on the way counts as a failed step
-            ok, iterations, yNew = False, 8, yPred
+            ok, iterations, yNew, renewals = False, 8, yPred, 1
             cache['error'] = str(err)
         if ok and yNew[n] <= 0:
             ok = False
@@ -279,7 +289,7 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
         if reason:
             branch.stopReason.append(reason)
             break
-        if iterations <= 2:
+        if iterations <= 2 or (renewals == 0 and iterations <= EASY_BROYDEN_STEPS):
             h = min(maxStepLength, 1.5 * h)
     else:
         branch.stopReason.append(f"reached {maxPoints} points")
