@@ -208,3 +208,16 @@ def test_trivial_multiplier_near_one(orbitP1):
     flow, scale = orbitP1.info['flow'], StateScale(orbitP1.info['model'])
     small = FloquetMultipliers(Monodromy(flow, orbitP1.state, orbitP1.period, scale, 1e-6))
     assert np.min(np.abs(small - 1.)) > 2 * orbitP1.trivialMultiplierError
+
+
+@pytest.mark.slow
+def test_branch_in_two_processes_equals_serial():
+    # the two directions from the first orbit run in two worker processes (each builds its own model) or one
+    # after the other: the same orbits
+    serial = AnalyzeChatterBranch(P1, 'kT', 2000., 20000., processes=1)
+    parallel = AnalyzeChatterBranch(P1, 'kT', 2000., 20000., processes=2)
+    assert [p.value for p in parallel.points] == [p.value for p in serial.points]
+    assert [p.info['forceFactor'] for p in parallel.points] == [p.info['forceFactor'] for p in serial.points]
+    assert parallel.hopf == serial.hopf and len(serial.hopf) == 2
+    with pytest.raises(ValueError, match=r"AnalyzeChatterBranch: 'processes' must be an integer >= 1, got 0"):
+        AnalyzeChatterBranch(P1, 'kT', 2000., 20000., processes=0)
