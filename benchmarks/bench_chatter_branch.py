@@ -4,9 +4,10 @@
     python benchmarks/bench_chatter_branch.py --json FILE     # also save every number
     python benchmarks/bench_chatter_branch.py --fifty-only    # only the 50-point timing (item 6)
 
-First (item 6) a branch of about 50 orbits (reel-P1, kT in 2000-20000 N m/rad, a shorter continuation step) timed with its
-breakdown (flow runs and their cost, linear scan, first orbit and restarts), and the same parameter values by brute
-force: one long time simulation per value (LongSimulationAmplitude, 4 s, step 2e-4 s), timed, and their ratio.
+First (item 6) a branch of about 50 orbits (reel-P1, kT in 2000-20000 N m/rad, a shorter continuation step) timed
+serially with its breakdown (flow runs and their cost, linear scan, first orbit and restarts) and with the two
+directions in two processes, and the same parameter values by brute force: one long time simulation per value
+(LongSimulationAmplitude, 4 s, step 2e-4 s), timed, and their ratio (to the serial time).
 
 For each branch: its wall time and number of orbits; then at ``--checks`` points spread along it (orbits that lose
 contact, force factor >= 2) a long time simulation (LongSimulationAmplitude: 4 s from the steady state with a 1 %
@@ -104,10 +105,15 @@ def FiftyPoints():
     p = ew.GetPreset('reel-P1')
     load0 = os.getloadavg()[0]
     with _Timers() as timers:
-        # the flow runs inside the settling + first orbit are counted in both; 'flow' alone is all runs
+        # serial, so that the timers see every flow run (the settling + first orbit runs are counted in both)
         t0 = time.perf_counter()
-        branch = AnalyzeChatterBranch(p, name, low, high, stepLength=step, maxPoints=60)
+        branch = AnalyzeChatterBranch(p, name, low, high, stepLength=step, maxPoints=60, processes=1)
         seconds = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    parallel = AnalyzeChatterBranch(p, name, low, high, stepLength=step, maxPoints=60, processes=2)
+    parallelSeconds = time.perf_counter() - t0
+    if [q.value for q in parallel.points] != [q.value for q in branch.points]:
+        print('warning: the branch in two processes differs from the serial one', file=sys.stderr)
     values = [float(q.value) for q in branch.points]
     t1 = time.perf_counter()
     for v in values:
@@ -115,7 +121,7 @@ def FiftyPoints():
     brute = time.perf_counter() - t1
     trivial = np.array([q.orbit.trivialMultiplierError for q in branch.points if q.info['forceFactor'] >= 2.])
     return {'parameter': name, 'range': [low, high], 'stepLength': step, 'points': len(values),
-            'seconds': seconds, 'flowRuns': timers.calls['flow'], 'flowSeconds': timers.seconds['flow'],
+            'seconds': seconds, 'parallelSeconds': parallelSeconds, 'flowRuns': timers.calls['flow'], 'flowSeconds': timers.seconds['flow'],
             'linearScanSeconds': timers.seconds['linearScan'],
             'settleAndFirstOrbitSeconds': timers.seconds['settleAndFirstOrbit'],
             'settleAndFirstOrbitCalls': timers.calls['settleAndFirstOrbit'],
@@ -135,7 +141,8 @@ def main(argv=None):
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores", file=sys.stderr)
     f = FiftyPoints()
     print(f"50-point branch: {f['parameter']} in {f['range']}, step {f['stepLength']}: {f['points']} orbits in "
-          f"{f['seconds']:.1f} s ({f['seconds'] / f['points']:.2f} s per orbit); {f['flowRuns']} flow runs in "
+          f"{f['seconds']:.1f} s serial ({f['seconds'] / f['points']:.2f} s per orbit), {f['parallelSeconds']:.1f} s in "
+          f"two processes; {f['flowRuns']} flow runs in "
           f"{f['flowSeconds']:.1f} s ({1e3 * f['flowSeconds'] / f['flowRuns']:.1f} ms each, "
           f"{f['flowRuns'] / f['points']:.0f} per orbit), linear scan {f['linearScanSeconds']:.1f} s, settling + "
           f"first orbits {f['settleAndFirstOrbitSeconds']:.1f} s ({f['settleAndFirstOrbitCalls']}x); trivial "
