@@ -8,12 +8,14 @@ found here by Newton's method on the shooting equations
 
 with the period ``T`` as an unknown. ``f_ref`` is the velocity of the flow at the reference point ``x_ref``
 (the start guess or the previous orbit of a continuation), so the orbit's start point is the point of the
-orbit on the hyperplane through ``x_ref`` normal to the flow there. The monodromy matrix
-``M = dx(T)/dx0`` and the velocity ``f = dx(T)/dT`` are taken by forward finite differences of the flow
-(``n + 1`` extra flow evaluations per Newton step), which only asks of the flow that it be piecewise smooth:
-the worm mesh (contact loss, flank change, clipped normal force) and stick-slip friction are non-smooth,
-and integrating variational equations through their switches would need the saltation matrices of every
-switch.
+orbit on the hyperplane through ``x_ref`` normal to the flow there. The Newton matrix (the monodromy matrix
+``M = dx(T)/dx0`` and the velocity ``f = dx(T)/dT``) is taken by forward finite differences of the flow
+(``n + 1`` extra flow evaluations), which only asks of the flow that it be piecewise smooth: the worm mesh
+(contact loss, flank change, clipped normal force) and stick-slip friction are non-smooth, and integrating
+variational equations through their switches would need the saltation matrices of every switch. It is then
+corrected by Broyden's update after every step and computed again only when convergence slows
+(:data:`SLOW_CONVERGENCE`). The converged orbit's monodromy matrix, for the multipliers, is taken by central
+differences (step ``monodromyPerturbation``).
 
 The Floquet multipliers are the eigenvalues of ``M``. One of them belongs to the shift along the orbit and
 is 1 for an autonomous system (the trivial multiplier); the orbit is (orbitally) stable if every other
