@@ -121,7 +121,8 @@ def FiftyPoints():
     brute = time.perf_counter() - t1
     trivial = np.array([q.orbit.trivialMultiplierError for q in branch.points if q.info['forceFactor'] >= 2.])
     return {'parameter': name, 'range': [low, high], 'stepLength': step, 'points': len(values),
-            'seconds': seconds, 'parallelSeconds': parallelSeconds, 'flowRuns': timers.calls['flow'], 'flowSeconds': timers.seconds['flow'],
+            'seconds': seconds, 'parallelSeconds': parallelSeconds, 'flowRuns': timers.calls['flow'],
+            'flowSeconds': timers.seconds['flow'],
             'linearScanSeconds': timers.seconds['linearScan'],
             'settleAndFirstOrbitSeconds': timers.seconds['settleAndFirstOrbit'],
             'settleAndFirstOrbitCalls': timers.calls['settleAndFirstOrbit'],
@@ -141,14 +142,16 @@ def main(argv=None):
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores", file=sys.stderr)
     f = FiftyPoints()
     print(f"50-point branch: {f['parameter']} in {f['range']}, step {f['stepLength']}: {f['points']} orbits in "
-          f"{f['seconds']:.1f} s serial ({f['seconds'] / f['points']:.2f} s per orbit), {f['parallelSeconds']:.1f} s in "
+          f"{f['seconds']:.1f} s serial ({f['seconds'] / f['points']:.2f} s per orbit), "
+          f"{f['parallelSeconds']:.1f} s in "
           f"two processes; {f['flowRuns']} flow runs in "
           f"{f['flowSeconds']:.1f} s ({1e3 * f['flowSeconds'] / f['flowRuns']:.1f} ms each, "
           f"{f['flowRuns'] / f['points']:.0f} per orbit), linear scan {f['linearScanSeconds']:.1f} s, settling + "
           f"first orbits {f['settleAndFirstOrbitSeconds']:.1f} s ({f['settleAndFirstOrbitCalls']}x); trivial "
           f"multiplier error median {f['trivialMultiplierError']['median']:.4f}, largest "
           f"{f['trivialMultiplierError']['max']:.4f}")
-    print(f"  the same {f['points']} values by brute force (4 s long runs, step 2e-4 s): {f['bruteForceSeconds']:.1f} s; "
+    print(f"  the same {f['points']} values by brute force (4 s long runs, step 2e-4 s): "
+          f"{f['bruteForceSeconds']:.1f} s; "
           f"brute force / shooting = {f['ratio']:.2f}; load average {f['loadAverage'][0]:.1f} -> "
           f"{f['loadAverage'][1]:.1f}")
     print(f"  {f['messages']}")

@@ -35,8 +35,8 @@ from .reelchanger import SOLVER_SETTINGS, CheckReelChangerKeys, SolverSettings, 
 from .solve import SolverDivergedError
 
 __all__ = ['LoweringModel', 'BuildLoweringModel', 'ExudynFlow', 'FindSteadyChatter',
-           'OrbitAmplitude', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LongSimulationAmplitude', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS',
-           'MONODROMY_PERTURBATION']
+           'OrbitAmplitude', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LongSimulationAmplitude',
+           'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS', 'MONODROMY_PERTURBATION']
 
 #: solver steps per chatter period of the shooting runs: at P1 the force factor, largest |phi2''| and frequency
 #: change by less than 0.04 % between 150 and 1600 steps (2.6157/102.29/40.525 at 150, 2.6149/102.28/40.535 at

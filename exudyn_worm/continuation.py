@@ -128,8 +128,8 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
                    stateScale: Sequence[float], parameterScale: float, parameter: str = 'p', direction: int = 1,
                    stepLength: float = 0.05, maxStepLength: float = 0.3, minStepLength: float = 1e-3,
                    maxPoints: int = 50, tolerance: float = 1e-8, perturbation: float = 1e-6,
-                   monodromyPerturbation: Optional[float] = None, measure: Optional[Callable] = None, stop: Optional[Callable] = None,
-                   onPoint: Optional[Callable] = None) -> Branch:
+                   monodromyPerturbation: Optional[float] = None, measure: Optional[Callable] = None,
+                   stop: Optional[Callable] = None, onPoint: Optional[Callable] = None) -> Branch:
     """Follow a branch of periodic orbits from ``start`` at parameter ``value`` in one direction.
 
     Parameters
@@ -181,9 +181,9 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
     def Unscale(y):
         return y[:n] * scale, y[n] * T0, y[n + 1] * parameterScale
 
-    def Matrix(x, T, p, M, velocity, dxdp, reference):
+    def Matrix(M, velocity, dxdp, referenceVelocity):
         """Rows of the shooting equations and the phase condition, in scaled unknowns."""
-        W = reference[1] * scale
+        W = referenceVelocity * scale
         A = np.zeros((n + 1, n + 2))
         A[:n, :n] = (M - np.eye(n)) * scale / scale[:, None]
         A[:n, n] = velocity * T0 / scale
@@ -206,7 +206,7 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
             xT = np.asarray(flow(x, T), dtype=float)
             return np.concatenate([(xT - x) / scale, [fRef @ (x - xRef) / wn]]), None
         xT, M, velocity = ShootingJacobian(flow, x, T, scale, perturbation)
-        A = Matrix(x, T, p, M, velocity, ParameterDerivative(x, T, p, xT), reference)
+        A = Matrix(M, velocity, ParameterDerivative(x, T, p, xT), fRef)
         r = np.concatenate([(xT - x) / scale, [fRef @ (x - xRef) / wn]])
         return r, (A, M, velocity)
 
@@ -269,7 +269,7 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
         xT = x + r[:n] * scale
         M = Monodromy(flow, x, T, scale, monodromyPerturbation or perturbation, central=True)
         velocity = FlowVelocity(flow, x, T, perturbation, xT)
-        jacobian = Matrix(x, T, p, M, velocity, ParameterDerivative(x, T, p, xT), (x, velocity))
+        jacobian = Matrix(M, velocity, ParameterDerivative(x, T, p, xT), velocity)
         # secant predictor: robust to the errors of the finite-difference Jacobian through the mesh's switches
         secant = yNew - y
         newTangent = secant / np.linalg.norm(secant)
