@@ -2,6 +2,12 @@
 
     python benchmarks/bench_chatter_branch.py                 # J1, kT of reel-P1; J1 with 0.5 mm backlash
     python benchmarks/bench_chatter_branch.py --json FILE     # also save every number
+    python benchmarks/bench_chatter_branch.py --fifty-only    # only the 50-point timing (item 6)
+
+First (item 6) a branch of about 50 orbits (reel-P1, kT in 2000-20000 N m/rad, a shorter continuation step) timed
+serially with its breakdown (flow runs and their cost, linear scan, first orbit and restarts) and with the two
+directions in two processes, and the same parameter values by brute force: one long time simulation per value
+(LongSimulationAmplitude, 4 s, step 2e-4 s), timed, and their ratio (to the serial time).
 
 For each branch: its wall time and number of orbits; then at ``--checks`` points spread along it (orbits that lose
 contact, force factor >= 2) a long time simulation (LongSimulationAmplitude: 4 s from the steady state with a 1 %
@@ -19,6 +25,7 @@ import time
 import numpy as np
 
 import exudyn_worm as ew
+from exudyn_worm.analysis import chatter, chatterbranch
 from exudyn_worm.analysis.chatter import LongSimulationAmplitude
 from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch
 
@@ -53,16 +60,107 @@ def CheckBranch(name, low, high, changes, checks, duration, stepSize):
             'messages': branch.messages}
 
 
+#: the item-6 branch: reel-P1 in kT over 2000-20000 N m/rad with the continuation step that gives about 50 orbits
+FIFTY = ('kT', 2000., 20000., 0.045)
+
+
+class _Timers:
+    """Wall time and calls of the flow runs, the linear scan and the settling + first shooting, by wrapping them."""
+
+    def __init__(self):
+        self.seconds = {'flow': 0., 'linearScan': 0., 'settleAndFirstOrbit': 0.}
+        self.calls = {'flow': 0, 'settleAndFirstOrbit': 0}
+        self._saved = []
+
+    def _Wrap(self, owner, attribute, key):
+        original = getattr(owner, attribute)
+        self._saved.append((owner, attribute, original))
+
+        def Timed(*args, **kwargs):
+            t0 = time.perf_counter()
+            try:
+                return original(*args, **kwargs)
+            finally:
+                self.seconds[key] += time.perf_counter() - t0
+                if key in self.calls:
+                    self.calls[key] += 1
+        setattr(owner, attribute, Timed)
+
+    def __enter__(self):
+        self._Wrap(chatter.ExudynFlow, 'Solve', 'flow')
+        chatter.ExudynFlow.__call__ = chatter.ExudynFlow.Solve
+        self._Wrap(chatterbranch, 'LinearBoundaries', 'linearScan')
+        self._Wrap(chatterbranch, 'FindSteadyChatter', 'settleAndFirstOrbit')
+        return self
+
+    def __exit__(self, *exc):
+        for owner, attribute, original in reversed(self._saved):
+            setattr(owner, attribute, original)
+        chatter.ExudynFlow.__call__ = chatter.ExudynFlow.Solve
+
+
+def FiftyPoints():
+    """Item 6: a branch of about 50 orbits by shooting, and the same parameter values by long time simulations."""
+    name, low, high, step = FIFTY
+    p = ew.GetPreset('reel-P1')
+    load0 = os.getloadavg()[0]
+    with _Timers() as timers:
+        # serial, so that the timers see every flow run (the settling + first orbit runs are counted in both)
+        t0 = time.perf_counter()
+        branch = AnalyzeChatterBranch(p, name, low, high, stepLength=step, maxPoints=60, processes=1)
+        seconds = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    parallel = AnalyzeChatterBranch(p, name, low, high, stepLength=step, maxPoints=60, processes=2)
+    parallelSeconds = time.perf_counter() - t0
+    if [q.value for q in parallel.points] != [q.value for q in branch.points]:
+        print('warning: the branch in two processes differs from the serial one', file=sys.stderr)
+    values = [float(q.value) for q in branch.points]
+    t1 = time.perf_counter()
+    for v in values:
+        LongSimulationAmplitude({**p, name: v}, duration=4., stepSize=2e-4)
+    brute = time.perf_counter() - t1
+    trivial = np.array([q.orbit.trivialMultiplierError for q in branch.points if q.info['forceFactor'] >= 2.])
+    return {'parameter': name, 'range': [low, high], 'stepLength': step, 'points': len(values),
+            'seconds': seconds, 'parallelSeconds': parallelSeconds, 'flowRuns': timers.calls['flow'],
+            'flowSeconds': timers.seconds['flow'],
+            'linearScanSeconds': timers.seconds['linearScan'],
+            'settleAndFirstOrbitSeconds': timers.seconds['settleAndFirstOrbit'],
+            'settleAndFirstOrbitCalls': timers.calls['settleAndFirstOrbit'],
+            'bruteForceSeconds': brute, 'ratio': brute / seconds, 'messages': branch.messages,
+            'trivialMultiplierError': {'median': float(np.median(trivial)), 'max': float(np.max(trivial))},
+            'loadAverage': [load0, os.getloadavg()[0]]}
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--checks', type=int, default=8)
     parser.add_argument('--duration', type=float, default=4.)
     parser.add_argument('--step', type=float, default=2e-4)
     parser.add_argument('--json', metavar='FILE')
+    parser.add_argument('--fifty-only', action='store_true', help='only the 50-point timing (item 6)')
     args = parser.parse_args(argv)
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores", file=sys.stderr)
-    results = []
-    for name, low, high, changes in BRANCHES:
+    f = FiftyPoints()
+    print(f"50-point branch: {f['parameter']} in {f['range']}, step {f['stepLength']}: {f['points']} orbits in "
+          f"{f['seconds']:.1f} s serial ({f['seconds'] / f['points']:.2f} s per orbit), "
+          f"{f['parallelSeconds']:.1f} s in "
+          f"two processes; {f['flowRuns']} flow runs in "
+          f"{f['flowSeconds']:.1f} s ({1e3 * f['flowSeconds'] / f['flowRuns']:.1f} ms each, "
+          f"{f['flowRuns'] / f['points']:.0f} per orbit), linear scan {f['linearScanSeconds']:.1f} s, settling + "
+          f"first orbits {f['settleAndFirstOrbitSeconds']:.1f} s ({f['settleAndFirstOrbitCalls']}x); trivial "
+          f"multiplier error median {f['trivialMultiplierError']['median']:.4f}, largest "
+          f"{f['trivialMultiplierError']['max']:.4f}")
+    print(f"  the same {f['points']} values by brute force (4 s long runs, step 2e-4 s): "
+          f"{f['bruteForceSeconds']:.1f} s; "
+          f"brute force / shooting = {f['ratio']:.2f}; load average {f['loadAverage'][0]:.1f} -> "
+          f"{f['loadAverage'][1]:.1f}")
+    print(f"  {f['messages']}")
+    results = [{'fifty': f}]
+    if args.fifty_only:
+        BRANCHES_RUN = ()
+    else:
+        BRANCHES_RUN = BRANCHES
+    for name, low, high, changes in BRANCHES_RUN:
         r = CheckBranch(name, low, high, changes, args.checks, args.duration, args.step)
         results.append(r)
         print(f"\n{name} in [{low:g}, {high:g}] {changes or ''}: {r['points']} orbits in {r['branchSeconds']:.1f} s; "

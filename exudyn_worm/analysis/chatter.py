@@ -39,14 +39,23 @@ from ..items.solve import SolverDivergedError
 
 __all__ = ['LoweringModel', 'BuildLoweringModel', 'ExudynFlow', 'FindSteadyChatter',
            'OrbitAmplitude', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LongSimulationAmplitude', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS',
-           'LoweringModelOfSystem', 'SteadyChatterOfSystem']
+           'LoweringModelOfSystem', 'SteadyChatterOfSystem', 'MONODROMY_PERTURBATION']
 
-#: solver steps per chatter period of the shooting runs (about 2 % change in the P1 amplitude to 800 steps,
-#: measured, see docs/chatter-amplitude.md)
+#: solver steps per chatter period of the shooting runs: at P1 the force factor, largest |phi2''| and frequency
+#: change by less than 0.04 % between 150 and 1600 steps (2.6157/102.29/40.525 at 150, 2.6149/102.28/40.535 at
+#: 800), but with 0.5 mm backlash (J1 = 0.25, the worm crosses the gap) shooting does not converge at 200 or 300
+#: steps (the map is too rough); measured, docs/chatter-amplitude.md
 STEPS_PER_PERIOD = 400
-#: generalized-alpha settings of the shooting runs: full Newton with a tight tolerance, so that the one-period
-#: map is smooth enough for finite differences of 1e-6 (the time simulations use modified Newton at 1e-6)
-ORBIT_SOLVER_SETTINGS = {'timeIntegration.newton.useModifiedNewton': False,
+#: relative step (of :func:`StateScale`) of the central differences for an orbit's monodromy matrix: the fixed-step
+#: integrator resolves the force jump where the mesh changes flank only to a step, which leaves a sawtooth on the
+#: one-period map; steps of 1e-6 see its slope (trivial multiplier 1.005-1.03 at P1 for 150-1600 steps per
+#: period), 0.05 spans a few solver steps and averages it out (1.001-1.003), 0.1 and more see the map's curvature
+#: (measured, docs/chatter-amplitude.md)
+MONODROMY_PERTURBATION = 0.05
+#: generalized-alpha settings of the shooting runs: Newton with a tight tolerance, so that the one-period map is
+#: smooth enough for finite differences of 1e-6; modified Newton (the Jacobian kept while it converges) gives the
+#: same end state to 4e-12 of the state scale in half the time of full Newton (P1, measured)
+ORBIT_SOLVER_SETTINGS = {'timeIntegration.newton.useModifiedNewton': True,
                          'timeIntegration.newton.relativeTolerance': 1e-11,
                          'timeIntegration.newton.absoluteTolerance': 1e-11,
                          'timeIntegration.newton.maxIterations': 12,
@@ -556,7 +565,7 @@ def _FindChatter(model: LoweringModel, where: str, what: str, settleTime: float,
         x, period = np.asarray(start[0], dtype=float), float(start[1])
     flow = _LoweringFlow(model, stepsPerPeriod)
     orbit = FindPeriodicOrbit(flow, x, period, stateScale=scale, maxIterations=maxIterations, tolerance=tolerance,
-                              where=w)
+                              monodromyPerturbation=MONODROMY_PERTURBATION, where=w)
     orbit.info.update(OrbitAmplitude(model, flow, orbit.state, orbit.period), model=model, flow=flow)
     return orbit
 

@@ -13,15 +13,20 @@ ranges in which rest and stable chatter coexist.
 from __future__ import annotations
 
 import math
+import multiprocessing
+import sys
+from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .chatter import (BuildLoweringModel, FindSteadyChatter, OrbitAmplitude, SettleLowering, StateScale,
-                      UpdateLoweringModel, _LoweringFlow, _MeshAt)
+from .chatter import (MONODROMY_PERTURBATION, BuildLoweringModel, FindSteadyChatter, OrbitAmplitude, SettleLowering,
+                      StateScale, UpdateLoweringModel, _LoweringFlow, _MeshAt)
 from .continuation import Branch, BranchPoint, ContinueOrbits
-from .orbits import ShootingError
+from .orbits import PeriodicOrbit, ShootingError
+from .._checks import CheckPositive
 from .linearization import DriveStability
 from ..params.parameters import PARAMETERS
 
@@ -164,7 +169,7 @@ def _ComponentKeys(parameters: Mapping[str, float]) -> List[str]:
 
 def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float, high: float,
                          maxPoints: int = 60, settleTime: float = 1.0, onPoint: Optional[Callable] = None,
-                         restarts: int = 3) -> ChatterBranch:
+                         restarts: int = 3, stepLength: float = 0.5, processes: int = 2) -> ChatterBranch:
     """Branch of steady chatter of the lowering phase in parameter ``name`` over ``[low, high]``.
 
     Parameters
@@ -185,6 +190,14 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     restarts : int
         How often a direction may start again from a time simulation a little further on when the corrector is
         stuck (at a kink of the non-smooth map); each restart is noted in ``messages``.
+    stepLength : float
+        First continuation step in scaled units (the parameter in units of 1/25 of the range, the state in units
+        of :func:`~exudyn_worm.analysis.chatter.StateScale`), > 0; the step grows to at most 4 times this after easy steps
+        (a smaller value gives more orbits along the branch).
+    processes : int
+        Worker processes: with 2 (default) the two directions of the branch from the first orbit are computed at
+        the same time in two processes (Linux, fork; each builds its own model), with 1 one after the other. The
+        results are the same; ``onPoint`` is then called once a direction is done.
 
     Returns
     -------
@@ -206,6 +219,9 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     low, high = float(low), float(high)
     if not (math.isfinite(low) and math.isfinite(high) and low < high):
         raise ValueError(f"{w}: the range of {name} must be two finite numbers low < high, got {low:g}:{high:g}")
+    stepLength = CheckPositive(w, 'stepLength', stepLength)
+    if isinstance(processes, bool) or not isinstance(processes, int) or processes < 1:
+        raise ValueError(f"{w}: 'processes' must be an integer >= 1, got {processes!r}")
     base = dict(parameters)
     BuildLoweringModel({**base, name: low})           # checks the parameter set and the low end early
     roots, Growth = LinearBoundaries(base, name, low, high)
@@ -234,63 +250,16 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         result.messages.append(f"linearly stable on the whole range; chatter found at {name} = {start:g} after a kick "
                                f"of {kick:.0%} of the motor speed")
     scale = StateScale(model)
-    current = {'model': model, 'flow': orbit.info['flow']}
-
-    def ModelAt(v):
-        m = current['model']
-        new = UpdateLoweringModel(m, {**base, name: v})
-        if new is not m:
-            current['flow'] = _LoweringFlow(new, current['flow'].steps)
-            current['model'] = new
-        return current['model'], current['flow']
-
-    def FlowAt(v):
-        return ModelAt(v)[1]
-
-    def Measure(v, orb):
-        m, flow = ModelAt(v)
-        return OrbitAmplitude(m, flow, orb.state, orb.period)
-
-    def Stop(point):
-        if point.info['forceFactor'] < REST_FORCE_FACTOR:
-            return f"reached the linear boundary at {name} = {point.value:.6g} (the orbit stays in contact)"
-        return None
-
     scaleP = (high - low) / 25.
+    # the start orbit without its model and flow (those cannot be pickled): each direction builds its own
+    seed = PeriodicOrbit(state=orbit.state, period=orbit.period, monodromy=orbit.monodromy, velocity=orbit.velocity,
+                         residual=orbit.residual, iterations=orbit.iterations, converged=orbit.converged)
+    jobs = [(base, name, low, high, seed, start, scale, scaleP, direction, maxPoints, settleTime, restarts,
+             stepLength, orbit.info['flow'].steps) for direction in (-1, 1)]
     halves = []
-    for direction in (-1, 1):
-        side = 'lower' if direction < 0 else 'higher'
-        branch = ContinueOrbits(FlowAt, orbit, start, (low, high), scale, scaleP, name, direction=direction,
-                                stepLength=0.5, maxStepLength=2., minStepLength=0.02, maxPoints=maxPoints,
-                                measure=Measure, stop=Stop, onPoint=onPoint)
-        result.messages += [f"towards {side} {name}: {r}" for r in branch.stopReason]
-        for _ in range(restarts):
-            last = branch.points[-1]
-            if not branch.stopReason[-1].startswith('the corrector did not converge') or len(branch.points) > maxPoints:
-                break
-            # the corrector is stuck at a kink of the map (e.g. the orbit starts to touch the other flank): start
-            # again from a time simulation a little further on (from the last orbit), and continue from there
-            value = last.value + direction * scaleP
-            if not low <= value <= high:
-                break
-            m, _ = ModelAt(value)
-            try:
-                again = FindSteadyChatter({**base, name: value}, settleTime=settleTime, model=m,
-                                          initialState=last.orbit.state)
-            except ShootingError:
-                result.messages.append(f"towards {side} {name}: no steady chatter found again at {name} = {value:.6g}")
-                break
-            current['flow'] = again.info['flow']
-            result.messages.append(f"towards {side} {name}: restarted from a time simulation at {name} = {value:.6g}")
-            more = ContinueOrbits(FlowAt, again, value, (low, high), scale, scaleP, name, direction=direction,
-                                  stepLength=0.5, maxStepLength=2., minStepLength=0.02,
-                                  maxPoints=maxPoints - len(branch.points), measure=Measure, stop=Stop,
-                                  onPoint=onPoint)
-            branch.points += more.points
-            branch.folds += more.folds
-            branch.stopReason = more.stopReason
-            result.messages += [f"towards {side} {name}: {r}" for r in more.stopReason]
+    for branch, messages in _RunDirections(jobs, processes, onPoint, result.messages):
         halves.append(branch)
+        result.messages += messages
     result.points = [p for p in list(reversed(halves[0].points)) + halves[1].points[1:] if low <= p.value <= high]
     if not roots and unstable:
         result.messages.append(f"the drive is linearly unstable for every {name} in [{low:g}, {high:g}]: the range "
@@ -337,6 +306,96 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         result.disturbances.append({'value': middle, 'wormSpeedFraction': kick,
                                     'wormSpeed': kick * float(base['motorSpeed'])})
     return result
+
+
+
+def _FollowDirection(base: Dict, name: str, low: float, high: float, start: PeriodicOrbit, value: float,
+                     scale: np.ndarray, scaleP: float, direction: int, maxPoints: int, settleTime: float,
+                     restarts: int, stepLength: float, steps: int, onPoint: Optional[Callable] = None
+                     ) -> Tuple[Branch, List[str]]:
+    """One direction of the branch from ``start`` at ``value``: continuation, and restarts from a time simulation
+    where the corrector is stuck. Builds its own model, so that it can run in a worker process."""
+    model = BuildLoweringModel({**base, name: value})
+    current = {'model': model, 'flow': _LoweringFlow(model, steps)}
+    messages = []
+
+    def ModelAt(v):
+        m = current['model']
+        new = UpdateLoweringModel(m, {**base, name: v})
+        if new is not m:
+            current['flow'] = _LoweringFlow(new, current['flow'].steps)
+            current['model'] = new
+        return current['model'], current['flow']
+
+    def FlowAt(v):
+        return ModelAt(v)[1]
+
+    def Measure(v, orb):
+        m, flow = ModelAt(v)
+        return OrbitAmplitude(m, flow, orb.state, orb.period)
+
+    def Stop(point):
+        if point.info['forceFactor'] < REST_FORCE_FACTOR:
+            return f"reached the linear boundary at {name} = {point.value:.6g} (the orbit stays in contact)"
+        return None
+
+    side = 'lower' if direction < 0 else 'higher'
+    settings = dict(stepLength=stepLength, maxStepLength=4. * stepLength, minStepLength=0.02, measure=Measure,
+                    stop=Stop, onPoint=onPoint, monodromyPerturbation=MONODROMY_PERTURBATION)
+    branch = ContinueOrbits(FlowAt, start, value, (low, high), scale, scaleP, name, direction=direction,
+                            maxPoints=maxPoints, **settings)
+    messages += [f"towards {side} {name}: {r}" for r in branch.stopReason]
+    for _ in range(restarts):
+        last = branch.points[-1]
+        if not branch.stopReason[-1].startswith('the corrector did not converge') or len(branch.points) > maxPoints:
+            break
+        # the corrector is stuck at a kink of the map (e.g. the orbit starts to touch the other flank): start
+        # again from a time simulation a little further on (from the last orbit), and continue from there
+        again = last.value + direction * scaleP
+        if not low <= again <= high:
+            break
+        m, _ = ModelAt(again)
+        try:
+            orbit = FindSteadyChatter({**base, name: again}, settleTime=settleTime, model=m,
+                                      initialState=last.orbit.state)
+        except ShootingError:
+            messages.append(f"towards {side} {name}: no steady chatter found again at {name} = {again:.6g}")
+            break
+        current['flow'] = orbit.info['flow']
+        messages.append(f"towards {side} {name}: restarted from a time simulation at {name} = {again:.6g}")
+        orbit.info.clear()
+        more = ContinueOrbits(FlowAt, orbit, again, (low, high), scale, scaleP, name, direction=direction,
+                              maxPoints=maxPoints - len(branch.points), **settings)
+        branch.points += more.points
+        branch.folds += more.folds
+        branch.stopReason = more.stopReason
+        messages += [f"towards {side} {name}: {r}" for r in more.stopReason]
+    return branch, messages
+
+
+def _FollowDirectionJob(job: Tuple) -> Tuple[Branch, List[str]]:
+    return _FollowDirection(*job)
+
+
+def _RunDirections(jobs: List[Tuple], processes: int, onPoint: Optional[Callable], messages: List[str]
+                   ) -> List[Tuple[Branch, List[str]]]:
+    """Both directions of the branch: in two worker processes (fork, Linux) if ``processes`` >= 2, else one after
+    the other (also when the workers cannot start; noted in ``messages``). ``onPoint`` is called as the points
+    come (serial) or for each point once a direction is done (parallel)."""
+    if processes >= 2 and sys.platform.startswith('linux'):
+        try:
+            context = multiprocessing.get_context('fork')
+            with ProcessPoolExecutor(max_workers=2, mp_context=context) as pool:
+                results = list(pool.map(_FollowDirectionJob, jobs))
+        except (OSError, BrokenProcessPool) as err:
+            messages.append(f"worker processes could not run ({type(err).__name__}: {err}); computed serially")
+        else:
+            if onPoint is not None:
+                for branch, _ in results:
+                    for point in branch.points[1:]:
+                        onPoint(point)
+            return results
+    return [_FollowDirection(*job, onPoint=onPoint) for job in jobs]
 
 
 def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 3.0, largest: float = 0.5,

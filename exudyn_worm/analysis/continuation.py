@@ -9,6 +9,10 @@ Jacobian through the mesh's switches), so the branch is followed through folds (
 the parameter component of the secant changes sign). The step length adapts: halved when
 the corrector fails, grown by 1.5 after an easy step.
 
+The corrector is Newton's method with Broyden updates: it starts from the previous orbit's Jacobian (its
+monodromy matrix, velocity and parameter derivative, computed there anyway) and renews it by finite differences
+only when convergence slows, so a step costs a few flow runs instead of ``n + 2`` per Newton step.
+
 The flow at parameter ``p`` comes from ``flowAt(p)``, which may change the model in place or build a new one.
 """
 from __future__ import annotations
@@ -19,7 +23,8 @@ from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .orbits import PeriodicOrbit, ShootingJacobian
+from .orbits import (SLOW_CONVERGENCE, BroydenUpdate, FlowVelocity, Monodromy, PeriodicOrbit,
+                     ShootingJacobian)
 
 __all__ = ['BranchPoint', 'Branch', 'ContinueOrbits']
 
@@ -70,32 +75,61 @@ class Branch:
     stopReason: List[str] = field(default_factory=list)
 
 
-def _Newton(F, J, y, tol, maxIterations):
-    """Newton with backtracking: a step that does not lower the residual is halved (up to 6 times), which stops the
-    two-cycle Newton falls into across a kink of the non-smooth one-period map."""
+#: a corrector that converged in at most this many Broyden steps from the previous orbit's Jacobian, without
+#: renewing it, made an easy step: the next step is 1.5 times longer (as after at most 2 Newton steps)
+EASY_BROYDEN_STEPS = 5
+#: the corrector gives up after this many slow steps with a freshly computed Jacobian (stuck at a kink of the map:
+#: a shorter continuation step is cheaper than more Newton steps)
+MAX_STALLS = 3
+
+
+def _Newton(F, Jacobian, y, tol, maxIterations, A=None):
+    """Newton's method with Broyden updates: the Jacobian ``A`` (e.g. the previous orbit's) is corrected by every
+    step (:func:`~exudyn_worm.analysis.orbits.BroydenUpdate`) and renewed by finite differences (``Jacobian(y)``) only
+    when a step lowers the residual by less than :data:`~exudyn_worm.analysis.orbits.SLOW_CONVERGENCE` or finds no
+    descent; it gives up after :data:`MAX_STALLS` slow steps with fresh Jacobians. A step that does not lower the
+    residual is halved (up to 6 times), which stops the two-cycle Newton falls into across a kink of the non-smooth
+    one-period map. Returns ``(y, iterations, converged, renewals)`` (renewals: finite-difference Jacobians
+    computed)."""
     r = F(y)
+    fresh, stalls, renewals = False, 0, 0
     for k in range(maxIterations):
         norm = float(np.max(np.abs(r)))
         if norm <= tol:
-            return y, k, True
-        dy = np.linalg.lstsq(J(y), -r, rcond=None)[0]
+            return y, k, True, renewals
+        if A is None:
+            A, fresh = Jacobian(y), True
+            renewals += 1
+        dy = np.linalg.lstsq(A, -r, rcond=None)[0]
         dy /= max(1., float(np.max(np.abs(dy))) / 0.5)
+        improved = False
         for _ in range(7):
             yTrial = y + dy
             rTrial = F(yTrial)
-            if float(np.max(np.abs(rTrial))) < norm:
+            trial = float(np.max(np.abs(rTrial)))
+            if trial < norm:
+                improved = True
                 break
             dy *= 0.5
-        y, r = yTrial, rTrial
-    return y, maxIterations, float(np.max(np.abs(r))) <= tol
+        if not improved and not fresh:
+            A = None                    # renew the Jacobian at the same point
+            continue
+        A = BroydenUpdate(A, yTrial - y, rTrial - r)
+        if trial > SLOW_CONVERGENCE * norm:
+            stalls += fresh
+            if stalls >= MAX_STALLS:    # stuck at a kink even with fresh Jacobians: let the caller shorten the step
+                return yTrial, k + 1, trial <= tol, renewals
+            A = None
+        y, r, fresh = yTrial, rTrial, False
+    return y, maxIterations, float(np.max(np.abs(r))) <= tol, renewals
 
 
 def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, value: float, bounds: Tuple[float, float],
                    stateScale: Sequence[float], parameterScale: float, parameter: str = 'p', direction: int = 1,
                    stepLength: float = 0.05, maxStepLength: float = 0.3, minStepLength: float = 1e-3,
                    maxPoints: int = 50, tolerance: float = 1e-8, perturbation: float = 1e-6,
-                   measure: Optional[Callable] = None, stop: Optional[Callable] = None,
-                   onPoint: Optional[Callable] = None) -> Branch:
+                   monodromyPerturbation: Optional[float] = None, measure: Optional[Callable] = None,
+                   stop: Optional[Callable] = None, onPoint: Optional[Callable] = None) -> Branch:
     """Follow a branch of periodic orbits from ``start`` at parameter ``value`` in one direction.
 
     Parameters
@@ -123,7 +157,10 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
     tolerance : float
         Corrector tolerance on the scaled residual.
     perturbation : float
-        Relative finite-difference step.
+        Relative forward-difference step of the corrector's Jacobian.
+    monodromyPerturbation : float, optional
+        Relative step of the central differences for each orbit's monodromy matrix (default ``perturbation``;
+        see :func:`~exudyn_worm.analysis.orbits.FindPeriodicOrbit`).
     measure : callable, optional
         ``measure(p, orbit) -> dict`` stored as the point's ``info`` (amplitudes ...).
     stop : callable, optional
@@ -144,24 +181,32 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
     def Unscale(y):
         return y[:n] * scale, y[n] * T0, y[n + 1] * parameterScale
 
-    def Shooting(y, reference, withJacobian):
-        x, T, p = Unscale(y)
-        flow = flowAt(p)
-        xRef, fRef = reference
-        W = fRef * scale
-        wn = np.linalg.norm(W)
-        if not withJacobian:
-            xT = np.asarray(flow(x, T), dtype=float)
-            return np.concatenate([(xT - x) / scale, [fRef @ (x - xRef) / wn]]), None
-        xT, M, velocity = ShootingJacobian(flow, x, T, scale, perturbation)
-        dp = perturbation * parameterScale
-        dxdp = (np.asarray(flowAt(p + dp)(x, T), dtype=float) - xT) / dp
-        flowAt(p)
+    def Matrix(M, velocity, dxdp, referenceVelocity):
+        """Rows of the shooting equations and the phase condition, in scaled unknowns."""
+        W = referenceVelocity * scale
         A = np.zeros((n + 1, n + 2))
         A[:n, :n] = (M - np.eye(n)) * scale / scale[:, None]
         A[:n, n] = velocity * T0 / scale
         A[:n, n + 1] = dxdp * parameterScale / scale
-        A[n, :n] = W / wn
+        A[n, :n] = W / np.linalg.norm(W)
+        return A
+
+    def ParameterDerivative(x, T, p, xT):
+        dp = perturbation * parameterScale
+        dxdp = (np.asarray(flowAt(p + dp)(x, T), dtype=float) - xT) / dp
+        flowAt(p)
+        return dxdp
+
+    def Shooting(y, reference, withJacobian):
+        x, T, p = Unscale(y)
+        flow = flowAt(p)
+        xRef, fRef = reference
+        wn = np.linalg.norm(fRef * scale)
+        if not withJacobian:
+            xT = np.asarray(flow(x, T), dtype=float)
+            return np.concatenate([(xT - x) / scale, [fRef @ (x - xRef) / wn]]), None
+        xT, M, velocity = ShootingJacobian(flow, x, T, scale, perturbation)
+        A = Matrix(M, velocity, ParameterDerivative(x, T, p, xT), fRef)
         r = np.concatenate([(xT - x) / scale, [fRef @ (x - xRef) / wn]])
         return r, (A, M, velocity)
 
@@ -171,6 +216,7 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
     tangent = np.zeros(n + 2)
     tangent[n + 1] = 1. if direction > 0 else -1.
     first = True
+    jacobian = None                 # the corrector's first Jacobian: the previous orbit's (none for the first step)
     points = [BranchPoint(value, start, measure(value, start) if measure else {})]
     branch = Branch(parameter, points)
     h = stepLength
@@ -192,17 +238,17 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
 
         def F(z):
             r, _ = Shooting(z, reference, False)
+            cache['last'] = (z, r)
             return np.concatenate([r, [row @ (z - yPred)]])
 
         def J(z):
-            r, (A, M, v) = Shooting(z, reference, True)
-            cache['last'] = (z.copy(), A, M, v)
-            return np.vstack([A, row])
+            return np.vstack([Shooting(z, reference, True)[1][0], row])
 
         try:
-            yNew, iterations, ok = _Newton(F, J, yPred, tolerance, 12)
+            yNew, iterations, ok, renewals = _Newton(F, J, yPred, tolerance, 12,
+                                           None if jacobian is None else np.vstack([jacobian, row]))
         except Exception as err:            # a solver failure on the way counts as a failed step
-            ok, iterations, yNew = False, 8, yPred
+            ok, iterations, yNew, renewals = False, 8, yPred, 1
             cache['error'] = str(err)
         if ok and yNew[n] <= 0:
             ok = False
@@ -214,7 +260,16 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
                 break
             continue
         x, T, p = Unscale(yNew)
-        r, (A, M, velocity) = Shooting(yNew, reference, True)
+        # at the orbit: its monodromy (central differences, for the multipliers), velocity and parameter
+        # derivative, which are also the next corrector's first Jacobian
+        flow = flowAt(p)
+        z, r = cache['last']
+        if not np.array_equal(z, yNew):
+            r = Shooting(yNew, reference, False)[0]
+        xT = x + r[:n] * scale
+        M = Monodromy(flow, x, T, scale, monodromyPerturbation or perturbation, central=True)
+        velocity = FlowVelocity(flow, x, T, perturbation, xT)
+        jacobian = Matrix(M, velocity, ParameterDerivative(x, T, p, xT), velocity)
         # secant predictor: robust to the errors of the finite-difference Jacobian through the mesh's switches
         secant = yNew - y
         newTangent = secant / np.linalg.norm(secant)
@@ -234,7 +289,7 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
         if reason:
             branch.stopReason.append(reason)
             break
-        if iterations <= 2:
+        if iterations <= 2 or (renewals == 0 and iterations <= EASY_BROYDEN_STEPS):
             h = min(maxStepLength, 1.5 * h)
     else:
         branch.stopReason.append(f"reached {maxPoints} points")

@@ -8,12 +8,14 @@ found here by Newton's method on the shooting equations
 
 with the period ``T`` as an unknown. ``f_ref`` is the velocity of the flow at the reference point ``x_ref``
 (the start guess or the previous orbit of a continuation), so the orbit's start point is the point of the
-orbit on the hyperplane through ``x_ref`` normal to the flow there. The monodromy matrix
-``M = dx(T)/dx0`` and the velocity ``f = dx(T)/dT`` are taken by forward finite differences of the flow
-(``n + 1`` extra flow evaluations per Newton step), which only asks of the flow that it be piecewise smooth:
-the worm mesh (contact loss, flank change, clipped normal force) and stick-slip friction are non-smooth,
-and integrating variational equations through their switches would need the saltation matrices of every
-switch.
+orbit on the hyperplane through ``x_ref`` normal to the flow there. The Newton matrix (the monodromy matrix
+``M = dx(T)/dx0`` and the velocity ``f = dx(T)/dT``) is taken by forward finite differences of the flow
+(``n + 1`` extra flow evaluations), which only asks of the flow that it be piecewise smooth: the worm mesh
+(contact loss, flank change, clipped normal force) and stick-slip friction are non-smooth, and integrating
+variational equations through their switches would need the saltation matrices of every switch. It is then
+corrected by Broyden's update after every step and computed again only when convergence slows
+(:data:`SLOW_CONVERGENCE`). The converged orbit's monodromy matrix, for the multipliers, is taken by central
+differences (step ``monodromyPerturbation``).
 
 The Floquet multipliers are the eigenvalues of ``M``. One of them belongs to the shift along the orbit and
 is 1 for an autonomous system (the trivial multiplier); the orbit is (orbitally) stable if every other
@@ -33,7 +35,7 @@ import numpy as np
 from .._checks import CheckPositive
 
 __all__ = ['PeriodicOrbit', 'ShootingError', 'FindPeriodicOrbit', 'FloquetMultipliers', 'ShootingJacobian',
-           'SHOOTING_TOLERANCE']
+           'Monodromy', 'FlowVelocity', 'BroydenUpdate', 'SHOOTING_TOLERANCE', 'SLOW_CONVERGENCE']
 
 #: default tolerance of the shooting residual ``|x(T) - x0|``, relative to the state scale
 SHOOTING_TOLERANCE = 1e-8
@@ -145,6 +147,51 @@ def _Scale(where: str, stateScale, x0: np.ndarray) -> np.ndarray:
     return scale
 
 
+def Monodromy(flow: Callable, x0: Sequence[float], period: float, scale: Sequence[float],
+              perturbation: float = 1e-6, xT: Optional[Sequence[float]] = None, central: bool = False) -> np.ndarray:
+    """Monodromy matrix ``dx(T)/dx0`` of the one-period map by finite differences.
+
+    Parameters
+    ----------
+    flow : callable
+        ``flow(x0, T) -> x(T)`` (arrays of shape (n,)).
+    x0 : array_like
+        Start state.
+    period : float
+        Integration time T.
+    scale : array_like
+        Typical size of each state component; the step of component j is ``perturbation * scale[j]``.
+    perturbation : float
+        Relative finite-difference step.
+    xT : array_like, optional
+        ``flow(x0, period)`` if already known (forward differences only).
+    central : bool
+        Central differences (2 n flow runs) instead of forward differences (n runs, plus one without ``xT``).
+        With a step spanning a few solver steps, central differences average out the error a fixed-step
+        integrator makes where a force jumps (see docs/chatter-amplitude.md).
+
+    Returns
+    -------
+    ndarray, shape (n, n)
+    """
+    x0 = np.asarray(x0, dtype=float)
+    n = x0.size
+    if not central and xT is None:
+        xT = flow(x0, period)
+    M = np.empty((n, n))
+    for j in range(n):
+        h = perturbation * scale[j]
+        x = x0.copy()
+        x[j] += h
+        plus = np.asarray(flow(x, period), dtype=float)
+        if central:
+            x[j] = x0[j] - h
+            M[:, j] = (plus - np.asarray(flow(x, period), dtype=float)) / (2. * h)
+        else:
+            M[:, j] = (plus - np.asarray(xT, dtype=float)) / h
+    return M
+
+
 def ShootingJacobian(flow: Callable, x0: Sequence[float], period: float, scale: Sequence[float],
                      perturbation: float = 1e-6, xT: Optional[Sequence[float]] = None
                      ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -172,22 +219,68 @@ def ShootingJacobian(flow: Callable, x0: Sequence[float], period: float, scale: 
     """
     x0 = np.asarray(x0, dtype=float)
     xT = np.asarray(flow(x0, period), dtype=float) if xT is None else np.asarray(xT, dtype=float)
-    n = x0.size
-    M = np.empty((n, n))
-    for j in range(n):
-        h = perturbation * scale[j]
-        x = x0.copy()
-        x[j] += h
-        M[:, j] = (np.asarray(flow(x, period), dtype=float) - xT) / h
+    M = Monodromy(flow, x0, period, scale, perturbation, xT)
+    return xT, M, FlowVelocity(flow, x0, period, perturbation, xT)
+
+
+def FlowVelocity(flow: Callable, x0: Sequence[float], period: float, perturbation: float = 1e-6,
+                 xT: Optional[Sequence[float]] = None) -> np.ndarray:
+    """``dx(T)/dT`` by a forward difference in T (one flow run, two without ``xT``).
+
+    Parameters
+    ----------
+    flow : callable
+        ``flow(x0, T) -> x(T)``.
+    x0 : array_like
+        Start state.
+    period : float
+        Integration time T.
+    perturbation : float
+        Relative step of T.
+    xT : array_like, optional
+        ``flow(x0, period)`` if already known.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+    """
+    x0 = np.asarray(x0, dtype=float)
+    xT = np.asarray(flow(x0, period), dtype=float) if xT is None else np.asarray(xT, dtype=float)
     dT = perturbation * period
-    velocity = (np.asarray(flow(x0, period + dT), dtype=float) - xT) / dT
-    return xT, M, velocity
+    return (np.asarray(flow(x0, period + dT), dtype=float) - xT) / dT
+
+
+def BroydenUpdate(A: np.ndarray, step: np.ndarray, change: np.ndarray) -> np.ndarray:
+    """Broyden's rank-one update of a Jacobian ``A`` after a step ``step`` that changed the residual by ``change``
+    (``A + (change - A step) step^T / |step|^2``): the secant condition ``A_new step = change`` with the least
+    change of ``A``. Rows of exactly linear equations (phase and arclength conditions) stay as they are.
+
+    Parameters
+    ----------
+    A : ndarray, shape (m, k)
+    step : ndarray, shape (k,)
+    change : ndarray, shape (m,)
+
+    Returns
+    -------
+    ndarray, shape (m, k)
+    """
+    ss = float(step @ step)
+    if not ss > 0:
+        return A
+    return A + np.outer(change - A @ step, step) / ss
+
+
+#: a Newton step after which the residual is above this fraction of the one before renews the finite-difference
+#: Jacobian (the Broyden-updated one has stopped paying)
+SLOW_CONVERGENCE = 0.3
 
 
 def FindPeriodicOrbit(flow: Callable, x0: Sequence[float], period: float, stateScale: Optional[Sequence[float]] = None,
                       referenceState: Optional[Sequence[float]] = None, referenceVelocity: Optional[Sequence[float]] = None,
                       tolerance: float = SHOOTING_TOLERANCE, maxIterations: int = 30, perturbation: float = 1e-6,
-                      where: str = 'FindPeriodicOrbit') -> PeriodicOrbit:
+                      monodromyPerturbation: Optional[float] = None, where: str = 'FindPeriodicOrbit'
+                      ) -> PeriodicOrbit:
     """Periodic orbit of an autonomous system by Newton's method on the one-period map (shooting).
 
     Parameters
@@ -209,7 +302,11 @@ def FindPeriodicOrbit(flow: Callable, x0: Sequence[float], period: float, stateS
     maxIterations : int
         Largest number of Newton steps, >= 1.
     perturbation : float
-        Relative finite-difference step of the monodromy matrix.
+        Relative forward-difference step of the Newton matrix.
+    monodromyPerturbation : float, optional
+        Relative step of the central differences for the monodromy matrix returned with the converged orbit
+        (2 n flow runs; default ``perturbation``). For a fixed-step integration of a force that jumps, a step
+        spanning a few solver steps averages out the integrator's error at the jump (docs/chatter-amplitude.md).
     where : str
         Caller named in messages.
 
@@ -232,52 +329,81 @@ def FindPeriodicOrbit(flow: Callable, x0: Sequence[float], period: float, stateS
     T = CheckPositive(where, 'period', period, 's')
     CheckPositive(where, 'tolerance', tolerance)
     CheckPositive(where, 'perturbation', perturbation)
+    if monodromyPerturbation is not None:
+        CheckPositive(where, 'monodromyPerturbation', monodromyPerturbation)
     if isinstance(maxIterations, bool) or not isinstance(maxIterations, int) or maxIterations < 1:
         raise ValueError(f"{where}: 'maxIterations' must be an integer >= 1, got {maxIterations!r}")
     scale = _Scale(where, stateScale, x)
     xRef = x.copy() if referenceState is None else np.asarray(referenceState, dtype=float).ravel()
     fRef = None if referenceVelocity is None else np.asarray(referenceVelocity, dtype=float).ravel()
     n = x.size
-    residual, orbit = math.inf, None
-    xT = None
+    T0 = T
+    xT = np.asarray(flow(x, T), dtype=float)
+    A, M, velocity, fresh = None, None, None, False
+
+    def Residual(x, xT):
+        return np.concatenate([(xT - x) / scale, [(fRef @ (x - xRef)) / np.linalg.norm(fRef * scale)]])
+
+    def Result(x, T, xT, iteration, residual, converged):
+        if converged:                 # the monodromy at the orbit itself, for the multipliers: central differences
+            Mx = Monodromy(flow, x, T, scale, monodromyPerturbation or perturbation, central=True)
+        elif M is None:
+            Mx = Monodromy(flow, x, T, scale, perturbation, xT)
+        else:                                           # not converged: the last Jacobian's, for a report
+            Mx = M
+        v = FlowVelocity(flow, x, T, perturbation, xT) if converged or velocity is None else velocity
+        return PeriodicOrbit(state=x.copy(), period=T, monodromy=Mx, velocity=v, residual=residual,
+                             iterations=iteration, converged=converged)
+
+    residual = float(np.max(np.abs(xT - x) / scale))
     for iteration in range(maxIterations + 1):
-        xT, M, velocity = ShootingJacobian(flow, x, T, scale, perturbation, xT)
-        if fRef is None:
-            fRef = velocity.copy()
-        r = xT - x
-        residual = float(np.max(np.abs(r) / scale))
-        orbit = PeriodicOrbit(state=x.copy(), period=T, monodromy=M, velocity=velocity, residual=residual,
-                              iterations=iteration, converged=residual <= tolerance)
-        if orbit.converged:
-            return orbit
+        if residual <= tolerance:
+            return Result(x, T, xT, iteration, residual, True)
         if iteration == maxIterations:
             break
-        # unknowns scaled: x = scale * y, so the Newton matrix is well balanced
-        W = fRef * scale
-        A = np.zeros((n + 1, n + 1))
-        A[:n, :n] = (M - np.eye(n)) * scale / scale[:, None]
-        A[:n, n] = velocity * T / scale
-        A[n, :n] = W / np.linalg.norm(W)
-        b = np.concatenate([-r / scale, [-(fRef @ (x - xRef)) / np.linalg.norm(W)]])
+        if A is None:
+            # Newton matrix from forward differences, in scaled unknowns (x / scale, T / T0): well balanced
+            _, M, velocity = ShootingJacobian(flow, x, T, scale, perturbation, xT)
+            if fRef is None:
+                fRef = velocity.copy()
+            W = fRef * scale
+            A = np.zeros((n + 1, n + 1))
+            A[:n, :n] = (M - np.eye(n)) * scale / scale[:, None]
+            A[:n, n] = velocity * T0 / scale
+            A[n, :n] = W / np.linalg.norm(W)
+            fresh = True
+        r = Residual(x, xT)
         try:
-            dy = np.linalg.solve(A, b)
+            dy = np.linalg.solve(A, -r)
         except np.linalg.LinAlgError:
-            dy = np.linalg.lstsq(A, b, rcond=None)[0]
+            dy = np.linalg.lstsq(A, -r, rcond=None)[0]
         # damped step: at most half the state scale per component and 30 % of the period; halved while it does
         # not lower the residual (stops Newton's two-cycle across a kink of a non-smooth map)
-        dy /= max(1., float(np.max(np.abs(dy[:n]))) / 0.5, abs(dy[n]) / 0.3)
+        dy /= max(1., float(np.max(np.abs(dy[:n]))) / 0.5, abs(dy[n]) * T0 / T / 0.3)
+        improved, xTTrial = False, None
         for _ in range(7):
-            xTrial, TTrial = x + dy[:n] * scale, T * (1. + dy[n])
+            xTrial, TTrial, xTTrial = x + dy[:n] * scale, T + dy[n] * T0, None
             if TTrial > 0 and np.all(np.isfinite(xTrial)):
-                xT = np.asarray(flow(xTrial, TTrial), dtype=float)
-                if float(np.max(np.abs(xT - xTrial) / scale)) < residual:
+                xTTrial = np.asarray(flow(xTrial, TTrial), dtype=float)
+                trial = float(np.max(np.abs(xTTrial - xTrial) / scale))
+                if trial < residual:
+                    improved = True
                     break
             dy *= 0.5
-        x, T = xTrial, TTrial
-        if not (T > 0 and np.all(np.isfinite(x))):
-            raise ShootingError(f"{where}: the shooting iteration diverged (period {T:g} s) after {iteration + 1} "
-                                f"Newton steps; start closer to the orbit (e.g. from a longer time simulation)",
-                                orbit)
+        if not improved and not fresh:
+            A = None                # an updated Jacobian that finds no descent: renew it at the same point
+            continue
+        if xTTrial is None:
+            raise ShootingError(f"{where}: the shooting iteration diverged (period {TTrial:g} s) after "
+                                f"{iteration + 1} Newton steps; start closer to the orbit (e.g. from a longer time "
+                                f"simulation)", Result(x, T, xT, iteration, residual, False))
+        # Broyden: the next step reuses the Jacobian, corrected by what this step taught about the map
+        A = BroydenUpdate(A, dy, Residual(xTrial, xTTrial) - r)
+        slow = trial > SLOW_CONVERGENCE * residual
+        x, T, xT, residual = xTrial, TTrial, xTTrial, trial
+        fresh = False
+        if slow:
+            A = None
     raise ShootingError(f"{where}: shooting did not converge in {maxIterations} Newton steps (residual {residual:.3g}, "
                         f"tolerance {tolerance:g}, period {T:g} s); start closer to the orbit (e.g. from a longer "
-                        f"time simulation), or raise maxIterations", orbit)
+                        f"time simulation), or raise maxIterations", Result(x, T, xT, maxIterations, residual, False))
