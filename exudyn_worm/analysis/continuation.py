@@ -17,7 +17,6 @@ The flow at parameter ``p`` comes from ``flowAt(p)``, which may change the model
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 

@@ -26,7 +26,6 @@ a moving belt with static > kinetic friction (stick-slip, closed form).
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Callable, Dict, Optional, Sequence, Tuple
 
