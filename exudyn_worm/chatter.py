@@ -27,7 +27,7 @@ from .contact import MATH_OPS, ContactOptions
 from .orbits import FindPeriodicOrbit, PeriodicOrbit, ShootingError
 from .profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
 from ._checks import CheckPositive, CheckReal
-from .connector import CreateWormGear
+from .connector import CONNECTORS_KEY, CreateWormGear
 from .drivetrain import CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
 from .linearization import DriveStability
 from .presets import DriveFromParameters, ExtraComponents
@@ -219,6 +219,9 @@ class ExudynFlow:
         C = exu.ConfigurationType
         self._C = C
         self.q0 = np.array(mbs.systemData.GetODE2Coordinates(configuration=C.Initial), dtype=float)
+        #: data coordinates every solve starts from (Exudyn keeps the last solve's in the system otherwise)
+        self.data0 = (np.array(mbs.systemData.GetDataCoordinates(configuration=C.Initial), dtype=float)
+                      if mbs.systemData.DataSize() else None)
         self.calls = 0
 
     def StartState(self) -> np.ndarray:
@@ -235,6 +238,14 @@ class ExudynFlow:
         q[i], v[i] = x[:n], x[n:] + self.speeds[i]
         self.mbs.systemData.SetODE2Coordinates(q.tolist(), configuration=C.Initial)
         self.mbs.systemData.SetODE2Coordinates_t(v.tolist(), configuration=C.Initial)
+        # the discrete state must follow from x alone, else the map depends on the previous call (and the
+        # finite-difference monodromy on the order of its columns): data coordinates back to their start
+        # values, the worm-gear connectors' stick/slip state to the one the start implies
+        if self.data0 is not None:
+            self.mbs.systemData.SetDataCoordinates(self.data0.tolist(), configuration=C.Initial)
+        for connector in self.mbs.variables.get(CONNECTORS_KEY, []):
+            if connector.stickSlip is not None:
+                connector.stickSlip.Restart(self.mbs, q, v)
 
     def Solve(self, x, T: float, storeSensors: bool = False):
         """Simulate time ``T`` from flow state ``x``; returns the end state (flow coordinates)."""

@@ -166,6 +166,30 @@ class _StickSlip:
         finally:
             esym.SetRecording(recording)
 
+    def Restart(self, mbs, coordinates, velocities) -> FrictionState:
+        """Start a new solve from the ODE2 ``coordinates`` and ``velocities`` (whole-system vectors without the
+        reference values, e.g. the initial configuration): the state becomes the one these imply
+        (sliding in the direction of the worm's speed, stuck if it is at rest), the recorded switches and the
+        check schedule are forgotten. Without it a solve starts from the state the previous one ended in.
+
+        Returns
+        -------
+        FrictionState
+            The start state.
+        """
+        indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
+        x = [float(coordinates[i]) + ref for i, ref in zip(indices[:2], self.references[:2])]
+        state = _StartFrictionState(self.gear, x[0], x[1], float(velocities[indices[0]]))
+        self.state = state
+        if self.variables is not None:
+            for name in ('stuck', 'direction', 'anchor'):
+                getattr(self.variables, name).SetValue(float(getattr(state, name)))
+        self.history = [(-np.inf, state)]
+        self.switches = 0
+        self._indices, self._lastTime, self._nextCheck, self._lastCheck, self._maxRate = None, None, -np.inf, None, 0.
+        self.clock[0] = self.clock[1] = -np.inf        # the system's post-Newton function looks at every mesh
+        return state
+
     def LawState(self, ops):
         """The state as the law reads it: the symbolic variables, or the current floats in plain Python."""
         return self.state if ops is MATH_OPS or self.variables is None else self.variables
@@ -286,16 +310,21 @@ def _AddStickSlip(mbs, stickSlip: _StickSlip) -> None:
     items.append(stickSlip)
 
 
+def _StartFrictionState(gear: WormGear, phi1: float, phi2: float, omega1: float) -> FrictionState:
+    """Sliding in the direction of the worm's speed ``omega1``; stuck (without force) if the worm is at rest."""
+    if omega1 != 0:
+        return FrictionState(0., float(np.sign(omega1)), SlidingCoordinate(gear, phi1, phi2))
+    return FrictionState(1., 1., SlidingCoordinate(gear, phi1, phi2))
+
+
 def _InitialFrictionState(gear: WormGear, mbs, nodes, references) -> FrictionState:
-    """Sliding in the direction of the worm's initial speed; stuck (without force) if the worm starts at rest."""
+    """The start state (:func:`_StartFrictionState`) of the nodes' initial values."""
     x, v = [], []
     for node, ref in zip(nodes[:2], references[:2]):
         info = mbs.GetNode(node)
         x.append(float(np.ravel(info['initialCoordinates'])[0]) + ref)
         v.append(float(np.ravel(info['initialVelocities'])[0]))
-    if v[0] != 0:
-        return FrictionState(0., float(np.sign(v[0])), SlidingCoordinate(gear, x[0], x[1]))
-    return FrictionState(1., 1., SlidingCoordinate(gear, x[0], x[1]))
+    return _StartFrictionState(gear, x[0], x[1], v[0])
 
 
 @dataclass
