@@ -188,6 +188,10 @@ class ExudynFlow:
     The state ``x`` holds, for the ODE2 coordinates ``coordinates``, the positions minus ``steadySpeeds * t``,
     then the velocities minus ``steadySpeeds``. Coordinates not in ``coordinates`` (e.g. a prescribed motor)
     start at their position ``fixedPositions`` (default: the system's initial values) and steady speed.
+    The discrete state is not part of ``x``: every solve starts with the data coordinates the system had when
+    the flow was made and with the stick/slip state of each worm-gear connector that the start implies
+    (sliding in the direction of the worm's speed, :meth:`~exudyn_worm.connector._StickSlip.Restart`), so
+    ``flow(x, T)`` depends on ``x`` and ``T`` alone, not on the previous call.
 
     Parameters
     ----------
@@ -232,7 +236,7 @@ class ExudynFlow:
         i = self.coordinates
         return np.concatenate([q[i], v[i] - self.speeds[i]])
 
-    def _SetInitial(self, x):
+    def _SetInitial(self, x, restart: bool = True):
         C, i, n = self._C, self.coordinates, self.coordinates.size
         q, v = self.q0.copy(), self.speeds.copy()
         q[i], v[i] = x[:n], x[n:] + self.speeds[i]
@@ -241,17 +245,36 @@ class ExudynFlow:
         # the discrete state must follow from x alone, else the map depends on the previous call (and the
         # finite-difference monodromy on the order of its columns): data coordinates back to their start
         # values, the worm-gear connectors' stick/slip state to the one the start implies
+        if not restart:             # go on from the previous solve's end (a long run in pieces)
+            if self.data0 is not None:
+                data = self.mbs.systemData.GetDataCoordinates(configuration=C.Current)
+                self.mbs.systemData.SetDataCoordinates(data, configuration=C.Initial)
+            return
         if self.data0 is not None:
             self.mbs.systemData.SetDataCoordinates(self.data0.tolist(), configuration=C.Initial)
         for connector in self.mbs.variables.get(CONNECTORS_KEY, []):
             if connector.stickSlip is not None:
                 connector.stickSlip.Restart(self.mbs, q, v)
 
-    def Solve(self, x, T: float, storeSensors: bool = False):
-        """Simulate time ``T`` from flow state ``x``; returns the end state (flow coordinates)."""
+    def Solve(self, x, T: float, storeSensors: bool = False, restart: bool = True):
+        """Simulate time ``T`` from flow state ``x``; returns the end state (flow coordinates).
+
+        Parameters
+        ----------
+        x : array_like
+            Start state (flow coordinates).
+        T : float
+            Simulated time in s.
+        storeSensors : bool
+            Keep the sensors' samples of every step.
+        restart : bool
+            True (default): the discrete state (data coordinates, stick/slip state of the worm-gear connectors)
+            starts from the one ``x`` implies, so the result depends on ``x`` and ``T`` alone. False: it goes on
+            from where the previous solve ended (``x`` must then be that solve's end state).
+        """
         import exudyn as exu
         x = np.asarray(x, dtype=float)
-        self._SetInitial(x)
+        self._SetInitial(x, restart)
         ss = self._ss
         ss.timeIntegration.endTime = T
         ss.timeIntegration.numberOfSteps = self.steps

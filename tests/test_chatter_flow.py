@@ -1,0 +1,54 @@
+"""The one-period map of the Exudyn model (exudyn_worm.chatter.ExudynFlow) with the sticking friction model:
+its result must depend on the start state and the time alone, not on the calls before it (the stick/slip state
+of the connector lives outside the ODE2 coordinates; before the fix it was left from the previous call, and a
+call from the same start after a call that ended with the worm turning back differed by 1e-3 of the state
+scale, which also polluted the finite-difference monodromy)."""
+import numpy as np
+import pytest
+
+import exudyn_worm as ew
+from exudyn_worm.chatter import BuildLoweringModel, EquilibriumState, StateScale, _LoweringFlow
+
+pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
+
+
+@pytest.fixture(scope='module')
+def lowering():
+    model = BuildLoweringModel(ew.GetPreset('reel-P1'))      # sticking friction model (the default)
+    assert model.connector.stickSlip is not None
+    return model, _LoweringFlow(model, 400)
+
+
+def _Starts(model):
+    forward = EquilibriumState(model)
+    forward[2] = 0.05 * model.motorSpeed
+    backward = EquilibriumState(model)
+    backward[2] = -2. * model.motorSpeed          # the worm turns back: the stick/slip state switches
+    return forward, backward
+
+
+def test_flow_is_deterministic_after_a_call_that_ends_turned_back(lowering):
+    model, flow = lowering
+    forward, backward = _Starts(model)
+    T = 0.002
+    first = flow(forward, T)
+    again = flow(forward, T)
+    np.testing.assert_array_equal(first, again)
+    flow(backward, T)
+    assert model.connector.stickSlip.state.direction == -1.     # this call ended with the worm turned back
+    after = flow(forward, T)
+    assert np.max(np.abs(after - first) / StateScale(model)) <= 1e-12
+
+
+def test_flow_restart_state_follows_the_start(lowering):
+    model, flow = lowering
+    forward, backward = _Starts(model)
+    flow(forward, 1e-3)
+    state = model.connector.stickSlip.state
+    assert state.stuck == 0. and state.direction == 1.
+    flow(backward, 1e-4)                            # starts sliding backward: no switch
+    assert model.connector.stickSlip.state.direction == -1. and model.connector.stickSlip.switches == 0
+    # restart=False goes on with the previous solve's state (sliding forward): the backward start is a reversal
+    flow(forward, 1e-3)
+    flow.Solve(backward, 1e-4, restart=False)
+    assert model.connector.stickSlip.switches >= 1
