@@ -249,6 +249,10 @@ class ExudynFlow:
             if self.data0 is not None:
                 data = self.mbs.systemData.GetDataCoordinates(configuration=C.Current)
                 self.mbs.systemData.SetDataCoordinates(data, configuration=C.Initial)
+            end = np.array(self.mbs.systemData.GetODE2Coordinates(configuration=C.Current), dtype=float)
+            for connector in self.mbs.variables.get(CONNECTORS_KEY, []):
+                if connector.stickSlip is not None:      # the stuck flanks' anchor shifts with the coordinates
+                    connector.stickSlip.Carry(self.mbs, end, q)
             return
         if self.data0 is not None:
             self.mbs.systemData.SetDataCoordinates(self.data0.tolist(), configuration=C.Initial)
@@ -270,7 +274,8 @@ class ExudynFlow:
         restart : bool
             True (default): the discrete state (data coordinates, stick/slip state of the worm-gear connectors)
             starts from the one ``x`` implies, so the result depends on ``x`` and ``T`` alone. False: it goes on
-            from where the previous solve ended (``x`` must then be that solve's end state).
+            from where the previous solve ended (``x`` must then be that solve's end state; the anchor of stuck
+            flanks is shifted with the coordinates).
         """
         import exudyn as exu
         x = np.asarray(x, dtype=float)

@@ -190,6 +190,28 @@ class _StickSlip:
         self.clock[0] = self.clock[1] = -np.inf        # the system's post-Newton function looks at every mesh
         return state
 
+    def Carry(self, mbs, fromCoordinates, toCoordinates) -> FrictionState:
+        """Keep the state across a shift of the coordinates (a run continued in the coordinates relative to a
+        steady rotation): the stuck flanks' anchor moves with the sliding coordinate, by its change from
+        ``fromCoordinates`` (the end of the previous solve) to ``toCoordinates`` (the start of the next),
+        whole-system ODE2 vectors without the reference values.
+
+        Returns
+        -------
+        FrictionState
+            The shifted state.
+        """
+        indices = [mbs.GetNodeODE2Index(n) for n in self.nodes[:2]]
+        old, new = ([float(q[i]) + ref for i, ref in zip(indices, self.references[:2])]
+                    for q in (fromCoordinates, toCoordinates))
+        shift = SlidingCoordinate(self.gear, new[0], new[1]) - SlidingCoordinate(self.gear, old[0], old[1])
+        state = FrictionState(self.state.stuck, self.state.direction, self.state.anchor + shift)
+        self.state = state
+        if self.variables is not None:
+            self.variables.anchor.SetValue(float(state.anchor))
+        self.history = [(-np.inf, state)]
+        return state
+
     def LawState(self, ops):
         """The state as the law reads it: the symbolic variables, or the current floats in plain Python."""
         return self.state if ops is MATH_OPS or self.variables is None else self.variables

@@ -52,3 +52,28 @@ def test_flow_restart_state_follows_the_start(lowering):
     flow(forward, 1e-3)
     flow.Solve(backward, 1e-4, restart=False)
     assert model.connector.stickSlip.switches >= 1
+
+
+def test_carry_keeps_the_stretch_of_the_stuck_flanks(lowering):
+    """A run continued in pieces (restart=False) shifts the coordinates back by the steady rotation; the anchor
+    of stuck flanks must move with them, else the sticking spring is stretched by the sliding of a whole piece
+    (reel-P3 with a Stribeck law at 200 rpm then ran into a different motion, force factor 10.4 instead of 2.31)."""
+    from exudyn_worm.contact import FrictionState, SlidingCoordinate
+    model, flow = lowering
+    stickSlip = model.connector.stickSlip
+    mbs = model.mbs
+    n = mbs.systemData.ODE2Size()
+    q0 = np.array(mbs.systemData.GetODE2Coordinates(), dtype=float)
+    q1 = q0.copy()
+    worm, wheel = (mbs.GetNodeODE2Index(k) for k in stickSlip.nodes[:2])
+    q1[worm] -= 3.1
+    q1[wheel] -= 0.4
+    stickSlip.state = FrictionState(1., 1., 1e-4)
+    Stretch = lambda q: SlidingCoordinate(model.drive.gear, *(q[i] + r for i, r in
+                                                              zip((worm, wheel), stickSlip.references))) - \
+        stickSlip.state.anchor
+    before = Stretch(q0)
+    state = stickSlip.Carry(mbs, q0, q1)
+    assert state.stuck == 1. and state.direction == 1.
+    assert abs(Stretch(q1) - before) <= 1e-12 and abs(state.anchor - 1e-4) > 1e-3
+    stickSlip.Restart(mbs, q0, np.ones(n))
