@@ -77,3 +77,22 @@ def test_carry_keeps_the_stretch_of_the_stuck_flanks(lowering):
     assert state.stuck == 1. and state.direction == 1.
     assert abs(Stretch(q1) - before) <= 1e-12 and abs(state.anchor - 1e-4) > 1e-3
     stickSlip.Restart(mbs, q0, np.ones(n))
+
+
+def test_settled_simulation_stops_when_the_amplitude_stops_changing():
+    from exudyn_worm.chatter import LongSimulationAmplitude, SettledSimulationAmplitude
+    p1 = ew.GetPreset('reel-P1')
+    settled = SettledSimulationAmplitude(p1, maxDuration=20.)
+    assert settled['settled'] and settled['duration'] < 20. and settled['change'] < 5e-4
+    assert settled['peakSpread'] < 0.01                  # P1's chatter is periodic
+    fixed = LongSimulationAmplitude(p1, duration=settled['duration'], stepSize=2e-4)
+    for key in ('forceFactor', 'maxWheelAcceleration'):
+        assert settled[key] == pytest.approx(fixed[key], rel=1e-3)
+    short = SettledSimulationAmplitude(p1, maxDuration=1., piece=0.5)       # chatter still growing at 1 s
+    assert not short['settled'] and short['duration'] == pytest.approx(1.)
+
+
+def test_settled_simulation_rejects_a_piece_shorter_than_the_window():
+    from exudyn_worm.chatter import SettledSimulationAmplitude
+    with pytest.raises(ValueError, match=r"SettledSimulationAmplitude: 'piece' must be longer than 'window'"):
+        SettledSimulationAmplitude(ew.GetPreset('reel-P1'), piece=0.2, window=0.25)
