@@ -96,3 +96,26 @@ def test_settled_simulation_rejects_a_piece_shorter_than_the_window():
     from exudyn_worm.chatter import SettledSimulationAmplitude
     with pytest.raises(ValueError, match=r"SettledSimulationAmplitude: 'piece' must be longer than 'window'"):
         SettledSimulationAmplitude(ew.GetPreset('reel-P1'), piece=0.2, window=0.25)
+
+
+@pytest.mark.slow
+def test_friction_limited_orbit_near_the_hopf_point_equals_a_settled_run():
+    """reel-P3 with a Stribeck law, 3.5 % above the lower linear boundary (85.08 rpm): the orbit stays in contact
+    and its amplitude is set by the falling friction. Shot from a settled run and continued one step towards the
+    boundary, it equals a time simulation from rest run until settled within 2 % (issue 18, item 4)."""
+    from exudyn_worm.chatter import FindSteadyChatter, SettledSimulationAmplitude
+    from exudyn_worm.speedchart import RPM
+    base = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,
+            'stribeckVelocity': 0.9}
+    orbit = FindSteadyChatter({**base, 'motorSpeed': 88. * RPM}, settleTime=40., maxIterations=40)
+    assert orbit.info['forceFactor'] < 2. and orbit.info['minWormSpeed'] > 0.       # in contact, sliding forward
+    assert orbit.stable
+    closer = FindSteadyChatter({**base, 'motorSpeed': 87. * RPM}, start=(orbit.state, orbit.period),
+                               maxIterations=40)
+    # towards the Hopf point the amplitude shrinks and the amplitude's multiplier approaches 1
+    assert closer.info['maxWheelAcceleration'] < orbit.info['maxWheelAcceleration']
+    assert 1. - max(abs(closer.nontrivialMultipliers)) < 1. - max(abs(orbit.nontrivialMultipliers))
+    long = SettledSimulationAmplitude({**base, 'motorSpeed': 88. * RPM})
+    assert long['settled'] and long['peakSpread'] < 0.01
+    for key in ('forceFactor', 'maxWheelAcceleration'):
+        assert orbit.info[key] == pytest.approx(long[key], rel=0.02)
