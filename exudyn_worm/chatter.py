@@ -469,6 +469,10 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
         # (contact loss, clipped force), so the finite-difference monodromy does not straddle one
         t = s['time']
         last = np.nonzero(t >= t[-1] - period)[0]
+        if np.min(s['omega1'][last]) <= 0.:
+            # the worm turns back (and may stick) within the period: start where it clearly slides forward, since
+            # every shooting run starts sliding in the direction of the worm's speed (ExudynFlow)
+            last = last[s['omega1'][last] >= 0.5 * np.max(s['omega1'][last])]
         mesh = model.connector.Evaluate(s['phi1'][last], s['phi2'][last], s['omega1'][last], s['omega2'][last])
         k = last[int(np.argmax(np.abs(mesh.normalForce)))]
         u = model.drive.gear.ratio

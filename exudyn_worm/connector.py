@@ -145,6 +145,7 @@ class _StickSlip:
         self._nextCheck = -np.inf
         self._lastCheck = None
         self._maxRate = 0.
+        self._startTime = None                  # time of the first step of the present solve
         self._data = None
         self.clock = [-np.inf, -np.inf]         # the system's post-Newton clock (set by _AddStickSlip)
 
@@ -187,6 +188,7 @@ class _StickSlip:
         self.history = [(-np.inf, state)]
         self.switches = 0
         self._indices, self._lastTime, self._nextCheck, self._lastCheck, self._maxRate = None, None, -np.inf, None, 0.
+        self._startTime = None
         self.clock[0] = self.clock[1] = -np.inf        # the system's post-Newton function looks at every mesh
         return state
 
@@ -244,7 +246,13 @@ class _StickSlip:
         # the largest acceleration seen in this solve: a worm that once decelerated hard may do so again, and a
         # missed reversal would let the friction push the worm the wrong way until the next check
         self._maxRate = rate = max(rate, self._maxRate)
-        self._nextCheck = t + (min(horizon / rate, self.CHECK_INTERVAL) if rate > 0 else self.CHECK_INTERVAL)
+        interval = min(horizon / rate, self.CHECK_INTERVAL) if rate > 0 else self.CHECK_INTERVAL
+        # early in a solve the largest acceleration is not known yet (a start at the worm's largest speed sees
+        # none): wait at most as long as the solve has run, so the waits double until it is (a chatter period of
+        # reel-P3, 0.015 s, is shorter than CHECK_INTERVAL: a one-period run otherwise missed the reversal)
+        if self._startTime is not None:
+            interval = min(interval, t - self._startTime)
+        self._nextCheck = t + interval
         if self._nextCheck - t < self.REVERSAL_WINDOW:      # a reversal may come: keep s to locate it
             q = data.GetODE2Coordinates()
             x = [float(q[i]) + ref for i, ref in zip(self._indices[:2], self.references[:2])]
@@ -271,6 +279,9 @@ class _StickSlip:
         newStep = t != self._lastTime
         if self._lastTime is not None and t < self._lastTime:     # a new solve from an earlier time
             self._indices, self._nextCheck, self._lastCheck, self._maxRate = None, -np.inf, None, 0.
+            self._startTime = None
+        if self._startTime is None:
+            self._startTime = t
         self._lastTime = t
         state = self.state
         sliding = state.stuck < 0.5
