@@ -119,3 +119,27 @@ def test_friction_limited_orbit_near_the_hopf_point_equals_a_settled_run():
     assert long['settled'] and long['peakSpread'] < 0.01
     for key in ('forceFactor', 'maxWheelAcceleration'):
         assert orbit.info[key] == pytest.approx(long[key], rel=0.02)
+
+
+def test_one_period_run_started_at_the_largest_worm_speed_sees_the_reversal():
+    """A one-period run that starts where the worm is fastest sees no acceleration at its first look; the check of
+    a sliding worm was then put off by CHECK_INTERVAL (0.02 s), longer than a chatter period of reel-P3 (0.015 s),
+    and the worm turned back without sticking (no switch, the friction still pushing it forward)."""
+    from exudyn_worm.chatter import SettleLowering
+    from exudyn_worm.speedchart import RPM
+    p = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,
+         'stribeckVelocity': 0.9, 'motorSpeed': 140. * RPM}
+    model = BuildLoweringModel(p)
+    x, _ = SettleLowering(model, 5.)
+    probe = _LoweringFlow(model, 4000)
+    probe.Solve(x, 0.4, storeSensors=True)
+    s = model.connector.StoredStates(model.mbs)
+    t, period = s['time'], 1. / 68.7
+    last = np.nonzero(t >= t[-1] - period)[0]
+    k = last[np.argmax(s['omega1'][last])]
+    assert np.min(s['omega1'][last]) < 0.                  # the worm turns back in every period
+    w1, w2 = model.motorSpeed, model.motorSpeed / model.drive.gear.ratio
+    x0 = np.array([s['phi1'][k] - w1 * t[k], s['phi2'][k] - w2 * t[k], s['omega1'][k] - w1, s['omega2'][k] - w2])
+    _LoweringFlow(model, 400).Solve(x0, period, storeSensors=True)
+    assert model.connector.stickSlip.switches >= 2         # stuck at the reversal, sliding again later
+    assert np.any(model.connector.stickSlip.StatesAt(model.connector.StoredStates(model.mbs)['time']).stuck > 0.5)
