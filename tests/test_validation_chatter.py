@@ -54,3 +54,11 @@ def test_friction_branch_needs_enough_settled_points_and_its_hopf_point(tmp_path
     assert '| 140 | 1.9100 | 14.0% |' in text
     csv = WriteCsv([_Friction(rows)], tmp_path / 'c.csv').read_text().splitlines()
     assert len(csv) == 9 and csv[0].endswith('settled,longSeconds,peakSpread')
+
+
+def test_only_matching_no_study_is_refused(capsys):
+    import pytest
+    from validation.chatter import Main
+    with pytest.raises(SystemExit) as exit:
+        Main(['--only', 'no such study'])
+    assert exit.value.code == 2 and "--only 'no such study' matches no study" in capsys.readouterr().err

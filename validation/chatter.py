@@ -409,6 +409,9 @@ def Main(argv: Optional[List[str]] = None) -> int:
     parser.add_argument('--report', default=str(HERE / 'CHATTER.md'), help='report path')
     parser.add_argument('--csv', default=str(HERE / 'chatter' / 'chatter.csv'), help='CSV path')
     args = parser.parse_args(argv)
+    titles = [b[0] for b in _BRANCHES] + ['backlash at P1', 'reel-P3, Stribeck friction']
+    if args.only is not None and not any(args.only.lower() in t.lower() for t in titles):
+        parser.error(f"--only {args.only!r} matches no study; the studies are: {', '.join(titles)}")
     studies = RunChatterStudies(args.checks, args.only)
     csvPath = WriteCsv(studies, Path(args.csv).resolve())
     print(f"wrote {WriteReport(studies, Path(args.report).resolve(), csvPath)}")
