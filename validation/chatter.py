@@ -13,12 +13,16 @@ It computes, with :mod:`exudyn_worm.analysis.chatterbranch` (docs/chatter-amplit
   worm-speed kick that ends in chatter in its middle; kick simulations from rest 5 % below and 5 % above that
   kick must end at rest and in chatter;
 * the steady chatter over the backlash (0-1 mm) at P1 (single orbits, the backlash range crosses no boundary);
-* reel-P3 with a Stribeck friction law over the motor speed (single orbits, see the report for why no branch).
+* reel-P3 with a Stribeck friction law over the motor speed: the branch of friction-limited chatter from the
+  lower linear boundary (a smooth Hopf point) up to where the worm starts to turn back and stick in every period,
+  and beyond it long runs and single orbits that show why no periodic orbit can be confirmed there.
 
 At ``--checks`` orbits spread along each study a long time simulation
 (:func:`~exudyn_worm.analysis.chatter.LongSimulationAmplitude`: 4 s, step 2e-4 s, the time simulations' solver settings;
-where rest and chatter coexist it starts on the orbit with a 1 % worm-speed kick) gives the steady amplitude; the
-orbit must equal it within 2 % (issue 18). Every sentence of the report is generated from the numbers.
+where rest and chatter coexist it starts on the orbit with a 1 % worm-speed kick; for the friction branch
+:func:`~exudyn_worm.analysis.chatter.SettledSimulationAmplitude`, from rest until settled, because near a smooth Hopf point
+the chatter grows and settles slowly) gives the steady amplitude; the orbit must equal it within 2 % (issue 18).
+Every sentence of the report is generated from the numbers.
 """
 from __future__ import annotations
 
@@ -32,8 +36,8 @@ from typing import Dict, List, Optional
 import numpy as np
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import FindSteadyChatter, LongSimulationAmplitude
-from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch
+from exudyn_worm.analysis.chatter import FindSteadyChatter, LongSimulationAmplitude, SettledSimulationAmplitude
+from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries
 from exudyn_worm.analysis.orbits import ShootingError
 from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
 
@@ -49,12 +53,25 @@ _BRANCHES = (('J1', 'J1', 0.05, 0.3, {}), ('kT', 'kT', 2000., 20000., {}),
 _BACKLASH = np.linspace(0., 1e-3, 8)
 #: reel-P3 with a Stribeck law (linearly unstable between about 85 and 610 rpm); speeds in rpm
 _FRICTION = {'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2, 'stribeckVelocity': 0.9}
-_FRICTION_RPM = (92., 140., 200., 300., 450.)
-#: the friction-limited orbits grow slowly: their long simulations run longer (at 140 rpm the force factor is
-#: 1.905 after 4 s, 1.909 after 6 s, 1.913 after 10 s)
-_FRICTION_SECONDS = 8.
+#: range in rpm searched for the lower linear boundary (the Hopf point of the friction branch)
+_FRICTION_SEARCH = (70., 100.)
+#: the branch's motor speeds as fractions above the lower linear boundary (amplitude grows as the square root
+#: of the distance: dense near it); it is started at _FRICTION_SEED from a settled time simulation and continued
+#: from orbit to orbit towards the boundary and away from it
+_FRICTION_OFFSETS = (0.001, 0.002, 0.004, 0.006, 0.008, 0.011, 0.014, 0.017, 0.020, 0.023, 0.026, 0.029, 0.032,
+                     0.035, 0.038, 0.041, 0.044, 0.047, 0.050)
+_FRICTION_SEED = 0.035
+#: compared with a long simulation: the orbits at least this far from the boundary (closer ones settle too
+#: slowly: the attraction rate goes to zero at a Hopf point; 0.8 % above it a run needs about 200 s)
+_FRICTION_COMPARE_FROM = 0.008
+#: beyond the branch's end the worm turns back in every period and sticks: single orbits and long runs there
+_STICKING_RPM = (90., 95., 100., 140., 200., 300.)
+#: settle rule of the long simulations of the friction studies, fixed before any comparison: pieces of 2 s,
+#: settled when the force factor and the largest |phi2''| change by less than 0.05 % per second, at most 300 s
+_SETTLE = {'piece': 2., 'rate': 5e-4, 'maxDuration': 300., 'stepSize': 2e-4}
 _CSV_FIELDS = ('study', 'parameter', 'value', 'stable', 'orbitForceFactor', 'longForceFactor',
-               'orbitWheelAcceleration', 'longWheelAcceleration', 'orbitFrequencyHz', 'longFrequencyHz')
+               'orbitWheelAcceleration', 'longWheelAcceleration', 'orbitFrequencyHz', 'longFrequencyHz',
+               'settled', 'longSeconds', 'peakSpread')
 
 
 def _Row(study: str, name: str, value: float, orbit, info: Dict, long: Dict) -> Dict:
@@ -111,13 +128,87 @@ def _Sweep(study: str, name: str, base: Dict, values, checks: int, settleTime: f
             'duration': duration}
 
 
-def RunChatterStudies(checks: int = 8) -> List[Dict]:
+def _FrictionBranch(study: str, base: Dict, checks: int) -> Dict:
+    """The branch of friction-limited chatter from the lower linear boundary (a smooth Hopf point: the orbit
+    stays in contact and its amplitude starts from zero), by shooting and natural-parameter continuation: started
+    from a settled time simulation at _FRICTION_SEED above the boundary, continued from orbit to orbit towards
+    the boundary and away from it until the worm turns back within the orbit (it then sticks in every period,
+    and the one-period map becomes non-smooth on the scale of a time step). A failed point does not end the
+    branch: the next value is tried from the last orbit (two failures in a row do)."""
+    t0 = time.perf_counter()
+    boundaries, _ = LinearBoundaries(base, 'motorSpeed', _FRICTION_SEARCH[0] * RPM, _FRICTION_SEARCH[1] * RPM)
+    boundary = boundaries[0]
+    seed = FindSteadyChatter({**base, 'motorSpeed': boundary * (1. + _FRICTION_SEED)}, settleTime=40.,
+                             maxIterations=40)
+    orbits, failed, messages = {_FRICTION_SEED: seed}, [], []
+    down = sorted((f for f in _FRICTION_OFFSETS if f < _FRICTION_SEED), reverse=True)
+    up = sorted(f for f in _FRICTION_OFFSETS if f > _FRICTION_SEED)
+    for offsets in (down, up):
+        last, misses = seed, 0
+        for f in offsets:
+            v = boundary * (1. + f)
+            try:
+                orbit = FindSteadyChatter({**base, 'motorSpeed': v}, start=(last.state, last.period),
+                                          maxIterations=40)
+            except ShootingError as err:
+                failed.append((v / RPM, str(err).split(';')[0]))
+                misses += 1
+                if misses == 2:
+                    break
+                continue
+            misses = 0
+            if orbit.info['minWormSpeed'] <= 0.:
+                messages.append(f"branch ends at {v / RPM:.2f} rpm: the worm turns back within the orbit "
+                                f"(smallest worm speed {orbit.info['minWormSpeed']:.3f} rad/s), it sticks in every "
+                                f"period from here on")
+                break
+            orbits[f] = last = orbit
+    offsets = sorted(orbits)
+    # Hopf point: the squared amplitude (largest |phi2''|) is linear in the parameter near it; the line through
+    # the two orbits closest to the boundary meets zero at the Hopf point
+    (f1, o1), (f2, o2) = [(f, orbits[f]) for f in offsets[:2]]
+    a1, a2 = o1.info['maxWheelAcceleration'] ** 2, o2.info['maxWheelAcceleration'] ** 2
+    v1, v2 = boundary * (1. + f1), boundary * (1. + f2)
+    hopf = v1 - a1 * (v2 - v1) / (a2 - a1)
+    hopfPoints = [{'value': hopf / RPM, 'linearBoundary': boundary / RPM,
+                   'relativeDifference': abs(hopf / boundary - 1.),
+                   'type': 'supercritical' if all(orbits[f].stable for f in offsets[:2]) else 'subcritical'}]
+    compare = [f for f in offsets if f >= _FRICTION_COMPARE_FROM]
+    picks = [compare[int(round(k))] for k in np.linspace(0, len(compare) - 1, min(checks, len(compare)))]
+    rows, unsettled = [], []
+    for f in sorted(set(picks)):
+        v, orbit = boundary * (1. + f), orbits[f]
+        long = SettledSimulationAmplitude({**base, 'motorSpeed': v}, **_SETTLE)
+        row = _Row(study, 'motorSpeed', v / RPM, orbit, orbit.info, long)
+        row.update(settled=long['settled'], longSeconds=long['duration'], peakSpread=long['peakSpread'])
+        (rows if long['settled'] else unsettled).append(row)
+    sticking = []
+    for rpm in _STICKING_RPM:
+        q = {**base, 'motorSpeed': rpm * RPM}
+        long = SettledSimulationAmplitude(q, **_SETTLE)
+        try:
+            orbit = FindSteadyChatter(q, settleTime=3., maxIterations=40)
+            found = {'forceFactor': orbit.info['forceFactor'], 'multipliers': np.abs(orbit.nontrivialMultipliers)}
+        except ShootingError as err:
+            found = {'error': str(err).split(';')[0]}
+        sticking.append({'rpm': rpm, 'long': long, 'orbit': found})
+    return {'study': study, 'parameter': 'motorSpeed', 'unit': 'rpm', 'seconds': time.perf_counter() - t0,
+            'points': len(orbits), 'branchRange': (boundary * (1. + offsets[0]) / RPM,
+                                                   boundary * (1. + offsets[-1]) / RPM),
+            'linearBoundaries': [b / RPM for b in boundaries], 'hopf': hopfPoints, 'failed': failed,
+            'messages': messages, 'unsettled': unsettled, 'sticking': sticking, 'rows': rows,
+            'minimumRows': checks}
+
+
+def RunChatterStudies(checks: int = 8, only: Optional[str] = None) -> List[Dict]:
     """Run every study of the module docstring.
 
     Parameters
     ----------
     checks : int
         Orbits per study compared with a long time simulation.
+    only : str, optional
+        Run only the studies whose title contains this text (e.g. ``'friction'``).
 
     Returns
     -------
@@ -125,14 +216,16 @@ def RunChatterStudies(checks: int = 8) -> List[Dict]:
         One per study: ``rows`` (orbit against long simulation) and, for the branches, Hopf points, folds,
         coexistence, disturbances and the kick simulations around the threshold.
     """
-    studies = [_Branch(s, n, lo, hi, ch, checks) for s, n, lo, hi, ch in _BRANCHES]
-    studies.append(_Sweep('backlash at P1', 'backlash', ew.GetPreset('reel-P1'), _BACKLASH, checks))
-    friction = {**ew.GetPreset('reel-P3'), **_FRICTION}
-    sweep = _Sweep('reel-P3, Stribeck friction', 'motorSpeed', friction, np.array(_FRICTION_RPM) * RPM, checks,
-                   settleTime=3.0, maxIterations=60, duration=_FRICTION_SECONDS)
-    chart = SpeedStabilityChart(friction, np.linspace(60., 700., 321) * RPM)
-    sweep['unstableRanges'] = [(a / RPM, b / RPM) for a, b in chart.unstableRanges]
-    studies.append(sweep)
+    Wanted = lambda title: only is None or only.lower() in title.lower()
+    studies = [_Branch(s, n, lo, hi, ch, checks) for s, n, lo, hi, ch in _BRANCHES if Wanted(s)]
+    if Wanted('backlash at P1'):
+        studies.append(_Sweep('backlash at P1', 'backlash', ew.GetPreset('reel-P1'), _BACKLASH, checks))
+    if Wanted('reel-P3, Stribeck friction'):
+        friction = {**ew.GetPreset('reel-P3'), **_FRICTION}
+        study = _FrictionBranch('reel-P3, Stribeck friction', friction, checks)
+        chart = SpeedStabilityChart(friction, np.linspace(60., 700., 321) * RPM)
+        study['unstableRanges'] = [(a / RPM, b / RPM) for a, b in chart.unstableRanges]
+        studies.append(study)
     return studies
 
 
@@ -169,6 +262,12 @@ def WriteCsv(studies: List[Dict], path: Path) -> Path:
     return path
 
 
+def _Shown(path: Path) -> str:
+    """``path`` relative to the repository if it lies in it, else as given."""
+    path = Path(path)
+    return str(path.relative_to(HERE.parent)) if path.is_relative_to(HERE.parent) else str(path)
+
+
 def WriteReport(studies: List[Dict], path: Path = HERE / 'CHATTER.md', csvPath: Optional[Path] = None) -> Path:
     """Write the chatter-branch report (markdown) from the studies' numbers.
 
@@ -188,16 +287,21 @@ def WriteReport(studies: List[Dict], path: Path = HERE / 'CHATTER.md', csvPath: 
     lines = ['# Chatter branches against long simulations (issue 18)', '',
              'Generated by `python -m validation.chatter` (docs/chatter-amplitude.md for the method). Each orbit '
              'found by shooting is compared with a long time simulation (4 s, step 2e-4 s, the time simulations\' '
-             f'solver settings; last 0.25 s); it must agree within {TOLERANCE:.0%} (force factor = largest normal '
+             'solver settings; last 0.25 s; for the friction branch run until settled, see there); it must agree '
+             f'within {TOLERANCE:.0%} (force factor = largest normal '
              'force over the static normal force, largest |phi2\'\'|, frequency).'
-             + (f' Every compared point: `{csvPath.relative_to(HERE.parent)}`.' if csvPath is not None else ''), '']
+             + (f' Every compared point: `{_Shown(csvPath)}`.' if csvPath is not None else ''), '']
     verdicts = []
     for s in studies:
         worst = _Worst(s['rows'])
         ok = all(v <= TOLERANCE for v in worst.values()) and bool(s['rows'])
         verdicts.append(ok)
         lines += [f"## {s['study']} ({s['parameter']})", '']
-        if 'hopf' in s:
+        if 'sticking' in s:
+            verdicts[-1] = ok = ok and len(s['rows']) >= s['minimumRows'] and all(
+                h['relativeDifference'] <= 0.005 for h in s['hopf'])
+            lines += _FrictionLines(s)
+        elif 'hopf' in s:
             lo, hi = s['range']
             lines.append(f"Range {lo:g}-{hi:g}: {s['points']} orbits in {s['seconds']:.0f} s; linear boundaries "
                          f"{', '.join(f'{b:.7g}' for b in s['linearBoundaries']) or 'none'}.")
@@ -226,19 +330,63 @@ def WriteReport(studies: List[Dict], path: Path = HERE / 'CHATTER.md', csvPath: 
             if 'unstableRanges' in s:
                 lines.append('- Linearly unstable (friction slope at the operating point, `speedchart`): '
                              + ', '.join(f'{a:.0f}-{b:.0f} rpm' for a, b in s['unstableRanges']) + '.')
-        lines += ['', f"| {s['parameter']} | stable | force factor orbit / long | |phi2''| orbit / long [rad/s^2] "
-                      f"| frequency orbit / long [Hz] |", '| --- | --- | --- | --- | --- |']
+        unit = f" [{s['unit']}]" if 'unit' in s else ''
+        settled = 'settled' in (s['rows'][0] if s['rows'] else {})
+        lines += ['', f"| {s['parameter']}{unit} | stable | force factor orbit / long | |phi2''| orbit / long "
+                      f"[rad/s^2] | frequency orbit / long [Hz] |" + (' long run [s] |' if settled else ''),
+                  '| --- | --- | --- | --- | --- |' + (' --- |' if settled else '')]
         for r in s['rows']:
             lines.append(f"| {r['value']:.5g} | {'yes' if r['stable'] else 'no'} | {r['orbitForceFactor']:.4f} / "
                          f"{r['longForceFactor']:.4f} | {r['orbitWheelAcceleration']:.2f} / "
-                         f"{r['longWheelAcceleration']:.2f} | {r['orbitFrequencyHz']:.3f} / {r['longFrequencyHz']:.3f} |")
+                         f"{r['longWheelAcceleration']:.2f} | {r['orbitFrequencyHz']:.3f} / {r['longFrequencyHz']:.3f} |"
+                         + (f" {r['longSeconds']:.0f} |" if settled else ''))
         lines += ['', f"Largest difference: force factor {worst['ForceFactor']:.2%}, |phi2''| "
                       f"{worst['WheelAcceleration']:.2%}, frequency {worst['FrequencyHz']:.2%}: "
-                      f"{'PASS' if ok else 'FAIL'} (tolerance {TOLERANCE:.0%}).", '']
+                      f"{'PASS' if ok else 'FAIL'} (tolerance {TOLERANCE:.0%}"
+                      + (f", at least {s['minimumRows']} settled points" if 'minimumRows' in s else '') + ').', '']
     lines.insert(4, f"**{sum(verdicts)} of {len(verdicts)} studies PASS.**")
     lines.insert(5, '')
     path.write_text('\n'.join(lines) + '\n')
     return path
+
+
+def _FrictionLines(s: Dict) -> List[str]:
+    """The report's lines on the friction branch (before its table)."""
+    lo, hi = s['branchRange']
+    lines = [f"Branch from the lower linear boundary: {s['points']} orbits on {lo:.2f}-{hi:.2f} rpm ({s['seconds']:.0f} s "
+             f"with the long simulations); linear boundaries in {_FRICTION_SEARCH[0]:g}-{_FRICTION_SEARCH[1]:g} rpm: "
+             f"{', '.join(f'{b:.6g}' for b in s['linearBoundaries'])} rpm."]
+    if 'unstableRanges' in s:
+        lines.append('- Linearly unstable (friction slope at the operating point, `speedchart`): '
+                     + ', '.join(f'{a:.0f}-{b:.0f} rpm' for a, b in s['unstableRanges']) + '.')
+    for h in s['hopf']:
+        lines.append(f"- Hopf point {h['value']:.6g} rpm ({h['type']}; where the squared largest |phi2''| of the two "
+                     f"orbits nearest the boundary extrapolates to zero) at the linear boundary "
+                     f"{h['linearBoundary']:.6g} rpm: relative difference {h['relativeDifference']:.1e} "
+                     f"({'within' if h['relativeDifference'] <= 0.005 else 'NOT within'} 0.5 %).")
+    lines += [f"- {m}." for m in s['messages']]
+    lines += [f"- no orbit at {v:.4g} rpm: {why}" for v, why in s['failed']]
+    lines.append(f"- Long simulations from rest (1 % kick), run until settled: pieces of {_SETTLE['piece']:g} s, "
+                 f"settled when the force factor and the largest |phi2''| change by less than {_SETTLE['rate']:.2%} per "
+                 f"second, at most {_SETTLE['maxDuration']:g} s; orbits closer than {_FRICTION_COMPARE_FROM:.1%} to the "
+                 f"boundary are not compared (they settle too slowly).")
+    for r in s['unsettled']:
+        lines.append(f"- not settled after {r['longSeconds']:g} s at {r['value']:.5g} rpm (not compared): force "
+                     f"factor {r['orbitForceFactor']:.4f} / {r['longForceFactor']:.4f}")
+    lines += ['', 'Beyond the branch the worm turns back and sticks in every period. Long simulations there '
+                  '(settled as above) and single orbits by shooting (3 s settling):', '',
+              '| motorSpeed [rpm] | long: force factor | long: per-period peaks vary by | long: settled '
+              '| orbit: force factor | orbit: largest non-trivial multiplier |', '| --- | --- | --- | --- | --- | --- |']
+    for k in s['sticking']:
+        long, orbit = k['long'], k['orbit']
+        found = (f"{orbit['forceFactor']:.4f} | {np.max(orbit['multipliers']):.4f}" if 'error' not in orbit
+                 else f"none: {orbit['error']} | -")
+        lines.append(f"| {k['rpm']:g} | {long['forceFactor']:.4f} | {long['peakSpread']:.1%} | "
+                     f"{'yes' if long['settled'] else 'no'} ({long['duration']:g} s) | {found} |")
+    lines.append('')
+    lines.append('Per-period peaks that vary by more than the 2 % tolerance mean the steady motion is not periodic '
+                 'with the chatter period: no single periodic orbit can equal it (docs/chatter-amplitude.md).')
+    return lines
 
 
 def Main(argv: Optional[List[str]] = None) -> int:
@@ -256,10 +404,15 @@ def Main(argv: Optional[List[str]] = None) -> int:
     """
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--checks', type=int, default=8, help='orbits per study compared with a long simulation')
+    parser.add_argument('--only', default=None, help="run only the studies whose title contains this text "
+                                                     "(e.g. 'friction'); the report then holds only those")
     parser.add_argument('--report', default=str(HERE / 'CHATTER.md'), help='report path')
     parser.add_argument('--csv', default=str(HERE / 'chatter' / 'chatter.csv'), help='CSV path')
     args = parser.parse_args(argv)
-    studies = RunChatterStudies(args.checks)
+    titles = [b[0] for b in _BRANCHES] + ['backlash at P1', 'reel-P3, Stribeck friction']
+    if args.only is not None and not any(args.only.lower() in t.lower() for t in titles):
+        parser.error(f"--only {args.only!r} matches no study; the studies are: {', '.join(titles)}")
+    studies = RunChatterStudies(args.checks, args.only)
     csvPath = WriteCsv(studies, Path(args.csv).resolve())
     print(f"wrote {WriteReport(studies, Path(args.report).resolve(), csvPath)}")
     return 0

@@ -39,7 +39,8 @@ from ..items.solve import SolverDivergedError
 
 __all__ = ['LoweringModel', 'BuildLoweringModel', 'ExudynFlow', 'FindSteadyChatter',
            'OrbitAmplitude', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LongSimulationAmplitude', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS',
-           'LoweringModelOfSystem', 'SteadyChatterOfSystem', 'MONODROMY_PERTURBATION']
+           'LoweringModelOfSystem', 'SteadyChatterOfSystem', 'MONODROMY_PERTURBATION',
+           'SettledSimulationAmplitude']
 
 #: solver steps per chatter period of the shooting runs: at P1 the force factor, largest |phi2''| and frequency
 #: change by less than 0.04 % between 150 and 1600 steps (2.6157/102.29/40.525 at 150, 2.6149/102.28/40.535 at
@@ -299,6 +300,10 @@ class ExudynFlow:
     The state ``x`` holds, for the ODE2 coordinates ``coordinates``, the positions minus ``steadySpeeds * t``,
     then the velocities minus ``steadySpeeds``. Coordinates not in ``coordinates`` (e.g. a prescribed motor)
     start at their position ``fixedPositions`` (default: the system's initial values) and steady speed.
+    The discrete state is not part of ``x``: every solve starts with the data coordinates the system had when
+    the flow was made and with the stick/slip state of each worm-gear connector that the start implies
+    (sliding in the direction of the worm's speed, :meth:`~exudyn_worm.items.connector._StickSlip.Restart`), so
+    ``flow(x, T)`` depends on ``x`` and ``T`` alone, not on the previous call.
 
     Parameters
     ----------
@@ -330,6 +335,9 @@ class ExudynFlow:
         C = exu.ConfigurationType
         self._C = C
         self.q0 = np.array(mbs.systemData.GetODE2Coordinates(configuration=C.Initial), dtype=float)
+        #: data coordinates every solve starts from (Exudyn keeps the last solve's in the system otherwise)
+        self.data0 = (np.array(mbs.systemData.GetDataCoordinates(configuration=C.Initial), dtype=float)
+                      if mbs.systemData.DataSize() else None)
         self.calls = 0
 
     def StartState(self) -> np.ndarray:
@@ -340,18 +348,50 @@ class ExudynFlow:
         i = self.coordinates
         return np.concatenate([q[i], v[i] - self.speeds[i]])
 
-    def _SetInitial(self, x):
+    def _SetInitial(self, x, restart: bool = True):
         C, i, n = self._C, self.coordinates, self.coordinates.size
         q, v = self.q0.copy(), self.speeds.copy()
         q[i], v[i] = x[:n], x[n:] + self.speeds[i]
         self.mbs.systemData.SetODE2Coordinates(q.tolist(), configuration=C.Initial)
         self.mbs.systemData.SetODE2Coordinates_t(v.tolist(), configuration=C.Initial)
+        # the discrete state must follow from x alone, else the map depends on the previous call (and the
+        # finite-difference monodromy on the order of its columns): data coordinates back to their start
+        # values, the worm-gear connectors' stick/slip state to the one the start implies
+        if not restart:             # go on from the previous solve's end (a long run in pieces)
+            if self.data0 is not None:
+                data = self.mbs.systemData.GetDataCoordinates(configuration=C.Current)
+                self.mbs.systemData.SetDataCoordinates(data, configuration=C.Initial)
+            end = np.array(self.mbs.systemData.GetODE2Coordinates(configuration=C.Current), dtype=float)
+            for connector in self.mbs.variables.get(CONNECTORS_KEY, []):
+                if connector.stickSlip is not None:      # the stuck flanks' anchor shifts with the coordinates
+                    connector.stickSlip.Carry(self.mbs, end, q)
+            return
+        if self.data0 is not None:
+            self.mbs.systemData.SetDataCoordinates(self.data0.tolist(), configuration=C.Initial)
+        for connector in self.mbs.variables.get(CONNECTORS_KEY, []):
+            if connector.stickSlip is not None:
+                connector.stickSlip.Restart(self.mbs, q, v)
 
-    def Solve(self, x, T: float, storeSensors: bool = False):
-        """Simulate time ``T`` from flow state ``x``; returns the end state (flow coordinates)."""
+    def Solve(self, x, T: float, storeSensors: bool = False, restart: bool = True):
+        """Simulate time ``T`` from flow state ``x``; returns the end state (flow coordinates).
+
+        Parameters
+        ----------
+        x : array_like
+            Start state (flow coordinates).
+        T : float
+            Simulated time in s.
+        storeSensors : bool
+            Keep the sensors' samples of every step.
+        restart : bool
+            True (default): the discrete state (data coordinates, stick/slip state of the worm-gear connectors)
+            starts from the one ``x`` implies, so the result depends on ``x`` and ``T`` alone. False: it goes on
+            from where the previous solve ended (``x`` must then be that solve's end state; the anchor of stuck
+            flanks is shifted with the coordinates).
+        """
         import exudyn as exu
         x = np.asarray(x, dtype=float)
-        self._SetInitial(x)
+        self._SetInitial(x, restart)
         ss = self._ss
         ss.timeIntegration.endTime = T
         ss.timeIntegration.numberOfSteps = self.steps
@@ -558,6 +598,10 @@ def _FindChatter(model: LoweringModel, where: str, what: str, settleTime: float,
         # (contact loss, clipped force), so the finite-difference monodromy does not straddle one
         t = s['time']
         last = np.nonzero(t >= t[-1] - period)[0]
+        if np.min(s['omega1'][last]) <= 0.:
+            # the worm turns back (and may stick) within the period: start where it clearly slides forward, since
+            # every shooting run starts sliding in the direction of the worm's speed (ExudynFlow)
+            last = last[s['omega1'][last] >= 0.5 * np.max(s['omega1'][last])]
         mesh = _MeshAt(model.connector, s, last)
         k = last[int(np.argmax(np.abs(mesh.normalForce)))]
         x = _StoredFlowStates(model)[1][k]
@@ -634,12 +678,88 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
     t0 = time.perf_counter()
     flow.Solve(x, duration, storeSensors=True)
     seconds = time.perf_counter() - t0
+    return {**_TailAmplitude(model, window), 'seconds': seconds}
+
+
+def _TailAmplitude(model: LoweringModel, window: float) -> Dict[str, float]:
+    """Amplitude of the last ``window`` s of the stored run: force factor, largest |phi2''|, frequency, and the
+    spread of the force factor's per-period peaks (relative to the largest: 0 for a periodic motion)."""
     s = model.connector.StoredStates(model.mbs)
-    last = s['time'] >= s['time'][-1] - window
+    t = s['time']
+    last = t >= t[-1] - window
     mesh = _MeshAt(model.connector, s, last)
-    return {'forceFactor': float(np.max(np.abs(mesh.normalForce)) / model.staticNormalForce),
-            'maxWheelAcceleration': float(np.max(np.abs(s['alpha2'][last]))),
-            'frequencyHz': 1. / _PeriodFromSignal(s['time'][last], s['omega1'][last]), 'seconds': seconds}
+    factor = np.abs(mesh.normalForce) / model.staticNormalForce
+    period = _PeriodFromSignal(t[last], s['omega1'][last])
+    spread = math.nan
+    if np.isfinite(period):
+        k = np.floor((t[last] - t[last][0]) / period).astype(int)
+        peaks = [np.max(factor[k == j]) for j in range(int(k[-1]))]       # whole periods only
+        spread = float(1. - min(peaks) / max(peaks)) if len(peaks) > 1 else math.nan
+    return {'forceFactor': float(np.max(factor)), 'maxWheelAcceleration': float(np.max(np.abs(s['alpha2'][last]))),
+            'frequencyHz': 1. / period, 'peakSpread': spread}
+
+
+def SettledSimulationAmplitude(parameters: Mapping[str, float], maxDuration: float = 300., piece: float = 2.,
+                               rate: float = 5e-4, stepSize: float = 2e-4, kick: float = 0.01, window: float = 0.25,
+                               contactOptions: ContactOptions = ContactOptions()) -> Dict[str, float]:
+    """Steady amplitude of the lowering phase by a time simulation from rest (worm speed kicked by ``kick``) that
+    runs until it has settled: as :func:`LongSimulationAmplitude` (the time simulations' solver settings), but
+    in pieces of ``piece`` s, stopped when the force factor and the largest ``|phi2''|`` over the last
+    ``window`` s changed by less than ``rate`` (relative) per second since the previous piece, or at
+    ``maxDuration``. Near a Hopf point the chatter grows and settles slowly (in proportion to the distance
+    from it), so a run of fixed length may stop long before the steady state.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with the reel changer's keys.
+    maxDuration : float
+        Longest simulated time in s.
+    piece : float
+        Simulated time in s between two looks at the amplitude (> ``window``).
+    rate : float
+        Settled when the amplitudes change by less than this fraction per second.
+    stepSize : float
+        Time step in s.
+    kick : float
+        Initial worm speed disturbance as a fraction of the motor speed.
+    window : float
+        Final part of each piece in s over which the amplitude is measured.
+    contactOptions : ContactOptions
+        Options of the contact law.
+
+    Returns
+    -------
+    dict
+        ``forceFactor``, ``maxWheelAcceleration`` (rad/s^2), ``frequencyHz``, ``peakSpread`` (1 - smallest /
+        largest per-period peak of the force factor in the last window: 0 for a periodic motion),
+        ``settled`` (bool), ``duration`` (simulated s), ``change`` (the last relative change per second),
+        ``seconds`` (solver time).
+    """
+    w = 'SettledSimulationAmplitude'
+    maxDuration = CheckPositive(w, 'maxDuration', maxDuration, 's')
+    window = CheckPositive(w, 'window', window, 's')
+    piece = CheckPositive(w, 'piece', piece, 's')
+    rate = CheckPositive(w, 'rate', rate, '1/s')
+    stepSize = CheckPositive(w, 'stepSize', stepSize, 's')
+    if piece <= window:
+        raise ValueError(f"{w}: 'piece' must be longer than 'window' ({window:g} s), got {piece:g} s")
+    model = BuildLoweringModel(parameters, contactOptions)
+    steps = max(10, int(round(piece / stepSize)))
+    flow = _LoweringFlow(model, steps, SOLVER_SETTINGS)
+    x = EquilibriumState(model)
+    x[len(model.coordinates)] += kick * model.motorSpeed          # the worm's speed
+    t0, duration, before, change, settled = time.perf_counter(), 0., None, math.inf, False
+    while duration < maxDuration and not settled:
+        x = flow.Solve(x, piece, storeSensors=True, restart=duration == 0.)     # one run, in pieces
+        duration += piece
+        now = _TailAmplitude(model, window)
+        if before is not None:
+            change = max(abs(now[k] / before[k] - 1.) for k in ('forceFactor', 'maxWheelAcceleration')) / piece
+            settled = change < rate
+        before = now
+    return {**now, 'settled': settled, 'duration': duration, 'change': change,
+            'seconds': time.perf_counter() - t0}
 
 
 def _HeldCoordinates(mbs) -> List[int]:

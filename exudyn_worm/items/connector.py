@@ -145,6 +145,7 @@ class _StickSlip:
         self._nextCheck = -np.inf
         self._lastCheck = None
         self._maxRate = 0.
+        self._startTime = None                  # time of the first step of the present solve
         self._data = None
         self.clock = [-np.inf, -np.inf]         # the system's post-Newton clock (set by _AddStickSlip)
 
@@ -165,6 +166,53 @@ class _StickSlip:
             self._probe = (x, esym.Vector([mesh.frictionForce, mesh.normalForce]))
         finally:
             esym.SetRecording(recording)
+
+    def Restart(self, mbs, coordinates, velocities) -> FrictionState:
+        """Start a new solve from the ODE2 ``coordinates`` and ``velocities`` (whole-system vectors without the
+        reference values, e.g. the initial configuration): the state becomes the one these imply
+        (sliding in the direction of the worm's speed, stuck if it is at rest), the recorded switches and the
+        check schedule are forgotten. Without it a solve starts from the state the previous one ended in.
+
+        Returns
+        -------
+        FrictionState
+            The start state.
+        """
+        indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
+        x = [float(coordinates[i]) + ref for i, ref in zip(indices[:2], self.references[:2])]
+        state = _StartFrictionState(self.gear, x[0], x[1], float(velocities[indices[0]]))
+        self.state = state
+        if self.variables is not None:
+            for name in ('stuck', 'direction', 'anchor'):
+                getattr(self.variables, name).SetValue(float(getattr(state, name)))
+        self.history = [(-np.inf, state)]
+        self.switches = 0
+        self._indices, self._lastTime, self._nextCheck, self._lastCheck, self._maxRate = None, None, -np.inf, None, 0.
+        self._startTime = None
+        self.clock[0] = self.clock[1] = -np.inf        # the system's post-Newton function looks at every mesh
+        return state
+
+    def Carry(self, mbs, fromCoordinates, toCoordinates) -> FrictionState:
+        """Keep the state across a shift of the coordinates (a run continued in the coordinates relative to a
+        steady rotation): the stuck flanks' anchor moves with the sliding coordinate, by its change from
+        ``fromCoordinates`` (the end of the previous solve) to ``toCoordinates`` (the start of the next),
+        whole-system ODE2 vectors without the reference values.
+
+        Returns
+        -------
+        FrictionState
+            The shifted state.
+        """
+        indices = [mbs.GetNodeODE2Index(n) for n in self.nodes[:2]]
+        old, new = ([float(q[i]) + ref for i, ref in zip(indices, self.references[:2])]
+                    for q in (fromCoordinates, toCoordinates))
+        shift = SlidingCoordinate(self.gear, new[0], new[1]) - SlidingCoordinate(self.gear, old[0], old[1])
+        state = FrictionState(self.state.stuck, self.state.direction, self.state.anchor + shift)
+        self.state = state
+        if self.variables is not None:
+            self.variables.anchor.SetValue(float(state.anchor))
+        self.history = [(-np.inf, state)]
+        return state
 
     def LawState(self, ops):
         """The state as the law reads it: the symbolic variables, or the current floats in plain Python."""
@@ -198,7 +246,13 @@ class _StickSlip:
         # the largest acceleration seen in this solve: a worm that once decelerated hard may do so again, and a
         # missed reversal would let the friction push the worm the wrong way until the next check
         self._maxRate = rate = max(rate, self._maxRate)
-        self._nextCheck = t + (min(horizon / rate, self.CHECK_INTERVAL) if rate > 0 else self.CHECK_INTERVAL)
+        interval = min(horizon / rate, self.CHECK_INTERVAL) if rate > 0 else self.CHECK_INTERVAL
+        # early in a solve the largest acceleration is not known yet (a start at the worm's largest speed sees
+        # none): wait at most as long as the solve has run, so the waits double until it is (a chatter period of
+        # reel-P3, 0.015 s, is shorter than CHECK_INTERVAL: a one-period run otherwise missed the reversal)
+        if self._startTime is not None:
+            interval = min(interval, t - self._startTime)
+        self._nextCheck = t + interval
         if self._nextCheck - t < self.REVERSAL_WINDOW:      # a reversal may come: keep s to locate it
             q = data.GetODE2Coordinates()
             x = [float(q[i]) + ref for i, ref in zip(self._indices[:2], self.references[:2])]
@@ -225,6 +279,9 @@ class _StickSlip:
         newStep = t != self._lastTime
         if self._lastTime is not None and t < self._lastTime:     # a new solve from an earlier time
             self._indices, self._nextCheck, self._lastCheck, self._maxRate = None, -np.inf, None, 0.
+            self._startTime = None
+        if self._startTime is None:
+            self._startTime = t
         self._lastTime = t
         state = self.state
         sliding = state.stuck < 0.5
@@ -286,16 +343,21 @@ def _AddStickSlip(mbs, stickSlip: _StickSlip) -> None:
     items.append(stickSlip)
 
 
+def _StartFrictionState(gear: WormGear, phi1: float, phi2: float, omega1: float) -> FrictionState:
+    """Sliding in the direction of the worm's speed ``omega1``; stuck (without force) if the worm is at rest."""
+    if omega1 != 0:
+        return FrictionState(0., float(np.sign(omega1)), SlidingCoordinate(gear, phi1, phi2))
+    return FrictionState(1., 1., SlidingCoordinate(gear, phi1, phi2))
+
+
 def _InitialFrictionState(gear: WormGear, mbs, nodes, references) -> FrictionState:
-    """Sliding in the direction of the worm's initial speed; stuck (without force) if the worm starts at rest."""
+    """The start state (:func:`_StartFrictionState`) of the nodes' initial values."""
     x, v = [], []
     for node, ref in zip(nodes[:2], references[:2]):
         info = mbs.GetNode(node)
         x.append(float(np.ravel(info['initialCoordinates'])[0]) + ref)
         v.append(float(np.ravel(info['initialVelocities'])[0]))
-    if v[0] != 0:
-        return FrictionState(0., float(np.sign(v[0])), SlidingCoordinate(gear, x[0], x[1]))
-    return FrictionState(1., 1., SlidingCoordinate(gear, x[0], x[1]))
+    return _StartFrictionState(gear, x[0], x[1], v[0])
 
 
 @dataclass
