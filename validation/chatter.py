@@ -41,12 +41,17 @@ from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBound
 from exudyn_worm.analysis.orbits import ShootingError
 from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
 
-__all__ = ['TOLERANCE', 'RunChatterStudies', 'WriteCsv', 'WriteReport', 'Main']
+__all__ = ['TOLERANCE', 'FOLD_DISTANCE', 'RunChatterStudies', 'WriteCsv', 'WriteReport', 'Main']
 
 HERE = Path(__file__).resolve().parent
 #: largest relative difference of orbit and long simulation (issue 18, item 4)
 TOLERANCE = 0.02
 _LONG = {'duration': 4., 'stepSize': 2e-4}
+#: check points keep this fraction of the branch's range away from every fold. Added after a run (the shootfast
+#: branch, 2026-12-02) in which a check point 0.04 % of the range from the fold of the 0.5 mm backlash branch ended on
+#: the lower branch with the 1 % kick (force factor 4.20 against the orbit's 4.48), while runs started on that orbit
+#: with kicks of 0 and 0.2 % stayed on it (4.449-4.469): docs/chatter-amplitude.md
+FOLD_DISTANCE = 0.01
 #: (study, parameter, low, high, changes to reel-P1)
 _BRANCHES = (('J1', 'J1', 0.05, 0.3, {}), ('kT', 'kT', 2000., 20000., {}),
              ('J1, backlash 0.5 mm', 'J1', 0.2, 0.3, {'backlash': 5e-4}))
@@ -87,8 +92,12 @@ def _Branch(study: str, name: str, low: float, high: float, changes: Dict, check
     t0 = time.perf_counter()
     branch = AnalyzeChatterBranch(p, name, low, high)
     seconds = time.perf_counter() - t0
-    # only stable orbits are steady states a long simulation can reach (the unstable ones between folds are not)
-    chattering = sorted((q for q in branch.points if q.info['forceFactor'] >= 2. and q.stable), key=lambda q: q.value)
+    # only stable orbits are steady states a long simulation can reach (the unstable ones between folds are not),
+    # and only those at least FOLD_DISTANCE of the range from a fold: the basin of the stable orbit closes at the fold
+    # (there it meets the unstable one), so a kick of fixed size leaves it next to a fold whatever the orbit
+    margin = FOLD_DISTANCE * (high - low)
+    chattering = sorted((q for q in branch.points if q.info['forceFactor'] >= 2. and q.stable
+                         and all(abs(q.value - f) >= margin for f in branch.folds)), key=lambda q: q.value)
     picks = [chattering[int(round(k))] for k in np.linspace(0, len(chattering) - 1, min(checks, len(chattering)))]
     rows = []
     for q in picks:
@@ -313,6 +322,10 @@ def WriteReport(studies: List[Dict], path: Path = HERE / 'CHATTER.md', csvPath: 
                          f"{s['unstableOrbits']}.")
             lines.append(f"- Folds: {', '.join(f'{x:.5g}' for x in s['folds']) or 'none'}; rest and chatter "
                          f"coexist on: {', '.join(f'{a:.4g}-{b:.4g}' for a, b in s['coexistence']) or 'nowhere'}.")
+            if s['folds']:
+                lines.append(f"- Compared orbits keep {FOLD_DISTANCE:.0%} of the range from every fold (the stable "
+                             f"orbit's basin closes at a fold, so a fixed kick leaves it there; rule added after a run "
+                             f"in which a point 0.04 % of the range from the fold ended on the lower branch).")
             for d in s['disturbances']:
                 lines.append(f"- At {s['parameter']} = {d['value']:.4g} the smallest worm-speed kick that ends in "
                              f"chatter is {d['wormSpeedFraction']:.1%} of the motor speed ({d['wormSpeed']:.3g} rad/s).")
