@@ -42,7 +42,7 @@ __all__ = ['LoweringModel', 'BuildLoweringModel', 'ExudynFlow', 'FindSteadyChatt
            'LoweringModelOfSystem', 'SteadyChatterOfSystem', 'MONODROMY_PERTURBATION',
            'SettledSimulationAmplitude']
 
-#: solver steps per chatter period of the shooting runs: at P1 the force factor, largest |phi2''| and frequency
+#: solver steps per chatter period of the shooting runs: at P1 the force factor, largest ``|phi2''|`` and frequency
 #: change by less than 0.04 % between 150 and 1600 steps (2.6157/102.29/40.525 at 150, 2.6149/102.28/40.535 at
 #: 800), but with 0.5 mm backlash (J1 = 0.25, the worm crosses the gap) shooting does not converge at 200 or 300
 #: steps (the map is too rough); measured, docs/chatter-amplitude.md
