@@ -9,11 +9,24 @@ import math
 from collections.abc import Mapping
 from pathlib import Path
 from numbers import Real
+from typing import Optional
 
 import numpy as np
 
-__all__ = ['CheckReal', 'CheckPositive', 'CheckNonNegative', 'CheckAngle', 'CheckRange', 'CheckArray',
+__all__ = ['JsonNumber', 'CheckReal', 'CheckPositive', 'CheckNonNegative', 'CheckAngle', 'CheckRange', 'CheckArray',
            'CheckOutputFolder', 'CheckBool', 'CheckMapping', 'CheckName', 'CheckSystem', 'Suggest']
+
+
+def JsonNumber(x) -> Optional[float]:
+    """``float(x)``, or None where it is not finite: JSON has no inf or nan.
+
+    Parameters
+    ----------
+    x : float
+        A number.
+    """
+    x = float(x)
+    return x if math.isfinite(x) else None
 
 
 def _Format(value) -> str:

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.model.stability import _SortEigenvalues
+from exudyn_worm.model.stability import SortEigenvalues
 
 from conftest import LoadScript
 
@@ -28,7 +28,7 @@ def _ThreeDofEigenvalues(parameters, S):
     D = np.diag([drive.dT, 0., dA]) + g.dV * np.outer(lever, gradient)
     Minv = np.diag(1. / np.array([drive.J1, drive.J2, mA]))
     A = np.block([[np.zeros((3, 3)), np.eye(3)], [-Minv @ K, -Minv @ D]])
-    return _SortEigenvalues(np.linalg.eigvals(A))
+    return SortEigenvalues(np.linalg.eigvals(A))
 
 
 @pytest.mark.physics

@@ -40,7 +40,7 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .._checks import CheckRange
+from .._checks import CheckRange, JsonNumber
 from ..setups.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, DriveFromParameters, ExtraComponents,
                       LumpedLoadSide)
 from .charts import ChartCoordinates, ComputeStabilityChart
@@ -97,11 +97,6 @@ def DesignParameters(parameters: Mapping[str, float]) -> List[str]:
 
 def _MaxRealPart(analysis) -> float:
     return float(max(np.max(c.eigenvalues.real) for c in analysis.contact.values()))
-
-
-def _Finite(x):
-    x = float(x)
-    return x if math.isfinite(x) else None
 
 
 def _Scaled(parameters: Mapping[str, float], changes: Mapping[str, float]) -> Dict[str, float]:
@@ -385,7 +380,7 @@ class Recommendation:
         """JSON-ready dictionary."""
         return {'parameter': self.parameter, 'factor': self.factor, 'newValue': self.newValue, 'unit': self.unit,
                 'maxRealPartAfter': self.maxRealPartAfter,
-                'chartPointAfter': {k: _Finite(v) for k, v in self.chartPointAfter.items()},
+                'chartPointAfter': {k: JsonNumber(v) for k, v in self.chartPointAfter.items()},
                 'simulatedChatterWhileLowering': self.simulatedChatter}
 
 
@@ -425,7 +420,7 @@ class PairRecommendation:
         return {'parameters': list(self.parameters), 'factors': list(self.factors),
                 'newValues': list(self.newValues), 'units': [PARAMETER_UNITS.get(k, '') for k in self.parameters],
                 'maxRealPartAfter': self.maxRealPartAfter,
-                'chartPointAfter': {k: _Finite(v) for k, v in self.chartPointAfter.items()},
+                'chartPointAfter': {k: JsonNumber(v) for k, v in self.chartPointAfter.items()},
                 'simulatedChatterWhileLowering': self.simulatedChatter}
 
 
@@ -532,7 +527,7 @@ class DesignCheckResult:
         contact = {f'{S:+d}': {'stable': self.analysis.contact[S].stable,
                                'maxRealPart': float(np.max(self.analysis.contact[S].eigenvalues.real))}
                    for S in CONTACT_STATES}
-        point = {k: _Finite(v) for k, v in self.chartPoint.items()}
+        point = {k: JsonNumber(v) for k, v in self.chartPoint.items()}
         point.update(distanceToBoundary=self.distanceToBoundary, nearestBoundaryPoint=self.nearestBoundaryPoint)
         data = {'stable': self.stable, 'stableWithMargin': self.stableWithMargin, 'maxRealPart': self.maxRealPart,
                 'S': contact, 'chartPoint': point,

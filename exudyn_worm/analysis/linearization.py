@@ -27,13 +27,13 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from .._checks import CheckSystem
+from .._checks import CheckSystem, JsonNumber
 from ..items.connector import CONNECTORS_KEY, AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from ..model.contact import ContactOptions
 from ..model.drive import ElasticDrive
 from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft
 from ..model.profiles import ConstantSpeed
-from ..model.stability import (CONTACT_STATES, _Finite, _SortEigenvalues, AnalyzeStability, ContactStability,
+from ..model.stability import (CONTACT_STATES, SortEigenvalues, AnalyzeStability, ContactStability,
                         OperatingPoint, OperatingPointFromParameters, StabilityAnalysis)
 from ..setups.presets import AxialBearingFromParameters, DriveSideChain, ExtraComponents, LoadSideChain
 from ..setups import presets
@@ -104,7 +104,7 @@ class LinearMode:
     def ToDict(self) -> Dict:
         """JSON-ready dictionary."""
         return {'eigenvalue': [float(self.eigenvalue.real), float(self.eigenvalue.imag)],
-                'frequencyHz': self.frequencyHz, 'lehrDamping': _Finite(self.lehrDamping), 'stable': self.stable,
+                'frequencyHz': self.frequencyHz, 'lehrDamping': JsonNumber(self.lehrDamping), 'stable': self.stable,
                 'shape': dict(self.shape), 'energyShare': dict(self.energyShare)}
 
 
@@ -274,7 +274,7 @@ def _LinearizeState(mbs, S, labels) -> ContactStateLinearization:
                                 shape={c: float(v) for c, v in zip(labels, x / np.max(x))},
                                 energyShare={c: float(v) for c, v in zip(labels, energy / np.sum(energy))}))
     modes.sort(key=lambda m: (m.eigenvalue.imag == 0, m.frequencyHz, m.eigenvalue.real))
-    return ContactStateLinearization(S=tuple(S), eigenvalues=_SortEigenvalues(values), modes=modes,
+    return ContactStateLinearization(S=tuple(S), eigenvalues=SortEigenvalues(values), modes=modes,
                                      rigidBodyModes=rigid, massMatrix=M, stiffnessMatrix=K, dampingMatrix=D,
                                      nullspace=N)
 

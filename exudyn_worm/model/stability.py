@@ -27,7 +27,7 @@ from typing import Any, Dict, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from .drive import ElasticDrive
-from .._checks import CheckNonNegative, CheckReal
+from .._checks import CheckNonNegative, CheckReal, JsonNumber
 from .profiles import STANDARD_GRAVITY
 from .selflocking import SelfLocking
 
@@ -35,7 +35,7 @@ __all__ = ['OperatingPoint', 'OperatingPointAt', 'OperatingPointFromParameters',
            'PolynomialCoefficients', 'CharacteristicCoefficients', 'HurwitzConditions', 'HurwitzStable',
            'LinearMatrices',
            'StateMatrix', 'EigenvaluesFromPolynomial', 'EigenvaluesFromStateMatrix', 'FuesgenLimit',
-           'FirstCriterionLimit', 'ContactStability', 'StabilityAnalysis', 'AnalyzeStability']
+           'FirstCriterionLimit', 'ContactStability', 'StabilityAnalysis', 'AnalyzeStability', 'SortEigenvalues']
 
 CONTACT_STATES = (+1, -1)
 
@@ -286,8 +286,18 @@ def StateMatrix(drive: ElasticDrive, S: int, operatingPoint: Optional[OperatingP
     return np.block([[np.zeros((2, 2)), np.eye(2)], [-Minv @ K, -Minv @ D]])
 
 
-def _SortEigenvalues(lam) -> np.ndarray:
-    """Order as the paper does: conjugate pairs (+Im first), pairs by increasing |Im|, then real part."""
+def SortEigenvalues(lam: Sequence[complex]) -> np.ndarray:
+    """Eigenvalues in the paper's order: conjugate pairs (+Im first), pairs by increasing ``|Im|``, then real part.
+
+    Parameters
+    ----------
+    lam : array_like of complex
+        Eigenvalues in any order.
+
+    Returns
+    -------
+    ndarray of complex
+    """
     lam = np.asarray(lam, dtype=complex)
     return lam[np.lexsort((-np.sign(lam.imag), lam.real, np.round(np.abs(lam.imag), 9)))]
 
@@ -305,7 +315,7 @@ def EigenvaluesFromPolynomial(b: Sequence[float]) -> np.ndarray:
     numpy.ndarray
         The four (complex) roots in 1/s.
     """
-    return _SortEigenvalues(np.roots(np.concatenate([[1.], np.asarray(b, dtype=float)])))
+    return SortEigenvalues(np.roots(np.concatenate([[1.], np.asarray(b, dtype=float)])))
 
 
 def EigenvaluesFromStateMatrix(drive: ElasticDrive, S: int, operatingPoint: Optional[OperatingPoint] = None
@@ -321,7 +331,7 @@ def EigenvaluesFromStateMatrix(drive: ElasticDrive, S: int, operatingPoint: Opti
     operatingPoint : OperatingPoint, optional
         Linearize at this point (speed-dependent friction); None: constant mu.
     """
-    return _SortEigenvalues(np.linalg.eigvals(StateMatrix(drive, S, operatingPoint)))
+    return SortEigenvalues(np.linalg.eigvals(StateMatrix(drive, S, operatingPoint)))
 
 
 def FuesgenLimit(drive: ElasticDrive, operatingPoint: Optional[OperatingPoint] = None) -> float:
@@ -364,12 +374,6 @@ def FirstCriterionLimit(drive: ElasticDrive, operatingPoint: Optional[OperatingP
     return -c1 / (u * c3) - dT / (g.dV * u * c3)
 
 
-def _Finite(x):
-    """JSON has no inf/nan: non-finite values become None."""
-    x = float(x)
-    return x if math.isfinite(x) else None
-
-
 @dataclass(frozen=True)
 class ContactStability:
     """Linear stability for one contact state S: coefficients, Hurwitz values, eigenvalues.
@@ -399,7 +403,7 @@ class ContactStability:
     @classmethod
     def FromEigenvalues(cls, S: int, eigenvalues) -> 'ContactStability':
         """From four eigenvalues; b1..b4 are the coefficients of prod(lambda - lambda_i)."""
-        lam = _SortEigenvalues(eigenvalues)
+        lam = SortEigenvalues(eigenvalues)
         if lam.size != 4:
             raise ValueError(f"ContactStability.FromEigenvalues: expected 4 eigenvalues, got {lam.size}")
         return cls(S, np.real(np.poly(lam))[1:], lam)
@@ -442,7 +446,7 @@ class ContactStability:
                 'hurwitz': [float(x) for x in self.hurwitz],
                 'eigenvalues': [[float(l.real), float(l.imag)] for l in self.eigenvalues],
                 'frequenciesHz': [float(x) for x in self.frequenciesHz],
-                'lehrDamping': [_Finite(x) for x in self.lehrDamping],
+                'lehrDamping': [JsonNumber(x) for x in self.lehrDamping],
                 'stable': self.stable}
 
 
@@ -506,7 +510,7 @@ class StabilityAnalysis:
         return {'ratio': g.ratio, 'frictionAngle': g.frictionAngle, 'selfLocking': g.selfLocking,
                 'efficiency': {'wormDriving': g.efficiencyWormDriving, 'wheelDriving': g.efficiencyWheelDriving},
                 'S': {f'{S:+d}': self.contact[S].ToDict() for S in CONTACT_STATES},
-                'fuesgenLimit': _Finite(self.fuesgenLimit), 'firstCriterionLimit': _Finite(self.firstCriterionLimit),
+                'fuesgenLimit': JsonNumber(self.fuesgenLimit), 'firstCriterionLimit': JsonNumber(self.firstCriterionLimit),
                 'stable': self.stable,
                 'friction': g.frictionLaw.ToDict(),
                 'selfLockingVerdict': self.selfLockingVerdict.ToDict(),
