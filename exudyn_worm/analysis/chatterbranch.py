@@ -268,7 +268,12 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
                                      f"a worm-speed kick of {COEXISTENCE_KICK:.0%} of the motor speed at {name} = "
                                      f"{start:g} dies out: no chatter found on this range; widen the range or pick a "
                                      f"parameter set that chatters (e.g. reel-P1)", result) from err
-        raise ChatterBranchError(f"{w}: no steady chatter found at {name} = {start:g}: {err}", result) from err
+        hint = ''
+        if not roots and _SpeedDependentFriction(base):
+            hint = (f"; with a speed-dependent friction law the chatter near a linear boundary is small and settles "
+                    f"slowly: include the linear boundary in the range, the branch is then followed from its Hopf "
+                    f"point")
+        raise ChatterBranchError(f"{w}: no steady chatter found at {name} = {start:g}: {err}{hint}", result) from err
     if not unstable:
         result.messages.append(f"linearly stable on the whole range; chatter found at {name} = {start:g} after a kick "
                                f"of {kick:.0%} of the motor speed")
@@ -342,8 +347,8 @@ def _SpeedDependentFriction(parameters: Mapping[str, float]) -> bool:
 def _SmoothBranches(base: Dict, name: str, low: float, high: float, roots: List[float], Growth: Callable,
                     maxPoints: int, onPoint: Optional[Callable], result: ChatterBranch) -> bool:
     """The smooth branches (:func:`SmoothHopfBranch`) from the linear boundaries ``roots`` into their linearly
-    unstable sides, put into ``result``; False (``result`` unchanged) if no boundary has one (each start orbit
-    loses contact or none is found): the branch is then limited by the mesh."""
+    unstable sides, put into ``result``; False (only why in ``result.messages``) if no boundary has one (each
+    start orbit loses contact or none is found): the branch is then limited by the mesh."""
     edges = [low] + list(roots) + [high]
     found, notes = [], []
     for i, r in enumerate(roots, start=1):
@@ -355,6 +360,7 @@ def _SmoothBranches(base: Dict, name: str, low: float, high: float, roots: List[
         except (ShootingError, ChatterBranchError) as err:
             notes.append(f"no smooth branch from the linear boundary {name} = {r:.6g}: {str(err).split(';')[0]}")
     if not found:
+        result.messages += notes
         return False
     result.points = sorted((p for b in found for p in b.points), key=lambda p: p.value)
     result.hopf = [b.hopf for b in found if b.hopf is not None]
