@@ -64,3 +64,11 @@ def test_smooth_branch_refuses_bad_side_and_limit():
         SmoothHopfBranch(p, 'motorSpeed', 8.9, 0)
     with pytest.raises(ValueError, match=r"SmoothHopfBranch: 'limit' must lie on the unstable side \(above\)"):
         SmoothHopfBranch(p, 'motorSpeed', 8.9, 1, limit=8.0)
+
+
+@pytest.mark.messages
+def test_cli_vary_with_a_wrong_unit_is_one_line_exit_2(capsys):
+    assert Main(['chatter', '--preset', 'reel-P1', '--vary', 'motorSpeed=80kg:89rpm']) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and 'Traceback' not in err
+    assert "'motorSpeed' must be an angular speed in rad/s" in err
