@@ -29,6 +29,7 @@ from .orbits import PeriodicOrbit, ShootingError
 from .._checks import CheckPositive
 from .linearization import DriveStability
 from ..params.parameters import PARAMETERS
+from ..setups.presets import DriveFromParameters
 
 # prefixes of the chain keys (``J4, k4, d4``, ``JL1, kL1, dL1``, ...)
 _SERIES_PREFIXES = tuple(p for table in PARAMETERS.arrayTables.values() for p in table.values())
@@ -340,7 +341,6 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
 def _SpeedDependentFriction(parameters: Mapping[str, float]) -> bool:
     """Whether the mesh's friction coefficient depends on the sliding speed. With a constant one the contact law is
     piecewise linear, so an orbit that stays in contact is one of the linearized drive: no smooth Hopf branch."""
-    from ..setups.presets import DriveFromParameters
     return DriveFromParameters(parameters).gear.frictionLaw.kind != 'constant'
 
 
