@@ -37,7 +37,7 @@ import numpy as np
 
 import exudyn_worm as ew
 from exudyn_worm.analysis.chatter import FindSteadyChatter, LongSimulationAmplitude, SettledSimulationAmplitude
-from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries
+from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries, SmoothHopfBranch
 from exudyn_worm.analysis.orbits import ShootingError
 from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
 
@@ -139,49 +139,21 @@ def _Sweep(study: str, name: str, base: Dict, values, checks: int, settleTime: f
 
 def _FrictionBranch(study: str, base: Dict, checks: int) -> Dict:
     """The branch of friction-limited chatter from the lower linear boundary (a smooth Hopf point: the orbit
-    stays in contact and its amplitude starts from zero), by shooting and natural-parameter continuation: started
-    from a settled time simulation at _FRICTION_SEED above the boundary, continued from orbit to orbit towards
-    the boundary and away from it until the worm turns back within the orbit (it then sticks in every period,
-    and the one-period map becomes non-smooth on the scale of a time step). A failed point does not end the
-    branch: the next value is tried from the last orbit (two failures in a row do)."""
+    stays in contact and its amplitude starts from zero), by the library's
+    :func:`~exudyn_worm.analysis.chatterbranch.SmoothHopfBranch`: started from a settled time simulation at
+    _FRICTION_SEED above the boundary, continued from orbit to orbit at _FRICTION_OFFSETS towards the boundary and
+    away from it until the worm turns back within the orbit."""
     t0 = time.perf_counter()
     boundaries, _ = LinearBoundaries(base, 'motorSpeed', _FRICTION_SEARCH[0] * RPM, _FRICTION_SEARCH[1] * RPM)
     boundary = boundaries[0]
-    seed = FindSteadyChatter({**base, 'motorSpeed': boundary * (1. + _FRICTION_SEED)}, settleTime=40.,
-                             maxIterations=40)
-    orbits, failed, messages = {_FRICTION_SEED: seed}, [], []
-    down = sorted((f for f in _FRICTION_OFFSETS if f < _FRICTION_SEED), reverse=True)
-    up = sorted(f for f in _FRICTION_OFFSETS if f > _FRICTION_SEED)
-    for offsets in (down, up):
-        last, misses = seed, 0
-        for f in offsets:
-            v = boundary * (1. + f)
-            try:
-                orbit = FindSteadyChatter({**base, 'motorSpeed': v}, start=(last.state, last.period),
-                                          maxIterations=40)
-            except ShootingError as err:
-                failed.append((v / RPM, str(err).split(';')[0]))
-                misses += 1
-                if misses == 2:
-                    break
-                continue
-            misses = 0
-            if orbit.info['minWormSpeed'] <= 0.:
-                messages.append(f"branch ends at {v / RPM:.2f} rpm: the worm turns back within the orbit "
-                                f"(smallest worm speed {orbit.info['minWormSpeed']:.3f} rad/s), it sticks in every "
-                                f"period from here on")
-                break
-            orbits[f] = last = orbit
+    branch = SmoothHopfBranch(base, 'motorSpeed', boundary, 1, offsets=_FRICTION_OFFSETS, seed=_FRICTION_SEED)
+    orbits = {q.info['offset']: q.orbit for q in branch.points}
+    failed = [(v / RPM, why) for v, why in branch.failed]
+    messages = [f"branch ends at {e['value'] / RPM:.2f} rpm: the worm turns back within the orbit (smallest worm "
+                f"speed {e['minWormSpeed']:.3f} rad/s), it sticks in every period from here on"
+                for e in branch.ends if e['reason'] == 'reversal']
     offsets = sorted(orbits)
-    # Hopf point: the squared amplitude (largest |phi2''|) is linear in the parameter near it; the line through
-    # the two orbits closest to the boundary meets zero at the Hopf point
-    (f1, o1), (f2, o2) = [(f, orbits[f]) for f in offsets[:2]]
-    a1, a2 = o1.info['maxWheelAcceleration'] ** 2, o2.info['maxWheelAcceleration'] ** 2
-    v1, v2 = boundary * (1. + f1), boundary * (1. + f2)
-    hopf = v1 - a1 * (v2 - v1) / (a2 - a1)
-    hopfPoints = [{'value': hopf / RPM, 'linearBoundary': boundary / RPM,
-                   'relativeDifference': abs(hopf / boundary - 1.),
-                   'type': 'supercritical' if all(orbits[f].stable for f in offsets[:2]) else 'subcritical'}]
+    hopfPoints = [{**branch.hopf, 'value': branch.hopf['value'] / RPM, 'linearBoundary': boundary / RPM}]
     compare = [f for f in offsets if f >= _FRICTION_COMPARE_FROM]
     picks = [compare[int(round(k))] for k in np.linspace(0, len(compare) - 1, min(checks, len(compare)))]
     rows, unsettled = [], []

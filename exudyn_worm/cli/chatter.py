@@ -12,7 +12,8 @@ __all__ = ['COMMAND', 'ParseVary', 'FormatBranch']
 
 
 def ParseVary(text: str) -> Tuple[str, float, float]:
-    """``NAME=LOW:HIGH`` (SI units) -> (name, low, high).
+    """``NAME=LOW:HIGH`` -> (name, low, high) in SI units; each bound a plain SI number or a number with a unit
+    (``motorSpeed=80rpm:89rpm``, ``backlash=0.2mm:0.5mm``), as ``--set`` takes it.
 
     Parameters
     ----------
@@ -22,24 +23,32 @@ def ParseVary(text: str) -> Tuple[str, float, float]:
     Raises
     ------
     UsageError
-        If it is malformed or ``LOW >= HIGH``.
+        If it is malformed, a bound has the wrong unit, or ``LOW >= HIGH``.
     """
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..setups.config import ParseQuantity
     name, sep, rest = text.partition('=')
     parts = rest.split(':')
+    name = name.strip()
+    if not sep or len(parts) != 2 or not name or not all(p.strip() for p in parts):
+        raise UsageError(f"--vary must be NAME=LOW:HIGH in SI units or with units (e.g. J1=0.05:0.3, "
+                         f"motorSpeed=80rpm:89rpm), got {text!r}")
     try:
-        if not sep or len(parts) != 2 or not name.strip():
-            raise ValueError
         low, high = (float(p) for p in parts)
     except ValueError:
-        raise UsageError(f"--vary must be NAME=LOW:HIGH in SI units (e.g. J1=0.05:0.3), got {text!r}") from None
+        try:
+            low, high = (float(ParseQuantity(name, p.strip())) for p in parts)
+        except (ValueError, TypeError) as err:
+            raise UsageError(f"--vary {text}: {err}") from None
     if not low < high:
         raise UsageError(f"--vary {text}: LOW must be below HIGH, got {low:g}:{high:g}")
-    return name.strip(), low, high
+    return name, low, high
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--vary', metavar='NAME=LOW:HIGH', required=True,
-                        help='the parameter to continue and its range in SI units, e.g. J1=0.05:0.3')
+                        help='the parameter to continue and its range in SI units or with units, e.g. J1=0.05:0.3 '
+                             'or motorSpeed=80rpm:89rpm (the output is in SI units)')
     parser.add_argument('--plot', metavar='FILE', default=None,
                         help='draw the branch (stable solid, unstable dashed, linear boundary dotted) into FILE')
     parser.add_argument('--max-points', type=int, default=60, dest='max_points',
