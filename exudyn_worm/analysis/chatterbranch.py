@@ -26,7 +26,7 @@ from .chatter import (MONODROMY_PERTURBATION, BuildLoweringModel, FindSteadyChat
                       StateScale, UpdateLoweringModel, _LoweringFlow, _MeshAt)
 from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import PeriodicOrbit, ShootingError
-from .._checks import CheckPositive
+from .._checks import CheckPositive, JsonNumber
 from .linearization import DriveStability
 from ..params.parameters import PARAMETERS
 from ..setups.presets import DriveFromParameters
@@ -753,10 +753,9 @@ class DisturbanceVerdict:
         -------
         dict
         """
-        finite = lambda x: float(x) if math.isfinite(x) else None
         return {'linearlyStable': self.linearlyStable, 'chatterFound': self.chatterFound,
-                'smallestDisturbance': finite(self.smallestDisturbance), 'forceFactor': finite(self.forceFactor),
-                'maxWheelAcceleration': finite(self.maxWheelAcceleration), 'frequencyHz': finite(self.frequencyHz),
+                'smallestDisturbance': JsonNumber(self.smallestDisturbance), 'forceFactor': JsonNumber(self.forceFactor),
+                'maxWheelAcceleration': JsonNumber(self.maxWheelAcceleration), 'frequencyHz': JsonNumber(self.frequencyHz),
                 'text': self.text}
 
 
