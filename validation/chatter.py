@@ -37,7 +37,8 @@ import numpy as np
 
 import exudyn_worm as ew
 from exudyn_worm.analysis.chatter import FindSteadyChatter, LongSimulationAmplitude, SettledSimulationAmplitude
-from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries, SmoothHopfBranch
+from exudyn_worm.analysis.chatterbranch import (SMOOTH_OFFSETS, SMOOTH_SEED, AnalyzeChatterBranch, LinearBoundaries,
+                                                SmoothHopfBranch)
 from exudyn_worm.analysis.orbits import ShootingError
 from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
 
@@ -60,12 +61,6 @@ _BACKLASH = np.linspace(0., 1e-3, 8)
 _FRICTION = {'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2, 'stribeckVelocity': 0.9}
 #: range in rpm searched for the lower linear boundary (the Hopf point of the friction branch)
 _FRICTION_SEARCH = (70., 100.)
-#: the branch's motor speeds as fractions above the lower linear boundary (amplitude grows as the square root
-#: of the distance: dense near it); it is started at _FRICTION_SEED from a settled time simulation and continued
-#: from orbit to orbit towards the boundary and away from it
-_FRICTION_OFFSETS = (0.001, 0.002, 0.004, 0.006, 0.008, 0.011, 0.014, 0.017, 0.020, 0.023, 0.026, 0.029, 0.032,
-                     0.035, 0.038, 0.041, 0.044, 0.047, 0.050)
-_FRICTION_SEED = 0.035
 #: compared with a long simulation: the orbits at least this far from the boundary (closer ones settle too
 #: slowly: the attraction rate goes to zero at a Hopf point; 0.8 % above it a run needs about 200 s)
 _FRICTION_COMPARE_FROM = 0.008
@@ -141,12 +136,12 @@ def _FrictionBranch(study: str, base: Dict, checks: int) -> Dict:
     """The branch of friction-limited chatter from the lower linear boundary (a smooth Hopf point: the orbit
     stays in contact and its amplitude starts from zero), by the library's
     :func:`~exudyn_worm.analysis.chatterbranch.SmoothHopfBranch`: started from a settled time simulation at
-    _FRICTION_SEED above the boundary, continued from orbit to orbit at _FRICTION_OFFSETS towards the boundary and
-    away from it until the worm turns back within the orbit."""
+    SMOOTH_SEED above the boundary, continued from orbit to orbit at SMOOTH_OFFSETS (the library's defaults) towards
+    the boundary and away from it until the worm turns back within the orbit."""
     t0 = time.perf_counter()
     boundaries, _ = LinearBoundaries(base, 'motorSpeed', _FRICTION_SEARCH[0] * RPM, _FRICTION_SEARCH[1] * RPM)
     boundary = boundaries[0]
-    branch = SmoothHopfBranch(base, 'motorSpeed', boundary, 1, offsets=_FRICTION_OFFSETS, seed=_FRICTION_SEED)
+    branch = SmoothHopfBranch(base, 'motorSpeed', boundary, 1, offsets=SMOOTH_OFFSETS, seed=SMOOTH_SEED)
     orbits = {q.info['offset']: q.orbit for q in branch.points}
     failed = [(v / RPM, why) for v, why in branch.failed]
     messages = [f"branch ends at {e['value'] / RPM:.2f} rpm: the worm turns back within the orbit (smallest worm "

@@ -599,9 +599,9 @@ def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float
                                  f"{boundary:.6g}) loses contact (force factor {start.info['forceFactor']:.3f}): the "
                                  f"branch there is limited by the mesh, not a smooth one")
     result = SmoothBranch(name, boundary, side)
+    kept = ('forceFactor', 'maxWheelAcceleration', 'minWormSpeed')    # the orbits keep no model or flow
+    start.info = {k: start.info[k] for k in kept}
     orbits = {seed: start}
-    for f, o in orbits.items():
-        o.info = {k: o.info[k] for k in ('forceFactor', 'maxWheelAcceleration', 'minWormSpeed')}
     directions = (('towards the boundary', sorted((f for f in offsets if f < seed), reverse=True)),
                   ('away from the boundary', sorted(f for f in offsets if f > seed)))
     for direction, todo in directions:
@@ -626,7 +626,7 @@ def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float
                 end = {'direction': direction, 'reason': 'reversal', 'value': v,
                        'minWormSpeed': float(orbit.info['minWormSpeed'])}
                 break
-            orbit.info = {k: orbit.info[k] for k in ('forceFactor', 'maxWheelAcceleration', 'minWormSpeed')}
+            orbit.info = {k: orbit.info[k] for k in kept}
             orbits[f] = last = orbit
             end['value'] = v
             if onPoint is not None:

@@ -140,12 +140,8 @@ class _StickSlip:
             self._Record(initial)
         self.history = [(-np.inf, initial)]     # (time from which a state holds, state)
         self.switches = 0
-        self._indices = None
         self._lastTime = None
-        self._nextCheck = -np.inf
-        self._lastCheck = None
-        self._maxRate = 0.
-        self._startTime = None                  # time of the first step of the present solve
+        self._ForgetSchedule()
         self._data = None
         self.clock = [-np.inf, -np.inf]         # the system's post-Newton clock (set by _AddStickSlip)
 
@@ -167,6 +163,11 @@ class _StickSlip:
         finally:
             esym.SetRecording(recording)
 
+    def _ForgetSchedule(self) -> None:
+        """Forget what the checks of a solve learnt (a new solve starts): the coordinate indices, the next and last
+        check, the largest deceleration seen and the time of the solve's first step."""
+        self._indices, self._nextCheck, self._lastCheck, self._maxRate, self._startTime = None, -np.inf, None, 0., None
+
     def Restart(self, mbs, coordinates, velocities) -> FrictionState:
         """Start a new solve from the ODE2 ``coordinates`` and ``velocities`` (whole-system vectors without the
         reference values, e.g. the initial configuration): the state becomes the one these imply
@@ -187,8 +188,8 @@ class _StickSlip:
                 getattr(self.variables, name).SetValue(float(getattr(state, name)))
         self.history = [(-np.inf, state)]
         self.switches = 0
-        self._indices, self._lastTime, self._nextCheck, self._lastCheck, self._maxRate = None, None, -np.inf, None, 0.
-        self._startTime = None
+        self._lastTime = None
+        self._ForgetSchedule()
         self.clock[0] = self.clock[1] = -np.inf        # the system's post-Newton function looks at every mesh
         return state
 
@@ -278,8 +279,7 @@ class _StickSlip:
             return 0.
         newStep = t != self._lastTime
         if self._lastTime is not None and t < self._lastTime:     # a new solve from an earlier time
-            self._indices, self._nextCheck, self._lastCheck, self._maxRate = None, -np.inf, None, 0.
-            self._startTime = None
+            self._ForgetSchedule()
         if self._startTime is None:
             self._startTime = t
         self._lastTime = t
