@@ -38,7 +38,7 @@ sys.dont_write_bytecode = True
 import numpy as np                                                  # noqa: E402
 
 from exudyn_worm.setups.config import ResolveParameters                   # noqa: E402
-from exudyn_worm.setups.presets import DriveFromParameters, GetPreset      # noqa: E402
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset      # noqa: E402
 from exudyn_worm.model.stability import AnalyzeStability                  # noqa: E402
 from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study, VibrationSeconds  # noqa: E402
 
@@ -133,7 +133,7 @@ def Overhead(repeat: int = 5) -> Dict:
         windows = DefaultWindows(p)
         result.WindowMetrics(windows)
         [VibrationSeconds(result, a, b) for a, b in windows]
-        AnalyzeStability(DriveFromParameters(p))
+        AnalyzeStability(ElasticDriveFromParameters(p))
         metrics.append(time.perf_counter() - t0)
     row = [repr(float(x)) for x in np.random.default_rng(0).random(35)]
     with tempfile.TemporaryDirectory() as folder:

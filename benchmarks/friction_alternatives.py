@@ -34,7 +34,7 @@ from exudyn_worm.items._userfunctions import AddGenericForce                    
 from exudyn_worm.items.connector import CreateWormGear                            # noqa: E402
 from exudyn_worm.model.contact import NUMPY_OPS, ContactOptions, MeshContact, SlidingCoordinate  # noqa: E402
 from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque           # noqa: E402
-from exudyn_worm.setups.presets import DriveFromParameters                         # noqa: E402
+from exudyn_worm.setups.presets import ElasticDriveFromParameters                         # noqa: E402
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque          # noqa: E402
 from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings, SteadyInitialState  # noqa: E402
 from exudyn_worm.items.results import SimulationResult                            # noqa: E402
@@ -90,7 +90,7 @@ def HoldTest(model: str, omega1: float, endTime: float = 23., settle: float = 5.
     """Wheel drift (rad) over ``endTime - settle`` s after ``settle`` s: reel-P1 gear, hanging load, no motor."""
     import exudyn as exu
     p = GetPreset('reel-P1')
-    drive = DriveFromParameters(p)
+    drive = ElasticDriveFromParameters(p)
     gear = drive.gear if mu is None else drive.gear.Replace(mu=mu)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -111,7 +111,7 @@ def HoldTest(model: str, omega1: float, endTime: float = 23., settle: float = 5.
 def SimulateReel(parameters, model: str, stepSize: float = None) -> SimulationResult:
     """The reel changer (motor through the shaft torque) with the mesh of ``model``."""
     import exudyn as exu
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     h = RecommendedStepSize(parameters) if stepSize is None else stepSize
     motor = ConstantSpeed(parameters['motorSpeed'])
     load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])

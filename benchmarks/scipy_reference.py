@@ -27,7 +27,7 @@ from scipy.integrate import solve_ivp
 
 from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact
 from exudyn_worm.model.drive import ElasticDrive
-from exudyn_worm.setups.presets import DriveFromParameters
+from exudyn_worm.setups.presets import ElasticDriveFromParameters
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque
 from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
@@ -56,7 +56,7 @@ def ReelChangerOde(parameters: Mapping[str, float], contactOptions: ContactOptio
         ``rhs(t, y)`` returns ``[omega1, omega2, alpha1, alpha2]`` as a list of floats; ``y0`` is
         ``[phi1, phi2, omega1, omega2]`` at t = 0.
     """
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     gear, J1, J2, kT, dT = drive.gear, drive.J1, drive.J2, drive.kT, drive.dT
     motorSpeed = parameters['motorSpeed']
     load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])

@@ -16,7 +16,7 @@ from typing import Any, Mapping, Optional
 from exudyn_worm.items.connector import CreateWormGear
 from exudyn_worm.model.contact import MATH_OPS, ContactOptions
 from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque
-from exudyn_worm.setups.presets import DriveFromParameters
+from exudyn_worm.setups.presets import ElasticDriveFromParameters
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque
 from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings, SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
@@ -51,7 +51,7 @@ def SimulateTorqueDriven(parameters: Mapping[str, float], stepSize: float, endTi
         the steps taken.
     """
     import exudyn as exu
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     motorSpeed = parameters['motorSpeed']
     load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
     motor = ConstantSpeed(motorSpeed)

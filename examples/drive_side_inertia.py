@@ -159,7 +159,7 @@ def BuildDriveSideInertia(parameters: Mapping[str, float], useSymbolic: bool = T
     """
     import exudyn as exu
     from exudyn.itemInterface import SensorNode
-    drive = ew.DriveFromParameters(parameters)                 # gear + J1, J2, kT, dT
+    drive = ew.ElasticDriveFromParameters(parameters)                 # gear + J1, J2, kT, dT
     (J4_, k4, d4), = DriveSideChain(parameters)                # exactly one extra inertia here
     load = ew.GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
     speed = parameters['motorSpeed']

@@ -120,7 +120,7 @@ def _FreeWorm(law: str, omega1: float, endTime: float, stepSize: float, where: s
         p = {**p, 'frictionLaw': 'agma'}
     elif law != 'constant':
         raise ValueError(f"{where}: 'law' must be 'agma' or 'constant', got {law!r}")
-    drive = ew.DriveFromParameters(p)
+    drive = ew.ElasticDriveFromParameters(p)
     u = drive.gear.ratio
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()

@@ -33,7 +33,7 @@ import sys
 from pathlib import Path
 from typing import Dict, Iterable, List, Mapping, Optional, Sequence
 
-from exudyn_worm.setups.presets import REEL_KEYS, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import REEL_KEYS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SimulateReelChanger
 from exudyn_worm.items.results import SimulationResult
 
@@ -165,7 +165,7 @@ def CaseParameters(preset: str = 'reel-P1', backlash: float = 0., motorSpeed: Op
     for case in cases.values():                    # validate now: bad input fails before any simulation
         params = {k: v for k, v in case.items() if k != 'rotations'}     # not a model parameter
         RotationPeriod(params)
-        DriveFromParameters(params)
+        ElasticDriveFromParameters(params)
         if params['loadMass'] < 0 or not math.isfinite(params['loadMass']):
             raise ValueError(f"{w}: 'loadMass' must be >= 0 kg, got {params['loadMass']:g} kg")
     return cases

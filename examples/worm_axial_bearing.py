@@ -84,7 +84,7 @@ def AxialLinearStability(parameters: Mapping[str, float]) -> LinearStability:
     parameters : mapping
         Flat parameter set; with ``kA, dA, mA`` the worm has its axial coordinate (else 2 DOF).
     """
-    drive = ew.DriveFromParameters(parameters)
+    drive = ew.ElasticDriveFromParameters(parameters)
     SC, mbs = BuildLinearizationModel(drive, axialBearing=AxialBearingFromParameters(parameters))
     return AnalyzeLinearStability(mbs)
 
@@ -148,8 +148,8 @@ def EquivalentTwoMassMaxRealPart(preset: str, kA: float) -> float:
         Axial stiffness in N/m.
     """
     p = ew.GetPreset(preset)
-    gear = ew.DriveFromParameters(p).gear
-    drive = ew.DriveFromParameters(ew.ApplyOverrides(p, {'kV': EquivalentMeshStiffness(gear, kA), 'dV': gear.dV}))
+    gear = ew.ElasticDriveFromParameters(p).gear
+    drive = ew.ElasticDriveFromParameters(ew.ApplyOverrides(p, {'kV': EquivalentMeshStiffness(gear, kA), 'dV': gear.dV}))
     return float(np.max(ew.AnalyzeStability(drive).contact[-1].eigenvalues.real))
 
 
@@ -191,7 +191,7 @@ def RunExample(simulate: bool = True) -> Dict[str, Any]:
     simulate : bool
         Also run the three simulations (about 2 s each).
     """
-    gear = ew.DriveFromParameters(ew.GetPreset('reel-P1')).gear
+    gear = ew.ElasticDriveFromParameters(ew.GetPreset('reel-P1')).gear
     boundary = BoundaryStiffness('reel-P1', 5e8, 1e9)
     kVeff = EquivalentMeshStiffness(gear, boundary)
     kT, r1 = ew.GetPreset('reel-P1')['kT'], gear.r1

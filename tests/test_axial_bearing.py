@@ -8,7 +8,7 @@ import pytest
 from exudyn_worm.setups.config import ParseSetOption
 from exudyn_worm.items.connector import AxialBearing
 from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact
-from exudyn_worm.setups.presets import (PARAMETER_UNITS, ApplyOverrides, AxialBearingFromParameters, DriveFromParameters,
+from exudyn_worm.setups.presets import (PARAMETER_UNITS, ApplyOverrides, AxialBearingFromParameters, ElasticDriveFromParameters,
                                  DriveSideChain, GetPreset)
 from exudyn_worm.analysis.reelchanger import BuildReelChanger, SimulateReelChanger
 
@@ -18,7 +18,7 @@ P1 = GetPreset('reel-P1')
 @pytest.mark.physics
 def test_contact_law_axial_displacement_acts_like_a_worm_rotation():
     """xA shifts the thread like a worm rotation xA/(r1 tan gamma): Delta s grows by cos(alphaN) cos(gamma) xA."""
-    gear = DriveFromParameters(P1).gear
+    gear = ElasticDriveFromParameters(P1).gear
     xA, vA = 3e-5, -2e-3
     equivalent = 1. / (gear.r1 * math.tan(gear.gamma))        # rad per m of axial shift
     phi1, phi2, w1, w2 = 1e-4, 2e-7, 49., 0.78
@@ -36,7 +36,7 @@ def test_contact_law_axial_displacement_acts_like_a_worm_rotation():
 @pytest.mark.physics
 def test_axial_force_is_the_spring_energy_gradient_without_friction():
     """rho = 0: the axial force is -dU/dxA of the mesh spring energy U = kV Delta s^2 / 2."""
-    gear = DriveFromParameters(ApplyOverrides(P1, {'mu': 0.})).gear
+    gear = ElasticDriveFromParameters(ApplyOverrides(P1, {'mu': 0.})).gear
     xA = np.linspace(-1e-5, 1e-5, 7)
     state = MeshContact(gear, 0., 0., 0., 0., ContactOptions(dampingCanPull=True), NUMPY_OPS,
                         axialDisplacement=xA, axialSpeed=0.)
@@ -45,7 +45,7 @@ def test_axial_force_is_the_spring_energy_gradient_without_friction():
 
 @pytest.mark.physics
 def test_contact_law_without_axial_arguments_is_unchanged():
-    gear = DriveFromParameters(ApplyOverrides(P1, {'backlash': 1e-4})).gear
+    gear = ElasticDriveFromParameters(ApplyOverrides(P1, {'backlash': 1e-4})).gear
     args = (np.linspace(-1e-3, 1e-3, 11), 1e-6, np.linspace(-1, 1, 11), 0.01)
     plain = MeshContact(gear, *args, ContactOptions(), NUMPY_OPS)
     zero = MeshContact(gear, *args, ContactOptions(), NUMPY_OPS, axialDisplacement=0., axialSpeed=0.)

@@ -12,7 +12,7 @@ from numpy.testing import assert_allclose
 from exudyn_worm.analysis.charts import (ChartCoefficients, ChartCoordinates, ComputeStabilityChart, ContourLines,
                                 MaxRealPart, MaxRealPartGrid, UnstableGrid)
 from exudyn_worm.model.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
-from exudyn_worm.setups.presets import DriveFromParameters, GearFromParameters, GetPreset
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, GearFromParameters, GetPreset
 from exudyn_worm.model.stability import AnalyzeStability, CharacteristicCoefficients, HurwitzStable
 
 GEAR25 = GearFromParameters(GetPreset('chart'), meshDamping=False)     # set (25)
@@ -81,7 +81,7 @@ def test_grid_functions_agree_with_analysis(lx, ly, DV, DTV, S):
 
 @pytest.mark.physics
 def test_chart_coordinates_of_p1_and_its_verdict():
-    drive = DriveFromParameters(GetPreset('reel-P1'))
+    drive = ElasticDriveFromParameters(GetPreset('reel-P1'))
     c = ChartCoordinates(drive)
     assert set(c) == {'x', 'y', 'DV', 'DTV'}
     # section 3.1: P1 at kT/(kV r1^2) = 0.107, J1/J2 = 0.003 (printed digits)

@@ -107,7 +107,7 @@ def _HandBuiltThreeMass(parameters):
     import exudyn as exu
     from exudyn_worm.items.drivetrain import CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
     from exudyn_worm.model.profiles import ConstantSpeed, ConstantTorque
-    drive = ew.DriveFromParameters(parameters)
+    drive = ew.ElasticDriveFromParameters(parameters)
     w = parameters['motorSpeed']
     M = parameters['loadMass'] * 9.80665 * parameters['leverArm']             # lowering: the load drives the wheel
     s = ew.SteadyInitialState(drive, load=M, motorSpeed=w, loadSide=[(parameters['JL1'], parameters['kL1'])])

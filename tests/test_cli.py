@@ -18,7 +18,8 @@ S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable
 # issue 15 added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
 TOP_KEYS = {'ratio', 'frictionAngle', 'selfLocking', 'efficiency', 'S', 'fuesgenLimit', 'firstCriterionLimit', 'hint',
             'stable', 'friction', 'selfLockingVerdict', 'operatingPoint',
-            'geometry'}
+            'geometry', 'method', 'model', 'components', 'maxRealPart', 'frequencyHz', 'operatingPoints', 'deciding',
+            'decidingText', 'dangerous', 'selfLockingAtOperatingPoints'}
 
 
 def Run(capsys, *argv):
@@ -127,7 +128,8 @@ def test_table_unstable(capsys):
     for text in ('transmission ratio u', 'friction angle rho [deg]', 'self-locking', 'efficiency, worm driving',
                  'efficiency, wheel driving', 'S = +1', 'S = -1', 'b1 [1/s]', 'b4 [1/s^4]', '(17)', '(18)',
                  '(19)', 'eigenvalue 4', 'frequency f2 [Hz]', 'Lehr damping D2', 'Fuesgen limit (21)',
-                 'first criterion limit (20)', 'actual J1/J2', 'Verdict: UNSTABLE for S = -1', '13.615'):
+                 'first criterion limit (20)', 'actual J1/J2', 'Contact states: UNSTABLE for S = -1',
+                 'Verdict: UNSTABLE (chatter expected) (decided by the lowering phase', '13.615'):
         assert text in out, text
     hints = [line for line in out.splitlines() if line.startswith('Hint:')]
     assert len(hints) == 1 and 'J1' in hints[0] and 'kT' in hints[0]
@@ -263,18 +265,18 @@ def test_error_messages_are_specific(capsys, tmp_path):
 
 
 def test_exudyn_method_uses_linearization(capsys, monkeypatch):
+    import exudyn_worm.analysis.linearization as linearization
     calls = []
 
-    def Fake(drive):
-        calls.append(drive)
+    def Fake(drive, useSymbolic=True, operatingPoint=None):
+        calls.append(operatingPoint)
         print('noise from the solver')              # must not reach stdout with --json
-        return AnalyzeStability(drive)
+        return AnalyzeStability(drive, operatingPoint)
 
-    monkeypatch.setitem(sys.modules, 'exudyn_worm.analysis.linearization',
-                        types.SimpleNamespace(AnalyzeStabilityExudyn=Fake))
+    monkeypatch.setattr(linearization, 'AnalyzeStabilityExudyn', Fake)
     rc, out, err = Run(capsys, 'stability', '--method', 'exudyn', '--json')
-    assert rc == 0 and len(calls) == 1
-    assert json.loads(out) == RunJson(capsys)
+    assert rc == 0 and [op.S for op in calls] == [1, -1]          # one linearization per operating point
+    assert json.loads(out) == {**RunJson(capsys), 'method': 'exudyn', 'model': 'linearized'}
     assert 'noise from the solver' in err
 
 

@@ -27,10 +27,12 @@ def test_chain_uses_the_linearized_whole_drive(tmp_path):
     data = json.loads(run.stdout)
     assert data['method'] == 'exudyn' and data['components'] == ['a drive-side chain (J4, ...)']
     assert 'inertia4' in data['coordinates']
-    expected = LinearStabilityFromParameters(ResolveParameters(config=FIGURE19))
+    expected = LinearStabilityFromParameters(ResolveParameters(config=FIGURE19))       # at rest, constant mu
     assert data['stable'] is expected.stable is False
     byS = {tuple(s['S']): s for s in data['states']}
-    assert byS[(-1,)]['maxRealPart'] == pytest.approx(expected.State(-1).maxRealPart, rel=1e-12)
+    # at the lowering operating point (moving at the motor speed): with constant mu the same eigenvalues as at rest,
+    # up to Exudyn's numerical differentiation of the mesh law at another state
+    assert byS[(-1,)]['maxRealPart'] == pytest.approx(expected.State(-1).maxRealPart, rel=1e-8)
     assert len(byS[(1,)]['frequenciesHz']) == 3           # the third mode of inertia4 is there
     table = _Run(tmp_path, '--config', str(FIGURE19))
     assert table.returncode == 0 and 'method exudyn' in table.stdout and 'inertia4' in table.stdout

@@ -10,7 +10,7 @@ from exudyn_worm import AnalyzeStability
 from exudyn_worm.items.connector import CreateWormGear
 from exudyn_worm.items.drivetrain import CreateRotor, CreateShaft
 from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn, ExudynEigenvalues
-from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.analysis.reelchanger import BuildReelChanger, SimulateReelChanger
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
@@ -23,7 +23,7 @@ def test_linearized_exudyn_model_reproduces_analytical_eigenvalues(name):
     p = GetPreset(name)
     if name == 'chart':                                   # the chart preset sweeps J1, kT: pick a point
         p = ApplyOverrides(p, {'J1': 1e-4, 'kT': 0.5, 'DT': 0.028})
-    drive = DriveFromParameters(p)
+    drive = ElasticDriveFromParameters(p)
     analytical = AnalyzeStability(drive)
     exudyn = AnalyzeStabilityExudyn(drive)
     for S in (1, -1):
@@ -35,7 +35,7 @@ def test_linearized_exudyn_model_reproduces_analytical_eigenvalues(name):
 
 @pytest.mark.physics
 def test_linearization_with_backlash_and_python_user_function():
-    drive = DriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), {'backlash': 0.5e-3}))
+    drive = ElasticDriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), {'backlash': 0.5e-3}))
     for S in (1, -1):
         np.testing.assert_allclose(ExudynEigenvalues(drive, S, useSymbolic=False),
                                    AnalyzeStability(drive).contact[S].eigenvalues, rtol=1e-6)
@@ -63,7 +63,7 @@ def _System():
 @pytest.mark.messages
 def test_connector_rejects_bad_input():
     SC, mbs = _System()
-    gear = DriveFromParameters(GetPreset('reel-P1')).gear
+    gear = ElasticDriveFromParameters(GetPreset('reel-P1')).gear
     worm, wheel = CreateRotor(mbs, 0.1), CreateRotor(mbs, 33.)
     nodes = [worm['nodeNumber'], wheel['nodeNumber']]
     with pytest.raises(TypeError, match="CreateWormGear: 'gear' must be a WormGear"):

@@ -6,9 +6,9 @@ from hypothesis import given, settings, strategies as st
 
 import exudyn as exu
 from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact, SymbolicOps
-from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 
-GEAR = DriveFromParameters(GetPreset('reel-P1')).gear
+GEAR = ElasticDriveFromParameters(GetPreset('reel-P1')).gear
 GEAR_BACKLASH = GEAR.Replace(backlash=0.5e-3)
 
 

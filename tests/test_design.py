@@ -8,13 +8,13 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_worm import AnalyzeStability, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm import AnalyzeStability, ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.analysis.design import (DEFAULT_MARGIN, ConfirmBySimulation, DesignCheck, DesignParameters,
                                 NearestStableValue, StabilizingChanges)
 
 
 def _Stable(p):
-    return AnalyzeStability(DriveFromParameters(p)).stable
+    return AnalyzeStability(ElasticDriveFromParameters(p)).stable
 
 
 def _StableWithMargin(parameters, changes, margin, samples=41):
@@ -148,7 +148,7 @@ def test_chart_point_and_distance_to_the_boundary(p1Check):
 def test_damping_held_as_given():
     p1 = GetPreset('reel-P1')
     assert DesignParameters(p1) == ['J1', 'J2', 'kT', 'DT', 'DV']
-    drive = DriveFromParameters(p1)
+    drive = ElasticDriveFromParameters(p1)
     constants = ApplyOverrides(p1, {'dT': drive.dT, 'dV': drive.gear.dV})
     assert DesignParameters(constants) == ['J1', 'J2', 'kT', 'dT', 'dV']
     assert DesignParameters(GetPreset('reel-P6')) == ['J1', 'J2', 'kT', 'DTV', 'DV']
@@ -156,11 +156,11 @@ def test_damping_held_as_given():
     held = DesignCheck(constants)
     for r, heldKey, heldValue in ((measures, 'DT', 0.014), (held, 'dT', drive.dT)):
         up = next(x for x in r.recommendations if x.parameter == 'J1' and x.factor > 1)
-        after = DriveFromParameters(ApplyOverrides(r.parameters, up.changes))
+        after = ElasticDriveFromParameters(ApplyOverrides(r.parameters, up.changes))
         assert (after.DT if heldKey == 'DT' else after.dT) == pytest.approx(heldValue, rel=1e-12)
     # holding dT (instead of D_T) while J1 grows lowers D_T as 1/sqrt(factor) (eq. (22))
     up = next(x for x in held.recommendations if x.parameter == 'J1' and x.factor > 1)
-    assert DriveFromParameters(ApplyOverrides(constants, up.changes)).DT == pytest.approx(0.014 / up.factor ** 0.5)
+    assert ElasticDriveFromParameters(ApplyOverrides(constants, up.changes)).DT == pytest.approx(0.014 / up.factor ** 0.5)
 
 
 def test_to_dict_is_json_ready(p1Check):

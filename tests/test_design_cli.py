@@ -3,7 +3,7 @@ import json
 
 import pytest
 
-from exudyn_worm import AnalyzeStability, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm import AnalyzeStability, ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.analysis import design
 from exudyn_worm.cli.main import Main
 from paper_model import BoundaryDecades, HurwitzStable
@@ -37,7 +37,7 @@ def test_check_p1_json(capsys):
     for r in data['recommendations']:
         assert set(r) >= {'parameter', 'factor', 'newValue', 'maxRealPartAfter'}
         assert r['maxRealPartAfter'] < 0
-        assert AnalyzeStability(DriveFromParameters(ApplyOverrides(p1, {r['parameter']: r['newValue']}))).stable
+        assert AnalyzeStability(ElasticDriveFromParameters(ApplyOverrides(p1, {r['parameter']: r['newValue']}))).stable
     assert data['margin']['decades'] == 0.1
 
 

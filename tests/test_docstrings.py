@@ -7,6 +7,7 @@ of dataclass fields, which are the constructor's arguments), not when its name o
 The lists of known gaps below can only shrink: an entry that is no longer needed fails the test too.
 """
 import importlib
+import enum
 import inspect
 import pkgutil
 import warnings
@@ -159,8 +160,8 @@ def _Arguments(obj):
 
 def _HasOwnConstructor(obj):
     """A class whose constructor arguments are its own (an exception class that only passes its message on to
-    BaseException has none to document)."""
-    return not (issubclass(obj, BaseException) and '__init__' not in vars(obj))
+    BaseException has none to document, nor an enumeration, whose members are looked up by value)."""
+    return not ((issubclass(obj, BaseException) and '__init__' not in vars(obj)) or issubclass(obj, enum.Enum))
 
 
 def _Sections(name, obj):

@@ -52,7 +52,7 @@ def _Solve(mbs, endTime, h=1e-3):
 def test_prescribed_start_up_drives_the_worm(useSymbolic, tmp_path, monkeypatch):
     """Start from rest with a smooth start-up; the worm follows the motor through the shaft."""
     monkeypatch.chdir(tmp_path)
-    drive = ew.DriveFromParameters(ew.GetPreset('reel-P2'))
+    drive = ew.ElasticDriveFromParameters(ew.GetPreset('reel-P2'))
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     motor = ew.CreateRotor(mbs, 1e-3)
@@ -87,7 +87,7 @@ def test_motor_characteristic_reaches_its_operating_point():
 def test_neighbouring_inertia_adds_a_mode():
     """Figure 19: an extra inertia on the drive side is just another rotor and shaft; the linearized
     system then has three modes."""
-    drive = ew.DriveFromParameters(ew.GetPreset('reel-P1'))
+    drive = ew.ElasticDriveFromParameters(ew.GetPreset('reel-P1'))
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     motor, inertia4 = ew.CreateRotor(mbs, 1e-3), ew.CreateRotor(mbs, 0.05)
@@ -129,7 +129,7 @@ def test_connector_with_explicit_solver_and_sensors(tmp_path, monkeypatch):
     """Explicit solvers work when the drive has no constraint (here a motor characteristic), and the
     connector's sensors give the mesh quantities over time."""
     monkeypatch.chdir(tmp_path)
-    drive = ew.DriveFromParameters(ew.GetPreset('reel-P2'))
+    drive = ew.ElasticDriveFromParameters(ew.GetPreset('reel-P2'))
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     motor = ew.CreateRotor(mbs, 0.05, initialSpeed=40.)
@@ -179,7 +179,7 @@ def test_constant_speed_on_velocity_level_is_the_same_motion(initialAngle, veloc
     """A ConstantSpeed whose initial state the rotor has is prescribed on velocity level, without a user
     function; the worm then moves as with the angle prescribed by a user function. A rotor that does not
     start on the profile keeps the angle constraint (which moves it onto the profile)."""
-    drive = ew.DriveFromParameters(ew.GetPreset('reel-P1'))
+    drive = ew.ElasticDriveFromParameters(ew.GetPreset('reel-P1'))
     speeds = []
     for forceUserFunction in (False, True):
         SC = exu.SystemContainer()

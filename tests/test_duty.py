@@ -87,8 +87,7 @@ def test_table_from_a_csv_file(tmp_path):
 
 
 @pytest.mark.parametrize('sets, fragment', [
-    (['loadType=constant'], "the duty (load constant, motor constantSpeed) needs loadTorque, motorSpeed; missing "
-                            "loadTorque"),
+    (['loadType=constant'], "the load (loadType constant) needs loadTorque; missing loadTorque"),
     (['motorType=startStop'], "missing rampTime"),
     (['loadType=timeTable', 'loadTorqueOverTime=[[0, 1], [0, 2]]'], "the time must increase"),
     (['loadType=crane'], "'loadType' must be one of: lever, constant, timeTable, angleTable, none, got 'crane'"),
@@ -237,10 +236,10 @@ def test_check_refuses_a_characteristic_motor_that_changes_the_verdict(capsys, t
     from exudyn_worm.cli.main import Main
     from exudyn_worm.analysis.drivestability import DriveStability
     from exudyn_worm.model.stability import AnalyzeStability
-    from exudyn_worm.setups.presets import DriveFromParameters
+    from exudyn_worm.setups.presets import ElasticDriveFromParameters
     monkeypatch.chdir(tmp_path)
     p = ResolveParameters('reel-P1', sets=CHARACTERISTIC)
-    assert DriveStability(p).State(-1).stable and not AnalyzeStability(DriveFromParameters(p)).State(-1).stable
+    assert DriveStability(p).State(-1).stable and not AnalyzeStability(ElasticDriveFromParameters(p)).State(-1).stable
     status = Main(['check', '--preset', 'reel-P1', *[a for s in CHARACTERISTIC for a in ('--set', s)]])
     out, err = capsys.readouterr()
     assert status == 2 and out == '' and err.count('\n') == 1 and 'Traceback' not in err

@@ -9,12 +9,12 @@ import exudyn_worm as ew
 from exudyn_worm.items.connector import AxialBearing
 from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
 from exudyn_worm.items.equilibrium import SteadyInitialState
-from exudyn_worm.setups.presets import DriveFromParameters, DriveSideChain, GetPreset
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, DriveSideChain, GetPreset
 from exudyn_worm.model.profiles import GravityLeverTorque
 
 DOCS = Path(__file__).resolve().parents[1] / 'docs'
 P1 = GetPreset('reel-P1')
-DRIVE = DriveFromParameters(P1)
+DRIVE = ElasticDriveFromParameters(P1)
 SPEED = P1['motorSpeed']
 
 
@@ -72,7 +72,7 @@ def test_reel_changer_keeps_its_equilibrium():
     assert Old is SteadyInitialState
     load = GravityLeverTorque(P1['loadMass'], P1['leverArm'])
     p = {**P1, 'J4': 0.05, 'k4': 2000., 'kA': 1e8, 'mA': 3.}
-    state = SteadyInitialState(DriveFromParameters(p), load, SPEED, ContactOptions(), AxialBearing(1e8, 0., 3.),
+    state = SteadyInitialState(ElasticDriveFromParameters(p), load, SPEED, ContactOptions(), AxialBearing(1e8, 0., 3.),
                                DriveSideChain(p))
     assert set(state) == {'phi1', 'phi2', 'omega1', 'omega2', 'phi4', 'omega4', 'xA', 'vA'}
 

@@ -56,7 +56,7 @@ def test_the_same_gear_holds_from_rest(example):
     # still at the horizontal, but for the mesh's elastic deflection under the load: Delta s = Fn / kV with
     # Fn = M / c4 (eq. (12)), seen at the wheel as Delta s / (u r1 cos(alphaN) sin(gamma)) (eqs. (3)-(5))
     p = ew.GetPreset('reel-P1')
-    gear = ew.DriveFromParameters(p).gear
+    gear = ew.ElasticDriveFromParameters(p).gear
     fn = p['loadMass'] * 9.81 * p['leverArm'] / gear.LeverArms(-1)[1]
     deflection = fn / gear.kV / (gear.ratio * gear.normalLever)
     assert abs(hold['phi2'][-1] - math.pi) == pytest.approx(deflection, rel=0.05)

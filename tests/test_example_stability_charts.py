@@ -6,7 +6,7 @@ import pytest
 
 from conftest import LoadScript
 from exudyn_worm.analysis.charts import ChartCoordinates
-from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.stability import AnalyzeStability
 
 example = LoadScript('examples/stability_charts.py', 'example_stability_charts')
@@ -41,7 +41,7 @@ def test_figures_4_and_5_charts_and_points(figures):
     assert all(r['S'] == -1 and r['unstableXRange'] is not None for r in rows)
     # each point's verdict on the chart of its own D_V and D_TV is the single-drive analysis of its preset
     for label, c in figures['points'].items():
-        drive = DriveFromParameters(GetPreset(f'reel-{label}'))
+        drive = ElasticDriveFromParameters(GetPreset(f'reel-{label}'))
         assert c == ChartCoordinates(drive)
         own = [chart for chart in figures[4] + [figures['P6'][4]] if math.isclose(chart.DTV, c['DTV'])]
         assert own, label

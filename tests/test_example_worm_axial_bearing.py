@@ -17,7 +17,7 @@ def example():
 def _ThreeDofEigenvalues(parameters, S):
     """Independent of the contact law's code: M q'' + D q' + K q = 0 in q = [phi1, phi2, xA] written out
     from Delta s = L (phi1 - u phi2) + a xA, F = kV Delta s + dV Delta s', torques -c2 F, +c4 F, axial -c4 F / r2."""
-    drive = ew.DriveFromParameters(parameters)
+    drive = ew.ElasticDriveFromParameters(parameters)
     g = drive.gear
     _, c2, _, c4 = g.Coefficients(S)
     L, a, u = g.normalLever, g.axialLever, g.ratio
@@ -49,7 +49,7 @@ def test_three_dof_problem_from_exudyn_equals_the_matrix_model(example, kA, dA):
 def test_stiff_bearing_gives_back_the_two_mass_drive(example):
     """kA = 1e13 N/m: the rotational eigenvalues differ from eqs. (15)-(16) by about kV a^2/kA = 2e-5."""
     linear = example.AxialLinearStability(example.AxialParameters('reel-P1', 1e13))
-    analytical = ew.AnalyzeStability(ew.DriveFromParameters(ew.GetPreset('reel-P1')))
+    analytical = ew.AnalyzeStability(ew.ElasticDriveFromParameters(ew.GetPreset('reel-P1')))
     for S in (1, -1):
         slow = linear.State(S).eigenvalues[:4]
         np.testing.assert_allclose(slow, analytical.contact[S].eigenvalues, rtol=1e-4)
@@ -66,7 +66,7 @@ def test_soft_bearing_moves_p1_off_the_unstable_region(example, run):
     assert 5e8 < boundary < 1e9                        # rolling bearings: about 1e8..1e9 N/m
     assert example.MaxRealPart('reel-P1', 0.97 * boundary) < 0 < example.MaxRealPart('reel-P1', 1.03 * boundary)
     rigid, *soft = run['table']['reel-P1']
-    assert rigid == pytest.approx(ew.AnalyzeStability(ew.DriveFromParameters(ew.GetPreset('reel-P1')))
+    assert rigid == pytest.approx(ew.AnalyzeStability(ew.ElasticDriveFromParameters(ew.GetPreset('reel-P1')))
                                   .contact[-1].eigenvalues.real.max(), rel=1e-6)
     assert all(a > b for a, b in zip([rigid] + soft[:2], soft[:3]))   # less unstable as kA falls to 5e8
     # the bearing acts as a spring in series with the mesh: the two-mass reading gives the same boundary

@@ -10,12 +10,12 @@ from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshC
 from exudyn_worm.model.friction import (FT_PER_MIN, AgmaFriction, ConstantFriction, FrictionLaw, FrictionTableRangeWarning,
                                   StribeckFriction, TableFriction)
 from exudyn_worm.model.gear import WormGear
-from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 
 STRIBECK = StribeckFriction(mu=0.05, muStatic=0.15, stribeckVelocity=0.1)
 TABLE = TableFriction([(0., 0.15), (0.05, 0.10), (0.5, 0.06), (2., 0.04)])
 LAWS = [ConstantFriction(0.132), STRIBECK, AgmaFriction(), TABLE]
-GEAR = DriveFromParameters(GetPreset('reel-P1')).gear
+GEAR = ElasticDriveFromParameters(GetPreset('reel-P1')).gear
 
 
 def _Symbolic(law, v):

@@ -10,7 +10,7 @@ import pytest
 from exudyn_worm.setups.config import LoadConfig, ResolveParameters
 from exudyn_worm.model.friction import AgmaFriction, StribeckFriction, TableFriction
 from exudyn_worm.params.parameters import PARAMETERS
-from exudyn_worm.setups.presets import (ApplyOverrides, DriveFromParameters, GearFromParameters, GetPreset,
+from exudyn_worm.setups.presets import (ApplyOverrides, ElasticDriveFromParameters, GearFromParameters, GetPreset,
                                  MissingParameterError)
 from exudyn_worm.model.stability import OperatingPointFromParameters
 
@@ -34,23 +34,23 @@ def test_constant_is_the_default_and_leaves_the_gear_unchanged():
 
 
 def test_parameter_dict_carries_the_stribeck_law_into_the_gear():
-    drive = DriveFromParameters({**GetPreset('reel-P3'), **STRIBECK})
+    drive = ElasticDriveFromParameters({**GetPreset('reel-P3'), **STRIBECK})
     assert drive.gear.friction == StribeckFriction(mu=0.132, muStatic=0.15, stribeckVelocity=0.1)
     # the kinetic mu of a set that gives the friction angle: rho -> mu by eq. (13)
     p = ApplyOverrides({**GetPreset('reel-P3'), **STRIBECK}, {'rho': math.radians(8)})
-    assert drive.gear.friction.mu != DriveFromParameters(p).gear.friction.mu
-    assert math.isclose(DriveFromParameters(p).gear.friction.mu, math.tan(math.radians(8)) * math.cos(math.radians(20)))
+    assert drive.gear.friction.mu != ElasticDriveFromParameters(p).gear.friction.mu
+    assert math.isclose(ElasticDriveFromParameters(p).gear.friction.mu, math.tan(math.radians(8)) * math.cos(math.radians(20)))
 
 
 def test_set_options_with_units_and_inline_table():
     p = ResolveParameters('reel-P3', sets=['frictionLaw=stribeck', 'muStatic=0.15', 'stribeckVelocity=10 cm/s'])
     assert p['stribeckVelocity'] == pytest.approx(0.1)
-    assert DriveFromParameters(p).gear.friction.stribeckVelocity == pytest.approx(0.1)
+    assert ElasticDriveFromParameters(p).gear.friction.stribeckVelocity == pytest.approx(0.1)
     p = ResolveParameters('reel-P3', sets=['frictionLaw=table', 'frictionTable=[[0, 0.15], [1, 0.05]]'])
-    assert DriveFromParameters(p).gear.friction == TableFriction(((0., 0.15), (1., 0.05)))
+    assert ElasticDriveFromParameters(p).gear.friction == TableFriction(((0., 0.15), (1., 0.05)))
     p = ResolveParameters('reel-P3', sets=['frictionLaw=agma'])
-    assert isinstance(DriveFromParameters(p).gear.friction, AgmaFriction)
-    assert DriveFromParameters(p).gear.mu == 0.132                # the nominal mu stays
+    assert isinstance(ElasticDriveFromParameters(p).gear.friction, AgmaFriction)
+    assert ElasticDriveFromParameters(p).gear.mu == 0.132                # the nominal mu stays
 
 
 def test_drive_file_table_path_is_relative_to_the_drive_file(tmp_path, monkeypatch):
@@ -59,17 +59,17 @@ def test_drive_file_table_path_is_relative_to_the_drive_file(tmp_path, monkeypat
     (folder / 'mu.csv').write_text('v, mu\n0, 0.14\n0.5, 0.08\n2, 0.05\n')
     (folder / 'drive.toml').write_text('preset = "reel-P3"\n[gear]\nfrictionLaw = "table"\nfrictionTable = "mu.csv"\n')
     monkeypatch.chdir(tmp_path)                                    # the table is not in the current directory
-    gear = DriveFromParameters(ResolveParameters(config=str(folder / 'drive.toml'))).gear
+    gear = ElasticDriveFromParameters(ResolveParameters(config=str(folder / 'drive.toml'))).gear
     assert gear.friction.points == ((0., 0.14), (0.5, 0.08), (2., 0.05))
     (folder / 'inline.toml').write_text('preset = "reel-P3"\n[gear]\nfrictionLaw = "stribeck"\n'
                                         'staticFrictionCoefficient = 0.15\nstribeckVelocity = "100 mm/s"\n')
-    gear = DriveFromParameters(ResolveParameters(config=str(folder / 'inline.toml'))).gear
+    gear = ElasticDriveFromParameters(ResolveParameters(config=str(folder / 'inline.toml'))).gear
     assert gear.friction == StribeckFriction(mu=0.132, muStatic=0.15, stribeckVelocity=0.1)
 
 
 def test_the_law_reaches_the_operating_point():
     p = {**GetPreset('reel-P3'), **STRIBECK, 'stribeckVelocity': 1.}
-    op = OperatingPointFromParameters(p, DriveFromParameters(p).gear)
+    op = OperatingPointFromParameters(p, ElasticDriveFromParameters(p).gear)
     v0 = op.slidingSpeed
     assert op.mu == pytest.approx(0.132 + 0.018 * math.exp(-v0**2))
     assert op.dmuDv == pytest.approx(-2 * 0.018 * v0 * math.exp(-v0**2))
@@ -92,7 +92,7 @@ def test_the_law_reaches_the_operating_point():
 ])
 def test_bad_input_names_key_range_and_value(sets, match):
     with pytest.raises(ValueError, match=match):
-        DriveFromParameters(ResolveParameters('reel-P3', sets=sets))
+        ElasticDriveFromParameters(ResolveParameters('reel-P3', sets=sets))
 
 
 def test_missing_law_values_are_a_missing_parameter_error():

@@ -8,14 +8,14 @@ import pytest
 from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
 from exudyn_worm.model.friction import StribeckFriction, TableFriction
 from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn
-from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.selflocking import GREY_ZONE, Rating, SelfLocking
 from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoefficients, EigenvaluesFromPolynomial,
                                    EigenvaluesFromStateMatrix, LinearMatrices, OperatingPoint, OperatingPointAt,
                                    OperatingPointFromParameters, PolynomialCoefficients)
 
 P3 = GetPreset('reel-P3')
-DRIVE = DriveFromParameters(P3)
+DRIVE = ElasticDriveFromParameters(P3)
 V0 = DRIVE.gear.SlidingSpeed(P3['motorSpeed'])
 
 
@@ -49,7 +49,7 @@ def test_operating_point_of_steady_lowering():
     assert op.normalForce == pytest.approx(P3['loadMass'] * 9.81 * P3['leverArm'] / c4, rel=1e-12)
     assert OperatingPointFromParameters({k: v for k, v in P3.items() if k != 'loadMass'}, g) is None
     assert op.ToDict() == {'slidingSpeed': op.slidingSpeed, 'mu': op.mu, 'dmuDv': op.dmuDv,
-                           'normalForce': op.normalForce}
+                           'normalForce': op.normalForce, 'S': -1}
 
 
 def test_polynomial_equals_state_matrix_with_slope():
@@ -133,7 +133,7 @@ def test_reel_p3_with_a_falling_friction_through_the_same_mu():
 def test_json_has_the_operating_point_and_the_verdicts():
     drive = Stribeck()
     data = AnalyzeStability(drive, OperatingPointFromParameters(P3, drive.gear)).ToDict()
-    assert set(data['operatingPoint']) == {'slidingSpeed', 'mu', 'dmuDv', 'normalForce'}
+    assert set(data['operatingPoint']) == {'slidingSpeed', 'mu', 'dmuDv', 'normalForce', 'S'}
     assert data['friction']['frictionLaw'] == 'stribeck'
     assert data['selfLockingVerdict']['static']['mu'] == 0.2
     assert AnalyzeStability(DRIVE).ToDict()['operatingPoint'] is None
@@ -199,10 +199,10 @@ def test_simulation_grows_where_the_linear_analysis_says_unstable(monkeypatch):
 def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
     """LinearStabilityFromParameters (the whole-drive path of `stability`) linearizes a speed-dependent law at the
     operating point: for the two-mass drive it equals the extended eq. (16)."""
-    import exudyn_worm.setups.presets as presets
+    import exudyn_worm.setups.wholedrive as wholedrive
     from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
-    original = presets.DriveFromParameters
-    monkeypatch.setattr(presets, 'DriveFromParameters', lambda p: Stribeck(original(p)))
+    original = wholedrive.ElasticDriveFromParameters
+    monkeypatch.setattr(wholedrive, 'ElasticDriveFromParameters', lambda p, where='': Stribeck(original(p)))
     linear = LinearStabilityFromParameters(P3)
     drive = Stribeck()
     op = OperatingPointFromParameters(P3, drive.gear)

@@ -11,7 +11,7 @@ from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.model.contact import ContactOptions, MeshContact
 from exudyn_worm.model.geometry import (DescribeGeometry, DesignationFromRadii, GeometryFromParameters,
                                   MeshStiffnessFromWheelTorsion, RadiiFromCentreDistance, RadiiFromDesignation)
-from exudyn_worm.setups.presets import (ApplyOverrides, CheckParameterKeys, DriveFromParameters, GetPreset,
+from exudyn_worm.setups.presets import (ApplyOverrides, CheckParameterKeys, ElasticDriveFromParameters, GetPreset,
                                  MissingParameterError)
 
 deg = math.radians
@@ -30,7 +30,7 @@ def test_axial_module_example_worm_gear_formula_master():
     assert (2 * r1 * 1e3, 2 * r2 * 1e3) == pytest.approx((44., 90.), rel=1e-12)
     assert math.degrees(gamma) == pytest.approx(7.7651660184, abs=5e-11)
     assert (r1 + r2) * 1e3 == pytest.approx(67., rel=1e-12)
-    drive = DriveFromParameters({**_BASE, 'mx': 3e-3, 'z1': 2, 'z2': 30, 'q': 44 / 3})
+    drive = ElasticDriveFromParameters({**_BASE, 'mx': 3e-3, 'z1': 2, 'z2': 30, 'q': 44 / 3})
     assert drive.gear.ratio == pytest.approx(15., rel=1e-12)          # eq. (3) gives z2/z1
     # the same gear from its centre distance, ratio and lead angle
     assert RadiiFromCentreDistance(0.067, 15., gamma) == pytest.approx((0.022, 0.045), rel=1e-12)
@@ -66,7 +66,7 @@ def test_p1_through_its_designation():
     assert d['z2'] == pytest.approx(63., abs=5e-3)                    # the paper prints u = 63
     back = RadiiFromDesignation(d['mx'], d['z1'], d['z2'], d['q'])
     assert back == pytest.approx((P1['r1'], P1['r2'], P1['gamma']), rel=1e-12)
-    centre = DriveFromParameters({**_BASE, 'a': d['a'], 'u': d['u'], 'gamma': P1['gamma']}).gear
+    centre = ElasticDriveFromParameters({**_BASE, 'a': d['a'], 'u': d['u'], 'gamma': P1['gamma']}).gear
     assert (centre.r1, centre.r2) == pytest.approx((P1['r1'], P1['r2']), rel=1e-12)
 
 
@@ -74,8 +74,8 @@ def test_p1_through_its_designation():
                                   {'mx': 2e-3, 'z1': 1, 'z2': 40, 'q': 16.}])
 def test_every_form_gives_the_same_drive_as_its_radii(form):
     r1, r2, gamma = GeometryFromParameters(form)
-    a = DriveFromParameters({**_BASE, **form})
-    b = DriveFromParameters({**_BASE, 'r1': r1, 'r2': r2, 'gamma': gamma})
+    a = ElasticDriveFromParameters({**_BASE, **form})
+    b = ElasticDriveFromParameters({**_BASE, 'r1': r1, 'r2': r2, 'gamma': gamma})
     assert a == b
     assert a.gear.ratio == pytest.approx(form.get('u', form.get('z2', 0) / form.get('z1', 1)), rel=1e-12)
 
@@ -105,7 +105,7 @@ def test_mixed_forms_are_refused(mixed):
                                             ({'r1': 0.02, 'gamma': deg(3.5)}, 'r2')])
 def test_incomplete_forms_name_what_is_missing(given, missing):
     with pytest.raises(MissingParameterError, match=rf"missing parameter\(s\) {missing} \(.*gear geometry"):
-        DriveFromParameters({**_BASE, **given})
+        ElasticDriveFromParameters({**_BASE, **given})
 
 
 @pytest.mark.parametrize('key, value, pattern', [('z1', 1.5, r"'z1' must be a whole number >= 1"),
@@ -113,7 +113,7 @@ def test_incomplete_forms_name_what_is_missing(given, missing):
                                                  ('q', -3., r"'q' must be > 0")])
 def test_designation_values_out_of_range(key, value, pattern):
     with pytest.raises(ValueError, match=pattern):
-        DriveFromParameters({**_BASE, 'mx': 3e-3, 'z1': 2, 'z2': 30, 'q': 10., key: value})
+        ElasticDriveFromParameters({**_BASE, 'mx': 3e-3, 'z1': 2, 'z2': 30, 'q': 10., key: value})
 
 
 # -- files and command line -----------------------------------------------------------------------------------
@@ -123,7 +123,7 @@ def test_drive_file_designation(tmp_path):
     path.write_text('preset = "reel-P1"\n[gear]\naxialModule = "3 mm"\nstarts = 2\nwheelTeeth = 30\n'
                     'diameterQuotient = 14.666666666666666\n')
     p = ResolveParameters(config=path)
-    assert DriveFromParameters(p).gear.r1 == pytest.approx(0.022, rel=1e-12)
+    assert ElasticDriveFromParameters(p).gear.r1 == pytest.approx(0.022, rel=1e-12)
     assert 'r1' not in p and 'gamma' not in p
 
 
@@ -163,7 +163,7 @@ def test_cli_bad_geometry_one_line_exit_2(tmp_path, args, text):
 def test_mesh_stiffness_from_wheel_torsion_inverts_the_contact_law():
     """The torque the contact law puts on the wheel per wheel angle, worm held, frictionless gear (mu = 0):
     k_phi2 = -d(wheelTorque)/d(phi2); MeshStiffnessFromWheelTorsion(k_phi2) must give back kV."""
-    gear = DriveFromParameters({**P1, 'mu': 0.}).gear
+    gear = ElasticDriveFromParameters({**P1, 'mu': 0.}).gear
     phi2 = -1e-6                                         # wheel turned against the worm: the flank is loaded
     torque = MeshContact(gear, 0., phi2, 0., 0., ContactOptions()).wheelTorque
     kPhi2 = -torque / phi2

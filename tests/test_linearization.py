@@ -7,7 +7,7 @@ import pytest
 import exudyn as exu
 import exudyn_worm as ew
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStabilityFromParameters
-from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 
@@ -16,7 +16,7 @@ REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 @pytest.mark.parametrize('name', REEL_PRESETS)
 def test_two_mass_drive_agrees_with_the_analytical_model(name):
     """Issue requirement: on the two-mass drive the generic analysis equals eqs. (15)-(16) to 1e-6."""
-    drive = DriveFromParameters(GetPreset(name))
+    drive = ElasticDriveFromParameters(GetPreset(name))
     SC, mbs = BuildLinearizationModel(drive)
     linear = AnalyzeLinearStability(mbs)
     analytical = ew.AnalyzeStability(drive)
@@ -66,7 +66,7 @@ def _TwoDrives():
     """Two independent Figure 2 drives (P1 and P2) in one system: two meshes."""
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    drives = [DriveFromParameters(GetPreset(n)) for n in ('reel-P1', 'reel-P2')]
+    drives = [ElasticDriveFromParameters(GetPreset(n)) for n in ('reel-P1', 'reel-P2')]
     for k, drive in enumerate(drives):
         g = drive.gear
         motor = ew.CreateRotor(mbs, 1e-3, name=f'motor{k}')
@@ -118,7 +118,7 @@ def test_linear_analysis_rejects_bad_input():
     ew.CreateRotor(mbs, 1.)
     with pytest.raises(ValueError, match='AnalyzeLinearStability: the system has no worm-gear connector'):
         AnalyzeLinearStability(mbs)
-    drive = DriveFromParameters(GetPreset('reel-P1'))
+    drive = ElasticDriveFromParameters(GetPreset('reel-P1'))
     worm, wheel = ew.CreateRotor(mbs, drive.J1), ew.CreateRotor(mbs, drive.J2)
     ew.CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='open')
     with pytest.raises(ValueError, match="mesh 'open' is not in contact at the initial state"):
@@ -134,7 +134,7 @@ def test_linear_analysis_rejects_bad_input():
 def test_linear_stability_from_parameters_with_chain_and_axial_bearing():
     p = GetPreset('reel-P1')
     plain = LinearStabilityFromParameters(p)
-    analytical = ew.AnalyzeStability(DriveFromParameters(p))
+    analytical = ew.AnalyzeStability(ElasticDriveFromParameters(p))
     np.testing.assert_allclose(plain.State(-1).eigenvalues, analytical.contact[-1].eigenvalues, rtol=1e-6)
     full = LinearStabilityFromParameters(ApplyOverrides(p, {'J4': 0.05, 'k4': 2e4, 'd4': 1., 'J5': 0.02, 'k5': 1e5,
                                                             'kA': 5e8, 'mA': 5.}))

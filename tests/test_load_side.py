@@ -155,13 +155,13 @@ def test_stage_keys_of_a_drive_file_in_order(tmp_path):
 
 
 def test_equilibrium_every_load_shaft_carries_the_load_torque():
-    from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
+    from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
     from exudyn_worm.model.profiles import GravityLeverTorque
     from exudyn_worm.analysis.reelchanger import SteadyInitialState
     p = GetPreset('reel-P2')
     load = GravityLeverTorque(mass=p['loadMass'], leverArm=p['leverArm'])
     stages = ((5., 2e5, 1.), (10., 4e5, 0.))
-    state = SteadyInitialState(DriveFromParameters(p), load, p['motorSpeed'], loadSide=stages)
+    state = SteadyInitialState(ElasticDriveFromParameters(p), load, p['motorSpeed'], loadSide=stages)
     from exudyn_worm.model.contact import MATH_OPS
     torque = load.Torque(state['phiL2'], 0., 0., MATH_OPS)             # the load acts on the last inertia
     assert torque < 0

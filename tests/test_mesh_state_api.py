@@ -34,7 +34,7 @@ def test_result_and_stored_state_carry_time_and_flanks():
 
 
 def test_stored_mesh_state_has_time():
-    drive = ew.DriveFromParameters(ew.GetPreset('reel-P1'))
+    drive = ew.ElasticDriveFromParameters(ew.GetPreset('reel-P1'))
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     worm, wheel = ew.CreateRotor(mbs, drive.J1, initialSpeed=1.), ew.CreateRotor(mbs, drive.J2)

@@ -9,7 +9,7 @@ import pytest
 
 from exudyn_worm.model.gear import WormGear
 from exudyn_worm.params.plausibility import ImplausibleValueWarning
-from exudyn_worm.setups.presets import PRESETS, DriveFromParameters, GearFromParameters, GetPreset
+from exudyn_worm.setups.presets import PRESETS, ElasticDriveFromParameters, GearFromParameters, GetPreset
 
 deg = math.radians
 GEAR = dict(alphaN=deg(20), gamma=deg(5.3228), r1=0.01805, r2=0.10595, kV=2e8, dV=21470., mu=0.132)
@@ -92,4 +92,4 @@ def test_cli_warns_once_on_stderr(tmp_path):
 
 def test_api_refusal_from_a_parameter_set():
     with pytest.raises(ValueError, match=r"mm given as m\? 18.05 mm = 0.01805 m"):
-        DriveFromParameters({**GetPreset('reel-P1'), 'r1': 18.05})
+        ElasticDriveFromParameters({**GetPreset('reel-P1'), 'r1': 18.05})

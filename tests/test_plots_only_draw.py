@@ -139,8 +139,8 @@ def test_chart_points_are_resolved_before_drawing():
     pytest.importorskip('matplotlib')
     from exudyn_worm.analysis.charts import ChartCoordinates, ChartPoints, ComputeStabilityChart, PresetChartPoints
     from exudyn_worm.plotting.plot_charts import PlotStabilityChart
-    from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
-    drive = DriveFromParameters(GetPreset('reel-P7'))
+    from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+    drive = ElasticDriveFromParameters(GetPreset('reel-P7'))
     c = ChartCoordinates(drive)
     p1 = PresetChartPoints(['reel-P1'])['P1']
     assert ChartPoints({'d': drive, 'q': {'x': 2., 'y': 3.}, 't': (4, 5)}) == \

@@ -10,7 +10,7 @@ import pytest
 
 from exudyn_worm.analysis.design import SPEED_KEY, DesignCheck
 from exudyn_worm.analysis.drivestability import DriveStability
-from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
 from exudyn_worm.analysis.speedchart import RPM, SpeedChart, SpeedStabilityChart
 from exudyn_worm.model.stability import AnalyzeStability, OperatingPointAt
@@ -22,14 +22,14 @@ SPEEDS = np.geomspace(20, 2000, 25) * RPM
 
 def test_constant_mu_does_not_depend_on_speed():
     chart = SpeedStabilityChart(GetPreset('reel-P3'), SPEEDS)
-    reference = np.max(AnalyzeStability(DriveFromParameters(GetPreset('reel-P3'))).contact[-1].eigenvalues.real)
+    reference = np.max(AnalyzeStability(ElasticDriveFromParameters(GetPreset('reel-P3'))).contact[-1].eigenvalues.real)
     np.testing.assert_allclose(chart.maxRealPart, reference, rtol=1e-12)
     assert chart.unstableRanges == [] and chart.Boundaries() == [] and chart.frictionLaw == 'constant'
 
 
 def test_each_speed_is_the_extended_eq16_at_its_operating_point():
     chart = SpeedStabilityChart(P3, SPEEDS)
-    drive = DriveFromParameters(P3)
+    drive = ElasticDriveFromParameters(P3)
     torque = P3['loadMass'] * STANDARD_GRAVITY * P3['leverArm']
     for i in (0, 12, 24):
         op = OperatingPointAt(drive.gear, SPEEDS[i], torque)

@@ -8,7 +8,7 @@ from numpy.testing import assert_allclose
 
 from exudyn_worm.model.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from exudyn_worm.model.gear import WormGear
-from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoefficients, ContactStability,
                                    EigenvaluesFromPolynomial, EigenvaluesFromStateMatrix, FirstCriterionLimit,
                                    FuesgenLimit, HurwitzConditions, HurwitzStable, StateMatrix)
@@ -23,7 +23,7 @@ deg = math.radians
 
 def Reel(**overrides) -> ElasticDrive:
     """Set (28) with mu = 0.132, the friction the paper's b1..b4 and (19) were computed with."""
-    return DriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), {'mu': 0.132, **overrides}))
+    return ElasticDriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), {'mu': 0.132, **overrides}))
 
 
 def _Match(a, b):
@@ -46,7 +46,7 @@ def test_printed_coefficients_of_set28():
         assert abs(value - printed) <= half
     # (19) = -2.607e10: half a unit of the printed digit + the propagated rounding of the printed geometry gamma,
     # r1, r2, computed by the validation's one propagation function (validation/README.md)
-    parts = InputRounding(lambda q: HurwitzConditions(CharacteristicCoefficients(DriveFromParameters(q), -1))[2],
+    parts = InputRounding(lambda q: HurwitzConditions(CharacteristicCoefficients(ElasticDriveFromParameters(q), -1))[2],
                           ApplyOverrides(GetPreset('reel-P1'), {'mu': 0.132}), GEOMETRY_28)
     lo, hi = ReadingInterval('printed', '-2.607e10', sum(parts.values()))
     assert lo <= HurwitzConditions(b)[2] <= hi

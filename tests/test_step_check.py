@@ -52,9 +52,9 @@ def test_simulate_default_step_is_the_recommended_one(capsys, tmp_path, monkeypa
 def test_linear_margin_is_the_least_damped_rightmost_mode():
     """P1: the rightmost eigenvalue of S = +1 (eqs. (1)-(2)) has |Re|/|lambda| = 0.011 (printed by 'stability' as
     Lehr damping 0.0108), below SMALL_MARGIN; raising both damping measures to 0.1 takes it to 0.09."""
-    from exudyn_worm.setups.presets import DriveFromParameters
+    from exudyn_worm.setups.presets import ElasticDriveFromParameters
     p = GetPreset('reel-P1')
-    lam = np.linalg.eigvals(StateMatrix(DriveFromParameters(p), +1))
+    lam = np.linalg.eigvals(StateMatrix(ElasticDriveFromParameters(p), +1))
     right = lam[np.argmax(lam.real)]
     m = LinearMargin(p)
     assert m['contactState'] == 1 and m['margin'] == pytest.approx(abs(right.real) / abs(right), rel=1e-12)

@@ -18,7 +18,7 @@ from exudyn_worm.model.contact import (MATH_OPS, ContactOptions, FrictionState, 
                                  StickSlipUpdate)
 from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque
 from exudyn_worm.model.friction import StribeckFriction
-from exudyn_worm.setups.presets import DriveFromParameters
+from exudyn_worm.setups.presets import ElasticDriveFromParameters
 from exudyn_worm.model.profiles import GravityLeverTorque
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger, SolverSettings
 
@@ -29,7 +29,7 @@ STEP = 1e-3
 
 def _Hold(options=ContactOptions(), omega1=0., mu=None, endTime=SETTLE + HOLD, wormTorque=None, useSymbolic=True,
           gear=None):
-    drive = DriveFromParameters(P1)
+    drive = ElasticDriveFromParameters(P1)
     if gear is None:
         gear = drive.gear if mu is None else drive.gear.Replace(mu=mu)
     SC = exu.SystemContainer()
@@ -59,7 +59,7 @@ def _Drift(states, settle=SETTLE):
 
 def test_self_locking_gear_holds_from_rest():
     mbs, mesh, s = _Hold()
-    assert DriveFromParameters(P1).gear.selfLocking
+    assert ElasticDriveFromParameters(P1).gear.selfLocking
     assert _Drift(s) < 1e-6                      # issue 15, Done-when: below 1e-6 rad over 18 s
     m = mesh.StoredMeshState(mbs)
     assert np.all(m.stuck[s['time'] > 0.1] == 1.)
@@ -90,7 +90,7 @@ def test_gear_that_is_not_self_locking_runs_away():
 def _StribeckGear():
     """Issue 15, Done-when: mu 0.05 (kinetic, below tan(gamma) cos(alphaN): not self-locking once moving),
     muStatic 0.15 (self-locking at rest), stribeckVelocity 0.1 m/s."""
-    return DriveFromParameters(P1).gear.Replace(mu=0.05).Replace(
+    return ElasticDriveFromParameters(P1).gear.Replace(mu=0.05).Replace(
         friction=StribeckFriction(mu=0.05, muStatic=0.15, stribeckVelocity=0.1))
 
 
@@ -119,7 +119,7 @@ def _BreakawayTorque(gear, loadTorque):
 
 @pytest.mark.parametrize('factor, breaks', [(0.9, False), (1.1, True)])
 def test_breakaway_above_the_static_limit(factor, breaks):
-    gear = DriveFromParameters(P1).gear
+    gear = ElasticDriveFromParameters(P1).gear
     limit = _BreakawayTorque(gear, -GravityLeverTorque(mass=P1['loadMass'], leverArm=P1['leverArm']).maximum)
     assert limit > 0
 
@@ -152,7 +152,7 @@ def test_reel_changer_unchanged_where_the_worm_never_stops(name):
 
 
 def test_stick_slip_update_rules():
-    gear = DriveFromParameters(P1).gear
+    gear = ElasticDriveFromParameters(P1).gear
     options = ContactOptions()
     phi1 = 0.01
     sliding = FrictionState(0., 1., 0.)
@@ -180,7 +180,7 @@ def test_contact_options_friction_model_errors():
 def test_linearization_options_and_back_keep_the_switching():
     """Holding S for a linearization (fixed S, no stick state) and restoring the options: the mesh is checked
     again after the next step, so a worm started at lowering speed still stops and holds."""
-    drive = DriveFromParameters(P1)
+    drive = ElasticDriveFromParameters(P1)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     worm = CreateRotor(mbs, drive.J1, initialSpeed=-49.5)

@@ -16,7 +16,7 @@ from hypothesis import given, strategies as st
 from exudyn_worm.analysis import studymap
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
-from exudyn_worm.setups.presets import DriveFromParameters
+from exudyn_worm.setups.presets import ElasticDriveFromParameters
 from exudyn_worm.model.stability import AnalyzeStability
 from exudyn_worm.analysis.study import (HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunPoint,
                                RunStudy, ShardIndices, Study, StudyPoints, StudyResult, StudySidecarPath, Variation)
@@ -270,7 +270,7 @@ def test_verdict_of_a_drive_beyond_two_masses_is_that_of_stability(base, varied)
         assert row['status'] == 'ok', row['error']
         assert row['analyticStable'] is whole.stable
         assert row['analyticStableLowering'] is whole.State(-1).stable
-        twoMass = AnalyzeStability(DriveFromParameters({k: v for k, v in p.items() if k not in base}))
+        twoMass = AnalyzeStability(ElasticDriveFromParameters({k: v for k, v in p.items() if k not in base}))
         twoMassDiffers |= twoMass.contact[-1].stable != whole.State(-1).stable
         assert row['loweringChatter'] is (not whole.State(-1).stable)
     assert twoMassDiffers                      # the test would catch the two-mass verdict

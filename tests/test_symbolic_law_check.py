@@ -73,7 +73,7 @@ def test_prescribed_rotation_recorded_as_constant_is_refused():
 @pytest.mark.messages
 def test_worm_gear_on_one_node_is_refused():
     SC, mbs, rotor = _System()
-    drive = ew.DriveFromParameters(ew.GetPreset('reel-P1'))
+    drive = ew.ElasticDriveFromParameters(ew.GetPreset('reel-P1'))
     n = rotor['nodeNumber']
     with pytest.raises(ValueError, match=r"CreateWormGear: worm, wheel \(and axial\) nodes must be different nodes, "
                                          r"got nodeNumbers = \[0, 0\]"):

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.stability import CharacteristicCoefficients
 from validation import runner
 from validation.paper import eigenvalue_forensics
@@ -305,7 +305,7 @@ def test_compare_rules():
 
 @pytest.mark.physics
 def test_reduced_parametrization_is_eq16(forensics):
-    d = DriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), {'mu': 0.132}))
+    d = ElasticDriveFromParameters(ApplyOverrides(GetPreset('reel-P1'), {'mu': 0.132}))
     r = forensics.ReducedParameters(d)
     for S, s in ((+1, '+'), (-1, '-')):
         b = forensics.ReducedCoefficients(r['a'], r['tauT'], r['eta'], r['x' + s], r['y' + s])
@@ -330,7 +330,7 @@ def test_forensic_findings(forensics):
 
 @pytest.mark.physics
 def test_wheel_circumference_factor(forensics):
-    d = DriveFromParameters(GetPreset('reel-P1'))
+    d = ElasticDriveFromParameters(GetPreset('reel-P1'))
     assert forensics.WheelCircumferenceFactor(d) == pytest.approx(
         1 / (math.cos(math.radians(20)) * math.cos(math.radians(5.3228)))**2, rel=1e-12)
     assert forensics.WheelCircumferenceFactor(d.gear) == forensics.WheelCircumferenceFactor(d)

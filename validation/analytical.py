@@ -15,7 +15,7 @@ import numpy as np
 from exudyn_worm.model.drive import (MeshDampingFromMeasure, MeshDampingMeasure, TorsionalDampingFromMeasure,
                     TorsionalDampingMeasure)
 from exudyn_worm.model.gear import WormGear
-from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.stability import AnalyzeStability, CharacteristicCoefficients, ContactStability, HurwitzConditions
 from .paper import eigenvalue_forensics
 from .runner import PAPER_MU, Check, HalfUnit, InputRounding, ValidationContext
@@ -58,7 +58,7 @@ def _Gear(p: Dict[str, float], **changes) -> WormGear:
 
 
 def _B(parameters: Dict[str, float], S: int = -1) -> np.ndarray:
-    return CharacteristicCoefficients(DriveFromParameters(parameters), S)
+    return CharacteristicCoefficients(ElasticDriveFromParameters(parameters), S)
 
 
 def _H19(parameters: Dict[str, float]) -> float:
@@ -114,9 +114,9 @@ def AnalyticalChecks(ctx: ValidationContext) -> List[Check]:
     add('b1_28_dT0741', lambda q: _B(q)[0], _Set28(dT=float(_DT_28)), {**GEOMETRY_28, 'dT': (_DT_28, 1.)})
     # b4 of (16) is proportional to u: b4 with u = 63 exactly is b4 * 63 / u
     add('b4_28_u63', lambda q: _B(q)[3] * _U_PRINTED / _Gear(q).ratio, p28, GEOMETRY_28)
-    add('P1_stiffness_ratio', lambda q: DriveFromParameters(q).stiffnessRatio, p28, GEOMETRY_28)
-    add('P1_inertia_ratio', lambda q: DriveFromParameters(q).inertiaRatio, p28, GEOMETRY_28)
-    unstable = lambda q: float(not AnalyzeStability(DriveFromParameters(q)).stable)
+    add('P1_stiffness_ratio', lambda q: ElasticDriveFromParameters(q).stiffnessRatio, p28, GEOMETRY_28)
+    add('P1_inertia_ratio', lambda q: ElasticDriveFromParameters(q).inertiaRatio, p28, GEOMETRY_28)
+    unstable = lambda q: float(not AnalyzeStability(ElasticDriveFromParameters(q)).stable)
     for name in ('P1', 'P2', 'P3', 'P4', 'P5', 'P6', 'P7'):
         add(f'unstable_{name}', unstable, _Preset('reel-' + name))
     add('unstable_P6_DV056', unstable, _Preset('reel-P6', DV=0.056))
@@ -140,7 +140,7 @@ def _FrictionSection(ctx, checks, parts19):
         values = [*_B(p), _H19(p)]
         ok = [lo <= v <= hi for v, (lo, hi) in zip(values, intervals)]
         reproduces[key] = all(ok)
-        rows.append(f'| {label}, rho = {math.degrees(DriveFromParameters(p).gear.rho):.4f} deg | '
+        rows.append(f'| {label}, rho = {math.degrees(ElasticDriveFromParameters(p).gear.rho):.4f} deg | '
                     + ' | '.join(f'{x:.6g}{"" if o else " **x**"}' for x, o in zip(values, ok)) + f' | {sum(ok)}/5 |')
     table = '\n'.join(['| friction | b1 | b2 | b3 | b4 | (19) | within |', '|---|---|---|---|---|---|---|',
                        '| printed (section 3.1) | ' + ' | '.join(r.publishedText for r in pub) + ' | |', *rows])
@@ -217,7 +217,7 @@ def EigenvalueChecks(ctx: ValidationContext) -> List[Check]:
     """Group ``eigenvalues``: the printed eigenvalues, frequencies and Lehr dampings of section 3.1 beside ours."""
     rows = _Rows(ctx)
     p28, p7 = _Set28(), _Preset('reel-P7')
-    contact = lambda q, S: AnalyzeStability(DriveFromParameters(q)).contact[S]
+    contact = lambda q, S: AnalyzeStability(ElasticDriveFromParameters(q)).contact[S]
     for S, s in ((+1, 'Sp'), (-1, 'Sm')):
         for k in (1, 2):
             rows.Add(f'lam{k}_re_{s}', lambda q, S=S, k=k: contact(q, S).oscillating[k - 1].real, p28, GEOMETRY_28)
@@ -258,7 +258,7 @@ def _Forensics(ctx: ValidationContext) -> ModuleType:
 
 def _CircFrequency(k: int):
     def Compute(q):
-        d = DriveFromParameters(q)
+        d = ElasticDriveFromParameters(q)
         d = eigenvalue_forensics.ScaleMesh(d, eigenvalue_forensics.WheelCircumferenceFactor(d))
         return ContactStability.FromCoefficients(+1, CharacteristicCoefficients(d, +1)).frequenciesHz[k - 1]
     return Compute
@@ -282,7 +282,7 @@ def ForensicsChecks(ctx: ValidationContext) -> List[Check]:
 
     results = fx.EvaluateHypotheses(fitted=True, printed=printed)
     byKey = {r.hypothesis.key: r for r in results}
-    p1 = DriveFromParameters(_Set28())
+    p1 = ElasticDriveFromParameters(_Set28())
     circP1 = fx.ScaleMesh(p1, fx.WheelCircumferenceFactor(p1))
     ratio = fx.B4RatioInterval(printed)
     rhoLo, rhoHi = fx.WheelSideFrictionBound(printed, p1.gear.gamma)
@@ -380,7 +380,7 @@ def ForensicsSlowChecks(ctx: ValidationContext) -> List[Check]:
     fx = _Forensics(ctx)
     printed = {S: _PrintedEigenvalues(ctx, S)[:2] for S in (+1, -1)}
     local = fx.ModelClassMinimax(printed)
-    p1 = DriveFromParameters(_Set28())
+    p1 = ElasticDriveFromParameters(_Set28())
     _, rhoHi = fx.WheelSideFrictionBound(printed, p1.gear.gamma)
     bound = _WormSideBound(fx, printed)
     found = fx.GlobalModelClassSearch(printed=printed)

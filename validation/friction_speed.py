@@ -72,8 +72,8 @@ def LawParameters(preset: str) -> Dict[str, object]:
     """
     base = GetPreset(preset)
     muStatic, vs = LAWS[preset]
-    from exudyn_worm.setups.presets import DriveFromParameters
-    v0 = DriveFromParameters(base).gear.SlidingSpeed(_PAPER_SPEED)
+    from exudyn_worm.setups.presets import ElasticDriveFromParameters
+    v0 = ElasticDriveFromParameters(base).gear.SlidingSpeed(_PAPER_SPEED)
     x = math.exp(-(v0 / vs) ** 2)
     mu = (base['mu'] - muStatic * x) / (1. - x)
     return ApplyOverrides(base, {'mu': mu, 'frictionLaw': 'stribeck', 'muStatic': muStatic, 'stribeckVelocity': vs})

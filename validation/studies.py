@@ -31,7 +31,7 @@ from typing import Dict, List, Optional
 import numpy as np
 
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, DriveFromParameters
+from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters
 from exudyn_worm.model.stability import AnalyzeStability
 from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study, StudyResult, StudySidecarPath
 
@@ -111,7 +111,7 @@ def RunStudies(dataDir: Path = HERE / 'studies', workers: Optional[int] = None, 
 
 def _Growth(base, J1, kT) -> float:
     """Largest real part (1/s) of the S = -1 eigenvalues at (J1, kT)."""
-    drive = DriveFromParameters(ApplyOverrides(base, {'J1': J1, 'kT': kT}))
+    drive = ElasticDriveFromParameters(ApplyOverrides(base, {'J1': J1, 'kT': kT}))
     return float(np.max(AnalyzeStability(drive).contact[-1].eigenvalues.real))
 
 
@@ -194,7 +194,7 @@ def MapAnalysis(result: StudyResult) -> Dict:
     nearest.sort(key=lambda d: d['decades'])
     # the stability chart's own verdict (exudyn_worm.analysis.charts, vectorized Hurwitz) at every run: the same chart?
     from exudyn_worm.analysis.charts import ChartCoordinates, UnstableGrid
-    drive = DriveFromParameters(base)
+    drive = ElasticDriveFromParameters(base)
     c = ChartCoordinates(drive)
     x = np.array([r['kT'] for r in result.rows]) / (drive.gear.kV * drive.gear.r1**2)
     y = np.array([r['J1'] for r in result.rows]) / drive.J2

@@ -14,7 +14,7 @@ from typing import Callable, Dict, List, Tuple
 import numpy as np
 
 from exudyn_worm.model.contact import ContactOptions
-from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
 from exudyn_worm.model.stability import AnalyzeStability
 
@@ -37,7 +37,7 @@ def PaperMeshConvention(parameters):
     parameters : mapping
         Flat parameter set.
     """
-    gear = DriveFromParameters(parameters).gear
+    gear = ElasticDriveFromParameters(parameters).gear
     f = WheelCircumferenceFactor(gear)
     return ApplyOverrides(parameters, {'kV': gear.kV * f, 'dV': gear.dV * f})
 
@@ -73,7 +73,7 @@ def _Ratio(preset, key, overrides):
 def _LinearFrequency(preset, paperMesh):
     p = GetPreset(preset)
     p = PaperMeshConvention(p) if paperMesh else p
-    return float(np.mean(AnalyzeStability(DriveFromParameters(p)).contact[-1].frequenciesHz))
+    return float(np.mean(AnalyzeStability(ElasticDriveFromParameters(p)).contact[-1].frequenciesHz))
 
 
 def _ChatterFrequencyVsLinear(m):

@@ -130,7 +130,7 @@ class DriveAnalysis:
     def atRest(self):
         """The analysis at rest in both contact states (constant mu; the paper's model): what decides for a drive
         without a steady phase, and the reference of the classic criteria. Computed once, on first use."""
-        return _AtRest(self.drive)
+        return _AtRest(self.drive, self.model)
 
     @property
     def deciding(self) -> Optional[OperatingPointStability]:
@@ -202,45 +202,52 @@ class DriveAnalysis:
         return any(v.dangerous for v in self.selfLockingVerdicts.values())
 
     def ToDict(self) -> Dict:
-        """JSON-ready: ``stable``, ``model``, ``components``, ``operatingPoints``, ``deciding``, ``selfLocking``."""
+        """JSON-ready: ``stable``, ``model``, ``components``, ``maxRealPart``, ``frequencyHz``, ``operatingPoints``,
+        ``deciding``, ``decidingText``, ``dangerous``, ``selfLockingAtOperatingPoints``."""
         deciding = self.deciding
-        return {'stable': self.stable, 'model': self.model, 'components': [c.value for c in self.drive.components],
+        return {'stable': self.stable, 'model': self.model, 'components': [c.text for c in self.drive.components],
                 'maxRealPart': JsonNumber(self.maxRealPart), 'frequencyHz': JsonNumber(self.frequencyHz),
                 'operatingPoints': [p.ToDict() for p in self.operatingPoints],
                 'deciding': None if deciding is None else {'phase': deciding.phase,
                                                            'label': deciding.point.Label()},
                 'decidingText': self.decidingText,
                 'dangerous': self.dangerous,
-                'selfLocking': {k: v.ToDict() for k, v in self.selfLockingVerdicts.items()}}
+                'selfLockingAtOperatingPoints': {k: v.ToDict() for k, v in self.selfLockingVerdicts.items()}}
 
 
-def _AtRest(drive: Drive):
+def _AtRest(drive: Drive, model: str = ANALYTICAL):
     def Compute():
         if drive.isTwoMass:
-            return AnalyzeStability(drive.elastic)
+            return AnalyzeStability(drive.elastic) if model == ANALYTICAL else \
+                linearization.AnalyzeStabilityExudyn(drive.elastic)
         SC, mbs = linearization.BuildLinearizationModel(drive.elastic, None, True, drive.axialBearing,
                                                         drive.driveSideChain, drive.loadSideChain, drive.freeMotor)
         return linearization.AnalyzeLinearStability(mbs)
-    return drive.Cached('stabilityAtRest', Compute)
+    return drive.Cached(f'stabilityAtRest.{model}', Compute)
 
 
-def _AtPoint(drive: Drive, point: DutyPoint):
+def _AtPoint(drive: Drive, point: DutyPoint, model: str):
     op: OperatingPoint = point.operatingPoint
-    if drive.isTwoMass:
+    if model == ANALYTICAL:
         return AnalyzeStability(drive.elastic, op)
+    if drive.isTwoMass:             # the same result type as the analytical model, from Exudyn's eigenvalues
+        return linearization.AnalyzeStabilityExudyn(drive.elastic, operatingPoint=op)
     SC, mbs = linearization.BuildLinearizationModel(drive.elastic, op.S, True, drive.axialBearing,
                                                     drive.driveSideChain, drive.loadSideChain, drive.freeMotor,
                                                     operatingPoint=op)
     return linearization.AnalyzeLinearStability(mbs, contactStates=[(op.S,)])
 
 
-def AnalyzeDrive(drive: Union[Drive, Mapping[str, Any]]) -> DriveAnalysis:
+def AnalyzeDrive(drive: Union[Drive, Mapping[str, Any]], model: Optional[str] = None) -> DriveAnalysis:
     """Linear stability of a drive at the operating points of its own duty: the one entry point of every command.
 
     Parameters
     ----------
     drive : Drive or mapping
         The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`) or a flat parameter set.
+    model : str, optional
+        ``'analytical'`` (eqs. (15)-(19); only for the two-mass drive) or ``'linearized'`` (the Exudyn model of
+        the whole drive); None (default): analytical for the two-mass drive, linearized for any other.
 
     Returns
     -------
@@ -260,13 +267,20 @@ def AnalyzeDrive(drive: Union[Drive, Mapping[str, Any]]) -> DriveAnalysis:
     ([('lifting', True), ('lowering', False)], False)
     """
     drive = AsDrive(drive, 'AnalyzeDrive')
+    if model is None:
+        model = ANALYTICAL if drive.isTwoMass else LINEARIZED
+    elif model not in (ANALYTICAL, LINEARIZED):
+        raise ValueError(f"AnalyzeDrive: 'model' must be None, {ANALYTICAL!r} or {LINEARIZED!r}, got {model!r}")
+    elif model == ANALYTICAL and not drive.isTwoMass:
+        raise ValueError(f"AnalyzeDrive: the analytical model (eqs. (15)-(19)) describes the two-mass drive of "
+                         f"Figure 2; this drive has {drive.ComponentsText()}: use model {LINEARIZED!r} (the default)")
 
     def Compute():
-        points = tuple(OperatingPointStability(p, drive.Cached(f'stabilityAt{i}', lambda p=p: _AtPoint(drive, p)),
-                                               drive.gear)
+        points = tuple(OperatingPointStability(p, drive.Cached(f'stabilityAt{i}.{model}',
+                                                               lambda p=p: _AtPoint(drive, p, model)), drive.gear)
                        for i, p in enumerate(DutyOperatingPoints(drive)))
-        return DriveAnalysis(drive=drive, model=ANALYTICAL if drive.isTwoMass else LINEARIZED, operatingPoints=points)
-    return drive.Cached('driveAnalysis', Compute)
+        return DriveAnalysis(drive=drive, model=model, operatingPoints=points)
+    return drive.Cached(f'driveAnalysis.{model}', Compute)
 
 
 def DriveStability(parameters: Union[Drive, Mapping[str, Any]]) -> DriveAnalysis:

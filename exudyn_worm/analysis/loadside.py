@@ -212,7 +212,9 @@ def DiagnoseLoadSide(parameters: Mapping[str, float], margin: float = 0.1) -> Lo
     if not chain:
         raise ValueError(f"{w}: the parameter set has no load-side chain (JL1, kL1, ...)")
     stages = [LoadSideStage(i, J, sum(j for j, _, _ in chain[i - 1:]), k) for i, (J, k, _) in enumerate(chain, 1)]
-    lumped = LinearStabilityFromParameters(LumpedLoadSide(parameters))
+    lumpedParameters = LumpedLoadSide(parameters)
+    lumped = LinearStabilityFromParameters(lumpedParameters)          # its modes: which ones move the wheel
+    lumpedStable = DriveStability(lumpedParameters).stable           # its verdict: at the duty's operating points
     wheelModes = tuple(sorted({m.frequencyHz for s in lumped.states.values() for m in s.modes
                                if m.energyShare.get('wheel', 0.) >= WHEEL_SHARE and m.eigenvalue.imag != 0}))
     whole = DriveStability(parameters)
@@ -222,9 +224,9 @@ def DiagnoseLoadSide(parameters: Mapping[str, float], margin: float = 0.1) -> Lo
         S, mode = max(((s.S, m) for s in states for m in s.modes), key=lambda sm: sm[1].eigenvalue.real)
         growing = {'S': int(S[0]), 'frequencyHz': mode.frequencyHz, 'realPart': float(mode.eigenvalue.real),
                    'energyShare': dict(mode.energyShare)}
-    diagnosis = LoadSideDiagnosis(stages, margin, wheelModes, lumped.stable, whole.stable, growing)
+    diagnosis = LoadSideDiagnosis(stages, margin, wheelModes, lumpedStable, whole.stable, growing)
     if not diagnosis.lumpingSafe:
         limit = diagnosis.limitFactor * diagnosis.frequencyHz
         cause = next((s.number for s in stages if s.frequencyHz < limit), None)
-        diagnosis = LoadSideDiagnosis(stages, margin, wheelModes, lumped.stable, whole.stable, growing, cause)
+        diagnosis = LoadSideDiagnosis(stages, margin, wheelModes, lumpedStable, whole.stable, growing, cause)
     return diagnosis

@@ -49,7 +49,8 @@ from pathlib import Path
 from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 from .. import __version__
-from ..setups.config import DEFAULT_PRESET, LoadConfig, ResolveParameters
+from ..setups.config import DEFAULT_PRESET, LoadConfig, ResolveParameters, ResolveParametersWithSources
+from ..setups.wholedrive import Drive
 from ..params.plausibility import ImplausibleValueWarning
 from ..model.drive import ElasticDrive
 from ..setups.presets import PRESETS, ElasticDriveFromParameters, MissingParameterError
@@ -58,7 +59,7 @@ from ..params.drivefile import FileKeyOf
 from ..params.drives import ConfigArgument, DocPath, ShippedDrives
 
 __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'SUBCOMMANDS', 'Subcommands',
-           'AddParameterOptions', 'ParametersFromArgs', 'DriveFromArgs', 'SourceText', 'SourceInfo',
+           'AddParameterOptions', 'ParametersFromArgs', 'WholeDriveFromArgs', 'DriveFromArgs', 'SourceText', 'SourceInfo',
            'StdoutToStderr', 'PrintJson', 'CheckOutputPath', 'CheckFigurePath', 'FIGURE_SUFFIXES',
            'AddOverwriteOption', 'WriteAtomically',
            'INTERRUPTED_STATUS', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
@@ -361,8 +362,40 @@ def ParametersFromArgs(args: argparse.Namespace) -> Dict[str, float]:
     UsageError
         For any bad input (unknown preset or key, malformed value, wrong unit, bad config file).
     """
-    with BadInput():
-        return ResolveParameters(preset=args.preset, config=args.config, sets=args.set)
+    resolved = getattr(args, '_resolved', None)
+    if resolved is None:                   # resolved once per command: the file is read once
+        with BadInput():
+            resolved = ResolveParametersWithSources(preset=args.preset, config=args.config, sets=args.set)
+        args._resolved = resolved
+    return dict(resolved[0])
+
+
+def WholeDriveFromArgs(args: argparse.Namespace) -> Drive:
+    """The :class:`~exudyn_worm.setups.wholedrive.Drive` of the shared options, resolved and checked once per
+    command (a second call returns the same object, so its analyses are computed once).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed arguments of a subcommand with :func:`AddParameterOptions`.
+
+    Returns
+    -------
+    Drive
+
+    Raises
+    ------
+    UsageError
+        For any bad input (also a drive the model rejects).
+    """
+    drive = getattr(args, '_drive', None)
+    if drive is None:
+        ParametersFromArgs(args)
+        parameters, sources = args._resolved
+        with BadInput():
+            drive = Drive.FromParameters(parameters, sources, name=SourceText(args))
+        args._drive = drive
+    return drive
 
 
 def DriveFromArgs(args: argparse.Namespace) -> Tuple[Dict[str, float], ElasticDrive]:
@@ -383,9 +416,8 @@ def DriveFromArgs(args: argparse.Namespace) -> Tuple[Dict[str, float], ElasticDr
     UsageError
         For bad input or parameters the model rejects (its ``ValueError``/``TypeError``).
     """
-    parameters = ParametersFromArgs(args)
-    with BadInput():
-        return parameters, ElasticDriveFromParameters(parameters)
+    drive = WholeDriveFromArgs(args)
+    return dict(drive.parameters), drive.elastic
 
 
 @contextlib.contextmanager

@@ -1,60 +1,115 @@
-"""``exudyn-worm stability``: linear stability of a parameter set (eqs. (15)-(21)) with a design hint."""
+"""``exudyn-worm stability``: linear stability of a drive at the operating points of its duty, with a design hint."""
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import math
 from typing import Dict, List
 
-from .main import (BadInput, DriveFromArgs, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr,
-                   Subcommand, UsageError)
+from .main import BadInput, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs
 from ..analysis.design import StabilizingChanges
+from ..analysis.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, DriveAnalysis
 from ..model.geometry import DescribeGeometry, GeometryForm
-from ..setups.presets import ExtraComponents
-from ..model.stability import CONTACT_STATES, AnalyzeStability, OperatingPointFromParameters, StabilityAnalysis
+from ..model.stability import CONTACT_STATES, StabilityAnalysis
 
-__all__ = ['COMMAND', 'FormatStability', 'StabilityHint', 'StabilityHintData']
+__all__ = ['COMMAND', 'FormatStability', 'OperatingPointLines', 'VerdictLine', 'StabilityHint', 'StabilityHintData']
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--method', choices=('analytical', 'exudyn'), default=None,
                         help='analytical: eqs. (15)-(19) of the paper (default for the two-mass drive); exudyn: '
                              'eigenvalues of the linearized Exudyn model (default, and the only choice, for a '
-                             'drive with a drive-side chain J4, ... or a worm axial bearing kA)')
+                             'drive with a drive-side or load-side chain, a worm axial bearing or a motor on its '
+                             'characteristic)')
 
 
-def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra: List[str]) -> int:
-    """A drive beyond two masses: the linearized Exudyn model of the whole drive, every contact state."""
-    # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.drivestability import DriveStability
-    with StdoutToStderr(args.json), BadInput():
-        analysis = DriveStability(parameters)          # the whole drive's linearization: it has extra components
-        loadSide = None
-        if 'a load-side chain (JL1, ...)' in extra:   # may the driven machine be lumped into J2? which stage is not?
-            # lazy: start-up (exudyn-worm --help imports every command module)
-            from ..analysis.loadside import DiagnoseLoadSide
-            loadSide = DiagnoseLoadSide(parameters)
+_RPM = 60. / (2 * math.pi)
+
+
+def OperatingPointLines(analysis: DriveAnalysis) -> List[str]:
+    """The table of a drive's operating points and the line naming the one that decides (``stability``, ``check``).
+
+    Parameters
+    ----------
+    analysis : DriveAnalysis
+        Result of :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`.
+
+    Returns
+    -------
+    list of str
+    """
+    if not analysis.operatingPoints:
+        return [f"Operating points: none ({analysis.decidingText})"]
+    lines = ['Operating points of the duty (each steady phase in each direction of power flow, at the largest load '
+             'torque of that direction in the phase)',
+             f"  {'phase':<9} {'motor rpm':>9} {'load N*m':>10} {'v0 m/s':>8} {'mu(v0)':>7} {'dmu/dv s/m':>10} "
+             f"{'Fn0 N':>10} {'S':>3} {'Re 1/s':>9} {'f Hz':>8}  verdict, self-locking while moving"]
+    for p in analysis.operatingPoints:
+        op = p.point.operatingPoint
+        dynamic = p.selfLocking.dynamic
+        lines.append(f"  {p.phase:<9} {p.point.motorSpeed * _RPM:9.4g} {p.point.loadTorque:10.4g} "
+                     f"{op.slidingSpeed:8.4g} {op.mu:7.4g} {op.dmuDv:10.4g} {op.normalForce:10.4g} {op.S:+3d} "
+                     f"{p.maxRealPart:9.4g} {p.frequencyHz:8.4g}  {'stable' if p.stable else 'UNSTABLE'}, "
+                     f"{dynamic.rating if dynamic is not None else 'n/a'}")
+    lines.append(f"  ({', '.join(sorted({p.point.source for p in analysis.operatingPoints}))}; {analysis.decidingText})")
+    return lines
+
+
+def VerdictLine(analysis: DriveAnalysis) -> str:
+    """The drive's one verdict, as every command prints it.
+
+    Parameters
+    ----------
+    analysis : DriveAnalysis
+        Result of :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`.
+
+    Returns
+    -------
+    str
+    """
+    p = analysis.deciding
+    where = '' if p is None else f" (decided by the {p.phase} phase, S = {p.S:+d}, at {p.point.motorSpeed * _RPM:.4g} rpm: " \
+                                  f"{p.maxRealPart:.4g} 1/s at {p.frequencyHz:.4g} Hz)"
+    if p is None:
+        where = ' (at rest, every contact state: the duty has no steady phase)'
+    return f"Verdict: {'STABLE (no chatter predicted by the linear model)' if analysis.stable else 'UNSTABLE (chatter expected)'}{where}"
+
+
+def _DangerLines(analysis: DriveAnalysis) -> List[str]:
+    return [f"DANGER at {label}: self-locking at rest (mu {v.static.mu:.4g}) but not while moving (mu {v.dynamic.mu:.4g}): "
+            f"the load holds, but runs away once it moves" for label, v in analysis.selfLockingVerdicts.items()
+            if v.dangerous]
+
+
+def _RunWholeDrive(args: argparse.Namespace, analysis: DriveAnalysis) -> int:
+    """A drive beyond two masses (or --method exudyn): the linearized Exudyn model at each operating point."""
+    drive = analysis.drive
+    loadSide = None
+    if drive.loadSideChain:          # may the driven machine be lumped into J2? which stage is not?
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..analysis.loadside import DiagnoseLoadSide
+        with StdoutToStderr(args.json), BadInput():
+            loadSide = DiagnoseLoadSide(dict(drive.parameters))
     if args.json:
-        PrintJson({**analysis.ToDict(), 'method': 'exudyn', 'components': extra,
+        PrintJson({**analysis.ToDict(), 'method': 'exudyn', 'components': [c.text for c in drive.components],
+                   'coordinates': list((analysis.operatingPoints[0].analysis if analysis.operatingPoints
+                                        else analysis.atRest).coordinates),
+                   'states': [p.state.ToDict() for p in analysis.operatingPoints] or
+                             [s.ToDict() for s in analysis.atRest.states.values()],
                    **({'loadSide': loadSide.ToDict()} if loadSide is not None else {})})
         return 0
+    what = f"it has {drive.ComponentsText()}" if drive.components else 'chosen with --method exudyn'
     lines = [f"exudyn-worm stability: {SourceText(args)}, method exudyn (linearized Exudyn model of the whole "
-             f"drive: it has {' and '.join(extra)})", '']
-    op = analysis.operatingPoint
-    if op is not None:
-        lines += [f"Operating point (steady lowering): v0 = {op.slidingSpeed:.4g} m/s, Fn0 = {op.normalForce:.4g} N, "
-                  f"mu(v0) = {op.mu:.4g}, dmu/dv = {op.dmuDv:.4g} s/m", '']
-    for state in analysis.states.values():
-        verdict = 'stable' if state.stable else 'UNSTABLE'
-        lines.append(f"S = {', '.join(f'{s:+d}' for s in state.S)}: {verdict}, largest real part "
-                     f"{state.maxRealPart:.4g} 1/s")
+             f"drive: {what})", '']
+    lines += OperatingPointLines(analysis) + ['']
+    states = [(f"{p.point.Label()}, S = {p.S:+d}", p.state) for p in analysis.operatingPoints] or \
+        [(f"at rest, S = {', '.join(f'{s:+d}' for s in state.S)}", state) for state in analysis.atRest.states.values()]
+    for label, state in states:
+        lines.append(f"{label}: {'stable' if state.stable else 'UNSTABLE'}, largest real part {state.maxRealPart:.4g} 1/s")
         lines.append(f"  {'f (Hz)':>9} {'Lehr D':>9} {'Re (1/s)':>10}  coordinates taking part (kinetic energy share)")
         for mode in state.modes:
             parts = ', '.join(f"{k} {mode.energyShare[k]:.0%}" for k in mode.Participants())
             lines.append(f"  {mode.frequencyHz:9.2f} {_G(mode.lehrDamping, 4):>9} {mode.eigenvalue.real:10.4g}  {parts}")
-    lines.append('')
-    lines.append('Stable in every contact state.' if analysis.stable else
-                 'Unstable: the drive chatters where the unstable contact state occurs (S = -1: lowering).')
+    lines += [''] + _DangerLines(analysis) + [VerdictLine(analysis)]
     if loadSide is not None:
         lines.append(f"Load side: {loadSide.Text()}.")
     print('\n'.join(lines))
@@ -62,36 +117,32 @@ def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra
 
 
 def _Run(args: argparse.Namespace) -> int:
-    parameters = ParametersFromArgs(args)
-    extra = ExtraComponents(parameters)
-    if extra:
-        if args.method == 'analytical':
-            raise UsageError(f"--method analytical: eqs. (15)-(19) describe the two-mass drive of Figure 2; this "
-                             f"drive has {' and '.join(extra)}; use --method exudyn (the default for such a drive)")
-        return _RunWholeDrive(args, parameters, extra)
-    args.method = args.method or 'analytical'
-    parameters, drive = DriveFromArgs(args)
-    with BadInput():        # steady lowering at motorSpeed under loadMass * g * leverArm, if the set gives them
-        operatingPoint = OperatingPointFromParameters(parameters, drive.gear)
-    if args.method == 'exudyn':
-        # lazy: start-up (exudyn-worm --help imports every command module)
-        from ..analysis.linearization import AnalyzeStabilityExudyn
-        with StdoutToStderr(args.json):    # constant mu: the linear model is the same at rest (no speed or load in it)
-            analysis = AnalyzeStabilityExudyn(drive, operatingPoint=operatingPoint) if \
-                drive.gear.speedDependentFriction and operatingPoint is not None else AnalyzeStabilityExudyn(drive)
-        analysis = dataclasses.replace(analysis, operatingPoint=operatingPoint)
-    else:
-        analysis = AnalyzeStability(drive, operatingPoint)
+    drive = WholeDriveFromArgs(args)
+    if drive.components and args.method == 'analytical':
+        raise UsageError(f"--method analytical: eqs. (15)-(19) describe the two-mass drive of Figure 2; this "
+                         f"drive has {drive.ComponentsText()}; use --method exudyn (the default for such a drive)")
+    model = LINEARIZED if drive.components or args.method == 'exudyn' else ANALYTICAL
+    with StdoutToStderr(args.json), BadInput():
+        analysis = AnalyzeDrive(drive, model)
+        analysis.stable
+    if drive.components:
+        return _RunWholeDrive(args, analysis)
+    parameters = dict(drive.parameters)
+    method = 'analytical' if model == ANALYTICAL else 'exudyn'
+    deciding = analysis.deciding
+    table = analysis.atRest if deciding is None else deciding.analysis     # both contact states at the deciding point
     hint = None if analysis.stable else StabilityHintData(parameters)
     if args.json:
         g = drive.gear
         geometry = {'form': GeometryForm(parameters), 'r1': g.r1, 'r2': g.r2, 'gamma': g.gamma, 'u': g.ratio}
-        PrintJson({**analysis.ToDict(), 'geometry': geometry, 'hint': hint})
+        PrintJson({**table.ToDict(), **analysis.ToDict(), 'method': method, 'geometry': geometry, 'hint': hint})
         return 0
-    lines = FormatStability(analysis, title=f"exudyn-worm stability: {SourceText(args)}, method {args.method}")
+    where = 'at rest' if deciding is None else f"at the deciding operating point, {deciding.point.Label()}"
+    lines = FormatStability(table, title=f"exudyn-worm stability: {SourceText(args)}, method {method}", where=where)
     geometry = DescribeGeometry(parameters)
     if geometry:                  # given as a designation: say how r1, r2, gamma, u were derived
         lines.insert(1, geometry[0].upper() + geometry[1:])
+    lines += [''] + OperatingPointLines(analysis) + [''] + _DangerLines(analysis) + [VerdictLine(analysis)]
     if hint is not None:
         lines.append(hint['text'])
     print('\n'.join(lines))
@@ -107,7 +158,7 @@ def _Complex(z: complex) -> str:
     return f"{z.real:.3f} {'+' if z.imag >= 0 else '-'} {abs(z.imag):.3f}i"
 
 
-def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability') -> List[str]:
+def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability', where: str = '') -> List[str]:
     """Human-readable table of a :class:`StabilityAnalysis` (the ``stability`` subcommand's output).
 
     Parameters
@@ -116,6 +167,8 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability') -> Li
         Result of :func:`~exudyn_worm.model.stability.AnalyzeStability` (or of the Exudyn linearization).
     title : str, optional
         First line.
+    where : str, optional
+        Where the drive was linearized (named in the heading of the per-state table).
 
     Returns
     -------
@@ -155,7 +208,7 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability') -> Li
               row('J1/J2', _G(d.inertiaRatio, 4)),
               row('kT/(kV r1^2)', _G(d.stiffnessRatio, 4))]
     c = {S: analysis.contact[S] for S in CONTACT_STATES}
-    lines += ['', 'Linear stability per contact state S (eqs. (15)-(19))',
+    lines += ['', f"Linear stability per contact state S (eqs. (15)-(19)){', ' + where if where else ''}",
               row('', *(f'S = {S:+d}' for S in CONTACT_STATES))]
     for i, unit in enumerate(('1/s', '1/s^2', '1/s^3', '1/s^4')):
         lines.append(row(f'b{i + 1} [{unit}]', *(_G(c[S].b[i]) for S in CONTACT_STATES)))
@@ -181,12 +234,12 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability') -> Li
               row('first criterion limit (20)', _G(first, 4), verdict(first)),
               '']
     if analysis.stable:
-        lines.append('Verdict: STABLE for S = +1 and S = -1 (no chatter predicted by the linear model)')
+        lines.append('Both contact states: STABLE for S = +1 and S = -1')
     else:
         bad = [f'S = {S:+d}' for S in CONTACT_STATES if not c[S].stable]
         violated = sorted({n for S in CONTACT_STATES for n, v in zip(('(17)', '(18)', '(19)'), c[S].hurwitz)
                            if v <= 0})
-        lines.append(f"Verdict: UNSTABLE for {' and '.join(bad)} (chatter expected); Hurwitz conditions violated: "
+        lines.append(f"Contact states: UNSTABLE for {' and '.join(bad)}; Hurwitz conditions violated: "
                      f"{', '.join(violated) if violated else 'none of (17)-(19) (b3 or b4 <= 0)'}")
         if not classicChatter:
             lines.append('Note: the classic criteria (20) and (21) predict no chatter here; they alone are '

@@ -41,7 +41,7 @@ def ShippedDrives() -> Dict[str, Path]:
     """``{name: path}`` of the shipped drive files, the name being the file name without ``.toml``
     (``'figure19'``, ``'reel-P1'``, ...), sorted by name."""
     folder = DrivesFolder()
-    return {} if folder is None else {p.stem: p for p in sorted(folder.glob('*.toml'))}
+    return {} if folder is None else {p.stem: p for p in sorted(folder.glob('*.toml'), key=lambda p: p.stem)}
 
 
 def ShippedDrive(name: str) -> Path:

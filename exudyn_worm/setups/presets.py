@@ -453,6 +453,7 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     TypeError
         If ``parameters`` is not a mapping.
     """
+    CheckParameterKeys(parameters, 'DriveFromParameters')
     extra = ExtraComponents(parameters)
     if extra:
         raise ValueError(f"DriveFromParameters: the parameter set has {' and '.join(extra)}, which the two-mass "

@@ -37,7 +37,13 @@ __all__ = ['Component', 'Drive', 'ResolveDrive', 'AsDrive']
 
 
 class Component(str, enum.Enum):
-    """A part of a drive beyond the two-mass drive of Figure 2 (which eqs. (15)-(21) describe)."""
+    """A part of a drive beyond the two-mass drive of Figure 2 (which eqs. (15)-(21) describe).
+
+    Attributes
+    ----------
+    DRIVE_SIDE_CHAIN, LOAD_SIDE_CHAIN, AXIAL_BEARING, MOTOR_CHARACTERISTIC : Component
+        The components; the value is the component's short name.
+    """
     DRIVE_SIDE_CHAIN = 'drive-side chain'
     LOAD_SIDE_CHAIN = 'load-side chain'
     AXIAL_BEARING = 'worm axial bearing'

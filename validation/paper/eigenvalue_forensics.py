@@ -43,7 +43,7 @@ from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from exudyn_worm.model.drive import ElasticDrive
-from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.stability import CharacteristicCoefficients, ContactStability, EigenvaluesFromPolynomial
 
 # the friction coefficient the printed b1..b4 and (19) were computed with (see validation/REPORT.md)
@@ -196,12 +196,12 @@ class HypothesisResult:
 
 
 def _Drive(parameters, **overrides) -> ElasticDrive:
-    return DriveFromParameters(ApplyOverrides(parameters, overrides))
+    return ElasticDriveFromParameters(ApplyOverrides(parameters, overrides))
 
 
 def _KeepDamping(parameters, **overrides) -> ElasticDrive:
     """Drive with ``overrides`` but the damping coefficients dT, dV of ``parameters`` unchanged."""
-    d = DriveFromParameters(parameters)
+    d = ElasticDriveFromParameters(parameters)
     return _Drive(parameters, **{'dT': d.dT, 'dV': d.gear.dV, **overrides})
 
 
@@ -251,10 +251,10 @@ def Hypotheses() -> List[Hypothesis]:
           fitted='s', bounds=(0.9, 1.1)),
         H('circ+fit-rho', 'circ with rho fitted (deg)', lambda p, v: _Circ(_Drive(p, rho=math.radians(v))),
           fitted='rho/deg', bounds=(7.0, 9.0)),
-        H('circ+fit-dT', 'circ with dT x s, s fitted', lambda p, v: _Circ(_KeepDamping(p, dT=DriveFromParameters(p).dT * v)),
+        H('circ+fit-dT', 'circ with dT x s, s fitted', lambda p, v: _Circ(_KeepDamping(p, dT=ElasticDriveFromParameters(p).dT * v)),
           fitted='s', bounds=(0.5, 1.5)),
         H('circ+fit-dV', 'circ with dV x s, s fitted',
-          lambda p, v: _Circ(_KeepDamping(p, dV=DriveFromParameters(p).gear.dV * v)), fitted='s', bounds=(0.5, 1.5)),
+          lambda p, v: _Circ(_KeepDamping(p, dV=ElasticDriveFromParameters(p).gear.dV * v)), fitted='s', bounds=(0.5, 1.5)),
     ]
 
 
