@@ -11,7 +11,7 @@ import numpy as np
 
 __all__ = ['Ratio', 'FrictionAngle', 'Dampings', 'MeshCoefficients', 'BCoefficients', 'Eigenvalues',
            'HurwitzStable', 'ChainEigenvalues', 'BoundaryDecades',
-           'AxialBearingEigenvalues']
+           'AxialBearingEigenvalues', 'FrictionSlopeEigenvalues']
 
 
 def Ratio(p) -> float:
@@ -125,3 +125,38 @@ def AxialBearingEigenvalues(p, S: int) -> np.ndarray:
     C = np.diag([dT, 0., p.get('dA', 0.)]) + dV * np.outer(lever, gradient)
     Minv = np.diag(1. / np.array([p['J1'], p['J2'], p['mA']]))
     return np.linalg.eigvals(np.block([[np.zeros((3, 3)), np.eye(3)], [-Minv @ K, -Minv @ C]]))
+
+
+def FrictionSlopeEigenvalues(p, loadChain, S: int, mu0: float, dmuDv: float, Fn0: float) -> np.ndarray:
+    """Eigenvalues of the drive linearized at a steady operating point with a speed-dependent friction: motor held
+    --(kT, dT)-- J1 --mesh-- J2 --(kL1, dL1)-- JL1 -- ... (a load-side chain, wheel side first).
+
+    The mesh coefficients c1, c3 of eqs. (9), (11) are taken at mu0 (rho of eq. (13) at mu0), and the friction
+    force mu(v) Fn with v = r1 |phi1'| / cos(gamma) adds the damping of its slope: the worm torque -c2 sigma Fn and
+    the wheel torque c4 sigma Fn change with phi1' through mu, c2 = r1 (cos(alphaN) sin(gamma) + S mu cos(gamma)),
+    c4 = r2 (cos(alphaN) cos(gamma) - S mu sin(gamma)) (eqs. (10), (12) with (13)), i.e. Fn0 r1^2 mu' in the worm
+    row and Fn0 r1 r2 tan(gamma) mu' in the wheel row, both in the worm-speed column.
+    """
+    q = {**p, 'mu': mu0}
+    u, (dT, dV), (c1, c3) = Ratio(q), Dampings(q), MeshCoefficients(q, S)
+    n = 2 + len(loadChain)                               # coordinates: phi1, phi2, phiL1, ...
+    M, C, K = np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n))
+    M[0, 0], M[1, 1] = q['J1'], q['J2']
+    kV = q['kV']
+    for (i, j), kk, dd in [((0, 0), q['kT'], dT), ((0, 0), kV * c1, dV * c1), ((0, 1), -kV * c1 * u, -dV * c1 * u),
+                           ((1, 0), -kV * c3, -dV * c3), ((1, 1), kV * c3 * u, dV * c3 * u)]:
+        K[i, j] += kk
+        C[i, j] += dd
+    C[0, 0] += Fn0 * q['r1']**2 * dmuDv
+    C[1, 0] += Fn0 * q['r1'] * q['r2'] * math.tan(q['gamma']) * dmuDv
+    for m, (J, k, d) in enumerate(loadChain):
+        i, j = 1 + m, 2 + m                              # shaft m between wheel (or stage m) and stage m + 1
+        M[j, j] = J
+        for A, v in ((K, k), (C, d)):
+            A[i, i] += v
+            A[j, j] += v
+            A[i, j] -= v
+            A[j, i] -= v
+    Minv = np.linalg.inv(M)
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ C]])
+    return np.linalg.eigvals(A)

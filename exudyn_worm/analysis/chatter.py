@@ -32,7 +32,8 @@ from .._checks import CheckPositive, CheckReal, CheckSystem
 from ..items.connector import CONNECTORS_KEY, WormGearConnector
 from .linearization import AnalyzeLinearStability
 from .drivestability import DriveStability
-from ..setups.presets import (AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, ExtraComponents,
+from ..setups.wholedrive import Component
+from ..setups.presets import (AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain,
                       LoadSideChain)
 from .reelchanger import (SOLVER_SETTINGS, BuildReelChanger, CheckReelChangerKeys, SolverSettings,
                           SteadyInitialState)
@@ -157,11 +158,10 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
     """
     w = 'BuildLoweringModel'
     CheckReelChangerKeys(parameters, w)
-    unsupported = ExtraComponents({k: parameters[k] for k in ('motorType',) if k in parameters})
-    if unsupported:
+    if parameters.get('motorType') == 'characteristic':
         raise ValueError(f"{w}: the periodic-orbit analysis holds the motor at constant speed 'motorSpeed' (the "
-                         f"lowering phase of the linear analysis); this parameter set has {' and '.join(unsupported)} "
-                         f"(not supported); leave those keys out")
+                         f"lowering phase of the linear analysis); this parameter set has "
+                         f"{Component.MOTOR_CHARACTERISTIC.text} (not supported); leave those keys out")
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
     drive = ElasticDriveFromParameters(parameters)

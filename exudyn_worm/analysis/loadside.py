@@ -24,10 +24,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Dict, List, Mapping, Optional, Tuple
+from typing import Dict, List, Mapping, Optional, Tuple, Union
 from .._checks import CheckRange
 from .linearization import LinearStabilityFromParameters
 from .drivestability import DriveStability
+from ..setups.wholedrive import Drive
 from ..setups.presets import LoadSideChain, LumpedLoadSide
 
 __all__ = ['WHEEL_SHARE', 'LoadSideStage', 'LoadSideDiagnosis', 'DiagnoseLoadSide', 'LoadSideNotLumpable']
@@ -187,13 +188,14 @@ class LoadSideNotLumpable(ValueError):
         self.diagnosis = diagnosis
 
 
-def DiagnoseLoadSide(parameters: Mapping[str, float], margin: float = 0.1) -> LoadSideDiagnosis:
+def DiagnoseLoadSide(parameters: Union[Mapping[str, float], Drive], margin: float = 0.1) -> LoadSideDiagnosis:
     """May the load-side chain of ``parameters`` be lumped into J2? The criterion is in the module docstring.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with a load-side chain (``JL1``, ``kL1``, ...).
+    parameters : mapping or Drive
+        Flat parameter set with a load-side chain (``JL1``, ``kL1``, ...), or the drive (whose verdict is then
+        taken from its own, cached analysis).
     margin : float, optional
         Margin in decades, in [0, 1] (default 0.1, the design check's).
 
@@ -208,6 +210,8 @@ def DiagnoseLoadSide(parameters: Mapping[str, float], margin: float = 0.1) -> Lo
     """
     w = 'DiagnoseLoadSide'
     margin = CheckRange(w, 'margin', margin, low=0., high=1., unit='decades')
+    drive = parameters if isinstance(parameters, Drive) else None
+    parameters = dict(parameters.parameters) if drive is not None else parameters
     chain = LoadSideChain(parameters)
     if not chain:
         raise ValueError(f"{w}: the parameter set has no load-side chain (JL1, kL1, ...)")
@@ -217,7 +221,7 @@ def DiagnoseLoadSide(parameters: Mapping[str, float], margin: float = 0.1) -> Lo
     lumpedStable = DriveStability(lumpedParameters).stable           # its verdict: at the duty's operating points
     wheelModes = tuple(sorted({m.frequencyHz for s in lumped.states.values() for m in s.modes
                                if m.energyShare.get('wheel', 0.) >= WHEEL_SHARE and m.eigenvalue.imag != 0}))
-    whole = DriveStability(parameters)
+    whole = DriveStability(parameters if drive is None else drive)
     growing = None
     if not whole.stable:
         states = [p.state for p in whole.operatingPoints] or list(whole.atRest.states.values())

@@ -88,7 +88,7 @@ def _RunWholeDrive(args: argparse.Namespace, analysis: DriveAnalysis) -> int:
         # lazy: start-up (exudyn-worm --help imports every command module)
         from ..analysis.loadside import DiagnoseLoadSide
         with StdoutToStderr(args.json), BadInput():
-            loadSide = DiagnoseLoadSide(dict(drive.parameters))
+            loadSide = DiagnoseLoadSide(drive)
     if args.json:
         PrintJson({**analysis.ToDict(), 'method': 'exudyn', 'components': [c.text for c in drive.components],
                    'coordinates': list((analysis.operatingPoints[0].analysis if analysis.operatingPoints
