@@ -63,6 +63,16 @@ def HurwitzStable(p) -> bool:
     return True
 
 
+def _AddSpring(K, C, i, j, k, d):
+    """A spring-damper (k, d) between coordinates i and j (j None: to a held body) into K and C."""
+    for A, v in ((K, k), (C, d)):
+        A[i, i] += v
+        if j is not None:
+            A[j, j] += v
+            A[i, j] -= v
+            A[j, i] -= v
+
+
 def ChainEigenvalues(p, chain, S: int) -> np.ndarray:
     """Eigenvalues of the linearized drive with a drive-side chain (Figure 19), from its mass, damping and
     stiffness matrices: motor (held) --(k_n, d_n)-- J_n -- ... --(k4, d4)-- J4 --(kT, dT)-- J1 --mesh-- J2.
@@ -83,12 +93,7 @@ def ChainEigenvalues(p, chain, S: int) -> np.ndarray:
     for m, (J, _, _) in enumerate(chain):
         M[2 + m, 2 + m] = J
     for i, j, k, d in springs:
-        for A, v in ((K, k), (C, d)):
-            A[i, i] += v
-            if j < n:                                    # the last spring ends on the (held) motor
-                A[j, j] += v
-                A[i, j] -= v
-                A[j, i] -= v
+        _AddSpring(K, C, i, j if j < n else None, k, d)      # the last spring ends on the (held) motor
     Minv = np.linalg.inv(M)
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ C]])
     return np.linalg.eigvals(A)
@@ -152,11 +157,7 @@ def FrictionSlopeEigenvalues(p, loadChain, S: int, mu0: float, dmuDv: float, Fn0
     for m, (J, k, d) in enumerate(loadChain):
         i, j = 1 + m, 2 + m                              # shaft m between wheel (or stage m) and stage m + 1
         M[j, j] = J
-        for A, v in ((K, k), (C, d)):
-            A[i, i] += v
-            A[j, j] += v
-            A[i, j] -= v
-            A[j, i] -= v
+        _AddSpring(K, C, i, j, k, d)
     Minv = np.linalg.inv(M)
     A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ K, -Minv @ C]])
     return np.linalg.eigvals(A)
