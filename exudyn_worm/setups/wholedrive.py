@@ -21,11 +21,13 @@ Checks made when the drive is built (so that no command meets them later):
 from __future__ import annotations
 
 import enum
+import os
 import types
 from dataclasses import dataclass, field
 from typing import Any, Dict, Iterable, Mapping, Optional, Tuple, Union
 
 from ..items.connector import AxialBearing
+from ..params.drives import ConfigPath
 from ..model.drive import ElasticDrive
 from ..model.gear import WormGear
 from .config import ResolveParametersWithSources
@@ -268,7 +270,8 @@ def ResolveDrive(preset: Optional[str] = None, config: Union[None, str, Mapping]
     preset : str, optional
         Preset name (see :data:`~exudyn_worm.setups.presets.PRESETS`).
     config : str, path-like or dict, optional
-        A drive file (TOML) or its content (:func:`~exudyn_worm.setups.config.LoadConfig`).
+        A drive file (TOML), the name of a shipped drive (``'hoist'``, ``'figure19'``, ...) or the file's content
+        (:func:`~exudyn_worm.setups.config.LoadConfig`).
     sets : iterable of str or (str, float)
         Overrides ``'KEY=VALUE'`` (units allowed) applied last.
     parameters : mapping, optional
@@ -297,6 +300,8 @@ def ResolveDrive(preset: Optional[str] = None, config: Union[None, str, Mapping]
             return Drive.FromParameters(parameters, name='drive')
         p, sources = ResolveParametersWithSources(config={'parameters': dict(parameters)}, sets=sets)
         return Drive.FromParameters(p, {k: 'API' if v.startswith('preset ') else v for k, v in sources.items()})
+    if isinstance(config, (str, os.PathLike)):
+        config = ConfigPath(config)                       # a shipped drive by its name, as --config takes it
     p, sources = ResolveParametersWithSources(preset, config, sets)
     name = preset or (str(config) if isinstance(config, (str, bytes)) or hasattr(config, '__fspath__') else None) \
         or next((v[len('preset '):] for v in sources.values() if v.startswith('preset ')), 'drive')
