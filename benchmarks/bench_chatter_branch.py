@@ -60,7 +60,7 @@ def CheckBranch(name, low, high, changes, checks, duration, stepSize):
             'messages': branch.messages}
 
 
-#: the item-6 branch: reel-P1 in kT over 2000-20000 N m/rad with the continuation step that gives about 50 orbits
+#: the 50-orbit branch: reel-P1 in kT over 2000-20000 N m/rad with the continuation step that gives about 50 orbits
 FIFTY = ('kT', 2000., 20000., 0.045)
 
 

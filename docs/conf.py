@@ -58,6 +58,8 @@ root_doc = 'index'
 exclude_patterns = ['_build']
 html_theme = 'furo'
 html_title = f'exudyn-worm {release}'
+html_static_path = ['_static']
+html_css_files = ['math.css']
 
 # MathJax 3 from the sphinx-mathjax-offline package, copied into _static/mathjax/ of the site
 mathjax_path = 'mathjax/tex-chtml.js'
@@ -203,7 +205,7 @@ class _Gallery:
 
     def Start(self, folder: Path) -> None:
         self.folder = folder
-        workers = max(1, min(len(ExampleScripts()), (os.cpu_count() or 2) - 1))
+        workers = max(1, min(len(ExampleScripts()), os.cpu_count() or 1))
         pool = ThreadPoolExecutor(max_workers=workers)
         self.futures = {path.stem: pool.submit(_RunExample, path, folder / path.stem) for path in ExampleScripts()}
         pool.shutdown(wait=False)
