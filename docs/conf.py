@@ -328,6 +328,27 @@ def _Generate(app, docname, source):
         source[0] = GalleryPage(Path(app.srcdir))
 
 
+def _ReexportedReference(app, env, node, contnode):
+    """Resolve a reference to a name re-exported by exudyn_worm (``:func:`exudyn_worm.CreateWormGear```, or
+    ``:func:`CreateWormGear``` in the package's own docstring) to the module that defines and documents it."""
+    if node.get('refdomain') != 'py':
+        return None
+    target = node['reftarget'].lstrip('~.')
+    if target.startswith('exudyn_worm.') and target.count('.') == 1:
+        name = target.split('.', 1)[1]
+    elif node.get('py:module') == 'exudyn_worm' and '.' not in target:
+        name = target
+    else:
+        return None
+    if name not in exudyn_worm.__all__ or name.startswith('_'):
+        return None
+    home = _DefiningModule(name)
+    if home == 'exudyn_worm':
+        return None
+    return env.get_domain('py').resolve_xref(env, node['refdoc'], app.builder, node['reftype'], f'{home}.{name}',
+                                             node, contnode)
+
+
 def _CheckBuiltSite(app, exception):
     if exception is None and app.builder.format == 'html' and app.builder.name in ('html', 'dirhtml'):
         for problem in sitecheck.CheckSite(app.outdir):
@@ -339,5 +360,6 @@ def setup(app):
     app.connect('env-get-outdated', _AlwaysOutdated)
     app.connect('env-before-read-docs', _StartGallery)
     app.connect('source-read', _Generate)
+    app.connect('missing-reference', _ReexportedReference)
     app.connect('build-finished', _CheckBuiltSite, priority=900)    # after MathJax is copied (priority 500)
     return {'parallel_read_safe': False}
