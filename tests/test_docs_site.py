@@ -1,7 +1,9 @@
 """The documentation site: pages a reader can follow, the checker of the built site, and (slow, with the docs
 extra installed) the built site itself: every local link and anchor resolves and the equations need no network."""
 import ast
+import importlib
 import importlib.util
+import inspect
 import pkgutil
 import re
 import subprocess
@@ -161,6 +163,19 @@ def _DocsExtraInstalled():
                for name in ('sphinx', 'myst_parser', 'numpydoc', 'furo', 'sphinx-mathjax-offline'))
 
 
+def _ModulesWithCode():
+    """Public modules that define a function or class of their ``__all__``: each has a highlighted source page."""
+    names = []
+    for info in pkgutil.walk_packages(exudyn_worm.__path__, 'exudyn_worm.'):
+        if any(part.startswith('_') for part in info.name.split('.')):
+            continue
+        module = importlib.import_module(info.name)
+        objects = [getattr(module, n) for n in getattr(module, '__all__', ())]
+        if any((inspect.isfunction(obj) or inspect.isclass(obj)) and obj.__module__ == info.name for obj in objects):
+            names.append(info.name)
+    return names
+
+
 @pytest.mark.slow
 @pytest.mark.skipif(not _DocsExtraInstalled(), reason="needs the docs extra: pip install -e '.[docs]'")
 def test_built_site_has_working_links_and_offline_math(tmp_path):
@@ -174,6 +189,8 @@ def test_built_site_has_working_links_and_offline_math(tmp_path):
     model = sitecheck.ReadPage(out / 'model.html')
     assert model.hasMath and ('script', '_static/mathjax/tex-chtml.js') in model.assets
     assert (out / '_static' / 'mathjax' / 'output' / 'chtml' / 'fonts' / 'woff-v2').is_dir()
+    assert _ModulesWithCode() and [m for m in _ModulesWithCode()
+                                   if not (out / '_modules' / (m.replace('.', '/') + '.html')).is_file()] == []
     gallery = (out / 'gallery.html').read_text(encoding='utf-8')
     captions = tomllib.loads((DOCS / 'gallery.toml').read_text(encoding='utf-8'))
     for figures in captions.values():
