@@ -10,7 +10,8 @@ It reads every ``*.html`` file below the folder and reports
 - a broken local link: an ``href`` or ``src`` to a file that is not in the site, or to an ``#anchor`` (an ``id`` or
   ``name``) that the target page does not have; the source pages' "[docs]" back-links are such links;
 - a remote asset: a script, style sheet, image or font loaded from another host (``http:``, ``https:`` or ``//``),
-  which a reader behind a firewall or offline does not get;
+  by a page or by one of its style sheets (``url(...)``, ``@import``), which a reader behind a firewall or offline
+  does not get;
 - a page with equations (an element of class ``math``) that loads no math renderer shipped with the site.
 
 Links to other sites (``<a href="https://...">``) are not followed: the check is about the site's own pages.
@@ -19,6 +20,7 @@ built site.
 """
 from __future__ import annotations
 
+import re
 import sys
 from html.parser import HTMLParser
 from pathlib import Path
@@ -104,9 +106,14 @@ def ReadPage(path: Path) -> PageLinks:
     return page
 
 
+def _HasScheme(url: str) -> bool:
+    """A URL with a scheme (``https:``, ``mailto:``, ``data:``) or a host (``//host/...``): not a file of the site."""
+    return bool(urlsplit(url).scheme) or url.startswith('//')
+
+
 def _IsRemote(url: str) -> bool:
-    parts = urlsplit(url)
-    return bool(parts.scheme) or url.startswith('//')
+    """A URL that is fetched from another host (``data:`` and the like are inline, not fetched)."""
+    return url.startswith('//') or urlsplit(url).scheme.lower() in ('http', 'https', 'ftp')
 
 
 def CheckSite(siteDir) -> List[str]:
@@ -133,13 +140,14 @@ def CheckSite(siteDir) -> List[str]:
         raise ValueError(f"CheckSite: 'siteDir' must be a built HTML site (a folder with index.html), got {str(siteDir)!r}")
     pages: Dict[Path, PageLinks] = {p.resolve(): ReadPage(p) for p in root.rglob('*.html')}
     problems = set()
+    allStylesheets = set()
     for path, page in pages.items():
         where = path.relative_to(root).as_posix()
-        renderers = []
+        renderers, stylesheets = [], []
         for kind, items in (('link', page.links), ('asset', page.assets)):
             for tag, url in items:
-                if _IsRemote(url):
-                    if kind == 'asset':
+                if _HasScheme(url):
+                    if kind == 'asset' and _IsRemote(url):
                         problems.add(f'{where}: <{tag}> loads a remote asset {url}')
                     continue
                 problem, target = _CheckLocal(root, path, url, pages)
@@ -147,10 +155,25 @@ def CheckSite(siteDir) -> List[str]:
                     problems.add(f'{where}: <{tag}> {problem}')
                 elif kind == 'asset' and target is not None and target.name in MATH_RENDERERS:
                     renderers.append(target)
+                elif kind == 'asset' and target is not None and target.suffix == '.css':
+                    stylesheets.append(target)
+        allStylesheets.update(stylesheets)
         if page.hasMath and not renderers:
             problems.add(f'{where}: has equations but loads no math renderer shipped with the site '
                          f'(one of {", ".join(MATH_RENDERERS)})')
+    for stylesheet in sorted(allStylesheets):
+        problems.update(f'{stylesheet.relative_to(root).as_posix()}: loads a remote asset {url}'
+                        for url in _RemoteUrlsInCss(stylesheet))
     return sorted(problems)
+
+
+_CSS_URL = re.compile(r"""url\(\s*['"]?([^'")\s]+)|@import\s+['"]([^'"]+)""")
+
+
+def _RemoteUrlsInCss(path: Path) -> List[str]:
+    """URLs of other hosts that a style sheet loads (``url(...)``, ``@import``): fonts, images, more styles."""
+    text = path.read_text(encoding='utf-8', errors='replace')
+    return sorted({url for match in _CSS_URL.finditer(text) for url in match.groups() if url and _IsRemote(url)})
 
 
 def _CheckLocal(root: Path, page: Path, url: str, pages: Dict[Path, PageLinks]) -> Tuple[Optional[str], Optional[Path]]:

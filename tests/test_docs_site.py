@@ -105,12 +105,13 @@ def test_the_docs_extra_ships_the_math_renderer():
 # ---- the checker of the built site, on small hand-made sites ---------------------------------------------------
 
 def _Site(tmp_path, pages, files=()):
+    """A folder of HTML pages (``{name: body}``) and other files (names, or ``{name: text}``)."""
     for name, html in pages.items():
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
         (tmp_path / name).write_text(f'<html><head></head><body>{html}</body></html>')
-    for name in files:
+    for name, text in (files.items() if isinstance(files, dict) else ((f, 'x') for f in files)):
         (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
-        (tmp_path / name).write_text('x')
+        (tmp_path / name).write_text(text)
     return tmp_path
 
 
@@ -124,7 +125,8 @@ def test_sitecheck_passes_a_sound_site(tmp_path):
         'model.html': f'{_MATHJAX}<div class="math notranslate" id="eq-1">\\[x\\]</div><img src="_images/a.png">',
         'api/index.html': '<a href="../_modules/m.html#F" name="F">src</a>',
         '_modules/m.html': '<div id="F"><a class="viewcode-back" href="../api/index.html#F">[docs]</a></div>'},
-        files=['s.css', '_static/mathjax/tex-chtml.js', '_images/a.png'])
+        files={'s.css': 'a { background: url("data:image/svg+xml;charset=utf-8,<svg/>") } @font-face { src: url(f.woff) }',
+               '_static/mathjax/tex-chtml.js': 'x', '_images/a.png': 'x'})
     assert sitecheck.CheckSite(site) == []
     assert sitecheck.main([str(site)]) == 0
 
@@ -135,7 +137,8 @@ def test_sitecheck_finds_each_kind_of_problem(tmp_path):
         'model.html': '<div class="math">\\(x\\)</div>'
                       '<script src="https://cdn.jsdelivr.net/npm/mathjax@4/tex-mml-chtml.js"></script>',
         '_modules/m.html': '<a class="viewcode-back" href="../index.html#exudyn_worm.F">[docs]</a>'
-                           '<link rel="stylesheet" href="//fonts.example.org/f.css">'})
+                           '<link rel="stylesheet" href="//fonts.example.org/f.css"><link rel="stylesheet" href="../s.css">'},
+        files={'s.css': '@import "https://fonts.example.org/x.css"; b { src: url(https://cdn.example.org/f.woff2) }'})
     problems = sitecheck.CheckSite(site)
     assert problems == sorted([
         '_modules/m.html: <a> links to a missing anchor: ../index.html#exudyn_worm.F',
@@ -145,7 +148,9 @@ def test_sitecheck_finds_each_kind_of_problem(tmp_path):
         'index.html: <img> links to a missing file: _images/none.png',
         'model.html: <script> loads a remote asset https://cdn.jsdelivr.net/npm/mathjax@4/tex-mml-chtml.js',
         'model.html: has equations but loads no math renderer shipped with the site '
-        f'(one of {", ".join(sitecheck.MATH_RENDERERS)})'])
+        f'(one of {", ".join(sitecheck.MATH_RENDERERS)})',
+        's.css: loads a remote asset https://cdn.example.org/f.woff2',
+        's.css: loads a remote asset https://fonts.example.org/x.css'])
     assert sitecheck.main([str(site)]) == 1
 
 
