@@ -6,7 +6,7 @@ repetitions (the minimum counts), ``--resolution N`` the grid. Prints one table;
 Timed, on the gear of set (25) (preset 'chart'), D_V = 0.014, D_TV = 1, S = -1, the default domain:
 
 - ``mask``: :func:`~exudyn_worm.analysis.charts.ComputeStabilityChart` (coefficients (16) on the grid, Hurwitz (17)-(19),
-  the margin field), the issue's target is under 1 s;
+  the margin field), the target is under 1 s;
 - ``maxRealPart``: the largest real part of the eigenvalues on the whole grid (closed-form quartic + Newton
   polish, :func:`~exudyn_worm.analysis.charts.MaxRealPart`);
 - ``eigvals``: numpy's batched ``eigvals`` of the companion matrices on a 100000-point subset, scaled to the

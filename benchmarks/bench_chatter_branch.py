@@ -1,10 +1,10 @@
-"""Chatter branches by shooting + continuation against brute-force long time simulations (issue 18, items 4, 6).
+"""Chatter branches by shooting + continuation against brute-force long time simulations.
 
     python benchmarks/bench_chatter_branch.py                 # J1, kT of reel-P1; J1 with 0.5 mm backlash
     python benchmarks/bench_chatter_branch.py --json FILE     # also save every number
-    python benchmarks/bench_chatter_branch.py --fifty-only    # only the 50-point timing (item 6)
+    python benchmarks/bench_chatter_branch.py --fifty-only    # only the 50-point timing
 
-First (item 6) a branch of about 50 orbits (reel-P1, kT in 2000-20000 N m/rad, a shorter continuation step) timed
+First a branch of about 50 orbits (reel-P1, kT in 2000-20000 N m/rad, a shorter continuation step) timed
 serially with its breakdown (flow runs and their cost, linear scan, first orbit and restarts) and with the two
 directions in two processes, and the same parameter values by brute force: one long time simulation per value
 (LongSimulationAmplitude, 4 s, step 2e-4 s), timed, and their ratio (to the serial time).
@@ -60,7 +60,7 @@ def CheckBranch(name, low, high, changes, checks, duration, stepSize):
             'messages': branch.messages}
 
 
-#: the item-6 branch: reel-P1 in kT over 2000-20000 N m/rad with the continuation step that gives about 50 orbits
+#: the 50-orbit branch: reel-P1 in kT over 2000-20000 N m/rad with the continuation step that gives about 50 orbits
 FIFTY = ('kT', 2000., 20000., 0.045)
 
 
@@ -100,7 +100,7 @@ class _Timers:
 
 
 def FiftyPoints():
-    """Item 6: a branch of about 50 orbits by shooting, and the same parameter values by long time simulations."""
+    """A branch of about 50 orbits by shooting, and the same parameter values by long time simulations."""
     name, low, high, step = FIFTY
     p = ew.GetPreset('reel-P1')
     load0 = os.getloadavg()[0]
@@ -137,7 +137,7 @@ def main(argv=None):
     parser.add_argument('--duration', type=float, default=4.)
     parser.add_argument('--step', type=float, default=2e-4)
     parser.add_argument('--json', metavar='FILE')
-    parser.add_argument('--fifty-only', action='store_true', help='only the 50-point timing (item 6)')
+    parser.add_argument('--fifty-only', action='store_true', help='only the 50-point timing')
     args = parser.parse_args(argv)
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores", file=sys.stderr)
     f = FiftyPoints()

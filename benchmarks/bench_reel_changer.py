@@ -72,7 +72,7 @@ STICKING_REFERENCE_DIVISOR = 16
 #: Dormand-Prince 5(4) (robust from rtol 1e-5 down) and generalized-alpha at our default step with step halving
 COMPILED_DOPRI5 = {'rtol': 1e-5, 'atol': 1e-8}
 COMPILED_GA_SPECTRAL_RADIUS = 0.8
-#: targets of issue 10
+#: the speed targets of the benchmark
 TARGETS = {'p1SolveSeconds': 0.05, 'p1PeakError': 0.003, 'speedupOverScipy': 10., 'p7SolveSeconds': 0.2,
            'p7PeakError': 0.005, 'p7HalvedSteps': 0, 'compiledMultiple': 2.5, 'startupSeconds': 0.3}
 #: the command whose whole-process time is the start-up target
@@ -307,7 +307,7 @@ def RunBenchmark(repeat: int = 5, repeatP7: int = 3, scipySettings: Optional[Dic
             'runs': res, 'ratios': ratios, 'startup': startup, 'targets': targets}
 
 
-#: SimulateReelChanger's settings before issue 10 (Exudyn's Newton defaults, spectral radius 0.9, h = 5e-4 s)
+#: SimulateReelChanger's earlier settings, before the speed tuning (Exudyn's Newton defaults, spectral radius 0.9, h = 5e-4 s)
 OLD_SETTINGS = {'timeIntegration.newton.maxIterations': 25, 'timeIntegration.newton.relativeTolerance': 1e-8,
                 'timeIntegration.generalizedAlpha.spectralRadius': 0.9}
 _N10 = {'timeIntegration.newton.maxIterations': 10, 'timeIntegration.newton.relativeTolerance': 1e-6}
@@ -327,7 +327,7 @@ def _Levers(p, h):
     rho = lambda r: {**_N10, 'timeIntegration.generalizedAlpha.spectralRadius': r}
     Sim = lambda **kw: (lambda: SimulateReelChanger(p, **kw))
     return [
-        ('before issue 10: h 5e-4, rho 0.9, Newton 25 it. rtol 1e-8', Sim(stepSize=5e-4, solverOptions=OLD_SETTINGS)),
+        ('earlier settings: h 5e-4, rho 0.9, Newton 25 it. rtol 1e-8', Sim(stepSize=5e-4, solverOptions=OLD_SETTINGS)),
         ('Newton 10 it., rtol 1e-6 (h 5e-4, rho 0.9)', Sim(stepSize=5e-4, solverOptions=rho(0.9))),
         ('full Newton (10 it., rtol 1e-6, rho 0.9)', Sim(stepSize=5e-4, solverOptions={
             **rho(0.9), 'timeIntegration.newton.useModifiedNewton': False})),
@@ -530,7 +530,7 @@ def FormatReport(data: Dict) -> str:
               f"P7 {ra['stickingOverRegularizedP7Cpu']:.3f}",
               f"CLI start-up `{st['command']}`: {st['wallSecondsBest']:.3f} s wall, {st['cpuSecondsBest']:.3f} s CPU "
               f"(best of {len(st['wallSeconds'])})", '',
-              'targets of issue 10 (time targets judged on wall-clock seconds; on CPU seconds in brackets):']
+              'speed targets (time targets judged on wall-clock seconds; on CPU seconds in brackets):']
     fmt = {'s': '{:.3f} s', 'x': '{:.2f}x', '%': '{:.3%}', 'n': '{:d}'}
     for key, t in data['targets'].items():
         f = fmt[t['unit']]

@@ -1,4 +1,4 @@
-"""Sticking at zero worm speed: the package's stick/slip switch against a LuGre bristle state (issue 15, item 2).
+"""Sticking at zero worm speed: the package's stick/slip switch against a LuGre bristle state.
 
 Not part of the package: the measurements behind docs/friction-sticking.md. Three friction models of the mesh:
 
@@ -12,7 +12,7 @@ Not part of the package: the measurements behind docs/friction-sticking.md. Thre
   The first-order law is imposed on a coordinate with a small mass by a stiff damper
   (``m z'' = c (rate - z')``, relaxation time ``m/c``).
 
-Cases: the hold test of the issue (reel-P1 gear, 175 kg at 1.2 m, no motor; from rest and after lowering at
+Cases: the hold test (reel-P1 gear, 175 kg at 1.2 m, no motor; from rest and after lowering at
 -49.5 rad/s; drift of the wheel over 18 s after 5 s of settling) and the reel changer P1/P7 (motor through the
 shaft torque, as benchmarks/torque_driven.py) with the peaks of benchmarks/bench_reel_changer.py.
 

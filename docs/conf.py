@@ -1,35 +1,68 @@
 """Sphinx configuration of the exudyn-worm documentation.
 
 Build (writes nothing into the checkout): ``sphinx-build -W --keep-going -b html -d /tmp/doctrees docs /tmp/html``
-after ``pip install -e '.[docs]'``. Every ``docs/*.md`` page is found by the glob toctree in ``index.md``.
-Two pages are generated at read time from the code, so they follow the package without edits:
-``api.md`` (one autodoc section per public module of exudyn_worm) and ``examples.md`` (each script in
-``examples/`` with its docstring and source). Nothing is executed besides importing the package.
+after ``pip install -e '.[docs]'``. The pages are listed by the toctrees of ``index.md``.
+
+Generated at build time, so they follow the code without edits:
+
+- the API reference, ``api/index.md`` (the package and the names it re-exports) and one page per subpackage,
+  ``api/<subpackage>.md`` (one autodoc section per public module); a subpackage without its page, or a page
+  without its subpackage, is a build warning;
+- the gallery, ``gallery.md``: every script of ``examples/`` is run as the reader would run it,
+  ``python examples/NAME.py --out DIR``, with DIR and its working folder in the doctree folder (``-d``), while
+  the other pages are read; the page shows each example's docstring, the figures it wrote with their captions
+  from ``gallery.toml``, what it printed, and its source. A failed example, a figure without a caption or a
+  caption without its figure is a build warning.
+
+Equations are rendered by MathJax shipped with the site (``sphinx-mathjax-offline``): nothing is fetched from
+the network. At the end of the build ``sitecheck.py`` checks every local link and anchor of the built site and
+that no page loads a remote asset; each problem is a build warning, so ``-W`` fails on it.
 """
 from __future__ import annotations
 
 import ast
 import importlib
+import os
 import pkgutil
+import subprocess
 import sys
+import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
+DOCS = Path(__file__).resolve().parent
+ROOT = DOCS.parent
 sys.path.insert(0, str(ROOT))      # exudyn_worm from this checkout even without an install
+sys.path.insert(0, str(DOCS))      # sitecheck.py
 
 import exudyn_worm  # noqa: E402
+import sitecheck  # noqa: E402
+from sphinx.util import logging  # noqa: E402
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:                               # a dependency of the package below Python 3.11
+    import tomli as tomllib
+
+logger = logging.getLogger('exudyn_worm.docs')
 
 project = 'exudyn-worm'
 author = 'exudyn-worm developers'
 copyright = 'exudyn-worm developers'
 release = version = exudyn_worm.__version__
 
-extensions = ['myst_parser', 'sphinx.ext.autodoc', 'sphinx.ext.mathjax', 'sphinx.ext.viewcode', 'numpydoc']
+extensions = ['myst_parser', 'sphinx.ext.autodoc', 'sphinx.ext.mathjax', 'sphinx-mathjax-offline',
+              'sphinx.ext.viewcode', 'numpydoc']
 source_suffix = {'.md': 'markdown', '.rst': 'restructuredtext'}
 root_doc = 'index'
 exclude_patterns = ['_build']
 html_theme = 'furo'
 html_title = f'exudyn-worm {release}'
+html_static_path = ['_static']
+html_css_files = ['math.css']
+
+# MathJax 3 from the sphinx-mathjax-offline package, copied into _static/mathjax/ of the site
+mathjax_path = 'mathjax/tex-chtml.js'
 
 myst_enable_extensions = ['dollarmath', 'amsmath']
 myst_heading_anchors = 3
@@ -40,6 +73,23 @@ numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 
+#: title of each subpackage's API page (the layers of docs/development.md, lowest first)
+SUBPACKAGE_TITLES = {
+    'params': 'Parameter registry and drive files',
+    'model': 'The gear model and the analytical theory',
+    'items': 'Exudyn items: the connector, the drivetrain, the solver',
+    'setups': 'Presets, config files and duty cycles',
+    'analysis': 'Analyses: linearization, charts, design check, studies, orbits',
+    'plotting': 'Plots',
+    'cli': 'The command line',
+}
+GALLERY_DOC = 'gallery'
+GALLERY_CAPTIONS = DOCS / 'gallery.toml'
+#: seconds one example may run at build time
+EXAMPLE_TIMEOUT = 900
+
+
+# ---- API reference ---------------------------------------------------------------------------------------------
 
 def PublicModules() -> list:
     """Names of the public modules of exudyn_worm (no part of the path starts with an underscore), sorted."""
@@ -50,49 +100,266 @@ def PublicModules() -> list:
     return sorted(names)
 
 
-def ApiPage() -> str:
-    """MyST text of the API reference: the module docstring and the public members (``__all__``) of each module."""
+def Subpackages() -> list:
+    """Short names of the public subpackages of exudyn_worm ('analysis', 'cli', ...), sorted."""
+    return sorted(info.name for info in pkgutil.iter_modules(exudyn_worm.__path__)
+                  if info.ispkg and not info.name.startswith('_'))
+
+
+def _ApiDocs() -> list:
+    return ['api/index'] + [f'api/{name}' for name in Subpackages()]
+
+
+def _DefiningModule(name: str) -> str:
+    """The public module below exudyn_worm whose ``__all__`` lists ``name`` and that defines the same object."""
+    obj = getattr(exudyn_worm, name)
+    home = getattr(obj, '__module__', None)
+    candidates = []
+    for modname in PublicModules()[1:]:
+        module = importlib.import_module(modname)
+        if name in getattr(module, '__all__', ()) and getattr(module, name, None) is obj:
+            candidates.append(modname)
+    return home if home in candidates else (candidates[0] if candidates else 'exudyn_worm')
+
+
+def ApiIndexPage() -> str:
+    """MyST text of the API reference's front page: the package, its re-exported names, the subpackage pages."""
+    own = [n for n in exudyn_worm.__all__ if not n.startswith('_')
+           and getattr(getattr(exudyn_worm, n), '__module__', None) == 'exudyn_worm']
+    reexported = [n for n in exudyn_worm.__all__ if not n.startswith('_') and n not in own]
+    others = [m for m in PublicModules() if m.count('.') == 1 and m.split('.')[1] not in Subpackages()]
     out = ['# API reference', '',
-           'Generated from the docstrings (numpydoc) of every public module of `exudyn_worm`; a name re-exported by',
-           '`exudyn_worm` (`import exudyn_worm as ew; ew.CreateWormGear`) is documented in the module that defines it.',
-           '']
-    for name in PublicModules():
-        importlib.import_module(name)
-        out += [f'## `{name}`', '', '```{eval-rst}', f'.. automodule:: {name}', '   :members:', '```', '']
+           'Generated from the docstrings (numpydoc) of every public module of `exudyn_worm` when the site is built:',
+           'one page per subpackage (the layers of the package, lowest first, see [development](../development.md)),',
+           'one section per module. A name that `exudyn_worm` re-exports (`import exudyn_worm as ew;',
+           'ew.CreateWormGear`) is documented once, in the module that defines it; the table below links to it.',
+           '', '```{toctree}', ':maxdepth: 1', '']
+    out += [name for name in sorted(Subpackages(), key=_LayerOrder)]
+    out += ['```', '', '## The package `exudyn_worm`', '', '```{eval-rst}', '.. automodule:: exudyn_worm']
+    if own:
+        out += [f'   :members: {", ".join(own)}']
+    out += ['```', '', '### Names re-exported by `exudyn_worm`', '', '| name | defined in |', '| --- | --- |']
+    for name in reexported:
+        home = _DefiningModule(name)
+        out.append(f'| {{py:obj}}`{name} <{home}.{name}>` | {{py:mod}}`{home}` |')
+    for modname in others:
+        out += ['', f'## `{modname}`', ''] + ModuleSection(modname)
+    return '\n'.join(out) + '\n'
+
+
+def _LayerOrder(name: str):
+    order = list(SUBPACKAGE_TITLES)
+    return (order.index(name) if name in order else len(order), name)
+
+
+def SubpackagePage(subpackage: str) -> str:
+    """MyST text of one subpackage's API page: its docstring, then one section per public module."""
+    package = f'exudyn_worm.{subpackage}'
+    title = SUBPACKAGE_TITLES.get(subpackage, package)
+    out = [f'# {title} (`{package}`)', '', '```{eval-rst}', f'.. automodule:: {package}', '```', '']
+    for modname in PublicModules():
+        if modname.startswith(package + '.'):
+            out += [f'## `{modname}`', ''] + ModuleSection(modname)
     return '\n'.join(out)
 
 
-def ExamplesPage() -> str:
-    """MyST text of the examples page: per script of examples/, its docstring (reST) and its source."""
-    out = ['# Examples', '',
-           'The scripts in `examples/` of the source checkout; each runs as `python examples/NAME.py --out DIR`',
-           '(`--help` lists its options) and is checked by its test in `tests/`. The drive files of',
-           '`examples/drives/` are described in [Whole-drive files](drive-files.md).', '']
-    for path in sorted((ROOT / 'examples').glob('*.py')):
-        docstring = ast.get_docstring(ast.parse(path.read_text())) or ''
+def ModuleSection(modname: str) -> list:
+    """MyST lines documenting one module: its docstring and the members of ``__all__`` it defines itself.
+
+    A name the module re-exports from another public module is listed with a link to where it is documented:
+    documenting it twice would give two entries, and the source page's "[docs]" link would point at the
+    module that happened to be documented first.
+    """
+    module = importlib.import_module(modname)
+    names = getattr(module, '__all__', None)
+    lines = ['```{eval-rst}', f'.. automodule:: {modname}']
+    if names is None:
+        lines.append('   :members:')
+    own, elsewhere = [], []
+    for name in names or ():
+        home = getattr(getattr(module, name, None), '__module__', None)
+        public = home in PublicModules() if home else False
+        (elsewhere if home and home != modname and public else own).append((name, home))
+    if own:
+        lines.append(f'   :members: {", ".join(name for name, _ in own)}')
+    lines += ['```', '']
+    if elsewhere:
+        lines += ['Also importable from here: ' + ', '.join(
+            f'{{py:obj}}`{name} <{home}.{name}>` (from {{py:mod}}`{home}`)' for name, home in elsewhere) + '.', '']
+    return lines
+
+
+# ---- gallery ---------------------------------------------------------------------------------------------------
+
+def ExampleScripts() -> list:
+    """The example scripts (``examples/*.py``), sorted by name."""
+    return sorted((ROOT / 'examples').glob('*.py'))
+
+
+class _Gallery:
+    """Runs the examples in the background (started when the gallery page is to be read) and waits for them."""
+
+    def __init__(self) -> None:
+        self.futures = {}
+        self.folder = None
+
+    def Start(self, folder: Path) -> None:
+        self.folder = folder
+        workers = max(1, min(len(ExampleScripts()), os.cpu_count() or 1))
+        pool = ThreadPoolExecutor(max_workers=workers)
+        self.futures = {path.stem: pool.submit(_RunExample, path, folder / path.stem) for path in ExampleScripts()}
+        pool.shutdown(wait=False)
+
+    def Result(self, name: str) -> dict:
+        return self.futures[name].result()
+
+
+def _RunExample(script: Path, outDir: Path) -> dict:
+    """Run ``python examples/NAME.py --out DIR`` from a scratch folder; its figures, output and run time."""
+    import shutil
+    shutil.rmtree(outDir, ignore_errors=True)
+    work = outDir.with_name(outDir.name + '.cwd')     # the example's working folder: nothing lands in the checkout
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+    env = {**os.environ, 'MPLBACKEND': 'Agg', 'PYTHONPATH': os.pathsep.join(
+        [str(ROOT)] + ([os.environ['PYTHONPATH']] if os.environ.get('PYTHONPATH') else []))}
+    start = time.perf_counter()
+    try:
+        run = subprocess.run([sys.executable, str(script), '--out', str(outDir)], cwd=work, env=env,
+                             capture_output=True, text=True, timeout=EXAMPLE_TIMEOUT, stdin=subprocess.DEVNULL)
+        status, stdout, stderr = run.returncode, run.stdout, run.stderr
+    except subprocess.TimeoutExpired as error:
+        status, stdout, stderr = None, error.stdout or '', f'did not finish within {EXAMPLE_TIMEOUT} s'
+    seconds = time.perf_counter() - start
+    figures = sorted(outDir.glob('*.png')) if outDir.is_dir() else []
+    return {'status': status, 'stdout': stdout.replace(str(outDir), 'DIR'), 'stderr': stderr,
+            'seconds': seconds, 'figures': figures}
+
+
+_GALLERY = _Gallery()
+
+
+def _Captions() -> dict:
+    with open(GALLERY_CAPTIONS, 'rb') as f:
+        return tomllib.load(f)
+
+
+def GalleryPage(srcdir: Path) -> str:
+    """MyST text of the gallery: per example its docstring, figures with captions, printed output and source."""
+    captions = _Captions()
+    unknown = sorted(set(captions) - {p.stem for p in ExampleScripts()})
+    for name in unknown:
+        logger.warning(f'{GALLERY_CAPTIONS.name}: [{name}] names no script of examples/')
+    out = ['# Gallery of examples', '',
+           'Every script of `examples/` in the source checkout, run when this site was built exactly as you would run it,',
+           '`python examples/NAME.py --out DIR`, with the figures it wrote into `DIR` and what it printed. Each',
+           'example is also checked by its test in `tests/` (`tests/test_example_NAME.py`); `--help` lists its',
+           'options. The drive files of `examples/drives/` are described in [Whole-drive files](drive-files.md).', '']
+    index = []
+    sections = []
+    for path in ExampleScripts():
+        name = path.stem
+        run = _GALLERY.Result(name)
+        docstring = ast.get_docstring(ast.parse(path.read_text(encoding='utf-8'))) or ''
         title, _, body = docstring.partition('\n')
-        out += [f'## `{path.name}`', '', f'*{title.strip()}*', '',
-                '```{eval-rst}', body.strip(), '```', '',
-                f'```{{literalinclude}} ../examples/{path.name}', ':language: python', ':lines: '
-                f'{_FirstLineAfterDocstring(path)}-', '```', '']
-    return '\n'.join(out)
+        title = title.strip().rstrip('.')
+        index.append(f'- [`{path.name}`](#example-{name}): {title}')
+        if run['status'] != 0:
+            logger.warning(f'gallery: examples/{path.name} failed (exit status {run["status"]}): '
+                           f'{run["stderr"].strip().splitlines()[-1:] or ""}')
+        own = captions.get(name, {})
+        drawn = {p.name: p for p in run['figures']}
+        for missing in sorted(set(drawn) - set(own)):
+            logger.warning(f'gallery: examples/{path.name} drew {missing}, which has no caption in '
+                           f'{GALLERY_CAPTIONS.name} [{name}]')
+        for stale in sorted(set(own) - set(drawn)):
+            logger.warning(f'gallery: {GALLERY_CAPTIONS.name} [{name}] has a caption for {stale}, which '
+                           f'examples/{path.name} did not draw')
+        part = [f'(example-{name})=', f'## {title}', '', f'`examples/{path.name}`: '
+                f'`python examples/{path.name} --out DIR` ({run["seconds"]:.0f} s when this site was built).', '',
+                '```{eval-rst}', body.strip(), '```', '']
+        for figureName, figurePath in drawn.items():
+            if figureName in own:
+                part += [f'```{{figure}} {os.path.relpath(figurePath, srcdir)}', f':alt: {figureName}', ':width: 100%',
+                         '', f'`{figureName}`: {own[figureName].strip()}', '```', '']
+        part += ['What it prints:', '', '```text', run['stdout'].rstrip() or '(nothing)', '```', '',
+                 'Its source:', '', f'```{{literalinclude}} ../examples/{path.name}', ':language: python',
+                 f':lines: {_FirstLineAfterDocstring(path)}-', '```', '']
+        sections += part
+    return '\n'.join(out + index + [''] + sections)
 
 
 def _FirstLineAfterDocstring(path: Path) -> int:
-    module = ast.parse(path.read_text())
+    module = ast.parse(path.read_text(encoding='utf-8'))
     first = module.body[0]
     isDocstring = isinstance(first, ast.Expr) and isinstance(getattr(first, 'value', None), ast.Constant)
     return first.end_lineno + 1 if isDocstring else 1
 
 
-GENERATED = {'api': ApiPage, 'examples': ExamplesPage}
+# ---- Sphinx hooks ----------------------------------------------------------------------------------------------
+
+def _CheckApiPages(app) -> None:
+    have = {p.stem for p in (DOCS / 'api').glob('*.md')} - {'index'}
+    for name in sorted(set(Subpackages()) - have):
+        logger.warning(f'docs/api/{name}.md is missing: every subpackage of exudyn_worm has its API page '
+                       f'(a one-line placeholder, generated by docs/conf.py)')
+    for name in sorted(have - set(Subpackages())):
+        logger.warning(f'docs/api/{name}.md names no subpackage of exudyn_worm')
+    for name in sorted(set(Subpackages()) - set(SUBPACKAGE_TITLES)):
+        logger.warning(f'docs/conf.py: SUBPACKAGE_TITLES has no title for exudyn_worm.{name}')
+
+
+def _AlwaysOutdated(app, env, added, changed, removed):
+    """The generated pages follow the code and the examples, which Sphinx does not watch: read them every build."""
+    return [d for d in _ApiDocs() + [GALLERY_DOC] if d in env.found_docs]
+
+
+def _StartGallery(app, env, docnames):
+    if GALLERY_DOC in docnames and not _GALLERY.futures:
+        _GALLERY.Start(Path(app.doctreedir).resolve() / 'gallery')
 
 
 def _Generate(app, docname, source):
-    if docname in GENERATED:
-        source[0] = GENERATED[docname]()
+    if docname == 'api/index':
+        source[0] = ApiIndexPage()
+    elif docname.startswith('api/'):
+        source[0] = SubpackagePage(docname.split('/', 1)[1])
+    elif docname == GALLERY_DOC:
+        source[0] = GalleryPage(Path(app.srcdir))
+
+
+def _ReexportedReference(app, env, node, contnode):
+    """Resolve a reference to a name re-exported by exudyn_worm (``:func:`exudyn_worm.CreateWormGear```, or
+    ``:func:`CreateWormGear``` in the package's own docstring) to the module that defines and documents it."""
+    if node.get('refdomain') != 'py':
+        return None
+    target = node['reftarget'].lstrip('~.')
+    if target.startswith('exudyn_worm.') and target.count('.') == 1:
+        name = target.split('.', 1)[1]
+    elif node.get('py:module') == 'exudyn_worm' and '.' not in target:
+        name = target
+    else:
+        return None
+    if name not in exudyn_worm.__all__ or name.startswith('_'):
+        return None
+    home = _DefiningModule(name)
+    if home == 'exudyn_worm':
+        return None
+    return env.get_domain('py').resolve_xref(env, node['refdoc'], app.builder, node['reftype'], f'{home}.{name}',
+                                             node, contnode)
+
+
+def _CheckBuiltSite(app, exception):
+    if exception is None and app.builder.format == 'html' and app.builder.name in ('html', 'dirhtml'):
+        for problem in sitecheck.CheckSite(app.outdir):
+            logger.warning(f'site check: {problem}')
 
 
 def setup(app):
+    app.connect('builder-inited', _CheckApiPages)
+    app.connect('env-get-outdated', _AlwaysOutdated)
+    app.connect('env-before-read-docs', _StartGallery)
     app.connect('source-read', _Generate)
-    return {'parallel_read_safe': True}
+    app.connect('missing-reference', _ReexportedReference)
+    app.connect('build-finished', _CheckBuiltSite, priority=900)    # after MathJax is copied (priority 500)
+    return {'parallel_read_safe': False}

@@ -39,7 +39,7 @@ What it shows (numbers from :func:`RunExample`, checked by tests/test_example_dr
   slower (36.8 Hz, the growing S = -1 mode; 40.5 Hz without inertia4), so the harmonic lies below the mode,
   not above it as in the paper.
 
-Run ``python examples/drive_side_inertia.py --out DIR`` (about 10 s): prints the numbers and writes
+Run ``python examples/drive_side_inertia.py --out DIR`` (about 4 s): prints the numbers and writes
 fig19_linear_scan.png, fig20_accelerations.png and fig20_spectrum.png into DIR.
 """
 from __future__ import annotations

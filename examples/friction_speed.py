@@ -1,6 +1,6 @@
 """Friction that falls with sliding speed: where the reel changer chatters, and a load that runs away once moving.
 
-Issue 15, items 3 and 5. Three pictures and one simulation, computed by importable functions (checked by
+Three pictures and one simulation, computed by importable functions (checked by
 tests/test_example_friction_speed.py), drawn only when the file is run::
 
     python examples/friction_speed.py --out friction_speed      # writes PNG files into that folder
@@ -13,7 +13,7 @@ tests/test_example_friction_speed.py), drawn only when the file is run::
    it does not depend on speed; with the Stribeck law reel-P3 chatters between about 84 and 630 rpm.
 3. :func:`ChatterAmplitudes`: the simulated chatter amplitude against speed: J2 max abs(phi2'') in the lowering
    phase of the reel-changer simulation (one run per speed, ending with the lowering phase).
-4. :func:`RunAway`, the dangerous case "statically but not dynamically self-locking" (item 3): reel-P1's gear
+4. :func:`RunAway`, the dangerous case "statically but not dynamically self-locking": reel-P1's gear
    (gamma = 5.32 deg) with the AGMA curve is self-locking at rest (mu 0.150, rho = 9.1 deg) but not at the reel
    changer's sliding speed (mu 0.045, rho = 2.8 deg). The reel on its lever at the horizontal, lowering, the motor
    gone (worm free): with constant mu = 0.132 the worm brakes to (nearly) zero speed; with the AGMA law the load

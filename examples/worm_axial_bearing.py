@@ -28,7 +28,7 @@ Findings (numbers from :func:`RunExample`, checked by tests/test_example_worm_ax
 - The simulations agree: P1 with kA = 5e8 N/m does not chatter (max ``|phi2''|`` while lowering 0.25 rad/s^2),
   with 1e9 N/m it does (77 rad/s^2); P2 with 1e8 N/m chatters while lowering (112 rad/s^2).
 
-Run ``python examples/worm_axial_bearing.py`` (about 10 s) for the table; ``--out DIR`` also writes
+Run ``python examples/worm_axial_bearing.py`` (about 3 s) for the table; ``--out DIR`` also writes
 axial_bearing_scan.png.
 """
 from __future__ import annotations

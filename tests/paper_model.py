@@ -1,8 +1,9 @@
 """The linearized model of the paper written out from its equations, independently of exudyn_worm.
 
 Tests compare the package with these closed forms instead of with numbers the package once printed. Only
-numpy and the printed equations are used: eqs. (3), (9), (11), (13), (14)-(16), (19), (22), (23) of
-/work/shared/paper (Vetter et al., worm gears with elastic drive). Keys are those of the parameter sets
+numpy and the printed equations are used: eqs. (3), (9), (11), (13), (14)-(16), (19), (22), (23) of the paper
+*Stability Analysis and Simulation of the Vibration Behavior of Worm Gears in Drive Systems* (section 2, the worm
+gear with elastic drive shaft). Keys are those of the parameter sets
 (``GetPreset('reel-P1')``): alphaN, gamma, mu, r1, r2, kV, DV, J1, J2, kT, DT; SI units, angles in rad.
 """
 import math

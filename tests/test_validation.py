@@ -162,7 +162,7 @@ def test_reference_table_rules():
     assert len(rows) > 50
     for r in rows.values():
         assert r.kind in KINDS and r.rule in RULES and r.source and r.quantity and r.group
-        assert any(k in r.source for k in ('eq.', 'section', 'Figure', 'set', 'issue')), r.id
+        assert any(k in r.source for k in ('eq.', 'section', 'Figure', 'set', 'requirement')), r.id
         assert r.identifies <= {'mu', 'circ'}
 
 

@@ -1,4 +1,5 @@
-"""The validation of exudyn-worm against the paper (Bessel et al.): reference data, check groups, report.
+"""The validation of exudyn-worm against the paper *Stability Analysis and Simulation of the Vibration Behavior of
+Worm Gears in Drive Systems*: reference data, check groups, report.
 
 Not part of the installed package: it lives beside its data in the source checkout and runs from the
 repository root as ``python -m validation`` (see ``validation/README.md``). From Python::

@@ -34,7 +34,7 @@ RULES = {
                   'holds (1) or not (0)',
     'none': '"no unstable regions": zero unstable grid points',
     'yes-no': 'a yes/no verdict or a count: exact',
-    'robustness': 'our own requirement (issue 3): a numerical knob changes the result by at most 3 %',
+    'robustness': 'our own requirement: a numerical knob changes the result by at most 3 %',
 }
 #: the two mesh readings of every time-domain row: tooth normal (eq. (5)) and wheel circumference
 READINGS = ('normal', 'paperMesh')

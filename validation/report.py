@@ -97,7 +97,7 @@ def _GroupTable(checks: List[Check]) -> List[str]:
 
 
 def _Findings(summary: ValidationSummary) -> List[str]:
-    """How each finding of issue 8 is addressed: method text, results generated from the verdicts."""
+    """How each finding of the review of the validation is addressed: method text, results generated from the verdicts."""
     by = {c.id: c for c in summary.checks}
 
     def v(checkId: str) -> str:
@@ -167,7 +167,7 @@ def Report(summary: ValidationSummary, groups: Sequence[CheckGroup], validationD
            '(validation/README.md). Do not edit by hand.', '', '## Summary', '']
     out += _Summary(summary, groups)
     out += ['## Reading rules applied', ''] + _RulesTable(summary)
-    out += ['## How the findings of issue 8 are addressed', ''] + _Findings(summary)
+    out += ['## How the findings of the review of this validation are addressed', ''] + _Findings(summary)
     titles = {g.name: g.title or g.name for g in groups}
     for name in dict.fromkeys(c.row.group for c in summary.checks):
         out += [f'## {titles.get(name, name)}', ''] + _GroupTable(summary.Checks(group=name))

@@ -220,7 +220,8 @@ def SimulationChecks(ctx):
     ctx.AddSection('Time domain: both mesh readings side by side', f'''
 All runs: the reel changer of `exudyn_worm.analysis.reelchanger` (motor with prescribed constant speed, elastic shaft
 kT/dT, worm J1, the worm-gear connector, wheel J2, load -m2 g l2 cos(phi2)), one full rotation starting in the
-static equilibrium at full speed, generalized-alpha with step 5e-4 s, friction regularized below 0.05 rad/s.
+static equilibrium at full speed, generalized-alpha with step 5e-4 s, the worm sticking at zero sliding speed (the
+default friction model).
 "Chatter" in a window: in its second half the wheel inertia torque J2 max|phi2''| exceeds 10 % of the largest
 mesh torque on the wheel in the window (docs/command-line.md). Each row is computed with the mesh stiffness and damping along
 the tooth normal (eq. (5), the package's model) and referred to the wheel circumference (kV, dV times
@@ -235,7 +236,7 @@ are in-sample and do not ({_Ids(notCounted)}); {len(onlyNormal)} hold only under
 ({_Ids(onlyNormal)}), evidence against the wheel-circumference reading; {len(neither)} hold under neither
 ({_Ids(neither)}).
 
-**Numerical knobs** (issue 3: results must not hinge on them). Lowering window, max |phi2''| and peak normal
+**Numerical knobs** (our own requirement: results must not hinge on them). Lowering window, max |phi2''| and peak normal
 force:
 
 {_RobustnessTable()}

@@ -299,8 +299,8 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         if end.info.get('forceFactor', math.inf) >= REST_FORCE_FACTOR:
             continue
         nearest = min(roots, key=lambda r: abs(r - end.value)) if roots else math.nan
-        # type: the last orbit before the vertical part that still loses contact lies on the linearly unstable
-        # side (the branch comes out of the unstable range: supercritical) or on the stable side (subcritical)
+        # kind of Hopf point: the last orbit before the vertical part that still loses contact lies on the linearly
+        # unstable side (the branch comes out of the unstable range: supercritical) or on the stable side (subcritical)
         outer = [p for p in branch.points if p.info.get('forceFactor', 0.) >= 2.]
         side = Growth(outer[-1].value) if outer else math.nan
         result.hopf.append({'value': float(end.value), 'type': 'supercritical' if side > 0 else 'subcritical',

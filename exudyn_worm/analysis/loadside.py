@@ -18,7 +18,8 @@ linearization (:func:`~exudyn_worm.analysis.drivestability.DriveStability`) is a
 When lumping is not safe, the stage named as the cause is the first one from the wheel whose frequency is below
 that limit at the frequency that matters: the whole drive's growing mode if it has one, else the highest wheel
 mode. Below the stage frequency the driven machine follows the wheel; above it the wheel vibrates alone against
-mesh and load shaft, a mode the lumped drive does not have (issue 16: 32 Hz load shaft, chatter at 228 Hz).
+mesh and load shaft, a mode the lumped drive does not have (``examples/drives/load-shaft.toml``: 32 Hz load shaft,
+chatter at 228 Hz).
 """
 from __future__ import annotations
 

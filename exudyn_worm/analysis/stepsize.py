@@ -45,7 +45,7 @@ The rule bounds the period error of the linear modes, not the amplitudes that th
 reversal, contact flips, chatter ringing down into the next phase) leave behind. ``simulate`` and ``sweep`` therefore
 check a run against the same run at half the step (:func:`CompareHalfStep`: a window whose chatter verdict changes is
 :data:`UNRESOLVED`), by default where the linear margin is small (:func:`LinearMargin` below :data:`SMALL_MARGIN`).
-Measured for J1 = 0.0247 kg m^2, kT = 1508 N m/rad on P1 (issue 16): the lift window after the lowering chatter peaks
+Measured for J1 = 0.0247 kg m^2, kT = 1508 N m/rad on P1: the lift window after the lowering chatter peaks
 at 11.7 rad/s^2 at the recommended step 6.4e-4 s and 22.9 rad/s^2 at 2e-5 s (converged within 5 % from 1e-4 s on);
 the verdict (no chatter: its second half stays at 1.9-5.4 rad/s^2 against 6.3) holds at every step.
 """

@@ -3,9 +3,11 @@
 A drive file describes a whole drive in the words of a drive engineer; :data:`DRIVE_FILE_TABLES` says which
 file key becomes which parameter key of :mod:`exudyn_worm.setups.presets` (the keys that ``--set`` takes and the solver
 receives). It is derived from the registry :data:`~exudyn_worm.params.parameters.PARAMETERS`, where each parameter
-names its table and file key. Every table and key is optional: what a file leaves out comes from
-its ``preset`` (default ``reel-P1``). Values are plain SI numbers (angles in rad, speeds in rad/s) or strings
-with units (``"18.05 mm"``, ``"8 deg"``, ``"472.5 rpm"``), read by :func:`exudyn_worm.setups.config.ParseQuantity`.
+names its table and file key. The format requires no table or key: what a file leaves out comes from the
+``preset`` it names; a file with component tables that names no preset inherits nothing, and a value the drive
+needs but the file leaves out is reported missing (a flat ``[parameters]`` table without a preset is applied on
+top of ``reel-P1``, see :mod:`exudyn_worm.setups.config`). Values are plain SI numbers (angles in rad, speeds
+in rad/s) or strings with units (``"18.05 mm"``, ``"8 deg"``, ``"472.5 rpm"``), read by :func:`exudyn_worm.setups.config.ParseQuantity`.
 
 Example (the reel changer at P1, parameter set (28))::
 

@@ -26,7 +26,7 @@ from .parameters import PARAMETERS
 
 __all__ = ['ImplausibleValueWarning', 'MAX_PLAUSIBLE_MU', 'CheckGearPlausibility']
 
-#: flank friction coefficient above which a gear is warned about (issue 16, item 8); the paper's gears have 0.132
+#: flank friction coefficient above which a gear is warned about; the paper's gears have 0.132
 MAX_PLAUSIBLE_MU = 0.5
 #: worm radius in m from which a message suggests mm given as m (a worm of 1 m diameter; a hint, not a limit)
 _LARGE_RADIUS = 0.5

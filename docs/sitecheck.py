@@ -1,0 +1,221 @@
+"""Checks of the built documentation site: every local link and anchor resolves, nothing is fetched from the network.
+
+Run on a built site (``docs/conf.py`` runs it at the end of every HTML build, so ``sphinx-build -W`` fails on a
+problem)::
+
+    python docs/sitecheck.py build/docs
+
+It reads every ``*.html`` file below the folder and reports
+
+- a broken local link: an ``href`` or ``src`` to a file that is not in the site, or to an ``#anchor`` (an ``id`` or
+  ``name``) that the target page does not have; the source pages' "[docs]" back-links are such links;
+- a remote asset: a script, style sheet, image or font loaded from another host (``http:``, ``https:`` or ``//``),
+  by a page or by one of its style sheets (``url(...)``, ``@import``), which a reader behind a firewall or offline
+  does not get;
+- a page with equations (an element of class ``math``) that loads no math renderer shipped with the site.
+
+Links to other sites (``<a href="https://...">``) are not followed: the check is about the site's own pages.
+Exit status 0 when there is no problem, 1 otherwise (one line per problem on stdout), 2 for a folder that is no
+built site.
+"""
+from __future__ import annotations
+
+import re
+import sys
+from html.parser import HTMLParser
+from pathlib import Path
+from typing import Dict, List, Optional, Sequence, Set, Tuple
+from urllib.parse import unquote, urlsplit
+
+__all__ = ['MATH_RENDERERS', 'PageLinks', 'ReadPage', 'CheckSite', 'main']
+
+#: file names of the math renderers the site may ship (MathJax 3 components, KaTeX)
+MATH_RENDERERS = ('tex-chtml.js', 'tex-svg.js', 'tex-mml-chtml.js', 'tex-mml-svg.js', 'katex.min.js', 'katex.js')
+
+# tag -> attributes that load an asset the page needs (as opposed to <a href>, a link the reader may follow)
+_ASSET_ATTRIBUTES = {'script': ('src',), 'img': ('src',), 'source': ('src', 'srcset'), 'iframe': ('src',),
+                     'embed': ('src',), 'video': ('src', 'poster'), 'audio': ('src',), 'object': ('data',)}
+
+
+class PageLinks:
+    """What one HTML page defines and refers to.
+
+    Attributes
+    ----------
+    anchors : set of str
+        Every ``id`` and ``name`` (of ``<a>``) on the page.
+    links : list of (str, str)
+        ``(tag, url)`` of every ``<a href>`` and ``<link href>`` (not followed when remote).
+    assets : list of (str, str)
+        ``(tag, url)`` of every script, image, frame and media source the page loads, and of the style sheets,
+        preloads and icons among the ``<link>`` elements.
+    hasMath : bool
+        The page has an element of class ``math`` (an equation for MathJax or KaTeX).
+    """
+
+    def __init__(self) -> None:
+        self.anchors: Set[str] = set()
+        self.links: List[Tuple[str, str]] = []
+        self.assets: List[Tuple[str, str]] = []
+        self.hasMath = False
+
+
+class _Parser(HTMLParser):
+    def __init__(self, page: PageLinks) -> None:
+        super().__init__(convert_charrefs=True)
+        self.page = page
+
+    def handle_starttag(self, tag, attrs):
+        a = {k: (v or '') for k, v in attrs}
+        if a.get('id'):
+            self.page.anchors.add(a['id'])
+        if tag == 'a' and a.get('name'):
+            self.page.anchors.add(a['name'])
+        if 'math' in a.get('class', '').split():
+            self.page.hasMath = True
+        if tag == 'a' and 'href' in a:
+            self.page.links.append((tag, a['href']))
+        elif tag == 'link' and 'href' in a:
+            rel = set(a.get('rel', '').lower().split())
+            target = self.page.assets if rel & {'stylesheet', 'preload', 'icon', 'modulepreload'} else self.page.links
+            target.append((tag, a['href']))
+        for name in _ASSET_ATTRIBUTES.get(tag, ()):
+            if a.get(name):
+                urls = [part.split()[0] for part in a[name].split(',') if part.strip()] if name == 'srcset' \
+                    else [a[name]]
+                self.page.assets += [(tag, url) for url in urls]
+
+    handle_startendtag = handle_starttag
+
+
+def ReadPage(path: Path) -> PageLinks:
+    """Parse one HTML file.
+
+    Parameters
+    ----------
+    path : Path
+        The HTML file.
+
+    Returns
+    -------
+    PageLinks
+        Its anchors, links, assets and whether it has equations.
+    """
+    page = PageLinks()
+    _Parser(page).feed(path.read_text(encoding='utf-8', errors='replace'))
+    return page
+
+
+def _HasScheme(url: str) -> bool:
+    """A URL with a scheme (``https:``, ``mailto:``, ``data:``) or a host (``//host/...``): not a file of the site."""
+    return bool(urlsplit(url).scheme) or url.startswith('//')
+
+
+def _IsRemote(url: str) -> bool:
+    """A URL that is fetched from another host (``data:`` and the like are inline, not fetched)."""
+    return url.startswith('//') or urlsplit(url).scheme.lower() in ('http', 'https', 'ftp')
+
+
+def CheckSite(siteDir) -> List[str]:
+    """Every problem of the built site in ``siteDir``, one sentence each (empty: none).
+
+    Parameters
+    ----------
+    siteDir : str or Path
+        Output folder of ``sphinx-build -b html`` (it holds ``index.html``).
+
+    Returns
+    -------
+    list of str
+        ``'<page>: ...'`` per broken local link or anchor, remote asset, and page with equations but no math
+        renderer from the site; sorted.
+
+    Raises
+    ------
+    ValueError
+        If ``siteDir`` holds no ``index.html``.
+    """
+    root = Path(siteDir).resolve()
+    if not (root / 'index.html').is_file():
+        raise ValueError(f"CheckSite: 'siteDir' must be a built HTML site (a folder with index.html), got {str(siteDir)!r}")
+    pages: Dict[Path, PageLinks] = {p.resolve(): ReadPage(p) for p in root.rglob('*.html')}
+    problems = set()
+    allStylesheets = set()
+    for path, page in pages.items():
+        where = path.relative_to(root).as_posix()
+        renderers, stylesheets = [], []
+        for kind, items in (('link', page.links), ('asset', page.assets)):
+            for tag, url in items:
+                if _HasScheme(url):
+                    if kind == 'asset' and _IsRemote(url):
+                        problems.add(f'{where}: <{tag}> loads a remote asset {url}')
+                    continue
+                problem, target = _CheckLocal(root, path, url, pages)
+                if problem:
+                    problems.add(f'{where}: <{tag}> {problem}')
+                elif kind == 'asset' and target is not None and target.name in MATH_RENDERERS:
+                    renderers.append(target)
+                elif kind == 'asset' and target is not None and target.suffix == '.css':
+                    stylesheets.append(target)
+        allStylesheets.update(stylesheets)
+        if page.hasMath and not renderers:
+            problems.add(f'{where}: has equations but loads no math renderer shipped with the site '
+                         f'(one of {", ".join(MATH_RENDERERS)})')
+    for stylesheet in sorted(allStylesheets):
+        problems.update(f'{stylesheet.relative_to(root).as_posix()}: loads a remote asset {url}'
+                        for url in _RemoteUrlsInCss(stylesheet))
+    return sorted(problems)
+
+
+_CSS_URL = re.compile(r"""url\(\s*['"]?([^'")\s]+)|@import\s+['"]([^'"]+)""")
+
+
+def _RemoteUrlsInCss(path: Path) -> List[str]:
+    """URLs of other hosts that a style sheet loads (``url(...)``, ``@import``): fonts, images, more styles."""
+    text = path.read_text(encoding='utf-8', errors='replace')
+    return sorted({url for match in _CSS_URL.finditer(text) for url in match.groups() if url and _IsRemote(url)})
+
+
+def _CheckLocal(root: Path, page: Path, url: str, pages: Dict[Path, PageLinks]) -> Tuple[Optional[str], Optional[Path]]:
+    """(problem or None, the target file) of one local URL on ``page``."""
+    parts = urlsplit(url)
+    fragment = unquote(parts.fragment)
+    target = page if not parts.path else (page.parent / unquote(parts.path)).resolve()
+    if target.is_dir():
+        target = target / 'index.html'
+    if root not in target.parents and target != root:
+        return f'links outside the site: {url}', None
+    if not target.is_file():
+        return f'links to a missing file: {url}', None
+    if fragment and target.suffix == '.html':
+        anchors = pages[target].anchors if target in pages else ReadPage(target).anchors
+        if fragment not in anchors:
+            return f'links to a missing anchor: {url}', target
+    return None, target
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Command line: check the site in the folder given; print one line per problem. Returns the exit status.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        ``[SITE_DIR]`` (default: ``sys.argv[1:]``).
+    """
+    args = list(sys.argv[1:] if argv is None else argv)
+    if len(args) != 1 or args[0].startswith('-'):
+        print('usage: python docs/sitecheck.py SITE_DIR   (the output folder of sphinx-build -b html)', file=sys.stderr)
+        return 2
+    try:
+        problems = CheckSite(args[0])
+    except ValueError as error:
+        print(f'sitecheck.py: error: {error}', file=sys.stderr)
+        return 2
+    for line in problems:
+        print(line)
+    print(f'sitecheck.py: {len(problems)} problem(s) in {args[0]}', file=sys.stderr)
+    return 1 if problems else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,203 @@
+"""The documentation site: pages a reader can follow, the checker of the built site, and (slow, with the docs
+extra installed) the built site itself: every local link and anchor resolves and the equations need no network."""
+import ast
+import importlib
+import importlib.util
+import inspect
+import pkgutil
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+import exudyn_worm
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:
+    import tomli as tomllib
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / 'docs'
+_spec = importlib.util.spec_from_file_location('sitecheck', DOCS / 'sitecheck.py')
+sitecheck = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(sitecheck)
+
+#: what the site shows or the repository's front pages say: the docs pages and their captions, the reports the
+#: site includes, the examples (the gallery shows their docstrings, output and source) and their drive files
+PAGES = sorted([*DOCS.rglob('*.md'), DOCS / 'gallery.toml', *(ROOT / 'validation').glob('*.md'), ROOT / 'README.md',
+                ROOT / 'benchmarks' / 'README.md', *(ROOT / 'examples').glob('*.py'),
+                *(ROOT / 'examples' / 'drives').glob('*.toml')])
+#: a tracker entry (the word issue and its number) means nothing to a reader, who has no access to the tracker
+TRACKER = re.compile(r'\bissues? #?\d+', re.IGNORECASE)
+#: paths outside the repository (the project's shared notes, the machine's work folders)
+OUTSIDE = re.compile(r'\.\./shared\b|/work' + '/')     # split: this file passes the same grep
+
+
+def _Hits(pattern):
+    return [f'{path.relative_to(ROOT)}:{number}: {line.strip()}' for path in PAGES
+            for number, line in enumerate(path.read_text(encoding='utf-8').splitlines(), 1) if pattern.search(line)]
+
+
+def test_pages_name_no_tracker_entry():
+    assert len(PAGES) > 40
+    assert _Hits(TRACKER) == []
+
+
+def test_pages_name_no_path_outside_the_repository():
+    assert _Hits(OUTSIDE) == []
+
+
+def test_the_greps_find_what_they_look_for():
+    word, number = 'issue', 15          # built here, so that this file passes a repository-wide grep too
+    assert TRACKER.search(f'as asked in {word} {number}, item 2') and TRACKER.search(f'{word.title()} #{number}')
+    assert TRACKER.search(f'{word}s {number}')
+    assert not TRACKER.search(f'an {word} of the mesh') and not TRACKER.search(f't{word} {number}')
+    shared, work = '../' + 'shared', '/' + 'work/'
+    assert OUTSIDE.search(f'see {shared}/notes/exudyn-1.13.md') and OUTSIDE.search(f'{work}shared/paper')
+
+
+def _Subpackages():
+    return sorted(i.name for i in pkgutil.iter_modules(exudyn_worm.__path__) if i.ispkg and not i.name.startswith('_'))
+
+
+def test_every_subpackage_has_its_api_page():
+    """docs/conf.py fills docs/api/<subpackage>.md; a placeholder must exist for each subpackage, and no other."""
+    pages = {p.stem for p in (DOCS / 'api').glob('*.md')} - {'index'}
+    assert pages == set(_Subpackages())
+
+
+def test_every_module_parses_for_its_source_page():
+    """The source pages (sphinx.ext.viewcode) parse each module with type comments on: a comment beginning with
+    '# type:' that is no type comment makes the parse fail and the module's source page go missing."""
+    bad = []
+    for path in sorted((ROOT / 'exudyn_worm').rglob('*.py')):
+        try:
+            ast.parse(path.read_text(encoding='utf-8'), type_comments=True)
+        except SyntaxError as error:
+            bad.append(f'{path.relative_to(ROOT)}:{error.lineno}: {error.msg}')
+    assert bad == []
+
+
+def test_gallery_captions_belong_to_examples():
+    """Each table of docs/gallery.toml is an example, each caption names a PNG file and says something."""
+    captions = tomllib.loads((DOCS / 'gallery.toml').read_text(encoding='utf-8'))
+    assert set(captions) == {p.stem for p in (ROOT / 'examples').glob('*.py')}
+    for name, figures in captions.items():
+        assert figures, name
+        for figure, caption in figures.items():
+            assert figure.endswith('.png') and len(caption.split()) >= 10, (name, figure)
+
+
+def test_the_docs_extra_ships_the_math_renderer():
+    """The docs extra installs MathJax; conf.py loads it from the site (a local path, no host)."""
+    extras = tomllib.loads((ROOT / 'pyproject.toml').read_text())['project']['optional-dependencies']['docs']
+    assert any(req.startswith('sphinx-mathjax-offline') for req in extras)
+    assignments = {t.id: node.value for node in ast.parse((DOCS / 'conf.py').read_text()).body
+                   if isinstance(node, ast.Assign) for t in node.targets if isinstance(t, ast.Name)}
+    assert 'sphinx-mathjax-offline' in ast.literal_eval(assignments['extensions'])
+    path = ast.literal_eval(assignments['mathjax_path'])
+    assert '//' not in path and Path(path).name in sitecheck.MATH_RENDERERS
+
+
+# ---- the checker of the built site, on small hand-made sites ---------------------------------------------------
+
+def _Site(tmp_path, pages, files=()):
+    """A folder of HTML pages (``{name: body}``) and other files (names, or ``{name: text}``)."""
+    for name, html in pages.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(f'<html><head></head><body>{html}</body></html>')
+    for name, text in (files.items() if isinstance(files, dict) else ((f, 'x') for f in files)):
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    return tmp_path
+
+
+_MATHJAX = '<script defer src="_static/mathjax/tex-chtml.js?v=1"></script>'
+
+
+def test_sitecheck_passes_a_sound_site(tmp_path):
+    site = _Site(tmp_path, {
+        'index.html': '<a href="model.html#eq-1">eq</a> <a href="#top" id="top">top</a> <a href="api/">api</a>'
+                      '<a href="https://example.org/x.html#nowhere">away</a> <link rel="stylesheet" href="s.css">',
+        'model.html': f'{_MATHJAX}<div class="math notranslate" id="eq-1">\\[x\\]</div><img src="_images/a.png">',
+        'api/index.html': '<a href="../_modules/m.html#F" name="F">src</a>',
+        '_modules/m.html': '<div id="F"><a class="viewcode-back" href="../api/index.html#F">[docs]</a></div>'},
+        files={'s.css': 'a { background: url("data:image/svg+xml;charset=utf-8,<svg/>") } @font-face { src: url(f.woff) }',
+               '_static/mathjax/tex-chtml.js': 'x', '_images/a.png': 'x'})
+    assert sitecheck.CheckSite(site) == []
+    assert sitecheck.main([str(site)]) == 0
+
+
+def test_sitecheck_finds_each_kind_of_problem(tmp_path):
+    site = _Site(tmp_path, {
+        'index.html': '<a href="model.html#missing">a</a> <a href="gone.html">b</a> <img src="_images/none.png">',
+        'model.html': '<div class="math">\\(x\\)</div>'
+                      '<script src="https://cdn.jsdelivr.net/npm/mathjax@4/tex-mml-chtml.js"></script>',
+        '_modules/m.html': '<a class="viewcode-back" href="../index.html#exudyn_worm.F">[docs]</a>'
+                           '<link rel="stylesheet" href="//fonts.example.org/f.css"><link rel="stylesheet" href="../s.css">'},
+        files={'s.css': '@import "https://fonts.example.org/x.css"; b { src: url(https://cdn.example.org/f.woff2) }'})
+    problems = sitecheck.CheckSite(site)
+    assert problems == sorted([
+        '_modules/m.html: <a> links to a missing anchor: ../index.html#exudyn_worm.F',
+        '_modules/m.html: <link> loads a remote asset //fonts.example.org/f.css',
+        'index.html: <a> links to a missing anchor: model.html#missing',
+        'index.html: <a> links to a missing file: gone.html',
+        'index.html: <img> links to a missing file: _images/none.png',
+        'model.html: <script> loads a remote asset https://cdn.jsdelivr.net/npm/mathjax@4/tex-mml-chtml.js',
+        'model.html: has equations but loads no math renderer shipped with the site '
+        f'(one of {", ".join(sitecheck.MATH_RENDERERS)})',
+        's.css: loads a remote asset https://cdn.example.org/f.woff2',
+        's.css: loads a remote asset https://fonts.example.org/x.css'])
+    assert sitecheck.main([str(site)]) == 1
+
+
+def test_sitecheck_refuses_a_folder_that_is_no_site(tmp_path, capsys):
+    with pytest.raises(ValueError, match="'siteDir' must be a built HTML site"):
+        sitecheck.CheckSite(tmp_path)
+    assert sitecheck.main([str(tmp_path)]) == 2
+    assert 'sitecheck.py: error:' in capsys.readouterr().err
+
+
+# ---- the built site (needs the docs extra) ---------------------------------------------------------------------
+
+def _DocsExtraInstalled():
+    return all(importlib.util.find_spec(name) is not None
+               for name in ('sphinx', 'myst_parser', 'numpydoc', 'furo', 'sphinx-mathjax-offline'))
+
+
+def _ModulesWithCode():
+    """Public modules that define a function or class of their ``__all__``: each has a highlighted source page."""
+    names = []
+    for info in pkgutil.walk_packages(exudyn_worm.__path__, 'exudyn_worm.'):
+        if any(part.startswith('_') for part in info.name.split('.')):
+            continue
+        module = importlib.import_module(info.name)
+        objects = [getattr(module, n) for n in getattr(module, '__all__', ())]
+        if any((inspect.isfunction(obj) or inspect.isclass(obj)) and obj.__module__ == info.name for obj in objects):
+            names.append(info.name)
+    return names
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not _DocsExtraInstalled(), reason="needs the docs extra: pip install -e '.[docs]'")
+def test_built_site_has_working_links_and_offline_math(tmp_path):
+    """The site as .ci/run builds it (-W): no warning, every link and anchor resolves, MathJax comes with it."""
+    out = tmp_path / 'html'
+    run = subprocess.run([sys.executable, '-m', 'sphinx', '-W', '--keep-going', '-q', '-b', 'html',
+                          '-d', str(tmp_path / 'doctrees'), str(DOCS), str(out)], capture_output=True, text=True,
+                         cwd=tmp_path)
+    assert run.returncode == 0, run.stderr[-3000:]
+    assert sitecheck.CheckSite(out) == []
+    model = sitecheck.ReadPage(out / 'model.html')
+    assert model.hasMath and ('script', '_static/mathjax/tex-chtml.js') in model.assets
+    assert (out / '_static' / 'mathjax' / 'output' / 'chtml' / 'fonts' / 'woff-v2').is_dir()
+    assert _ModulesWithCode() and [m for m in _ModulesWithCode()
+                                   if not (out / '_modules' / (m.replace('.', '/') + '.html')).is_file()] == []
+    gallery = (out / 'gallery.html').read_text(encoding='utf-8')
+    captions = tomllib.loads((DOCS / 'gallery.toml').read_text(encoding='utf-8'))
+    for figures in captions.values():
+        for figure in figures:
+            assert f'_images/{figure}' in gallery, figure
