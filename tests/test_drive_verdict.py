@@ -248,3 +248,16 @@ def test_a_command_resolves_its_drive_once_and_analyses_each_point_once(capsys, 
     data = json.loads(capsys.readouterr().out)
     assert len(resolved) == 1 and sum(1 for p in built if p.get('kT') == 2100 and 'JL1' in p) == 1
     assert len(analysed) == len(set(analysed)) and len(data['operatingPoints']) == 2
+
+
+# --- the periodic-orbit analysis follows the drive's own lowering phase -------------------------------------------
+def test_chatter_analysis_takes_the_lowering_point_of_any_duty():
+    from exudyn_worm.analysis.chatter import LoweringPhaseParameters
+    p = LoweringPhaseParameters(ResolveParameters(config=HOIST))
+    assert p['motorSpeed'] == pytest.approx(100 * RPM) and 'motorSpeedOverTime' not in p and 'loadType' not in p
+    assert p['loadMass'] * G * p['leverArm'] == pytest.approx(367.875, rel=1e-14)
+    reel = GetPreset('reel-P1')
+    assert LoweringPhaseParameters(reel) == reel
+    lifting = {**reel, 'loadType': 'constant', 'loadTorque': -500.}      # the load only ever opposes the motion
+    with pytest.raises(ValueError, match="LoweringPhaseParameters: the drive's duty has no lowering phase"):
+        LoweringPhaseParameters(lifting)

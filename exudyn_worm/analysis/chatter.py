@@ -27,14 +27,15 @@ import numpy as np
 
 from ..model.contact import MATH_OPS, ContactOptions
 from .orbits import FindPeriodicOrbit, PeriodicOrbit, ShootingError
-from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
+from ..model.profiles import STANDARD_GRAVITY, ConstantSpeed, ConstantTorque, GravityLeverTorque
 from .._checks import CheckPositive, CheckReal, CheckSystem
 from ..items.connector import CONNECTORS_KEY, WormGearConnector
 from .linearization import AnalyzeLinearStability
 from .drivestability import DriveStability
 from ..setups.wholedrive import Component
-from ..setups.presets import (AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain,
-                      LoadSideChain)
+from ..setups.duty import IsReelChangerDuty
+from ..setups.presets import (DUTY_KEYS, REEL_KEYS, AxialBearingFromParameters, ElasticDriveFromParameters,
+                              DriveSideChain, LoadSideChain)
 from .reelchanger import (SOLVER_SETTINGS, BuildReelChanger, CheckReelChangerKeys, SolverSettings,
                           SteadyInitialState)
 from ..items.solve import SolverDivergedError
@@ -42,7 +43,7 @@ from ..items.solve import SolverDivergedError
 __all__ = ['LoweringModel', 'BuildLoweringModel', 'ExudynFlow', 'FindSteadyChatter',
            'OrbitAmplitude', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LongSimulationAmplitude', 'UpdateLoweringModel', 'IN_PLACE_KEYS', 'STEPS_PER_PERIOD', 'ORBIT_SOLVER_SETTINGS',
            'LoweringModelOfSystem', 'SteadyChatterOfSystem', 'MONODROMY_PERTURBATION',
-           'SettledSimulationAmplitude']
+           'SettledSimulationAmplitude', 'LoweringPhaseParameters', 'LOWERING_LEVER_ARM']
 
 #: solver steps per chatter period of the shooting runs: at P1 the force factor, largest ``|phi2''|`` and frequency
 #: change by less than 0.04 % between 150 and 1600 steps (2.6157/102.29/40.525 at 150, 2.6149/102.28/40.535 at
@@ -122,6 +123,57 @@ class LoweringModel:
     stateKeys: Tuple[str, ...] = ()
     initialCoordinates: Any = None
     nodeSensors: Tuple[Tuple[int, int, int], ...] = ()
+
+
+#: lever arm in m with which :func:`LoweringPhaseParameters` writes a drive's lowering load torque as the reel keys
+#: (the periodic-orbit analysis takes only their product ``loadMass * g * leverArm``, a constant torque)
+LOWERING_LEVER_ARM = 1.
+
+
+def LoweringPhaseParameters(parameters: Mapping[str, float]) -> Dict[str, float]:
+    """The parameter set of the periodic-orbit analysis for any drive: the lowering phase of its own duty.
+
+    The analysis follows the chatter of steady lowering: the motor at constant speed, a constant load torque that
+    drives the gear (the reel keys ``motorSpeed``, ``loadMass``, ``leverArm``). The reel changer's duty is taken as it
+    is. Any other duty is replaced by its lowering operating point
+    (:func:`~exudyn_worm.setups.operatingpoints.DutyOperatingPoints`, S = -1; of several, the one with the largest
+    real part at which the linear analysis, :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`, puts it): the
+    speed's magnitude as ``motorSpeed`` and its load torque as ``loadMass * g * leverArm`` with
+    ``leverArm`` = :data:`LOWERING_LEVER_ARM` (a drive turning backwards while lowering is its mirror image).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set of the drive.
+
+    Returns
+    -------
+    dict
+        A flat parameter set with the reel changer's duty keys.
+
+    Raises
+    ------
+    ValueError
+        If the drive has no lowering phase, or a motor on its characteristic (the analysis holds the motor).
+    """
+    w = 'LoweringPhaseParameters'
+    if parameters.get('motorType') == 'characteristic':
+        raise ValueError(f"{w}: the periodic-orbit analysis holds the motor at constant speed (the lowering phase of "
+                         f"the linear analysis); this parameter set has {Component.MOTOR_CHARACTERISTIC.text} (not "
+                         f"supported); leave those keys out")
+    if IsReelChangerDuty(parameters) and all(k in parameters for k in REEL_KEYS):
+        return dict(parameters)
+    analysis = DriveStability(parameters)
+    lowering = [p for p in analysis.operatingPoints if p.S == -1]
+    if not lowering:
+        raise ValueError(f"{w}: the drive's duty has no lowering phase at a steady speed (no phase in which the load "
+                         f"drives the gear; {analysis.decidingText}); the periodic-orbit analysis follows the chatter "
+                         f"of lowering")
+    point = max(lowering, key=lambda p: p.maxRealPart).point
+    out = {k: v for k, v in parameters.items() if k not in DUTY_KEYS}
+    out.update(motorSpeed=abs(point.motorSpeed), leverArm=LOWERING_LEVER_ARM,
+               loadMass=abs(point.loadTorque) / (STANDARD_GRAVITY * LOWERING_LEVER_ARM))
+    return out
 
 
 def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),

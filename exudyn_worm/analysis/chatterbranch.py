@@ -298,7 +298,12 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         end = branch.points[-1]
         if end.info.get('forceFactor', math.inf) >= REST_FORCE_FACTOR:
             continue
-        nearest = min(roots, key=lambda r: abs(r - end.value)) if roots else math.nan
+        if not roots:       # no linear boundary to shrink into: an orbit held in contact by friction, no Hopf point
+            result.messages.append(f"the branch ends at {name} = {end.value:.6g} with an orbit that stays in contact "
+                                   f"(normal force up to {end.info['forceFactor']:.3g} times the static one); with no "
+                                   f"linear boundary in the range this is not a Hopf point")
+            continue
+        nearest = min(roots, key=lambda r: abs(r - end.value))
         # kind of Hopf point: the last orbit before the vertical part that still loses contact lies on the linearly
         # unstable side (the branch comes out of the unstable range: supercritical) or on the stable side (subcritical)
         outer = [p for p in branch.points if p.info.get('forceFactor', 0.) >= 2.]
@@ -402,7 +407,8 @@ def _FollowDirection(base: Dict, name: str, low: float, high: float, start: Peri
 
     def Stop(point):
         if point.info['forceFactor'] < REST_FORCE_FACTOR:
-            return f"reached the linear boundary at {name} = {point.value:.6g} (the orbit stays in contact)"
+            return (f"stopped at {name} = {point.value:.6g}: the orbit stays in contact (at a linear boundary, or held "
+                    f"by friction)")
         return None
 
     side = 'lower' if direction < 0 else 'higher'

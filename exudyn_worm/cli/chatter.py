@@ -5,8 +5,8 @@ import argparse
 import sys
 from typing import List, Tuple
 
-from .main import (BadInput, CheckOutputPath, ParametersFromArgs, PrintJson, SourceText, StdoutToStderr,
-                   Subcommand, UsageError)
+from .main import (BadInput, CheckOutputPath, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError,
+                   WholeDriveFromArgs)
 
 __all__ = ['COMMAND', 'ParseVary', 'FormatBranch']
 
@@ -95,8 +95,10 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.chatterbranch import AnalyzeChatterBranch, ChatterBranchError
+    from ..analysis.chatter import LoweringPhaseParameters
     name, low, high = ParseVary(args.vary)
-    parameters = ParametersFromArgs(args)
+    with BadInput():      # any drive: the periodic orbits of its lowering phase
+        parameters = LoweringPhaseParameters(dict(WholeDriveFromArgs(args).parameters))
     if args.plot:
         with BadInput():
             CheckOutputPath(args.plot, '--plot')
