@@ -475,6 +475,9 @@ def SourceInfo(args: argparse.Namespace) -> Dict:
         (``'--preset'``, ``'config'``, ``'default'`` or None), ``config`` (path or None) and ``overrides``
         (the ``--set`` texts, in order).
     """
+    known = getattr(args, '_sourceInfo', None)
+    if known is not None:
+        return dict(known)
     if args.preset:
         preset, source = args.preset, '--preset'
     else:
@@ -489,8 +492,9 @@ def SourceInfo(args: argparse.Namespace) -> Dict:
             source = None
         else:
             preset, source = DEFAULT_PRESET, 'default'
-    return {'preset': preset, 'presetFrom': source, 'config': os.fspath(args.config) if args.config else None,
-            'overrides': list(args.set)}
+    args._sourceInfo = {'preset': preset, 'presetFrom': source, 'config': os.fspath(args.config) if args.config
+                        else None, 'overrides': list(args.set)}
+    return dict(args._sourceInfo)
 
 
 def SourceText(args: argparse.Namespace) -> str:

@@ -20,6 +20,7 @@ Checks made when the drive is built (so that no command meets them later):
 """
 from __future__ import annotations
 
+import collections
 import enum
 import os
 import types
@@ -327,4 +328,35 @@ def AsDrive(drive: Union[Drive, Mapping[str, Any]], where: str = 'AsDrive') -> D
     if isinstance(drive, ElasticDrive):
         raise TypeError(f"{where}: 'drive' must be a Drive (exudyn_worm.ResolveDrive) or a flat parameter set, got "
                         f"an ElasticDrive (the two-mass core only); for it use AnalyzeStability")
-    return Drive.FromParameters(drive)
+    key = _Key(drive)
+    if key is None:
+        return Drive.FromParameters(drive)
+    if key not in _RECENT:         # the same set passed again (a command's steps): the same drive, analysed once
+        _RECENT[key] = Drive.FromParameters(drive)
+        while len(_RECENT) > _RECENT_SIZE:
+            _RECENT.popitem(last=False)
+    _RECENT.move_to_end(key)
+    return _RECENT[key]
+
+
+#: the drives of the flat parameter sets AsDrive saw last, by content (a Drive is immutable, so it can be shared)
+_RECENT: 'collections.OrderedDict' = collections.OrderedDict()
+_RECENT_SIZE = 32
+
+
+def _Freeze(value):
+    if isinstance(value, (list, tuple)):
+        return tuple(_Freeze(v) for v in value)
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    return value
+
+
+def _Key(parameters) -> Optional[tuple]:
+    """A hashable image of a flat parameter set, or None if it has a value that cannot be one."""
+    try:
+        key = tuple(sorted((k, type(v).__name__, _Freeze(v)) for k, v in parameters.items()))
+        hash(key)
+    except TypeError:
+        return None
+    return key
