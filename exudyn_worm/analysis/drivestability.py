@@ -30,7 +30,7 @@ from ..setups.operatingpoints import DutyOperatingPoints, DutyPoint
 from ..setups.wholedrive import AsDrive, Drive
 from . import linearization
 
-__all__ = ['OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'DriveStability', 'ANALYTICAL', 'LINEARIZED']
+__all__ = ['OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'AnalyzeAtOperatingPoint', 'DriveStability', 'ANALYTICAL', 'LINEARIZED']
 
 #: the model names of :attr:`DriveAnalysis.model`
 ANALYTICAL, LINEARIZED = 'analytical', 'linearized'
@@ -227,7 +227,31 @@ def _AtRest(drive: Drive, model: str = ANALYTICAL):
 
 
 def _AtPoint(drive: Drive, point: DutyPoint, model: str):
-    op: OperatingPoint = point.operatingPoint
+    return AnalyzeAtOperatingPoint(drive, point.operatingPoint, model)
+
+
+def AnalyzeAtOperatingPoint(drive: Drive, operatingPoint: OperatingPoint, model: Optional[str] = None):
+    """The linear analysis of ``drive`` at one operating point, with the model :func:`AnalyzeDrive` takes for it
+    (for a point the duty does not hold, e.g. another motor speed of a chart over speed).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    operatingPoint : OperatingPoint
+        Sliding speed, mu, slope, static normal force and contact state S
+        (:func:`~exudyn_worm.model.stability.OperatingPointAt`).
+    model : str, optional
+        ``'analytical'`` or ``'linearized'``; None (default): as :func:`AnalyzeDrive` chooses.
+
+    Returns
+    -------
+    StabilityAnalysis or LinearStability
+        ``State(operatingPoint.S)`` gives ``stable``, ``maxRealPart`` and ``eigenvalues``.
+    """
+    op = operatingPoint
+    if model is None:
+        model = ANALYTICAL if drive.isTwoMass else LINEARIZED
     if model == ANALYTICAL:
         return AnalyzeStability(drive.elastic, op)
     if drive.isTwoMass:             # the same result type as the analytical model, from Exudyn's eigenvalues

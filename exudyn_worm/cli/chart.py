@@ -10,9 +10,9 @@ import sys
 from typing import Dict, List
 
 from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceText,
-                   Subcommand, UsageError, WriteAtomically)
+                   Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
 
-__all__ = ['COMMAND', 'PAPER_DTV']
+__all__ = ['COMMAND', 'PAPER_DTV', 'FormatSpeedChart']
 
 #: D_TV values of the paper's Figures 4 and 5 (the default of --DTV)
 PAPER_DTV = (1., 5., 25.)
@@ -41,9 +41,11 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
     AddOverwriteOption(parser, 'the --output file')
     parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
     parser.add_argument('--speed', default=None, metavar='SPEC',
-                        help="instead of the J1-kT chart: the largest real part of the lowering state against motor "
-                             "speed (eq. (16) at each operating point; with a speed-dependent friction law the drive "
-                             "may chatter only in a speed range). SPEC as 'sweep --vary motorSpeed=SPEC' takes it: "
+                        help="instead of the J1-kT chart: the largest real part of each direction of the drive's "
+                             "duty (lifting, lowering) against motor speed, at the load torque of its operating "
+                             "points (the two-mass drive: eq. (16) with the friction slope; any other drive: its "
+                             "linearized whole drive); with a speed-dependent friction law the drive may chatter "
+                             "only in a speed range. SPEC as 'sweep --vary motorSpeed=SPEC' takes it: "
                              "START:STOP:COUNT[:log] or a list, e.g. '20rpm:2000rpm:40:log'")
 
 
@@ -72,16 +74,19 @@ def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
 
 
 def _RunSpeed(args: argparse.Namespace) -> int:
-    """``chart --speed SPEC``: the lowering state's stability over motor speed (:mod:`exudyn_worm.analysis.speedchart`)."""
+    """``chart --speed SPEC``: the drive's stability over motor speed at the load of its own duty
+    (:mod:`exudyn_worm.analysis.speedchart`)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.speedchart import RPM, SpeedStabilityChart
     from ..analysis.study import ParseVariation
+    from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
-    parameters = ParametersFromArgs(args)
+    drive = WholeDriveFromArgs(args)
     with BadInput():
         spec = args.speed.strip()
         variation = ParseVariation(f'motorSpeed={spec}')
-        chart = SpeedStabilityChart(parameters, variation.values)
+        with ProgressBar(desc='chart over speed', unit='point', quiet=True if args.quiet else None) as bar:
+            chart = SpeedStabilityChart(drive, variation.values, progress=bar.update)
     if output:
         # lazy: start-up (exudyn-worm --help imports every command module)
         from ..plotting.plot import SaveFigure
@@ -91,18 +96,54 @@ def _RunSpeed(args: argparse.Namespace) -> int:
     if args.json:
         PrintJson(chart.ToDict())
         return 0
-    print(f"exudyn-worm chart --speed: {SourceText(args)}; {chart.frictionLaw} friction law, lowering (S = -1) "
-          f"at the operating point of each speed (eq. (16) extended by the friction slope)")
-    print(f"  {'motor [rpm]':>11} {'v0 [m/s]':>9} {'mu(v0)':>8} {'dmu/dv [s/m]':>13} {'max Re [1/s]':>13}  verdict")
-    for n, v, mu, slope, re in zip(chart.motorSpeeds / RPM, chart.slidingSpeeds, chart.mu, chart.dmuDv,
-                                   chart.maxRealPart):
-        print(f"  {n:11.4g} {v:9.4g} {mu:8.4g} {slope:13.4g} {re:13.4g}  {'CHATTER' if re > 0 else 'stable'}")
-    ranges = chart.unstableRanges
-    print('Chatter while lowering at ' + ', '.join(f'{a / RPM:.4g} to {b / RPM:.4g} rpm' for a, b in ranges)
-          + (' (of the speeds computed; boundaries near ' + ', '.join(f'{b / RPM:.4g}' for b in chart.Boundaries())
-             + ' rpm)' if chart.Boundaries() else '') if ranges else
-          'No chatter while lowering at any of these speeds.')
+    print('\n'.join(FormatSpeedChart(chart, SourceText(args))))
     return 0
+
+
+def FormatSpeedChart(chart, source: str) -> List[str]:
+    """The text of ``chart --speed``: a row per speed (one real part per direction of the duty), the unstable
+    ranges per direction and the verdict at the drive's own operating points.
+
+    Parameters
+    ----------
+    chart : SpeedChart
+        From :func:`~exudyn_worm.analysis.speedchart.SpeedStabilityChart`.
+    source : str
+        Where the drive came from (first line).
+
+    Returns
+    -------
+    list of str
+    """
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.speedchart import RPM
+    model = ('eq. (16) extended by the friction slope' if chart.model == 'analytical' else
+             f"the linearized whole drive: it has {' and '.join(chart.components)}")
+    lines = [f"exudyn-worm chart --speed: {source}; {chart.frictionLaw} friction law; each direction of the duty at "
+             f"its load torque, linearized at each speed ({model})"]
+    heads = [f"{c.phase} Re [1/s]" for c in chart.curves]
+    lines.append(f"  {'motor [rpm]':>11} {'v0 [m/s]':>9} {'mu(v0)':>8} {'dmu/dv [s/m]':>13} "
+                 + ' '.join(f'{h:>18}' for h in heads) + '  verdict')
+    for i, (n, v, mu, slope) in enumerate(zip(chart.motorSpeeds / RPM, chart.slidingSpeeds, chart.mu, chart.dmuDv)):
+        res = [c.maxRealPart[i] for c in chart.curves]
+        bad = [c.phase for c, r in zip(chart.curves, res) if r > 0]
+        lines.append(f"  {n:11.4g} {v:9.4g} {mu:8.4g} {slope:13.4g} " + ' '.join(f'{r:18.4g}' for r in res)
+                     + ('  CHATTER while ' + ', '.join(bad) if bad else '  stable'))
+    for c in chart.curves:
+        ranges, bounds = c.unstableRanges, c.Boundaries()
+        what = f"{c.phase} (S = {c.S:+d}, load torque {c.loadTorque:.4g} N*m)"
+        lines.append(f"Chatter while {what} at " + ', '.join(f'{a / RPM:.4g} to {b / RPM:.4g} rpm' for a, b in ranges)
+                     + (' (of the speeds computed; boundaries near ' + ', '.join(f'{b / RPM:.4g}' for b in bounds)
+                        + ' rpm)' if bounds else '') if ranges else
+                     f"No chatter while {what} at any of these speeds.")
+    if chart.ownPoints:
+        lines.append("At the drive's own operating points (the verdict of exudyn-worm stability): "
+                     + '; '.join(f"{p.point.Label()}: {'stable' if p.stable else 'UNSTABLE'} "
+                                 f"({p.maxRealPart:.4g} 1/s at {p.frequencyHz:.4g} Hz)" for p in chart.ownPoints)
+                     + f"; the drive is {'stable' if chart.stable else 'UNSTABLE'}")
+    else:
+        lines.append("The drive has no motor: no operating point of its own (the load is taken at every speed).")
+    return lines
 
 
 def _Run(args: argparse.Namespace) -> int:
