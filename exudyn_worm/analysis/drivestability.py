@@ -30,7 +30,8 @@ from ..setups.operatingpoints import DutyOperatingPoints, DutyPoint
 from ..setups.wholedrive import AsDrive, Drive
 from . import linearization
 
-__all__ = ['OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'AnalyzeAtOperatingPoint', 'DriveStability', 'ANALYTICAL', 'LINEARIZED']
+__all__ = ['OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'AnalyzeAtOperatingPoint', 'DriveStability',
+           'ANALYTICAL', 'LINEARIZED']
 
 #: the model names of :attr:`DriveAnalysis.model`
 ANALYTICAL, LINEARIZED = 'analytical', 'linearized'
@@ -230,7 +231,7 @@ def _AtPoint(drive: Drive, point: DutyPoint, model: str):
     return AnalyzeAtOperatingPoint(drive, point.operatingPoint, model)
 
 
-def AnalyzeAtOperatingPoint(drive: Drive, operatingPoint: OperatingPoint, model: Optional[str] = None):
+def AnalyzeAtOperatingPoint(drive: Drive, operatingPoint: OperatingPoint, model: Optional[str] = None) -> Any:
     """The linear analysis of ``drive`` at one operating point, with the model :func:`AnalyzeDrive` takes for it
     (for a point the duty does not hold, e.g. another motor speed of a chart over speed).
 

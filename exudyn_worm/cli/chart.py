@@ -7,10 +7,15 @@ from __future__ import annotations
 
 import argparse
 import sys
-from typing import Dict, List
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Dict, List
 
-from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceText,
-                   Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
+from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceInfo,
+                   SourceText, Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
+
+if TYPE_CHECKING:
+    from ..analysis.speedchart import SpeedChart
 
 __all__ = ['COMMAND', 'PAPER_DTV', 'FormatSpeedChart']
 
@@ -100,7 +105,7 @@ def _RunSpeed(args: argparse.Namespace) -> int:
     return 0
 
 
-def FormatSpeedChart(chart, source: str) -> List[str]:
+def FormatSpeedChart(chart: 'SpeedChart', source: str) -> List[str]:
     """The text of ``chart --speed``: a row per speed (one real part per direction of the duty), the unstable
     ranges per direction and the verdict at the drive's own operating points.
 
@@ -146,13 +151,63 @@ def FormatSpeedChart(chart, source: str) -> List[str]:
     return lines
 
 
+def _ChartDrive(args: argparse.Namespace, parameters: Dict[str, float], gear):
+    """(the drive of the chart's parameter set, its label on the chart or None).
+
+    A complete drive (J1, kT and the shaft damping given: a drive file, a preset, ``--set``) is the user's own
+    drive, marked at its chart coordinates. The gear of a chart alone (no J1 or kT, which the chart sweeps) is
+    completed at a placeholder point only to know its parts (chains, bearing) for the note; it is not marked.
+    """
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..setups.wholedrive import Drive
+    filled = {}
+    if 'J1' not in parameters:
+        filled['J1'] = parameters['J2']
+    if 'kT' not in parameters:
+        filled['kT'] = gear.kV * gear.r1 ** 2
+    if not any(k in parameters for k in ('dT', 'DT', 'DTV')):
+        filled['DT'] = 0.
+    if filled:
+        with BadInput():
+            return Drive.FromParameters({**parameters, **filled}, name=SourceText(args)), None
+    info = SourceInfo(args)
+    label = (Path(info['config']).stem if info['config'] else (info['preset'] or 'drive').replace('reel-', ''))
+    if info['overrides']:
+        label += ' (--set)'
+    return WholeDriveFromArgs(args), label
+
+
+@dataclass(frozen=True)
+class _OwnVerdict:
+    """The marked drive's own verdict at the operating points of its duty (as ``exudyn-worm stability``)."""
+    drive: object
+    label: str
+
+    def ToDict(self) -> Dict:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..analysis.charts import ChartCoordinates
+        from ..analysis.drivestability import AnalyzeDrive
+        analysis = AnalyzeDrive(self.drive)
+        return {'label': self.label, **ChartCoordinates(self.drive.elastic), 'stable': analysis.stable,
+                'maxRealPart': analysis.maxRealPart, 'decidingText': analysis.decidingText,
+                'components': [c.text for c in self.drive.components]}
+
+    def Text(self) -> str:
+        d = self.ToDict()
+        parts = f"; it has {' and '.join(d['components'])}, which the chart does not" if d['components'] else ''
+        return (f"this drive ({self.label}) is marked at x = {d['x']:.4g}, y = {d['y']:.4g} (own D_V = {d['DV']:.4g}, "
+                f"D_TV = {d['DTV']:.4g}){parts}; its verdict at the operating points of its duty (as exudyn-worm "
+                f"stability, mu(v) and the whole drive): {'stable' if d['stable'] else 'UNSTABLE'} "
+                f"({d['decidingText']})")
+
+
 def _Run(args: argparse.Namespace) -> int:
     if args.speed is not None:
         return _RunSpeed(args)
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.charts import ComputeStabilityChart, PresetChartPoints
+    from ..analysis.charts import ChartCoordinates, ComputeStabilityChart, PresetChartPoints
     from ..analysis.charttable import FormatChartTable
-    from ..setups.presets import ExtraComponents, GearFromParameters, MissingParameterError
+    from ..setups.presets import GearFromParameters, MissingParameterError
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
     parameters = ParametersFromArgs(args)
@@ -164,6 +219,9 @@ def _Run(args: argparse.Namespace) -> int:
         J2 = parameters['J2']
         DV = args.DV if args.DV is not None else _MeshDampingMeasure(parameters, gear)
         points = PresetChartPoints([_PresetName(n) for n in args.points])
+        drive, label = _ChartDrive(args, parameters, gear)
+        if label is not None:             # the user's own drive, at its chart coordinates
+            points = {**{k: v for k, v in points.items() if k != label}, label: ChartCoordinates(drive.elastic)}
         # every argument is checked before the first chart is computed
         ComputeStabilityChart(gear, J2, DV, args.DTV[0], xRange=args.x_range, yRange=args.y_range, resolution=2,
                               S=args.S)
@@ -171,10 +229,9 @@ def _Run(args: argparse.Namespace) -> int:
             ComputeStabilityChart(gear, J2, DV, DTV, resolution=2, S=args.S)
         if not 2 <= args.resolution <= 20000:
             ComputeStabilityChart(gear, J2, DV, args.DTV[0], resolution=args.resolution)
-    extra = ExtraComponents(parameters)
-    if extra:
+    if drive.components:
         print(f"exudyn-worm chart: note: the chart is the two-mass drive of Figure 2 with this gear and J2; "
-              f"{' and '.join(extra)} of the parameter set is not in it", file=sys.stderr)
+              f"{drive.ComponentsText()} of the parameter set is not in it", file=sys.stderr)
     charts = []
     with ProgressBar(total=len(args.DTV), desc='charts', unit='chart', quiet=True if args.quiet else None) as bar:
         for DTV in args.DTV:
@@ -199,6 +256,8 @@ def _Run(args: argparse.Namespace) -> int:
         data = {'charts': entries}
         if points:
             data['points'] = points
+        if label is not None:
+            data['drive'] = _OwnVerdict(drive, label).ToDict()
         PrintJson(data)
         return 0
     print(f"exudyn-worm chart: {SourceText(args)}; J2 = {J2:g} kg*m^2, {args.resolution} x {args.resolution} log grid, "
@@ -209,6 +268,8 @@ def _Run(args: argparse.Namespace) -> int:
         print('points (U: unstable, s: stable on that chart, at the point\'s x and y): '
               + ', '.join(f"{k} x = {p['x']:.4g}, y = {p['y']:.4g} (own D_V = {p['DV']:.4g}, D_TV = {p['DTV']:.4g})"
                           for k, p in points.items()))
+    if label is not None:
+        print(_OwnVerdict(drive, label).Text())
     return 0
 
 
