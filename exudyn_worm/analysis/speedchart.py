@@ -29,7 +29,7 @@ from ..model.stability import OperatingPointAt
 from ..params.parameters import MissingParameterError
 from ..setups.operatingpoints import PHASE_NAMES, DutyOperatingPoints
 from ..setups.wholedrive import AsDrive, Drive
-from .drivestability import ANALYTICAL, LINEARIZED, AnalyzeAtOperatingPoint, AnalyzeDrive
+from .drivestability import ANALYTICAL, LINEARIZED, AnalyzeAtOperatingPoint, AnalyzeDrive, StateGrowth
 
 __all__ = ['RPM', 'SpeedCurve', 'SpeedChart', 'SpeedStabilityChart']
 
@@ -277,9 +277,7 @@ def SpeedStabilityChart(drive: Union[Drive, Mapping[str, Any]], motorSpeeds: Seq
         rows = []
         for speed in speeds:
             op = OperatingPointAt(gear, float(speed), torque, S)
-            lam = np.asarray(AnalyzeAtOperatingPoint(drive, op, model).State(S).eigenvalues)
-            k = int(np.argmax(lam.real))
-            rows.append((float(lam[k].real), abs(float(lam[k].imag)) / (2 * math.pi), op.normalForce))
+            rows.append((*StateGrowth(AnalyzeAtOperatingPoint(drive, op, model).State(S)), op.normalForce))
             if progress is not None:
                 progress(1)
         re, f, fn = (np.array(c) for c in zip(*rows))
