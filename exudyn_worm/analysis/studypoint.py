@@ -17,8 +17,8 @@ from .reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedTime
 from .stepsize import UNRESOLVED, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
 from . import reelchanger
 
-__all__ = ['WINDOW_METRICS', 'RUN_COLUMNS', 'HALF_STEP_METRICS', 'VibrationSeconds', 'LoweringVerdict', 'DecidingWindow',
-           'RunPoint']
+__all__ = ['WINDOW_METRICS', 'RUN_COLUMNS', 'HALF_STEP_METRICS', 'VibrationSeconds', 'LoweringVerdict',
+           'DecidingWindow', 'RunPoint']
 
 
 #: metrics written per window (those of ``SimulationResult.WindowMetrics`` plus ``vibrationSeconds``)

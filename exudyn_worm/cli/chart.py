@@ -1,7 +1,10 @@
-"""``exudyn-worm chart``: stability charts (Figures 4 and 5) of the gear of a parameter set.
+"""``exudyn-worm chart``: stability charts (Figures 4 and 5) of the gear of a parameter set, or (``--speed``) the
+drive's stability over motor speed at the load of its own duty.
 
 The gear (angles, friction, r1, r2, kV) and J2 come from the preset/config/``--set``; J1, kT and the damping
 constants are what the chart sweeps (x = kT/(kV r1^2), y = J1/J2, D_T = D_TV D_V), so they need not be given.
+When they are (a whole drive), the drive itself is marked on its chart, with its own verdict at its operating
+points.
 """
 from __future__ import annotations
 
@@ -40,7 +43,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='contact state: -1 (load lowering, the paper\'s charts; default) or +1')
     parser.add_argument('--points', nargs='+', default=[], metavar='NAME',
                         help='presets to mark at their chart coordinates, e.g. reel-P1 reel-P2 (or P1 P2); '
-                             'their verdict on each chart is listed')
+                             'their verdict on each chart is listed (a whole drive given with --config, --preset '
+                             'or --set is marked too, labelled by its file or preset)')
     parser.add_argument('--output', default=None, metavar='FILE.png',
                         help='draw the charts (one axes, one region per D_TV) into FILE (.png, .pdf or .svg)')
     AddOverwriteOption(parser, 'the --output file')
@@ -82,7 +86,7 @@ def _RunSpeed(args: argparse.Namespace) -> int:
     """``chart --speed SPEC``: the drive's stability over motor speed at the load of its own duty
     (:mod:`exudyn_worm.analysis.speedchart`)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.speedchart import RPM, SpeedStabilityChart
+    from ..analysis.speedchart import SpeedStabilityChart
     from ..analysis.study import ParseVariation
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
