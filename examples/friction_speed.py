@@ -207,7 +207,8 @@ def _Plot(out: Path) -> None:
     fig.savefig(out / 'mu_of_v.png', dpi=120)
     charts = SpeedChart()
     ax = charts['stribeck'].plot()
-    ax.plot(charts['constant'].motorSpeeds / RPM, charts['constant'].maxRealPart, color='0.5', label='constant mu')
+    ax.plot(charts['constant'].motorSpeeds / RPM, charts['constant'].Curve(-1).maxRealPart, color='0.5',
+            label='constant mu, lowering')
     ax.figure.savefig(out / 'max_real_part_over_speed.png', dpi=120)
     sim = ChatterAmplitudes()
     fig, ax = plt.subplots(figsize=(7, 4), layout='constrained')
@@ -230,7 +231,7 @@ def _Plot(out: Path) -> None:
     for n, a, c in zip(sim['rpm'], sim['amplitude'], sim['chatter']):
         print(f"{n:7.1f} rpm: lowering J2 max|phi2''| = {a:.4g} rad/s^2{' (chatter)' if c else ''}")
     print('chatter while lowering (linear):', ', '.join(f'{a / RPM:.0f} to {b / RPM:.0f} rpm'
-                                                       for a, b in charts['stribeck'].unstableRanges))
+                                                       for a, b in charts['stribeck'].Curve(-1).unstableRanges))
 
 
 if __name__ == '__main__':

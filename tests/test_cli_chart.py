@@ -118,3 +118,22 @@ def test_drive_side_chain_is_noted_not_used(capsys):
     plain = _Run(capsys, 'chart', '--preset', 'chart', '--DV', '0.014', '--DTV', '1', '--resolution', '30', '--json')
     assert status == 0 and 'drive-side chain' in err and 'not in it' in err
     assert json.loads(out) == json.loads(plain[1])
+
+
+def test_own_drive_is_marked_with_its_verdict(capsys):
+    """A whole drive from --config is marked at its chart coordinates: reel-P1 with the Figure 19 chain lies at P1's
+    x = kT/(kV r1^2) = 7000 / (2e8 * 0.01805^2) and y = J1/J2 = 0.1/33 (set (28)), in the unstable region of
+    D_TV = 1 (section 3.2: P1 chatters)."""
+    from pathlib import Path
+    config = str(Path(__file__).resolve().parents[1] / 'examples' / 'drives' / 'figure19.toml')
+    status, out, err = _Run(capsys, 'chart', '--config', config, '--DTV', '1', '--resolution', '60', '--json')
+    assert status == 0, err
+    data = json.loads(out)
+    point = data['points']['figure19']
+    assert point['x'] == pytest.approx(7000 / (2e8 * 0.01805 ** 2), rel=1e-12)
+    assert point['y'] == pytest.approx(0.1 / 33, rel=1e-12)
+    assert data['charts'][0]['pointsUnstable'] == {'figure19': True}
+    assert data['drive']['stable'] is False and data['drive']['components'] == ['a drive-side chain (J4, ...)']
+    assert 'drive-side chain' in err and 'not in it' in err
+    status, out, err = _Run(capsys, 'chart', '--config', config, '--DTV', '1', '--resolution', '40', '--points', 'P2')
+    assert status == 0 and 'this drive (figure19) is marked at x = 0.1074' in out and 'UNSTABLE' in out

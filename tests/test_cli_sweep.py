@@ -129,3 +129,19 @@ def test_failed_runs_are_reported_and_all_failed_is_an_error(capsys):
     assert err[-1].startswith('exudyn-worm: warning: 1 of 2 runs failed') and "'error' column" in err[-1]
     assert Main(['sweep', '--vary', 'loadMass=1e20'] + SHORT) == 1
     assert 'warning: 1 of 1 runs failed' in capsys.readouterr().err
+
+
+def test_default_metric_belongs_to_the_deciding_phase():
+    """The default --metric window is the first of the phase that decides the linear verdict: the reel changer at
+    P1 chatters while lowering (section 3.2), its window 1; the hoist's lifting point decides (its file), a lifting
+    window."""
+    from pathlib import Path
+    from exudyn_worm.analysis.reelchanger import DefaultPhases
+    from exudyn_worm.analysis.studypoint import DecidingWindow
+    from exudyn_worm.setups.config import ResolveParameters
+    from exudyn_worm.setups.presets import GetPreset
+    assert DecidingWindow(GetPreset('reel-P1')) == 1
+    hoist = ResolveParameters(config=Path(__file__).resolve().parents[1] / 'examples' / 'drives' / 'hoist.toml')
+    i = DecidingWindow(hoist)
+    phases = DefaultPhases(hoist, None, minLength=1e-3)
+    assert phases[i][2] == 'lift' and all(ph != 'lift' for _, _, ph in phases[:i])

@@ -12,7 +12,8 @@ from exudyn_worm.analysis.design import SPEED_KEY, DesignCheck
 from exudyn_worm.analysis.drivestability import DriveStability
 from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
-from exudyn_worm.analysis.speedchart import RPM, SpeedChart, SpeedStabilityChart
+from exudyn_worm.analysis.drivestability import AnalyzeDrive
+from exudyn_worm.analysis.speedchart import RPM, SpeedChart, SpeedCurve, SpeedStabilityChart
 from exudyn_worm.model.stability import AnalyzeStability, OperatingPointAt
 
 #: reel-P3 with the steep Stribeck law of docs/friction.md (mu(v0) = 0.132 at 472.5 rpm)
@@ -22,8 +23,13 @@ SPEEDS = np.geomspace(20, 2000, 25) * RPM
 
 def test_constant_mu_does_not_depend_on_speed():
     chart = SpeedStabilityChart(GetPreset('reel-P3'), SPEEDS)
-    reference = np.max(AnalyzeStability(ElasticDriveFromParameters(GetPreset('reel-P3'))).contact[-1].eigenvalues.real)
-    np.testing.assert_allclose(chart.maxRealPart, reference, rtol=1e-12)
+    atRest = AnalyzeStability(ElasticDriveFromParameters(GetPreset('reel-P3')))
+    # the reel changer's duty lifts and lowers at m g l: one curve per direction, each its contact state at rest
+    assert [(c.phase, c.S) for c in chart.curves] == [('lifting', 1), ('lowering', -1)]
+    for c in chart.curves:
+        np.testing.assert_allclose(c.maxRealPart, np.max(atRest.contact[c.S].eigenvalues.real), rtol=1e-12)
+    np.testing.assert_allclose(chart.maxRealPart, max(np.max(atRest.contact[S].eigenvalues.real) for S in (1, -1)),
+                               rtol=1e-12)
     assert chart.unstableRanges == [] and chart.Boundaries() == [] and chart.frictionLaw == 'constant'
 
 
@@ -34,7 +40,11 @@ def test_each_speed_is_the_extended_eq16_at_its_operating_point():
     for i in (0, 12, 24):
         op = OperatingPointAt(drive.gear, SPEEDS[i], torque)
         expected = np.max(AnalyzeStability(drive, op).contact[-1].eigenvalues.real)
-        assert chart.maxRealPart[i] == pytest.approx(expected, rel=1e-12)
+        assert chart.Curve(-1).maxRealPart[i] == pytest.approx(expected, rel=1e-12)
+        lifting = np.max(AnalyzeStability(drive, OperatingPointAt(drive.gear, SPEEDS[i], torque, 1)).contact[1]
+                         .eigenvalues.real)
+        assert chart.Curve(1).maxRealPart[i] == pytest.approx(lifting, rel=1e-12)
+        assert chart.maxRealPart[i] == pytest.approx(max(expected, lifting), rel=1e-12)
         assert chart.mu[i] == pytest.approx(op.mu) and chart.dmuDv[i] == pytest.approx(op.dmuDv)
 
 
@@ -55,9 +65,15 @@ def test_the_chattering_speed_range_of_reel_p3():
 
 def test_unstable_ranges_of_separate_runs():
     s = np.arange(1., 8.)
-    chart = SpeedChart(s, s, s, s, np.array([1., -1., 1., 1., -1., -1., 2.]), 'stribeck', 1.)
-    assert chart.unstableRanges == [(1., 1.), (3., 4.), (7., 7.)]
-    assert len(chart.Boundaries()) == 4
+    curve = SpeedCurve('lowering', -1, 1., s, np.array([1., -1., 1., 1., -1., -1., 2.]), s, s)
+    assert curve.unstableRanges == [(1., 1.), (3., 4.), (7., 7.)]
+    assert len(curve.Boundaries()) == 4
+    # the chart's ranges are those of the largest real part over its curves
+    other = SpeedCurve('lifting', 1, 1., s, np.array([-1., 1., -1., -1., -1., -1., -1.]), s, s)
+    chart = SpeedChart(s, s, s, s, (other, curve), 'stribeck')
+    assert chart.unstableRanges == [(1., 4.), (7., 7.)] and chart.Curve(-1) is curve
+    with pytest.raises(ValueError, match='no lowering operating point'):
+        SpeedChart(s, s, s, s, (other,), 'stribeck').Curve(-1)
 
 
 @pytest.mark.parametrize('speeds, match', [([], 'non-empty'), ([10., -1.], r"'motorSpeeds\[1\]' must be > 0 rad/s")])
@@ -68,8 +84,30 @@ def test_bad_speeds(speeds, match):
 
 def test_needs_the_load():
     p = {k: v for k, v in P3.items() if k != 'loadMass'}
-    with pytest.raises(ValueError, match="missing parameter.*loadMass"):
+    with pytest.raises(ValueError, match="the load .* needs loadMass, leverArm; missing loadMass"):
         SpeedStabilityChart(p, SPEEDS)
+    p = {k: v for k, v in P3.items() if k not in ('loadMass', 'leverArm')}
+    with pytest.raises(ValueError, match=r"the drive has no load torque.*give \[load\]"):
+        SpeedStabilityChart(p, SPEEDS)
+
+
+def test_at_the_drives_own_speed_a_curve_is_its_verdict():
+    """Evaluated at the duty's own speed, each curve is the analysis of `stability` at that operating point."""
+    analysis = AnalyzeDrive(P3)
+    chart = SpeedStabilityChart(P3, [P3['motorSpeed']])
+    assert [p.phase for p in chart.ownPoints] == ['lifting', 'lowering']
+    for p in analysis.operatingPoints:
+        assert chart.Curve(p.S).maxRealPart[0] == pytest.approx(p.maxRealPart, rel=1e-12)
+    assert chart.stable is analysis.stable is False
+
+
+def test_a_drive_without_motor_takes_its_load_at_every_speed():
+    p = {k: v for k, v in P3.items() if k != 'motorSpeed'}
+    chart = SpeedStabilityChart(p, SPEEDS[:3])
+    with_motor = SpeedStabilityChart(P3, SPEEDS[:3])
+    assert chart.ownPoints == () and chart.stable is None
+    for a, b in zip(chart.curves, with_motor.curves):
+        np.testing.assert_allclose(a.maxRealPart, b.maxRealPart, rtol=1e-12)
 
 
 def test_the_study_verdict_is_taken_at_the_operating_point():
@@ -101,7 +139,8 @@ def _Cli(*args):
 def test_cli_chart_over_speed(tmp_path):
     run = _Cli('--speed', '20rpm:2000rpm:9:log')
     assert run.returncode == 0, run.stderr
-    assert 'CHATTER' in run.stdout and 'Chatter while lowering at' in run.stdout
+    assert 'CHATTER' in run.stdout and 'Chatter while lowering (S = -1, load torque 2060 N*m) at' in run.stdout
+    assert "At the drive's own operating points" in run.stdout and 'the drive is UNSTABLE' in run.stdout
     run = _Cli('--speed', '50rpm,472.5rpm,2000rpm', '--json')
     data = json.loads(run.stdout)
     assert data['unstable'] == [False, True, False]

@@ -199,7 +199,7 @@ def RunChatterStudies(checks: int = 8, only: Optional[str] = None) -> List[Dict]
     if Wanted('reel-P3, Stribeck friction'):
         friction = {**ew.GetPreset('reel-P3'), **_FRICTION}
         study = _FrictionBranch('reel-P3, Stribeck friction', friction, checks)
-        chart = SpeedStabilityChart(friction, np.linspace(60., 700., 321) * RPM)
+        chart = SpeedStabilityChart(friction, np.linspace(60., 700., 321) * RPM).Curve(-1)     # lowering
         study['unstableRanges'] = [(a / RPM, b / RPM) for a, b in chart.unstableRanges]
         studies.append(study)
     return studies

@@ -93,7 +93,7 @@ def AnalyticalBoundaries(parameters: Mapping[str, Any], low: float = 10 * RPM, h
     -------
     list of float
     """
-    return SpeedStabilityChart(parameters, np.geomspace(low, high, 400)).Boundaries()
+    return SpeedStabilityChart(parameters, np.geomspace(low, high, 400)).Curve(-1).Boundaries()
 
 
 def RunSpeedStudy(preset: str) -> List[Dict]:
@@ -111,7 +111,7 @@ def RunSpeedStudy(preset: str) -> List[Dict]:
     parameters = LawParameters(preset)
     study = Study(parameters, [ParseVariation(SPEEDS)], source=f'{preset} with a Stribeck law')
     speeds = [p['motorSpeed'] for p in study.points]
-    chart = SpeedStabilityChart(parameters, speeds)
+    chart = SpeedStabilityChart(parameters, speeds).Curve(-1)           # lowering, as the simulated phase
     boundaries = AnalyticalBoundaries(parameters)
     rows = []
     for run, speed in enumerate(speeds):

@@ -30,17 +30,30 @@ from ..setups.operatingpoints import DutyOperatingPoints, DutyPoint
 from ..setups.wholedrive import AsDrive, Drive
 from . import linearization
 
-__all__ = ['OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'DriveStability', 'ANALYTICAL', 'LINEARIZED']
+__all__ = ['OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'AnalyzeAtOperatingPoint', 'StateGrowth',
+           'DriveStability', 'ANALYTICAL', 'LINEARIZED']
 
 #: the model names of :attr:`DriveAnalysis.model`
 ANALYTICAL, LINEARIZED = 'analytical', 'linearized'
 
 
-def _Deciding(eigenvalues: np.ndarray) -> Tuple[float, float]:
-    """(largest real part in 1/s, the frequency of that eigenvalue in Hz)."""
-    lam = np.asarray(eigenvalues)
-    k = int(np.argmax(lam.real))
-    return float(lam[k].real), abs(float(lam[k].imag)) / (2 * math.pi)
+def StateGrowth(state: Any) -> Tuple[float, float]:
+    """(largest real part in 1/s, frequency in Hz of that eigenvalue) of one contact state's analysis, with its own
+    verdict's eigenvalues: the rigid-body modes of the linearized whole drive (a free motor rotor) left out.
+
+    Parameters
+    ----------
+    state : object
+        ``analysis.State(S)`` of :func:`AnalyzeAtOperatingPoint` (``maxRealPart``, ``eigenvalues``).
+
+    Returns
+    -------
+    (float, float)
+    """
+    re = float(state.maxRealPart)
+    lam = np.asarray(state.eigenvalues)
+    k = int(np.argmin(np.abs(lam.real - re)))       # the eigenvalue of that real part
+    return re, abs(float(lam[k].imag)) / (2 * math.pi)
 
 
 @dataclass(frozen=True)
@@ -84,12 +97,12 @@ class OperatingPointStability:
     @property
     def maxRealPart(self) -> float:
         """Largest real part in 1/s (> 0: vibrations grow at this point)."""
-        return _Deciding(self.eigenvalues)[0]
+        return StateGrowth(self.state)[0]
 
     @property
     def frequencyHz(self) -> float:
         """Frequency in Hz of the eigenvalue with the largest real part."""
-        return _Deciding(self.eigenvalues)[1]
+        return StateGrowth(self.state)[1]
 
     @property
     def stable(self) -> bool:
@@ -159,7 +172,7 @@ class DriveAnalysis:
         if self.operatingPoints:
             return self.deciding.frequencyHz
         S = max(CONTACT_STATES, key=lambda s: float(self.atRest.State(s).maxRealPart))
-        return _Deciding(self.atRest.State(S).eigenvalues)[1]
+        return StateGrowth(self.atRest.State(S))[1]
 
     def State(self, S: int):
         """The result for contact state ``S``: the operating point in that state with the largest real part, or,
@@ -227,7 +240,31 @@ def _AtRest(drive: Drive, model: str = ANALYTICAL):
 
 
 def _AtPoint(drive: Drive, point: DutyPoint, model: str):
-    op: OperatingPoint = point.operatingPoint
+    return AnalyzeAtOperatingPoint(drive, point.operatingPoint, model)
+
+
+def AnalyzeAtOperatingPoint(drive: Drive, operatingPoint: OperatingPoint, model: Optional[str] = None) -> Any:
+    """The linear analysis of ``drive`` at one operating point, with the model :func:`AnalyzeDrive` takes for it
+    (for a point the duty does not hold, e.g. another motor speed of a chart over speed).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+    operatingPoint : OperatingPoint
+        Sliding speed, mu, slope, static normal force and contact state S
+        (:func:`~exudyn_worm.model.stability.OperatingPointAt`).
+    model : str, optional
+        ``'analytical'`` or ``'linearized'``; None (default): as :func:`AnalyzeDrive` chooses.
+
+    Returns
+    -------
+    StabilityAnalysis or LinearStability
+        ``State(operatingPoint.S)`` gives ``stable``, ``maxRealPart`` and ``eigenvalues``.
+    """
+    op = operatingPoint
+    if model is None:
+        model = ANALYTICAL if drive.isTwoMass else LINEARIZED
     if model == ANALYTICAL:
         return AnalyzeStability(drive.elastic, op)
     if drive.isTwoMass:             # the same result type as the analytical model, from Exudyn's eigenvalues

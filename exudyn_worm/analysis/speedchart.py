@@ -1,11 +1,18 @@
-"""Stability over motor speed: the speed range in which a drive with speed-dependent friction chatters.
+"""Stability over motor speed: the speed range in which a drive chatters, at the load of its own duty.
 
-With a constant mu the linear model (eqs. (15)-(19)) does not depend on speed or load. With a friction law
-mu(v) (:mod:`exudyn_worm.model.friction`) it does: the drive is linearized at steady lowering (worm speed = motor
-speed, static normal force from ``loadMass * g * leverArm``, :func:`~exudyn_worm.model.stability.OperatingPointAt`) and
-the slope dmu/dv adds damping to eq. (16) (:mod:`exudyn_worm.model.stability`). :func:`SpeedStabilityChart` evaluates
-the extended eq. (16) at every speed of a list and returns a :class:`SpeedChart` (largest real part of the lowering
-state S = -1, mu and its slope, the unstable speed ranges); its ``plot()`` draws it
+With a constant mu the linear model does not depend on speed or load. With a friction law mu(v)
+(:mod:`exudyn_worm.model.friction`) it does: the drive is linearized at steady motion at each motor speed, with the
+load torque of its own duty. The curves come from the drive's operating points
+(:func:`~exudyn_worm.setups.operatingpoints.DutyOperatingPoints`): one curve per direction of power flow and load
+torque of the duty (lifting, S = +1; lowering, S = -1), each evaluated at every speed of the chart with the
+static normal force, mu(v0) and dmu/dv of that speed (:func:`~exudyn_worm.model.stability.OperatingPointAt`). The
+model is the one :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive` takes for the drive: eq. (16) extended
+by the friction slope for the two-mass drive, the linearized Exudyn model of the whole drive otherwise (chains,
+axial bearing, a motor on its characteristic, which the chart holds at each speed). At the drive's own speed a
+curve is the verdict of ``exudyn-worm stability`` at that operating point.
+
+:func:`SpeedStabilityChart` returns a :class:`SpeedChart` (the curves, mu and its slope, the unstable speed ranges,
+and the drive's verdict at its own operating points); its ``plot()`` draws it
 (:func:`exudyn_worm.plotting.plot_charts.PlotSpeedChart`). ``exudyn-worm chart --speed SPEC`` prints or draws it.
 
 No matplotlib here.
@@ -14,23 +21,106 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, List, Mapping, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 from .._checks import CheckPositive
-from ..setups.presets import ApplyOverrides, ElasticDriveFromParameters, ExtraComponents, MissingParameterError
-from ..model.profiles import STANDARD_GRAVITY
-from ..model.stability import AnalyzeStability, OperatingPointAt
+from ..model.stability import OperatingPointAt
+from ..params.parameters import MissingParameterError
+from ..setups.operatingpoints import PHASE_NAMES, DutyOperatingPoints
+from ..setups.wholedrive import AsDrive, Drive
+from .drivestability import ANALYTICAL, LINEARIZED, AnalyzeAtOperatingPoint, AnalyzeDrive, StateGrowth
 
-__all__ = ['RPM', 'SpeedChart', 'SpeedStabilityChart']
+__all__ = ['RPM', 'SpeedCurve', 'SpeedChart', 'SpeedStabilityChart']
 
 #: one revolution per minute in rad/s
 RPM = 2 * math.pi / 60
 
 
+def _UnstableRanges(speeds: np.ndarray, maxRealPart: np.ndarray) -> List[Tuple[float, float]]:
+    """(first unstable, last unstable) speed of each run of consecutive unstable speeds."""
+    ranges, start, bad = [], None, maxRealPart > 0
+    for i, b in enumerate(bad):
+        if b and start is None:
+            start = i
+        if start is not None and (not b or i == len(bad) - 1):
+            end = i if b else i - 1
+            ranges.append((float(speeds[start]), float(speeds[end])))
+            start = None
+    return ranges
+
+
+def _Boundaries(speeds: np.ndarray, maxRealPart: np.ndarray) -> List[float]:
+    """Speeds where the largest real part changes sign (linear interpolation in log speed)."""
+    out = []
+    s, r = np.log(speeds), maxRealPart
+    for i in range(len(r) - 1):
+        if (r[i] > 0) != (r[i + 1] > 0):
+            t = r[i] / (r[i] - r[i + 1])
+            out.append(float(math.exp(s[i] + t * (s[i + 1] - s[i]))))
+    return out
+
+
+def _RangesDict(speeds: np.ndarray, maxRealPart: np.ndarray) -> Dict:
+    ranges, bounds = _UnstableRanges(speeds, maxRealPart), _Boundaries(speeds, maxRealPart)
+    return {'maxRealPart': maxRealPart.tolist(), 'unstable': (maxRealPart > 0).tolist(),
+            'unstableRanges': [list(r) for r in ranges], 'unstableRangesRpm': [[a / RPM, b / RPM] for a, b in ranges],
+            'boundaries': bounds, 'boundariesRpm': [b / RPM for b in bounds]}
+
+
+@dataclass(frozen=True)
+class SpeedCurve:
+    """One direction of power flow of the duty over motor speed.
+
+    Attributes
+    ----------
+    phase : str
+        ``'lifting'`` (S = +1, the load opposes the motion) or ``'lowering'`` (S = -1, the load drives).
+    S : int
+        Contact state, +1 or -1.
+    loadTorque : float
+        Magnitude of the load torque in N*m (that of the duty's operating points in this direction).
+    motorSpeeds : ndarray
+        Motor speeds in rad/s (those of the chart).
+    maxRealPart : ndarray
+        Largest real part in 1/s of the eigenvalues of contact state S at each speed (> 0: chatter).
+    frequencyHz : ndarray
+        Frequency in Hz of that eigenvalue.
+    normalForce : ndarray
+        Static normal force Fn0 in N (it changes with mu(v0) through c4).
+    """
+    phase: str
+    S: int
+    loadTorque: float
+    motorSpeeds: np.ndarray
+    maxRealPart: np.ndarray
+    frequencyHz: np.ndarray
+    normalForce: np.ndarray
+
+    @property
+    def unstable(self) -> np.ndarray:
+        """Boolean per speed: this direction is unstable."""
+        return self.maxRealPart > 0
+
+    @property
+    def unstableRanges(self) -> List[Tuple[float, float]]:
+        """Speed ranges (rad/s) of consecutive unstable speeds: (first unstable, last unstable) of each run."""
+        return _UnstableRanges(self.motorSpeeds, self.maxRealPart)
+
+    def Boundaries(self) -> List[float]:
+        """Motor speeds in rad/s where the largest real part changes sign (linear interpolation in log speed)."""
+        return _Boundaries(self.motorSpeeds, self.maxRealPart)
+
+    def ToDict(self) -> Dict:
+        """JSON-ready: phase, S, load torque, normal force, frequencies and the ranges (SI and rpm)."""
+        return {'phase': self.phase, 'S': self.S, 'loadTorque': self.loadTorque,
+                'normalForce': self.normalForce.tolist(), 'frequencyHz': self.frequencyHz.tolist(),
+                **_RangesDict(self.motorSpeeds, self.maxRealPart)}
+
+
 @dataclass(frozen=True)
 class SpeedChart:
-    """The lowering state's stability over motor speed (the result of :func:`SpeedStabilityChart`).
+    """The drive's stability over motor speed (the result of :func:`SpeedStabilityChart`).
 
     Attributes
     ----------
@@ -40,59 +130,85 @@ class SpeedChart:
         Sliding speeds v0 in m/s at these motor speeds.
     mu, dmuDv : ndarray
         Friction coefficient mu(v0) and slope dmu/dv in s/m.
-    maxRealPart : ndarray
-        Largest real part in 1/s of the eigenvalues of the lowering state S = -1 (extended eq. (16)); > 0:
-        unstable, the drive chatters while lowering at this speed.
+    curves : tuple of SpeedCurve
+        One per direction of power flow and load torque of the duty (lifting first).
     frictionLaw : str
         The law's name (``constant``, ``stribeck``, ...).
-    normalForce : float
-        Static normal force Fn0 in N at the first speed (it changes with mu(v0) through c4).
+    model : str
+        ``'analytical'`` (eq. (16) extended by the friction slope) or ``'linearized'`` (the whole drive).
+    ownPoints : tuple
+        The drive's own operating points with their verdict
+        (:class:`~exudyn_worm.analysis.drivestability.OperatingPointStability`, as ``exudyn-worm stability``);
+        empty for a drive without a motor (the chart then takes the load at every speed).
+    components : tuple of str
+        The drive's parts beyond the two-mass drive, as named in messages (empty: two-mass).
     """
     motorSpeeds: np.ndarray
     slidingSpeeds: np.ndarray
     mu: np.ndarray
     dmuDv: np.ndarray
-    maxRealPart: np.ndarray
+    curves: Tuple[SpeedCurve, ...]
     frictionLaw: str
-    normalForce: float
+    model: str = ANALYTICAL
+    ownPoints: Tuple[Any, ...] = ()
+    components: Tuple[str, ...] = ()
+
+    @property
+    def maxRealPart(self) -> np.ndarray:
+        """Largest real part in 1/s over every curve at each speed (> 0: the drive chatters in some direction)."""
+        return np.max(np.array([c.maxRealPart for c in self.curves]), axis=0)
 
     @property
     def unstable(self) -> np.ndarray:
-        """Boolean per speed: the lowering state is unstable."""
+        """Boolean per speed: some direction of the duty is unstable."""
         return self.maxRealPart > 0
 
     @property
     def unstableRanges(self) -> List[Tuple[float, float]]:
-        """Speed ranges (rad/s) of consecutive unstable speeds: (first unstable, last unstable) of each run."""
-        ranges, start = [], None
-        for i, bad in enumerate(self.unstable):
-            if bad and start is None:
-                start = i
-            if start is not None and (not bad or i == len(self.unstable) - 1):
-                end = i if bad else i - 1
-                ranges.append((float(self.motorSpeeds[start]), float(self.motorSpeeds[end])))
-                start = None
-        return ranges
+        """Speed ranges (rad/s) in which some direction is unstable (of :attr:`maxRealPart`)."""
+        return _UnstableRanges(self.motorSpeeds, self.maxRealPart)
 
     def Boundaries(self) -> List[float]:
-        """Motor speeds in rad/s where the largest real part changes sign (linear interpolation in log speed)."""
-        out = []
-        s, r = np.log(self.motorSpeeds), self.maxRealPart
-        for i in range(len(r) - 1):
-            if (r[i] > 0) != (r[i + 1] > 0):
-                t = r[i] / (r[i] - r[i + 1])
-                out.append(float(math.exp(s[i] + t * (s[i + 1] - s[i]))))
-        return out
+        """Motor speeds in rad/s where :attr:`maxRealPart` changes sign (linear interpolation in log speed)."""
+        return _Boundaries(self.motorSpeeds, self.maxRealPart)
+
+    def Curve(self, S: int) -> SpeedCurve:
+        """The curve of contact state ``S`` with the largest load torque.
+
+        Parameters
+        ----------
+        S : int
+            +1 (lifting) or -1 (lowering).
+
+        Returns
+        -------
+        SpeedCurve
+
+        Raises
+        ------
+        ValueError
+            If the duty has no operating point in that direction.
+        """
+        mine = [c for c in self.curves if c.S == S]
+        if not mine:
+            raise ValueError(f"SpeedChart.Curve: the duty has no {PHASE_NAMES.get(S, S)} operating point "
+                             f"(S = {S}); its curves: {', '.join(c.phase for c in self.curves)}")
+        return max(mine, key=lambda c: c.loadTorque)
+
+    @property
+    def stable(self) -> Optional[bool]:
+        """The drive's verdict at its own operating points (as ``exudyn-worm stability``); None without them."""
+        return all(p.stable for p in self.ownPoints) if self.ownPoints else None
 
     def ToDict(self) -> Dict:
-        """JSON-ready: the arrays (SI; speeds also in rpm), the unstable ranges and the boundaries."""
-        return {'frictionLaw': self.frictionLaw, 'contactState': -1, 'normalForce': self.normalForce,
+        """JSON-ready: speeds (SI and rpm), mu, slope, the envelope's ranges, ``curves`` and ``operatingPoints``."""
+        return {'frictionLaw': self.frictionLaw, 'model': self.model, 'components': list(self.components),
                 'motorSpeed': self.motorSpeeds.tolist(), 'motorSpeedRpm': (self.motorSpeeds / RPM).tolist(),
                 'slidingSpeed': self.slidingSpeeds.tolist(), 'mu': self.mu.tolist(), 'dmuDv': self.dmuDv.tolist(),
-                'maxRealPart': self.maxRealPart.tolist(), 'unstable': self.unstable.tolist(),
-                'unstableRanges': [list(r) for r in self.unstableRanges],
-                'unstableRangesRpm': [[a / RPM, b / RPM] for a, b in self.unstableRanges],
-                'boundaries': self.Boundaries(), 'boundariesRpm': [b / RPM for b in self.Boundaries()]}
+                **_RangesDict(self.motorSpeeds, self.maxRealPart),
+                'curves': [c.ToDict() for c in self.curves],
+                'stable': self.stable,
+                'operatingPoints': [{**p.ToDict(), 'motorSpeedRpm': p.point.motorSpeed / RPM} for p in self.ownPoints]}
 
     def plot(self, ax=None, **kwargs):
         """Draw the chart (:func:`exudyn_worm.plotting.plot_charts.PlotSpeedChart`); returns the axes."""
@@ -100,16 +216,44 @@ class SpeedChart:
         return PlotSpeedChart(self, ax=ax, **kwargs)
 
 
-def SpeedStabilityChart(parameters: Mapping[str, object], motorSpeeds: Sequence[float]) -> SpeedChart:
-    """Largest real part of the lowering state over motor speed, from eq. (16) extended at each operating point.
+def _LoadsOfTheDuty(drive: Drive, speed: float, where: str) -> Tuple[Tuple[Any, ...], List[Tuple[int, float]]]:
+    """(the drive's own operating points, [(S, |load torque|), ...] of the curves, lifting first, no repeats)."""
+    if drive.load is None:
+        raise MissingParameterError(f"{where}: the drive has no load torque (the load sets the normal force of the "
+                                    f"operating point): give [load] in the drive file (mass and leverArm, or a "
+                                    f"type and its torque) or --set loadMass=... --set leverArm=...",
+                                    ['loadMass', 'leverArm'])
+    own: Tuple[Any, ...] = ()
+    if drive.hasDuty:
+        own = AnalyzeDrive(drive).operatingPoints
+        points = [p.point for p in own]
+    else:                           # no motor: the load of a constant-speed duty at the chart's speed
+        points = list(DutyOperatingPoints(drive.Replace({'motorSpeed': speed})))
+    if not points:
+        raise ValueError(f"{where}: the drive's duty has no steady phase with a load torque (the motor never runs "
+                         f"at a constant speed other than 0), so there is no load to take over speed")
+    loads: List[Tuple[int, float]] = []
+    for p in sorted(points, key=lambda p: -p.S):
+        key = (p.S, abs(p.loadTorque))
+        if not any(S == key[0] and math.isclose(T, key[1], rel_tol=1e-9) for S, T in loads):
+            loads.append(key)
+    return own, loads
+
+
+def SpeedStabilityChart(drive: Union[Drive, Mapping[str, Any]], motorSpeeds: Sequence[float],
+                        progress: Optional[Callable[[int], Any]] = None) -> SpeedChart:
+    """Largest real part over motor speed of each direction of the drive's duty, at the load torque of its duty.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set of a two-mass drive with ``loadMass`` and ``leverArm`` (its ``motorSpeed`` is replaced),
-        and usually a friction law (``frictionLaw`` ...; with constant mu the result does not depend on speed).
+    drive : Drive or mapping
+        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`) or a flat parameter set, with a load
+        (any load type) and usually a friction law (with constant mu the result does not depend on speed). A
+        drive without a motor is taken at the load of a constant-speed duty.
     motorSpeeds : sequence of float
-        Motor speeds in rad/s, > 0 (sorted here).
+        Motor speeds in rad/s, > 0 (sorted here); each direction is evaluated at the speed of its sign.
+    progress : callable, optional
+        Called with 1 after each linear analysis (e.g. a progress bar's ``update``).
 
     Returns
     -------
@@ -118,28 +262,27 @@ def SpeedStabilityChart(parameters: Mapping[str, object], motorSpeeds: Sequence[
     Raises
     ------
     ValueError
-        For a bad parameter set, a set without ``loadMass``/``leverArm``, one with components beyond the
-        two-mass drive, or a speed that is not > 0.
+        For a bad drive, a drive without a load or without a steady phase, or a speed that is not > 0.
     """
     w = 'SpeedStabilityChart'
     if isinstance(motorSpeeds, (str, bytes)) or not hasattr(motorSpeeds, '__len__') or len(motorSpeeds) == 0:
         raise ValueError(f"{w}: 'motorSpeeds' must be a non-empty sequence of speeds in rad/s, got {motorSpeeds!r}")
     speeds = np.sort(np.array([CheckPositive(w, f'motorSpeeds[{i}]', s, 'rad/s') for i, s in enumerate(motorSpeeds)]))
-    missing = [k for k in ('loadMass', 'leverArm') if k not in parameters]
-    if missing:
-        raise MissingParameterError(f"{w}: missing parameter(s) {', '.join(missing)} (the load sets the normal force "
-                                    f"of the operating point); give them with --set KEY=VALUE", missing)
-    extra = ExtraComponents(parameters)
-    if extra:
-        raise ValueError(f"{w}: the chart over speed uses the two-mass model of eq. (16); this parameter set has "
-                         f"{' and '.join(extra)}")
-    drive = ElasticDriveFromParameters(ApplyOverrides(parameters, {'motorSpeed': float(speeds[0])}))
-    torque = parameters['loadMass'] * STANDARD_GRAVITY * parameters['leverArm']
-    rows = []
-    for speed in speeds:
-        op = OperatingPointAt(drive.gear, float(speed), torque)
-        analysis = AnalyzeStability(drive, op)
-        rows.append((op.slidingSpeed, op.mu, op.dmuDv, float(np.max(analysis.contact[-1].eigenvalues.real)),
-                     op.normalForce))
-    v, mu, slope, re, fn = (np.array(c) for c in zip(*rows))
-    return SpeedChart(speeds, v, mu, slope, re, drive.gear.frictionLaw.kind, float(fn[0]))
+    drive = AsDrive(drive, w)
+    own, loads = _LoadsOfTheDuty(drive, float(speeds[0]), w)
+    model = ANALYTICAL if drive.isTwoMass else LINEARIZED
+    gear = drive.gear
+    curves = []
+    for S, torque in loads:
+        rows = []
+        for speed in speeds:
+            op = OperatingPointAt(gear, float(speed), torque, S)
+            rows.append((*StateGrowth(AnalyzeAtOperatingPoint(drive, op, model).State(S)), op.normalForce))
+            if progress is not None:
+                progress(1)
+        re, f, fn = (np.array(c) for c in zip(*rows))
+        curves.append(SpeedCurve(PHASE_NAMES[S], S, torque, speeds, re, f, fn))
+    ops = [OperatingPointAt(gear, float(s), 0., -1) for s in speeds]
+    return SpeedChart(speeds, np.array([o.slidingSpeed for o in ops]), np.array([o.mu for o in ops]),
+                      np.array([o.dmuDv for o in ops]), tuple(curves), gear.frictionLaw.kind, model, tuple(own),
+                      tuple(c.text for c in drive.components))

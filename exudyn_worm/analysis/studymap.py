@@ -15,24 +15,44 @@ import numpy as np
 
 from .._spacing import IsLogSpaced
 from .charts import ChartCoordinates, ComputeStabilityChart
-from .drivestability import DriveStability
-from ..setups.presets import ApplyOverrides, ElasticDriveFromParameters, ExtraComponents
+from .drivestability import DriveAnalysis, DriveStability
+from ..setups.presets import ApplyOverrides
+from ..setups.wholedrive import AsDrive
 
 if TYPE_CHECKING:
     from .study import StudyResult
 
-__all__ = ['ChatterMap', 'ComputeChatterMap', 'AnalyticalMap', 'WHOLE_DRIVE_RESOLUTION']
+__all__ = ['ChatterMap', 'ComputeChatterMap', 'AnalyticalMap', 'LoweringGrowth', 'WHOLE_DRIVE_RESOLUTION']
 
 #: points per axis of the map of the linearized whole drive (a drive with a chain or an axial bearing) in
 #: :func:`ComputeChatterMap`: one Exudyn linearization a point, so 400 points take about 12 s
 WHOLE_DRIVE_RESOLUTION = 20
 
 
+def LoweringGrowth(analysis: DriveAnalysis) -> float:
+    """Largest real part in 1/s of the duty's lowering operating points (S = -1), what the map's simulated chatter
+    while lowering is compared with; for a duty without a lowering point, the drive's deciding point.
+
+    Parameters
+    ----------
+    analysis : DriveAnalysis
+        From :func:`~exudyn_worm.analysis.drivestability.DriveStability`.
+
+    Returns
+    -------
+    float
+    """
+    if analysis.operatingPoints and not any(p.S == -1 for p in analysis.operatingPoints):
+        return float(analysis.maxRealPart)
+    return float(analysis.State(-1).maxRealPart)
+
+
 def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -> np.ndarray:
-    """Largest real part (1/s) of the S = -1 eigenvalues of the linear model over a grid of two parameters, the
-    others as in ``base``: > 0 means chatter predicted while lowering. The model is that of
-    :func:`~exudyn_worm.analysis.drivestability.DriveStability` at each point: eqs. (15)-(16) for the two-mass drive, the
-    linearized whole drive (about 30 ms a point) for one with a drive-side chain or a worm axial bearing.
+    """Largest real part (1/s) of the linear model at the duty's lowering operating points (S = -1,
+    :func:`LoweringGrowth`) over a grid of two parameters, the others as in ``base``: > 0 means chatter predicted
+    while lowering. The model is that of :func:`~exudyn_worm.analysis.drivestability.DriveStability` at each point
+    (mu(v) and its slope at the operating point): eqs. (15)-(16) for the two-mass drive, the linearized whole
+    drive (about 30 ms a point) for any other (chains, axial bearing, motor on its characteristic).
 
     Parameters
     ----------
@@ -50,7 +70,7 @@ def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -
     """
     out = np.empty((len(yValues), len(xValues)))
     for (i, yv), (j, xv) in itertools.product(enumerate(yValues), enumerate(xValues)):
-        out[i, j] = DriveStability(ApplyOverrides(base, {x: float(xv), y: float(yv)})).State(-1).maxRealPart
+        out[i, j] = LoweringGrowth(DriveStability(ApplyOverrides(base, {x: float(xv), y: float(yv)})))
     return out
 
 
@@ -58,10 +78,14 @@ def _Chart(base, x, xValues, y, yValues, resolution):
     """The stability chart (:func:`~exudyn_worm.analysis.charts.ComputeStabilityChart`) over a J1-kT map, in the map's
     coordinates: ``(xGrid, yGrid, unstable, [(xLine, yLine), ...])``; None unless the map's keys are J1 and kT,
     the damping is given as measures (D_T or D_TV, D_V), which is what a chart holds fixed, and the drive is the
-    two-mass drive the chart describes (no drive-side chain, no axial bearing)."""
-    if {x, y} != {'J1', 'kT'} or 'dT' in base or 'dV' in base or ExtraComponents(base):
+    two-mass drive the chart describes (no component beyond Figure 2) with a constant mu (with mu(v) the verdict
+    at the operating point is not the chart's, which is at constant mu)."""
+    if {x, y} != {'J1', 'kT'} or 'dT' in base or 'dV' in base:
         return None
-    drive = ElasticDriveFromParameters(base)
+    whole = AsDrive(base, 'ComputeChatterMap')
+    if not whole.isTwoMass or whole.gear.speedDependentFriction:
+        return None
+    drive = whole.elastic
     c = ChartCoordinates(drive)
     g = drive.gear
     scale = {'kT': g.kV * g.r1**2, 'J1': drive.J2}             # x = kT/(kV r1^2), y = J1/J2
@@ -171,7 +195,7 @@ def ComputeChatterMap(result: 'StudyResult', x: str, y: str, resolution: int = 6
         cx, cy, unstable, lines = chart
         return ChatterMap(x=x, y=y, xGrid=cx, yGrid=cy, unstable=unstable, growth=None, lines=lines,
                           source='stability chart', **limits)
-    wholeDrive = bool(ExtraComponents(base))
+    wholeDrive = not AsDrive(base, 'ComputeChatterMap').isTwoMass
     if wholeDrive:                          # one Exudyn linearization a point (about 30 ms): a coarser grid
         count = min(resolution, WHOLE_DRIVE_RESOLUTION)
         gx, gy = grid(xs, logX, count), grid(ys, logY, count)

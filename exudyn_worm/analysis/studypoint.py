@@ -5,19 +5,20 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Dict, Mapping
+from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
 from ..items.results import CHATTER_TORQUE_FRACTION
 from ..items.solve import IsInterrupt
 from ..setups.duty import IsReelChangerDuty
-from .drivestability import DriveStability
+from .drivestability import DriveAnalysis, DriveStability
 from .reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedTime
 from .stepsize import UNRESOLVED, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
 from . import reelchanger
 
-__all__ = ['WINDOW_METRICS', 'RUN_COLUMNS', 'HALF_STEP_METRICS', 'VibrationSeconds', 'RunPoint']
+__all__ = ['WINDOW_METRICS', 'RUN_COLUMNS', 'HALF_STEP_METRICS', 'VibrationSeconds', 'LoweringVerdict',
+           'DecidingWindow', 'RunPoint']
 
 
 #: metrics written per window (those of ``SimulationResult.WindowMetrics`` plus ``vibrationSeconds``)
@@ -51,6 +52,65 @@ def VibrationSeconds(result, t0: float, t1: float) -> float:
     return float(t[m][above[-1]] - t0) if above.size else 0.
 
 
+def LoweringVerdict(analysis: DriveAnalysis) -> Optional[bool]:
+    """The linear verdict of the duty's lowering operating points (S = -1), the one the simulated chatter while
+    lowering is compared with; None if the duty has no lowering point (it is not taken at rest instead).
+
+    Parameters
+    ----------
+    analysis : DriveAnalysis
+        From :func:`~exudyn_worm.analysis.drivestability.DriveStability`.
+
+    Returns
+    -------
+    bool or None
+    """
+    if analysis.operatingPoints and not any(op.S == -1 for op in analysis.operatingPoints):
+        return None
+    return bool(analysis.State(-1).stable)
+
+
+def _WindowPhases(parameters: Mapping, windows, endTime: float) -> List[Tuple[float, float, str]]:
+    """Given windows with the phase of the duty at their middle (``'idle'`` outside every phase)."""
+    duty = DefaultPhases(parameters, endTime)
+    return [(t0, t1, next((ph for a, b, ph in duty if a <= 0.5 * (t0 + t1) <= b), 'idle')) for t0, t1 in windows]
+
+
+#: window phase of :func:`~exudyn_worm.analysis.reelchanger.DefaultPhases` by operating-point phase
+_WINDOW_PHASE = {'lifting': 'lift', 'lowering': 'lower'}
+
+
+def DecidingWindow(parameters: Mapping, windows: Optional[Sequence[Tuple[float, float]]] = None,
+                   endTime: Optional[float] = None) -> Optional[int]:
+    """The index of the first evaluation window in the phase that decides the drive's linear verdict (lifting or
+    lowering: the operating point with the largest real part), with the windows a study run takes.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set of one run.
+    windows : sequence of (float, float), optional
+        Given windows in s; None: the duty's phases (as :func:`RunPoint`).
+    endTime : float, optional
+        Simulated time in s (None: as :func:`RunPoint`).
+
+    Returns
+    -------
+    int or None
+        None if the duty has no operating point or no window in its deciding phase.
+    """
+    deciding = DriveStability(parameters).deciding
+    if deciding is None:
+        return None
+    period = DefaultSimulatedTime(parameters)
+    if windows is None:
+        phases = DefaultPhases(parameters, None if endTime is None else min(endTime, period), minLength=1e-3)
+    else:
+        phases = _WindowPhases(parameters, windows, endTime if endTime is not None else
+                               max(period, max(t1 for _, t1 in windows)))
+    return next((i for i, (_, _, ph) in enumerate(phases) if ph == _WINDOW_PHASE[deciding.phase]), None)
+
+
 def _OneLine(err: BaseException) -> str:
     return ' '.join(f"{type(err).__name__}: {err}".split())
 
@@ -81,9 +141,9 @@ def RunPoint(task: Mapping) -> Dict:
            'stepChecked': None}
     row.update(task['varied'])
     try:
-        analysis = DriveStability(p)            # two-mass: eqs. (15)-(19); with a chain or bearing: the whole drive
+        analysis = DriveStability(p)            # at the duty's operating points: two-mass or the whole drive
         row['analyticStable'] = analysis.stable
-        row['analyticStableLowering'] = analysis.State(-1).stable
+        row['analyticStableLowering'] = LoweringVerdict(analysis)
         period = DefaultSimulatedTime(p)      # one rotation of the reel changer; another duty: its tables' end
         if task['windows'] is not None:
             windows, phases = task['windows'], None
@@ -123,9 +183,7 @@ def RunPoint(task: Mapping) -> Dict:
             for name in HALF_STEP_METRICS if check else ():
                 row[f'w{i}.halfStep.{name}'] = m['halfStep'][name]
         if phases is None and not IsReelChangerDuty(p):     # given windows: lowering where the duty lowers
-            duty = DefaultPhases(p, endTime)
-            phases = [(t0, t1, next((ph for a, b, ph in duty if a <= 0.5 * (t0 + t1) <= b), 'idle'))
-                      for t0, t1 in windows]
+            phases = _WindowPhases(p, windows, endTime)
         lowering = ([i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1] if phases is None
                     else [i for i, (_, _, phase) in enumerate(phases) if phase == 'lower'])   # the load drives
         verdict = metrics[lowering[0]]['chatter'] if lowering else None

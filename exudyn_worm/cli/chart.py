@@ -1,18 +1,26 @@
-"""``exudyn-worm chart``: stability charts (Figures 4 and 5) of the gear of a parameter set.
+"""``exudyn-worm chart``: stability charts (Figures 4 and 5) of the gear of a parameter set, or (``--speed``) the
+drive's stability over motor speed at the load of its own duty.
 
 The gear (angles, friction, r1, r2, kV) and J2 come from the preset/config/``--set``; J1, kT and the damping
 constants are what the chart sweeps (x = kT/(kV r1^2), y = J1/J2, D_T = D_TV D_V), so they need not be given.
+When they are (a whole drive), the drive itself is marked on its chart, with its own verdict at its operating
+points.
 """
 from __future__ import annotations
 
 import argparse
 import sys
-from typing import Dict, List
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Dict, List
 
-from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceText,
-                   Subcommand, UsageError, WriteAtomically)
+from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceInfo,
+                   SourceText, Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
 
-__all__ = ['COMMAND', 'PAPER_DTV']
+if TYPE_CHECKING:
+    from ..analysis.speedchart import SpeedChart
+
+__all__ = ['COMMAND', 'PAPER_DTV', 'FormatSpeedChart']
 
 #: D_TV values of the paper's Figures 4 and 5 (the default of --DTV)
 PAPER_DTV = (1., 5., 25.)
@@ -35,15 +43,18 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='contact state: -1 (load lowering, the paper\'s charts; default) or +1')
     parser.add_argument('--points', nargs='+', default=[], metavar='NAME',
                         help='presets to mark at their chart coordinates, e.g. reel-P1 reel-P2 (or P1 P2); '
-                             'their verdict on each chart is listed')
+                             'their verdict on each chart is listed (a whole drive given with --config, --preset '
+                             'or --set is marked too, labelled by its file or preset)')
     parser.add_argument('--output', default=None, metavar='FILE.png',
                         help='draw the charts (one axes, one region per D_TV) into FILE (.png, .pdf or .svg)')
     AddOverwriteOption(parser, 'the --output file')
     parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
     parser.add_argument('--speed', default=None, metavar='SPEC',
-                        help="instead of the J1-kT chart: the largest real part of the lowering state against motor "
-                             "speed (eq. (16) at each operating point; with a speed-dependent friction law the drive "
-                             "may chatter only in a speed range). SPEC as 'sweep --vary motorSpeed=SPEC' takes it: "
+                        help="instead of the J1-kT chart: the largest real part of each direction of the drive's "
+                             "duty (lifting, lowering) against motor speed, at the load torque of its operating "
+                             "points (the two-mass drive: eq. (16) with the friction slope; any other drive: its "
+                             "linearized whole drive); with a speed-dependent friction law the drive may chatter "
+                             "only in a speed range. SPEC as 'sweep --vary motorSpeed=SPEC' takes it: "
                              "START:STOP:COUNT[:log] or a list, e.g. '20rpm:2000rpm:40:log'")
 
 
@@ -72,16 +83,19 @@ def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
 
 
 def _RunSpeed(args: argparse.Namespace) -> int:
-    """``chart --speed SPEC``: the lowering state's stability over motor speed (:mod:`exudyn_worm.analysis.speedchart`)."""
+    """``chart --speed SPEC``: the drive's stability over motor speed at the load of its own duty
+    (:mod:`exudyn_worm.analysis.speedchart`)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.speedchart import RPM, SpeedStabilityChart
+    from ..analysis.speedchart import SpeedStabilityChart
     from ..analysis.study import ParseVariation
+    from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
-    parameters = ParametersFromArgs(args)
+    drive = WholeDriveFromArgs(args)
     with BadInput():
         spec = args.speed.strip()
         variation = ParseVariation(f'motorSpeed={spec}')
-        chart = SpeedStabilityChart(parameters, variation.values)
+        with ProgressBar(desc='chart over speed', unit='point', quiet=True if args.quiet else None) as bar:
+            chart = SpeedStabilityChart(drive, variation.values, progress=bar.update)
     if output:
         # lazy: start-up (exudyn-worm --help imports every command module)
         from ..plotting.plot import SaveFigure
@@ -91,27 +105,113 @@ def _RunSpeed(args: argparse.Namespace) -> int:
     if args.json:
         PrintJson(chart.ToDict())
         return 0
-    print(f"exudyn-worm chart --speed: {SourceText(args)}; {chart.frictionLaw} friction law, lowering (S = -1) "
-          f"at the operating point of each speed (eq. (16) extended by the friction slope)")
-    print(f"  {'motor [rpm]':>11} {'v0 [m/s]':>9} {'mu(v0)':>8} {'dmu/dv [s/m]':>13} {'max Re [1/s]':>13}  verdict")
-    for n, v, mu, slope, re in zip(chart.motorSpeeds / RPM, chart.slidingSpeeds, chart.mu, chart.dmuDv,
-                                   chart.maxRealPart):
-        print(f"  {n:11.4g} {v:9.4g} {mu:8.4g} {slope:13.4g} {re:13.4g}  {'CHATTER' if re > 0 else 'stable'}")
-    ranges = chart.unstableRanges
-    print('Chatter while lowering at ' + ', '.join(f'{a / RPM:.4g} to {b / RPM:.4g} rpm' for a, b in ranges)
-          + (' (of the speeds computed; boundaries near ' + ', '.join(f'{b / RPM:.4g}' for b in chart.Boundaries())
-             + ' rpm)' if chart.Boundaries() else '') if ranges else
-          'No chatter while lowering at any of these speeds.')
+    print('\n'.join(FormatSpeedChart(chart, SourceText(args))))
     return 0
+
+
+def FormatSpeedChart(chart: 'SpeedChart', source: str) -> List[str]:
+    """The text of ``chart --speed``: a row per speed (one real part per direction of the duty), the unstable
+    ranges per direction and the verdict at the drive's own operating points.
+
+    Parameters
+    ----------
+    chart : SpeedChart
+        From :func:`~exudyn_worm.analysis.speedchart.SpeedStabilityChart`.
+    source : str
+        Where the drive came from (first line).
+
+    Returns
+    -------
+    list of str
+    """
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.speedchart import RPM
+    model = ('eq. (16) extended by the friction slope' if chart.model == 'analytical' else
+             f"the linearized whole drive: it has {' and '.join(chart.components)}")
+    lines = [f"exudyn-worm chart --speed: {source}; {chart.frictionLaw} friction law; each direction of the duty at "
+             f"its load torque, linearized at each speed ({model})"]
+    heads = [f"{c.phase} Re [1/s]" for c in chart.curves]
+    lines.append(f"  {'motor [rpm]':>11} {'v0 [m/s]':>9} {'mu(v0)':>8} {'dmu/dv [s/m]':>13} "
+                 + ' '.join(f'{h:>18}' for h in heads) + '  verdict')
+    for i, (n, v, mu, slope) in enumerate(zip(chart.motorSpeeds / RPM, chart.slidingSpeeds, chart.mu, chart.dmuDv)):
+        res = [c.maxRealPart[i] for c in chart.curves]
+        bad = [c.phase for c, r in zip(chart.curves, res) if r > 0]
+        lines.append(f"  {n:11.4g} {v:9.4g} {mu:8.4g} {slope:13.4g} " + ' '.join(f'{r:18.4g}' for r in res)
+                     + ('  CHATTER while ' + ', '.join(bad) if bad else '  stable'))
+    for c in chart.curves:
+        ranges, bounds = c.unstableRanges, c.Boundaries()
+        what = f"{c.phase} (S = {c.S:+d}, load torque {c.loadTorque:.4g} N*m)"
+        lines.append(f"Chatter while {what} at " + ', '.join(f'{a / RPM:.4g} to {b / RPM:.4g} rpm' for a, b in ranges)
+                     + (' (of the speeds computed; boundaries near ' + ', '.join(f'{b / RPM:.4g}' for b in bounds)
+                        + ' rpm)' if bounds else '') if ranges else
+                     f"No chatter while {what} at any of these speeds.")
+    if chart.ownPoints:
+        lines.append("At the drive's own operating points (the verdict of exudyn-worm stability): "
+                     + '; '.join(f"{p.point.Label()}: {'stable' if p.stable else 'UNSTABLE'} "
+                                 f"({p.maxRealPart:.4g} 1/s at {p.frequencyHz:.4g} Hz)" for p in chart.ownPoints)
+                     + f"; the drive is {'stable' if chart.stable else 'UNSTABLE'}")
+    else:
+        lines.append("The drive has no motor: no operating point of its own (the load is taken at every speed).")
+    return lines
+
+
+def _ChartDrive(args: argparse.Namespace, parameters: Dict[str, float], gear):
+    """(the drive of the chart's parameter set, its label on the chart or None).
+
+    A complete drive (J1, kT and the shaft damping given: a drive file, a preset, ``--set``) is the user's own
+    drive, marked at its chart coordinates. The gear of a chart alone (no J1 or kT, which the chart sweeps) is
+    completed at a placeholder point only to know its parts (chains, bearing) for the note; it is not marked.
+    """
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..setups.wholedrive import Drive
+    filled = {}
+    if 'J1' not in parameters:
+        filled['J1'] = parameters['J2']
+    if 'kT' not in parameters:
+        filled['kT'] = gear.kV * gear.r1 ** 2
+    if not any(k in parameters for k in ('dT', 'DT', 'DTV')):
+        filled['DT'] = 0.
+    if filled:
+        with BadInput():
+            return Drive.FromParameters({**parameters, **filled}, name=SourceText(args)), None
+    info = SourceInfo(args)
+    label = (Path(info['config']).stem if info['config'] else (info['preset'] or 'drive').replace('reel-', ''))
+    if info['overrides']:
+        label += ' (--set)'
+    return WholeDriveFromArgs(args), label
+
+
+@dataclass(frozen=True)
+class _OwnVerdict:
+    """The marked drive's own verdict at the operating points of its duty (as ``exudyn-worm stability``)."""
+    drive: object
+    label: str
+
+    def ToDict(self) -> Dict:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..analysis.charts import ChartCoordinates
+        from ..analysis.drivestability import AnalyzeDrive
+        analysis = AnalyzeDrive(self.drive)
+        return {'label': self.label, **ChartCoordinates(self.drive.elastic), 'stable': analysis.stable,
+                'maxRealPart': analysis.maxRealPart, 'decidingText': analysis.decidingText,
+                'components': [c.text for c in self.drive.components]}
+
+    def Text(self) -> str:
+        d = self.ToDict()
+        parts = f"; it has {' and '.join(d['components'])}, which the chart does not" if d['components'] else ''
+        return (f"this drive ({self.label}) is marked at x = {d['x']:.4g}, y = {d['y']:.4g} (own D_V = {d['DV']:.4g}, "
+                f"D_TV = {d['DTV']:.4g}){parts}; its verdict at the operating points of its duty (as exudyn-worm "
+                f"stability, mu(v) and the whole drive): {'stable' if d['stable'] else 'UNSTABLE'} "
+                f"({d['decidingText']})")
 
 
 def _Run(args: argparse.Namespace) -> int:
     if args.speed is not None:
         return _RunSpeed(args)
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.charts import ComputeStabilityChart, PresetChartPoints
+    from ..analysis.charts import ChartCoordinates, ComputeStabilityChart, PresetChartPoints
     from ..analysis.charttable import FormatChartTable
-    from ..setups.presets import ExtraComponents, GearFromParameters, MissingParameterError
+    from ..setups.presets import GearFromParameters, MissingParameterError
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
     parameters = ParametersFromArgs(args)
@@ -123,6 +223,9 @@ def _Run(args: argparse.Namespace) -> int:
         J2 = parameters['J2']
         DV = args.DV if args.DV is not None else _MeshDampingMeasure(parameters, gear)
         points = PresetChartPoints([_PresetName(n) for n in args.points])
+        drive, label = _ChartDrive(args, parameters, gear)
+        if label is not None:             # the user's own drive, at its chart coordinates
+            points = {**{k: v for k, v in points.items() if k != label}, label: ChartCoordinates(drive.elastic)}
         # every argument is checked before the first chart is computed
         ComputeStabilityChart(gear, J2, DV, args.DTV[0], xRange=args.x_range, yRange=args.y_range, resolution=2,
                               S=args.S)
@@ -130,10 +233,9 @@ def _Run(args: argparse.Namespace) -> int:
             ComputeStabilityChart(gear, J2, DV, DTV, resolution=2, S=args.S)
         if not 2 <= args.resolution <= 20000:
             ComputeStabilityChart(gear, J2, DV, args.DTV[0], resolution=args.resolution)
-    extra = ExtraComponents(parameters)
-    if extra:
+    if drive.components:
         print(f"exudyn-worm chart: note: the chart is the two-mass drive of Figure 2 with this gear and J2; "
-              f"{' and '.join(extra)} of the parameter set is not in it", file=sys.stderr)
+              f"{drive.ComponentsText()} of the parameter set is not in it", file=sys.stderr)
     charts = []
     with ProgressBar(total=len(args.DTV), desc='charts', unit='chart', quiet=True if args.quiet else None) as bar:
         for DTV in args.DTV:
@@ -158,6 +260,8 @@ def _Run(args: argparse.Namespace) -> int:
         data = {'charts': entries}
         if points:
             data['points'] = points
+        if label is not None:
+            data['drive'] = _OwnVerdict(drive, label).ToDict()
         PrintJson(data)
         return 0
     print(f"exudyn-worm chart: {SourceText(args)}; J2 = {J2:g} kg*m^2, {args.resolution} x {args.resolution} log grid, "
@@ -168,6 +272,8 @@ def _Run(args: argparse.Namespace) -> int:
         print('points (U: unstable, s: stable on that chart, at the point\'s x and y): '
               + ', '.join(f"{k} x = {p['x']:.4g}, y = {p['y']:.4g} (own D_V = {p['DV']:.4g}, D_TV = {p['DTV']:.4g})"
                           for k, p in points.items()))
+    if label is not None:
+        print(_OwnVerdict(drive, label).Text())
     return 0
 
 

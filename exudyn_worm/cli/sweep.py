@@ -12,7 +12,8 @@ from ..params.parameters import PARAMETERS
 
 __all__ = ['COMMAND', 'FormatStudy']
 
-_DEFAULT_METRIC = 'w1.maxAbsWheelAcceleration'
+#: the metric plotted by default, in the first window of the phase that decides the linear verdict
+_DEFAULT_METRIC = 'maxAbsWheelAcceleration'
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
@@ -49,9 +50,10 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--plot', default=None, metavar='FILE.png',
                         help='one varied key: --metric against it; two: the chatter map over them (a stiffness '
                              'across and an inertia up, as the stability charts)')
-    parser.add_argument('--metric', default=_DEFAULT_METRIC, metavar='COLUMN',
-                        help=f"column plotted against one varied key (default {_DEFAULT_METRIC}: the largest "
-                             f"|phi2''| in window 1, the lowering)")
+    parser.add_argument('--metric', default=None, metavar='COLUMN',
+                        help=f"column plotted against one varied key (default w{{i}}.{_DEFAULT_METRIC}: the "
+                             f"largest |phi2''| in the first window i of the phase that decides the linear verdict "
+                             f"of the first run, lifting or lowering; window 1, the lowering, for the reel changer)")
     parser.add_argument('--quiet', action='store_true', help='no progress bar')
 
 
@@ -63,7 +65,7 @@ def _Study(args: argparse.Namespace):
     parameters = ParametersFromArgs(args)
     if args.overwrite and not (args.output or args.plot):
         raise UsageError("--overwrite only applies with --output FILE.csv or --plot FILE.png")
-    if args.metric != _DEFAULT_METRIC and not args.plot:
+    if args.metric is not None and not args.plot:
         raise UsageError(f"--metric {args.metric} only applies with --plot FILE.png")
     with BadInput():
         variations = [ParseVariation(text, log=args.log) for text in args.vary]
@@ -93,9 +95,21 @@ def _CheckPlot(args, study) -> None:
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.study import RUN_COLUMNS, WINDOW_METRICS
     if len(study.keys) == 1:
+        if args.metric is None:
+            args.metric = _DefaultMetric(study)
         names = [f'w{i}.{m}' for i in range(study.numberOfWindows) for m in WINDOW_METRICS] + list(RUN_COLUMNS[3:6])
         if args.metric not in names:
             raise UsageError(f"--metric: unknown column '{args.metric}'; expected one of: {' '.join(names)}")
+
+
+def _DefaultMetric(study) -> str:
+    """The default ``--metric``: the largest |phi2''| in the first window of the phase that decides the first run's
+    linear verdict (window 1, the lowering, if no window belongs to it)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.studypoint import DecidingWindow
+    with BadInput():
+        window = DecidingWindow(study.Parameters(0), study.windows, study.endTime)
+    return f"w{1 if window is None else window}.{_DEFAULT_METRIC}"
 
 
 def _Run(args: argparse.Namespace) -> int:
@@ -153,9 +167,10 @@ _VERDICT_CELLS = {True: 'YES', False: 'no', 'unresolved': 'UNR', None: '-'}
 
 
 def FormatStudy(result, title: str = 'Study') -> List[str]:
-    """Human-readable table of a study: one line per run (varied values, status, chatter per window,
-    verdict of the linear model as ``exudyn-worm stability`` gives it: the analytical two-mass model or the
-    linearized whole drive; time) and a summary with the agreement.
+    """Human-readable table of a study: one line per run (varied values, status, chatter per window, the
+    drive's linear verdict at the operating points of its duty as ``exudyn-worm stability`` gives it (the
+    analytical two-mass model or the linearized whole drive), the verdict of its lowering points; time) and a
+    summary with the agreement.
 
     Parameters
     ----------
@@ -174,13 +189,15 @@ def FormatStudy(result, title: str = 'Study') -> List[str]:
     heads = [PARAMETERS.AxisLabel(k, display=False, dash='-')[0] for k in keys]
     widths = [max(12, len(h)) for h in heads]
     lines = [title, '', '  '.join(['run'.rjust(5)] + [h.rjust(w) for h, w in zip(heads, widths)]
-                                  + ['status', 'chatter per window'.ljust(max(18, 4 * n)), 'S=-1 linear  ',
-                                     'seconds'])]
+                                  + ['status', 'chatter per window'.ljust(max(18, 4 * n)), 'linear drive ',
+                                     'S=-1 linear  ', 'seconds'])]
     for r in result.rows:
         chatter = ' '.join(_VERDICT_CELLS.get(r.get(f'w{i}.chatter'), '?') for i in range(n))
-        verdict = {None: '-', True: 'stable', False: 'UNSTABLE'}[r['analyticStableLowering']]
+        drive, verdict = ({None: '-', True: 'stable', False: 'UNSTABLE'}[r[k]]
+                          for k in ('analyticStable', 'analyticStableLowering'))
         cells = [f"{r['run']:>5d}"] + [f"{r[k]:>{w}.5g}" for k, w in zip(keys, widths)]
-        cells += [f"{r['status']:<6}", chatter.ljust(max(18, 4 * n)), f"{verdict:<13}", f"{r['seconds']:7.2f}"]
+        cells += [f"{r['status']:<6}", chatter.ljust(max(18, 4 * n)), f"{drive:<13}", f"{verdict:<13}",
+                  f"{r['seconds']:7.2f}"]
         lines.append('  '.join(cells) + (f"  {r['error']}" if r['error'] else ''))
     agreement = result.agreement
     unresolved = sum(any(r.get(f'w{i}.chatter') == 'unresolved' for i in range(n)) for r in result.rows)
@@ -188,8 +205,9 @@ def FormatStudy(result, title: str = 'Study') -> List[str]:
     lines += ['', f"step check (a second run at half the step): {checked} of {len(result.rows)} runs; "
                   f"{unresolved} with an unresolved verdict (UNR: it changes when the step is halved)"]
     lines += [f"{len(result.rows)} runs: {len(result.finished)} ok, {len(result.failed)} failed; "
-                  f"agreement of chatter while lowering with the linear model's S = -1 verdict (as "
-                  f"'exudyn-worm stability'): "
+                  f"agreement of chatter while lowering with the linear verdict of the duty's lowering "
+                  f"operating points (S = -1; 'linear drive' is the verdict of 'exudyn-worm stability', the "
+                  f"worst operating point): "
                   + ('n/a (no lowering window)' if agreement is None else f"{100 * agreement:.0f} %")]
     return lines
 

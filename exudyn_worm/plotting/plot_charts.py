@@ -410,7 +410,8 @@ def PlotFirstCriterion(curves, ax=None, title: Optional[str] = None, mark: Optio
 
 
 def PlotSpeedChart(chart: 'SpeedChart', ax=None, title: Optional[str] = None, log: bool = True):
-    """Largest real part of the lowering state against motor speed, unstable speeds shaded, mu(v0) on a twin axis.
+    """Largest real part of each direction of the duty against motor speed, unstable speeds shaded, the drive's own
+    operating points marked, mu(v0) on a twin axis.
 
     Parameters
     ----------
@@ -432,19 +433,26 @@ def PlotSpeedChart(chart: 'SpeedChart', ax=None, title: Optional[str] = None, lo
     ax = _Axes(ax, figsize=(7.5, 4.5))
     rpm = chart.motorSpeeds / RPM
     ax.axhline(0., color='0.4', lw=0.8)
-    ax.plot(rpm, chart.maxRealPart, color=_COLORS[0], lw=1.8, marker='.', label='largest real part, lowering (S = -1)')
-    for a, b in chart.unstableRanges:
-        ax.axvspan(a / RPM, b / RPM, color=_COLORS[0], alpha=0.12, lw=0)
-    for b in chart.Boundaries():
-        ax.axvline(b / RPM, color=_COLORS[0], ls='--', lw=0.8)
+    colors = {+1: _COLORS[2], -1: _COLORS[0]}
+    for c in chart.curves:
+        color = colors[c.S]
+        ax.plot(rpm, c.maxRealPart, color=color, lw=1.8, marker='.',
+                label=f'largest real part, {c.phase} (S = {c.S:+d}), {c.loadTorque:.4g} N*m')
+        for a, b in c.unstableRanges:
+            ax.axvspan(a / RPM, b / RPM, color=color, alpha=0.12, lw=0)
+        for b in c.Boundaries():
+            ax.axvline(b / RPM, color=color, ls='--', lw=0.8)
+    for p in chart.ownPoints:                   # the drive's own operating points (as exudyn-worm stability)
+        ax.plot(abs(p.point.motorSpeed) / RPM, p.maxRealPart, '*', ms=12, mec='black', mew=0.6, color=colors[p.S],
+                label=f"own operating point, {p.phase}: {'stable' if p.stable else 'UNSTABLE'}")
     if log:
         ax.set_xscale('log')
     ax.set_xlabel('motor speed [rpm]')
-    ax.set_ylabel(r'max Re$(\lambda)$ [1/s]  (> 0: chatter while lowering)')
+    ax.set_ylabel(r'max Re$(\lambda)$ [1/s]  (> 0: chatter)')
     twin = ax.twinx()
-    twin.plot(rpm, chart.mu, color=_COLORS[2], lw=1.2, ls=':', label=r'$\mu(v_0)$')
-    twin.set_ylabel(r'friction coefficient $\mu(v_0)$', color=_COLORS[2])
-    lines = ax.get_lines()[1:2] + twin.get_lines()
-    ax.legend(lines, [l.get_label() for l in lines], loc='best', fontsize=9)
+    twin.plot(rpm, chart.mu, color=_COLORS[1], lw=1.2, ls=':', label=r'$\mu(v_0)$')
+    twin.set_ylabel(r'friction coefficient $\mu(v_0)$', color=_COLORS[1])
+    lines = [l for l in ax.get_lines()[1:] if not l.get_label().startswith('_')] + twin.get_lines()
+    ax.legend(lines, [l.get_label() for l in lines], loc='best', fontsize=8)
     ax.set_title(title or f'stability over motor speed, {chart.frictionLaw} friction law', loc='left', fontsize=10)
     return ax
