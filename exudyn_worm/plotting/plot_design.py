@@ -154,7 +154,8 @@ def _PlotScans(result, ax, title):
     ax.set_xlabel('factor on the parameter (all others as given)')
     reason = textwrap.fill(f"No stability chart: the chart of eqs. (15)-(19) describes the two-mass drive; this drive "
                            f"has {result.drive.ComponentsText()}. Verdict of the whole drive at its operating points: "
-                           f"{'stable' if result.stable else 'UNSTABLE'} ({result.analysis.decidingText})", 110)
+                           f"{'stable' if result.stable else 'UNSTABLE'} ({result.analysis.decidingText})", 110,
+                           break_on_hyphens=False)
     ax.set_title((f"{title}\n" if title else '') + f"Design check of the whole drive (margin {result.margin:g} "
                  f"decades): where the linearized drive is stable\n{reason}", fontsize=9)
     handles, labels = ax.get_legend_handles_labels()
