@@ -100,7 +100,8 @@ def _GridDoc(summary: str, returns: str):
           """    ndarray
         Shape ``(4,) + broadcast shape`` of the arguments, in s^-1 .. s^-4.
 """)
-def ChartCoefficients(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1, operatingPoint=None) -> np.ndarray:
+def ChartCoefficients(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1,
+                      operatingPoint: Optional[OperatingPoint] = None) -> np.ndarray:
     w = 'ChartCoefficients'
     J2 = _CheckGear(w, gear, J2)
     _CheckS(w, S)
@@ -119,7 +120,8 @@ def ChartCoefficients(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1, ope
           """    ndarray of bool
         Broadcast shape of the arguments.
 """)
-def UnstableGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1, operatingPoint=None) -> np.ndarray:
+def UnstableGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1,
+                 operatingPoint: Optional[OperatingPoint] = None) -> np.ndarray:
     return ~np.asarray(HurwitzStable(ChartCoefficients(gear, J2, x, y, DV, DTV, S, operatingPoint)), dtype=bool)
 
 
@@ -130,7 +132,8 @@ def UnstableGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1, operatin
           """    ndarray
         Broadcast shape of the arguments.
 """)
-def MaxRealPartGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1, operatingPoint=None) -> np.ndarray:
+def MaxRealPartGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1,
+                    operatingPoint: Optional[OperatingPoint] = None) -> np.ndarray:
     return MaxRealPart(ChartCoefficients(gear, J2, x, y, DV, DTV, S, operatingPoint))
 
 

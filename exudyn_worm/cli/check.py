@@ -7,11 +7,14 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from typing import List
+from typing import TYPE_CHECKING, List
 
 from .main import (AddOverwriteOption, BadInput, CheckFigurePath, PositiveFloat, PrintJson, SourceText, StdoutToStderr,
                    Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
 from .stability import DangerLines, OperatingPointLines
+
+if TYPE_CHECKING:
+    from ..analysis.drivestability import DriveAnalysis
 
 __all__ = ['COMMAND', 'FormatDesignCheck', 'SelfLockingLines']
 
@@ -63,7 +66,7 @@ def _Simulated(chatter) -> str:
 HEAVY_DAMPING = 0.5
 
 
-def SelfLockingLines(analysis) -> List[str]:
+def SelfLockingLines(analysis: DriveAnalysis) -> List[str]:
     """Static and dynamic self-locking at every operating point of the drive's duty (at rest without one), with the
     gear makers' rating (grey zone) and a ``DANGER`` line where the load holds at rest but runs away once moving.
 
@@ -200,6 +203,12 @@ def _Run(args: argparse.Namespace) -> int:
         with ProgressBar(total=runs, desc='check --simulate', unit='run', quiet=quiet) as bar:
             with BadInput(), StdoutToStderr(args.json):
                 result = design.ConfirmBySimulation(result, stepSize=args.step_size, progress=bar.update)
+    loadSide = None
+    if drive.loadSideChain:          # as stability: may the driven machine be lumped into J2? which stage is not?
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..analysis.loadside import DiagnoseLoadSide
+        with StdoutToStderr(args.json), BadInput():
+            loadSide = DiagnoseLoadSide(parameters, args.margin)
     disturbance = _DisturbanceVerdict(args, parameters, result)
     if plotPath is not None:
         # lazy: start-up (exudyn-worm --help imports every command module)
@@ -213,11 +222,15 @@ def _Run(args: argparse.Namespace) -> int:
         data = {**result.ToDict(), 'method': 'analytical' if result.analysis.model == 'analytical' else 'exudyn'}
         if disturbance is not None:
             data['disturbance'] = disturbance.ToDict()
+        if loadSide is not None:
+            data['loadSide'] = loadSide.ToDict()
         PrintJson(data)
     else:
         lines = FormatDesignCheck(result, title=f"exudyn-worm check: {SourceText(args)}")
         if disturbance is not None:
             lines.insert(3, f"After a disturbance (lowering, nonlinear mesh): {disturbance.text}")
+        if loadSide is not None:
+            lines.insert(5, f"Load side: {loadSide.Text()}.")
         print('\n'.join(lines))
     if plotPath is not None:
         print(f"wrote {plotPath.resolve()}", file=sys.stderr)

@@ -3,13 +3,14 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import Dict, List
+from typing import Dict, List, Union
 
 from .main import BadInput, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs
 from ..analysis.design import StabilizingChanges
 from ..analysis.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, DriveAnalysis
 from ..model.geometry import DescribeGeometry, GeometryForm
 from ..model.stability import CONTACT_STATES, StabilityAnalysis
+from ..setups.wholedrive import Drive
 
 __all__ = ['COMMAND', 'FormatStability', 'OperatingPointLines', 'VerdictLine', 'DangerLines', 'StabilityHint', 'StabilityHintData']
 
@@ -259,7 +260,7 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability', where
     return lines
 
 
-def StabilityHintData(parameters, span: float = 100.) -> Dict:
+def StabilityHintData(parameters: Union[Drive, Dict[str, float]], span: float = 100.) -> Dict:
     """The design hint of an unstable drive as data: the nearest stable J1 and kT
     (:func:`~exudyn_worm.analysis.design.StabilizingChanges`), other parameters as given; the table's hint line
     and the ``--json`` key ``hint`` both come from here.

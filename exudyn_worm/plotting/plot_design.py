@@ -11,6 +11,7 @@ from typing import Mapping, Optional
 
 import numpy as np
 from ..analysis.design import SPEED_KEY, DesignCheckResult
+from .plot import _NewFigure
 from .plot_charts import _Legend, PlotStabilityChart
 
 __all__ = ['PlotDesignCheck']
@@ -130,7 +131,6 @@ def _AtPoints(result, charts) -> str:
 def _PlotScans(result, ax, title):
     """A whole drive: per scanned parameter the factors at which it is stable, the given drive and the moves."""
     import matplotlib.patches as mpatches
-    from .plot import _NewFigure
     keys = list(result.scans)
     if ax is None:
         _, axes = _NewFigure(figsize=(7.5, 1.6 + 0.42 * max(len(keys), 1)))
