@@ -38,7 +38,7 @@ def p1Check():
 def test_p1_is_unstable_and_gets_increases_and_decreases(p1Check):
     r = p1Check
     assert not r.stable and not r.stableWithMargin and r.maxRealPart > 0
-    assert r.analysis.contact[-1].stable is False and r.analysis.contact[1].stable is True
+    assert r.analysis.State(-1).stable is False and r.analysis.State(1).stable is True
     moves = {(x.parameter, x.factor > 1) for x in r.recommendations}
     for key in ('J1', 'J2', 'kT'):
         assert (key, True) in moves and (key, False) in moves, key

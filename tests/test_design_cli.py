@@ -128,8 +128,8 @@ def test_check_plot(capsys, tmp_path):
     (('--simulate', '--step-size', '0'), "argument --step-size: must be > 0 s, got 0 s"),
     (('--step-size', '0.01'), "--step-size 0.01 only applies with --simulate"),
     (('--plot', 'missing-folder/check.png'), "--plot missing-folder/check.png: the folder missing-folder does not exist"),
-    (('--set', 'J4=0.1', '--set', 'k4=1000'), "DesignCheck: the design check uses the two-mass model of Figure 2"),
-    (('--set', 'kA=1e8', '--set', 'mA=1'), "this parameter set has a worm axial bearing (kA > 0)"),
+    (('--set', 'J4=0.1'), "DriveSideChain: 'J4' needs the stiffness 'k4' (N*m/rad) of the spring-damper on its motor side"),
+    (('--set', 'kA=1e8'), "'kA' = 1e+08 N/m > 0 needs the worm's axially moving mass 'mA' (kg)"),
 ])
 @pytest.mark.messages
 def test_check_bad_input(capsys, argv, message):

@@ -236,15 +236,17 @@ def test_lumping_judged_safe_gives_the_lumped_verdict(fileParameters, kL1):
     assert d.lumpedStable == d.wholeStable
 
 
-def test_design_check_lumps_a_safe_chain_and_refuses_a_soft_one(fileParameters):
+def test_design_check_analyses_the_whole_drive_with_its_chain(fileParameters):
+    """The design check no longer lumps the chain into J2 (nor refuses a soft one): its verdict is the whole drive's,
+    and the chain's own parameters are design parameters."""
     from exudyn_worm.analysis.design import DesignCheck
-    from exudyn_worm.analysis.loadside import LoadSideNotLumpable
-    with pytest.raises(LoadSideNotLumpable, match='the cause is load-side stage 1') as info:
-        DesignCheck(fileParameters)
-    assert info.value.diagnosis.cause == 1
-    result = DesignCheck({**fileParameters, 'kL1': 2e6})
-    assert result.parameters['J2'] == pytest.approx(J2 + JL1) and 'JL1' not in result.parameters
-    assert any('lumped into J2' in n for n in result.notes)
+    result = DesignCheck(fileParameters)
+    assert result.stable is DriveStability(fileParameters).stable is False and result.recommendations
+    assert {'JL1', 'kL1'} <= set(result.scans)
+    stiff = {**fileParameters, 'kL1': 2e6}
+    result = DesignCheck(stiff)
+    assert result.parameters['J2'] == J2 and result.parameters['JL1'] == JL1
+    assert result.stable is DriveStability(stiff).stable
     with pytest.raises(ValueError, match='DiagnoseLoadSide: the parameter set has no load-side chain'):
         from exudyn_worm.analysis.loadside import DiagnoseLoadSide
         DiagnoseLoadSide({k: v for k, v in fileParameters.items() if k not in ('JL1', 'kL1', 'dL1')})
@@ -256,11 +258,9 @@ def test_cli_check_reports_the_whole_drive_and_the_cause(capsys, tmp_path, monke
     monkeypatch.chdir(tmp_path)
     assert Main(['check', '--config', str(LOAD_SHAFT)]) == 0
     out, err = capsys.readouterr()
-    assert 'Verdict (linearized whole drive): UNSTABLE' in out and 'the cause is load-side stage 1' in out
+    assert 'Verdict: UNSTABLE' in out and 'linearized Exudyn model of the whole drive' in out
+    assert 'the cause is load-side stage 1' in out
     assert Main(['check', '--config', str(LOAD_SHAFT), '--json']) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data['stable'] is False and data['loadSide']['cause'] == 1 and data['recommendations'] == []
-    assert Main(['check', '--config', str(LOAD_SHAFT), '--plot', 'x.png']) == 2
-    out, err = capsys.readouterr()
-    assert out == '' and err.count('\n') == 1 and '--plot: the design chart' in err
+    assert data['stable'] is False and data['loadSide']['cause'] == 1 and data['recommendations']
     assert list(tmp_path.iterdir()) == []

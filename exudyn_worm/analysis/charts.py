@@ -11,7 +11,9 @@ the swept J1 and kT as in the paper. Each grid point is classified with the Rout
 :func:`~exudyn_worm.model.stability.HurwitzStable`: the same code as the single-drive analysis, evaluated on the
 whole grid at once). The chart is dimensionless: scaling time by omega = (kV r1^2 / J1)^(1/2) makes the
 scaled b-coefficients depend only on (x, y, D_V, D_TV) and on the gear's angles and r2/r1, so J2 only
-scales :attr:`StabilityChart.maxRealPart` (in 1/s), never the verdict.
+scales :attr:`StabilityChart.maxRealPart` (in 1/s), never the verdict. A chart at a drive's operating point
+(``operatingPoint``: mu(v0) and the damping of its friction slope, which depends on the normal force) is no
+longer dimensionless: it belongs to that drive's J2 and load.
 
 The largest real part of the four eigenvalues per point is computed by a vectorized closed-form quartic
 solution (:func:`~exudyn_worm.analysis.quartic.MaxRealPart`). Boundaries are traced by marching squares
@@ -30,7 +32,8 @@ import numpy as np
 from .._checks import CheckArray, CheckRange
 from ..model.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from ..model.gear import WormGear
-from ..model.stability import CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, HurwitzStable, PolynomialCoefficients
+from ..model.stability import (CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, HurwitzStable, OperatingPoint,
+                               PolynomialCoefficients)
 from ..setups.presets import PRESETS, ElasticDriveFromParameters, GetPreset
 from . import charttable   # for the deprecated charts.FormatChartTable (module __getattr__ below)
 from .contours import ContourLines      # importable from here too (documented in its module)
@@ -77,6 +80,9 @@ _GRID_PARAMETERS = """
         Damping ratio D_TV = D_T/D_V, >= 0 (eq. (24)).
     S : int, optional
         Contact parameter, -1 (default, load lowering) or +1.
+    operatingPoint : OperatingPoint, optional
+        Linearize at this point: mu(v0) and the damping of its friction slope
+        (:func:`~exudyn_worm.model.stability.PolynomialCoefficients`); None (default): the gear's constant mu.
 """
 
 
@@ -94,7 +100,8 @@ def _GridDoc(summary: str, returns: str):
           """    ndarray
         Shape ``(4,) + broadcast shape`` of the arguments, in s^-1 .. s^-4.
 """)
-def ChartCoefficients(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1) -> np.ndarray:
+def ChartCoefficients(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1,
+                      operatingPoint: Optional[OperatingPoint] = None) -> np.ndarray:
     w = 'ChartCoefficients'
     J2 = _CheckGear(w, gear, J2)
     _CheckS(w, S)
@@ -106,15 +113,16 @@ def ChartCoefficients(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1) -> 
     kT = x * gear.kV * gear.r1**2
     dT = TorsionalDampingFromMeasure(DTV * DV, kT, J1)                  # eq. (22)
     dV = MeshDampingFromMeasure(DV, gear.kV, gear.r2, J2)               # eq. (23)
-    return PolynomialCoefficients(gear, S, J1, J2, kT, dT, dV)
+    return PolynomialCoefficients(gear, S, J1, J2, kT, dT, dV, operatingPoint=operatingPoint)
 
 
 @_GridDoc("Hurwitz verdict (17)-(19) at chart coordinates: True where unstable; broadcasts over arrays.",
           """    ndarray of bool
         Broadcast shape of the arguments.
 """)
-def UnstableGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1) -> np.ndarray:
-    return ~np.asarray(HurwitzStable(ChartCoefficients(gear, J2, x, y, DV, DTV, S)), dtype=bool)
+def UnstableGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1,
+                 operatingPoint: Optional[OperatingPoint] = None) -> np.ndarray:
+    return ~np.asarray(HurwitzStable(ChartCoefficients(gear, J2, x, y, DV, DTV, S, operatingPoint)), dtype=bool)
 
 
 @_GridDoc("""Largest real part of the four eigenvalues in 1/s at chart coordinates; broadcasts over arrays.
@@ -124,8 +132,9 @@ def UnstableGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1) -> np.nd
           """    ndarray
         Broadcast shape of the arguments.
 """)
-def MaxRealPartGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1) -> np.ndarray:
-    return MaxRealPart(ChartCoefficients(gear, J2, x, y, DV, DTV, S))
+def MaxRealPartGrid(gear: WormGear, J2: float, x, y, DV, DTV, S: int = -1,
+                    operatingPoint: Optional[OperatingPoint] = None) -> np.ndarray:
+    return MaxRealPart(ChartCoefficients(gear, J2, x, y, DV, DTV, S, operatingPoint))
 
 
 def ChartCoordinates(drive: ElasticDrive) -> Dict[str, float]:
@@ -256,6 +265,9 @@ class StabilityChart:
     margin : ndarray
         Shape (ny, nx): a continuous field, > 0 exactly where stable (b1 and (19) made dimensionless,
         their minimum); the boundaries are its zero level set.
+    operatingPoint : OperatingPoint or None
+        The chart is linearized at this point (mu(v0) and its slope; then J2 and the normal force matter);
+        None: the gear's constant mu (the paper's charts).
     """
     gear: WormGear
     J2: float
@@ -266,11 +278,13 @@ class StabilityChart:
     y: np.ndarray
     unstable: np.ndarray
     margin: np.ndarray
+    operatingPoint: Optional[OperatingPoint] = None
     _cache: dict = field(default_factory=dict, repr=False)
 
     def Coefficients(self) -> np.ndarray:
         """b1..b4 of eq. (16) on the grid, shape (4, ny, nx)."""
-        return ChartCoefficients(self.gear, self.J2, self.x[None, :], self.y[:, None], self.DV, self.DTV, self.S)
+        return ChartCoefficients(self.gear, self.J2, self.x[None, :], self.y[:, None], self.DV, self.DTV, self.S,
+                                 self.operatingPoint)
 
     @property
     def maxRealPart(self) -> np.ndarray:
@@ -292,7 +306,7 @@ class StabilityChart:
 
     def _MarginAt(self, x, y) -> np.ndarray:
         """The margin field (see :attr:`margin`) at arbitrary chart coordinates (broadcasting)."""
-        return _Margin(ChartCoefficients(self.gear, self.J2, x, y, self.DV, self.DTV, self.S))
+        return _Margin(ChartCoefficients(self.gear, self.J2, x, y, self.DV, self.DTV, self.S, self.operatingPoint))
 
     def _RidgeMin(self, axis: int, values: np.ndarray, coarse: Optional[np.ndarray] = None) -> np.ndarray:
         """For each value of coordinate ``axis`` (0: x, 1: y): the minimum of the margin over the other
@@ -408,7 +422,7 @@ class StabilityChart:
         x, y : float or ndarray
             Stiffness and inertia ratios, > 0.
         """
-        return UnstableGrid(self.gear, self.J2, x, y, self.DV, self.DTV, self.S)
+        return UnstableGrid(self.gear, self.J2, x, y, self.DV, self.DTV, self.S, self.operatingPoint)
 
     def NearestBoundary(self, point: Tuple[float, float]) -> float:
         """Distance in decades (Euclidean in log10 x, log10 y) from a point to the nearest boundary vertex of
@@ -496,7 +510,8 @@ def _LogRange(where, name, rng) -> Tuple[float, float]:
 
 def ComputeStabilityChart(gear: WormGear, J2: float, DV: float, DTV: float,
                           xRange: Sequence[float] = DEFAULT_X_RANGE, yRange: Sequence[float] = DEFAULT_Y_RANGE,
-                          resolution=DEFAULT_RESOLUTION, S: int = -1) -> StabilityChart:
+                          resolution=DEFAULT_RESOLUTION, S: int = -1,
+                          operatingPoint: Optional[OperatingPoint] = None) -> StabilityChart:
     """Stability chart of Figures 4 and 5: the Hurwitz verdict on a log grid of the two ratios.
 
     Parameters
@@ -518,6 +533,10 @@ def ComputeStabilityChart(gear: WormGear, J2: float, DV: float, DTV: float,
         Grid points per axis, or (nx, ny); each in [2, 20000].
     S : int, optional
         Contact parameter: -1 (default; self-locking lowering, the paper's charts) or +1.
+    operatingPoint : OperatingPoint, optional
+        Linearize at this point (mu(v0), the damping of its friction slope; its contact state should be ``S``),
+        e.g. a drive's operating point of its duty; then J2 and the normal force enter the verdict. None
+        (default): the gear's constant mu.
 
     Returns
     -------
@@ -547,9 +566,12 @@ def ComputeStabilityChart(gear: WormGear, J2: float, DV: float, DTV: float,
     nx, ny = _Resolution(w, resolution)
     x = np.geomspace(x0, x1, nx)
     y = np.geomspace(y0, y1, ny)
-    b = ChartCoefficients(gear, J2, x[None, :], y[:, None], DV, DTV, S)
+    if operatingPoint is not None and not isinstance(operatingPoint, OperatingPoint):
+        raise TypeError(f"{w}: 'operatingPoint' must be an OperatingPoint or None, got {type(operatingPoint).__name__}")
+    b = ChartCoefficients(gear, J2, x[None, :], y[:, None], DV, DTV, S, operatingPoint)
     unstable = ~HurwitzStable(b)
-    return StabilityChart(gear=gear, J2=J2, DV=DV, DTV=DTV, S=S, x=x, y=y, unstable=unstable, margin=_Margin(b))
+    return StabilityChart(gear=gear, J2=J2, DV=DV, DTV=DTV, S=S, x=x, y=y, unstable=unstable, margin=_Margin(b),
+                          operatingPoint=operatingPoint)
 
 
 # --- Figure 3: the first criterion (20) with dT = 0 -----------------------------------------------------------

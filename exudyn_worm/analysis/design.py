@@ -1,17 +1,23 @@
 """Design check: is a drive stable, how far is it from the stability boundary, and which change makes it stable.
 
-The analytical model (:func:`~exudyn_worm.model.stability.AnalyzeStability`, both contact states S = +1 and
-S = -1) decides stability. The paper's Figure 4 shows that a chattering drive (P1) can be made stable by
-increasing or by decreasing J1 or kT (section 3.2.4 reads P2-P5 off the chart), so every design parameter
-is searched in both directions.
+**Verdict.** The drive's verdict is the one of every command, :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`:
+each operating point of the drive's own duty (every steady phase in each direction of power flow, with its
+sliding speed, mu(v0), dmu/dv and static normal force) in its own contact state; the worst decides. The
+two-mass drive of Figure 2 is analysed with eqs. (15)-(19), any other drive (drive-side or load-side chain,
+worm axial bearing, motor on its characteristic) with the linearized Exudyn model of the whole drive. A drive
+without a steady phase is checked at rest in both contact states (constant mu).
 
-**Design parameters.** J1, J2, kT, the shaft damping and the mesh damping, each in the form the parameter
-set holds it: the shaft damping as ``dT`` (constant), ``DT`` (measure, eq. (22)) or ``DTV`` (ratio,
-eq. (24)); the mesh damping as ``dV`` or ``DV`` (eq. (23)). **What is held** when one of them changes
-is what the parameter set holds: the presets hold the measures D_T, D_V (as the paper's chart points
-assume), so a larger J1 or kT brings a larger dT = 2 D_T sqrt(kT J1); a set that gives ``dT``/``dV``
-keeps those constants. With ``DTV`` a change of D_V changes D_T in proportion (the paper's move of P6
-from Figure 4 to Figure 5).
+**Design parameters** (:func:`~exudyn_worm.analysis.designscan.DesignParameters`): J1, J2, kT, the shaft damping
+and the mesh damping, each in the form the parameter set holds it: the shaft damping as ``dT`` (constant), ``DT``
+(measure, eq. (22)) or ``DTV`` (ratio, eq. (24)); the mesh damping as ``dV`` or ``DV`` (eq. (23)); then the
+drive-side chain (J4, k4, d4, ...), the load-side chain (JL1, kL1, dL1, ...) and the axial bearing (kA, dA) where
+the drive has them; and the motor speed where the friction depends on speed and the motor runs at ``motorSpeed``.
+The paper's Figure 4 shows that a chattering drive (P1) can be made stable by increasing or by decreasing J1 or
+kT (section 3.2.4 reads P2-P5 off the chart), so every design parameter is searched in both directions.
+**What is held** when one of them changes is what the parameter set holds: the presets hold the measures D_T,
+D_V (as the paper's chart points assume), so a larger J1 or kT brings a larger dT = 2 D_T sqrt(kT J1); a set that
+gives ``dT``/``dV`` keeps those constants. With ``DTV`` a change of D_V changes D_T in proportion (the paper's move
+of P6 from Figure 4 to Figure 5).
 
 **Margin rule** (one rule, applied everywhere; ``margin`` = delta in decades, default
 :data:`DEFAULT_MARGIN` = 0.1, i.e. a factor 10^0.1 = 1.26): a drive is *stable with margin* along a
@@ -19,37 +25,35 @@ parameter if it stays stable when that parameter alone is multiplied by any fact
 10^+delta. A recommendation is the smallest change of one parameter (smallest increase and smallest
 decrease, each within a factor ``span`` = 100) after which the drive is stable with margin along that
 parameter: usually the boundary crossed plus delta decades, further where the stable band beyond the
-boundary is narrower than 2 delta. A pair of parameters (given only where no single parameter suffices)
-must be stable for every combination of both factors within 10^-delta..10^+delta, and the best pair is
-the one with the smallest Euclidean change in decades. A drive gets recommendations iff it is not stable
+boundary is narrower than 2 delta. A pair of parameters (given only where no single parameter suffices, for the
+two-mass drive) must be stable for every combination of both factors within 10^-delta..10^+delta, and the best
+pair is the one with the smallest Euclidean change in decades. A drive gets recommendations iff it is not stable
 with margin along some design parameter; the changes are then along those parameters (for an unstable
-drive: all of them). The distance to the stability boundary is measured in the same unit: decades,
-Euclidean in the chart plane (log10 x, log10 y) at the drive's D_V and D_TV.
+drive: all of them). For the two-mass drive the distance to the stability boundary is measured in the same
+unit: decades, Euclidean in the chart plane (log10 x, log10 y) at the drive's D_V and D_TV, on the charts at the
+operating point that decides in each contact state (mu(v0) and its slope). The chart does not describe a whole
+drive: it then has no chart distance.
 
-Searches scan the log factor on a grid (:data:`SCAN_STEP` decades) with the Hurwitz conditions
-(17)-(19) of all candidate drives at once, then refine each boundary by bisection with the scalar model.
-The candidate drives are built from the probed scaling of J1, J2, kT, dT and dV with each design parameter
-(all are monomials of the parameters, eqs. (22)-(24)), so no formula of the model is repeated here.
+How the scans are computed and what they cost: :mod:`exudyn_worm.analysis.designscan`.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
 from itertools import combinations
-from typing import Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Callable, Dict, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
 from .._checks import CheckRange, JsonNumber
-from ..setups.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, ElasticDriveFromParameters, ExtraComponents,
-                      LumpedLoadSide)
+from ..model.stability import CONTACT_STATES
+from ..setups.presets import PARAMETER_UNITS, ApplyOverrides
+from ..setups.wholedrive import Drive
 from .charts import ChartCoordinates, ComputeStabilityChart
-from ..model.stability import (CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzStable,
-                        OperatingPointFromParameters, PolynomialCoefficients)
-from .drivestability import DriveStability
-from .loadside import DiagnoseLoadSide, LoadSideNotLumpable
+from .designscan import (SCAN_STEP, SPEED_KEY, WHOLE_DRIVE_TOLERANCE, AsCheckedDrive, AxisScan, DesignKeys, DesignParameters, Scanner,
+                         ScanMotorSpeed, ScanParameter, _ScaledDrives, _SymmetricGrid)
+from .drivestability import AnalyzeDrive, DriveAnalysis
 from .reelchanger import CheckReelChangerKeys, DefaultPhases
-from ..model.selflocking import SelfLocking
 from . import reelchanger
 
 __all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'LocalCharts', 'ChartGrid',
@@ -61,110 +65,32 @@ __all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'L
 DEFAULT_MARGIN = 0.1
 #: default search range: factors from 1/100 to 100
 DEFAULT_SPAN = 100.
-#: grid step of the 1-D scans in decades (boundaries are then refined by bisection)
-SCAN_STEP = 0.005
 _PAIR_STEP = 0.01           # grid step of the pair search in decades
 _CHART_DECADES = 2.         # the chart-plane distance is searched within +-2 decades of the drive's point
 _CHART_STEP = 0.01
-_REFINE_TOLERANCE = 1e-10   # bisection tolerance in decades
-
-_SHAFT_DAMPING_FORMS = ('dT', 'DT', 'DTV')      # precedence as in ElasticDriveFromParameters
-_MESH_DAMPING_FORMS = ('dV', 'DV')
-#: the drive quantities a design parameter acts on
-_QUANTITIES = ('J1', 'J2', 'kT', 'dT', 'dV')
 
 
-def DesignParameters(parameters: Mapping[str, float]) -> List[str]:
-    """The design parameters of a parameter set: J1, J2, kT and the damping keys in the form it holds them.
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set (see :func:`~exudyn_worm.setups.presets.DriveFromParameters`).
-
-    Returns
-    -------
-    list of str
-        ``['J1', 'J2', 'kT', <dT|DT|DTV>, <dV|DV>]`` (a damping key only if present).
-    """
-    keys = ['J1', 'J2', 'kT']
-    for forms in (_SHAFT_DAMPING_FORMS, _MESH_DAMPING_FORMS):
-        key = next((k for k in forms if k in parameters), None)
-        if key is not None:
-            keys.append(key)
-    return keys
+def _DecidingPerState(analysis: DriveAnalysis) -> Dict[int, object]:
+    """Per contact state of the duty: the operating point with the largest real part (None: at rest, both)."""
+    if not analysis.operatingPoints:
+        return {S: None for S in CONTACT_STATES}
+    out = {}
+    for p in sorted(analysis.operatingPoints, key=lambda p: p.maxRealPart):
+        out[p.S] = p.point.operatingPoint
+    return dict(sorted(out.items()))
 
 
-def _MaxRealPart(analysis) -> float:
-    return float(max(np.max(c.eigenvalues.real) for c in analysis.contact.values()))
-
-
-def _Scaled(parameters: Mapping[str, float], changes: Mapping[str, float]) -> Dict[str, float]:
-    """Parameters with ``key`` multiplied by 10**logFactor for each item of ``changes``."""
-    return ApplyOverrides(parameters, {k: parameters[k] * 10. ** t for k, t in changes.items()})
-
-
-def _OperatingPoint(parameters, drive):
-    """The operating point of steady lowering for a speed-dependent friction law (None for constant mu, where the
-    linear model does not depend on it, or without load and speed): the scans use mu(v0) and its slope there."""
-    return OperatingPointFromParameters(parameters, drive.gear) if drive.gear.speedDependentFriction else None
-
-
-def _StableAt(parameters, changes) -> bool:
-    # Routh-Hurwitz on (16) is the same verdict as AnalyzeStability(...).stable without the polynomial roots
-    # (10x faster; the stability command's hint evaluates about 100 drives at start-up)
-    scaled = _Scaled(parameters, changes)
-    drive = ElasticDriveFromParameters(scaled)
-    op = _OperatingPoint(scaled, drive)
-    return all(HurwitzStable(CharacteristicCoefficients(drive, S, op)) for S in CONTACT_STATES)
-
-
-class _ScaledDrives:
-    """Stability of many drives at once: the drive with design parameters multiplied by 10**t.
-
-    J1, J2, kT, dT and dV are monomials of the parameters (eqs. (22)-(24)); their exponents are probed once
-    per design parameter with :func:`DriveFromParameters` (and checked at a second factor), so the model's
-    formulas stay in :mod:`presets`, :mod:`drive` and :mod:`stability`.
-    """
-
-    def __init__(self, parameters: Mapping[str, float], keys: Sequence[str]):
-        self.drive = ElasticDriveFromParameters(parameters)
-        self.operatingPoint = _OperatingPoint(parameters, self.drive)   # J1, J2, kT, dT, dV do not move it
-        self.q0 = self._Quantities(self.drive)
-        self.exponents = {}
-        probe = 0.05       # decades: a small factor, so a drive at the edge of the allowed ranges is not refused
-        for key in keys:
-            up, down = (self._Quantities(ElasticDriveFromParameters(_Scaled(parameters, {key: s}))) for s in (probe, -probe))
-            with np.errstate(divide='ignore', invalid='ignore'):
-                e = np.where(self.q0 > 0, np.log10(up / self.q0) / probe, 0.)
-            if not np.allclose(down, self.q0 * 10. ** (-e * probe), rtol=1e-9, atol=0.):
-                raise RuntimeError(f"design: the drive does not scale as a power of '{key}' (internal error)")
-            self.exponents[key] = e
-
-    @staticmethod
-    def _Quantities(drive) -> np.ndarray:
-        return np.array([drive.J1, drive.J2, drive.kT, drive.dT, drive.gear.dV])
-
-    def Stable(self, logFactors: Mapping[str, np.ndarray]) -> np.ndarray:
-        """Boolean array: stable for S = +1 and S = -1 (Hurwitz (17)-(19) with b3, b4 > 0)."""
-        shape = np.broadcast(*logFactors.values()).shape
-        q = [self.q0[i] * 10. ** (np.zeros(shape) + sum(self.exponents[k][i] * np.asarray(t)
-                                                         for k, t in logFactors.items()))
-             for i in range(len(_QUANTITIES))]
-        stable = np.ones(shape, dtype=bool)
-        for S in CONTACT_STATES:
-            stable &= HurwitzStable(PolynomialCoefficients(self.drive.gear, S, *q, operatingPoint=self.operatingPoint))
-        return stable
-
-
-def LocalCharts(parameters: Mapping[str, float], decades: float = _CHART_DECADES, step: float = _CHART_STEP):
-    """The drive's stability charts (:func:`~exudyn_worm.analysis.charts.ComputeStabilityChart`, S = +1 and S = -1)
-    on a log grid of +-``decades`` around its chart point, at its D_V and D_TV.
+def LocalCharts(drive: Union[Drive, Mapping[str, float]], decades: float = _CHART_DECADES,
+                step: float = _CHART_STEP):
+    """The two-mass drive's stability charts (:func:`~exudyn_worm.analysis.charts.ComputeStabilityChart`) on a log
+    grid of +-``decades`` around its chart point, at its D_V and D_TV, one per contact state of its duty, each at the
+    operating point that decides in that state (mu(v0) and its slope; without a steady phase: both contact states
+    at rest, constant mu).
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive or mapping
+        The two-mass drive or its flat parameter set.
     decades : float, optional
         Half-width of the grid in decades of x and y, > 0.
     step : float, optional
@@ -173,26 +99,35 @@ def LocalCharts(parameters: Mapping[str, float], decades: float = _CHART_DECADES
     Returns
     -------
     dict
-        ``{S: StabilityChart}`` for S = +1 and -1, on the same grid with the drive's point at its centre.
+        ``{S: StabilityChart}`` (S = -1 and/or +1), on the same grid with the drive's point at its centre.
+
+    Raises
+    ------
+    ValueError
+        For a drive beyond two masses (the chart of eqs. (15)-(19) does not describe it).
     """
     CheckRange('LocalCharts', 'decades', decades, low=0., lowOpen=True)
     CheckRange('LocalCharts', 'step', step, low=0., high=decades, lowOpen=True)
-    drive = ElasticDriveFromParameters(parameters)
-    p = ChartCoordinates(drive)
+    drive = AsCheckedDrive(drive, 'LocalCharts')
+    if not drive.isTwoMass:
+        raise ValueError(f"LocalCharts: the stability chart (eqs. (15)-(19)) describes the two-mass drive of Figure 2; "
+                         f"this drive has {drive.ComponentsText()}")
+    core = drive.elastic
+    p = ChartCoordinates(core)
     n = 2 * int(math.ceil(decades / step)) + 1
     span = 10. ** decades
-    return {S: ComputeStabilityChart(drive.gear, drive.J2, p['DV'], p['DTV'], xRange=(p['x'] / span, p['x'] * span),
-                                     yRange=(p['y'] / span, p['y'] * span), resolution=n, S=S)
-            for S in CONTACT_STATES}
+    return {S: ComputeStabilityChart(core.gear, core.J2, p['DV'], p['DTV'], xRange=(p['x'] / span, p['x'] * span),
+                                     yRange=(p['y'] / span, p['y'] * span), resolution=n, S=S, operatingPoint=op)
+            for S, op in _DecidingPerState(AnalyzeDrive(drive)).items()}
 
 
-def ChartGrid(parameters: Mapping[str, float], decades: float = _CHART_DECADES, step: float = _CHART_STEP):
-    """Stability (S = +1 and S = -1) on the grid of :func:`LocalCharts` around the drive's chart point.
+def ChartGrid(drive: Union[Drive, Mapping[str, float]], decades: float = _CHART_DECADES, step: float = _CHART_STEP):
+    """Stability (every chart of :func:`LocalCharts`) on the grid around the drive's chart point.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive or mapping
+        The two-mass drive or its flat parameter set.
     decades : float, optional
         Half-width of the grid in decades of x and y, > 0.
     step : float, optional
@@ -203,22 +138,16 @@ def ChartGrid(parameters: Mapping[str, float], decades: float = _CHART_DECADES, 
     x, y, stable : numpy.ndarray
         1-D grids of x = kT/(kV r1^2) and y = J1/J2 and the boolean stability of shape ``(len(y), len(x))``.
     """
-    charts = LocalCharts(parameters, decades, step)
-    c = charts[-1]
-    return c.x, c.y, ~(charts[-1].unstable | charts[+1].unstable)
+    charts = list(LocalCharts(drive, decades, step).values())
+    return charts[0].x, charts[0].y, ~np.logical_or.reduce([c.unstable for c in charts])
 
 
-def _SymmetricGrid(limit, step):
-    n = int(math.ceil(limit / step))
-    return np.linspace(-limit, limit, 2 * n + 1)
-
-
-def _ChartDistance(parameters) -> Tuple[Optional[float], Optional[Dict[str, float]]]:
+def _ChartDistance(drive: Drive) -> Tuple[Optional[float], Optional[Dict[str, float]]]:
     """Distance in decades from the drive's point to the nearest point of opposite verdict in the chart plane
     (grid of :func:`LocalCharts`, then refined along the ray to that point with the charts' exact verdict)."""
-    charts = LocalCharts(parameters)
-    x, y = charts[-1].x, charts[-1].y
-    stable = ~(charts[-1].unstable | charts[+1].unstable)
+    charts = list(LocalCharts(drive).values())
+    x, y = charts[0].x, charts[0].y
+    stable = ~np.logical_or.reduce([c.unstable for c in charts])
     t = np.log10(x / x[x.size // 2])
     c = t.size // 2
     other = stable != stable[c, c]
@@ -230,113 +159,11 @@ def _ChartDistance(parameters) -> Tuple[Optional[float], Optional[Dict[str, floa
     direction = np.array([t[ix], t[iy]]) / length            # (log x, log y)
     r = np.linspace(0., length, 4001)
     rx, ry = x[c] * 10. ** (r * direction[0]), y[c] * 10. ** (r * direction[1])
-    ray = ~(charts[-1].IsUnstable(rx, ry) | charts[+1].IsUnstable(rx, ry))
+    ray = ~np.logical_or.reduce([chart.IsUnstable(rx, ry) for chart in charts])
     first = int(np.argmax(ray != ray[0]))
     distance = float(r[first]) if first > 0 else length
     return distance, {'x': float(x[c] * 10. ** (distance * direction[0])),
                       'y': float(y[c] * 10. ** (distance * direction[1]))}
-
-
-@dataclass(frozen=True)
-class AxisScan:
-    """Where the drive is stable when one design parameter alone is multiplied by 10**t.
-
-    Attributes
-    ----------
-    parameter : str
-        The parameter key.
-    value : float
-        Its given value.
-    stableIntervals : tuple of (float, float)
-        Intervals of t (decades) with a stable drive, boundaries refined by bisection; an interval that
-        reaches ``limit`` may continue beyond it.
-    limit : float
-        The scan covered -limit <= t <= limit.
-    """
-    parameter: str
-    value: float
-    stableIntervals: Tuple[Tuple[float, float], ...]
-    limit: float
-
-    def Move(self, direction: int, margin: float, span: float) -> Optional[float]:
-        """Smallest change t (decades, sign of ``direction``, ``|t| <= log10(span)``) after which every
-        t' with ``|t' - t| <= margin`` is stable; 0 if the given value already is; None if there is none.
-
-        Parameters
-        ----------
-        direction : int
-            +1 (increase) or -1 (decrease).
-        margin : float
-            Margin in decades, >= 0.
-        span : float
-            Largest factor, > 1.
-        """
-        L = math.log10(span)
-        moves = []
-        for a, b in self.stableIntervals:
-            if direction > 0:
-                t = max(0., a + margin)
-                if t <= L and b - t >= margin:
-                    moves.append(t)
-            else:
-                t = min(0., b - margin)
-                if t >= -L and t - a >= margin:
-                    moves.append(t)
-        return min(moves, key=abs) if moves else None
-
-    def Boundaries(self) -> List[float]:
-        """The refined stability boundaries (decades) inside the scanned range."""
-        return sorted(t for ab in self.stableIntervals for t in ab if abs(t) < self.limit)
-
-
-def ScanParameter(parameters: Mapping[str, float], key: str, limit: float, step: float = SCAN_STEP) -> AxisScan:
-    """Scan the stability of the drive with ``key`` multiplied by 10**t for ``|t| <= limit``.
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set.
-    key : str
-        A design parameter present in ``parameters`` with a value > 0.
-    limit : float
-        Scanned range in decades, > 0.
-    step : float, optional
-        Grid step in decades; boundaries are refined by bisection to 1e-10 decades.
-
-    Returns
-    -------
-    AxisScan
-    """
-    w = 'ScanParameter'
-    if key not in parameters:
-        raise ValueError(f"{w}: 'key' must be a key of the parameter set, got {key!r}")
-    CheckRange(w, key, parameters[key], low=0., lowOpen=True, unit=PARAMETER_UNITS.get(key, ''))
-    CheckRange(w, 'limit', limit, low=0., lowOpen=True)
-    CheckRange(w, 'step', step, low=0., high=limit, lowOpen=True)
-    t = _SymmetricGrid(limit, step)
-    stable = _ScaledDrives(parameters, (key,)).Stable({key: t})
-    intervals = []
-    start = None
-    for i, s in enumerate(stable):
-        if s and start is None:
-            start = -limit if i == 0 else _Refine(parameters, key, t[i - 1], t[i])
-        if not s and start is not None:
-            intervals.append((start, _Refine(parameters, key, t[i], t[i - 1])))
-            start = None
-    if start is not None:
-        intervals.append((start, limit))
-    return AxisScan(key, float(parameters[key]), tuple((float(a), float(b)) for a, b in intervals), float(limit))
-
-
-def _Refine(parameters, key, tUnstable, tStable) -> float:
-    """Bisection between an unstable and a stable log factor; returns the stable end."""
-    while abs(tStable - tUnstable) > _REFINE_TOLERANCE:
-        mid = 0.5 * (tUnstable + tStable)
-        if _StableAt(parameters, {key: mid}):
-            tStable = mid
-        else:
-            tUnstable = mid
-    return tStable
 
 
 @dataclass(frozen=True)
@@ -352,9 +179,10 @@ class Recommendation:
     newValue : float
         The new value (unit of the key, :data:`~exudyn_worm.setups.presets.PARAMETER_UNITS`).
     maxRealPartAfter : float
-        Largest real part of the eigenvalues (S = +1 and -1) of the changed drive in 1/s (< 0: stable).
+        Largest real part of the eigenvalues of the changed drive in 1/s at its deciding operating point (< 0:
+        stable).
     chartPointAfter : dict
-        The changed drive's chart point (:func:`~exudyn_worm.analysis.charts.ChartCoordinates`).
+        The chart point of the changed drive's two-mass core (:func:`~exudyn_worm.analysis.charts.ChartCoordinates`).
     simulatedChatter : bool or None
         Chatter while lowering in the reel-changer simulation (:func:`ConfirmBySimulation`), None if
         not simulated.
@@ -397,7 +225,7 @@ class PairRecommendation:
     newValues : tuple of float
         The new values.
     maxRealPartAfter : float
-        Largest real part of the eigenvalues of the changed drive in 1/s.
+        Largest real part of the eigenvalues of the changed drive in 1/s at its deciding operating point.
     chartPointAfter : dict
         The changed drive's chart point.
     simulatedChatter : bool or None
@@ -436,19 +264,20 @@ class DesignCheckResult:
 
     Attributes
     ----------
-    parameters : dict
-        The parameter set checked.
+    drive : Drive
+        The drive checked.
     margin : float
         Margin in decades (see the module docstring for the rule).
     span : float
         Largest factor searched.
-    analysis : StabilityAnalysis
-        Analytical stability of the given drive.
+    analysis : DriveAnalysis
+        The drive's verdict at the operating points of its duty
+        (:func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`, the one of ``exudyn-worm stability``).
     chartPoint : dict
-        :func:`~exudyn_worm.analysis.charts.ChartCoordinates` of the drive.
+        :func:`~exudyn_worm.analysis.charts.ChartCoordinates` of the drive's two-mass core.
     distanceToBoundary : float or None
         Decades from the chart point to the stability boundary (Euclidean in log10 x, log10 y at the
-        drive's D_V and D_TV); None if there is none within 2 decades.
+        drive's D_V and D_TV); None if there is none within 2 decades, or for a drive the chart does not describe.
     nearestBoundaryPoint : dict or None
         ``{'x', 'y'}`` of that boundary point.
     scans : dict
@@ -458,16 +287,19 @@ class DesignCheckResult:
     recommendations : list of Recommendation
         Smallest increases and decreases, one parameter each.
     bestPair : PairRecommendation or None
-        Where no single parameter suffices: the smallest change of two.
+        Where no single parameter suffices: the smallest change of two (two-mass drive only).
     notes : list of str
         Parameters that could not be varied (value 0) and similar remarks.
     simulatedChatter : bool or None
         Chatter while lowering of the given drive in the simulation (None if not simulated).
+    evaluations : int
+        Linear analyses of changed drives (``AnalyzeDrive``) the check made: a whole drive's scan points and
+        confirmations and every recommended drive (the two-mass drive's Hurwitz scans are not counted).
     """
-    parameters: Dict[str, float]
+    drive: Drive
     margin: float
     span: float
-    analysis: object
+    analysis: DriveAnalysis
     chartPoint: Dict[str, float]
     distanceToBoundary: Optional[float]
     nearestBoundaryPoint: Optional[Dict[str, float]]
@@ -477,11 +309,22 @@ class DesignCheckResult:
     bestPair: Optional[PairRecommendation] = None
     notes: List[str] = field(default_factory=list)
     simulatedChatter: Optional[bool] = None
+    evaluations: int = 0
+
+    @property
+    def parameters(self) -> Dict[str, float]:
+        """The drive's flat parameter set (a copy)."""
+        return dict(self.drive.parameters)
+
+    @property
+    def chartApplies(self) -> bool:
+        """True if the stability chart (eqs. (15)-(19)) describes the drive (the two-mass drive)."""
+        return self.drive.isTwoMass
 
     @property
     def stable(self) -> bool:
-        """Stable for S = +1 and S = -1."""
-        return self.analysis.stable
+        """The drive's verdict: every operating point of its duty stable (``AnalyzeDrive(drive).stable``)."""
+        return bool(self.analysis.stable)
 
     @property
     def stableWithMargin(self) -> bool:
@@ -490,8 +333,8 @@ class DesignCheckResult:
 
     @property
     def maxRealPart(self) -> float:
-        """Largest real part of the eigenvalues of both contact states in 1/s."""
-        return _MaxRealPart(self.analysis)
+        """Largest real part in 1/s of the deciding operating point."""
+        return float(self.analysis.maxRealPart)
 
     @property
     def singleParameterSuffices(self) -> bool:
@@ -511,25 +354,49 @@ class DesignCheckResult:
 
     @property
     def selfLockingVerdict(self):
-        """Static and dynamic self-locking (:func:`~exudyn_worm.model.selflocking.SelfLocking`), the dynamic one at the
-        sliding speed of ``motorSpeed`` if the parameter set gives it."""
-        gear = self.analysis.drive.gear
-        speed = self.parameters.get('motorSpeed')
-        return SelfLocking(gear, None if speed is None else gear.SlidingSpeed(speed))
+        """Static and dynamic self-locking (:func:`~exudyn_worm.model.selflocking.SelfLocking`) at the deciding
+        operating point (at rest for a drive without a steady phase); every point: :attr:`selfLockingVerdicts`."""
+        verdicts = self.analysis.selfLockingVerdicts
+        deciding = self.analysis.deciding
+        return verdicts[deciding.point.Label()] if deciding is not None else next(iter(verdicts.values()))
 
-    def ToDict(self) -> Dict:
-        """JSON-ready dictionary (the schema of ``exudyn-worm check --json``).
+    @property
+    def selfLockingVerdicts(self) -> Dict[str, object]:
+        """Static and dynamic self-locking at every operating point, keyed by its label."""
+        return self.analysis.selfLockingVerdicts
+
+    @property
+    def dangerous(self) -> bool:
+        """Self-locking at rest but not while moving at one of the operating points."""
+        return bool(self.analysis.dangerous)
+
+    def ContactStates(self) -> Dict[int, object]:
+        """Per contact state of the duty (both at rest without a steady phase): its result (``stable``,
+        ``maxRealPart``; the operating point in that state with the largest real part).
 
         Returns
         -------
         dict
         """
-        contact = {f'{S:+d}': {'stable': self.analysis.contact[S].stable,
-                               'maxRealPart': float(np.max(self.analysis.contact[S].eigenvalues.real))}
-                   for S in CONTACT_STATES}
+        present = {p.S for p in self.analysis.operatingPoints} or set(CONTACT_STATES)
+        return {S: self.analysis.State(S) for S in CONTACT_STATES if S in present}
+
+    def ToDict(self) -> Dict:
+        """JSON-ready dictionary (the schema of ``exudyn-worm check --json``): the keys of
+        :meth:`~exudyn_worm.analysis.drivestability.DriveAnalysis.ToDict` (``stable``, ``operatingPoints``,
+        ``deciding``, ``dangerous``, ...) and those of the design check.
+
+        Returns
+        -------
+        dict
+        """
+        contact = {f'{S:+d}': {'stable': bool(state.stable), 'maxRealPart': float(state.maxRealPart)}
+                   for S, state in self.ContactStates().items()}
         point = {k: JsonNumber(v) for k, v in self.chartPoint.items()}
-        point.update(distanceToBoundary=self.distanceToBoundary, nearestBoundaryPoint=self.nearestBoundaryPoint)
-        data = {'stable': self.stable, 'stableWithMargin': self.stableWithMargin, 'maxRealPart': self.maxRealPart,
+        point.update(distanceToBoundary=self.distanceToBoundary, nearestBoundaryPoint=self.nearestBoundaryPoint,
+                     applies=self.chartApplies)
+        data = {**self.analysis.ToDict(),
+                'stable': self.stable, 'stableWithMargin': self.stableWithMargin, 'maxRealPart': self.maxRealPart,
                 'S': contact, 'chartPoint': point,
                 'margin': {'decades': self.margin, 'factor': 10. ** self.margin, 'rule': _MarginRule(self.margin, self.span)},
                 'span': self.span, 'designParameters': list(self.scans), 'marginShortBy': list(self.marginShortBy),
@@ -538,14 +405,18 @@ class DesignCheckResult:
                                      for k, d in self.Missing()],
                 'singleParameterSuffices': self.singleParameterSuffices,
                 'bestPair': self.bestPair.ToDict() if self.bestPair else None,
-                'notes': list(self.notes)}
+                'notes': list(self.notes), 'evaluations': self.evaluations,
+                'scans': {k: {'stableIntervals': [list(ab) for ab in s.stableIntervals], 'limit': s.limit}
+                          for k, s in self.scans.items()}}
         data['selfLockingVerdict'] = self.selfLockingVerdict.ToDict()
         if self.simulatedChatter is not None:
             data['simulatedChatterWhileLowering'] = self.simulatedChatter
         return data
 
     def plot(self, ax=None, title: str = ''):
-        """Draw the drive's point, the stability boundary and the recommended moves on the chart.
+        """Draw the check: for the two-mass drive its point on the charts that decide (at the deciding operating
+        points), the boundary and the recommended moves; for a whole drive, which the chart does not describe,
+        the stable ranges of each scanned parameter and the moves, and the figure says why there is no chart.
 
         Parameters
         ----------
@@ -559,64 +430,16 @@ class DesignCheckResult:
         matplotlib.figure.Figure
         """
         from ..plotting.plot_design import PlotDesignCheck   # lazy: matplotlib only when drawing
-        return PlotDesignCheck(self, LocalCharts(self.parameters), ax=ax, title=title)
+        return PlotDesignCheck(self, LocalCharts(self.drive) if self.chartApplies else None, ax=ax, title=title)
 
 
-def _Changed(parameters, changes):
-    scaled = _Scaled(parameters, changes)
-    drive = ElasticDriveFromParameters(scaled)
-    return _MaxRealPart(AnalyzeStability(drive, _OperatingPoint(scaled, drive))), ChartCoordinates(drive)
-
-
-#: the motor speed, a design parameter when the friction depends on speed (:func:`ScanMotorSpeed`)
-SPEED_KEY = 'motorSpeed'
-_SPEED_STEP = 0.01          # grid step of the speed scan in decades (each point is a whole drive and operating point)
-
-
-def ScanMotorSpeed(parameters: Mapping[str, float], limit: float, step: float = _SPEED_STEP) -> AxisScan:
-    """Scan the stability of the drive with ``motorSpeed`` multiplied by 10**t for ``|t| <= limit``.
-
-    With a speed-dependent friction law the operating point (mu(v0), its slope, the normal force) moves with the
-    speed, so every point is a drive of its own (:func:`ScanParameter` scales J1, J2, kT, dT, dV only).
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set with ``motorSpeed``, ``loadMass`` and ``leverArm``.
-    limit : float
-        Scanned range in decades, > 0.
-    step : float, optional
-        Grid step in decades; boundaries are refined by bisection.
-
-    Returns
-    -------
-    AxisScan
-    """
-    w = 'ScanMotorSpeed'
-    CheckRange(w, SPEED_KEY, parameters.get(SPEED_KEY, 0.), low=0., lowOpen=True, unit='rad/s')
-    CheckRange(w, 'limit', limit, low=0., lowOpen=True)
-    t = _SymmetricGrid(limit, step)
-    stable = [_StableAt(parameters, {SPEED_KEY: ti}) for ti in t]
-    intervals, start = [], None
-    for i, s in enumerate(stable):
-        if s and start is None:
-            start = -limit if i == 0 else _Refine(parameters, SPEED_KEY, t[i - 1], t[i])
-        if not s and start is not None:
-            intervals.append((start, _Refine(parameters, SPEED_KEY, t[i], t[i - 1])))
-            start = None
-    if start is not None:
-        intervals.append((start, limit))
-    return AxisScan(SPEED_KEY, float(parameters[SPEED_KEY]), tuple((float(a), float(b)) for a, b in intervals),
-                    float(limit))
-
-
-def _BestPair(parameters, keys, margin, span) -> Optional[PairRecommendation]:
+def _BestPair(scanner: Scanner, keys, margin, span) -> Optional[PairRecommendation]:
     """The smallest (Euclidean, in decades) change of two parameters that is stable with margin on the
     whole square of both factors within 10^+-margin; checked with the scalar model on a 5 x 5 grid."""
     L = math.log10(span)
     t = _SymmetricGrid(L + margin, _PAIR_STEP)
     half = int(round(margin / (t[1] - t[0])))
-    scaled = _ScaledDrives(parameters, keys)
+    scaled = _ScaledDrives(scanner.parameters, keys, scanner.conditions)
     candidates = []
     for a, b in combinations(keys, 2):
         stable = scaled.Stable({a: t[:, None], b: t[None, :]})
@@ -628,117 +451,90 @@ def _BestPair(parameters, keys, margin, span) -> Optional[PairRecommendation]:
         for i, j in zip(*np.nonzero(ok)):
             candidates.append((t[i] ** 2 + t[j] ** 2, a, b, float(t[i]), float(t[j])))
     offsets = np.linspace(-margin, margin, 5)
+    p = scanner.parameters
     for _, a, b, ta, tb in sorted(candidates):
-        if all(_StableAt(parameters, {a: ta + da, b: tb + db}) for da in offsets for db in offsets):
-            maxRe, point = _Changed(parameters, {a: ta, b: tb})
-            return PairRecommendation((a, b), (10. ** ta, 10. ** tb),
-                                      (parameters[a] * 10. ** ta, parameters[b] * 10. ** tb), maxRe, point)
+        if all(scanner.StableAt({a: ta + da, b: tb + db}) for da in offsets for db in offsets):
+            maxRe, point = scanner.After({a: ta, b: tb})
+            return PairRecommendation((a, b), (10. ** ta, 10. ** tb), (p[a] * 10. ** ta, p[b] * 10. ** tb), maxRe, point)
     return None
 
 
-_CHARACTERISTIC = 'a motor on its characteristic (motorType characteristic)'     # as ExtraComponents names it
-
-
-def _CharacteristicNote(parameters: Mapping[str, float], where: str) -> str:
-    """The note for a drive with a motor on its characteristic, checked as the two-mass drive (the motor holding its
-    speed); raises if the linearized whole drive with the free motor has another verdict in either contact state."""
-    whole, rigid = DriveStability(parameters), AnalyzeStability(ElasticDriveFromParameters(parameters))
-    words = {True: 'stable', False: 'unstable'}
-    for S in CONTACT_STATES:
-        if whole.State(S).stable != rigid.State(S).stable:
-            raise ValueError(
-                f"{where}: the motor's characteristic changes the verdict for S = {S:+d} (the whole drive with the "
-                f"free motor, motorInertia and the slope stallTorque/noLoadSpeed, is {words[whole.State(S).stable]}; "
-                f"the two-mass model of the design check, whose motor holds its speed, is "
-                f"{words[rigid.State(S).stable]}), so the check cannot recommend changes for it; "
-                f"'exudyn-worm stability' analyses the whole drive")
-    return ("the motor on its characteristic is checked as a motor holding its speed (the two-mass model): the "
-            "linearized whole drive with the free motor has the same verdict for S = +1 and S = -1; confirm a "
-            "recommended change with 'exudyn-worm stability'")
-
-
-def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
-                span: float = DEFAULT_SPAN) -> DesignCheckResult:
+def DesignCheck(drive: Union[Drive, Mapping[str, float]], margin: float = DEFAULT_MARGIN,
+                span: float = DEFAULT_SPAN, progress: Optional[Callable[[], None]] = None) -> DesignCheckResult:
     """Check a drive for chatter and recommend the smallest changes that make it stable with a margin.
 
-    The margin rule, the design parameters and what is held when one changes are described in the
-    module docstring of :mod:`exudyn_worm.analysis.design`.
+    The verdict is :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive` (the drive's own operating points);
+    the margin rule, the design parameters and what is held when one changes are described in the module
+    docstring of :mod:`exudyn_worm.analysis.design`, the scans in :mod:`exudyn_worm.analysis.designscan`.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set (e.g. ``GetPreset('reel-P1')``).
+    drive : Drive or mapping
+        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`) or a flat parameter set (e.g.
+        ``GetPreset('reel-P1')``); any drive: chains on both sides, axial bearing, motor on its characteristic.
     margin : float, optional
         Margin in decades of a parameter factor, in [0, 1] (default 0.1: factor 1.26).
     span : float, optional
         Largest factor searched in each direction, in (1, 1e4] (default 100).
+    progress : callable, optional
+        Called with no argument after each scanned parameter (:func:`~exudyn_worm.analysis.designscan.DesignKeys`
+        lists them), e.g. a progress bar's ``update``.
 
     Returns
     -------
     DesignCheckResult
-        Verdict for S = +1 and -1, the largest real part, the chart point and its distance to the
-        boundary, the recommendations and, where no single parameter suffices, the best pair.
+        The verdict at every operating point, the largest real part, for the two-mass drive the chart point and
+        its distance to the boundary, the recommendations and, where no single parameter suffices, the best pair.
 
     Raises
     ------
     ValueError, TypeError
-        For a bad parameter set, margin or span, or a parameter set with components the two-mass model
-        does not include (a drive-side chain J4, ... or a worm axial bearing kA > 0), or a motor on its
-        characteristic that changes the verdict of the two-mass model (motor holding its speed) in a contact
-        state; where it does not, the drive is checked as the two-mass drive with a note.
-    LoadSideNotLumpable
-        A ValueError: the parameter set has a load-side chain (JL1, ...) that may not be lumped into J2
-        (:func:`~exudyn_worm.analysis.loadside.DiagnoseLoadSide`); the message and its ``diagnosis`` name the stage that is
-        the cause. A load-side chain that may be lumped is checked as the lumped drive (a note says so).
+        For a bad drive, margin or span.
     """
     w = 'DesignCheck'
     margin = CheckRange(w, 'margin', margin, low=0., high=1., unit='decades')
     span = CheckRange(w, 'span', span, low=1., high=1e4, lowOpen=True)
-    CheckParameterKeys(parameters, w)
-    parameters = dict(parameters)
-    extra = ExtraComponents(parameters)
-    notes = []
-    if extra == ['a load-side chain (JL1, ...)']:      # the two-mass model holds if the load may be lumped into J2
-        diagnosis = DiagnoseLoadSide(parameters, margin)
-        if not diagnosis.lumpingSafe:
-            raise LoadSideNotLumpable(f"{w}: {diagnosis.Text()}; the two-mass model of the design check (eqs. "
-                                      f"(15)-(19)) does not describe this drive", diagnosis)
-        parameters = LumpedLoadSide(parameters)
-        notes.append(f"the load-side chain is lumped into J2 = {parameters['J2']:.4g} kg*m^2 (changes of J2 are "
-                     f"changes of wheel and driven machine): {diagnosis.Text()}")
-    elif extra == [_CHARACTERISTIC]:      # the two-mass model holds a motor at its speed: valid if the verdict stays
-        notes.append(_CharacteristicNote(parameters, w))
-    elif extra:
-        raise ValueError(f"{w}: the design check uses the two-mass model of Figure 2 (eqs. (15)-(19)); this "
-                         f"parameter set has {' and '.join(extra)}, which that model does not include")
-    drive = ElasticDriveFromParameters(parameters)
-    analysis = AnalyzeStability(drive, _OperatingPoint(parameters, drive))
-    keys = []
-    for key in DesignParameters(parameters):
-        if parameters[key] > 0:
-            keys.append(key)
-        else:
-            notes.append(f"{key} = 0 cannot be changed by a factor; give it a value > 0 to include it")
+    drive = AsCheckedDrive(drive, w)
+    analysis = AnalyzeDrive(drive)
+    analysis.stable
+    scanner = Scanner(drive)
+    keys, notes = DesignKeys(drive)
+    if not drive.isTwoMass:
+        notes.append(f"the drive has {drive.ComponentsText()}: every scanned drive is the linearized Exudyn model of "
+                     f"the whole drive at its operating points (grid {scanner.step:g} decades, boundaries to "
+                     f"{WHOLE_DRIVE_TOLERANCE:g} decades); the stability chart of the two-mass drive does not describe it")
+    if drive.gear.speedDependentFriction and SPEED_KEY not in keys and analysis.operatingPoints:
+        notes.append(f"the motor speed is not scanned: motorType {drive.motorType} takes no '{SPEED_KEY}'")
     limit = math.log10(span) + margin
-    scans = {key: ScanParameter(parameters, key, limit) for key in keys}
-    if _OperatingPoint(parameters, drive) is not None:       # the friction depends on speed: the speed is a remedy
-        scans[SPEED_KEY] = ScanMotorSpeed(parameters, limit)
-        keys.append(SPEED_KEY)
+    scans = {}
+    for key in keys:
+        scans[key] = scanner.Scan(key, limit)
+        if progress is not None:
+            progress()
     short = [k for k in keys if not (analysis.stable and scans[k].Move(+1, margin, span) == 0.)]
     recommendations = []
     for key in short:
         for direction in (+1, -1):
             t = scans[key].Move(direction, margin, span)
-            if t is not None and t != 0.:
-                maxRe, point = _Changed(parameters, {key: t})
-                recommendations.append(Recommendation(key, 10. ** t, parameters[key] * 10. ** t, maxRe, point))
+            if t is None or t == 0.:
+                continue
+            if not scanner.Confirmed(key, t, margin):
+                notes.append(f"{key} {'x' if t > 0 else '/'}{10 ** abs(t):.3g} is stable at the scan's grid points but "
+                             f"not everywhere within its margin: not recommended")
+                continue
+            maxRe, point = scanner.After({key: t})
+            recommendations.append(Recommendation(key, 10. ** t, drive.parameters[key] * 10. ** t, maxRe, point))
     bestPair = None
     pairKeys = [k for k in keys if k != SPEED_KEY]          # the pair search scales J1, J2, kT, dT, dV only
     if short and not recommendations and len(pairKeys) >= 2:
-        bestPair = _BestPair(parameters, pairKeys, margin, span)
-    distance, boundaryPoint = _ChartDistance(parameters)
-    return DesignCheckResult(parameters, margin, span, analysis, ChartCoordinates(drive), distance, boundaryPoint,
-                             scans, short, recommendations, bestPair, notes)
+        if drive.isTwoMass:
+            bestPair = _BestPair(scanner, pairKeys, margin, span)
+        else:
+            notes.append("no pair of parameters is searched for a whole drive (each candidate is a linearized Exudyn "
+                         "model); try 'exudyn-worm sweep' over two parameters")
+    distance, boundaryPoint = _ChartDistance(drive) if drive.isTwoMass else (None, None)
+    return DesignCheckResult(drive, margin, span, analysis, ChartCoordinates(drive.elastic), distance, boundaryPoint,
+                             scans, short, recommendations, bestPair, notes, evaluations=scanner.evaluations)
 
 
 def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[float] = None) -> bool:
@@ -850,7 +646,7 @@ class StableRange:
 _HINT_KEYS = {'J1': 'J1/J2', 'kT': 'kT/(kV r1^2)'}
 
 
-def NearestStableValue(parameters: Mapping[str, float], key: str, direction: int,
+def NearestStableValue(parameters: Union[Drive, Mapping[str, float]], key: str, direction: int,
                        span: float = DEFAULT_SPAN) -> Optional[float]:
     """Nearest value of ``key`` below (``direction = -1``) or above (+1) the given one at which the drive is
     stable (S = +1 and -1), other parameters as given; the given value if it is stable; None if there is
@@ -858,8 +654,8 @@ def NearestStableValue(parameters: Mapping[str, float], key: str, direction: int
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    parameters : Drive or mapping
+        The drive or its flat parameter set.
     key : str
         Parameter to vary.
     direction : int
@@ -874,17 +670,18 @@ def NearestStableValue(parameters: Mapping[str, float], key: str, direction: int
     if direction not in (-1, 1):
         raise ValueError(f"NearestStableValue: 'direction' must be -1 or +1, got {direction!r}")
     CheckRange('NearestStableValue', 'span', span, low=1., lowOpen=True)
-    t = ScanParameter(parameters, key, math.log10(span)).Move(direction, 0., span)
-    return None if t is None else parameters[key] * 10. ** t
+    drive = AsCheckedDrive(parameters, 'NearestStableValue')
+    t = Scanner(drive).Scan(key, math.log10(span)).Move(direction, 0., span)
+    return None if t is None else drive.parameters[key] * 10. ** t
 
 
-def StabilizingChanges(parameters: Mapping[str, float], span: float = DEFAULT_SPAN) -> List[StableRange]:
+def StabilizingChanges(parameters: Union[Drive, Mapping[str, float]], span: float = DEFAULT_SPAN) -> List[StableRange]:
     """For J1 and kT separately: the nearest values that make the drive stable.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set (see :func:`~exudyn_worm.setups.presets.DriveFromParameters`).
+    parameters : Drive or mapping
+        The drive or its flat parameter set (see :func:`~exudyn_worm.setups.presets.DriveFromParameters`).
     span : float
         Search from 1/span to span times the given value, > 1.
 
@@ -893,11 +690,12 @@ def StabilizingChanges(parameters: Mapping[str, float], span: float = DEFAULT_SP
     list of StableRange
     """
     CheckRange('StabilizingChanges', 'span', span, low=1., lowOpen=True)
-    drive = ElasticDriveFromParameters(parameters)
-    scales = {'J1': 1. / drive.J2, 'kT': 1. / (drive.gear.kV * drive.gear.r1**2)}
+    drive = AsCheckedDrive(parameters, 'StabilizingChanges')
+    parameters, core, scanner = drive.parameters, drive.elastic, Scanner(drive)
+    scales = {'J1': 1. / core.J2, 'kT': 1. / (core.gear.kV * core.gear.r1**2)}
     out = []
     for key, ratioName in _HINT_KEYS.items():
-        scan = ScanParameter(parameters, key, math.log10(span))
+        scan = scanner.Scan(key, math.log10(span))
         below, above = (scan.Move(d, 0., span) for d in (-1, 1))
         out.append(StableRange(key, parameters[key], None if below is None else parameters[key] * 10. ** below,
                                None if above is None else parameters[key] * 10. ** above, ratioName, scales[key],

@@ -1,16 +1,22 @@
-"""``exudyn-worm check``: the design check. Stable or not, where the drive sits on its chart, and the smallest
-changes of J1, J2, kT and the damping that make it stable with a margin (:func:`exudyn_worm.analysis.design.DesignCheck`)."""
+"""``exudyn-worm check``: the design check. The verdict of ``exudyn-worm stability`` (the drive's own operating
+points), the self-locking verdicts at each of them, where a two-mass drive sits on its chart, and the smallest changes
+of J1, J2, kT, the damping and the chains that make it stable with a margin
+(:func:`exudyn_worm.analysis.design.DesignCheck`)."""
 from __future__ import annotations
 
 import argparse
 import math
 import sys
-from typing import List
+from typing import TYPE_CHECKING, List
 
-from .main import (AddOverwriteOption, BadInput, CheckFigurePath, DriveFromArgs, PositiveFloat, PrintJson, SourceText,
-                   StdoutToStderr, Subcommand, UsageError, WriteAtomically)
+from .main import (AddOverwriteOption, BadInput, CheckFigurePath, PositiveFloat, PrintJson, SourceText, StdoutToStderr,
+                   Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
+from .stability import DangerLines, OperatingPointLines
 
-__all__ = ['COMMAND', 'FormatDesignCheck']
+if TYPE_CHECKING:
+    from ..analysis.drivestability import DriveAnalysis
+
+__all__ = ['COMMAND', 'FormatDesignCheck', 'SelfLockingLines']
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
     # lazy: start-up (exudyn-worm --help imports every command module)
@@ -21,7 +27,10 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--span', type=float, default=DEFAULT_SPAN, metavar='FACTOR',
                         help=f'search changes up to this factor in each direction (default {DEFAULT_SPAN:g})')
     parser.add_argument('--plot', default=None, metavar='FILE.png',
-                        help='draw the drive\'s point, the stability boundary and the recommended moves into FILE')
+                        help='draw the check into FILE: for the two-mass drive its point on the chart that decides (at the '
+                             'deciding operating point), the boundary and the recommended moves; for a drive with '
+                             'chains, an axial bearing or a motor characteristic the stable range of each scanned '
+                             'parameter and the moves')
     AddOverwriteOption(parser, 'the --plot file')
     parser.add_argument('--simulate', action='store_true',
                         help='confirm each recommendation with the time-domain reel-changer simulation '
@@ -57,6 +66,31 @@ def _Simulated(chatter) -> str:
 HEAVY_DAMPING = 0.5
 
 
+def SelfLockingLines(analysis: DriveAnalysis) -> List[str]:
+    """Static and dynamic self-locking at every operating point of the drive's duty (at rest without one), with the
+    gear makers' rating (grey zone) and a ``DANGER`` line where the load holds at rest but runs away once moving.
+
+    Parameters
+    ----------
+    analysis : DriveAnalysis
+        Result of :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`.
+
+    Returns
+    -------
+    list of str
+    """
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..model.selflocking import GREY_ZONE
+    state = lambda s: 'n/a (no speed)' if s is None else \
+        f"{'yes' if s.selfLocking else 'no'} (mu {s.mu:.4g}, worm-driving efficiency {s.efficiencyWormDriving:.3g}: {s.rating})"
+    low, high = GREY_ZONE
+    lines = [f"Self-locking (static: at rest; dynamic: at the operating point's sliding speed; rated by the worm-driving "
+             f"efficiency: self-locking below {low:g}, grey zone {low:g} to {high:g}, none above {high:g}):"]
+    for label, v in analysis.selfLockingVerdicts.items():
+        lines.append(f"  {label}: at rest {state(v.static)}; moving {state(v.dynamic)}")
+    return lines + DangerLines(analysis)
+
+
 def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
     """Human-readable report of a :class:`~exudyn_worm.analysis.design.DesignCheckResult` (the ``check`` output).
 
@@ -72,35 +106,40 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
     list of str
         The lines, without trailing newlines.
     """
-    # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..model.stability import CONTACT_STATES
     a = result.analysis
     p = result.chartPoint
     lines = [title, '']
-    states = '; '.join(f"S = {S:+d}: {'stable' if a.contact[S].stable else 'UNSTABLE'}, max Re(lambda) = "
-                       f"{max(a.contact[S].eigenvalues.real):.4g} 1/s" for S in CONTACT_STATES)
+    states = '; '.join(f"S = {S:+d}: {'stable' if s.stable else 'UNSTABLE'}, max Re(lambda) = {s.maxRealPart:.4g} 1/s"
+                       for S, s in result.ContactStates().items())
     verdict = ('STABLE with margin' if result.stableWithMargin else
                f"stable, but within the margin along {', '.join(result.marginShortBy)}" if result.stable else
                'UNSTABLE (chatter expected)')
     lines.append(f"Verdict: {verdict} ({states})")
+    lines.append(a.decidingText[0].upper() + a.decidingText[1:])
+    drive = result.drive
+    lines.append('Model: ' + ('eqs. (15)-(19), the two-mass drive of Figure 2' if drive.isTwoMass else
+                              f"linearized Exudyn model of the whole drive (it has {drive.ComponentsText()})"))
     if result.simulatedChatter is not None:
         lines.append(f"Simulation (reel changer, lowering): {_Simulated(result.simulatedChatter)}")
-    lock = result.selfLockingVerdict
-    state = lambda s: 'n/a (no motorSpeed)' if s is None else \
-        f"{'yes' if s.selfLocking else 'no'} (mu {s.mu:.4g}, worm-driving efficiency {s.efficiencyWormDriving:.3g}: {s.rating})"
-    lines.append(f"Self-locking: at rest {state(lock.static)}; moving {state(lock.dynamic)}"
-                 + ('; DANGER: holds at rest but runs away once moving' if lock.dangerous else ''))
-    distance = ('no boundary within 2 decades' if result.distanceToBoundary is None else
-                f"{result.distanceToBoundary:.3g} decades to the stability boundary (at x = "
-                f"{result.nearestBoundaryPoint['x']:.4g}, y = {result.nearestBoundaryPoint['y']:.4g})")
-    lines.append(f"Chart point: x = kT/(kV r1^2) = {p['x']:.4g}, y = J1/J2 = {p['y']:.4g}, D_V = {_G(p['DV'])}, "
-                 f"D_TV = {_G(p['DTV'])}; {distance}")
+    lines += SelfLockingLines(a)
+    if result.chartApplies:
+        distance = ('no boundary within 2 decades' if result.distanceToBoundary is None else
+                    f"{result.distanceToBoundary:.3g} decades to the stability boundary (at x = "
+                    f"{result.nearestBoundaryPoint['x']:.4g}, y = {result.nearestBoundaryPoint['y']:.4g})")
+        atPoint = ' (charts at mu(v0) and slope of the deciding operating points)' \
+            if drive.gear.speedDependentFriction and a.operatingPoints else ''
+        lines.append(f"Chart point: x = kT/(kV r1^2) = {p['x']:.4g}, y = J1/J2 = {p['y']:.4g}, D_V = {_G(p['DV'])}, "
+                     f"D_TV = {_G(p['DTV'])}; {distance}{atPoint}")
+    else:
+        lines.append(f"Chart point: none; the stability chart (eqs. (15)-(19)) describes the two-mass drive, this "
+                     f"drive has {drive.ComponentsText()}")
     lines.append(f"Margin: {result.margin:g} decades (factor {10 ** result.margin:.3g}): a recommended drive stays "
                  f"stable if the changed parameter is off by that factor either way")
     held = [k for k in result.scans if k not in ('J1', 'J2', 'kT')]
     if held:
         lines.append(f"Held while J1, J2, kT change: {', '.join(held)} (as the parameter set gives them)")
     lines += [f"Note: {n}" for n in result.notes]
+    lines += [''] + OperatingPointLines(a)
     if result.stableWithMargin:
         lines += ['', 'No change needed.']
         return lines
@@ -128,7 +167,8 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
         lines += ['', f"No single parameter within a factor {result.span:g} makes the drive stable with margin."]
         pair = result.bestPair
         if pair is None:
-            lines.append('No pair of parameters does either.')
+            lines.append('No pair of parameters does either.' if drive.isTwoMass else
+                         'Pairs of parameters are not searched for a whole drive.')
         else:
             changes = ' and '.join(f"{k} {_Factor(f)} (to {v:.4g} {u})" for k, f, v, u in
                                    zip(pair.parameters, pair.factors, pair.newValues, pair.ToDict()['units']))
@@ -140,9 +180,12 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
 
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.design import ConfirmBySimulation, DesignCheck
+    from ..analysis import design
+    from ..analysis.designscan import DesignKeys
+    from ..progress import ProgressBar
     plotPath = CheckFigurePath(args.plot, '--plot', args.overwrite) if args.plot is not None else None
-    parameters, _ = DriveFromArgs(args)
+    drive = WholeDriveFromArgs(args)              # resolved once: every analysis below takes this drive
+    parameters = dict(drive.parameters)
     if args.simulate:
         # lazy: start-up (exudyn-worm --help imports every command module)
         from ..analysis.reelchanger import CheckReelChangerKeys
@@ -150,25 +193,22 @@ def _Run(args: argparse.Namespace) -> int:
             CheckReelChangerKeys(parameters, 'check --simulate')
     elif args.step_size is not None:
         raise UsageError(f"--step-size {args.step_size:g} only applies with --simulate")
-    # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.loadside import LoadSideNotLumpable
-    with BadInput():
-        try:
-            result = DesignCheck(parameters, margin=args.margin, span=args.span)
-        except LoadSideNotLumpable as err:       # a valid drive that the two-mass check does not describe
-            diagnosis = err.diagnosis
-        else:
-            diagnosis = None
-    if diagnosis is not None:
-        return _ReportWholeDrive(args, diagnosis, plotPath)
+    quiet = True if getattr(args, 'quiet', False) else None
+    with BadInput(), StdoutToStderr(args.json):
+        keys, _ = DesignKeys(drive)
+        with ProgressBar(total=len(keys), desc='check', unit='parameter', quiet=quiet) as bar:
+            result = design.DesignCheck(drive, margin=args.margin, span=args.span, progress=bar.update)
     if args.simulate:
-        # lazy: start-up (exudyn-worm --help imports every command module)
-        from ..progress import ProgressBar
         runs = 1 + len(result.recommendations) + (result.bestPair is not None)
-        with ProgressBar(total=runs, desc='check --simulate', unit='run',
-                         quiet=True if getattr(args, 'quiet', False) else None) as bar:
+        with ProgressBar(total=runs, desc='check --simulate', unit='run', quiet=quiet) as bar:
             with BadInput(), StdoutToStderr(args.json):
-                result = ConfirmBySimulation(result, stepSize=args.step_size, progress=bar.update)
+                result = design.ConfirmBySimulation(result, stepSize=args.step_size, progress=bar.update)
+    loadSide = None
+    if drive.loadSideChain:          # as stability: may the driven machine be lumped into J2? which stage is not?
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..analysis.loadside import DiagnoseLoadSide
+        with StdoutToStderr(args.json), BadInput():
+            loadSide = DiagnoseLoadSide(parameters, args.margin)
     disturbance = _DisturbanceVerdict(args, parameters, result)
     if plotPath is not None:
         # lazy: start-up (exudyn-worm --help imports every command module)
@@ -179,14 +219,18 @@ def _Run(args: argparse.Namespace) -> int:
         except OSError as err:
             raise UsageError(f"--plot {plotPath}: cannot write: {err.strerror or err}") from err
     if args.json:
-        data = result.ToDict()
+        data = {**result.ToDict(), 'method': 'analytical' if result.analysis.model == 'analytical' else 'exudyn'}
         if disturbance is not None:
             data['disturbance'] = disturbance.ToDict()
+        if loadSide is not None:
+            data['loadSide'] = loadSide.ToDict()
         PrintJson(data)
     else:
         lines = FormatDesignCheck(result, title=f"exudyn-worm check: {SourceText(args)}")
         if disturbance is not None:
             lines.insert(3, f"After a disturbance (lowering, nonlinear mesh): {disturbance.text}")
+        if loadSide is not None:
+            lines.insert(5, f"Load side: {loadSide.Text()}.")
         print('\n'.join(lines))
     if plotPath is not None:
         print(f"wrote {plotPath.resolve()}", file=sys.stderr)
@@ -202,7 +246,8 @@ def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
     if args.disturbance == 'auto':
         # lazy: start-up (exudyn-worm --help imports every command module)
         from ..analysis.reelchanger import REEL_KEYS
-        if not (float(parameters.get('backlash', 0.)) > 0. and result.analysis.contact[-1].stable
+        lowering = result.ContactStates().get(-1)
+        if not (float(parameters.get('backlash', 0.)) > 0. and lowering is not None and lowering.stable
                 and all(k in parameters for k in REEL_KEYS)):
             return None
     # lazy: start-up (exudyn-worm --help imports every command module)
@@ -218,27 +263,6 @@ def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
         CheckReelChangerKeys(parameters, 'check --disturbance')
         with StdoutToStderr(args.json):
             return ChattersAfterDisturbance(parameters)
-
-
-def _ReportWholeDrive(args: argparse.Namespace, diagnosis, plotPath) -> int:
-    """A drive whose load-side chain may not be lumped into J2: the whole drive's verdict and the stage that is the
-    cause; the two-mass recommendations, chart and simulations do not apply."""
-    if plotPath is not None or args.simulate:
-        raise UsageError(f"{'--plot' if plotPath is not None else '--simulate'}: the design chart and its "
-                         f"recommendations need the two-mass drive; {diagnosis.Text()}")
-    if args.json:
-        PrintJson({'stable': diagnosis.wholeStable, 'method': 'exudyn', 'loadSide': diagnosis.ToDict(),
-                   'recommendations': []})
-        return 0
-    verdict = 'STABLE' if diagnosis.wholeStable else 'UNSTABLE (chatter expected)'
-    lines = [f"exudyn-worm check: {SourceText(args)}", '',
-             f"Verdict (linearized whole drive): {verdict}",
-             f"Load side: {diagnosis.Text()}.",
-             '', "No recommendations: they come from the two-mass model (eqs. (15)-(19)), which does not describe "
-                 "this drive; `exudyn-worm stability` lists the whole drive's modes, `exudyn-worm sweep --vary "
-                 "kL1=...` scans the load shaft."]
-    print('\n'.join(lines))
-    return 0
 
 
 COMMAND = Subcommand('check', 'design check: stable or not, distance to the stability boundary and the smallest '

@@ -3,15 +3,16 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import Dict, List
+from typing import Dict, List, Union
 
 from .main import BadInput, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs
 from ..analysis.design import StabilizingChanges
 from ..analysis.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, DriveAnalysis
 from ..model.geometry import DescribeGeometry, GeometryForm
 from ..model.stability import CONTACT_STATES, StabilityAnalysis
+from ..setups.wholedrive import Drive
 
-__all__ = ['COMMAND', 'FormatStability', 'OperatingPointLines', 'VerdictLine', 'StabilityHint', 'StabilityHintData']
+__all__ = ['COMMAND', 'FormatStability', 'OperatingPointLines', 'VerdictLine', 'DangerLines', 'StabilityHint', 'StabilityHintData']
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
@@ -74,7 +75,19 @@ def VerdictLine(analysis: DriveAnalysis) -> str:
     return f"Verdict: {'STABLE (no chatter predicted by the linear model)' if analysis.stable else 'UNSTABLE (chatter expected)'}{where}"
 
 
-def _DangerLines(analysis: DriveAnalysis) -> List[str]:
+def DangerLines(analysis: DriveAnalysis) -> List[str]:
+    """One ``DANGER`` line per operating point at which the gear is self-locking at rest but not while moving
+    (``stability``, ``check``).
+
+    Parameters
+    ----------
+    analysis : DriveAnalysis
+        Result of :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`.
+
+    Returns
+    -------
+    list of str
+    """
     return [f"DANGER at {label}: self-locking at rest (mu {v.static.mu:.4g}) but not while moving (mu {v.dynamic.mu:.4g}): "
             f"the load holds, but runs away once it moves" for label, v in analysis.selfLockingVerdicts.items()
             if v.dangerous]
@@ -109,7 +122,7 @@ def _RunWholeDrive(args: argparse.Namespace, analysis: DriveAnalysis) -> int:
         for mode in state.modes:
             parts = ', '.join(f"{k} {mode.energyShare[k]:.0%}" for k in mode.Participants())
             lines.append(f"  {mode.frequencyHz:9.2f} {_G(mode.lehrDamping, 4):>9} {mode.eigenvalue.real:10.4g}  {parts}")
-    lines += [''] + _DangerLines(analysis) + [VerdictLine(analysis)]
+    lines += [''] + DangerLines(analysis) + [VerdictLine(analysis)]
     if loadSide is not None:
         lines.append(f"Load side: {loadSide.Text()}.")
     print('\n'.join(lines))
@@ -131,7 +144,7 @@ def _Run(args: argparse.Namespace) -> int:
     method = 'analytical' if model == ANALYTICAL else 'exudyn'
     deciding = analysis.deciding
     table = analysis.atRest if deciding is None else deciding.analysis     # both contact states at the deciding point
-    hint = None if analysis.stable else StabilityHintData(parameters)
+    hint = None if analysis.stable else StabilityHintData(drive)     # the same drive: nothing resolved again
     if args.json:
         g = drive.gear
         geometry = {'form': GeometryForm(parameters), 'r1': g.r1, 'r2': g.r2, 'gamma': g.gamma, 'u': g.ratio}
@@ -142,7 +155,7 @@ def _Run(args: argparse.Namespace) -> int:
     geometry = DescribeGeometry(parameters)
     if geometry:                  # given as a designation: say how r1, r2, gamma, u were derived
         lines.insert(1, geometry[0].upper() + geometry[1:])
-    lines += [''] + OperatingPointLines(analysis) + [''] + _DangerLines(analysis) + [VerdictLine(analysis)]
+    lines += [''] + OperatingPointLines(analysis) + [''] + DangerLines(analysis) + [VerdictLine(analysis)]
     if hint is not None:
         lines.append(hint['text'])
     print('\n'.join(lines))
@@ -247,15 +260,15 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability', where
     return lines
 
 
-def StabilityHintData(parameters: Dict[str, float], span: float = 100.) -> Dict:
+def StabilityHintData(parameters: Union[Drive, Dict[str, float]], span: float = 100.) -> Dict:
     """The design hint of an unstable drive as data: the nearest stable J1 and kT
     (:func:`~exudyn_worm.analysis.design.StabilizingChanges`), other parameters as given; the table's hint line
     and the ``--json`` key ``hint`` both come from here.
 
     Parameters
     ----------
-    parameters : dict
-        Flat parameter dictionary (see :func:`~exudyn_worm.setups.presets.DriveFromParameters`).
+    parameters : Drive or dict
+        The drive (:class:`~exudyn_worm.setups.wholedrive.Drive`) or its flat parameter dictionary.
     span : float, optional
         Search range factor, > 1.
 
