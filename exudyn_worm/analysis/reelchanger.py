@@ -637,6 +637,8 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
                                                'maxLoadTorque': model.load.maximum if model.load is not None else 0.,
                                                'loadType': parameters.get('loadType', 'lever'),
                                                'frictionSpeed': contactOptions.frictionSpeed,
+                                               # sliding speed per worm speed (the chatter rule's sliding floor)
+                                               'slidingRadius': drive.gear.r1 / math.cos(drive.gear.gamma),
                                                'frictionModel': contactOptions.frictionModel,
                                                'useSymbolic': useSymbolic, 'solver': _SolverCounters(mbs),
                                                'solveCpuSeconds': solveCpuSeconds,
