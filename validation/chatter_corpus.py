@@ -115,8 +115,18 @@ def _SpeedTable(speed: float, duty: Mapping[str, float]) -> List[tuple]:
 
 
 def DutyWindows(parameters: Mapping) -> Dict[str, tuple]:
-    """The plateaus of a corpus drive's speed table: ``{'lifting': (t0, t1), 'lowering': (t0, t1)}`` in s, and the
-    end of the table (``'end'``)."""
+    """The plateaus of a corpus drive's speed table.
+
+    Parameters
+    ----------
+    parameters : mapping
+        A corpus drive (:func:`DrawDrive`).
+
+    Returns
+    -------
+    dict
+        ``{'lifting': (t0, t1), 'lowering': (t0, t1), 'end': t}`` in s (``end``: the end of the table).
+    """
     t = [row[0] for row in parameters['motorSpeedOverTime']]
     return {'lifting': (t[1], t[2]), 'lowering': (t[5], t[6]), 'end': t[7]}
 
