@@ -3,7 +3,7 @@ simulated chatter verdict of the same phase.
 
 Run from the repository root::
 
-    python -m validation.chatter_corpus            # 200 drives: validation/CHATTER_CORPUS.md, validation/chatter_corpus.csv
+    python -m validation.chatter_corpus            # 200 drives: CHATTER_CORPUS.md and chatter_corpus.csv here
     python -m validation.chatter_corpus --quick    # 3 drives with short phases (a test of the script; --report/--csv)
 
 Each drive is drawn from a seeded generator (:func:`DrawDrive`): a worm gear by its designation (axial module,
@@ -50,8 +50,8 @@ _G = 9.80665
 _MAX_STEPS = 400_000
 CSV_COLUMNS = ('drive', 'phase', 'friction', 'components', 'mx', 'z1', 'z2', 'q', 'u', 'gammaDeg', 'motorSpeed',
                'loadTorque', 'maxRealPart', 'frequencyHz', 'linearStable', 'growthOverPhase', 'resolvable',
-               'simulatedChatter', 'agree', 'normalA3', 'normalA4', 'slidingA3', 'slidingA4', 'minWormSpeed',
-               'dominantFrequencyHz', 'stepSize', 'seconds', 'error')
+               'simulatedChatter', 'chatterBy', 'agree', 'normalA3', 'normalA4', 'slidingA3', 'slidingA4',
+               'minWormSpeed', 'dominantFrequencyHz', 'stepSize', 'seconds', 'error')
 
 
 def _LogUniform(rng, low: float, high: float) -> float:
@@ -245,8 +245,9 @@ def RunDrive(index: int, parameters: Mapping) -> List[Dict]:
         for row in rows:
             t0, t1 = windows[row['phase']]
             a = result.MeshOscillation(t0, t1)
+            by = result.ChatterMeasures(t0, t1)
             chatter = result.Chatter(t0, t1)
-            row.update(simulatedChatter=chatter, agree=chatter == (not row['linearStable']),
+            row.update(simulatedChatter=chatter, chatterBy='+'.join(by), agree=chatter == (not row['linearStable']),
                        normalA3=a['normal'][2], normalA4=a['normal'][3], slidingA3=a['sliding'][2],
                        slidingA4=a['sliding'][3], minWormSpeed=result.MinWormSpeed(t0, t1),
                        dominantFrequencyHz=result.DominantFrequency(0.5 * (t0 + t1), t1, 'normalForce'),
@@ -416,7 +417,21 @@ def WriteReport(rows: Sequence[Mapping], path: Path, duty: Mapping[str, float], 
              '',
              f"Operating points: {pts['total']}, simulated {pts['ran']}, resolvable {pts['resolvable']}, "
              f"not resolvable {len(s['others'])}, failed {len(s['failed'])}.",
-             '', '## Resolvable points where the verdicts differ', '']
+             '', '## Agreement by kind (resolvable points)', '',
+             '| group | points | agree | linear unstable | simulated chatter (normal / sliding measure) |',
+             '|---|---|---|---|---|']
+    resolvable = [r for r in rows if not r.get('error') and r['resolvable']]
+    groups = [('lifting', lambda r: r['phase'] == 'lifting'), ('lowering', lambda r: r['phase'] == 'lowering')]
+    groups += [(f'friction {law}', lambda r, law=law: r['friction'] == law) for law in ('constant', 'stribeck', 'agma')]
+    groups += [(f'with {c}', lambda r, c=c: c in r['components']) for c in ('drive chain', 'load chain', 'axial bearing')]
+    groups += [('two-mass', lambda r: r['components'] == 'two-mass'), ('all', lambda r: True)]
+    for name, member in groups:
+        rs = [r for r in resolvable if member(r)]
+        chatter = [r for r in rs if r['simulatedChatter']]
+        normal, sliding = (sum(name in r['chatterBy'].split('+') for r in chatter) for name in ('normal', 'sliding'))
+        lines.append(f"| {name} | {len(rs)} | {sum(bool(r['agree']) for r in rs)} | "
+                     f"{sum(not r['linearStable'] for r in rs)} | {len(chatter)} ({normal} / {sliding}) |")
+    lines += ['', '## Resolvable points where the verdicts differ', '']
     lines += [_HEADER] + [_Line(r) for r in s['disagree']] if s['disagree'] else ['None.']
     lines += ['', '## Points not counted (growth or decay not resolvable within the phase), nearest the boundary first',
               '', "Distance to the boundary: `Re x phase` (the growth exponent over the plateau; 0 on the boundary).",

@@ -183,12 +183,27 @@ class SimulationResult:
         -------
         bool
         """
+        return bool(self.ChatterMeasures(t0, t1))
+
+    def ChatterMeasures(self, t0: float, t1: float) -> List[str]:
+        """The measures of :meth:`MeshOscillation` by which [t0, t1] chatters (:meth:`Chatter`): ``'normal'``,
+        ``'sliding'``, both or none (none also for an unloaded mesh).
+
+        Parameters
+        ----------
+        t0, t1 : float
+            The window in s.
+
+        Returns
+        -------
+        list of str
+        """
         m = self._Window(t0, t1)
         meshTorque = np.max(np.abs(self.series['wheelTorque'][m])) if m.any() else 0.
         if not meshTorque > CHATTER_MIN_MESH_TORQUE:
-            return False
-        return any(a[3] >= CHATTER_AMPLITUDE and a[3] >= CHATTER_SUSTAIN * a[2]
-                   for a in self.MeshOscillation(t0, t1).values())
+            return []
+        return [name for name, a in self.MeshOscillation(t0, t1).items()
+                if a[3] >= CHATTER_AMPLITUDE and a[3] >= CHATTER_SUSTAIN * a[2]]
 
     def MinWormSpeed(self, t0: float, t1: float) -> float:
         """Smallest worm speed in [t0, t1] in rad/s, counted in the direction the motor turns in the window
