@@ -88,3 +88,36 @@ def test_unloaded_reel_changer_does_not_chatter():
     metrics = result.WindowMetrics([(0., 2.), (2., 4.)])
     assert max(m['maxAbsWheelAcceleration'] for m in metrics) < 1e-6
     assert [m['chatter'] for m in metrics] == [False, False]
+
+
+#: a rope hoist (gear mx 3 mm, z1 1, z2 50, q 16; Stribeck 0.07 / 0.12 / 0.3 m/s; motor shaft 2000 N m/rad; wheel
+#: 0.02 kg m^2 behind which a load shaft of 8e4 N m/rad carries drum and load, 6.2 kg m^2; 300 kg on a 125 mm drum
+#: as a constant torque; lift, pause, lower at 100 rpm). J1, kV, DV, DT are chosen values.
+_RPM = 2 * math.pi / 60
+HOIST = {'alphaN': math.radians(20), 'mx': 3e-3, 'z1': 1, 'z2': 50, 'q': 16, 'mu': 0.07, 'muStatic': 0.12,
+         'stribeckVelocity': 0.3, 'frictionLaw': 'stribeck', 'kV': 1e8, 'DV': 0.014, 'backlash': 0.,
+         'J1': 2e-3, 'kT': 2000., 'DT': 0.014, 'J2': 0.02, 'JL1': 6.2, 'kL1': 8e4, 'dL1': 0.,
+         'loadType': 'constant', 'loadTorque': -300 * 9.80665 * 0.125, 'motorType': 'speedTable',
+         'motorSpeedOverTime': [(0, 0), (0.1, 100 * _RPM), (1.0, 100 * _RPM), (1.1, 0), (1.5, 0),
+                                (1.6, -100 * _RPM), (2.5, -100 * _RPM), (2.6, 0), (3.0, 0)]}
+
+
+@pytest.mark.slow
+def test_worm_side_stick_slip_of_a_hoist_is_chatter():
+    """The worm vibrates against its soft shaft and turns back while lifting and lowering; the wheel barely
+    moves, so its inertia torque stays far below a tenth of the mesh torque (the wheel's measure misses it),
+    while the mesh's sliding measure exceeds 1 (the worm turns back). Standing still under load, no chatter."""
+    from exudyn_worm.analysis.reelchanger import DefaultPhases
+    result = SimulateReelChanger(HOIST, progress=False)
+    phases = DefaultPhases(HOIST, result.endTime)
+    assert [ph for _, _, ph in phases] == ['lift', 'idle', 'lower', 'idle']
+    for t0, t1, phase in phases:
+        late = (result.time >= 0.5 * (t0 + t1)) & (result.time <= t1)
+        wheel = result.J2 * np.max(np.abs(result.series['alpha2'][late]))
+        assert wheel < 0.1 * np.max(np.abs(result.series['wheelTorque'][late]))
+        sliding = result.MeshOscillation(t0, t1)['sliding'][3]
+        if phase == 'idle':
+            assert not result.Chatter(t0, t1)
+        else:
+            assert sliding > 1. and result.ChatterMeasures(t0, t1)[-1] == 'sliding'
+            assert result.MinWormSpeed(t0, t1) < 0.                      # turned back, in either direction
