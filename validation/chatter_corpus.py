@@ -29,7 +29,7 @@ from typing import Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
 
-__all__ = ['SEED', 'DRIVES', 'RESOLVABLE', 'TARGET', 'FULL', 'QUICK', 'DrawDrive', 'DutyWindows',
+__all__ = ['SEED', 'DRIVES', 'RESOLVABLE', 'TARGET', 'FULL', 'QUICK', 'LINEAR_METHOD', 'DrawDrive', 'DutyWindows',
            'LinearOperatingPoints', 'RunDrive', 'RunCorpus', 'Summarize', 'WriteCsv', 'WriteReport', 'Main']
 
 HERE = Path(__file__).resolve().parent
@@ -140,6 +140,12 @@ def _AtOperatingPoint(parameters: Mapping) -> Dict:
     reel.update(loadMass=abs(parameters['loadTorque']) / _G, leverArm=1.,
                 motorSpeed=parameters['motorSpeedOverTime'][1][1])
     return reel
+
+
+#: how :func:`LinearOperatingPoints` gets its verdicts (named in the report)
+LINEAR_METHOD = ('`DriveStability` of the drive with the reel-changer keys at the plateau speed and load torque: '
+                 'mu(v) and its slope at the plateau\'s sliding speed, the static normal force of steady lowering, '
+                 'contact state S = +1 for lifting and S = -1 for lowering')
 
 
 def LinearOperatingPoints(parameters: Mapping) -> List[Dict]:
@@ -404,8 +410,8 @@ def WriteReport(rows: Sequence[Mapping], path: Path, duty: Mapping[str, float], 
              f"with a drive-side chain {components['drive chain']}, a load-side chain {components['load chain']}, "
              f"an axial bearing {components['axial bearing']}. Duty: constant load torque, speed table "
              f"ramp {duty['ramp']:g} s, lifting plateau {duty['plateau']:g} s, pause {duty['pause']:g} s, lowering "
-             f"plateau {duty['plateau']:g} s. Linear verdict: the linear analysis at the operating point of each "
-             f"plateau; simulated verdict: `SimulationResult.Chatter` over the plateau. A phase counts when "
+             f"plateau {duty['plateau']:g} s. Linear verdict at the operating point of each plateau: "
+             f"{LINEAR_METHOD}; simulated verdict: `SimulationResult.Chatter` over the plateau. A phase counts when "
              f"|largest real part| x plateau >= {RESOLVABLE:g}.",
              '',
              f"**Agreement over the resolvable operating points: {pts['agree']} of {pts['resolvable']} "
