@@ -31,6 +31,10 @@ _LAZY = {'WormGear': 'model.gear',
                           'StartStopProfile'), 'model.profiles'),
          **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'GetPreset', 'PRESETS', 'LoadSideChain'), 'setups.presets'),
          **dict.fromkeys(('AnalyzeLinearStability', 'AnalyzeStabilityExudyn', 'LinearStability'), 'analysis.linearization'),
+         **dict.fromkeys(('Drive', 'ResolveDrive', 'Component'), 'setups.wholedrive'),
+         **dict.fromkeys(('DutyOperatingPoints', 'DutyPoint'), 'setups.operatingpoints'),
+         **dict.fromkeys(('AnalyzeDrive', 'DriveAnalysis', 'OperatingPointStability', 'DriveStability'),
+                         'analysis.drivestability'),
          **dict.fromkeys(('BuildReelChanger', 'SimulateReelChanger'), 'analysis.reelchanger'),
          'SteadyInitialState': 'items.equilibrium',
          'SimulationResult': 'items.results',
@@ -57,7 +61,8 @@ def __dir__():
 
 __version__ = '0.1.0'
 
-__all__ = ['WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMeasure',
+__all__ = ['Drive', 'ResolveDrive', 'Component', 'DutyOperatingPoints', 'DutyPoint', 'AnalyzeDrive', 'DriveAnalysis',
+           'OperatingPointStability', 'DriveStability', 'WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMeasure',
            'TorsionalDampingFromMeasure', 'TorsionalDampingMeasure', 'AnalyzeStability',
            'StabilityAnalysis', 'ContactStability', 'ContactOptions', 'MeshContact', 'MeshState',
            'CreateWormGear', 'WormGearConnector', 'AxialBearing', 'CreateWormAxialBearing', 'CreatePrescribedRotation', 'CreateRotor', 'CreateShaft',

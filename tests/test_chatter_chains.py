@@ -14,7 +14,7 @@ import exudyn_worm as ew
 from exudyn_worm.analysis.chatter import (BuildLoweringModel, EquilibriumState, FindSteadyChatter, LongSimulationAmplitude,
                                  LoweringModelOfSystem, SettleLowering, SteadyChatterOfSystem)
 from exudyn_worm.cli.main import Main
-from exudyn_worm.analysis.linearization import DriveStability
+from exudyn_worm.analysis.drivestability import DriveStability
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 

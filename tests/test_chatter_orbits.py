@@ -182,7 +182,7 @@ def test_backlash_rest_and_chatter_coexist():
     # large worm-speed kick ends in chatter; the orbit found by shooting is that chatter (long run within 2 %),
     # and a small kick dies out
     p = {**P1, 'J1': 0.25, 'backlash': 5e-4}
-    from exudyn_worm.analysis.linearization import DriveStability
+    from exudyn_worm.analysis.drivestability import DriveStability
     assert DriveStability(p).State(-1).stable
     orbit = FindSteadyChatter(p, kick=0.5)
     assert orbit.stable and orbit.info['forceFactor'] > 4.

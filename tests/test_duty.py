@@ -208,7 +208,7 @@ def test_motor_characteristic_starts_where_its_line_carries_the_load():
 def test_motor_characteristic_in_the_linear_analysis():
     """The free motor rotor is in the linearized drive: its inertia adds a mode, the line's slope damps the
     drive's free rotation (a real eigenvalue -slope / (J0 + J1 + ...) reflected), one rigid-body angle remains."""
-    from exudyn_worm.analysis.linearization import DriveStability
+    from exudyn_worm.analysis.drivestability import DriveStability
     from exudyn_worm.setups.presets import ExtraComponents
     p = ResolveParameters('reel-P2', sets=CHARACTERISTIC)
     assert ExtraComponents(p) == ['a motor on its characteristic (motorType characteristic)']
@@ -234,7 +234,7 @@ def test_check_of_a_characteristic_motor_with_the_verdict_of_the_two_mass_model(
     """Where the whole drive with the free motor has the two-mass model's verdict in both contact states, the
     design check runs on the two-mass model and says so."""
     from exudyn_worm.cli.main import Main
-    from exudyn_worm.analysis.linearization import DriveStability
+    from exudyn_worm.analysis.drivestability import DriveStability
     monkeypatch.chdir(tmp_path)
     p = ResolveParameters(preset, sets=CHARACTERISTIC)
     assert DriveStability(p).stable is stable
@@ -250,7 +250,7 @@ def test_check_refuses_a_characteristic_motor_that_changes_the_verdict(capsys, t
     """P1 with the motor on its characteristic: the whole drive is stable while lowering, the two-mass model (motor
     holding its speed) is not; the check says so in one line and exits 2."""
     from exudyn_worm.cli.main import Main
-    from exudyn_worm.analysis.linearization import DriveStability
+    from exudyn_worm.analysis.drivestability import DriveStability
     from exudyn_worm.model.stability import AnalyzeStability
     from exudyn_worm.setups.presets import DriveFromParameters
     monkeypatch.chdir(tmp_path)

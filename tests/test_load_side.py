@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.linearization import AnalyzeLinearStability, DriveStability
+from exudyn_worm.analysis.linearization import AnalyzeLinearStability
+from exudyn_worm.analysis.drivestability import DriveStability
 
 ROOT = Path(__file__).resolve().parents[1]
 LOAD_SHAFT = ROOT / 'examples' / 'drives' / 'load-shaft.toml'

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from exudyn_worm.analysis.design import SPEED_KEY, DesignCheck
-from exudyn_worm.analysis.linearization import DriveStability
+from exudyn_worm.analysis.drivestability import DriveStability
 from exudyn_worm.setups.presets import ApplyOverrides, DriveFromParameters, GetPreset
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
 from exudyn_worm.analysis.speedchart import RPM, SpeedChart, SpeedStabilityChart

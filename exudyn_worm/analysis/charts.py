@@ -31,7 +31,7 @@ from .._checks import CheckArray, CheckRange
 from ..model.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from ..model.gear import WormGear
 from ..model.stability import CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, HurwitzStable, PolynomialCoefficients
-from ..setups.presets import PRESETS, DriveFromParameters, GetPreset
+from ..setups.presets import PRESETS, ElasticDriveFromParameters, GetPreset
 from . import charttable   # for the deprecated charts.FormatChartTable (module __getattr__ below)
 from .contours import ContourLines      # importable from here too (documented in its module)
 from .quartic import MaxRealPart
@@ -213,7 +213,7 @@ def PresetChartPoints(names: Sequence[str]) -> Dict[str, Dict[str, float]]:
     dict
         ``{label: {'x', 'y', 'DV', 'DTV'}}`` in the order given.
     """
-    return {name.replace('reel-', ''): ChartCoordinates(DriveFromParameters(GetPreset(name))) for name in names}
+    return {name.replace('reel-', ''): ChartCoordinates(ElasticDriveFromParameters(GetPreset(name))) for name in names}
 
 
 def _Margin(b) -> np.ndarray:

@@ -30,8 +30,9 @@ from .orbits import FindPeriodicOrbit, PeriodicOrbit, ShootingError
 from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
 from .._checks import CheckPositive, CheckReal, CheckSystem
 from ..items.connector import CONNECTORS_KEY, WormGearConnector
-from .linearization import AnalyzeLinearStability, DriveStability
-from ..setups.presets import (AxialBearingFromParameters, DriveFromParameters, DriveSideChain, ExtraComponents,
+from .linearization import AnalyzeLinearStability
+from .drivestability import DriveStability
+from ..setups.presets import (AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, ExtraComponents,
                       LoadSideChain)
 from .reelchanger import (SOLVER_SETTINGS, BuildReelChanger, CheckReelChangerKeys, SolverSettings,
                           SteadyInitialState)
@@ -163,7 +164,7 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
                          f"(not supported); leave those keys out")
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     loadTorque = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm']).maximum
     # the time simulation's builder, with the lowering phase as its duty: one assembly of the chains
@@ -282,7 +283,7 @@ def UpdateLoweringModel(model: LoweringModel, parameters: Mapping[str, float]) -
         return model
     if not changed <= set(IN_PLACE_KEYS):
         return BuildLoweringModel(parameters, model.contactOptions)
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     mbs = model.mbs
     mbs.SetObjectParameter(model.rotors['worm']['objectNumber'], 'inertia', drive.J1)
     mbs.SetObjectParameter(model.rotors['wheel']['objectNumber'], 'inertia', drive.J2)
@@ -551,7 +552,7 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
 
 
 def _LinearlyStable(model: LoweringModel) -> bool:
-    """The linear verdict at the model's steady state: :func:`~exudyn_worm.analysis.linearization.DriveStability` (S = -1,
+    """The linear verdict at the model's steady state: :func:`~exudyn_worm.analysis.drivestability.DriveStability` (S = -1,
     lowering) for a parameter set; for a user's system its own linearization in the contact state of its steady
     state (False if it cannot be linearized there, so that a drive is never called at rest on that ground)."""
     if model.parameters:

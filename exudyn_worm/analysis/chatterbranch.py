@@ -7,7 +7,7 @@ range of the mesh (its largest normal force below twice the static force: the or
 it is one of the neutral orbits of the linearized drive, i.e. the branch has reached its Hopf point) or leaves
 the range, and reports per point the amplitude (normal-force factor, largest ``|phi2''|``), the frequency and the
 Floquet stability; for the branch the Hopf points beside the linear boundaries (roots of the largest real part
-of the S = -1 eigenvalues, :func:`~exudyn_worm.analysis.linearization.DriveStability`), their type, the folds and the
+of the S = -1 eigenvalues, :func:`~exudyn_worm.analysis.drivestability.DriveStability`), their type, the folds and the
 ranges in which rest and stable chatter coexist.
 """
 from __future__ import annotations
@@ -27,9 +27,9 @@ from .chatter import (MONODROMY_PERTURBATION, BuildLoweringModel, FindSteadyChat
 from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import PeriodicOrbit, ShootingError
 from .._checks import CheckPositive, JsonNumber
-from .linearization import DriveStability
+from .drivestability import DriveStability
 from ..params.parameters import PARAMETERS
-from ..setups.presets import DriveFromParameters
+from ..setups.presets import ElasticDriveFromParameters
 
 # prefixes of the chain keys (``J4, k4, d4``, ``JL1, kL1, dL1``, ...)
 _SERIES_PREFIXES = tuple(p for table in PARAMETERS.arrayTables.values() for p in table.values())
@@ -341,7 +341,7 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
 def _SpeedDependentFriction(parameters: Mapping[str, float]) -> bool:
     """Whether the mesh's friction coefficient depends on the sliding speed. With a constant one the contact law is
     piecewise linear, so an orbit that stays in contact is one of the linearized drive: no smooth Hopf branch."""
-    return DriveFromParameters(parameters).gear.frictionLaw.kind != 'constant'
+    return ElasticDriveFromParameters(parameters).gear.frictionLaw.kind != 'constant'
 
 
 def _SmoothBranches(base: Dict, name: str, low: float, high: float, roots: List[float], Growth: Callable,

@@ -41,12 +41,12 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from .._checks import CheckRange, JsonNumber
-from ..setups.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, DriveFromParameters, ExtraComponents,
+from ..setups.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, ElasticDriveFromParameters, ExtraComponents,
                       LumpedLoadSide)
 from .charts import ChartCoordinates, ComputeStabilityChart
 from ..model.stability import (CONTACT_STATES, AnalyzeStability, CharacteristicCoefficients, HurwitzStable,
                         OperatingPointFromParameters, PolynomialCoefficients)
-from .linearization import DriveStability
+from .drivestability import DriveStability
 from .loadside import DiagnoseLoadSide, LoadSideNotLumpable
 from .reelchanger import CheckReelChangerKeys, DefaultPhases
 from ..model.selflocking import SelfLocking
@@ -68,7 +68,7 @@ _CHART_DECADES = 2.         # the chart-plane distance is searched within +-2 de
 _CHART_STEP = 0.01
 _REFINE_TOLERANCE = 1e-10   # bisection tolerance in decades
 
-_SHAFT_DAMPING_FORMS = ('dT', 'DT', 'DTV')      # precedence as in DriveFromParameters
+_SHAFT_DAMPING_FORMS = ('dT', 'DT', 'DTV')      # precedence as in ElasticDriveFromParameters
 _MESH_DAMPING_FORMS = ('dV', 'DV')
 #: the drive quantities a design parameter acts on
 _QUANTITIES = ('J1', 'J2', 'kT', 'dT', 'dV')
@@ -114,7 +114,7 @@ def _StableAt(parameters, changes) -> bool:
     # Routh-Hurwitz on (16) is the same verdict as AnalyzeStability(...).stable without the polynomial roots
     # (10x faster; the stability command's hint evaluates about 100 drives at start-up)
     scaled = _Scaled(parameters, changes)
-    drive = DriveFromParameters(scaled)
+    drive = ElasticDriveFromParameters(scaled)
     op = _OperatingPoint(scaled, drive)
     return all(HurwitzStable(CharacteristicCoefficients(drive, S, op)) for S in CONTACT_STATES)
 
@@ -128,13 +128,13 @@ class _ScaledDrives:
     """
 
     def __init__(self, parameters: Mapping[str, float], keys: Sequence[str]):
-        self.drive = DriveFromParameters(parameters)
+        self.drive = ElasticDriveFromParameters(parameters)
         self.operatingPoint = _OperatingPoint(parameters, self.drive)   # J1, J2, kT, dT, dV do not move it
         self.q0 = self._Quantities(self.drive)
         self.exponents = {}
         probe = 0.05       # decades: a small factor, so a drive at the edge of the allowed ranges is not refused
         for key in keys:
-            up, down = (self._Quantities(DriveFromParameters(_Scaled(parameters, {key: s}))) for s in (probe, -probe))
+            up, down = (self._Quantities(ElasticDriveFromParameters(_Scaled(parameters, {key: s}))) for s in (probe, -probe))
             with np.errstate(divide='ignore', invalid='ignore'):
                 e = np.where(self.q0 > 0, np.log10(up / self.q0) / probe, 0.)
             if not np.allclose(down, self.q0 * 10. ** (-e * probe), rtol=1e-9, atol=0.):
@@ -177,7 +177,7 @@ def LocalCharts(parameters: Mapping[str, float], decades: float = _CHART_DECADES
     """
     CheckRange('LocalCharts', 'decades', decades, low=0., lowOpen=True)
     CheckRange('LocalCharts', 'step', step, low=0., high=decades, lowOpen=True)
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     p = ChartCoordinates(drive)
     n = 2 * int(math.ceil(decades / step)) + 1
     span = 10. ** decades
@@ -564,7 +564,7 @@ class DesignCheckResult:
 
 def _Changed(parameters, changes):
     scaled = _Scaled(parameters, changes)
-    drive = DriveFromParameters(scaled)
+    drive = ElasticDriveFromParameters(scaled)
     return _MaxRealPart(AnalyzeStability(drive, _OperatingPoint(scaled, drive))), ChartCoordinates(drive)
 
 
@@ -642,7 +642,7 @@ _CHARACTERISTIC = 'a motor on its characteristic (motorType characteristic)'    
 def _CharacteristicNote(parameters: Mapping[str, float], where: str) -> str:
     """The note for a drive with a motor on its characteristic, checked as the two-mass drive (the motor holding its
     speed); raises if the linearized whole drive with the free motor has another verdict in either contact state."""
-    whole, rigid = DriveStability(parameters), AnalyzeStability(DriveFromParameters(parameters))
+    whole, rigid = DriveStability(parameters), AnalyzeStability(ElasticDriveFromParameters(parameters))
     words = {True: 'stable', False: 'unstable'}
     for S in CONTACT_STATES:
         if whole.State(S).stable != rigid.State(S).stable:
@@ -711,7 +711,7 @@ def DesignCheck(parameters: Mapping[str, float], margin: float = DEFAULT_MARGIN,
     elif extra:
         raise ValueError(f"{w}: the design check uses the two-mass model of Figure 2 (eqs. (15)-(19)); this "
                          f"parameter set has {' and '.join(extra)}, which that model does not include")
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     analysis = AnalyzeStability(drive, _OperatingPoint(parameters, drive))
     keys = []
     for key in DesignParameters(parameters):
@@ -893,7 +893,7 @@ def StabilizingChanges(parameters: Mapping[str, float], span: float = DEFAULT_SP
     list of StableRange
     """
     CheckRange('StabilizingChanges', 'span', span, low=1., lowOpen=True)
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     scales = {'J1': 1. / drive.J2, 'kT': 1. / (drive.gear.kV * drive.gear.r1**2)}
     out = []
     for key, ratioName in _HINT_KEYS.items():

@@ -35,11 +35,10 @@ from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, Cr
 from ..model.profiles import ConstantSpeed
 from ..model.stability import (CONTACT_STATES, SortEigenvalues, AnalyzeStability, ContactStability,
                         OperatingPoint, OperatingPointFromParameters, StabilityAnalysis)
-from ..setups.presets import AxialBearingFromParameters, DriveSideChain, ExtraComponents, LoadSideChain
-from ..setups import presets
+from ..setups.wholedrive import Drive
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
-           'BuildLinearizationModel', 'LinearStabilityFromParameters', 'DriveStability', 'ExudynEigenvalues',
+           'BuildLinearizationModel', 'LinearStabilityFromParameters', 'ExudynEigenvalues',
            'AnalyzeStabilityExudyn']
 
 #: normal pre-deflection in m beyond half the backlash at which the 2-DOF model is linearized (any value > 0
@@ -469,13 +468,10 @@ def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: 
         steady lowering (:func:`~exudyn_worm.model.stability.OperatingPointFromParameters`); a speed-dependent friction
         law is then linearized there (one model per contact state, :func:`BuildLinearizationModel`).
     """
-    drive = presets.DriveFromParameters(parameters)
+    whole = Drive.FromParameters(parameters)          # checked once: chains, bearing, the motor's keys
+    drive = whole.elastic
     operatingPoint = OperatingPointFromParameters(parameters, drive.gear)
-    motor = None
-    if parameters.get('motorType') == 'characteristic':      # a free motor: its inertia, the line's slope
-        motor = (parameters['motorInertia'], parameters['stallTorque'] / parameters['noLoadSpeed'])
-    parts = (useSymbolic, AxialBearingFromParameters(parameters), DriveSideChain(parameters),
-             LoadSideChain(parameters), motor)
+    parts = (useSymbolic, whole.axialBearing, whole.driveSideChain, whole.loadSideChain, whole.freeMotor)
     if operatingPoint is None or not drive.gear.speedDependentFriction:
         SC, mbs = BuildLinearizationModel(drive, None, *parts)
         return replace(AnalyzeLinearStability(mbs), operatingPoint=operatingPoint)
@@ -485,44 +481,6 @@ def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: 
         linear = AnalyzeLinearStability(mbs, contactStates=[(S,)])
         states.update(linear.states)
     return replace(linear, states=states, operatingPoint=operatingPoint)
-
-
-def DriveStability(parameters: Mapping[str, float], useSymbolic: bool = True
-                   ) -> Union[StabilityAnalysis, LinearStability]:
-    """Linear stability of the drive a flat parameter set describes, by the one rule every command follows.
-
-    The two-mass drive of Figure 2 gets the analytical model (eqs. (15)-(19),
-    :func:`~exudyn_worm.model.stability.AnalyzeStability`, at the operating point of steady lowering
-    :func:`~exudyn_worm.model.stability.OperatingPointFromParameters`, which matters for a speed-dependent friction law);
-    a drive with components beyond it
-    (:func:`~exudyn_worm.setups.presets.ExtraComponents`: a drive-side or load-side chain or a worm axial bearing) gets the
-    linearized whole drive (:func:`LinearStabilityFromParameters`), which that model would silently leave out.
-    ``exudyn-worm stability``, the verdict columns of ``exudyn-worm sweep``, the analytical map of its plot and
-    the step-size rule (:mod:`exudyn_worm.analysis.stepsize`) all take their verdict or frequencies from here.
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set (see :mod:`exudyn_worm.setups.presets`).
-    useSymbolic : bool
-        Symbolic (C++) or Python user function for the connector (whole drive only).
-
-    Returns
-    -------
-    StabilityAnalysis or LinearStability
-        Either way with ``stable`` (every contact state) and ``State(S)`` (S = +1 or -1), whose result has
-        ``stable``, ``maxRealPart`` (1/s), ``eigenvalues`` (1/s) and ``frequenciesHz``.
-
-    Raises
-    ------
-    ValueError
-        For a missing or invalid parameter.
-    """
-    if ExtraComponents(parameters):
-        return LinearStabilityFromParameters(parameters, useSymbolic)
-    drive = presets.DriveFromParameters(parameters)
-    # at the operating point of steady lowering (a speed-dependent friction law: mu(v0) and its slope there)
-    return AnalyzeStability(drive, OperatingPointFromParameters(parameters, drive.gear))
 
 
 def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> np.ndarray:

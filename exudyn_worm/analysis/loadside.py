@@ -13,7 +13,7 @@ frequency is at least ``1 / sqrt(1 - 10^-delta)`` times the highest frequency at
 of the lumped drive in which the wheel has at least :data:`WHEEL_SHARE` of the kinetic energy), with the design
 check's margin delta (default 0.1 decades: factor 2.2), *and* the lumped and the whole drive give the same
 verdict. This is a derivation from the single-stage impedance, not a published rule; the whole drive's
-linearization (:func:`~exudyn_worm.analysis.linearization.DriveStability`) is always the reference.
+linearization (:func:`~exudyn_worm.analysis.drivestability.DriveStability`) is always the reference.
 
 When lumping is not safe, the stage named as the cause is the first one from the wheel whose frequency is below
 that limit at the frequency that matters: the whole drive's growing mode if it has one, else the highest wheel
@@ -26,7 +26,8 @@ import math
 from dataclasses import dataclass, field
 from typing import Dict, List, Mapping, Optional, Tuple
 from .._checks import CheckRange
-from .linearization import DriveStability, LinearStabilityFromParameters
+from .linearization import LinearStabilityFromParameters
+from .drivestability import DriveStability
 from ..setups.presets import LoadSideChain, LumpedLoadSide
 
 __all__ = ['WHEEL_SHARE', 'LoadSideStage', 'LoadSideDiagnosis', 'DiagnoseLoadSide', 'LoadSideNotLumpable']
@@ -217,7 +218,8 @@ def DiagnoseLoadSide(parameters: Mapping[str, float], margin: float = 0.1) -> Lo
     whole = DriveStability(parameters)
     growing = None
     if not whole.stable:
-        S, mode = max(((s.S, m) for s in whole.states.values() for m in s.modes), key=lambda sm: sm[1].eigenvalue.real)
+        states = [p.state for p in whole.operatingPoints] or list(whole.atRest.states.values())
+        S, mode = max(((s.S, m) for s in states for m in s.modes), key=lambda sm: sm[1].eigenvalue.real)
         growing = {'S': int(S[0]), 'frequencyHz': mode.frequencyHz, 'realPart': float(mode.eigenvalue.real),
                    'energyShare': dict(mode.energyShare)}
     diagnosis = LoadSideDiagnosis(stages, margin, wheelModes, lumped.stable, whole.stable, growing)

@@ -23,7 +23,7 @@ from ..model.contact import MATH_OPS, ContactOptions
 from ..model.drive import ElasticDrive
 from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
 from ..items.equilibrium import SteadyInitialState  # re-exported: it lived here before
-from ..setups.presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, DriveFromParameters, DriveSideChain,
+from ..setups.presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, ElasticDriveFromParameters, DriveSideChain,
                       LoadSideChain, MissingParameterError)
 from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
 from ..items.results import SimulationResult
@@ -154,7 +154,7 @@ def RotationPeriod(parameters: Mapping[str, float]) -> float:
     parameters : mapping
         Flat parameter set including ``motorSpeed`` in rad/s.
     """
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     if 'motorSpeed' not in parameters:
         CheckReelChangerKeys(parameters, 'RotationPeriod')
     speed = CheckPositive('RotationPeriod', 'motorSpeed', parameters['motorSpeed'], 'rad/s')
@@ -189,7 +189,7 @@ def DefaultPhases(parameters: Mapping[str, float], endTime: Optional[float] = No
         CheckReelChangerKeys(parameters, 'DefaultPhases')
         endTime = DefaultSimulatedTime(parameters) if endTime is None else \
             CheckPositive('DefaultPhases', 'endTime', endTime, 's')
-        return DutyPhases(parameters, DriveFromParameters(parameters).gear.ratio, endTime, minLength)
+        return DutyPhases(parameters, ElasticDriveFromParameters(parameters).gear.ratio, endTime, minLength)
     T = RotationPeriod(parameters)
     endTime = T if endTime is None else CheckPositive('DefaultWindows', 'endTime', endTime, 's')
     windows = []
@@ -302,7 +302,7 @@ def DefaultSimulatedTime(parameters: Mapping[str, float]) -> float:
     if IsReelChangerDuty(parameters):
         return RotationPeriod(parameters)
     CheckReelChangerKeys(parameters, 'DefaultSimulatedTime')
-    return DefaultEndTime(parameters, DriveFromParameters(parameters).gear.ratio)
+    return DefaultEndTime(parameters, ElasticDriveFromParameters(parameters).gear.ratio)
 
 
 def _CheckModelOptions(where: str, contactOptions, profile, useSymbolic, startFromEquilibrium) -> None:
@@ -400,7 +400,7 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     w = 'BuildReelChanger'
     CheckParameterKeys(parameters, w)
     _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     CheckReelChangerKeys(parameters, w)
     if MotorType(parameters) in ('constantSpeed', 'startStop'):
         CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')

@@ -18,7 +18,7 @@ from typing import Dict, List, Mapping, Sequence, Tuple
 
 import numpy as np
 from .._checks import CheckPositive
-from ..setups.presets import ApplyOverrides, DriveFromParameters, ExtraComponents, MissingParameterError
+from ..setups.presets import ApplyOverrides, ElasticDriveFromParameters, ExtraComponents, MissingParameterError
 from ..model.profiles import STANDARD_GRAVITY
 from ..model.stability import AnalyzeStability, OperatingPointAt
 
@@ -133,7 +133,7 @@ def SpeedStabilityChart(parameters: Mapping[str, object], motorSpeeds: Sequence[
     if extra:
         raise ValueError(f"{w}: the chart over speed uses the two-mass model of eq. (16); this parameter set has "
                          f"{' and '.join(extra)}")
-    drive = DriveFromParameters(ApplyOverrides(parameters, {'motorSpeed': float(speeds[0])}))
+    drive = ElasticDriveFromParameters(ApplyOverrides(parameters, {'motorSpeed': float(speeds[0])}))
     torque = parameters['loadMass'] * STANDARD_GRAVITY * parameters['leverArm']
     rows = []
     for speed in speeds:

@@ -9,7 +9,7 @@ of 40.5 Hz for P1 at h = 0.01 s) or steps over the vibration and reports no chat
 an answer that looks right. The rule below is written in terms of that period error of the highest
 natural frequency of the linearized drive (eqs. (1)-(2) with S = +1 and S = -1, :func:`StateMatrix`; for a
 drive with a drive-side chain or a worm axial bearing, the linearized whole drive of
-:func:`~exudyn_worm.analysis.linearization.DriveStability`, as ``exudyn-worm stability`` reports it: the 116 Hz mode of
+:func:`~exudyn_worm.analysis.drivestability.DriveStability`, as ``exudyn-worm stability`` reports it: the 116 Hz mode of
 inertia4 in examples/drives/figure19.toml); it covers the chatter frequency, which is one of these modes:
 
 ==============  =====================  ==================================================
@@ -58,9 +58,9 @@ from typing import List, Mapping, Sequence
 import numpy as np
 
 from .._checks import CheckPositive
-from .linearization import DriveStability
+from .drivestability import DriveStability
 from ..model.stability import CONTACT_STATES, StabilityAnalysis, StateMatrix
-from ..setups.presets import DriveFromParameters
+from ..setups.presets import ElasticDriveFromParameters
 
 __all__ = ['RECOMMENDED_CYCLES', 'SOFT_CYCLES', 'HARD_CYCLES', 'SMALL_MARGIN', 'UNRESOLVED', 'PeriodError',
            'LinearizedFrequencies', 'RecommendedStepSize', 'StepSizeLimits', 'CheckStepSize', 'FrictionTimeConstant',
@@ -121,18 +121,18 @@ def _WholeDriveEigenvalues(analysis, S: int) -> np.ndarray:
 
 
 def _Eigenvalues(parameters: Mapping[str, float]) -> dict:
-    """Eigenvalues per contact state S of the drive :func:`~exudyn_worm.analysis.linearization.DriveStability` analyses:
+    """Eigenvalues per contact state S of the drive :func:`~exudyn_worm.analysis.drivestability.DriveStability` analyses:
     eqs. (1)-(2) for the two-mass drive, else the linearized whole drive without the worm's axial mode."""
     analysis = DriveStability(parameters)
-    if isinstance(analysis, StabilityAnalysis):            # two-mass drive: eqs. (1)-(2)
-        return {S: np.linalg.eigvals(StateMatrix(analysis.drive, S)) for S in CONTACT_STATES}
-    return {S: _WholeDriveEigenvalues(analysis, S) for S in CONTACT_STATES}   # chain or axial bearing
+    if analysis.drive.isTwoMass:                           # two-mass drive: eqs. (1)-(2)
+        return {S: np.linalg.eigvals(StateMatrix(analysis.drive.elastic, S)) for S in CONTACT_STATES}
+    return {S: _WholeDriveEigenvalues(analysis.atRest, S) for S in CONTACT_STATES}   # chain or axial bearing
 
 
 def LinearizedFrequencies(parameters: Mapping[str, float]) -> dict:
     """Natural frequencies of the linearized drive (S = +1 and S = -1).
 
-    The drive is the one :func:`~exudyn_worm.analysis.linearization.DriveStability` analyses: for the two-mass drive of
+    The drive is the one :func:`~exudyn_worm.analysis.drivestability.DriveStability` analyses: for the two-mass drive of
     Figure 2 the state matrix of eqs. (1)-(2); for a drive with a drive-side chain or a worm axial bearing the
     linearized whole drive (Exudyn), without the worm's axial mode (see the module text).
 
@@ -250,7 +250,7 @@ def FrictionTimeConstant(parameters: Mapping[str, float], frictionSpeed: float, 
     normalForce : float
         Normal force in N, > 0.
     """
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     g = drive.gear
     frictionSpeed = CheckPositive('FrictionTimeConstant', 'frictionSpeed', frictionSpeed, 'rad/s')
     normalForce = CheckPositive('FrictionTimeConstant', 'normalForce', normalForce, 'N')

@@ -6,7 +6,7 @@ A :class:`Study` varies keys of a flat parameter set (any key of
 point, :func:`RunPoint` runs :func:`~exudyn_worm.analysis.reelchanger.SimulateReelChanger`, takes the window
 metrics and chatter verdicts of ``exudyn-worm simulate``
 (:meth:`~exudyn_worm.items.results.SimulationResult.WindowMetrics`), adds the linear verdict of the same
-parameter set (:func:`~exudyn_worm.analysis.linearization.DriveStability`, as ``exudyn-worm stability``: the analytical
+parameter set (:func:`~exudyn_worm.analysis.drivestability.DriveStability`, as ``exudyn-worm stability``: the analytical
 two-mass model, or the linearized whole drive for a drive with a drive-side chain or a worm axial bearing) and
 the run's times.
 

@@ -15,8 +15,8 @@ import numpy as np
 
 from .._spacing import IsLogSpaced
 from .charts import ChartCoordinates, ComputeStabilityChart
-from .linearization import DriveStability
-from ..setups.presets import ApplyOverrides, DriveFromParameters, ExtraComponents
+from .drivestability import DriveStability
+from ..setups.presets import ApplyOverrides, ElasticDriveFromParameters, ExtraComponents
 
 if TYPE_CHECKING:
     from .study import StudyResult
@@ -31,7 +31,7 @@ WHOLE_DRIVE_RESOLUTION = 20
 def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -> np.ndarray:
     """Largest real part (1/s) of the S = -1 eigenvalues of the linear model over a grid of two parameters, the
     others as in ``base``: > 0 means chatter predicted while lowering. The model is that of
-    :func:`~exudyn_worm.analysis.linearization.DriveStability` at each point: eqs. (15)-(16) for the two-mass drive, the
+    :func:`~exudyn_worm.analysis.drivestability.DriveStability` at each point: eqs. (15)-(16) for the two-mass drive, the
     linearized whole drive (about 30 ms a point) for one with a drive-side chain or a worm axial bearing.
 
     Parameters
@@ -61,7 +61,7 @@ def _Chart(base, x, xValues, y, yValues, resolution):
     two-mass drive the chart describes (no drive-side chain, no axial bearing)."""
     if {x, y} != {'J1', 'kT'} or 'dT' in base or 'dV' in base or ExtraComponents(base):
         return None
-    drive = DriveFromParameters(base)
+    drive = ElasticDriveFromParameters(base)
     c = ChartCoordinates(drive)
     g = drive.gear
     scale = {'kT': g.kV * g.r1**2, 'J1': drive.J2}             # x = kT/(kV r1^2), y = J1/J2

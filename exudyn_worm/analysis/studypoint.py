@@ -12,7 +12,7 @@ import numpy as np
 from ..items.results import CHATTER_TORQUE_FRACTION
 from ..items.solve import IsInterrupt
 from ..setups.duty import IsReelChangerDuty
-from .linearization import DriveStability
+from .drivestability import DriveStability
 from .reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedTime
 from .stepsize import UNRESOLVED, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
 from . import reelchanger

@@ -52,7 +52,7 @@ from .. import __version__
 from ..setups.config import DEFAULT_PRESET, LoadConfig, ResolveParameters
 from ..params.plausibility import ImplausibleValueWarning
 from ..model.drive import ElasticDrive
-from ..setups.presets import PRESETS, DriveFromParameters, MissingParameterError
+from ..setups.presets import PRESETS, ElasticDriveFromParameters, MissingParameterError
 from ..items.solve import IsInterrupt
 from ..params.drivefile import FileKeyOf
 from ..params.drives import ConfigArgument, DocPath, ShippedDrives
@@ -385,7 +385,7 @@ def DriveFromArgs(args: argparse.Namespace) -> Tuple[Dict[str, float], ElasticDr
     """
     parameters = ParametersFromArgs(args)
     with BadInput():
-        return parameters, DriveFromParameters(parameters)
+        return parameters, ElasticDriveFromParameters(parameters)
 
 
 @contextlib.contextmanager

@@ -26,7 +26,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 def _RunWholeDrive(args: argparse.Namespace, parameters: Dict[str, float], extra: List[str]) -> int:
     """A drive beyond two masses: the linearized Exudyn model of the whole drive, every contact state."""
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.linearization import DriveStability
+    from ..analysis.drivestability import DriveStability
     with StdoutToStderr(args.json), BadInput():
         analysis = DriveStability(parameters)          # the whole drive's linearization: it has extra components
         loadSide = None

@@ -59,11 +59,15 @@ class OperatingPoint:
         Slope dmu/dv of the friction law at v0 in s/m (0 for constant friction).
     normalForce : float
         Static normal force Fn0 in the mesh in N, >= 0.
+    S : int
+        Contact state of the steady motion, eq. (8): +1 while the worm drives the load (lifting), -1 while the load
+        drives the gear (lowering, the default).
     """
     slidingSpeed: float
     mu: float
     dmuDv: float
     normalForce: float
+    S: int = -1
 
     def __post_init__(self):
         w = 'OperatingPoint'
@@ -71,17 +75,20 @@ class OperatingPoint:
         object.__setattr__(self, 'mu', CheckNonNegative(w, 'mu', self.mu, ''))
         object.__setattr__(self, 'dmuDv', CheckReal(w, 'dmuDv', self.dmuDv, 's/m'))
         object.__setattr__(self, 'normalForce', CheckNonNegative(w, 'normalForce', self.normalForce, 'N'))
+        _CheckS(self.S)
 
     def ToDict(self) -> Dict:
-        """JSON-ready ``{slidingSpeed, mu, dmuDv, normalForce}`` (SI)."""
-        return {'slidingSpeed': self.slidingSpeed, 'mu': self.mu, 'dmuDv': self.dmuDv, 'normalForce': self.normalForce}
+        """JSON-ready ``{slidingSpeed, mu, dmuDv, normalForce, S}`` (SI)."""
+        return {'slidingSpeed': self.slidingSpeed, 'mu': self.mu, 'dmuDv': self.dmuDv, 'normalForce': self.normalForce,
+                'S': self.S}
 
 
-def OperatingPointAt(gear: 'WormGear', motorSpeed: float, loadTorque: float) -> OperatingPoint:
-    """Operating point of steady lowering: worm speed ``motorSpeed``, wheel torque ``loadTorque`` (S = -1).
+def OperatingPointAt(gear: 'WormGear', motorSpeed: float, loadTorque: float, S: int = -1) -> OperatingPoint:
+    """Operating point of steady motion: worm speed ``motorSpeed``, wheel torque ``loadTorque``, contact state ``S``
+    (-1, the default: lowering; +1: lifting).
 
     ``v0 = r1 abs(motorSpeed) / cos(gamma)``; mu0, slope from the gear's friction law; the static normal force follows
-    from the wheel's balance c4(S = -1, mu0) Fn0 = loadTorque (eq. (12); mesh damping does not act at steady
+    from the wheel's balance c4(S, mu0) Fn0 = loadTorque (eq. (12); mesh damping does not act at steady
     speed).
 
     Parameters
@@ -91,7 +98,9 @@ def OperatingPointAt(gear: 'WormGear', motorSpeed: float, loadTorque: float) -> 
     motorSpeed : float
         Worm speed in rad/s (the motor's, through the stiff shaft).
     loadTorque : float
-        Load torque on the wheel in N*m, >= 0 (loadMass * g * leverArm for the reel changer).
+        Magnitude of the load torque on the wheel in N*m, >= 0 (loadMass * g * leverArm for the reel changer).
+    S : int, optional
+        Contact state of the steady motion, +1 (lifting) or -1 (lowering).
 
     Returns
     -------
@@ -100,11 +109,12 @@ def OperatingPointAt(gear: 'WormGear', motorSpeed: float, loadTorque: float) -> 
     w = 'OperatingPointAt'
     motorSpeed = CheckReal(w, 'motorSpeed', motorSpeed, 'rad/s')
     loadTorque = CheckNonNegative(w, 'loadTorque', loadTorque, 'N*m')
+    _CheckS(S)
     v0 = gear.SlidingSpeed(motorSpeed)
     law = gear.frictionLaw
     mu0 = float(law.Mu(v0))
-    _, _, _, c4 = gear.Coefficients(-1, mu=mu0 if gear.speedDependentFriction else None)
-    return OperatingPoint(slidingSpeed=v0, mu=mu0, dmuDv=float(law.Slope(v0)), normalForce=loadTorque / c4)
+    _, _, _, c4 = gear.Coefficients(S, mu=mu0 if gear.speedDependentFriction else None)
+    return OperatingPoint(slidingSpeed=v0, mu=mu0, dmuDv=float(law.Slope(v0)), normalForce=loadTorque / c4, S=S)
 
 
 def OperatingPointFromParameters(parameters: Mapping[str, Any], gear: 'WormGear') -> Optional[OperatingPoint]:

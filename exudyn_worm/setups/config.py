@@ -46,7 +46,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-__all__ = ['DEFAULT_PRESET', 'CONFIG_KEYS', 'ParseQuantity', 'ParseSetOption', 'LoadConfig',
+__all__ = ['DEFAULT_PRESET', 'CONFIG_KEYS', 'ParseQuantity', 'ParseSetOption', 'LoadConfig', 'ResolveParametersWithSources',
            'ResolveParameters']
 
 #: preset used when neither an explicit preset nor a config file names one
@@ -261,6 +261,30 @@ def ResolveParameters(preset: Optional[str] = None,
     >>> p['DV'], p['J1'], p['DTV']
     (0.056, 0.2, 2.0)
     """
+    return ResolveParametersWithSources(preset, config, sets)[0]
+
+
+def ResolveParametersWithSources(preset: Optional[str] = None,
+                                 config: Union[None, str, os.PathLike, Mapping] = None,
+                                 sets: Iterable[Union[str, Tuple[str, float]]] = ()
+                                 ) -> Tuple[Dict[str, float], Dict[str, str]]:
+    """:func:`ResolveParameters`, and where each value came from.
+
+    Parameters
+    ----------
+    preset : str, optional
+        As for :func:`ResolveParameters`.
+    config : str, path-like or dict, optional
+        As for :func:`ResolveParameters`.
+    sets : iterable of str or (str, float)
+        As for :func:`ResolveParameters`.
+
+    Returns
+    -------
+    (dict, dict)
+        The flat parameter dictionary (SI) and, per key, its source: ``'--set'``, the drive file's location
+        (``'FILE: [table] key'``) or ``'preset NAME'``.
+    """
     if config is None:
         cfg = {'preset': None, 'parameters': {}, 'wholeDrive': False, 'locations': {}}
     elif isinstance(config, Mapping):
@@ -287,8 +311,10 @@ def ResolveParameters(preset: Optional[str] = None,
         overrides[key] = value
     _RejectAlternatives(overrides, 'ResolveParameters: the overrides (--set)')
     parameters = ApplyOverrides(parameters, overrides)
-    _CheckChain(parameters, {k: v for k, v in cfg.get('locations', {}).items() if k not in overrides})
-    return parameters
+    locations = cfg.get('locations', {})
+    _CheckChain(parameters, {k: v for k, v in locations.items() if k not in overrides})
+    sources = {k: '--set' if k in overrides else locations.get(k, f'preset {name}') for k in parameters}
+    return parameters, sources
 
 
 def _CheckChain(parameters: Mapping[str, float], locations: Mapping[str, str]) -> None:

@@ -35,7 +35,7 @@ from typing import Any, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .presets import (AxialBearingFromParameters, DriveFromParameters, DriveSideChain, LoadSideChain,
+from .presets import (AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain,
                       MissingParameterError)
 from ..model.profiles import (ConstantSpeed, ConstantTorque, GravityLeverTorque, LinearMotorCharacteristic, SpeedTable,
                        StartStopProfile, TorqueTable)
@@ -51,7 +51,7 @@ LOAD_TYPES = {'lever': ('loadMass', 'leverArm'), 'constant': ('loadTorque',), 't
               'angleTable': ('loadTorqueOverAngle',), 'none': ()}
 #: the keys each motor type needs (``brakeTime`` is optional)
 MOTOR_TYPES = {'constantSpeed': ('motorSpeed',), 'startStop': ('motorSpeed', 'rampTime'),
-               'speedTable': ('motorSpeedOverTime',)}
+               'speedTable': ('motorSpeedOverTime',), 'characteristic': ('stallTorque', 'noLoadSpeed', 'motorInertia')}
 #: samples per wheel rotation (at least 2000 in all) with which DutyPhases looks for a change of phase
 _SAMPLES = 2000
 
@@ -163,6 +163,11 @@ def LoadFromParameters(parameters: Mapping, where: str = 'LoadFromParameters') -
         For a missing key (:func:`CheckDutyKeys`) or a bad table.
     """
     CheckDutyKeys(parameters, where)
+    return _LoadLaw(parameters, where)
+
+
+def _LoadLaw(parameters: Mapping, where: str) -> Optional[Any]:
+    """The load law of :func:`LoadFromParameters`, its keys already checked."""
     load = LoadType(parameters)
     if load == 'lever':
         return GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
@@ -196,6 +201,11 @@ def MotorFromParameters(parameters: Mapping, where: str = 'MotorFromParameters')
         For a missing key (:func:`CheckDutyKeys`), a bad table or a brake time before the ramp ends.
     """
     CheckDutyKeys(parameters, where)
+    return _MotorLaw(parameters, where)
+
+
+def _MotorLaw(parameters: Mapping, where: str) -> Any:
+    """The motor of :func:`MotorFromParameters`, its keys already checked."""
     motor = MotorType(parameters)
     if motor == 'characteristic':
         return LinearMotorCharacteristic(parameters['stallTorque'], parameters['noLoadSpeed'])
@@ -227,7 +237,7 @@ def SteadyMotorSpeed(parameters: Mapping, where: str = 'SteadyMotorSpeed') -> fl
         If the motor cannot carry the load (the required torque reaches the stall torque).
     """
     motor = MotorFromParameters(parameters, where)
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     load = LoadFromParameters(parameters, where) or ConstantTorque(0.)
     chain = DriveSideChain(parameters)
     speed = motor.noLoadSpeed

@@ -58,7 +58,7 @@ __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', '
            'ExtraComponents',
            'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
            'FrictionLawFromParameters',
-           'DriveFromParameters', 'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
+           'DriveFromParameters', 'ElasticDriveFromParameters', 'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
            'AxialBearingFromParameters', 'MAX_RATE', 'MIN_RATE_SPREAD', 'MissingParameterError']
 
 #: keys of the elastic drive (Figure 2): the drive-file tables [gear], [worm], [wheel], [driveShaft]
@@ -429,13 +429,13 @@ def _FrictionTable(value, where: str):
 
 
 def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
-    """Build the :class:`ElasticDrive` described by a flat parameter dictionary.
+    """The :class:`ElasticDrive` of a flat parameter set of the two-mass drive of Figure 2.
 
-    Damping: ``dT``, ``DT`` or ``DTV * DV`` (eq. (24)); ``dV`` or ``DV``. Friction: ``mu`` or ``rho`` (eq. (13)),
-    and optionally a speed-dependent law (``frictionLaw`` ..., :func:`FrictionLawFromParameters`) that the gear
-    (``.gear``) carries into :func:`~exudyn_worm.items.connector.CreateWormGear`.
-    Each quantity in one form only: a set with two forms (``dV`` and ``DV``) is refused; to change the form,
-    use :func:`ApplyOverrides`, which drops the other one.
+    A set with parts beyond it (a drive-side or load-side chain, the worm's axial bearing, a motor on its
+    characteristic) is refused, because the two-mass drive would leave them out without a word: resolve such a
+    drive with :func:`~exudyn_worm.setups.wholedrive.ResolveDrive` and analyse it with
+    :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`, or take its two-mass core on purpose with
+    :func:`ElasticDriveFromParameters`.
 
     Parameters
     ----------
@@ -449,12 +449,48 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     Raises
     ------
     ValueError
+        For a set with components beyond the two-mass drive, and as :func:`ElasticDriveFromParameters`.
+    TypeError
+        If ``parameters`` is not a mapping.
+    """
+    extra = ExtraComponents(parameters)
+    if extra:
+        raise ValueError(f"DriveFromParameters: the parameter set has {' and '.join(extra)}, which the two-mass "
+                         f"ElasticDrive of Figure 2 leaves out; use exudyn_worm.ResolveDrive(parameters=...) with "
+                         f"AnalyzeDrive for the whole drive, or ElasticDriveFromParameters for its two-mass core")
+    return ElasticDriveFromParameters(parameters, 'DriveFromParameters')
+
+
+def ElasticDriveFromParameters(parameters: Mapping[str, float], where: str = 'ElasticDriveFromParameters'
+                               ) -> ElasticDrive:
+    """Build the two-mass core (:class:`ElasticDrive`, Figure 2) of a flat parameter dictionary; the keys of
+    parts beyond it (chains, axial bearing, motor) are not part of it and are left to the caller.
+
+    Damping: ``dT``, ``DT`` or ``DTV * DV`` (eq. (24)); ``dV`` or ``DV``. Friction: ``mu`` or ``rho`` (eq. (13)),
+    and optionally a speed-dependent law (``frictionLaw`` ..., :func:`FrictionLawFromParameters`) that the gear
+    (``.gear``) carries into :func:`~exudyn_worm.items.connector.CreateWormGear`.
+    Each quantity in one form only: a set with two forms (``dV`` and ``DV``) is refused; to change the form,
+    use :func:`ApplyOverrides`, which drops the other one.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter dictionary with the keys of :data:`PARAMETER_UNITS` (SI).
+    where : str, optional
+        Prefix of error messages.
+
+    Returns
+    -------
+    ElasticDrive
+
+    Raises
+    ------
+    ValueError
         For a missing, unknown or invalid parameter, two forms of one quantity (see :func:`CheckParameters`)
         or parameters whose model coefficients overflow.
     TypeError
         If ``parameters`` is not a mapping.
     """
-    where = 'DriveFromParameters'
     CheckParameterKeys(parameters, where)
     p = dict(parameters)
     _Require(p, ('alphaN',) + MissingGeometryKeys(p) + ('kV', 'J1', 'J2', 'kT'), where)
@@ -589,7 +625,7 @@ def LumpedLoadSide(parameters: Mapping[str, float]) -> Dict[str, float]:
     """``parameters`` with the load-side chain lumped into the wheel: J2 + JL1 + JL2 + ..., no chain keys.
 
     What the two-mass model assumes when the driven machine is counted in J2 (rigid load shafts); compare its
-    verdict with the whole drive's (:func:`~exudyn_worm.analysis.linearization.DriveStability`) to see whether lumping is
+    verdict with the whole drive's (:func:`~exudyn_worm.analysis.drivestability.DriveStability`) to see whether lumping is
     safe for a drive (docs/drive-files.md, "Load-side chain").
 
     Parameters
@@ -613,7 +649,7 @@ def LumpedLoadSide(parameters: Mapping[str, float]) -> Dict[str, float]:
     out = {k: v for k, v in parameters.items() if (PARAMETERS.SeriesIndex(k) or ('',))[0] not in ('JL', 'kL', 'dL')}
     if chain:
         _Require(parameters, ('J2',), 'LumpedLoadSide')
-        drive = DriveFromParameters(out)
+        drive = ElasticDriveFromParameters(out)
         out = ApplyOverrides(out, {'J2': parameters['J2'] + sum(J for J, _, _ in chain), 'dV': drive.gear.dV,
                                    'dT': drive.dT})
     return out

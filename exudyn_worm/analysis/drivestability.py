@@ -1,0 +1,285 @@
+"""One stability entry point for every drive: :func:`AnalyzeDrive`, the linear verdict at the duty's operating points.
+
+The drive (:class:`~exudyn_worm.setups.wholedrive.Drive`) is linearized at each operating point of its own duty
+(:func:`~exudyn_worm.setups.operatingpoints.DutyOperatingPoints`: every steady phase in each direction of power
+flow, with its sliding speed, mu(v), dmu/dv, static normal force and contact state S). The model is chosen by
+what the drive contains, a typed property:
+
+- the two-mass drive of Figure 2 (:attr:`~exudyn_worm.setups.wholedrive.Drive.isTwoMass`): the analytical model,
+  eqs. (15)-(19) with the friction slope's damping (:func:`~exudyn_worm.model.stability.AnalyzeStability`);
+- any other drive (chains, axial bearing, motor on its characteristic): the linearized Exudyn model of the whole
+  drive at the same operating point (:func:`~exudyn_worm.analysis.linearization.BuildLinearizationModel`).
+
+An operating point is stable when its own contact state S is (lifting: S = +1, lowering: S = -1); the drive's
+verdict is the worst of its operating points, and the phase with the largest real part decides. A drive without a
+steady phase (no motor, no load torque, only ramps) is analysed at rest in both contact states (the paper's
+constant-mu model; the result says so). Each analysis is computed once per drive (cached on the drive).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Dict, Mapping, Optional, Tuple, Union
+
+import numpy as np
+
+from .._checks import JsonNumber
+from ..model.selflocking import SelfLocking
+from ..model.stability import CONTACT_STATES, AnalyzeStability, OperatingPoint
+from ..setups.operatingpoints import DutyOperatingPoints, DutyPoint
+from ..setups.wholedrive import AsDrive, Drive
+from . import linearization
+
+__all__ = ['OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'DriveStability', 'ANALYTICAL', 'LINEARIZED']
+
+#: the model names of :attr:`DriveAnalysis.model`
+ANALYTICAL, LINEARIZED = 'analytical', 'linearized'
+
+
+def _Deciding(eigenvalues: np.ndarray) -> Tuple[float, float]:
+    """(largest real part in 1/s, the frequency of that eigenvalue in Hz)."""
+    lam = np.asarray(eigenvalues)
+    k = int(np.argmax(lam.real))
+    return float(lam[k].real), abs(float(lam[k].imag)) / (2 * math.pi)
+
+
+@dataclass(frozen=True)
+class OperatingPointStability:
+    """The linear analysis of a drive at one operating point of its duty.
+
+    Attributes
+    ----------
+    point : DutyPoint
+        The operating point (phase, motor speed, load torque, sliding speed, mu, slope, normal force, S).
+    analysis : StabilityAnalysis or LinearStability
+        The analytical model (both contact states at the point's mu and slope) or the linearized whole drive
+        (the point's own contact state).
+    gear : WormGear
+        The drive's gear (for the self-locking verdict at the point's sliding speed).
+    """
+    point: DutyPoint
+    analysis: Any
+    gear: Any
+
+    @property
+    def phase(self) -> str:
+        """``'lifting'`` or ``'lowering'``."""
+        return self.point.phase
+
+    @property
+    def S(self) -> int:
+        """The point's contact state, +1 lifting, -1 lowering."""
+        return self.point.S
+
+    @property
+    def state(self):
+        """The analysis of the point's own contact state (``stable``, ``maxRealPart``, ``eigenvalues``)."""
+        return self.analysis.State(self.S)
+
+    @property
+    def eigenvalues(self) -> np.ndarray:
+        """Eigenvalues in 1/s of the point's contact state."""
+        return np.asarray(self.state.eigenvalues)
+
+    @property
+    def maxRealPart(self) -> float:
+        """Largest real part in 1/s (> 0: vibrations grow at this point)."""
+        return _Deciding(self.eigenvalues)[0]
+
+    @property
+    def frequencyHz(self) -> float:
+        """Frequency in Hz of the eigenvalue with the largest real part."""
+        return _Deciding(self.eigenvalues)[1]
+
+    @property
+    def stable(self) -> bool:
+        """True iff every eigenvalue of the point's contact state has a negative real part."""
+        return bool(self.state.stable)
+
+    @property
+    def selfLocking(self):
+        """Static and dynamic self-locking at this point's sliding speed
+        (:class:`~exudyn_worm.model.selflocking.SelfLockingVerdict`)."""
+        return SelfLocking(self.gear, self.point.operatingPoint.slidingSpeed)
+
+    def ToDict(self) -> Dict:
+        """JSON-ready: the point (:meth:`DutyPoint.ToDict`) with ``maxRealPart``, ``frequencyHz``, ``stable``."""
+        return {**self.point.ToDict(), 'maxRealPart': JsonNumber(self.maxRealPart),
+                'frequencyHz': JsonNumber(self.frequencyHz), 'stable': self.stable}
+
+
+@dataclass(frozen=True)
+class DriveAnalysis:
+    """The linear verdict of a drive at its own operating points (:func:`AnalyzeDrive`).
+
+    Attributes
+    ----------
+    drive : Drive
+        The drive analysed.
+    model : str
+        ``'analytical'`` (eqs. (15)-(19), the two-mass drive) or ``'linearized'`` (the Exudyn model of the whole
+        drive).
+    operatingPoints : tuple of OperatingPointStability
+        One per operating point of the duty (empty: the drive has no steady phase; see :attr:`atRest`).
+    """
+    drive: Drive
+    model: str
+    operatingPoints: Tuple[OperatingPointStability, ...]
+
+    @property
+    def atRest(self):
+        """The analysis at rest in both contact states (constant mu; the paper's model): what decides for a drive
+        without a steady phase, and the reference of the classic criteria. Computed once, on first use."""
+        return _AtRest(self.drive)
+
+    @property
+    def deciding(self) -> Optional[OperatingPointStability]:
+        """The operating point with the largest real part (None without operating points)."""
+        if not self.operatingPoints:
+            return None
+        return max(self.operatingPoints, key=lambda p: p.maxRealPart)
+
+    @property
+    def stable(self) -> bool:
+        """The drive's verdict: every operating point stable (without one: both contact states at rest)."""
+        if self.operatingPoints:
+            return all(p.stable for p in self.operatingPoints)
+        return bool(self.atRest.stable)
+
+    @property
+    def maxRealPart(self) -> float:
+        """Largest real part in 1/s of the deciding point (at rest: of both contact states)."""
+        if self.operatingPoints:
+            return self.deciding.maxRealPart
+        return max(float(self.atRest.State(S).maxRealPart) for S in CONTACT_STATES)
+
+    @property
+    def frequencyHz(self) -> float:
+        """Frequency in Hz of the deciding eigenvalue."""
+        if self.operatingPoints:
+            return self.deciding.frequencyHz
+        S = max(CONTACT_STATES, key=lambda s: float(self.atRest.State(s).maxRealPart))
+        return _Deciding(self.atRest.State(S).eigenvalues)[1]
+
+    def State(self, S: int):
+        """The result for contact state ``S``: the operating point in that state with the largest real part, or,
+        if the duty has none in it, the analysis at rest (for callers that follow one contact state, as the
+        lowering phase's chatter).
+
+        Parameters
+        ----------
+        S : int
+            +1 or -1.
+        """
+        mine = [p for p in self.operatingPoints if p.S == S]
+        if mine:
+            return max(mine, key=lambda p: p.maxRealPart).state
+        return self.atRest.State(S)
+
+    @property
+    def decidingText(self) -> str:
+        """One line that names what decides the verdict."""
+        if not self.operatingPoints:
+            return (f"no steady phase in the drive's duty: analysed at rest in both contact states "
+                    f"(constant mu = {self.drive.gear.mu:g})")
+        p = self.deciding
+        words = 'stable' if p.stable else 'UNSTABLE'
+        return (f"deciding: {p.point.Label()}: {words}, largest real part {p.maxRealPart:.4g} 1/s at "
+                f"{p.frequencyHz:.4g} Hz")
+
+    @property
+    def selfLockingVerdicts(self) -> Dict[str, Any]:
+        """Static and dynamic self-locking at every operating point, keyed by its label (at rest: ``'at rest'``)."""
+        gear = self.drive.gear
+        if not self.operatingPoints:
+            return {'at rest': SelfLocking(gear)}
+        return {p.point.Label(): SelfLocking(gear, p.point.operatingPoint.slidingSpeed) for p in self.operatingPoints}
+
+    @property
+    def dangerous(self) -> bool:
+        """True if the gear is self-locking at rest but not while moving at one of the operating points (the load
+        holds, but runs away once it moves)."""
+        return any(v.dangerous for v in self.selfLockingVerdicts.values())
+
+    def ToDict(self) -> Dict:
+        """JSON-ready: ``stable``, ``model``, ``components``, ``operatingPoints``, ``deciding``, ``selfLocking``."""
+        deciding = self.deciding
+        return {'stable': self.stable, 'model': self.model, 'components': [c.value for c in self.drive.components],
+                'maxRealPart': JsonNumber(self.maxRealPart), 'frequencyHz': JsonNumber(self.frequencyHz),
+                'operatingPoints': [p.ToDict() for p in self.operatingPoints],
+                'deciding': None if deciding is None else {'phase': deciding.phase,
+                                                           'label': deciding.point.Label()},
+                'decidingText': self.decidingText,
+                'dangerous': self.dangerous,
+                'selfLocking': {k: v.ToDict() for k, v in self.selfLockingVerdicts.items()}}
+
+
+def _AtRest(drive: Drive):
+    def Compute():
+        if drive.isTwoMass:
+            return AnalyzeStability(drive.elastic)
+        SC, mbs = linearization.BuildLinearizationModel(drive.elastic, None, True, drive.axialBearing,
+                                                        drive.driveSideChain, drive.loadSideChain, drive.freeMotor)
+        return linearization.AnalyzeLinearStability(mbs)
+    return drive.Cached('stabilityAtRest', Compute)
+
+
+def _AtPoint(drive: Drive, point: DutyPoint):
+    op: OperatingPoint = point.operatingPoint
+    if drive.isTwoMass:
+        return AnalyzeStability(drive.elastic, op)
+    SC, mbs = linearization.BuildLinearizationModel(drive.elastic, op.S, True, drive.axialBearing,
+                                                    drive.driveSideChain, drive.loadSideChain, drive.freeMotor,
+                                                    operatingPoint=op)
+    return linearization.AnalyzeLinearStability(mbs, contactStates=[(op.S,)])
+
+
+def AnalyzeDrive(drive: Union[Drive, Mapping[str, Any]]) -> DriveAnalysis:
+    """Linear stability of a drive at the operating points of its own duty: the one entry point of every command.
+
+    Parameters
+    ----------
+    drive : Drive or mapping
+        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`) or a flat parameter set.
+
+    Returns
+    -------
+    DriveAnalysis
+        ``stable`` (the worst operating point), ``operatingPoints``, ``deciding``, ``State(S)``, ``ToDict()``.
+
+    Raises
+    ------
+    ValueError, TypeError
+        For a bad drive (see :class:`~exudyn_worm.setups.wholedrive.Drive`) or a motor that cannot carry its load.
+
+    Examples
+    --------
+    >>> from exudyn_worm.setups.wholedrive import ResolveDrive
+    >>> analysis = AnalyzeDrive(ResolveDrive('reel-P1'))
+    >>> [(p.phase, p.stable) for p in analysis.operatingPoints], analysis.stable
+    ([('lifting', True), ('lowering', False)], False)
+    """
+    drive = AsDrive(drive, 'AnalyzeDrive')
+
+    def Compute():
+        points = tuple(OperatingPointStability(p, drive.Cached(f'stabilityAt{i}', lambda p=p: _AtPoint(drive, p)),
+                                               drive.gear)
+                       for i, p in enumerate(DutyOperatingPoints(drive)))
+        return DriveAnalysis(drive=drive, model=ANALYTICAL if drive.isTwoMass else LINEARIZED, operatingPoints=points)
+    return drive.Cached('driveAnalysis', Compute)
+
+
+def DriveStability(parameters: Union[Drive, Mapping[str, Any]]) -> DriveAnalysis:
+    """:func:`AnalyzeDrive` of a flat parameter set (or a drive): the verdict every command gives.
+
+    Parameters
+    ----------
+    parameters : mapping or Drive
+        Flat parameter set (see :mod:`exudyn_worm.setups.presets`) or a :class:`~exudyn_worm.setups.wholedrive.Drive`.
+
+    Returns
+    -------
+    DriveAnalysis
+        With ``stable`` (the worst operating point) and ``State(S)`` (``stable``, ``maxRealPart``, ``eigenvalues``).
+    """
+    return AnalyzeDrive(parameters)

@@ -1,0 +1,319 @@
+"""The user's whole drive as one immutable, self-checking object: :class:`Drive`.
+
+A drive is resolved once, at the boundary (a preset, a drive file, ``--set`` options or a Python dictionary), into
+a :class:`Drive`: the gear with its friction law and the two-mass core of Figure 2 (:class:`ElasticDrive`), the
+drive-side chain of Figure 19, the load-side chain, the worm's axial bearing, the load and the motor (the duty),
+and where each value came from. Every analysis and every command takes the drive; what it contains is a typed
+property (:attr:`Drive.components`, :attr:`Drive.isTwoMass`, ...), so no code compares phrases to find out which
+model fits it.
+
+Checks made when the drive is built (so that no command meets them later):
+
+- every key and value (the parameter registry), the two-mass core (:func:`~exudyn_worm.setups.presets.ElasticDriveFromParameters`),
+  both chains complete, the axial bearing with its mass;
+- the duty: a load or motor type that is named needs its keys (``motorType = characteristic`` without
+  ``motorInertia`` is refused here, with the keys it needs); the reel changer's default lever and constant speed
+  are optional (a drive without them has no duty: it is analysed at rest);
+- a value the duty would ignore is refused when the user gave it with ``--set`` or in the drive file:
+  ``motorSpeed`` for a speed-table motor or a motor on its characteristic (the ``motorSpeed`` of a preset or of a
+  dictionary built on one is dropped when the motor type changes).
+"""
+from __future__ import annotations
+
+import enum
+import types
+from dataclasses import dataclass, field
+from typing import Any, Dict, Iterable, Mapping, Optional, Tuple, Union
+
+from ..items.connector import AxialBearing
+from ..model.drive import ElasticDrive
+from ..model.gear import WormGear
+from .config import ResolveParametersWithSources
+from .duty import LOAD_TYPES, MOTOR_TYPES, LoadType, MotorType, _LoadLaw, _MotorLaw
+from .presets import (ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
+                      ElasticDriveFromParameters, LoadSideChain, MissingParameterError)
+
+__all__ = ['Component', 'Drive', 'ResolveDrive', 'AsDrive']
+
+
+class Component(str, enum.Enum):
+    """A part of a drive beyond the two-mass drive of Figure 2 (which eqs. (15)-(21) describe)."""
+    DRIVE_SIDE_CHAIN = 'drive-side chain'
+    LOAD_SIDE_CHAIN = 'load-side chain'
+    AXIAL_BEARING = 'worm axial bearing'
+    MOTOR_CHARACTERISTIC = 'motor on its characteristic'
+
+    @property
+    def text(self) -> str:
+        """How the component is named in messages, with the keys that give it."""
+        return _COMPONENT_TEXT[self]
+
+
+_COMPONENT_TEXT = {Component.DRIVE_SIDE_CHAIN: 'a drive-side chain (J4, ...)',
+                   Component.LOAD_SIDE_CHAIN: 'a load-side chain (JL1, ...)',
+                   Component.AXIAL_BEARING: 'a worm axial bearing (kA > 0)',
+                   Component.MOTOR_CHARACTERISTIC: 'a motor on its characteristic (motorType characteristic)'}
+
+#: keys of the motor types that do not take 'motorSpeed'
+_NO_MOTOR_SPEED = ('speedTable', 'characteristic')
+
+
+@dataclass(frozen=True, eq=False)
+class Drive:
+    """One drive: its resolved parameters, its parts as typed objects, and where each value came from.
+
+    Build it with :func:`ResolveDrive` (preset, drive file, ``--set``) or :meth:`FromParameters` (a flat
+    dictionary); change it with :meth:`Replace`, which gives a new, checked drive. Analyses take it:
+    :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive` (the verdict at the duty's operating points).
+
+    Attributes
+    ----------
+    parameters : mapping
+        The flat parameter set (SI, read-only), as :mod:`exudyn_worm.setups.presets` describes it.
+    sources : mapping
+        Per key, where its value came from: ``'--set'``, a drive file's location, ``'preset NAME'`` or ``'API'``.
+    elastic : ElasticDrive
+        The two-mass core of Figure 2 (gear with its friction law, J1, J2, kT, dT).
+    driveSideChain : tuple of (float, float, float)
+        Drive-side chain ``(J4, k4, d4), ...`` (Figure 19), worm side first; empty: none.
+    loadSideChain : tuple of (float, float, float)
+        Load-side chain ``(JL1, kL1, dL1), ...``, wheel side first; empty: none.
+    axialBearing : AxialBearing or None
+        The worm's axial bearing; None: axially rigid worm.
+    load : object or None
+        The load law (:mod:`exudyn_worm.setups.duty`); None: no load torque given.
+    motor : object or None
+        The motor (a prescribed motion or a characteristic); None: no motor given (no duty).
+    name : str
+        What the drive is called in messages (the preset or file it came from).
+    """
+    parameters: Mapping[str, Any]
+    sources: Mapping[str, str]
+    elastic: ElasticDrive
+    driveSideChain: Tuple[Tuple[float, float, float], ...] = ()
+    loadSideChain: Tuple[Tuple[float, float, float], ...] = ()
+    axialBearing: Optional[AxialBearing] = None
+    load: Optional[Any] = None
+    motor: Optional[Any] = None
+    name: str = 'drive'
+    _cache: Dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
+
+    @classmethod
+    def FromParameters(cls, parameters: Mapping[str, Any], sources: Optional[Mapping[str, str]] = None,
+                       name: str = 'drive') -> 'Drive':
+        """Build and check the drive of a flat parameter set.
+
+        Parameters
+        ----------
+        parameters : mapping
+            Flat parameter set (SI), e.g. :func:`~exudyn_worm.setups.config.ResolveParameters` or a preset.
+        sources : mapping, optional
+            Where each value came from (default ``'API'`` for every key).
+        name : str, optional
+            What the drive is called in messages.
+
+        Returns
+        -------
+        Drive
+
+        Raises
+        ------
+        ValueError, TypeError
+            For a missing, unknown or invalid parameter, an incomplete chain or duty, or a value the duty ignores.
+        """
+        if isinstance(parameters, Drive):
+            return parameters
+        where = f'Drive ({name})' if name != 'drive' else 'Drive'
+        CheckParameterKeys(parameters, where)
+        p = dict(parameters)
+        src = {k: 'API' for k in p} if sources is None else {k: sources.get(k, 'API') for k in p}
+        if MotorType(p) in _NO_MOTOR_SPEED and 'motorSpeed' in p:
+            if src['motorSpeed'] == 'API' or src['motorSpeed'].startswith('preset '):   # a base set's own motor
+                del p['motorSpeed'], src['motorSpeed']
+            else:
+                raise ValueError(f"{where}: 'motorSpeed' ({src['motorSpeed']}) is not used by motorType = "
+                                 f"{MotorType(p)!r}, whose speed comes from "
+                                 f"{'motorSpeedOverTime' if MotorType(p) == 'speedTable' else 'its characteristic'}; "
+                                 f"remove it or choose motorType constantSpeed or startStop")
+        elastic = ElasticDriveFromParameters(p, where)
+        load, motor = _Duty(p, where)
+        drive = cls(parameters=types.MappingProxyType(p), sources=types.MappingProxyType(src), elastic=elastic,
+                    driveSideChain=tuple(DriveSideChain(p)), loadSideChain=tuple(LoadSideChain(p)),
+                    axialBearing=AxialBearingFromParameters(p), load=load, motor=motor, name=name)
+        return drive
+
+    def Replace(self, changes: Mapping[str, Any]) -> 'Drive':
+        """A new drive with ``changes`` applied (one form of a quantity replaces another, as
+        :func:`~exudyn_worm.setups.presets.ApplyOverrides`), checked like the original.
+
+        Parameters
+        ----------
+        changes : mapping
+            New values by parameter key (SI).
+
+        Returns
+        -------
+        Drive
+        """
+        p = ApplyOverrides(self.parameters, changes)
+        sources = {**{k: v for k, v in self.sources.items() if k in p}, **{k: 'changed' for k in changes}}
+        return Drive.FromParameters(p, sources, self.name)
+
+    @property
+    def gear(self) -> WormGear:
+        """The worm gear with its friction law."""
+        return self.elastic.gear
+
+    @property
+    def loadType(self) -> str:
+        """``lever``, ``constant``, ``timeTable``, ``angleTable`` or ``none``."""
+        return LoadType(self.parameters) if self.load is not None else 'none'
+
+    @property
+    def motorType(self) -> Optional[str]:
+        """``constantSpeed``, ``startStop``, ``speedTable``, ``characteristic``, or None without a motor."""
+        return MotorType(self.parameters) if self.motor is not None else None
+
+    @property
+    def hasDuty(self) -> bool:
+        """True if the drive has a motor (and so phases in which it runs)."""
+        return self.motor is not None
+
+    @property
+    def hasMotorCharacteristic(self) -> bool:
+        """True for a free motor rotor on its torque-speed line."""
+        return self.motorType == 'characteristic'
+
+    @property
+    def components(self) -> Tuple[Component, ...]:
+        """The parts beyond the two-mass drive of Figure 2, in a fixed order; empty for the two-mass drive."""
+        return tuple(c for c, present in ((Component.DRIVE_SIDE_CHAIN, bool(self.driveSideChain)),
+                                          (Component.LOAD_SIDE_CHAIN, bool(self.loadSideChain)),
+                                          (Component.MOTOR_CHARACTERISTIC, self.hasMotorCharacteristic),
+                                          (Component.AXIAL_BEARING, self.axialBearing is not None)) if present)
+
+    @property
+    def isTwoMass(self) -> bool:
+        """True if eqs. (15)-(21) describe the whole drive (no component beyond Figure 2)."""
+        return not self.components
+
+    @property
+    def freeMotor(self) -> Optional[Tuple[float, float]]:
+        """For a motor on its characteristic: (rotor inertia in kg*m^2, slope stallTorque/noLoadSpeed in
+        N*m*s/rad); else None (the motor is held on its path)."""
+        if not self.hasMotorCharacteristic:
+            return None
+        p = self.parameters
+        return p['motorInertia'], p['stallTorque'] / p['noLoadSpeed']
+
+    def ComponentsText(self) -> str:
+        """The components as a phrase for messages (``'a load-side chain (JL1, ...)'``), ``''`` for none."""
+        return ' and '.join(c.text for c in self.components)
+
+    def Cached(self, key: str, compute):
+        """The value of ``compute()`` computed once per drive under ``key`` (analyses of this drive).
+
+        Parameters
+        ----------
+        key : str
+            Name of the cached result.
+        compute : callable
+            Computes it (no arguments).
+        """
+        if key not in self._cache:
+            self._cache[key] = compute()
+        return self._cache[key]
+
+    def ToDict(self) -> Dict:
+        """JSON-ready ``{name, components, loadType, motorType, parameters, sources}``."""
+        return {'name': self.name, 'components': [c.value for c in self.components], 'loadType': self.loadType,
+                'motorType': self.motorType,
+                'parameters': {k: (v if isinstance(v, (int, float, str)) else str(v)) for k, v in self.parameters.items()},
+                'sources': dict(self.sources)}
+
+
+def _Duty(p: Mapping[str, Any], where: str):
+    """(load, motor) of a parameter set; a named type needs its keys, the default lever / constant speed are optional."""
+    loadNamed, motorNamed = 'loadType' in p, 'motorType' in p
+    loadKeys, motorKeys = LOAD_TYPES[LoadType(p)], MOTOR_TYPES[MotorType(p)]
+    load = motor = None
+    for named, keys, kind in ((loadNamed, loadKeys, 'load'), (motorNamed, motorKeys, 'motor')):
+        given = [k for k in keys if k in p]
+        if (named or given) and len(given) < len(keys):
+            missing = [k for k in keys if k not in p]
+            typ = LoadType(p) if kind == 'load' else MotorType(p)
+            raise MissingParameterError(f"{where}: the {kind} ({kind}Type {typ}) needs {', '.join(keys)}; missing "
+                                        f"{', '.join(missing)} (give them with --set KEY=VALUE or in [{kind}] of the "
+                                        f"drive file)", missing)
+    if loadNamed or all(k in p for k in loadKeys):
+        load = _LoadLaw(p, where)
+    if motorNamed or all(k in p for k in motorKeys):
+        motor = _MotorLaw(p, where)
+    return load, motor
+
+
+def ResolveDrive(preset: Optional[str] = None, config: Union[None, str, Mapping] = None,
+                 sets: Iterable[Union[str, Tuple[str, float]]] = (),
+                 parameters: Optional[Mapping[str, Any]] = None) -> Drive:
+    """Resolve a drive once: a preset, a drive file and ``KEY=VALUE`` overrides, or a flat parameter set.
+
+    Parameters
+    ----------
+    preset : str, optional
+        Preset name (see :data:`~exudyn_worm.setups.presets.PRESETS`).
+    config : str, path-like or dict, optional
+        A drive file (TOML) or its content (:func:`~exudyn_worm.setups.config.LoadConfig`).
+    sets : iterable of str or (str, float)
+        Overrides ``'KEY=VALUE'`` (units allowed) applied last.
+    parameters : mapping, optional
+        A flat parameter set instead of preset and file (``sets`` are applied on top).
+
+    Returns
+    -------
+    Drive
+
+    Raises
+    ------
+    ValueError, TypeError
+        For any bad input (unknown preset or key, bad value or unit, unreadable file, incomplete drive).
+
+    Examples
+    --------
+    >>> drive = ResolveDrive('reel-P6', sets=['DV=0.056'])
+    >>> drive.isTwoMass, drive.parameters['DV'], drive.sources['DV']
+    (True, 0.056, '--set')
+    """
+    if parameters is not None:
+        if preset is not None or config is not None:
+            raise ValueError("ResolveDrive: give either 'parameters' or 'preset'/'config', not both")
+        sets = list(sets)
+        if not sets:
+            return Drive.FromParameters(parameters, name='drive')
+        p, sources = ResolveParametersWithSources(config={'parameters': dict(parameters)}, sets=sets)
+        return Drive.FromParameters(p, {k: 'API' if v.startswith('preset ') else v for k, v in sources.items()})
+    p, sources = ResolveParametersWithSources(preset, config, sets)
+    name = preset or (str(config) if isinstance(config, (str, bytes)) or hasattr(config, '__fspath__') else None) \
+        or next((v[len('preset '):] for v in sources.values() if v.startswith('preset ')), 'drive')
+    return Drive.FromParameters(p, sources, name=name)
+
+
+def AsDrive(drive: Union[Drive, Mapping[str, Any]], where: str = 'AsDrive') -> Drive:
+    """``drive`` itself, or the :class:`Drive` of a flat parameter set (for functions that take either).
+
+    Parameters
+    ----------
+    drive : Drive or mapping
+        A drive or a flat parameter set.
+    where : str, optional
+        Caller named in messages.
+
+    Returns
+    -------
+    Drive
+    """
+    if isinstance(drive, Drive):
+        return drive
+    if isinstance(drive, ElasticDrive):
+        raise TypeError(f"{where}: 'drive' must be a Drive (exudyn_worm.ResolveDrive) or a flat parameter set, got "
+                        f"an ElasticDrive (the two-mass core only); for it use AnalyzeStability")
+    return Drive.FromParameters(drive)
