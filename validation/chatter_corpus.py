@@ -19,7 +19,6 @@ it: |largest real part| x plateau length >= :data:`RESOLVABLE`.
 from __future__ import annotations
 
 import argparse
-import contextlib
 import csv
 import math
 import sys
@@ -45,10 +44,9 @@ TARGET = 0.95
 FULL = {'drives': DRIVES, 'plateau': 1.0, 'ramp': 0.02, 'pause': 0.05}
 QUICK = {'drives': 3, 'plateau': 0.1, 'ramp': 0.01, 'pause': 0.02}
 _RPM = 2 * math.pi / 60
-_G = 9.80665
 #: largest number of solver steps of one drive's run (a drive needing more is recorded as skipped)
 _MAX_STEPS = 400_000
-CSV_COLUMNS = ('drive', 'phase', 'friction', 'components', 'mx', 'z1', 'z2', 'q', 'u', 'gammaDeg', 'motorSpeed',
+CSV_COLUMNS = ('drive', 'phase', 'window', 'friction', 'components', 'mx', 'z1', 'z2', 'q', 'u', 'gammaDeg', 'motorSpeed',
                'loadTorque', 'maxRealPart', 'frequencyHz', 'linearStable', 'growthOverPhase', 'resolvable',
                'simulatedChatter', 'chatterBy', 'agree', 'normalA3', 'normalA4', 'slidingA3', 'slidingA4',
                'minWormSpeed', 'dominantFrequencyHz', 'stepSize', 'seconds', 'error')
@@ -131,21 +129,11 @@ def DutyWindows(parameters: Mapping) -> Dict[str, tuple]:
     return {'lifting': (t[1], t[2]), 'lowering': (t[5], t[6]), 'end': t[7]}
 
 
-def _AtOperatingPoint(parameters: Mapping) -> Dict:
-    """The drive with the reel changer's duty keys at its plateau speed and load (loadMass g leverArm = |load
-    torque|): the form in which :func:`~exudyn_worm.analysis.linearization.DriveStability` and the step-size rule
-    linearize a speed-dependent friction law at the sliding speed of the plateau rather than at rest."""
-    reel = {k: v for k, v in parameters.items()
-            if k not in ('loadType', 'loadTorque', 'motorType', 'motorSpeedOverTime')}
-    reel.update(loadMass=abs(parameters['loadTorque']) / _G, leverArm=1.,
-                motorSpeed=parameters['motorSpeedOverTime'][1][1])
-    return reel
-
-
 #: how :func:`LinearOperatingPoints` gets its verdicts (named in the report)
-LINEAR_METHOD = ('`DriveStability` of the drive with the reel-changer keys at the plateau speed and load torque: '
-                 'mu(v) and its slope at the plateau\'s sliding speed, the static normal force of steady lowering, '
-                 'contact state S = +1 for lifting and S = -1 for lowering')
+LINEAR_METHOD = ('`exudyn_worm.AnalyzeDrive(ResolveDrive(parameters=...))` at the operating points of the duty '
+                 '(each plateau of the speed table in its direction: sliding speed, mu(v) and its slope, static normal '
+                 'force, contact state S = +1 lifting, -1 lowering; the two-mass drive analytically, any other drive '
+                 'by the linearized whole drive)')
 
 
 def LinearOperatingPoints(parameters: Mapping) -> List[Dict]:
@@ -159,40 +147,14 @@ def LinearOperatingPoints(parameters: Mapping) -> List[Dict]:
     Returns
     -------
     list of dict
-        Per operating point ``phase`` ('lifting' / 'lowering'), ``motorSpeed`` (rad/s), ``loadTorque`` (N*m),
-        ``maxRealPart`` (1/s), ``frequencyHz``, ``stable``.
+        Per operating point ``phase`` ('lifting' / 'lowering'), ``window`` (t0, t1) in s, ``motorSpeed`` (rad/s),
+        ``loadTorque`` (N*m), ``maxRealPart`` (1/s), ``frequencyHz``, ``stable``.
     """
-    from exudyn_worm.analysis.linearization import DriveStability
-    out = []
-    speed, torque = parameters['motorSpeedOverTime'][1][1], parameters['loadTorque']
-    # interim: the steady lowering operating point of the reel-changer keys (the same sliding speed both ways),
-    # contact state S = +1 for lifting and S = -1 for lowering
-    analysis = DriveStability(_AtOperatingPoint(parameters))
-    for phase, S, sign in (('lifting', 1, 1.), ('lowering', -1, -1.)):
-        state = analysis.State(S)
-        eig = np.asarray(state.eigenvalues)
-        top = eig[np.argmax(eig.real)]
-        out.append({'phase': phase, 'motorSpeed': sign * speed, 'loadTorque': torque,
-                    'maxRealPart': float(state.maxRealPart), 'frequencyHz': float(abs(top.imag) / (2 * math.pi)),
-                    'stable': bool(state.stable)})
-    return out
-
-
-@contextlib.contextmanager
-def _StepCheckAtPlateau():
-    """While active, the simulation's step check linearizes the drive at its plateau (:func:`_AtOperatingPoint`).
-
-    The step rule linearizes a drive whose duty is not the reel changer's at rest, where the AGMA law's slope
-    makes a spurious real eigenvalue of about 1e11 1/s in a drive with a chain or an axial bearing, and then
-    refuses every step. Only this script's runs are affected; the rule itself is the library's to fix.
-    """
-    from exudyn_worm.analysis import reelchanger
-    check = reelchanger.CheckStepSize
-    reelchanger.CheckStepSize = lambda parameters, *args, **kwargs: check(_AtOperatingPoint(parameters), *args, **kwargs)
-    try:
-        yield
-    finally:
-        reelchanger.CheckStepSize = check
+    import exudyn_worm as ew
+    analysis = ew.AnalyzeDrive(ew.ResolveDrive(parameters=dict(parameters)))
+    return [{'phase': op.phase, 'window': tuple(op.point.window), 'motorSpeed': op.point.motorSpeed,
+             'loadTorque': op.point.loadTorque, 'maxRealPart': op.maxRealPart, 'frequencyHz': op.frequencyHz,
+             'stable': op.stable} for op in analysis.operatingPoints]
 
 
 def _Components(p: Mapping) -> str:
@@ -218,38 +180,36 @@ def RunDrive(index: int, parameters: Mapping) -> List[Dict]:
     """
     from exudyn_worm.analysis.reelchanger import SimulateReelChanger
     from exudyn_worm.analysis.stepsize import RecommendedStepSize
-    from exudyn_worm.setups.presets import DriveFromParameters
+    from exudyn_worm.setups.presets import ElasticDriveFromParameters
     start = time.perf_counter()
     p = dict(parameters)
-    gear = DriveFromParameters(p).gear
+    gear = ElasticDriveFromParameters(p).gear
     friction = p.get('frictionLaw', 'constant')
     base = {'drive': index, 'friction': friction, 'components': _Components(p), 'mx': p['mx'], 'z1': p['z1'],
             'z2': p['z2'], 'q': p['q'], 'u': gear.ratio, 'gammaDeg': math.degrees(gear.gamma), 'error': ''}
-    windows = DutyWindows(p)
     try:
         points = LinearOperatingPoints(p)
     except Exception as err:                    # a failing drive is a result, not the end of the corpus
         return [dict(base, phase='-', error=f"linear analysis: {type(err).__name__}: {err}",
                      seconds=time.perf_counter() - start)]
-    rows = [dict(base, phase=op['phase'], motorSpeed=op['motorSpeed'], loadTorque=op['loadTorque'],
-                 maxRealPart=op['maxRealPart'], frequencyHz=op['frequencyHz'], linearStable=op['stable'])
-            for op in points]
+    rows = [dict(base, phase=op['phase'], window=op['window'], motorSpeed=op['motorSpeed'],
+                 loadTorque=op['loadTorque'], maxRealPart=op['maxRealPart'], frequencyHz=op['frequencyHz'],
+                 linearStable=op['stable']) for op in points]
     for row in rows:
-        t0, t1 = windows[row['phase']]
+        t0, t1 = row['window']
         row['growthOverPhase'] = row['maxRealPart'] * (t1 - t0)
         row['resolvable'] = abs(row['growthOverPhase']) >= RESOLVABLE
     try:
-        stepSize = RecommendedStepSize(_AtOperatingPoint(p))     # its modes at the plateau, not at rest
-        endTime = windows['end']
+        stepSize = RecommendedStepSize(p)
+        endTime = DutyWindows(p)['end']
         if endTime / stepSize > _MAX_STEPS:
             raise ValueError(f"needs {endTime / stepSize:.3g} steps at the recommended {stepSize:.3g} s, above the "
                              f"corpus' budget of {_MAX_STEPS}")
-        with _StepCheckAtPlateau():
-            result = SimulateReelChanger(p, endTime=endTime, stepSize=stepSize, progress=False, maxSteps=_MAX_STEPS)
+        result = SimulateReelChanger(p, endTime=endTime, stepSize=stepSize, progress=False, maxSteps=_MAX_STEPS)
         if not all(np.all(np.isfinite(result.series[k])) for k in ('omega1', 'omega2', 'normalForce')):
             raise FloatingPointError('diverged: non-finite state')
         for row in rows:
-            t0, t1 = windows[row['phase']]
+            t0, t1 = row['window']
             a = result.MeshOscillation(t0, t1)
             by = result.ChatterMeasures(t0, t1)
             chatter = result.Chatter(t0, t1)
@@ -341,6 +301,8 @@ def _Cell(value) -> str:
         return 'yes' if value else 'no'
     if isinstance(value, float):
         return f"{value:.6g}"
+    if isinstance(value, tuple):
+        return ':'.join(f"{v:.6g}" for v in value)
     return '' if value is None else str(value)
 
 

@@ -282,7 +282,7 @@ def _IdleWords(parameters: Mapping[str, float], t: float) -> str:
     load = LoadFromParameters(parameters, 'PhaseLabel')
     if load is None:
         return 'no load'
-    ratio = DriveFromParameters(parameters).gear.ratio
+    ratio = ElasticDriveFromParameters(parameters).gear.ratio
     angle, speed = MotorMotion(parameters, 'PhaseLabel').AngleAndSpeed(t, MATH_OPS)
     torque = load.Torque(angle / ratio, speed / ratio, t, MATH_OPS)
     if abs(torque) <= 1e-9 * max(load.maximum, 1e-300):
