@@ -156,17 +156,32 @@ def test_sweep_of_another_duty_takes_its_phases_as_windows(capsys, tmp_path, mon
 
 
 def test_simulate_labels_each_window_with_its_phase(capsys, tmp_path, monkeypatch):
-    """The text table names the phase of each window: lift / lower for the reel changer, motor drives / load
-    drives for another duty; a window over two phases names both."""
+    """The text table names the phase of each window: lift / lower for the reel changer, lifting / lowering for
+    another duty; a window over two phases names both."""
     from exudyn_worm.cli.main import Main
     monkeypatch.chdir(tmp_path)
     assert Main(['simulate', '--preset', 'reel-P2', '--quiet', '--no-check-step',
                  *[a for s in RAMPED_LOAD for a in ('--set', s)]]) == 0
     rows = [line for line in capsys.readouterr().out.splitlines() if line.strip()[:1].isdigit()]
-    assert [r.split()[3:5] for r in rows] == [['motor', 'drives'], ['load', 'drives']]
+    assert [r.split()[3] for r in rows] == ['lifting', 'lowering']
     assert Main(['simulate', '--quiet', '--no-check-step', '--end-time', '3', '--windows', '0:1,1:3']) == 0
     rows = [line for line in capsys.readouterr().out.splitlines() if line.strip()[:1].isdigit()]
     assert [r.split()[3] for r in rows] == ['lift', 'lift+lower']          # P1: lowering from T/4 = 2 s
+
+
+def test_idle_window_is_a_standstill_under_load_or_no_load():
+    """A hoist that pauses with its load on the drum stands still under load; a duty without load torque has none."""
+    from exudyn_worm.analysis.reelchanger import DefaultPhases, PhaseLabel
+    hoist = ['loadType=constant', 'loadTorque=-1500', 'motorType=speedTable',
+             'motorSpeedOverTime=[[0, 0], [0.1, 50], [0.5, 50], [0.6, 0], [1, 0], [1.1, -50], [1.5, -50], [1.6, 0]]']
+    p = ResolveParameters('reel-P1', sets=hoist)
+    phases = DefaultPhases(p, 1.6)
+    assert [ph for _, _, ph in phases] == ['lift', 'idle', 'lower']
+    assert [PhaseLabel(p, ph, (t0, t1)) for t0, t1, ph in phases] == ['lifting', 'standstill under load', 'lowering']
+    unloaded = ResolveParameters('reel-P1', sets=['loadType=none', 'motorType=speedTable',
+                                                   'motorSpeedOverTime=[[0, 0], [0.1, 50]]'])
+    assert PhaseLabel(unloaded, 'idle', (0., 1.)) == 'no load'
+    assert PhaseLabel(p, 'idle') == 'idle'                       # without its window it cannot tell
 
 
 CHARACTERISTIC = ['motorType=characteristic', 'stallTorque=300', 'noLoadSpeed=500 rpm', 'motorInertia=0.05']

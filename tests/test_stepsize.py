@@ -10,6 +10,7 @@ import pytest
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
+from exudyn_worm.analysis.drivestability import DriveStability
 from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 from exudyn_worm.analysis.stepsize import (HARD_CYCLES, RECOMMENDED_CYCLES, SOFT_CYCLES, CheckStepSize, CoarseStepWarning,
@@ -108,12 +109,12 @@ def test_a_drive_beyond_two_masses_gets_the_frequencies_of_its_whole_drive():
     not the two-mass model's 50.4 Hz and 40.5 Hz."""
     p = ResolveParameters(config=FIGURE19)
     f = LinearizedFrequencies(p)
-    whole = LinearStabilityFromParameters(p)
+    points = DriveStability(p).operatingPoints              # the whole drive at its duty's operating points
     # the mass, damping and stiffness matrices of motor --k4-- J4 --kT-- J1 --mesh (14)-- J2 written out in
     # tests/paper_model.py; Exudyn's numerical linearization agrees to about 1e-10
     maxHz, chatterHz = _Frequencies([ChainEigenvalues(p, [(p['J4'], p['k4'], p['d4'])], S) for S in (+1, -1)])
     assert f['maxHz'] == pytest.approx(maxHz, rel=1e-8) and f['maxHz'] == pytest.approx(116.0, abs=0.05)  # toml
-    growing = [m.frequencyHz for s in whole.states.values() for m in s.modes if m.eigenvalue.real > 0]
+    growing = [m.frequencyHz for op in points for m in op.state.modes if m.eigenvalue.real > 0]
     assert f['chatterHz'] == pytest.approx(max(growing), rel=1e-12)
     assert f['chatterHz'] == pytest.approx(chatterHz, rel=1e-8)
     assert RecommendedStepSize(p) == pytest.approx(RECOMMENDED_CYCLES / maxHz, rel=1e-8)

@@ -31,7 +31,7 @@ from ..items.solve import SolveDynamicInChunks, SolverDivergedError
 from .stepsize import CheckStepSize, RecommendedStepSize
 from .._checks import CheckBool, CheckPositive
 from ..setups.duty import (CheckDutyKeys, DefaultEndTime, DutyPhases, IsReelChangerDuty, LoadFromParameters,
-                   MotorFromParameters, MotorType, SteadyMotorSpeed)
+                   MotorFromParameters, MotorMotion, MotorType, SteadyMotorSpeed)
 from ..model.stability import CharacteristicCoefficients, EigenvaluesFromPolynomial
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
@@ -255,9 +255,10 @@ def WindowPhases(parameters: Mapping[str, float], windows: Sequence[Tuple[float,
     return labels
 
 
-def PhaseLabel(parameters: Mapping[str, float], phase: str) -> str:
+def PhaseLabel(parameters: Mapping[str, float], phase: str, window: Optional[Tuple[float, float]] = None) -> str:
     """The words for a phase of :func:`WindowPhases` in a table: ``lift`` / ``lower`` for the reel changer; for
-    another duty ``motor drives`` / ``load drives`` / ``no load`` (``lift`` / ``lower`` / ``idle``).
+    another duty ``lifting`` / ``lowering`` (the load opposes the motion / drives the gear) and, for ``idle``,
+    ``standstill under load`` where the motor stands while a load torque acts, ``no load`` where none acts.
 
     Parameters
     ----------
@@ -265,11 +266,28 @@ def PhaseLabel(parameters: Mapping[str, float], phase: str) -> str:
         Flat parameter set.
     phase : str
         A label of :func:`WindowPhases`.
+    window : (float, float), optional
+        The window in s (its middle tells a standstill under load from no load; without it ``idle`` reads ``idle``).
     """
     if IsReelChangerDuty(parameters):
         return phase
-    words = {'lift': 'motor drives', 'lower': 'load drives', 'idle': 'no load'}
+    words = {'lift': 'lifting', 'lower': 'lowering', 'idle': 'idle'}
+    if window is not None:
+        words['idle'] = _IdleWords(parameters, 0.5 * (float(window[0]) + float(window[1])))
     return '+'.join(words.get(part, part) for part in phase.split('+'))
+
+
+def _IdleWords(parameters: Mapping[str, float], t: float) -> str:
+    """``standstill under load`` or ``no load`` at time t of the rigid kinematics (a phase without load power)."""
+    load = LoadFromParameters(parameters, 'PhaseLabel')
+    if load is None:
+        return 'no load'
+    ratio = ElasticDriveFromParameters(parameters).gear.ratio
+    angle, speed = MotorMotion(parameters, 'PhaseLabel').AngleAndSpeed(t, MATH_OPS)
+    torque = load.Torque(angle / ratio, speed / ratio, t, MATH_OPS)
+    if abs(torque) <= 1e-9 * max(load.maximum, 1e-300):
+        return 'no load'
+    return 'standstill under load' if speed == 0. else 'idle'
 
 
 def DefaultSimulatedTime(parameters: Mapping[str, float]) -> float:
@@ -637,6 +655,8 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
                                                'maxLoadTorque': model.load.maximum if model.load is not None else 0.,
                                                'loadType': parameters.get('loadType', 'lever'),
                                                'frictionSpeed': contactOptions.frictionSpeed,
+                                               # sliding speed per worm speed (the chatter rule's sliding floor)
+                                               'slidingRadius': drive.gear.r1 / math.cos(drive.gear.gamma),
                                                'frictionModel': contactOptions.frictionModel,
                                                'useSymbolic': useSymbolic, 'solver': _SolverCounters(mbs),
                                                'solveCpuSeconds': solveCpuSeconds,

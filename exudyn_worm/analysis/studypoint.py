@@ -32,9 +32,9 @@ RUN_COLUMNS = ('run', 'status', 'error', 'seconds', 'solveSeconds', 'stepSize', 
 HALF_STEP_METRICS = ('maxAbsWheelAcceleration', 'dominantFrequencyHz', 'chatter')
 def VibrationSeconds(result, t0: float, t1: float) -> float:
     """How long into window [t0, t1] the wheel vibrates: the time after t0 of the last instant at which the
-    wheel inertia torque J2*|phi2''| exceeds the chatter threshold of
-    :meth:`~exudyn_worm.items.results.SimulationResult.Chatter` (a fraction
-    :data:`~exudyn_worm.items.results.CHATTER_TORQUE_FRACTION` of the largest mesh torque in the window); 0 if never.
+    wheel inertia torque J2*|phi2''| exceeds a fraction :data:`~exudyn_worm.items.results.CHATTER_TORQUE_FRACTION`
+    of the largest mesh torque in the window (the wheel's measure; the chatter verdict itself is the mesh's,
+    :meth:`~exudyn_worm.items.results.SimulationResult.Chatter`); 0 if never.
 
     Parameters
     ----------

@@ -41,7 +41,7 @@ def ParseWindows(text: str) -> List[Tuple[float, float]]:
     return windows
 
 
-_SIMULATE_HEADER = '{:>12}  {:<12}{:>20} {:>10} {:>7} {:>6} {:>16}  chatter'.format(
+_SIMULATE_HEADER = '{:>12}  {:<22}{:>20} {:>10} {:>7} {:>6} {:>16}  chatter'.format(
     'window [s]', 'phase', "max|phi2''| rad/s^2", 'max Fn kN', 'f Hz', 'S<0 %', "min phi1' rad/s")
 
 
@@ -216,7 +216,7 @@ def _Run(args: argparse.Namespace) -> int:
                 verdict += (f" (h: {'YES' if not m['halfStep']['chatter'] else 'no'}, "
                             f"h/2: {'YES' if m['halfStep']['chatter'] else 'no'}; max|phi2''| at h/2 "
                             f"{m['halfStep']['maxAbsWheelAcceleration']:.1f})")
-            print(f"{m['t0']:>5.2f} - {m['t1']:<5.2f} {PhaseLabel(parameters, m['phase']):<12}"
+            print(f"{m['t0']:>5.2f} - {m['t1']:<5.2f} {PhaseLabel(parameters, m['phase'], (m['t0'], m['t1'])):<22}"
                   f"{m['maxAbsWheelAcceleration']:>20.1f} {m['maxNormalForce'] / 1e3:>10.1f} "
                   f"{m['dominantFrequencyHz']:>7.1f} {100 * m['fractionSNegative']:>6.0f} {m['minWormSpeed']:>16.2f}  "
                   f"{verdict}")

@@ -14,14 +14,40 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 from ..model.contact import NormalForceFlanks
 
-__all__ = ['SimulationResult', 'SeriesUnit', 'SERIES_UNITS', 'CheckWindows', 'CHATTER_TORQUE_FRACTION', 'CHATTER_MIN_MESH_TORQUE']
+__all__ = ['SimulationResult', 'SeriesUnit', 'SERIES_UNITS', 'CheckWindows', 'CHATTER_AMPLITUDE', 'CHATTER_SUSTAIN',
+           'CHATTER_MIN_MESH_TORQUE', 'CHATTER_TORQUE_FRACTION']
 
-#: chatter criterion: wheel inertia torque J2*|phi2''| in the second half of a window above this
-#: fraction of the largest mesh torque on the wheel in the window
-CHATTER_TORQUE_FRACTION = 0.1
+# The chatter rule of SimulationResult.Chatter, fixed with its reasons in validation/CHATTER_RULE.md: the mesh's
+# normal force and its sliding (worm speed against the motor), each as an amplitude relative to its steady value
+# in the third and last quarter of a window.
+#: chatter: the relative amplitude of the mesh's normal force or sliding in the window's last quarter is at least
+#: this (a self-excited vibration of a zero-backlash mesh saturates only where the flanks unload or the sliding
+#: stops, at a relative amplitude of about 1; speed ramps and slow duty changes move the mesh by a few per cent)
+CHATTER_AMPLITUDE = 0.25
+#: ... and at least this fraction of the third quarter's (a decay resolvable within the window, sigma L >= 3,
+#: loses the factor exp(-3/4) = 0.47 per quarter; a sustained or growing vibration keeps about 1 or more)
+CHATTER_SUSTAIN = 0.5
 #: ... and only where the mesh carries a load: below this mesh torque on the wheel (N*m) a window has no load
 #: to chatter against; what moves there is round-off (about 1e-7 N*m in P1 without load, 1e-3 N*m is 1e4 times that)
 CHATTER_MIN_MESH_TORQUE = 1e-3
+#: wheel inertia torque J2*|phi2''| against this fraction of the largest mesh torque on the wheel: the chatter rule
+#: before the mesh-based one, kept for the wheel's vibration time of a study
+#: (:func:`~exudyn_worm.analysis.studypoint.VibrationSeconds`)
+CHATTER_TORQUE_FRACTION = 0.1
+
+
+def _Detrended(t: np.ndarray, x: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
+    """``x`` minus a quadratic fitted over ``t`` (the slow, quasi-static part), and that quadratic."""
+    if x.size < 3:
+        return np.zeros_like(x), x.astype(float)
+    tc = t - t.mean()
+    scale = max(float(np.max(np.abs(tc))), 1e-300)
+    trend = np.polyval(np.polyfit(tc / scale, x, 2), tc / scale)
+    return x - trend, trend
+
+
+def _HalfRange(x: np.ndarray) -> float:
+    return 0.5 * float(np.max(x) - np.min(x)) if x.size else 0.
 
 
 @dataclass
@@ -42,7 +68,7 @@ class SimulationResult:
     series : dict of str to numpy.ndarray
         The time series above by name, each over ``time`` (also readable as attributes).
     J2 : float
-        Wheel-side inertia in kg*m^2 (chatter criterion: wheel inertia torque).
+        Wheel-side inertia in kg*m^2.
     r2 : float
         Wheel radius in m.
     solveSeconds : float
@@ -50,7 +76,8 @@ class SimulationResult:
     steps : int
         Number of time steps.
     info : dict
-        Metadata of the run (step size, maximum load torque, ...).
+        Metadata of the run (step size, maximum load torque, ...); :meth:`Chatter` reads ``frictionSpeed`` (m/s)
+        and ``slidingRadius`` (r1/cos(gamma) in m, sliding speed per worm speed) where given.
     """
     time: np.ndarray
     series: Dict[str, np.ndarray]
@@ -91,20 +118,112 @@ class SimulationResult:
         freq = np.fft.rfftfreq(4 * x.size, dt)
         return float(freq[1:][np.argmax(spectrum[1:])])
 
+    def MeshOscillation(self, t0: float, t1: float) -> Dict[str, List[float]]:
+        """Relative amplitudes of the mesh's motion in each quarter of [t0, t1] (the measures of :meth:`Chatter`).
+
+        ``normal``: half the range of the normal force after a quadratic over time (the quasi-static force) is
+        removed, over the mean magnitude of that quadratic. ``sliding``: half the range of the worm speed minus
+        the motor speed (the sliding speed r1 phi1'/cos(gamma) is proportional to the worm speed; steady sliding
+        follows the motor), a quadratic removed, over the mean motor speed magnitude, but at least the worm speed
+        of the friction law's regularization speed (``info['frictionSpeed'] / info['slidingRadius']``); without
+        a motor series the worm speed's own quadratic is the steady part. A sliding amplitude above 1 with the
+        motor at speed means the worm turns back.
+
+        Parameters
+        ----------
+        t0, t1 : float
+            The window in s.
+
+        Returns
+        -------
+        dict
+            ``normal`` and ``sliding``: four dimensionless amplitudes each, one per quarter (0 where a quarter
+            holds fewer than 3 samples or the steady value is 0).
+        """
+        s, t = self.series, self.time
+        floor = (self.info['frictionSpeed'] / self.info['slidingRadius']
+                 if 'frictionSpeed' in self.info and 'slidingRadius' in self.info else 0.)
+        out = {'normal': [], 'sliding': []}
+        for k in range(4):
+            m = self._Window(t0 + k * (t1 - t0) / 4, t0 + (k + 1) * (t1 - t0) / 4)
+            if np.count_nonzero(m) < 3:
+                out['normal'].append(0.)
+                out['sliding'].append(0.)
+                continue
+            rest, trend = _Detrended(t[m], s['normalForce'][m])
+            steady = float(np.mean(np.abs(trend)))
+            out['normal'].append(_HalfRange(rest) / steady if steady > 0. else 0.)
+            if 'omega0' in s:
+                rest, _ = _Detrended(t[m], s['omega1'][m] - s['omega0'][m])
+                steady = float(np.mean(np.abs(s['omega0'][m])))
+            else:
+                rest, trend = _Detrended(t[m], s['omega1'][m])
+                steady = float(np.mean(np.abs(trend)))
+            steady = max(steady, floor)
+            out['sliding'].append(_HalfRange(rest) / steady if steady > 0. else 0.)
+        return out
+
     def Chatter(self, t0: float, t1: float) -> bool:
-        """Chatter in [t0, t1]: in the window's second half the wheel inertia torque J2*max|phi2''| exceeds
-        :data:`CHATTER_TORQUE_FRACTION` of the largest mesh torque on the wheel in the window (a decaying
-        transient after a load reversal does not count; a self-excited vibration does), and that mesh torque
-        exceeds :data:`CHATTER_MIN_MESH_TORQUE` (an unloaded mesh, e.g. ``loadMass = 0``, does not chatter)."""
+        """Chatter in [t0, t1]: a vibration of the mesh that keeps its amplitude over the window's second half.
+
+        For the normal force or the sliding of the mesh (:meth:`MeshOscillation`, relative amplitudes), the
+        last quarter's amplitude is at least :data:`CHATTER_AMPLITUDE` and at least :data:`CHATTER_SUSTAIN`
+        times the third quarter's (a decaying transient, e.g. after a load reversal, does not count; a
+        self-excited vibration does, wherever in the drive it lives: the wheel and load side show in the normal
+        force, the worm and drive side in the sliding, stick-slip with worm reversal in both), and the mesh
+        torque on the wheel exceeds :data:`CHATTER_MIN_MESH_TORQUE` somewhere in the window (an unloaded mesh,
+        e.g. ``loadMass = 0``, does not chatter). The rule and its reasons: validation/CHATTER_RULE.md.
+
+        Parameters
+        ----------
+        t0, t1 : float
+            The window in s.
+
+        Returns
+        -------
+        bool
+        """
+        return bool(self.ChatterMeasures(t0, t1))
+
+    def ChatterMeasures(self, t0: float, t1: float) -> List[str]:
+        """The measures of :meth:`MeshOscillation` by which [t0, t1] chatters (:meth:`Chatter`): ``'normal'``,
+        ``'sliding'``, both or none (none also for an unloaded mesh).
+
+        Parameters
+        ----------
+        t0, t1 : float
+            The window in s.
+
+        Returns
+        -------
+        list of str
+        """
         m = self._Window(t0, t1)
-        late = self._Window(0.5 * (t0 + t1), t1)
         meshTorque = np.max(np.abs(self.series['wheelTorque'][m])) if m.any() else 0.
-        inertiaTorque = self.J2 * np.max(np.abs(self.series['alpha2'][late])) if late.any() else 0.
-        return bool(meshTorque > CHATTER_MIN_MESH_TORQUE and inertiaTorque > CHATTER_TORQUE_FRACTION * meshTorque)
+        if not meshTorque > CHATTER_MIN_MESH_TORQUE:
+            return []
+        return [name for name, a in self.MeshOscillation(t0, t1).items()
+                if a[3] >= CHATTER_AMPLITUDE and a[3] >= CHATTER_SUSTAIN * a[2]]
+
+    def MinWormSpeed(self, t0: float, t1: float) -> float:
+        """Smallest worm speed in [t0, t1] in rad/s, counted in the direction the motor turns in the window
+        (the sign of its mean speed; forward where it stands or without a motor series): negative where the
+        worm turns back, also while lowering with the motor reversed.
+
+        Parameters
+        ----------
+        t0, t1 : float
+            The window in s.
+        """
+        m = self._Window(t0, t1)
+        if not m.any():
+            return float('nan')
+        mean = float(np.mean(self.series['omega0'][m])) if 'omega0' in self.series else 0.
+        return float(np.min((-1. if mean < 0. else 1.) * self.series['omega1'][m]))
 
     def WindowMetrics(self, windows: Sequence[Tuple[float, float]]) -> List[Dict]:
         """Per window: t0, t1, maxAbsWheelAcceleration (rad/s^2), maxNormalForce (N), dominantFrequencyHz,
-        fractionSNegative, minWormSpeed (rad/s), chatter."""
+        fractionSNegative, minWormSpeed (rad/s, in the motor's direction: :meth:`MinWormSpeed`), chatter."""
         out = []
         for t0, t1 in CheckWindows(windows, self.endTime, 'SimulationResult.WindowMetrics'):
             m = self._Window(t0, t1)
@@ -115,7 +234,7 @@ class SimulationResult:
                         'maxNormalForce': float(np.max(np.abs(self.series['normalForce'][m]))),
                         'dominantFrequencyHz': self.DominantFrequency(t0, t1),
                         'fractionSNegative': float(np.mean(self.series['S'][m] < 0)),
-                        'minWormSpeed': float(np.min(self.series['omega1'][m])),
+                        'minWormSpeed': self.MinWormSpeed(t0, t1),
                         'chatter': self.Chatter(t0, t1)})
         return out
 
