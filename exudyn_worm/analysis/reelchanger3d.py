@@ -9,8 +9,9 @@ the worm turns about global x (its first angle), the wheel about global z (its l
 the load act on those coordinates (the torque about the axis, for any tilt of the wheel and to first order in the
 worm's tilt). The centre line is global +y; the pitch point is at y = r1.
 
-Parameter sets: those of the reel changer without drive-side or load-side chains, axial-bearing keys or another
-duty (the plain presets reel-P1 ... reel-P7).
+Parameter sets: those of the reel changer without drive-side or load-side chains, with a constant-speed motor (the
+presets reel-P1 ... reel-P7); an axial bearing ``kA, dA, mA`` lets the worm (of mass mA) slide on its revolute
+joint against the axial spring-damper, the model of :func:`~exudyn_worm.items.connector.CreateWormAxialBearing`.
 """
 from __future__ import annotations
 
@@ -101,9 +102,13 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
 
     w = 'BuildRigidBodyReelChanger'
     wormMass, wheelMass = CheckPositive(w, 'wormMass', wormMass, 'kg'), CheckPositive(w, 'wheelMass', wheelMass, 'kg')
-    if DriveSideChain(parameters) or LoadSideChain(parameters) or AxialBearingFromParameters(parameters) is not None:
-        raise ValueError(f"{w}: the rigid-body reel changer has no drive-side or load-side chain and takes the axial "
-                         f"bearing as 'wormBearings': remove J4.., JL1.. and kA, dA, mA from the parameter set")
+    if DriveSideChain(parameters) or LoadSideChain(parameters):
+        raise ValueError(f"{w}: the rigid-body reel changer has no drive-side or load-side chain: remove J4.., JL1.. "
+                         f"from the parameter set")
+    axial = AxialBearingFromParameters(parameters)
+    if axial is not None and wormBearings is not None:
+        raise ValueError(f"{w}: give the worm's axial bearing once: as kA, dA, mA of the parameter set or in "
+                         f"'wormBearings'")
     if parameters.get('motorType', 'constantSpeed') != 'constantSpeed':
         raise ValueError(f"{w}: the rigid-body reel changer drives the motor at constant speed, got motorType = "
                          f"{parameters.get('motorType')!r}")
@@ -111,7 +116,9 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
     gear = drive.gear
     load = LoadFromParameters(parameters, w)
     motorSpeed = float(parameters['motorSpeed'])
-    init = SteadyInitialState(drive, load, motorSpeed, contactOptions)
+    init = SteadyInitialState(drive, load, motorSpeed, contactOptions, axial)
+    if axial is not None:
+        wormMass = axial.mass                  # the worm moves axially as a whole
 
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -121,13 +128,14 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
                                inertia=RigidBodyInertia(mass=wormMass,
                                                         inertiaTensor=np.diag([drive.J1, drive.J1, drive.J1])),
                                initialRotationMatrix=RotationMatrixX(init['phi1']),
+                               initialDisplacement=[init.get('xA', 0.), 0., 0.], initialVelocity=[init.get('vA', 0.), 0., 0.],
                                initialAngularVelocity=[init['omega1'], 0., 0.], returnDict=True)
     wheel = mbs.CreateRigidBody(name='wheel', nodeType=exu.NodeType.RotationRxyz, referencePosition=[0., a, 0.],
                                 inertia=RigidBodyInertia(mass=wheelMass,
                                                          inertiaTensor=np.diag([drive.J2, drive.J2, drive.J2])),
                                 initialRotationMatrix=RotationMatrixZ(init['phi2']),
                                 initialAngularVelocity=[0., 0., init['omega2']], returnDict=True)
-    bearings = {'worm': _Support(mbs, worm, [1., 0., 0.], wormBearings, 'worm'),
+    bearings = {'worm': _Support(mbs, worm, [1., 0., 0.], wormBearings, 'worm', axial),
                 'wheel': _Support(mbs, wheel, [0., 0., 1.], wheelBearings, 'wheel')}
     motor = CreateRotor(mbs, 1e-3, initialAngle=0., initialSpeed=motorSpeed, name='motor')
     CreatePrescribedRotation(mbs, motor, ConstantSpeed(motorSpeed), name='motorDrive', useSymbolic=useSymbolic)
@@ -145,8 +153,9 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
     return RigidBodyReelChanger(SC, mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init))
 
 
-def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str):
-    """Ideal revolute joint about the global ``axis`` through the body's reference point, or the elastic bearings."""
+def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axial=None):
+    """Ideal revolute joint about the global ``axis`` through the body's reference point, or the elastic bearings;
+    with ``axial`` (an AxialBearing) the joint lets the body slide along the axis on the axial spring-damper."""
     if bearings is not None:
         return CreateShaftBearings(mbs, body, axis=axis, bearings=bearings, name=name + 'Bearing')
     import exudyn as exu
@@ -158,6 +167,15 @@ def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str):
     rotation = np.eye(3) if axis[0] == 1. else RotationMatrixY(-np.pi / 2)
     mGround = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localHT=exu.HT(rotation=rotation)))
     mBody = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body['bodyNumber'], localHT=exu.HT(rotation=rotation)))
-    joint = mbs.AddObject(ObjectJointGeneric(markerNumbers=[mGround, mBody], constrainedAxes=[1, 1, 1, 0, 1, 1],
+    joint = mbs.AddObject(ObjectJointGeneric(markerNumbers=[mGround, mBody],
+                                             constrainedAxes=[0 if axial is not None else 1, 1, 1, 0, 1, 1],
                                              name=name + 'Joint'))
-    return {'joint': joint, 'markerNumbers': [mGround, mBody]}
+    out = {'joint': joint, 'markerNumbers': [mGround, mBody]}
+    if axial is not None:                      # the worm's axial coordinate: its node's x (the axis is global x)
+        from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, NodePointGround
+        nGround = mbs.AddNode(NodePointGround())
+        m0 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nGround, coordinate=0))
+        m1 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=body['nodeNumber'], coordinate=0))
+        out['axialSpring'] = mbs.AddObject(CoordinateSpringDamper(markerNumbers=[m0, m1], stiffness=axial.stiffness,
+                                                                  damping=axial.damping, name=name + 'Axial'))
+    return out

@@ -632,7 +632,7 @@ def _BodyOf(mbs, where: str, name: str, body):
 def _CheckMass(where: str, name: str, info, axis: np.ndarray) -> None:
     mass = float(info.get('mass', info.get('physicsMass', 0.)))
     if not mass > 0:
-        raise ValueError(f"{where}: '{name}' has no mass (physicsMass = {mass!r} kg): give the body its mass and "
+        raise ValueError(f"{where}: '{name}' has no mass (mass = {mass!r} kg): give the body its mass and "
                          f"inertia (e.g. mbs.CreateRigidBody(inertia=InertiaCylinder(...)))")
     Jxx, Jyy, Jzz, Jyz, Jxz, Jxy = (float(x) for x in info.get('inertia', info.get('physicsInertia', [0.] * 6)))
     J = np.array([[Jxx, Jxy, Jxz], [Jxy, Jyy, Jyz], [Jxz, Jyz, Jzz]])
