@@ -137,7 +137,7 @@ def test_axial_worm_shift_and_approach_enter_the_mesh_as_in_the_contact_law():
     assert lever > 0
 
 
-def _ReelRuns(parameters, endTime, **kwargs):
+def _ReelRuns(parameters, endTime, solverOptions=None, **kwargs):
     """The reel changer with the one-angle connector and with rigid bodies on ideal joints, same settings."""
     h = RecommendedStepSize(parameters)
     out = []
@@ -146,7 +146,7 @@ def _ReelRuns(parameters, endTime, **kwargs):
         if build is BuildRigidBodyReelChanger:
             model.connector.AddSensors(model.mbs)
         model.mbs.Assemble()
-        ss, solverType = SolverSettings(endTime, h)
+        ss, solverType = SolverSettings(endTime, h, solverOptions)
         model.mbs.SolveDynamic(ss, solverType=solverType)
         out.append((model, model.connector.StoredMeshState(model.mbs)))
     return out

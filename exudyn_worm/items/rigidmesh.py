@@ -371,6 +371,8 @@ class RigidBodyWormGearConnector:
         Sensors added by :meth:`AddSensors`, by name.
     stickSlip : object or None
         The stick/slip state of the sticking friction model; None with the regularized model or a fixed S.
+    userFunction : callable or None
+        The plain-Python user function given to Exudyn (kept alive here).
     """
     objectNumber: Any
     bodyNumbers: List[Any]
