@@ -347,7 +347,7 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
         raise ValueError(f"{w}: the system has no worm-gear connector (build one with CreateWormGear)")
     for c in connectors:
         if not isinstance(c, (WormGearConnector, RigidBodyWormGearConnector)):
-            raise TypeError(f"{w}: 'connectors' must hold WormGearConnector or RigidBodyWormGearConnector objects, "
+            raise TypeError(f"{w}: 'connectors' must hold WormGearConnector objects (or RigidBodyWormGearConnector), "
                             f"got {type(c).__name__}")
     n = len(connectors)
     states = list(itertools.product(CONTACT_STATES, repeat=n)) if contactStates is None else \
