@@ -83,6 +83,7 @@ UNHINTED = {
         'exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear': ['mbs'],
         'exudyn_worm.items.bearings.CreateShaftBearings': ['mbs', 'body'],
         'exudyn_worm.items.bearings.StoredBearingLoads': ['mbs'],
+        'exudyn_worm.items.meshgraphics.AddRigidMeshGraphics': ['mbs', 'connector'],
         'exudyn_worm.items.drivetrain.CreatePrescribedRotation': ['mbs', 'rotor', 'profile'],
         'exudyn_worm.items.drivetrain.CreateRotor': ['mbs'],
         'exudyn_worm.items.drivetrain.CreateRotorTorque': ['mbs', 'rotor', 'law'],
