@@ -267,3 +267,23 @@ def test_bearings_reject_bad_values():
     with pytest.raises(ValueError, match=r"radialStiffness"):
         ShaftBearings(radialStiffness=-1., axialStiffness=1e8)
     assert StoredBearingLoads.__doc__
+
+
+@pytest.mark.physics
+def test_markers_place_the_axes_through_their_points():
+    """The wheel body's reference point 0.05 m off its axis: with a marker on the axis the mesh is the same as with
+    the body on its axis (the same deflection for the same rotations)."""
+    from exudyn.itemInterface import MarkerBodyRigid
+    from exudyn.rigidBodyUtilities import InertiaCylinder, RotationMatrixZ
+    SC, mbs, worm, wheel = _Pair(phi1=1e-4, joints=False)
+    reference = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=GEAR).InitialMeshState(mbs).deltaS
+    offset = mbs.CreateRigidBody(inertia=InertiaCylinder(7800., 0.03, GEAR.r2, axis=2),
+                                 referencePosition=[0.05, GEAR.r1 + GEAR.r2, 0.], initialRotationMatrix=RotationMatrixZ(0.),
+                                 returnDict=True)
+    mWorm = mbs.AddMarker(MarkerBodyRigid(bodyNumber=worm['bodyNumber'], localPosition=[0., 0., 0.]))
+    mWheel = mbs.AddMarker(MarkerBodyRigid(bodyNumber=offset['bodyNumber'], localPosition=[-0.05, 0., 0.]))
+    mesh = CreateRigidBodyWormGear(mbs, markerNumbers=[mWorm, mWheel], gear=GEAR)
+    assert mesh.InitialMeshState(mbs).deltaS == pytest.approx(reference, rel=1e-12)
+    np.testing.assert_allclose(mesh._kinematics.bodies[1].axisPoint, [-0.05, 0., 0.], atol=1e-15)
+    with pytest.raises(ValueError, match="give either 'bodyNumbers' or 'markerNumbers'"):
+        CreateRigidBodyWormGear(mbs, [worm, wheel], gear=GEAR, markerNumbers=[mWorm, mWheel])

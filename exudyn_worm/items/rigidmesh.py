@@ -631,6 +631,24 @@ def _BodyOf(mbs, where: str, name: str, body):
     return body, info, node, nodeInfo
 
 
+def _BodiesOfMarkers(mbs, where: str, markerNumbers):
+    """Bodies and local points of [worm, wheel] markers (MarkerBodyRigid or MarkerBodyPosition)."""
+    if isinstance(markerNumbers, (str, bytes, dict)) or not hasattr(markerNumbers, '__len__') or len(markerNumbers) != 2:
+        raise ValueError(f"{where}: 'markerNumbers' must be [worm, wheel], two body markers, got {markerNumbers!r}")
+    bodies, points = [], []
+    for k, m in enumerate(markerNumbers):
+        try:
+            info = mbs.GetMarker(m)
+        except Exception as err:      # exudyn raises its own error type for an invalid index
+            raise ValueError(f"{where}: 'markerNumbers[{k}]' is not a marker of this system: {m!r} ({err})") from None
+        if info.get('markerType') not in ('BodyRigid', 'BodyPosition'):
+            raise ValueError(f"{where}: 'markerNumbers[{k}]' must be a MarkerBodyRigid or MarkerBodyPosition, got "
+                             f"marker type '{info.get('markerType')}'")
+        bodies.append(info['bodyNumber'])
+        points.append(np.asarray(info.get('localPosition', [0., 0., 0.]), dtype=float))
+    return bodies, points
+
+
 def _CheckMass(where: str, name: str, info, axis: np.ndarray) -> None:
     mass = float(info.get('mass', info.get('physicsMass', 0.)))
     if not mass > 0:
@@ -647,10 +665,11 @@ def _Rotation(body: _Body, theta) -> np.ndarray:
     return np.array(body.kinematics.rotationMatrix([float(x) for x in theta], MATH_OPS), dtype=float)
 
 
-def CreateRigidBodyWormGear(mbs, bodyNumbers: Sequence[Any], gear: WormGear, wormAxis: Sequence[float] = (1., 0., 0.),
-                            wheelAxis: Sequence[float] = (0., 0., 1.), name: str = '',
-                            contactOptions: ContactOptions = ContactOptions(),
-                            referenceAngles: Sequence[float] = (0., 0.)) -> RigidBodyWormGearConnector:
+def CreateRigidBodyWormGear(mbs, bodyNumbers: Optional[Sequence[Any]] = None, gear: Optional[WormGear] = None,
+                            wormAxis: Sequence[float] = (1., 0., 0.), wheelAxis: Sequence[float] = (0., 0., 1.),
+                            name: str = '', contactOptions: ContactOptions = ContactOptions(),
+                            referenceAngles: Sequence[float] = (0., 0.),
+                            markerNumbers: Optional[Sequence[Any]] = None) -> RigidBodyWormGearConnector:
     """Add a worm mesh between a worm body and a wheel body (3D rigid bodies on the user's joints or bearings).
 
     Parameters
@@ -660,6 +679,7 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Sequence[Any], gear: WormGear, wor
     bodyNumbers : [worm, wheel]
         The two rigid bodies (``ObjectRigidBody``, e.g. from ``mbs.CreateRigidBody``, as body numbers or its
         ``returnDict``), with node type Euler parameters, Tait-Bryan angles (Rxyz) or rotation vector (Lie group).
+        Their axes pass through the bodies' reference points; give ``markerNumbers`` instead for other points.
     gear : WormGear
         Mesh geometry (r1, r2, alphaN, gamma), stiffness, damping, backlash and friction.
     wormAxis, wheelAxis : 3D vectors
@@ -676,6 +696,9 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Sequence[Any], gear: WormGear, wor
     referenceAngles : (float, float)
         Angles in rad added to the worm's and the wheel's measured rotations (default 0: no deflection of the
         mesh in the reference configuration).
+    markerNumbers : [worm, wheel], optional
+        Instead of ``bodyNumbers``: a ``MarkerBodyRigid`` or ``MarkerBodyPosition`` on each body, at a point of its
+        rotation axis.
 
     Returns
     -------
@@ -693,6 +716,12 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Sequence[Any], gear: WormGear, wor
     CheckName(w, 'name', name)
     if not isinstance(gear, WormGear):
         raise TypeError(f"{w}: 'gear' must be a WormGear, got {type(gear).__name__}")
+    if (bodyNumbers is None) == (markerNumbers is None):
+        raise ValueError(f"{w}: give either 'bodyNumbers' or 'markerNumbers' ([worm, wheel]), got "
+                         f"bodyNumbers = {bodyNumbers!r}, markerNumbers = {markerNumbers!r}")
+    linePoints = [np.zeros(3), np.zeros(3)]           # the axes' points in body coordinates
+    if markerNumbers is not None:
+        bodyNumbers, linePoints = _BodiesOfMarkers(mbs, w, markerNumbers)
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
     if isinstance(bodyNumbers, (str, bytes, dict)) or not hasattr(bodyNumbers, '__len__') or len(bodyNumbers) != 2:
@@ -718,14 +747,15 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Sequence[Any], gear: WormGear, wor
         references.append((ref[:3], _Rotation(b, ref[3:])))
         initial.append(ref + np.asarray(nodeInfo['initialCoordinates'], dtype=float))
     (x1, R1), (x2, R2) = references
+    p1, p2 = x1 + R1 @ linePoints[0], x2 + R2 @ linePoints[1]
     ea, eb = R1 @ axes[0], R2 @ axes[1]
     cross = math.degrees(math.acos(max(-1., min(1., abs(float(ea @ eb))))))
     if abs(float(ea @ eb)) > math.sin(PERPENDICULAR_TOLERANCE):
         raise ValueError(f"{w}: the worm axis and the wheel axis must cross at 90 deg (within "
                          f"{math.degrees(PERPENDICULAR_TOLERANCE):g} deg), got {cross:.4g} deg (global worm axis "
                          f"{np.round(ea, 6).tolist()}, wheel axis {np.round(eb, 6).tolist()})")
-    d = x2 - x1
-    F1, F2 = x1 + (d @ ea) * ea, x2 - (d @ eb) * eb
+    d = p2 - p1
+    F1, F2 = p1 + (d @ ea) * ea, p2 - (d @ eb) * eb
     D0 = F2 - F1
     a, target = float(np.linalg.norm(D0)), gear.r1 + gear.r2
     if abs(a - target) > CENTRE_DISTANCE_TOLERANCE * target:
