@@ -287,3 +287,32 @@ def test_markers_place_the_axes_through_their_points():
     np.testing.assert_allclose(mesh._kinematics.bodies[1].axisPoint, [-0.05, 0., 0.], atol=1e-15)
     with pytest.raises(ValueError, match="give either 'bodyNumbers' or 'markerNumbers'"):
         CreateRigidBodyWormGear(mbs, [worm, wheel], gear=GEAR, markerNumbers=[mWorm, mWheel])
+
+
+@pytest.mark.physics
+@pytest.mark.parametrize('nodeType', ['RotationRxyz', 'RotationRotationVector'])
+def test_free_mesh_oscillation_matches_the_one_angle_connector(nodeType):
+    """Worm and wheel on ideal joints, no drive or load, the mesh pre-deflected: the mesh oscillation of the one-angle
+    connector on two rotors with the bodies' moments of inertia within 1e-6 (full Newton: with modified Newton the
+    rotation-vector nodes do not converge; docs/mesh-3d.md)."""
+    from exudyn_worm.items.connector import CreateWormGear
+    from exudyn_worm.items.drivetrain import CreateRotor
+    options = ContactOptions(frictionModel='regularized')
+    settings = {'timeIntegration.newton.useModifiedNewton': False}
+    SC, mbs, worm, wheel = _Pair(nodeType, phi1=3e-4, omega1=40., omega2=40. / GEAR.ratio)
+    J1 = mbs.GetObject(worm['bodyNumber'])['inertia'][0]
+    J2 = mbs.GetObject(wheel['bodyNumber'])['inertia'][2]
+    mesh = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=GEAR, contactOptions=options)
+    mesh.AddSensors(mbs)
+    SC1 = exu.SystemContainer()
+    mbs1 = SC1.AddSystem()
+    rotors = [CreateRotor(mbs1, J1, 3e-4, 40.), CreateRotor(mbs1, J2, 0., 40. / GEAR.ratio)]
+    reference = CreateWormGear(mbs1, rotors, gear=GEAR, contactOptions=options)
+    reference.AddSensors(mbs1)
+    states = []
+    for system, connector in ((mbs, mesh), (mbs1, reference)):
+        system.Assemble()
+        ss, solverType = SolverSettings(0.015, 1e-4, settings)
+        system.SolveDynamic(ss, solverType=solverType)
+        states.append(connector.StoredMeshState(system))
+    assert _Relative(states[0].normalForce, states[1].normalForce) < 1e-6

@@ -680,6 +680,7 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Optional[Sequence[Any]] = None, ge
         The two rigid bodies (``ObjectRigidBody``, e.g. from ``mbs.CreateRigidBody``, as body numbers or its
         ``returnDict``), with node type Euler parameters, Tait-Bryan angles (Rxyz) or rotation vector (Lie group).
         Their axes pass through the bodies' reference points; give ``markerNumbers`` instead for other points.
+        With rotation-vector or Euler-parameter nodes use full Newton (docs/mesh-3d.md, "Node types").
     gear : WormGear
         Mesh geometry (r1, r2, alphaN, gamma), stiffness, damping, backlash and friction.
     wormAxis, wheelAxis : 3D vectors
