@@ -255,7 +255,7 @@ class _Kinematics:
 
 
 class _SpinReference:
-    """The reference angles about which the recorded law measures the bodies' rotations (module docstring).
+    """The reference angles about which the law measures the bodies' rotations (module docstring).
 
     Registered with the system's post-Newton function (shared with the stick/slip states of
     :mod:`.connector`); it moves the references to the bodies' angles before they have turned :data:`_SPIN_STEP`.
