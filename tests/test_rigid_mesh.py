@@ -316,3 +316,13 @@ def test_free_mesh_oscillation_matches_the_one_angle_connector(nodeType):
         system.SolveDynamic(ss, solverType=solverType)
         states.append(connector.StoredMeshState(system))
     assert _Relative(states[0].normalForce, states[1].normalForce) < 1e-6
+
+
+@pytest.mark.physics
+def test_axial_force_is_the_worms_thrust_without_an_axial_bearing():
+    """MeshState.axialForce is -wheelTorque / r2 also without an axial degree of freedom (the rigid bearing's thrust),
+    as documented."""
+    from exudyn_worm.model.contact import MeshContact
+    state = MeshContact(GEAR, 2e-4, 0., 40., 40. / GEAR.ratio, ContactOptions(frictionModel='regularized'))
+    assert state.axialForce == pytest.approx(-state.wheelTorque / GEAR.r2, rel=1e-15)
+    assert state.axialForce < 0.
