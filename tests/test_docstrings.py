@@ -81,6 +81,10 @@ UNHINTED = {
     _EXUDYN: {
         'exudyn_worm.items.connector.CreateWormAxialBearing': ['mbs'],
         'exudyn_worm.items.connector.CreateWormGear': ['mbs'],
+        'exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear': ['mbs'],
+        'exudyn_worm.items.bearings.CreateShaftBearings': ['mbs', 'body'],
+        'exudyn_worm.items.bearings.StoredBearingLoads': ['mbs'],
+        'exudyn_worm.items.meshgraphics.AddRigidMeshGraphics': ['mbs', 'connector'],
         'exudyn_worm.items.drivetrain.CreatePrescribedRotation': ['mbs', 'rotor', 'profile'],
         'exudyn_worm.items.drivetrain.CreateRotor': ['mbs'],
         'exudyn_worm.items.drivetrain.CreateRotorTorque': ['mbs', 'rotor', 'law'],
@@ -107,7 +111,7 @@ UNHINTED = {
     },
     _CALLBACK: {
         'exudyn_worm.model.contact.MeshContact': ['phi1', 'phi2', 'omega1', 'omega2', 'ops', 'axialDisplacement',
-                                            'axialSpeed'],
+                                            'axialSpeed', 'radialApproach', 'radialSpeed'],
         'exudyn_worm.model.contact.NormalForceFlanks': ['normalForce', '->'],
         'exudyn_worm.analysis.reelchanger.BuildReelChanger': ['profile'],
         'exudyn_worm.analysis.reelchanger.SimulateReelChanger': ['profile'],

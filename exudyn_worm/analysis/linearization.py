@@ -29,6 +29,7 @@ import numpy as np
 
 from .._checks import CheckSystem, JsonNumber
 from ..items.connector import CONNECTORS_KEY, AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
+from ..items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
 from ..model.contact import ContactOptions
 from ..model.drive import ElasticDrive
 from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft
@@ -298,8 +299,10 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
         :func:`~exudyn_worm.analysis.reelchanger.BuildReelChanger`). It is linearized about its initial state, in which
         every mesh must be in contact: build your own model at :func:`~exudyn_worm.items.equilibrium.SteadyInitialState`
         (docs/equilibrium.md).
-    connectors : sequence of WormGearConnector, optional
-        The meshes whose contact state is held; default: every connector built in ``mbs``.
+    connectors : sequence of WormGearConnector or RigidBodyWormGearConnector, optional
+        The meshes whose contact state is held; default: every connector built in ``mbs`` (also the meshes between
+        rigid bodies of :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`, whose nodes' coordinates,
+        ``name[0]`` ... , appear in the mode shapes: positions x, y, z, then the rotation parameters).
     contactStates : sequence of sequences of int, optional
         The combinations to analyse, one +-1 per connector; default: all 2^n combinations,
         ``(+1, ..., +1)`` first.
@@ -336,12 +339,15 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
     """
     w = 'AnalyzeLinearStability'
     mbs = _System(w, mbs)
-    connectors = list(mbs.variables.get(CONNECTORS_KEY, [])) if connectors is None else list(connectors)
+    if connectors is None:          # the one-angle meshes, then the meshes between rigid bodies
+        connectors = list(mbs.variables.get(CONNECTORS_KEY, [])) + list(mbs.variables.get(RIGID_CONNECTORS_KEY, []))
+    connectors = list(connectors)
     if not connectors:
         raise ValueError(f"{w}: the system has no worm-gear connector (build one with CreateWormGear)")
     for c in connectors:
-        if not isinstance(c, WormGearConnector):
-            raise TypeError(f"{w}: 'connectors' must hold WormGearConnector objects, got {type(c).__name__}")
+        if not isinstance(c, (WormGearConnector, RigidBodyWormGearConnector)):
+            raise TypeError(f"{w}: 'connectors' must hold WormGearConnector objects (or RigidBodyWormGearConnector), "
+                            f"got {type(c).__name__}")
     n = len(connectors)
     states = list(itertools.product(CONTACT_STATES, repeat=n)) if contactStates is None else \
         [tuple(s) for s in contactStates]

@@ -35,7 +35,8 @@ def _RecordSymbolic(mbs, itemIndex, userFunctionName: str, arguments, returnType
         value = build(args, SymbolicOps())
         fnDict = {'functionName': userFunctionName, 'argList': args,
                   'argTypeList': ['MainSystem'] + [typ for _, typ, _ in arguments],
-                  'returnValue': esym.Vector(list(value)) if returnType == 'StdVector' else value,
+                  'returnValue': (value if isinstance(value, esym.Vector) else esym.Vector(list(value)))
+                  if returnType == 'StdVector' else value,
                   'returnType': returnType}
         uf = esym.UserFunction()
         uf.SetUserFunctionFromDict(mbs, fnDict, userFunctionName, itemIndex, 'None')
@@ -54,6 +55,8 @@ _OFFSET_ARGUMENTS = [('t', 'Real', 1), ('itemNumber', 'Index', 1), ('lOffset', '
 
 
 def _Flat(value):
+    if hasattr(value, 'NumberOfItems'):        # a symbolic vector (e.g. a matrix-vector product)
+        return [float(x) for x in value.Evaluate()]
     items = list(value) if isinstance(value, (list, tuple)) else [value]
     return [float(x.Evaluate()) if hasattr(x, 'Evaluate') else float(x) for x in items]
 

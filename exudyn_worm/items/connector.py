@@ -179,9 +179,9 @@ class _StickSlip:
         FrictionState
             The start state.
         """
-        indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
-        x = [float(coordinates[i]) + ref for i, ref in zip(indices[:2], self.references[:2])]
-        state = _StartFrictionState(self.gear, x[0], x[1], float(velocities[indices[0]]))
+        self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
+        x, w = self._LawInputs(coordinates, velocities)
+        state = _StartFrictionState(self.gear, x[0], x[1], w[0])
         self.state = state
         if self.variables is not None:
             for name in ('stuck', 'direction', 'anchor'):
@@ -204,9 +204,8 @@ class _StickSlip:
         FrictionState
             The shifted state.
         """
-        indices = [mbs.GetNodeODE2Index(n) for n in self.nodes[:2]]
-        old, new = ([float(q[i]) + ref for i, ref in zip(indices, self.references[:2])]
-                    for q in (fromCoordinates, toCoordinates))
+        self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
+        old, new = (self._LawInputs(q, q)[0] for q in (fromCoordinates, toCoordinates))
         shift = SlidingCoordinate(self.gear, new[0], new[1]) - SlidingCoordinate(self.gear, old[0], old[1])
         state = FrictionState(self.state.stuck, self.state.direction, self.state.anchor + shift)
         self.state = state
@@ -242,7 +241,7 @@ class _StickSlip:
         if last is not None and t > last[0]:                      # mean acceleration since the last check
             rate = abs(omega1 - last[1]) / (t - last[0])
         else:
-            rate = abs(float(data.GetODE2Coordinates_tt()[self._indices[0]]))
+            rate = abs(self._WormAcceleration(data))
         horizon = self.CHECK_FRACTION * abs(omega1)
         # the largest acceleration seen in this solve: a worm that once decelerated hard may do so again, and a
         # missed reversal would let the friction push the worm the wrong way until the next check
@@ -256,8 +255,8 @@ class _StickSlip:
         self._nextCheck = t + interval
         if self._nextCheck - t < self.REVERSAL_WINDOW:      # a reversal may come: keep s to locate it
             q = data.GetODE2Coordinates()
-            x = [float(q[i]) + ref for i, ref in zip(self._indices[:2], self.references[:2])]
-            self._lastCheck = (t, omega1, SlidingCoordinate(self.gear, *x))
+            x = self._LawInputs(q, q)[0]
+            self._lastCheck = (t, omega1, SlidingCoordinate(self.gear, x[0], x[1]))
 
     def _ReversalCoordinate(self, t: float, omega1: float, s: float):
         """Sliding coordinate at which the worm turned back, interpolated linearly in time between the last
@@ -266,6 +265,27 @@ class _StickSlip:
         if last is None or last[2] is None or not 0. < t - last[0] <= self.REVERSAL_WINDOW or last[1] == omega1:
             return None
         return last[2] + (s - last[2]) * last[1] / (last[1] - omega1)
+
+    def _LawInputs(self, q, v):
+        """The law's coordinates (with the node references) and speeds from whole-system ODE2 vectors ``q``, ``v``
+        (a mesh of another kind, e.g. between rigid bodies, overrides this and the two methods below)."""
+        return ([float(q[i]) + ref for i, ref in zip(self._indices, self.references)],
+                [float(v[i]) for i in self._indices])
+
+    def _WormSpeed(self, data, v) -> float:
+        """The worm speed in rad/s that the friction law reads, from the whole-system ODE2 velocities ``v``."""
+        return float(v[self._indices[0]])
+
+    def _WormAcceleration(self, data) -> float:
+        """The worm's angular acceleration in rad/s^2 (for the check schedule)."""
+        return float(data.GetODE2Coordinates_tt()[self._indices[0]])
+
+    def _Forces(self, x, w):
+        """(friction force, normal force) in N of the law recorded in C++ at inputs ``x``, ``w``; None without it."""
+        if self._probe is None:
+            return None
+        self._probe[0].SetVector(list(x) + list(w))
+        return self._probe[1].Evaluate()
 
     def NextCheck(self) -> float:
         """Earliest time in s at which this mesh must be looked at again (-inf: after every step)."""
@@ -292,20 +312,15 @@ class _StickSlip:
             self._data = mbs.systemData            # fetched once: about 10 us per access during a solve
         data = self._data
         v = data.GetODE2Coordinates_t()
-        omega1 = float(v[self._indices[0]])
+        omega1 = self._WormSpeed(data, v)
         if sliding and omega1 * state.direction >= 0.:          # still sliding the same way
             self._ScheduleCheck(data, t, omega1)
             return 0.
-        q = data.GetODE2Coordinates()
-        x = [float(q[i]) + ref for i, ref in zip(self._indices, self.references)]
-        w = [float(v[i]) for i in self._indices]
+        x, w = self._LawInputs(data.GetODE2Coordinates(), v)
         reversal = self._ReversalCoordinate(t, omega1, SlidingCoordinate(self.gear, x[0], x[1])) if sliding else None
         if sliding:
             self._lastCheck, self._nextCheck = None, t
-        forces = None
-        if self._probe is not None:
-            self._probe[0].SetVector(x + w)
-            forces = self._probe[1].Evaluate()
+        forces = self._Forces(x, w)
         axial = (x[2], w[2]) if len(x) == 3 else (None, None)
         new, jump = StickSlipUpdate(self.gear, self.options, state, x[0], x[1], w[0], w[1], *axial, forces=forces,
                                     reversalCoordinate=reversal)

@@ -219,7 +219,8 @@ class MeshState:
     wheelTorque : float or ndarray
         Mesh torque on the wheel in N*m (positive in the wheel's positive direction).
     axialForce : float or ndarray
-        Mesh force on the worm along its axis in N (+ in the direction of xA); 0 without an axial bearing.
+        Mesh force on the worm along its axis in N (+ in the direction of xA): ``-wheelTorque / r2``, the worm's
+        axial thrust, with or without an axial bearing (without one the rigid bearing carries it).
     time : ndarray or None
         Times in s of the states, when the state comes from a simulation
         (:meth:`~exudyn_worm.items.connector.WormGearConnector.StoredMeshState`); None otherwise.
@@ -229,6 +230,9 @@ class MeshState:
         sticking.
     stuck : float or ndarray
         1 where the flanks stick (sticking model with a state), else 0.
+    radialForce : float or ndarray
+        Mesh force on the worm along the centre line towards the wheel in N: ``-sin(alphaN) Fn``, the separating
+        force (<= 0 unless ``dampingCanPull``); the wheel takes the opposite force.
     """
     deltaPhi: Any
     deltaS: Any
@@ -241,6 +245,7 @@ class MeshState:
     time: Any = None
     frictionForce: Any = 0.
     stuck: Any = 0.
+    radialForce: Any = 0.
 
     @property
     def normalForceFlanks(self):
@@ -267,7 +272,7 @@ def NormalForceFlanks(normalForce):
 
 def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOptions = ContactOptions(),
                 ops=MATH_OPS, axialDisplacement=None, axialSpeed=None,
-                frictionState: Optional[FrictionState] = None) -> MeshState:
+                frictionState: Optional[FrictionState] = None, radialApproach=None, radialSpeed=None) -> MeshState:
     """Evaluate the contact law for worm/wheel angles ``phi1, phi2`` and speeds ``omega1, omega2``.
 
     Parameters
@@ -288,6 +293,12 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
         Stick/slip state of the sticking model (floats, arrays of the same shape as the angles, or symbolic
         variables). None: the exact Coulomb law ``sf = sign(phi1')`` (no stick state). Ignored by the
         regularized model and with a fixed S.
+    radialApproach, radialSpeed : float, ndarray or symbolic, optional
+        Approach ``C`` (m) of worm and wheel along the centre line (worm towards wheel positive) and its rate
+        (m/s), e.g. from radial bearing compliance (:mod:`exudyn_worm.items.rigidmesh`). Both flanks are inclined
+        by ``alphaN`` towards the centre line, so an approach deepens the contact on either flank by
+        ``sin(alphaN) C``: the penetration becomes ``|Delta s| + sin(alphaN) C - delta/2``. None (default): the
+        law is evaluated exactly as without this option.
 
     Returns
     -------
@@ -339,12 +350,20 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
             dRate = dRate + axialFactor * axialSpeed
     sigma = ops.sign(d)
     fn = sigma * ((gear.kV * lever) * d + (gear.dV * lever) * dRate)     # kV penetration + dV sigma d(Delta s)/dt
+    sinAlpha = math.sin(gear.alphaN)
+    if radialApproach is not None:               # both flanks lean towards the centre line by alphaN
+        fn = fn + (gear.kV * sinAlpha) * radialApproach
+        if radialSpeed is not None:
+            fn = fn + (gear.dV * sinAlpha) * radialSpeed
     if gear.backlash > 0:
         fn = fn - 0.5 * gear.kV * gear.backlash
     if not options.dampingCanPull:
         fn = ops.max(fn, 0.)
     if gear.backlash > 0:                        # inside the backlash there is no force at all
-        fn = ops.where(ops.abs(d) > 0.5 * gear.backlash / lever, fn, 0.)
+        if radialApproach is None:
+            fn = ops.where(ops.abs(d) > 0.5 * gear.backlash / lever, fn, 0.)
+        else:
+            fn = ops.where(lever * ops.abs(d) + sinAlpha * radialApproach > 0.5 * gear.backlash, fn, 0.)
     normalForce = sigma * fn
     if options.frictionModel == 'regularized' or options.fixedS is not None:   # eqs. (10), (12) as printed
         if options.frictionSpeed > 0:
@@ -371,7 +390,7 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
             - (gear.r2 * math.sin(gear.gamma)) * frictionForce
     return MeshState(deltaPhi=deltaPhi, deltaS=lever * d, normalForce=normalForce, S=S, sf=sf,
                      wormTorque=wormTorque, wheelTorque=wheelTorque, axialForce=wheelTorque * (-1. / gear.r2),
-                     frictionForce=frictionForce, stuck=stuck)
+                     frictionForce=frictionForce, stuck=stuck, radialForce=fn * (-sinAlpha))
 
 
 def FrictionCoefficientAt(gear: WormGear, omega1: Any, ops: Any = MATH_OPS) -> Any:

@@ -1,0 +1,124 @@
+"""The reel changer with worm and wheel as 3D rigid bodies in elastic bearings: bearing loads and stability.
+
+Model: :func:`~exudyn_worm.analysis.reelchanger3d.BuildRigidBodyReelChanger`, worm and wheel from
+``mbs.CreateRigidBody`` coupled by :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`, each shaft on two
+radial bearings and an axial bearing (:func:`~exudyn_worm.items.bearings.CreateShaftBearings`) or on ideal revolute
+joints. Bearing values: the worm's radial bearings 5e8 N/m each, 0.12 m apart, the wheel's 1e9 N/m, 0.05 m apart
+(rolling bearings are about 1e8..1e9 N/m); no bearing damping.
+
+- :func:`BearingLoads`: a run of P1 and the peak loads of the worm's axial and radial bearings and of the wheel's
+  bearings, with the peak normal force of the mesh; the worm's axial bearing carries the wheel's tangential force,
+  W (cos(alphaN) cos(gamma) -+ mu sin(gamma)), the worm's radial bearings the separating and the worm's tangential
+  force.
+- :func:`AxialStiffnessScan`: the largest real part of the linearized drive (S = -1, lowering) against the worm's
+  axial bearing stiffness, with the worm's radial bearings stiff (1e11 N/m), next to the one-angle model with the
+  worm's axial degree of freedom (:func:`~exudyn_worm.items.connector.CreateWormAxialBearing`): the two agree, and
+  P1 becomes stable when the axial bearing is softer than about 7e8 N/m (examples/worm_axial_bearing.py).
+
+Run ``python examples/worm_gear_3d.py`` for the table (about a minute: the rigid-body mesh runs as a Python user
+function).
+"""
+from __future__ import annotations
+
+from typing import Dict, List, Mapping, Optional, Sequence
+
+import numpy as np
+
+from exudyn_worm.analysis.linearization import AnalyzeLinearStability
+from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
+from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.analysis.stepsize import RecommendedStepSize
+from exudyn_worm.items.bearings import ShaftBearings, StoredBearingLoads
+from exudyn_worm.setups.presets import GetPreset
+
+#: the bearings of the example (module docstring)
+WORM_BEARINGS = ShaftBearings(radialStiffness=5e8, axialStiffness=5e8, span=0.12)
+WHEEL_BEARINGS = ShaftBearings(radialStiffness=1e9, axialStiffness=1e9, span=0.05)
+#: worm mass in kg (the worm moves axially as a whole)
+WORM_MASS = 5.
+
+
+def BearingLoads(parameters: Optional[Mapping[str, float]] = None, endTime: float = 8.,
+                 wormBearings: ShaftBearings = WORM_BEARINGS,
+                 wheelBearings: ShaftBearings = WHEEL_BEARINGS) -> Dict[str, float]:
+    """Peak bearing loads and mesh force in N of a run of the rigid-body reel changer in elastic bearings.
+
+    Parameters
+    ----------
+    parameters : mapping, optional
+        Parameter set (default reel-P1).
+    endTime : float
+        Simulated time in s.
+    wormBearings, wheelBearings : ShaftBearings
+        The bearings.
+
+    Returns
+    -------
+    dict
+        ``normalForce`` (peak mesh normal force), ``wormAxial``, ``wormRadial`` (vector sum of the two radial
+        bearings), ``wheelAxial``, ``wheelRadial``: peak magnitudes in N; ``initialNormalForce`` in N.
+    """
+    parameters = dict(GetPreset('reel-P1') if parameters is None else parameters)
+    model = BuildRigidBodyReelChanger(parameters, wormBearings=wormBearings, wheelBearings=wheelBearings,
+                                      wormMass=WORM_MASS)
+    model.connector.AddSensors(model.mbs)
+    model.mbs.Assemble()
+    ss, solverType = SolverSettings(endTime, RecommendedStepSize(parameters))
+    model.mbs.SolveDynamic(ss, solverType=solverType)
+    mesh = model.connector.StoredMeshState(model.mbs)
+    out = {'normalForce': float(np.max(np.abs(mesh.normalForce))),
+           'initialNormalForce': float(abs(np.asarray(mesh.normalForce)[0]))}
+    for body in ('worm', 'wheel'):
+        loads = StoredBearingLoads(model.mbs, model.bearings[body])
+        out[body + 'Axial'] = float(np.max(np.abs(loads['axial'])))
+        out[body + 'Radial'] = float(np.max(loads['radial']))
+    return out
+
+
+#: modes below this frequency in Hz are the drive's torsional modes (the bearings' own modes are above 900 Hz)
+DRIVE_MODES_HZ = 200.
+
+
+def _DriveModeRate(state) -> float:
+    """Largest real part in 1/s of the drive's torsional modes (below :data:`DRIVE_MODES_HZ`)."""
+    return max(m.eigenvalue.real for m in state.modes if m.frequencyHz < DRIVE_MODES_HZ)
+
+
+def AxialStiffnessScan(stiffnesses: Sequence[float] = (2e9, 1e9, 7e8, 5e8),
+                       parameters: Optional[Mapping[str, float]] = None) -> List[Dict[str, float]]:
+    """Largest real part in 1/s of the drive's modes (S = -1) against the worm's axial bearing stiffness: 3D model and
+    one-angle model (the undamped bearings' own modes, above 900 Hz, are left out).
+
+    Parameters
+    ----------
+    stiffnesses : sequence of float
+        Axial bearing stiffnesses in N/m.
+    parameters : mapping, optional
+        Parameter set (default reel-P1).
+
+    Returns
+    -------
+    list of dict
+        ``axialStiffness`` (N/m), ``rigidBodies`` and ``oneAngle``: the largest real parts in 1/s.
+    """
+    parameters = dict(GetPreset('reel-P1') if parameters is None else parameters)
+    rows = []
+    for kA in stiffnesses:
+        model = BuildRigidBodyReelChanger(parameters, wormMass=WORM_MASS,
+                                          wormBearings=ShaftBearings(radialStiffness=1e11, axialStiffness=kA, span=0.12))
+        model.mbs.Assemble()
+        rigid = AnalyzeLinearStability(model.mbs).State(-1)
+        oneAngle = AnalyzeLinearStability(BuildReelChanger({**parameters, 'kA': kA, 'dA': 0., 'mA': WORM_MASS}).mbs)
+        rows.append({'axialStiffness': kA, 'rigidBodies': _DriveModeRate(rigid),
+                     'oneAngle': _DriveModeRate(oneAngle.State(-1))})
+    return rows
+
+
+if __name__ == '__main__':
+    print('worm axial bearing stiffness vs largest real part (S = -1), 1/s')
+    for row in AxialStiffnessScan():
+        print(f"  kA = {row['axialStiffness']:8.3g} N/m   rigid bodies {row['rigidBodies']:+8.3f}   "
+              f"one-angle + axial DOF {row['oneAngle']:+8.3f}")
+    print('peak loads in N over 8 s of P1 (elastic bearings):')
+    for key, value in BearingLoads().items():
+        print(f'  {key:20s} {value:10.1f}')

@@ -1,0 +1,160 @@
+"""Elastic shaft bearings for rigid bodies: two radial bearings and an axial bearing, as ordinary Exudyn items.
+
+:func:`CreateShaftBearings` holds a rigid body (a worm or a wheel shaft from ``mbs.CreateRigidBody``) on two radial
+bearings, ``span`` apart and centred on the body's reference point along the shaft axis, and one axial bearing at
+the reference point, each an ``ObjectConnectorRigidBodySpringDamper`` to ground (or to a housing body) whose
+frame's x axis is the shaft axis: the radial bearings are springs and dampers across the axis, the axial one along
+it; the body turns freely about the axis (no rotational stiffness). Their forces are Exudyn outputs
+(``ForceLocal``: x along the axis) and stored by the sensors made here, so the bearing loads of a run are read from
+:func:`StoredBearingLoads`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Dict, Optional, Sequence
+
+import numpy as np
+
+from .._checks import CheckName, CheckNonNegative, CheckPositive, CheckSystem
+
+__all__ = ['ShaftBearings', 'CreateShaftBearings', 'StoredBearingLoads']
+
+
+@dataclass(frozen=True)
+class ShaftBearings:
+    """Stiffness and damping of a shaft's bearings (SI units).
+
+    Parameters
+    ----------
+    radialStiffness : float
+        Stiffness of each radial bearing in N/m (> 0), the same in every direction across the axis.
+    axialStiffness : float
+        Stiffness of the axial bearing in N/m (> 0).
+    radialDamping, axialDamping : float
+        Damping in N*s/m (>= 0) of each radial bearing and of the axial bearing.
+    span : float
+        Distance in m (> 0) of the two radial bearings along the axis, centred on the body's reference point.
+    """
+    radialStiffness: float
+    axialStiffness: float
+    radialDamping: float = 0.
+    axialDamping: float = 0.
+    span: float = 0.1
+
+    def __post_init__(self):
+        w = 'ShaftBearings'
+        for name in ('radialStiffness', 'axialStiffness'):
+            object.__setattr__(self, name, CheckPositive(w, name, getattr(self, name), 'N/m'))
+        for name in ('radialDamping', 'axialDamping'):
+            object.__setattr__(self, name, CheckNonNegative(w, name, getattr(self, name), 'N*s/m'))
+        object.__setattr__(self, 'span', CheckPositive(w, 'span', self.span, 'm'))
+
+
+def _AxisFrame(axis: np.ndarray) -> np.ndarray:
+    """A rotation matrix whose first column is ``axis`` (unit)."""
+    helper = np.array([0., 0., 1.]) if abs(axis[2]) < 0.9 else np.array([1., 0., 0.])
+    y = np.cross(helper, axis)
+    y /= np.linalg.norm(y)
+    return np.column_stack([axis, y, np.cross(axis, y)])
+
+
+def CreateShaftBearings(mbs, body, axis: Sequence[float], bearings: ShaftBearings, name: str = '',
+                        housing: Optional[Any] = None) -> Dict[str, Any]:
+    """Hold a rigid body on two radial bearings and an axial bearing (module docstring).
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The system.
+    body : body number or dict
+        The rigid body (``mbs.CreateRigidBody``, its number or ``returnDict``).
+    axis : 3D vector
+        The shaft axis in global coordinates (reference configuration).
+    bearings : ShaftBearings
+        Stiffness, damping and span.
+    name : str
+        Prefix of the connectors' and sensors' names.
+    housing : body number, optional
+        The body the bearings sit in (default: a new ground object at the body's reference point).
+
+    Returns
+    -------
+    dict
+        ``radial`` (two connectors, at -span/2 and +span/2 along the axis), ``axial`` (connector), ``sensors``
+        (``ForceLocal`` of each, by the names ``radial0``, ``radial1``, ``axial``), ``axis`` (unit, global).
+
+    Raises
+    ------
+    TypeError, ValueError
+        For ``bearings`` that is not a :class:`ShaftBearings`, a zero axis or a bad name.
+    """
+    import exudyn as exu
+    from exudyn.itemInterface import MarkerBodyRigid, ObjectConnectorRigidBodySpringDamper, ObjectGround, SensorObject
+    w = 'CreateShaftBearings'
+    CheckSystem(w, mbs)
+    CheckName(w, 'name', name)
+    if not isinstance(bearings, ShaftBearings):
+        raise TypeError(f"{w}: 'bearings' must be a ShaftBearings, got {type(bearings).__name__}")
+    axis = np.asarray(axis, dtype=float).ravel()
+    if axis.shape != (3,) or not np.all(np.isfinite(axis)) or np.linalg.norm(axis) == 0:
+        raise ValueError(f"{w}: 'axis' must be a finite, non-zero 3D vector (global), got {axis!r}")
+    axis = axis / np.linalg.norm(axis)
+    number = body['bodyNumber'] if isinstance(body, dict) else body
+    node = mbs.GetNode(mbs.GetObject(number)['nodeNumber'])
+    position = np.asarray(node['referenceCoordinates'][:3], dtype=float)
+    A = _AxisFrame(axis)
+    # the body's reference rotation, to put its markers on the same points
+    R = np.asarray(mbs.GetNodeOutput(mbs.GetObject(number)['nodeNumber'], exu.OutputVariableType.RotationMatrix,
+                                     configuration=exu.ConfigurationType.Reference), dtype=float).reshape(3, 3)
+    if housing is None:
+        housing = mbs.AddObject(ObjectGround(referencePosition=list(position)))
+        housingOrigin = position
+    else:
+        housingOrigin = np.asarray(mbs.GetNode(mbs.GetObject(housing)['nodeNumber'])['referenceCoordinates'][:3], dtype=float)
+    out = {'radial': [], 'sensors': {}, 'axis': axis}
+    OVT = exu.OutputVariableType
+
+    def Add(offset: float, stiffness, damping, key: str):
+        point = position + offset * axis
+        m0 = mbs.AddMarker(MarkerBodyRigid(bodyNumber=housing, localHT=exu.HT(rotation=A, translation=point - housingOrigin)))
+        m1 = mbs.AddMarker(MarkerBodyRigid(bodyNumber=number, localHT=exu.HT(rotation=R.T @ A,
+                                                                              translation=R.T @ (point - position))))
+        o = mbs.AddObject(ObjectConnectorRigidBodySpringDamper(markerNumbers=[m0, m1], stiffness=np.diag(stiffness),
+                                                               damping=np.diag(damping), name=f'{name}{key}'))
+        out['sensors'][key] = mbs.AddSensor(SensorObject(objectNumber=o, outputVariableType=OVT.ForceLocal,
+                                                         storeInternal=True, writeToFile=False))
+        return o
+
+    kR, dR = bearings.radialStiffness, bearings.radialDamping
+    for k, offset in enumerate((-0.5 * bearings.span, 0.5 * bearings.span)):
+        out['radial'].append(Add(offset, [0., kR, kR, 0., 0., 0.], [0., dR, dR, 0., 0., 0.], f'radial{k}'))
+    out['axial'] = Add(0., [bearings.axialStiffness, 0., 0., 0., 0., 0.], [bearings.axialDamping, 0., 0., 0., 0., 0.],
+                       'axial')
+    return out
+
+
+def StoredBearingLoads(mbs, bearingItems: Dict[str, Any]) -> Dict[str, np.ndarray]:
+    """Bearing forces per stored time step, from the sensors of :func:`CreateShaftBearings` (after a solve).
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The system, solved.
+    bearingItems : dict
+        What :func:`CreateShaftBearings` returned.
+
+    Returns
+    -------
+    dict of ndarray
+        ``time`` (s); ``axial`` (N, along the axis, the force of the spring on the body side); ``radial0``,
+        ``radial1`` (N, magnitude across the axis of each radial bearing); ``radial`` (N, the magnitude of their
+        vector sum).
+    """
+    data = {k: np.asarray(mbs.GetSensorStoredData(s)) for k, s in bearingItems['sensors'].items()}
+    out = {'time': data['axial'][:, 0], 'axial': data['axial'][:, 1]}
+    across = [data[f'radial{k}'][:, 2:4] for k in range(2)]
+    for k in range(2):
+        out[f'radial{k}'] = np.hypot(across[k][:, 0], across[k][:, 1])
+    total = across[0] + across[1]
+    out['radial'] = np.hypot(total[:, 0], total[:, 1])
+    return out

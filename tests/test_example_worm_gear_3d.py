@@ -1,0 +1,37 @@
+"""examples/worm_gear_3d.py: the rigid-body reel changer in elastic bearings, its numbers checked."""
+import numpy as np
+import pytest
+
+from exudyn_worm.analysis.reelchanger import BuildReelChanger
+from exudyn_worm.setups.presets import GetPreset
+
+from conftest import LoadScript
+
+pytest.importorskip('exudyn')
+
+
+@pytest.fixture(scope='module')
+def example():
+    return LoadScript('examples/worm_gear_3d.py', 'worm_gear_3d')
+
+
+@pytest.mark.physics
+def test_axial_bearing_stiffness_moves_the_boundary_as_in_the_one_angle_model(example):
+    """With stiff radial bearings (1e11 N/m) the 3D drive's chatter mode has the one-angle model's real part (with
+    the worm's axial degree of freedom) within 0.1 1/s (the radial compliance and the tilt are left in series), and
+    P1's boundary lies between 7.0e8 and 7.2e8 N/m in both (examples/worm_axial_bearing.py: 7.12e8 N/m)."""
+    rows = example.AxialStiffnessScan((2e9, 7.2e8, 7e8, 5e8))
+    for row in rows:
+        assert row['rigidBodies'] == pytest.approx(row['oneAngle'], abs=0.1)
+    signs = [np.sign(r['rigidBodies']) for r in rows]
+    assert signs == [1., 1., -1., -1.] == [np.sign(r['oneAngle']) for r in rows]
+
+
+@pytest.mark.physics
+def test_bearing_loads_start_from_the_static_mesh_force(example):
+    """A short run: the mesh starts at the static normal force of the one-angle model, and every bearing is loaded."""
+    loads = example.BearingLoads(endTime=0.05)
+    reference = BuildReelChanger(GetPreset('reel-P1'))
+    static = abs(float(reference.connector.InitialMeshState(reference.mbs).normalForce))
+    assert loads['initialNormalForce'] == pytest.approx(static, rel=1e-9)
+    assert all(loads[k] > 100. for k in ('wormAxial', 'wormRadial', 'wheelAxial', 'wheelRadial'))

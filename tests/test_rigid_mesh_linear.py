@@ -1,0 +1,49 @@
+"""Linear stability of the reel changer with worm and wheel as rigid bodies: AnalyzeLinearStability finds the
+meshes between rigid bodies; ideal joints give the two-mass eigenvalues, elastic bearings add modes."""
+import numpy as np
+import pytest
+
+from exudyn_worm.analysis.linearization import AnalyzeLinearStability
+from exudyn_worm.analysis.reelchanger import BuildReelChanger
+from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.items.bearings import ShaftBearings
+from exudyn_worm.setups.presets import GetPreset
+
+pytest.importorskip('exudyn')
+P1 = GetPreset('reel-P1')
+
+
+def _Eigenvalues(analysis, S):
+    return np.array(sorted((m.eigenvalue for m in analysis.State(S).modes), key=lambda z: z.imag))
+
+
+@pytest.mark.physics
+@pytest.mark.parametrize('extra', [{}, {'kA': 5e8, 'dA': 0., 'mA': 5.}])
+def test_ideal_joints_give_the_eigenvalues_of_the_one_angle_model(extra):
+    """P1 (and P1 with the worm's axial bearing) on ideal revolute joints: the eigenvalues of the 2-DOF (3-DOF)
+    model for S = +1 and -1 within 1e-6 relative (Exudyn differentiates the user functions numerically)."""
+    parameters = {**P1, **extra}
+    reference = AnalyzeLinearStability(BuildReelChanger(parameters).mbs)
+    model = BuildRigidBodyReelChanger(parameters)
+    model.mbs.Assemble()
+    analysis = AnalyzeLinearStability(model.mbs)
+    for S in (1, -1):
+        expected, got = _Eigenvalues(reference, S), _Eigenvalues(analysis, S)
+        assert len(got) == len(expected)
+        np.testing.assert_allclose(got, expected, rtol=1e-6)
+        assert analysis.State(S).stable == reference.State(S).stable
+
+
+@pytest.mark.physics
+def test_elastic_bearings_add_modes_with_their_bearing_named():
+    """Elastic bearings (worm 5e8 N/m radial, 3e8 N/m axial): more modes; the worm's axial motion (its node's x)
+    takes the largest energy share of one of them, and the torsional chatter pair stays near 40 Hz."""
+    model = BuildRigidBodyReelChanger(P1, wormBearings=ShaftBearings(5e8, 3e8, span=0.12),
+                                      wheelBearings=ShaftBearings(1e9, 1e9, span=0.05))
+    model.mbs.Assemble()
+    state = AnalyzeLinearStability(model.mbs).State(-1)
+    assert len(state.modes) > 2
+    axial = [m for m in state.modes if max(m.energyShare, key=m.energyShare.get) == 'Node:worm[0]']
+    assert axial, [dict(m.energyShare) for m in state.modes]
+    torsional = [m for m in state.modes if m.energyShare.get('Node:worm[3]', 0.) > 0.5]
+    assert torsional and all(30. < m.frequencyHz < 50. for m in torsional)
