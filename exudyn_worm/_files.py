@@ -91,11 +91,12 @@ class OutputBusyError(ValueError):
 class OutputLock:
     """An exclusive lock on an output file for as long as a process writes it (a context manager).
 
-    The lock is a POSIX record lock (``fcntl.lockf``) on a hidden file ``.<name>.lock`` beside the output, which
-    holds one line naming the holder. The kernel releases it when the holder ends in any way (``kill -9``
-    included), so a stale lock file from a killed process is taken over; a lock is not inherited by forked
-    worker processes. The file is removed on release. Where ``fcntl`` is missing (Windows) it only records the
-    holder.
+    The lock is an advisory ``flock`` on a hidden file ``.<name>.lock`` beside the output, which holds one line
+    naming the holder. The kernel releases it when the holder ends in any way (``kill -9`` included; forked
+    workers share it until they end, which they do with their parent), so a stale lock file of a killed process
+    is taken over. Unlike a POSIX record lock it is not lost when the holder opens and closes the file again, and
+    it also keeps a second study of the same process off. On NFS, Linux maps it to a POSIX lock on the server.
+    The file is removed on release. Where ``fcntl`` is missing (Windows) it only records the holder.
 
     Parameters
     ----------
@@ -126,7 +127,7 @@ class OutputLock:
             fd = os.open(self.lockPath, os.O_RDWR | os.O_CREAT, 0o644)
             try:
                 if fcntl is not None:
-                    fcntl.lockf(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
             except OSError:
                 holder = os.read(fd, 400).decode('utf-8', 'replace').strip() or 'another process'
                 os.close(fd)
