@@ -37,7 +37,7 @@ ALLOWED: Dict[Tuple[str, str], str] = {
 #: A module imports (at module level) only modules of its own or a lower layer; inside a subpackage any module may
 #: import any other, as long as there is no cycle. A new module goes into the subpackage it belongs to.
 LAYERS = (
-    ('helpers', '_checks _moved _roots _spacing progress'),
+    ('helpers', '_checks _files _moved _roots _spacing _workers progress'),
     ('parameters and files', 'params'),
     ('gear model', 'model'),
     ('Exudyn items', 'items'),
@@ -223,7 +223,7 @@ def test_every_module_has_a_layer():
 def test_the_package_has_no_flat_modules_beyond_the_helpers():
     # issue 17, item 2: the layers show as subpackages
     flat = sorted(m for m in MODULES if m.count('.') == 1 and not (ROOT / m.split('.')[1]).is_dir())
-    assert flat == [f'{PACKAGE}.{name}' for name in sorted('__main__ _checks _moved _roots _spacing progress'.split())]
+    assert flat == [f'{PACKAGE}.{name}' for name in sorted('__main__ _checks _files _moved _roots _spacing _workers progress'.split())]
 
 
 def test_module_level_imports_go_down_the_layers():

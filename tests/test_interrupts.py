@@ -174,7 +174,7 @@ def test_validation_report_write_is_atomic(folder, monkeypatch):
     from validation.runner import WriteText
     path = folder / 'r.md'
 
-    def Interrupted(self, text):
+    def Interrupted(self, text, *args, **kwargs):
         Path.write_bytes(self, b'half')
         raise KeyboardInterrupt
     monkeypatch.setattr(Path, 'write_text', Interrupted)
@@ -192,13 +192,13 @@ def _Sleep(seconds):
 def test_cancel_terminates_running_workers_and_drops_queued_runs():
     import multiprocessing
     from concurrent.futures import ProcessPoolExecutor
-    from exudyn_worm.analysis.study import _Cancel
+    from exudyn_worm._workers import CancelPool
     executor = ProcessPoolExecutor(max_workers=2, mp_context=multiprocessing.get_context('fork'))
     futures = [executor.submit(_Sleep, 60.) for _ in range(5)]
     while not all(f.running() for f in futures[:2]):
         time.sleep(0.05)
     processes = list(executor._processes.values())
-    _Cancel(executor, futures)
+    CancelPool(executor, futures)
     # the running runs are stopped, not awaited (60 s). The pool's manager thread reaps the workers too, and a
     # poll that loses that race reports a dead worker as alive for a moment: look again for up to 5 s
     for _ in range(100):
@@ -282,7 +282,7 @@ def test_sigint_during_sweep_keeps_the_finished_runs(folder):
     # interrupted once a run is in the table (header + one row), whatever the machine's load
     status, out, err = _InterruptWhen(process, lambda: output.is_file() and output.read_text().count('\n') >= 2)
     assert status == INTERRUPTED_STATUS and 'Traceback' not in err
-    assert err.strip().splitlines() == [f"exudyn-worm: interrupted: finished runs are saved in '{output}'; run the "
+    assert err.strip().splitlines() == [f"exudyn-worm: interrupted (Ctrl-C); finished runs are saved in '{output}'; run the "
                                         f"same command again to resume"]
     meta = json.loads(StudySidecarPath(output).read_text())
     rows = ReadResults(output).rows

@@ -6,7 +6,7 @@ Prints the summary line and one line per check on stdout; writes the Markdown re
 prints only what changed (``validation/baseline.py``); ``--record-baseline FILE`` records one.
 
 Exit status: 0 if no check failed (with ``--baseline``: if no check changed), 1 otherwise, 2 for bad input,
-130 after Ctrl-C (one line on stderr; no report or baseline is left half-written).
+130 after Ctrl-C, 143 after SIGTERM (one line on stderr; no report or baseline is left half-written).
 """
 from __future__ import annotations
 
@@ -58,14 +58,15 @@ def AddValidationArguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _CheckOutput(path: Optional[str], option: str, overwrite: bool) -> Optional[Path]:
+    """The command line's one check of an output (a folder that exists and may be written, an existing file only
+    with ``--overwrite``, unsearchable folders included), before any check runs."""
+    from exudyn_worm.cli.main import CheckOutputPath, UsageError
     if path is None:
         return None
-    p = Path(path)
-    if p.is_dir() or not p.parent.is_dir():
-        raise ValueError(f"{option}: expected a file path in an existing directory, got '{path}'")
-    if p.exists() and not overwrite:
-        raise ValueError(f"{option} {path}: exists; give --overwrite to replace it, or choose another name")
-    return p
+    try:
+        return CheckOutputPath(path, option, overwrite=overwrite)
+    except UsageError as err:
+        raise ValueError(str(err)) from None
 
 
 def _Mode(args: argparse.Namespace) -> str:
@@ -134,28 +135,32 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     Returns
     -------
     int
-        Exit status (130 after Ctrl-C: one line on stderr, no traceback).
+        Exit status (130 after Ctrl-C, 143 after SIGTERM: one line on stderr, no traceback).
     """
+    from exudyn_worm._workers import SigtermAsInterrupt
     from exudyn_worm.items.solve import IsInterrupt
     try:
         parser = _Parser(prog=PROG, description='check exudyn-worm against the numbers published '
                                             'in the paper (run from the root of the source checkout)')
         AddValidationArguments(parser)
         args = parser.parse_args(argv)
-        return Run(args)
+        with SigtermAsInterrupt():              # SIGTERM stops it as Ctrl-C does (status 143)
+            return Run(args)
     except ValueError as err:
         print(f'{PROG}: error: {err}', file=sys.stderr)
         return 2
     except Exception as err:
         if not IsInterrupt(err):
             raise
-        return _Interrupted()
-    except KeyboardInterrupt:
-        return _Interrupted()
+        return _Interrupted(err)
+    except KeyboardInterrupt as err:
+        return _Interrupted(err)
 
 
-def _Interrupted() -> int:
+def _Interrupted(err: BaseException) -> int:
+    from exudyn_worm._workers import TERMINATED_STATUS, InterruptStatus
+    status = InterruptStatus(err)
     with contextlib.suppress(KeyboardInterrupt, OSError, ValueError):
-        print(f'{PROG}: interrupted (Ctrl-C); the validation stopped, no check was recorded and no file written',
-              file=sys.stderr)
-    return 130
+        print(f"{PROG}: interrupted ({'SIGTERM' if status == TERMINATED_STATUS else 'Ctrl-C'}); the validation "
+              f"stopped, no check was recorded and no file written", file=sys.stderr)
+    return status

@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
-from exudyn_worm.cli.main import WriteAtomically
+from exudyn_worm._files import WriteTextAtomically
 from exudyn_worm.setups.presets import PRESETS
 from exudyn_worm.items.solve import IsInterrupt
 
@@ -527,7 +527,7 @@ def RunValidation(reportPath: Optional[Union[str, Path]] = None, quick: bool = F
 
 def WriteText(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` so that the file is complete or absent (temporary file, then renamed; an
-    interrupt removes the temporary file): :func:`exudyn_worm.cli.main.WriteAtomically`, the package's one rule.
+    interrupt removes the temporary file): :func:`exudyn_worm._files.WriteTextAtomically`, the package's one rule.
 
     Parameters
     ----------
@@ -536,7 +536,7 @@ def WriteText(path: Path, text: str) -> None:
     text : str
         Its content.
     """
-    WriteAtomically(path, lambda tmp: Path(tmp).write_text(text))
+    WriteTextAtomically(path, text)
 
 
 def _Lines(summary: ValidationSummary, groupLines: List[str]) -> List[str]:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 import multiprocessing
+import os
 import sys
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -28,6 +29,7 @@ from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import PeriodicOrbit, ShootingError
 from .._checks import CheckPositive, JsonNumber
 from .drivestability import DriveStability
+from .._workers import CancelPool, WorkerInit
 from ..params.parameters import PARAMETERS
 from ..setups.presets import ElasticDriveFromParameters
 
@@ -457,8 +459,17 @@ def _RunDirections(jobs: List[Tuple], processes: int, onPoint: Optional[Callable
     if processes >= 2 and sys.platform.startswith('linux'):
         try:
             context = multiprocessing.get_context('fork')
-            with ProcessPoolExecutor(max_workers=2, mp_context=context) as pool:
-                results = list(pool.map(_FollowDirectionJob, jobs))
+            # workers end with this process (Ctrl-C, SIGTERM, kill -9) and print no traceback of their own
+            pool = ProcessPoolExecutor(max_workers=2, mp_context=context, initializer=WorkerInit,
+                                       initargs=(os.getpid(),))
+            futures = []
+            try:
+                futures += [pool.submit(_FollowDirectionJob, job) for job in jobs]
+                results = [future.result() for future in futures]
+            except BaseException:
+                CancelPool(pool, futures)              # at once: no waiting for the running directions
+                raise
+            pool.shutdown(wait=True)
         except (OSError, BrokenProcessPool) as err:
             messages.append(f"worker processes could not run ({type(err).__name__}: {err}); computed serially")
         else:

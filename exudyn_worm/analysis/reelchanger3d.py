@@ -29,7 +29,7 @@ from ..items.rigidmesh import CreateRigidBodyWormGear, RigidBodyWormGearConnecto
 from ..model.contact import ContactOptions
 from ..model.profiles import ConstantSpeed
 from ..setups.duty import LoadFromParameters
-from ..setups.presets import AxialBearingFromParameters, DriveFromParameters, DriveSideChain, LoadSideChain
+from ..setups.presets import AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain
 
 __all__ = ['RigidBodyReelChanger', 'BuildRigidBodyReelChanger', 'WORM_MASS', 'WHEEL_MASS']
 
@@ -112,7 +112,7 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
     if parameters.get('motorType', 'constantSpeed') != 'constantSpeed':
         raise ValueError(f"{w}: the rigid-body reel changer drives the motor at constant speed, got motorType = "
                          f"{parameters.get('motorType')!r}")
-    drive = DriveFromParameters(parameters)
+    drive = ElasticDriveFromParameters(parameters)
     gear = drive.gear
     load = LoadFromParameters(parameters, w)
     motorSpeed = float(parameters['motorSpeed'])

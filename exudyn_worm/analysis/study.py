@@ -29,24 +29,26 @@ public names of all four are importable from here. No matplotlib here: plots are
 """
 from __future__ import annotations
 
+import contextlib
 import csv
 import importlib
 import json
 import multiprocessing
 import os
-import signal
 import sys
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 from typing import Callable, Dict, Optional, Tuple, Union
 
+from .._files import OutputLock
+from .._workers import CancelPool, SigtermAsInterrupt, WorkerInit
 from ..progress import ProgressBar
 # the definition, one run and the files live in their own modules (documented there); their public names are
 # importable from here, as before the split
 from .studygrid import ParseShard, ParseVariation, ShardIndices, Study, StudyPoints, Variation
 from .studypoint import HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, RunPoint, VibrationSeconds
-from .studyfiles import (ReadResults, StudyResult, StudySidecarPath, _CheckOutput, _Columns, _CsvText, _Versions,
+from .studyfiles import (ReadResults, StudyResult, StudySidecarPath, _CheckOutput, _CheckOutputPath, _Columns, _CsvText, _Versions,
                          _WriteSidecar)
 
 __all__ = ['ENGINES', 'DefaultWorkers', 'RunStudy']
@@ -54,18 +56,6 @@ __all__ = ['ENGINES', 'DefaultWorkers', 'RunStudy']
 
 #: execution engines of :func:`RunStudy`
 ENGINES = ('process', 'mpi')
-
-
-def _WorkerInit() -> None:
-    """Worker start: stdout goes to stderr (stdout may carry the study's JSON); Ctrl-C is left to the parent."""
-    try:
-        os.dup2(2, 1)
-    except OSError:
-        pass
-    try:
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
-    except (ValueError, OSError):
-        pass
 
 
 def DefaultWorkers() -> int:
@@ -83,7 +73,7 @@ def _Executor(engine: str, workers: Optional[int]):
         except ImportError as err:
             raise ValueError(f"RunStudy: engine 'mpi' needs mpi4py and an MPI runtime "
                              f"(pip install 'exudyn-worm[mpi]'): {err}") from None
-        return MPIPoolExecutor(max_workers=workers, initializer=_WorkerInit)
+        return MPIPoolExecutor(max_workers=workers, initializer=WorkerInit)
     for module in ('exudyn', f'{__package__}.reelchanger'):   # imported once here, inherited by forked workers
         importlib.import_module(module)
     if sys.platform.startswith('linux'):
@@ -92,11 +82,7 @@ def _Executor(engine: str, workers: Optional[int]):
         context = multiprocessing.get_context('fork')
     else:                                               # pragma: no cover - macOS, Windows
         context = multiprocessing.get_context('spawn')
-    return ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=_WorkerInit)
-
-
-class _Terminated(KeyboardInterrupt):
-    """SIGTERM (e.g. a job scheduler's time limit) handled like Ctrl-C."""
+    return ProcessPoolExecutor(max_workers=workers, mp_context=context, initializer=WorkerInit, initargs=(os.getpid(),))
 
 
 def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers: Optional[int] = None,
@@ -153,6 +139,16 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
         raise ValueError(f"{where}: 'workers' must be a whole number >= 1, got {workers!r}")
     output = Path(output) if output is not None else None
     indices = ShardIndices(len(study.points), shard)
+    with contextlib.ExitStack() as stack:
+        stack.enter_context(SigtermAsInterrupt())         # SIGTERM (a scheduler's limit) saves the runs as Ctrl-C
+        if output is not None:
+            _CheckOutputPath(output)
+            stack.enter_context(OutputLock(output, where))  # a second study on the same file is refused at once
+        return _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite, onRow)
+
+
+def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite, onRow) -> StudyResult:
+    """The body of :func:`RunStudy`, with ``output`` checked and locked."""
     previous = _CheckOutput(output, study, shard, overwrite) if output is not None else []
     done = {r['run']: r for r in previous if r['run'] in set(indices)}
     startTime = time.perf_counter()
@@ -195,29 +191,23 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
 
     if done and quiet is not True:
         print(f"resuming: {len(done)} of {len(indices)} runs already in '{output}'", file=sys.stderr)
-    previousHandler = None
     try:
         if todo:
-            try:
-                previousHandler = signal.signal(signal.SIGTERM, _RaiseTerminated)
-            except ValueError:                        # not the main thread
-                previousHandler = None
             executor = _Executor(engine, None if workers is None else min(workers, len(todo)))
+            futures = []
             try:
-                futures = [executor.submit(RunPoint, study.Task(i)) for i in todo]
+                futures += [executor.submit(RunPoint, study.Task(i)) for i in todo]
                 with ProgressBar(total=len(todo), desc='sweep', unit='run', quiet=quiet) as bar:
                     for future in as_completed(futures):
                         Record(future.result())
                         bar.set_postfix(failed=failed, refresh=False)
                         bar.update(1)
             except BaseException:
-                _Cancel(executor, futures)
+                CancelPool(executor, futures)
                 raise
             else:
                 executor.shutdown(wait=True)
     finally:
-        if previousHandler is not None:
-            signal.signal(signal.SIGTERM, previousHandler)
         if csvFile is not None:
             csvFile.close()
         if record:
@@ -225,29 +215,3 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
                           counts={'runs': len(indices), 'done': len(rows), 'failed': failed},
                           wallSeconds=wallBefore + time.perf_counter() - startTime)
     return StudyResult(study, [rows[i] for i in sorted(rows)])
-
-
-def _Cancel(executor, futures) -> None:
-    """Stop a study at once (Ctrl-C, SIGTERM, an error): cancel the queued runs and end the running ones.
-
-    A process pool's workers are terminated (their runs are lost, the finished ones are already recorded);
-    an MPI pool can only cancel what has not started.
-    """
-    for future in futures:
-        future.cancel()
-    processes = list((getattr(executor, '_processes', None) or {}).values())   # ProcessPoolExecutor only
-    for process in processes:
-        try:
-            process.terminate()
-        except (OSError, ValueError, AttributeError):
-            pass
-    executor.shutdown(wait=False, cancel_futures=True)
-    for process in processes:
-        try:
-            process.join(timeout=5.)
-        except (OSError, ValueError, AttributeError, AssertionError):
-            pass
-
-
-def _RaiseTerminated(signum, frame):
-    raise _Terminated()

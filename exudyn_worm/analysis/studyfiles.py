@@ -17,12 +17,13 @@ from typing import Dict, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
+from .._files import WriteTextAtomically
 from ..setups.presets import PARAMETER_UNITS
 from .studymap import ComputeChatterMap
 from .studygrid import Study, Variation, _Identity
 from .studypoint import HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS
 
-__all__ = ['StudySidecarPath', 'ReadResults', 'StudyResult']
+__all__ = ['StudySidecarPath', 'ReadResults', 'StudyResult', 'StudyFileWarning']
 
 
 _BOOL_COLUMNS = {'analyticStable', 'analyticStableLowering', 'loweringChatter', 'chatter', 'stepChecked'}
@@ -69,30 +70,47 @@ def StudySidecarPath(output: Union[str, os.PathLike]) -> Path:
 
 
 def _ReadCsv(path: Path, repair: bool = False) -> Tuple[List[str], List[Dict]]:
-    """Rows of a results file; a last line cut off by a killed job is dropped (and removed with ``repair``)."""
-    with path.open(newline='') as f:
+    """Rows of a results file. A line that cannot be read (cut off by a killed job, or damaged) is dropped alone,
+    not with the lines behind it; a warning names each dropped line and why. With ``repair`` the file is rewritten
+    (atomically) without them, so that their runs are run again."""
+    with path.open(newline='', encoding='utf-8', errors='replace') as f:
         text = f.read()
     lines = text.splitlines(keepends=True)
-    if lines and not lines[-1].endswith('\n'):
-        lines = lines[:-1]                                # partial last line of a killed job
-    reader = csv.reader(lines)
-    header = next(reader, None)
+    header = next(csv.reader(lines[:1]), None)
     if header is None:
         return [], []
-    rows, good = [], len(lines)
-    for n, values in enumerate(reader, start=1):
+    rows, keep, dropped = {}, [lines[0]], []
+    for number, line in enumerate(lines[1:], start=2):
+        values = next(csv.reader([line]), [])
+        if not line.endswith('\n'):
+            dropped.append((number, 'cut off (no end of line: the job writing it was stopped)'))
+            continue
         if len(values) != len(header):
-            good = n
-            break
+            dropped.append((number, f'{len(values)} fields, expected {len(header)}'))
+            continue
         try:
-            rows.append({c: _FromCsv(c, v) for c, v in zip(header, values)})
-        except ValueError:
-            good = n
-            break
-    if repair and (good < len(lines) or ''.join(lines) != text):
-        with path.open('w', newline='') as f:
-            f.write(''.join(lines[:good]))
-    return header, rows
+            row = {c: _FromCsv(c, v) for c, v in zip(header, values)}
+            if row.get('run') is None:
+                raise ValueError('column run: empty')
+        except ValueError as err:
+            dropped.append((number, str(err)))
+            continue
+        if row['run'] in rows:
+            dropped.append((number, f"run {row['run']} appears again (the later line is kept)"))
+        rows[row['run']] = row
+        keep.append(line)
+    if dropped:
+        shown = '; '.join(f'line {n}: {why}' for n, why in dropped[:5]) + (' ...' if len(dropped) > 5 else '')
+        warnings.warn(f"'{path}': dropped {len(dropped)} line{'s' if len(dropped) > 1 else ''} that cannot be "
+                      f"read{', their runs are run again' if repair else ''} ({shown})", StudyFileWarning,
+                      stacklevel=3)
+    if repair and dropped:
+        WriteTextAtomically(path, ''.join(keep))
+    return header, [rows[k] for k in sorted(rows)]
+
+
+class StudyFileWarning(UserWarning):
+    """A results file had lines that cannot be read (:func:`ReadResults`, a resumed study): they are dropped."""
 
 
 def ReadResults(*paths: Union[str, os.PathLike]) -> 'StudyResult':
@@ -312,10 +330,9 @@ def _Versions(engine: str) -> Dict[str, str]:
     return versions
 
 
-def _CheckOutput(output: Path, study: Study, shard, overwrite: bool) -> List[Dict]:
-    """Check the results file before computing; return the rows of a study to resume (else [])."""
+def _CheckOutputPath(output: Path) -> None:
+    """Check that the results file can be written (before it is locked and read)."""
     where = 'RunStudy'
-    sidecar = StudySidecarPath(output)
     if output.suffix.lower() != '.csv':
         raise ValueError(f"{where}: 'output' must be a .csv file, got '{output}'")
     if output.is_dir():
@@ -324,6 +341,13 @@ def _CheckOutput(output: Path, study: Study, shard, overwrite: bool) -> List[Dic
         raise ValueError(f"{where}: the folder of 'output' does not exist: '{output.parent}'")
     if not os.access(output.parent, os.W_OK):
         raise ValueError(f"{where}: cannot write into '{output.parent}'")
+
+
+def _CheckOutput(output: Path, study: Study, shard, overwrite: bool) -> List[Dict]:
+    """Check the results file (checked by :func:`_CheckOutputPath` and locked) before computing; return the rows
+    of a study to resume (else [])."""
+    where = 'RunStudy'
+    sidecar = StudySidecarPath(output)
     if overwrite or not output.exists():
         for p in (output, sidecar):
             if p.exists():
@@ -358,8 +382,6 @@ def _WriteSidecar(path: Path, study: Study, shard, engine, workers, started, ver
                                   'chatter': 'bool', 'vibrationSeconds': 's'},
             'columns': _Columns(study), 'started': started, 'updated': time.strftime('%Y-%m-%dT%H:%M:%S%z'),
             'counts': counts, 'wallSeconds': wallSeconds}
-    tmp = path.with_name(path.name + '.tmp')
-    tmp.write_text(json.dumps(meta, indent=2, allow_nan=False))
-    os.replace(tmp, path)
+    WriteTextAtomically(path, json.dumps(meta, indent=2, allow_nan=False))
 
 

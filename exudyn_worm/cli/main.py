@@ -30,8 +30,9 @@ signals bad user input by raising :class:`UsageError` (or a ``ValueError``/``Typ
 returns 2. Other exceptions are internal errors and propagate with their traceback.
 
 Exit status: 0 success (for ``stability`` whatever the verdict), 1 failed runs, 2 bad input, 130 interrupted
-(Ctrl-C: one line on stderr, no traceback; files are written with :func:`WriteAtomically`, so none is left
-half-written). An existing output file is refused unless ``--overwrite`` (:func:`CheckOutputPath`).
+(Ctrl-C), 143 terminated (SIGTERM, handled as Ctrl-C): one line on stderr, no traceback; files are written with
+:func:`~exudyn_worm._files.WriteAtomically`, so none is left half-written, and worker processes end with the
+command (:mod:`exudyn_worm._workers`). An existing output file is refused unless ``--overwrite`` (:func:`CheckOutputPath`).
 """
 from __future__ import annotations
 
@@ -54,6 +55,8 @@ from ..setups.wholedrive import Drive
 from ..params.plausibility import ImplausibleValueWarning
 from ..model.drive import ElasticDrive
 from ..setups.presets import PRESETS, ElasticDriveFromParameters, MissingParameterError
+from .._files import WriteAtomically
+from .._workers import INTERRUPTED_STATUS, TERMINATED_STATUS, InterruptStatus, SigtermAsInterrupt
 from ..items.solve import IsInterrupt
 from ..params.drivefile import FileKeyOf
 from ..params.drives import ConfigArgument, DocPath, ShippedDrives
@@ -62,12 +65,10 @@ __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'S
            'AddParameterOptions', 'ParametersFromArgs', 'WholeDriveFromArgs', 'DriveFromArgs', 'SourceText', 'SourceInfo',
            'StdoutToStderr', 'PrintJson', 'CheckOutputPath', 'CheckFigurePath', 'FIGURE_SUFFIXES',
            'AddOverwriteOption', 'WriteAtomically',
-           'INTERRUPTED_STATUS', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
+           'INTERRUPTED_STATUS', 'TERMINATED_STATUS', 'InterruptedLine', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
 
 #: program name used in help and error messages
 PROG = 'exudyn-worm'
-#: exit status after Ctrl-C (SIGINT): 128 + 2, the shell's convention
-INTERRUPTED_STATUS = 130
 
 
 class UsageError(Exception):
@@ -195,14 +196,15 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
     p = Path(text)
     if not text.strip():
         raise UsageError(f"{option}: expected a {kind} name, got ''")
-    if p.exists():
-        if kind == 'file' and p.is_dir():
+    state = _PathState(p, option, text)
+    if state != 'missing':
+        if kind == 'file' and state == 'folder':
             raise UsageError(f"{option} {text}: is a folder; give a file name (e.g. {Path(text) / 'out.csv'})"
                              if option == '--csv' else f"{option} {text}: is a folder; give a file name")
-        if kind == 'folder' and not p.is_dir():
+        if kind == 'folder' and state != 'folder':
             raise UsageError(f"{option} {text}: is a file, expected a folder (the figures are written into it)")
-        if not os.access(p, os.W_OK):
-            raise UsageError(f"{option} {text}: not writable")
+        if not os.access(p, os.W_OK) or (kind == 'folder' and not os.access(p, os.X_OK)):
+            raise UsageError(f"{option} {text}: not writable (permission denied)")
         existing = [p] if kind == 'file' else [p / name for name in contents if (p / name).exists()]
         if existing and not overwrite:
             what = 'exists' if kind == 'file' else \
@@ -211,14 +213,25 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
                              f"{'it' if len(existing) == 1 else 'them'}, or choose another name")
         return p
     parent = p.parent
-    if not parent.exists():
+    state = _PathState(parent, option, text)
+    if state == 'missing':
         raise UsageError(f"{option} {text}: the folder {parent} does not exist (create it first; "
                          f"{PROG} creates only the {kind} you name)")
-    if not parent.is_dir():
+    if state != 'folder':
         raise UsageError(f"{option} {text}: {parent} is not a folder")
-    if not os.access(parent, os.W_OK):
+    if not os.access(parent, os.W_OK | os.X_OK):
         raise UsageError(f"{option} {text}: cannot write into the folder {parent} (permission denied)")
     return p
+
+
+def _PathState(p: Path, option: str, text: str) -> str:
+    """'missing', 'folder' or 'file'; a path behind a folder one may not search is refused, naming the folder."""
+    try:
+        return 'folder' if p.is_dir() else 'file' if p.exists() else 'missing'
+    except PermissionError:
+        blocked = next((q for q in reversed(p.absolute().parents) if not os.access(q, os.X_OK)), p.parent)
+        raise UsageError(f"{option} {text}: cannot reach it: the folder {blocked} may not be searched "
+                         f"(permission denied)") from None
 
 
 #: file formats of the figure options (``--plot``, ``--output`` of ``chart``)
@@ -263,36 +276,6 @@ def AddOverwriteOption(parser: argparse.ArgumentParser, what: str = 'the output 
     """
     parser.add_argument('--overwrite', action='store_true',
                         help=f'replace {what} if they exist (without it an existing output file is refused)')
-
-
-def WriteAtomically(path: Union[str, os.PathLike], write: Callable[[Path], object]) -> Path:
-    """Write a file so that it is either complete or absent: into a temporary file beside it, then renamed.
-
-    An interrupt (Ctrl-C) or error during ``write`` removes the temporary file and leaves ``path`` as it was.
-
-    Parameters
-    ----------
-    path : str or os.PathLike
-        The file to write.
-    write : callable
-        ``write(temporaryPath)`` writes the whole file to the path it is given (same folder and suffix as
-        ``path``, so that a format is chosen from the suffix as for ``path``).
-
-    Returns
-    -------
-    pathlib.Path
-        ``path``.
-    """
-    path = Path(path)
-    tmp = path.with_name(f'.{path.stem}.{os.getpid()}.partial{path.suffix}')
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            tmp.unlink()
-        raise
-    return path
 
 
 @dataclass(frozen=True)
@@ -581,11 +564,27 @@ def _WhereToAdd(err: BaseException, args: Optional[argparse.Namespace]) -> str:
                if not getattr(args, 'preset', None) else ''))
 
 
-def _Interrupted() -> None:
-    """The one line after Ctrl-C (a second Ctrl-C while printing it is ignored)."""
+def InterruptedLine(err: BaseException, what: str = 'no output file was left half-written') -> int:
+    """Print the one line after Ctrl-C or SIGTERM on stderr (a second signal while printing it is ignored).
+
+    Parameters
+    ----------
+    err : BaseException
+        The interrupt (or an error around it, see :func:`~exudyn_worm.items.solve.IsInterrupt`).
+    what : str, optional
+        What became of the outputs, after the semicolon.
+
+    Returns
+    -------
+    int
+        The exit status: 130 after Ctrl-C, 143 after SIGTERM.
+    """
+    status = InterruptStatus(err)
     with contextlib.suppress(KeyboardInterrupt, OSError, ValueError):
         sys.stderr.flush()
-        print(f"{PROG}: interrupted (Ctrl-C); no output file was left half-written", file=sys.stderr)
+        print(f"{PROG}: interrupted ({'SIGTERM' if status == TERMINATED_STATUS else 'Ctrl-C'}); {what}",
+              file=sys.stderr)
+    return status
 
 
 def Main(argv: Optional[Sequence[str]] = None) -> int:
@@ -600,7 +599,8 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     -------
     int
         0 on success, 1 if a validation failed, 2 for bad input (one line ``exudyn-worm: error: ...``
-        on stderr), 130 after Ctrl-C (one line ``exudyn-worm: interrupted ...`` on stderr, no traceback).
+        on stderr), 130 after Ctrl-C and 143 after SIGTERM (one line ``exudyn-worm: interrupted ...`` on stderr, no
+        traceback).
     """
     args = None
     _SHOWN.clear()
@@ -609,24 +609,25 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
         with warnings.catch_warnings():
             warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
             warnings.simplefilter('always', ImplausibleValueWarning)  # shown once per run by _ShowWarning
-            return int(args.run(args) or 0)
+            with SigtermAsInterrupt():                # SIGTERM ends a command as Ctrl-C does, with status 143
+                return int(args.run(args) or 0)
     except UsageError as err:
         if IsInterrupt(err):
-            _Interrupted()
-            return INTERRUPTED_STATUS
+            return InterruptedLine(err)
         message = ' '.join((str(err) + _WhereToAdd(err, args)).split())
         print(f"{PROG}: error: {message}", file=sys.stderr)
         return 2
-    except KeyboardInterrupt:          # Ctrl-C: one line, no traceback; outputs are written atomically
-        _Interrupted()
-        return INTERRUPTED_STATUS
+    except KeyboardInterrupt as err:   # Ctrl-C, SIGTERM: one line, no traceback; outputs are written atomically
+        return InterruptedLine(err)
     except BrokenPipeError:            # output piped into e.g. `head`: stop quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
+    except PermissionError as err:     # a file or folder of the user's that this user may not read or write
+        print(f"{PROG}: error: {err.filename or 'a file'}: {err.strerror or 'permission denied'}", file=sys.stderr)
+        return 2
     except SystemExit as err:          # --help, --version
         return err.code if isinstance(err.code, int) else 0 if err.code is None else 2
     except Exception as err:           # e.g. Exudyn's SystemError around a pending Ctrl-C
         if not IsInterrupt(err):
             raise                      # an internal error: its traceback is for the bug report
-        _Interrupted()
-        return INTERRUPTED_STATUS
+        return InterruptedLine(err)

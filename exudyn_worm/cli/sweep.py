@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 from typing import List
 
-from .main import (INTERRUPTED_STATUS, BadInput, CheckFigurePath, CheckOutputPath, ParametersFromArgs, PositiveInt,
+from .main import (BadInput, InterruptedLine, CheckFigurePath, CheckOutputPath, ParametersFromArgs, PositiveInt,
                    PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WriteAtomically)
 from ..params.parameters import PARAMETERS
 
@@ -126,14 +126,10 @@ def _Run(args: argparse.Namespace) -> int:
         with BadInput(), StdoutToStderr(args.json):
             result = RunStudy(study, output=args.output, workers=args.workers, engine=args.engine,
                               shard=args.shard, quiet=True if args.quiet else None, overwrite=args.overwrite)
-    except KeyboardInterrupt:
-        if args.output:
-            print(f"exudyn-worm: interrupted: finished runs are saved in '{args.output}'; run the same command "
-                  f"again to resume", file=sys.stderr)
-        else:
-            print("exudyn-worm: interrupted: nothing was saved (give --output FILE.csv to keep finished runs and "
-                  "resume)", file=sys.stderr)
-        return INTERRUPTED_STATUS
+    except KeyboardInterrupt as err:
+        return InterruptedLine(err, f"finished runs are saved in '{args.output}'; run the same command again to "
+                                    f"resume" if args.output else
+                               "nothing was saved (give --output FILE.csv to keep finished runs and resume)")
     written = []
     if args.output:
         written += [Path(args.output), StudySidecarPath(args.output)]
@@ -159,7 +155,7 @@ def _Run(args: argparse.Namespace) -> int:
               + ('; runs longer than the step limit are refused: raise it with --max-steps N'
                  if any('more than the limit maxSteps' in (r['error'] or '') for r in result.rows) else ''),
               file=sys.stderr)
-    return 1 if result.rows and failed == len(result.rows) else 0
+    return 1 if failed else 0                            # as documented: 1 when any run failed
 
 
 #: the chatter cell of a window in the table: chatter, none, unresolved (changes at half the step), not computed

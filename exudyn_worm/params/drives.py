@@ -94,7 +94,8 @@ def ConfigPath(text: Union[str, os.PathLike]) -> Union[str, os.PathLike]:
         The argument.
     """
     path = Path(text)
-    if path.exists() or path.suffix or len(path.parts) > 1:
+    # os.path.exists: False (not PermissionError) in a folder one may not search; reading it then says why
+    if os.path.exists(path) or path.suffix or len(path.parts) > 1:
         return text
     drive = ShippedDrives().get(os.fspath(text))
     return os.fspath(drive) if drive is not None else text
@@ -110,7 +111,7 @@ def ConfigArgument(text: str) -> str:
         The argument.
     """
     path = ConfigPath(text)
-    if path is text and not Path(text).exists() and not Path(text).suffix and len(Path(text).parts) == 1:
+    if path is text and not os.path.exists(text) and not Path(text).suffix and len(Path(text).parts) == 1:
         raise argparse.ArgumentTypeError(
             f"'{text}' is neither a file nor a shipped drive ({', '.join(ShippedDrives()) or 'none found'}); "
             f"give a path such as ./{text}.toml")

@@ -216,7 +216,7 @@ def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
     try:
         with open(path, 'rb') as file:
             raw = file.read()
-        text = raw.decode('utf-8')
+        text = raw.decode('utf-8-sig')          # a byte-order mark (some Windows editors write one) is no content
         data = tomllib.loads(text)
     except OSError as err:
         raise ValueError(f"{where}: cannot read it: {err.strerror or err}") from None

@@ -1,0 +1,155 @@
+"""Files that are complete or absent, and outputs that one process writes at a time.
+
+:func:`WriteAtomically` is the package's one rule for writing a file: into a hidden temporary file beside it,
+then renamed over it, so that an interrupt, a signal or an error leaves the old file (or none) and no partial
+one. :class:`OutputLock` keeps a second process off an output that a long job (a study) is writing: the second
+one is refused at once with one line naming the holder (process id, host, start time).
+"""
+from __future__ import annotations
+
+import contextlib
+import os
+import socket
+import time
+from pathlib import Path
+from typing import Callable, Optional, Union
+
+__all__ = ['WriteAtomically', 'WriteTextAtomically', 'PartialPath', 'OutputLock', 'OutputBusyError']
+
+
+def PartialPath(path: Union[str, os.PathLike]) -> Path:
+    """The hidden temporary file that :func:`WriteAtomically` writes before renaming it to ``path``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+
+    Returns
+    -------
+    pathlib.Path
+        ``.<stem>.<pid>.partial<suffix>`` in the same folder (same suffix, so that a writer choosing its format by
+        the suffix chooses the same one; the process id keeps two writers apart).
+    """
+    path = Path(path)
+    return path.with_name(f'.{path.stem}.{os.getpid()}.partial{path.suffix}')
+
+
+def WriteAtomically(path: Union[str, os.PathLike], write: Callable[[Path], object]) -> Path:
+    """Write a file so that it is either complete or absent: into a temporary file beside it, then renamed.
+
+    An interrupt (Ctrl-C, SIGTERM handled as one) or an error during ``write`` removes the temporary file and
+    leaves ``path`` as it was.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    write : callable
+        ``write(temporaryPath)`` writes the whole file to the path it is given (:func:`PartialPath`: same folder
+        and suffix as ``path``).
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    path = Path(path)
+    tmp = PartialPath(path)
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise
+    return path
+
+
+def WriteTextAtomically(path: Union[str, os.PathLike], text: str) -> Path:
+    """:func:`WriteAtomically` of a text (UTF-8).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    text : str
+        Its whole content.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+    """
+    return WriteAtomically(path, lambda tmp: Path(tmp).write_text(text, encoding='utf-8'))
+
+
+class OutputBusyError(ValueError):
+    """Another process holds the lock of an output (:class:`OutputLock`); the message names it."""
+
+
+class OutputLock:
+    """An exclusive lock on an output file for as long as a process writes it (a context manager).
+
+    The lock is an advisory ``flock`` on a hidden file ``.<name>.lock`` beside the output, which holds one line
+    naming the holder. The kernel releases it when the holder ends in any way (``kill -9`` included; forked
+    workers share it until they end, which they do with their parent), so a stale lock file of a killed process
+    is taken over. Unlike a POSIX record lock it is not lost when the holder opens and closes the file again, and
+    it also keeps a second study of the same process off. On NFS, Linux maps it to a POSIX lock on the server.
+    The file is removed on release. Where ``fcntl`` is missing (Windows) it only records the holder.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The output file.
+    where : str, optional
+        Prefix of the refusal message (the function or command).
+
+    Raises
+    ------
+    OutputBusyError
+        On entering, if another process holds the lock: ``where: 'runs.csv' is being written by another process
+        (pid 4242 on host node7, since 2026-12-02T07:00:00+0000); wait for it to end or choose another output``.
+    """
+
+    def __init__(self, path: Union[str, os.PathLike], where: str = 'OutputLock'):
+        self.path = Path(path)
+        self.lockPath = self.path.with_name(f'.{self.path.name}.lock')
+        self.where = where
+        self._fd: Optional[int] = None
+
+    def __enter__(self) -> 'OutputLock':
+        try:
+            import fcntl                                  # lazy: POSIX only
+        except ImportError:                               # pragma: no cover - Windows
+            fcntl = None
+        for _ in range(10):                               # retried only if the lock file was replaced meanwhile
+            fd = os.open(self.lockPath, os.O_RDWR | os.O_CREAT, 0o644)
+            try:
+                if fcntl is not None:
+                    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                holder = os.read(fd, 400).decode('utf-8', 'replace').strip() or 'another process'
+                os.close(fd)
+                raise OutputBusyError(f"{self.where}: '{self.path}' is being written by {holder}; wait for it to "
+                                      f"end or choose another output") from None
+            try:
+                same = os.path.samestat(os.fstat(fd), os.stat(self.lockPath))
+            except OSError:
+                same = False
+            if not same:                                  # the holder removed it as we opened it: take the new one
+                os.close(fd)
+                continue
+            os.ftruncate(fd, 0)
+            os.write(fd, f"process {os.getpid()} on host {socket.gethostname()} (since "
+                         f"{time.strftime('%Y-%m-%dT%H:%M:%S%z')})\n".encode())
+            self._fd = fd
+            return self
+        raise OutputBusyError(f"{self.where}: '{self.path}': its lock file {self.lockPath.name} keeps changing")
+
+    def __exit__(self, *exc) -> None:
+        if self._fd is not None:
+            with contextlib.suppress(OSError):
+                self.lockPath.unlink()                    # while still held, so that no one locks a removed file
+            os.close(self._fd)
+            self._fd = None

@@ -1,0 +1,136 @@
+"""Worker processes that end with their parent, and SIGTERM handled like Ctrl-C.
+
+Every process pool of the package (the study's, the chatter branch's) starts its workers with
+:func:`WorkerInit`: Ctrl-C is left to the parent (no traceback from a worker), SIGTERM ends a worker at once,
+and on Linux the kernel sends it SIGKILL when the parent dies, even by ``kill -9``
+(``prctl(PR_SET_PDEATHSIG)``). :func:`CancelPool` stops a pool at once on Ctrl-C, SIGTERM or an error.
+:func:`SigtermAsInterrupt` turns SIGTERM (a job scheduler's time limit, ``kill``) into :class:`Terminated`, a
+``KeyboardInterrupt``, so that every path that cleans up after Ctrl-C (temporary files, a study's last record)
+does so after SIGTERM too; :func:`InterruptStatus` gives the exit status (130 or 143).
+"""
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import ctypes.util
+import os
+import signal
+import sys
+from typing import Iterable, Iterator, Optional
+
+__all__ = ['Terminated', 'SigtermAsInterrupt', 'InterruptStatus', 'WorkerInit', 'CancelPool',
+           'INTERRUPTED_STATUS', 'TERMINATED_STATUS']
+
+#: exit status after Ctrl-C (SIGINT): 128 + 2, the shell's convention
+INTERRUPTED_STATUS = 130
+#: exit status after SIGTERM: 128 + 15
+TERMINATED_STATUS = 143
+
+_PR_SET_PDEATHSIG = 1          # <linux/prctl.h>
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised like Ctrl-C by the handler of :func:`SigtermAsInterrupt`."""
+
+
+def _RaiseTerminated(signum, frame):
+    raise Terminated()
+
+
+@contextlib.contextmanager
+def SigtermAsInterrupt() -> Iterator[None]:
+    """Within the block, SIGTERM raises :class:`Terminated` (a ``KeyboardInterrupt``) in the main thread.
+
+    Outside the main thread (where Python cannot set a handler) the block runs unchanged. The previous handler
+    is restored on leaving.
+    """
+    try:
+        previous = signal.signal(signal.SIGTERM, _RaiseTerminated)
+    except (ValueError, AttributeError):      # not the main thread, or no SIGTERM
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def InterruptStatus(err: BaseException) -> int:
+    """The exit status of an interrupt: 143 if SIGTERM (a :class:`Terminated` in the chain of ``err``), else 130.
+
+    Parameters
+    ----------
+    err : BaseException
+        A ``KeyboardInterrupt``, or an error raised around one (Exudyn's ``SystemError``).
+
+    Returns
+    -------
+    int
+    """
+    seen = set()
+    while err is not None and id(err) not in seen:
+        if isinstance(err, Terminated):
+            return TERMINATED_STATUS
+        seen.add(id(err))
+        err = err.__cause__ or err.__context__
+    return INTERRUPTED_STATUS
+
+
+def _DieWithParent(parent: int) -> None:
+    """Linux: ask the kernel for SIGKILL when the parent ends; if it has ended already, end now."""
+    if not sys.platform.startswith('linux'):
+        return
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library('c') or 'libc.so.6', use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != parent:                # the parent died before the request: nobody would kill us
+        os._exit(1)
+
+
+def WorkerInit(parent: Optional[int] = None) -> None:
+    """Initializer of a pool's worker process (``initializer=WorkerInit, initargs=(os.getpid(),)``).
+
+    stdout goes to stderr (stdout may carry the parent's JSON); Ctrl-C is ignored (the parent stops the pool
+    and reports it once); SIGTERM has its default action (the parent's handler is not inherited by a forked
+    worker); on Linux the worker gets SIGKILL when the parent ends.
+
+    Parameters
+    ----------
+    parent : int, optional
+        Process id of the parent (default ``os.getppid()`` at the worker's start).
+    """
+    try:
+        os.dup2(2, 1)
+    except OSError:
+        pass
+    for number, handler in ((signal.SIGINT, signal.SIG_IGN), (signal.SIGTERM, signal.SIG_DFL)):
+        with contextlib.suppress(ValueError, OSError, AttributeError):
+            signal.signal(number, handler)
+    _DieWithParent(os.getppid() if parent is None else parent)
+
+
+def CancelPool(executor, futures: Iterable) -> None:
+    """Stop a pool at once (Ctrl-C, SIGTERM, an error): cancel the queued jobs and end the running ones.
+
+    A ``ProcessPoolExecutor``'s workers are terminated and joined (their jobs are lost); another executor (an
+    MPI pool) can only cancel what has not started.
+
+    Parameters
+    ----------
+    executor : concurrent.futures.Executor
+        The pool.
+    futures : iterable of concurrent.futures.Future
+        Its jobs.
+    """
+    for future in futures:
+        future.cancel()
+    processes = list((getattr(executor, '_processes', None) or {}).values())   # ProcessPoolExecutor only
+    for process in processes:
+        with contextlib.suppress(OSError, ValueError, AttributeError):
+            process.terminate()
+    executor.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        with contextlib.suppress(OSError, ValueError, AttributeError, AssertionError):
+            process.join(timeout=5.)
