@@ -38,10 +38,10 @@ WHEEL_BEARINGS = ShaftBearings(radialStiffness=1e9, axialStiffness=1e9, span=0.0
 WORM_MASS = 5.
 
 
-def BearingLoads(parameters: Optional[Mapping[str, float]] = None, endTime: float = 8.,
-                 wormBearings: ShaftBearings = WORM_BEARINGS,
-                 wheelBearings: ShaftBearings = WHEEL_BEARINGS) -> Dict[str, float]:
-    """Peak bearing loads and mesh force in N of a run of the rigid-body reel changer in elastic bearings.
+def BearingLoadSeries(parameters: Optional[Mapping[str, float]] = None, endTime: float = 8.,
+                      wormBearings: ShaftBearings = WORM_BEARINGS,
+                      wheelBearings: ShaftBearings = WHEEL_BEARINGS) -> Dict[str, np.ndarray]:
+    """Time series of a run of the rigid-body reel changer in elastic bearings: mesh normal force and bearing loads.
 
     Parameters
     ----------
@@ -55,8 +55,8 @@ def BearingLoads(parameters: Optional[Mapping[str, float]] = None, endTime: floa
     Returns
     -------
     dict
-        ``normalForce`` (peak mesh normal force), ``wormAxial``, ``wormRadial`` (vector sum of the two radial
-        bearings), ``wheelAxial``, ``wheelRadial``: peak magnitudes in N; ``initialNormalForce`` in N.
+        ``time`` (s), ``normalForce`` (N), and per body ``wormAxial``, ``wormRadial`` (magnitude of the vector sum
+        of the two radial bearings), ``wheelAxial``, ``wheelRadial`` in N, one value per stored step.
     """
     parameters = dict(GetPreset('reel-P1') if parameters is None else parameters)
     model = BuildRigidBodyReelChanger(parameters, wormBearings=wormBearings, wheelBearings=wheelBearings,
@@ -66,12 +66,44 @@ def BearingLoads(parameters: Optional[Mapping[str, float]] = None, endTime: floa
     ss, solverType = SolverSettings(endTime, RecommendedStepSize(parameters))
     model.mbs.SolveDynamic(ss, solverType=solverType)
     mesh = model.connector.StoredMeshState(model.mbs)
-    out = {'normalForce': float(np.max(np.abs(mesh.normalForce))),
-           'initialNormalForce': float(abs(np.asarray(mesh.normalForce)[0]))}
+    out = {'normalForce': np.asarray(mesh.normalForce, dtype=float)}
     for body in ('worm', 'wheel'):
         loads = StoredBearingLoads(model.mbs, model.bearings[body])
-        out[body + 'Axial'] = float(np.max(np.abs(loads['axial'])))
-        out[body + 'Radial'] = float(np.max(loads['radial']))
+        out['time'] = np.asarray(loads['time'], dtype=float)
+        out[body + 'Axial'] = np.abs(np.asarray(loads['axial'], dtype=float))
+        out[body + 'Radial'] = np.asarray(loads['radial'], dtype=float)
+    return out
+
+
+def BearingLoads(parameters: Optional[Mapping[str, float]] = None, endTime: float = 8.,
+                 wormBearings: ShaftBearings = WORM_BEARINGS,
+                 wheelBearings: ShaftBearings = WHEEL_BEARINGS,
+                 series: Optional[Dict[str, np.ndarray]] = None) -> Dict[str, float]:
+    """Peak bearing loads and mesh force in N of a run of the rigid-body reel changer in elastic bearings.
+
+    Parameters
+    ----------
+    parameters : mapping, optional
+        Parameter set (default reel-P1).
+    endTime : float
+        Simulated time in s.
+    wormBearings, wheelBearings : ShaftBearings
+        The bearings.
+    series : dict, optional
+        The run's :func:`BearingLoadSeries` if already computed (the other arguments are then not used).
+
+    Returns
+    -------
+    dict
+        ``normalForce`` (peak mesh normal force), ``wormAxial``, ``wormRadial`` (vector sum of the two radial
+        bearings), ``wheelAxial``, ``wheelRadial``: peak magnitudes in N; ``initialNormalForce`` in N.
+    """
+    if series is None:
+        series = BearingLoadSeries(parameters, endTime, wormBearings, wheelBearings)
+    out = {'normalForce': float(np.max(np.abs(series['normalForce']))),
+           'initialNormalForce': float(abs(series['normalForce'][0]))}
+    for key in ('wormAxial', 'wormRadial', 'wheelAxial', 'wheelRadial'):
+        out[key] = float(np.max(series[key]))
     return out
 
 
@@ -114,11 +146,57 @@ def AxialStiffnessScan(stiffnesses: Sequence[float] = (2e9, 1e9, 7e8, 5e8),
     return rows
 
 
-if __name__ == '__main__':
+def _WriteFigure(outDir: str, series: Dict[str, np.ndarray]) -> str:
+    """The bearing loads over time (PNG); returns its path."""
+    import os
+    import matplotlib
+    matplotlib.use('Agg')
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(2, 1, sharex=True, figsize=(8, 6))
+    t = series['time']
+    axes[0].plot(t, np.abs(series['normalForce']) / 1e3, color='k', lw=0.6, label='mesh normal force')
+    axes[0].set_ylabel('force [kN]'), axes[0].legend(loc='upper left')
+    for key, label in (('wormAxial', 'worm axial bearing'), ('wormRadial', 'worm radial bearings'),
+                       ('wheelAxial', 'wheel axial bearing'), ('wheelRadial', 'wheel radial bearings')):
+        axes[1].plot(t, series[key] / 1e3, lw=0.6, label=label)
+    axes[1].set_xlabel('time [s]'), axes[1].set_ylabel('bearing load [kN]'), axes[1].legend(loc='upper left')
+    axes[0].set_title('P1 with worm and wheel in elastic bearings: what the chatter puts into the bearings')
+    path = os.path.join(outDir, 'bearing_loads_P1.png')
+    fig.tight_layout(), fig.savefig(path, dpi=120), plt.close(fig)
+    return path
+
+
+def main(argv: Optional[Sequence[str]] = None) -> int:
+    """Command line: print the numbers; with ``--out DIR`` also write the bearing-load figure. Returns the exit status.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        Arguments (default: ``sys.argv[1:]``).
+    """
+    import argparse
+    import sys
+    from exudyn_worm._checks import CheckOutputFolder
+    parser = argparse.ArgumentParser(prog='worm_gear_3d.py', description=__doc__.split('\n')[0])
+    parser.add_argument('--out', help='folder for the PNG figure (created if missing)')
+    args = parser.parse_args(argv)
+    try:                                                   # check the output folder before computing
+        outDir = None if args.out is None else CheckOutputFolder(parser.prog, '--out', args.out)
+    except ValueError as error:
+        print(f'{parser.prog}: error: {str(error).split(": ", 1)[1]}', file=sys.stderr)
+        return 2
     print('worm axial bearing stiffness vs largest real part (S = -1), 1/s')
     for row in AxialStiffnessScan():
         print(f"  kA = {row['axialStiffness']:8.3g} N/m   rigid bodies {row['rigidBodies']:+8.3f}   "
               f"one-angle + axial DOF {row['oneAngle']:+8.3f}")
+    series = BearingLoadSeries()
     print('peak loads in N over 8 s of P1 (elastic bearings):')
-    for key, value in BearingLoads().items():
+    for key, value in BearingLoads(series=series).items():
         print(f'  {key:20s} {value:10.1f}')
+    if outDir is not None:
+        print(f'\nwrote {_WriteFigure(outDir, series)}')
+    return 0
+
+
+if __name__ == '__main__':
+    raise SystemExit(main())

@@ -32,6 +32,9 @@ _LAZY = {'WormGear': 'model.gear',
          **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'ElasticDriveFromParameters', 'GetPreset', 'PRESETS', 'LoadSideChain'), 'setups.presets'),
          **dict.fromkeys(('AnalyzeLinearStability', 'AnalyzeStabilityExudyn', 'LinearStability'), 'analysis.linearization'),
          **dict.fromkeys(('Drive', 'ResolveDrive', 'Component'), 'setups.wholedrive'),
+         **dict.fromkeys(('CreateRigidBodyWormGear', 'RigidBodyWormGearConnector'), 'items.rigidmesh'),
+         **dict.fromkeys(('CreateShaftBearings', 'ShaftBearings', 'StoredBearingLoads'), 'items.bearings'),
+         'BuildRigidBodyReelChanger': 'analysis.reelchanger3d',
          **dict.fromkeys(('DutyOperatingPoints', 'DutyPoint'), 'setups.operatingpoints'),
          **dict.fromkeys(('AnalyzeDrive', 'DriveAnalysis', 'OperatingPointStability', 'DriveStability'),
                          'analysis.drivestability'),
@@ -61,7 +64,8 @@ def __dir__():
 
 __version__ = '0.1.0'
 
-__all__ = ['Drive', 'ResolveDrive', 'Component', 'DutyOperatingPoints', 'DutyPoint', 'AnalyzeDrive', 'DriveAnalysis',
+__all__ = ['CreateRigidBodyWormGear', 'RigidBodyWormGearConnector', 'CreateShaftBearings', 'ShaftBearings',
+           'StoredBearingLoads', 'BuildRigidBodyReelChanger', 'Drive', 'ResolveDrive', 'Component', 'DutyOperatingPoints', 'DutyPoint', 'AnalyzeDrive', 'DriveAnalysis',
            'OperatingPointStability', 'DriveStability', 'WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMeasure',
            'TorsionalDampingFromMeasure', 'TorsionalDampingMeasure', 'AnalyzeStability',
            'StabilityAnalysis', 'ContactStability', 'ContactOptions', 'MeshContact', 'MeshState',

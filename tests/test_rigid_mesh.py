@@ -11,11 +11,11 @@ from exudyn_worm.analysis.stepsize import RecommendedStepSize
 from exudyn_worm.items.bearings import CreateShaftBearings, ShaftBearings, StoredBearingLoads
 from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear, MeshForceComponents
 from exudyn_worm.model.contact import MATH_OPS, ContactOptions
-from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 
 exu = pytest.importorskip('exudyn')
 P1 = GetPreset('reel-P1')
-GEAR = DriveFromParameters(P1).gear
+GEAR = ElasticDriveFromParameters(P1).gear
 NODE_TYPES = ('RotationEulerParameters', 'RotationRxyz', 'RotationRotationVector')
 
 
@@ -74,7 +74,7 @@ def test_mesh_forces_are_the_textbook_worm_gear_forces(nodeType, S):
     """Sliding contact on the first flank: normal force W, wheel tangential W (cos aN cos g - S mu sin g), worm
     tangential W (cos aN sin g + S mu cos g), separating W sin aN, acting at the pitch point on both bodies; S = +1:
     the worm drives, S = -1: the wheel drives (power flows back)."""
-    gear = DriveFromParameters({**P1, 'DV': 0.}).gear  # no mesh damping: Exudyn's initial Euler-parameter rates
+    gear = ElasticDriveFromParameters({**P1, 'DV': 0.}).gear  # no mesh damping: Exudyn's initial Euler-parameter rates
     deflection = 2e-4                               # carry 5e-9 of the worm speed; Fn = kV lever deflection
     omega1 = S * 40.
     SC, mbs, worm, wheel = _Pair(nodeType, phi1=deflection, omega1=omega1, omega2=omega1 / gear.ratio, gear=gear)
@@ -252,7 +252,7 @@ def test_bad_input_gives_one_clear_line():
                                    referencePosition=[0., GEAR.r1 + GEAR.r2, 0.], returnDict=True)
     with pytest.raises(ValueError, match=r"has no mass \(mass = 0.0 kg\)"):
         CreateRigidBodyWormGear(mbs, [worm, massless], gear=GEAR)
-    SC2, mbs2, worm2, wheel2 = _Pair(gear=DriveFromParameters({**P1, 'r1': 18.05, 'r2': 105.95}).gear, joints=False)
+    SC2, mbs2, worm2, wheel2 = _Pair(gear=ElasticDriveFromParameters({**P1, 'r1': 18.05, 'r2': 105.95}).gear, joints=False)
     with pytest.raises(ValueError, match=r"axes are 124 m apart .* r1 \+ r2 is 0.124 m .*in m\?"):
         CreateRigidBodyWormGear(mbs2, [worm2, wheel2], gear=GEAR)
     far = mbs.CreateRigidBody(inertia=RigidBodyInertia(mass=1., inertiaTensor=np.eye(3)),
