@@ -60,13 +60,10 @@ def AddValidationArguments(parser: argparse.ArgumentParser) -> None:
 def _CheckOutput(path: Optional[str], option: str, overwrite: bool) -> Optional[Path]:
     """The command line's one check of an output (a folder that exists and may be written, an existing file only
     with ``--overwrite``, unsearchable folders included), before any check runs."""
-    from exudyn_worm.cli.main import CheckOutputPath, UsageError
+    from exudyn_worm._files import CheckOutputPath
     if path is None:
         return None
-    try:
-        return CheckOutputPath(path, option, overwrite=overwrite)
-    except UsageError as err:
-        raise ValueError(str(err)) from None
+    return CheckOutputPath(path, option, overwrite=overwrite)          # a ValueError names the option
 
 
 def _Mode(args: argparse.Namespace) -> str:

@@ -55,6 +55,7 @@ from ..setups.wholedrive import Drive
 from ..params.plausibility import ImplausibleValueWarning
 from ..model.drive import ElasticDrive
 from ..setups.presets import PRESETS, ElasticDriveFromParameters, MissingParameterError
+from .. import _files
 from .._files import WriteAtomically
 from .._workers import INTERRUPTED_STATUS, TERMINATED_STATUS, InterruptStatus, SigtermAsInterrupt
 from ..items.solve import IsInterrupt
@@ -159,11 +160,7 @@ def PositiveInt(unit: str = ''):
 
 def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = False,
                     contents: Sequence[str] = ()) -> Path:
-    """Check, before any computation, that an output named on the command line can be written.
-
-    One rule for every subcommand: the output you name (a file, or a folder for ``kind='folder'``) is
-    created; an existing file is refused unless ``--overwrite`` is given (``overwrite=True``); the folder
-    that holds it must already exist. Nothing is created here.
+    """:func:`exudyn_worm._files.CheckOutputPath` for a subcommand: its error becomes a :class:`UsageError`.
 
     Parameters
     ----------
@@ -176,8 +173,7 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
     overwrite : bool, optional
         Allow replacing an existing file (for a folder: the files of ``contents`` in it).
     contents : sequence of str, optional
-        For ``kind='folder'``: the names of the files that will be written into it (an existing folder is
-        fine; these files in it are refused unless ``overwrite``).
+        For ``kind='folder'``: the names of the files that will be written into it.
 
     Returns
     -------
@@ -187,51 +183,12 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
     Raises
     ------
     UsageError
-        If the path is empty, is a folder where a file is wanted or the other way round, exists without
-        ``overwrite``, its parent is missing or not a folder, or it is not writable.
+        As :func:`exudyn_worm._files.CheckOutputPath` describes.
     """
-    if kind not in ('file', 'folder'):
-        raise ValueError(f"CheckOutputPath: 'kind' must be 'file' or 'folder', got {kind!r}")
-    text = os.fspath(path)
-    p = Path(text)
-    if not text.strip():
-        raise UsageError(f"{option}: expected a {kind} name, got ''")
-    state = _PathState(p, option, text)
-    if state != 'missing':
-        if kind == 'file' and state == 'folder':
-            raise UsageError(f"{option} {text}: is a folder; give a file name (e.g. {Path(text) / 'out.csv'})"
-                             if option == '--csv' else f"{option} {text}: is a folder; give a file name")
-        if kind == 'folder' and state != 'folder':
-            raise UsageError(f"{option} {text}: is a file, expected a folder (the figures are written into it)")
-        if not os.access(p, os.W_OK) or (kind == 'folder' and not os.access(p, os.X_OK)):
-            raise UsageError(f"{option} {text}: not writable (permission denied)")
-        existing = [p] if kind == 'file' else [p / name for name in contents if (p / name).exists()]
-        if existing and not overwrite:
-            what = 'exists' if kind == 'file' else \
-                f"holds {', '.join(e.name for e in existing[:3])}{' ...' if len(existing) > 3 else ''}"
-            raise UsageError(f"{option} {text}: {what}; give --overwrite to replace "
-                             f"{'it' if len(existing) == 1 else 'them'}, or choose another name")
-        return p
-    parent = p.parent
-    state = _PathState(parent, option, text)
-    if state == 'missing':
-        raise UsageError(f"{option} {text}: the folder {parent} does not exist (create it first; "
-                         f"{PROG} creates only the {kind} you name)")
-    if state != 'folder':
-        raise UsageError(f"{option} {text}: {parent} is not a folder")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise UsageError(f"{option} {text}: cannot write into the folder {parent} (permission denied)")
-    return p
-
-
-def _PathState(p: Path, option: str, text: str) -> str:
-    """'missing', 'folder' or 'file'; a path behind a folder one may not search is refused, naming the folder."""
     try:
-        return 'folder' if p.is_dir() else 'file' if p.exists() else 'missing'
-    except PermissionError:
-        blocked = next((q for q in reversed(p.absolute().parents) if not os.access(q, os.X_OK)), p.parent)
-        raise UsageError(f"{option} {text}: cannot reach it: the folder {blocked} may not be searched "
-                         f"(permission denied)") from None
+        return _files.CheckOutputPath(path, option, kind, overwrite, contents)
+    except _files.OutputPathError as err:
+        raise UsageError(str(err)) from None
 
 
 #: file formats of the figure options (``--plot``, ``--output`` of ``chart``)
