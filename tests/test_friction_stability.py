@@ -173,12 +173,12 @@ def test_operating_point_rejects_bad_input():
 def _LoweringOscillation(monkeypatch, law):
     """J2 max|phi2''| (N*m) per half second of the reel-P3 simulation, the connector using ``law``."""
     import exudyn_worm.analysis.reelchanger as rc
-    original = rc.DriveFromParameters
+    original = rc.ElasticDriveFromParameters
 
-    def WithLaw(parameters):            # the parameter keys of the law are plumbed elsewhere: attach it here
-        drive = original(parameters)
+    def WithLaw(parameters, *args):          # the parameter keys of the law are plumbed elsewhere: attach it here
+        drive = original(parameters, *args)
         return drive if law is None else Stribeck(drive, law)
-    monkeypatch.setattr(rc, 'DriveFromParameters', WithLaw)
+    monkeypatch.setattr(rc, 'ElasticDriveFromParameters', WithLaw)
     result = rc.SimulateReelChanger(P3)
     t, alpha2 = result.time, result.series['alpha2']
     return np.array([P3['J2'] * np.max(np.abs(alpha2[(t >= a) & (t < a + 0.5)])) for a in np.arange(0., 8., 0.5)])
