@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import socket
 import time
 from pathlib import Path
@@ -95,7 +96,8 @@ class OutputLock:
     The lock is an advisory ``flock`` on a hidden file ``.<name>.lock`` beside the output, which holds one line
     naming the holder. The kernel releases it when the holder ends in any way (``kill -9`` included; forked
     workers share it until they end, which they do with their parent), so a stale lock file of a killed process
-    is taken over. Unlike a POSIX record lock it is not lost when the holder opens and closes the file again, and
+    is taken over (if the holder named in it has ended on this host, its dying workers are waited for, up to
+    5 s). Unlike a POSIX record lock it is not lost when the holder opens and closes the file again, and
     it also keeps a second study of the same process off. On NFS, Linux maps it to a POSIX lock on the server.
     The file is removed on release. Where ``fcntl`` is missing (Windows) it only records the holder.
 
@@ -128,7 +130,7 @@ class OutputLock:
             fd = os.open(self.lockPath, os.O_RDWR | os.O_CREAT, 0o644)
             try:
                 if fcntl is not None:
-                    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                    _Flock(fcntl, fd)
             except OSError:
                 holder = os.read(fd, 400).decode('utf-8', 'replace').strip() or 'another process'
                 os.close(fd)
@@ -154,6 +156,38 @@ class OutputLock:
                 self.lockPath.unlink()                    # while still held, so that no one locks a removed file
             os.close(self._fd)
             self._fd = None
+
+
+def _HolderGone(fd: int) -> bool:
+    """Whether the process named in a lock file ran on this host and has ended (its pid no longer exists)."""
+    text = os.pread(fd, 400, 0).decode('utf-8', 'replace')
+    match = re.match(r'process (\d+) on host (\S+) ', text)
+    if match is None or match.group(2) != socket.gethostname():
+        return False
+    try:
+        os.kill(int(match.group(1)), 0)
+    except ProcessLookupError:
+        return True
+    except OSError:                                       # alive under another user
+        return False
+    return False
+
+
+def _Flock(fcntl, fd: int, grace: float = 5.0) -> None:
+    """Take the lock; if its holder was killed, wait up to ``grace`` s for its dying workers to let it go.
+
+    A study killed with ``kill -9`` ends before its forked workers do (they share the lock and die with it), so
+    a study started at once on the same output would otherwise be refused for a fraction of a second.
+    """
+    deadline = time.monotonic() + grace
+    while True:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return
+        except OSError:
+            if time.monotonic() > deadline or not _HolderGone(fd):
+                raise
+            time.sleep(0.02)
 
 
 class OutputPathError(ValueError):

@@ -63,6 +63,22 @@ def test_the_lock_keeps_every_other_writer_off_and_is_released(tmp_path):
         pass
 
 
+def test_a_killed_holders_dying_worker_delays_the_lock_instead_of_refusing_it(tmp_path):
+    """A study killed with -9 ends before its forked workers, which share its lock for a moment: a study started
+    at once on the same output waits for them (the holder named in the lock file is gone) and is not refused."""
+    out = tmp_path / 'runs.csv'
+    script = ('import os, sys, time\nfrom exudyn_worm._files import OutputLock\n'
+              'lock = OutputLock(sys.argv[1]).__enter__()\n'
+              'if os.fork() == 0:\n'                   # the 'worker' inherits the locked file
+              '    time.sleep(0.8)\n    os._exit(0)\n'
+              'print("ready", flush=True)\nos._exit(0)\n')  # the 'study' ends first, its lock file left behind
+    study = subprocess.Popen([sys.executable, '-c', script, str(out)], stdout=subprocess.PIPE, text=True)
+    assert study.stdout.readline() == 'ready\n'
+    study.wait()
+    with OutputLock(out, 'resume') as lock:                    # waits for the worker, then takes the lock over
+        assert lock.lockPath.read_text().startswith(f'process {os.getpid()} on host ')
+
+
 def test_write_text_atomically_replaces_whole_files_only(tmp_path):
     path = tmp_path / 's.study.json'
     WriteTextAtomically(path, 'one')
