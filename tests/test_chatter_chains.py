@@ -59,7 +59,7 @@ def test_stiff_load_shaft_gives_the_two_mass_orbit(orbitP1):
     # a 1e9 N m/rad load shaft (its stage at 1.6 kHz): the load follows the wheel, as lumped into J2 = 33
     stiff = FindSteadyChatter({**SPLIT, 'kL1': 1e9})
     assert stiff.converged and len(stiff.state) == 6
-    # item 4 of issue 18: amplitudes within 2 %
+    # required: amplitudes within 2 % of the long simulation's
     assert stiff.info['forceFactor'] == pytest.approx(orbitP1.info['forceFactor'], rel=0.02)
     assert stiff.info['maxWheelAcceleration'] == pytest.approx(orbitP1.info['maxWheelAcceleration'], rel=0.02)
     assert stiff.frequencyHz == pytest.approx(orbitP1.frequencyHz, rel=0.02)
@@ -96,7 +96,7 @@ def test_chain_branch_hopf_point_on_the_linear_boundary():
     assert len(chainRoots) == 1 and len(branch.hopf) == 1
     # the chain moves the boundary by more than the tolerance, so the check tells chain from lumped drive
     assert abs(chainRoots[0] - lumpedRoots[0]) > 0.01 * chainRoots[0]
-    # issue 18 item 2: the Hopf point coincides with the linear boundary within 0.5 %
+    # required: the Hopf point coincides with the linear boundary within 0.5 %
     assert branch.hopf[0]['value'] == pytest.approx(chainRoots[0], rel=0.005)
     assert branch.hopf[0]['type'] == 'supercritical'
 

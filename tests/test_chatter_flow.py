@@ -102,7 +102,7 @@ def test_settled_simulation_rejects_a_piece_shorter_than_the_window():
 def test_friction_limited_orbit_near_the_hopf_point_equals_a_settled_run():
     """reel-P3 with a Stribeck law, 3.5 % above the lower linear boundary (85.08 rpm): the orbit stays in contact
     and its amplitude is set by the falling friction. Shot from a settled run and continued one step towards the
-    boundary, it equals a time simulation from rest run until settled within 2 % (issue 18, item 4)."""
+    boundary, it equals a time simulation from rest run until settled within 2 % (the required agreement)."""
     from exudyn_worm.analysis.chatter import FindSteadyChatter, SettledSimulationAmplitude
     from exudyn_worm.analysis.speedchart import RPM
     base = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,

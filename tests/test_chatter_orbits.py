@@ -83,7 +83,7 @@ def test_p1_steady_chatter_orbit(orbitP1):
 @pytest.mark.slow
 def test_p1_orbit_matches_long_simulation(orbitP1):
     long = LongSimulationAmplitude(P1, duration=4.0, stepSize=2e-4)
-    # item 4 of issue 18: within 2 %
+    # required: within 2 %
     assert orbitP1.info['forceFactor'] == pytest.approx(long['forceFactor'], rel=0.02)
     assert orbitP1.info['maxWheelAcceleration'] == pytest.approx(long['maxWheelAcceleration'], rel=0.02)
     assert orbitP1.frequencyHz == pytest.approx(long['frequencyHz'], rel=0.005)
@@ -106,7 +106,7 @@ def test_branch_in_J1_hopf_points_on_the_linear_boundaries():
     branch = AnalyzeChatterBranch(P1, 'J1', 0.05, 0.3)
     assert len(branch.hopf) == 2
     for h in branch.hopf:
-        assert h['relativeDifference'] < 0.005                  # issue 18, item 2: within 0.5 %
+        assert h['relativeDifference'] < 0.005                  # required: within 0.5 % of the linear boundary
         assert h['type'] == 'supercritical'
     assert branch.coexistence == []
     inside = [p for p in branch.points if p.info['forceFactor'] >= 2.]

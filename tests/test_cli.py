@@ -15,7 +15,7 @@ from exudyn_worm.cli.main import Main
 from exudyn_worm.model.stability import AnalyzeStability
 
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
-# issue 15 added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
+# the speed-dependent friction added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
 TOP_KEYS = {'ratio', 'frictionAngle', 'selfLocking', 'efficiency', 'S', 'fuesgenLimit', 'firstCriterionLimit', 'hint',
             'stable', 'friction', 'selfLockingVerdict', 'operatingPoint',
             'geometry', 'method', 'model', 'components', 'maxRealPart', 'frequencyHz', 'operatingPoints', 'deciding',

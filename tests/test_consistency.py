@@ -1,4 +1,4 @@
-"""Consistency of the subcommands (issue 16, item 6): ``sweep --max-steps`` as ``simulate`` has it; a refused resume
+"""Consistency of the subcommands: ``sweep --max-steps`` as ``simulate`` has it; a refused resume
 names the option that differs with its old and new values; one policy for existing output files (refused unless
 ``--overwrite``) in every subcommand and in ``python -m validation``."""
 import json

@@ -175,7 +175,7 @@ def test_heavy_damping_recommendations_get_a_remark(capsys):
 
 
 def test_check_plot_reads_well():
-    """issue 16, item 9: D_V / D_TV in mathtext, no label box over the boundary, the shading in the legend, and
+    """Readable: D_V / D_TV in mathtext, no label box over the boundary, the shading in the legend, and
     the legend off the chart."""
     import re
     import numpy as np

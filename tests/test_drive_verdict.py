@@ -141,7 +141,7 @@ def test_hoist_points_are_its_plus_minus_100_rpm_phases():
         op = q.operatingPoint
         assert op.slidingSpeed == pytest.approx(v0, rel=1e-12)
         assert op.mu == pytest.approx(mu, rel=1e-12) and op.mu == pytest.approx(0.0947, abs=5e-5)   # the value the
-        assert op.dmuDv == pytest.approx(slope, rel=1e-9)                                          # issue reports
+        assert op.dmuDv == pytest.approx(slope, rel=1e-9)                                          # hoist.toml states
         assert op.normalForce == pytest.approx(367.875 / _C4(gear, q.S, mu), rel=1e-12)
 
 

@@ -1,4 +1,4 @@
-"""Duty cycles (issue 16, item 2): load and motor from a parameter set, in drive files and on the command line;
+"""Duty cycles: load and motor from a parameter set, in drive files and on the command line;
 the evaluation windows follow the duty (lowering = the load drives the gear)."""
 import json
 import math

@@ -1,4 +1,4 @@
-"""The static equilibrium under load (issue 16, item 4): exudyn_worm.items.equilibrium.SteadyInitialState."""
+"""The static equilibrium under load: exudyn_worm.items.equilibrium.SteadyInitialState."""
 import math
 import re
 from pathlib import Path
@@ -104,7 +104,7 @@ def test_docs_example_linearizes_and_stays_at_rest(tmp_path, monkeypatch, equili
     import exudyn as exu
     monkeypatch.chdir(tmp_path)
     code = _DocsExample()
-    if not equilibrium:          # the user's mistake of issue 16: the load shaft started untwisted
+    if not equilibrium:          # a user's mistake: the load shaft started untwisted
         code = code.replace("initialAngle=state['phiL1']", "initialAngle=state['phi2']")
     namespace = {}
     exec(compile(code, 'docs/equilibrium.md', 'exec'), namespace)

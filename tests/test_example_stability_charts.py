@@ -70,7 +70,7 @@ def test_main_writes_the_three_figures(tmp_path, capsys):
     assert 'fig04_chart_DV0.014.png' in capsys.readouterr().out
 
 
-# --- issue 16, item 9: regions that do not blend into an unexplained grey, P3 drawn truthfully, the points of
+# --- readable charts: regions that do not blend into an unexplained grey, P3 drawn truthfully, the points of
 # set (28) explained in the figure ---------------------------------------------------------------------------
 
 @pytest.fixture(scope='module')

@@ -1,4 +1,4 @@
-"""Friction laws mu(v) (issue 15, items 1 and 7): closed forms, the AGMA curve, slopes, the three backends, bad input."""
+"""Friction laws mu(v): closed forms, the AGMA curve, slopes, the three backends, bad input."""
 import math
 import warnings
 
@@ -67,7 +67,7 @@ def test_agma_at_rest_and_units():
     assert FT_PER_MIN == 0.3048 / 60 and 10 * FT_PER_MIN == pytest.approx(0.0508, rel=1e-15)
     assert law.Mu(1 * FT_PER_MIN) == pytest.approx(0.124 * math.exp(-0.074), rel=1e-15)      # V = 1 ft/min
     assert law.Mu(100 * FT_PER_MIN) == pytest.approx(0.103 * math.exp(-0.110 * 100**0.45) + 0.012, rel=1e-15)
-    # the issue's reading of the curve: 0.15 at rest, about 0.124 just above, a few hundredths at 0.9 m/s
+    # a reading of the AGMA curve: 0.15 at rest, about 0.124 just above, a few hundredths at 0.9 m/s
     assert law.Mu(1e-9) == pytest.approx(0.124, abs=5e-4) and 0.03 < law.Mu(0.9) < 0.06
 
 

@@ -1,4 +1,4 @@
-"""Linear stability with speed-dependent friction (issue 15, items 3 and 4): eq. (16) extended in place, the Exudyn
+"""Linear stability with speed-dependent friction: eq. (16) extended in place, the Exudyn
 linearization and a finite-difference Jacobian of the nonlinear contact law agree; self-locking verdicts."""
 import math
 
@@ -96,7 +96,7 @@ def test_extended_damping_matches_the_nonlinear_contact_law(S):
 
 @pytest.mark.parametrize('useSymbolic', [True, False])
 def test_exudyn_linearization_agrees_with_extended_equation_16(useSymbolic):
-    """Issue 15 item 4: 1e-6 relative. Eigenvalues, b2..b4 to rtol 1e-6; b1 is a difference of the damping terms
+    """The required agreement: 1e-6 relative. Eigenvalues, b2..b4 to rtol 1e-6; b1 is a difference of the damping terms
     D11/J1 and D22/J2 (it is small near the stability boundary), so it is compared relative to the size of those
     terms: Exudyn differentiates the connector by forward differences (relative step 1e-7), whose truncation error
     on the curved mu(v) is about 4e-8 N*m*s/rad on D11 here."""
@@ -115,7 +115,7 @@ def test_exudyn_linearization_agrees_with_extended_equation_16(useSymbolic):
 
 
 def test_reel_p3_with_a_falling_friction_through_the_same_mu():
-    """The issue's claim, checked: reel-P3 is stable with constant mu = 0.132; with a Stribeck law through 0.132 at
+    """The claim, checked: reel-P3 is stable with constant mu = 0.132; with a Stribeck law through 0.132 at
     the operating speed it is unstable if the slope is steep enough (muStatic 0.2, stribeckVelocity 0.9 m/s), and
     stays stable with a gentle one (muStatic 0.15)."""
     assert AnalyzeStability(DRIVE, OperatingPointFromParameters(P3, DRIVE.gear)).stable
@@ -144,7 +144,7 @@ def test_self_locking_verdicts():
     verdict = SelfLocking(gear)
     assert verdict.static.selfLocking and verdict.dynamic.selfLocking and not verdict.dangerous
     assert verdict.static.efficiencyWormDriving == pytest.approx(math.tan(gear.gamma) / math.tan(gear.gamma + gear.rho))
-    # the issue's Stribeck gear: mu 0.05, muStatic 0.15, 0.1 m/s: holds at rest, runs away at lowering speed
+    # the Stribeck gear of the hold test: mu 0.05, muStatic 0.15, 0.1 m/s: holds at rest, runs away at lowering speed
     law = StribeckFriction(0.05, 0.15, 0.1)
     stribeck = gear.Replace(mu=0.05, friction=law)
     verdict = SelfLocking(stribeck, stribeck.SlidingSpeed(P3['motorSpeed']))

@@ -1,4 +1,4 @@
-"""Ctrl-C everywhere (issue 16, item 5): every subcommand and ``python -m validation`` end an interrupt with one
+"""Ctrl-C everywhere: every subcommand and ``python -m validation`` end an interrupt with one
 line on stderr and exit status 130, without a traceback and without a half-written file; the validation stops
 instead of recording FAILs; ``sweep`` cancels its queued runs, terminates its running ones and keeps the finished
 ones; a study draws one progress bar, not one per worker."""

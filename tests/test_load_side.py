@@ -1,6 +1,6 @@
-"""Load-side chains (issue 16, item 1): the driven machine behind load shafts, wheel J2 --(kL1, dL1)-- JL1 -- ...
+"""Load-side chains: the driven machine behind load shafts, wheel J2 --(kL1, dL1)-- JL1 -- ...
 
-The drive of the issue: centre distance 40 mm, ratio 40, lead angle 3.5 deg, mu = 0.08, worm-side inertia 2e-4 kg*m^2,
+The drive of examples/drives/load-shaft.toml: centre distance 40 mm, ratio 40, lead angle 3.5 deg, mu = 0.08, worm-side inertia 2e-4 kg*m^2,
 the driven machine (0.5 kg*m^2) behind a 2e4 N*m/rad load shaft, written as examples/drives/load-shaft.toml."""
 import math
 import subprocess
@@ -17,7 +17,7 @@ from exudyn_worm.analysis.drivestability import DriveStability
 ROOT = Path(__file__).resolve().parents[1]
 LOAD_SHAFT = ROOT / 'examples' / 'drives' / 'load-shaft.toml'
 
-# the issue's drive, derived by hand: a = r1 + r2 and u = r2 / (r1 tan(gamma)) give r1 = a / (1 + u tan(gamma))
+# the load-shaft drive, derived by hand: a = r1 + r2 and u = r2 / (r1 tan(gamma)) give r1 = a / (1 + u tan(gamma))
 A, U, GAMMA, MU = 0.040, 40., math.radians(3.5), 0.08
 R1 = A / (1 + U * math.tan(GAMMA))
 R2 = A - R1
@@ -74,7 +74,7 @@ def test_drive_file_gives_the_three_mass_drive(fileParameters):
 
 
 def test_drive_file_equals_the_drive_built_by_hand_in_exudyn(fileParameters):
-    """The done-when of issue 16: same verdict and same eigenvalues (to 1e-6) as the hand-built Exudyn model."""
+    """Required: same verdict and same eigenvalues (to 1e-6) as the hand-built Exudyn model."""
     fromFile = DriveStability(fileParameters)
     byHand = _HandBuiltEigenvalues(J2, (JL1, KL1))
     assert fromFile.stable == byHand.stable
@@ -85,7 +85,7 @@ def test_drive_file_equals_the_drive_built_by_hand_in_exudyn(fileParameters):
 
 
 def test_lumping_the_load_into_j2_turns_the_verdict(fileParameters):
-    """The issue's report: lumped into J2 the drive looks stable (with margin), with the load shaft it chatters at
+    """Lumped into J2 the drive looks stable (with margin), with the load shaft it chatters at
     about 200 Hz in the wheel's mode. Both verdicts from hand-built Exudyn models and from the package."""
     from exudyn_worm.analysis.design import DesignCheck
     from exudyn_worm.setups.presets import LumpedLoadSide

@@ -1,4 +1,4 @@
-"""issue 16, item 10: the example drives and the docs ship with the package; `--config NAME` loads a shipped
+"""The example drives and the docs ship with the package; `--config NAME` loads a shipped
 drive; `--help` points to documentation that exists; a built wheel, installed into a fresh venv, runs
 `exudyn-worm stability` on a shipped drive."""
 import json

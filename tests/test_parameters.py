@@ -1,6 +1,6 @@
 """The parameter registry (exudyn_worm.params.parameters): each key declared once, and everything derived from it.
 
-The test-only keys below (``testLaw``, ``testSpeed``, ``testTable``, ...) stand for the friction keys of issue 15:
+The test-only keys below (``testLaw``, ``testSpeed``, ``testTable``, ...) stand for the friction-law keys:
 a choice, a number in m/s and a table of (speed, mu) rows. They prove that a key declared in the registry alone
 reaches --set, drive files, the checks, the messages and the docs.
 """

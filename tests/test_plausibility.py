@@ -1,4 +1,4 @@
-"""Plausibility of a worm gear (issue 16, item 8): refusals and warnings naming the likely unit slip."""
+"""Plausibility of a worm gear: refusals and warnings naming the likely unit slip."""
 import math
 import re
 import subprocess
@@ -23,7 +23,7 @@ def test_presets_are_plausible(name):
 
 
 def test_radius_in_mm_given_as_m_is_refused():
-    """The issue's case: r1 = 18.05 (mm typed as m) gives u = 0.063."""
+    """A user's case: r1 = 18.05 (mm typed as m) gives u = 0.063."""
     with pytest.raises(ValueError, match=r"WormGear: the transmission ratio u = r2/\(r1 tan\(gamma\)\) of eq. \(3\) "
                                          r"must be >= 1 .*got u = 0.063 .*mm given as m\? 18.05 mm = 0.01805 m"):
         WormGear(**{**GEAR, 'r1': 18.05})

@@ -44,7 +44,7 @@ def test_running_mean_of_an_oscillation_does_not_drift_at_the_ends():
     np.testing.assert_allclose(_RunningMean(t, np.full_like(t, 7.), 0.25), 7.)
 
 
-# --- issue 16, item 9: labels outside the data, the first time tick, the sign of M_an, a readable sign(S) -------
+# --- readable figures: labels outside the data, the first time tick, the sign of M_an, a readable sign(S) -------
 
 @pytest.fixture(autouse=True)
 def _CloseFigures():

@@ -1,4 +1,4 @@
-"""Plots only draw (issue 17, item 3): the plotting modules take results and draw; every analysis lives on the
+"""Plots only draw: the plotting modules take results and draw; every analysis lives on the
 analysis side with its result object; numerical modules never import matplotlib; one spelling, ``.plot()``."""
 import ast
 import importlib

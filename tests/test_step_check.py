@@ -1,5 +1,5 @@
 """The step rule shared by simulate and sweep, and the step check: a verdict that changes at half the step is
-'unresolved' (issue 16, item 7)."""
+'unresolved'."""
 import json
 
 import numpy as np
@@ -14,8 +14,8 @@ from exudyn_worm.analysis.stepsize import (SMALL_MARGIN, UNRESOLVED, CompareHalf
                                   StepCheckByDefault)
 from exudyn_worm.analysis.study import RunPoint, Study, Variation
 
-# the drive of issue 16: J1 = 0.0247 kg*m^2, kT = 1508 N*m/rad on P1's gear and load
-ISSUE_SETS = ['J1=0.0247', 'kT=1508']
+# a user's drive: J1 = 0.0247 kg*m^2, kT = 1508 N*m/rad on P1's gear and load
+USER_SETS = ['J1=0.0247', 'kT=1508']
 # short runs: 1 s of lifting in two windows
 SHORT = ['--end-time', '1', '--windows', '0:0.5,0.5:1']
 
@@ -32,8 +32,8 @@ def _FlipWithStep(monkeypatch, threshold):
 
 
 def test_simulate_and_sweep_use_the_same_step():
-    """Both take the drive's RecommendedStepSize; for the issue's drive (6.4e-4 s) the sweep used to take 5e-4 s."""
-    p = ResolveParameters('reel-P1', sets=ISSUE_SETS)
+    """Both take the drive's RecommendedStepSize; for that drive (6.4e-4 s) the sweep used to take 5e-4 s."""
+    p = ResolveParameters('reel-P1', sets=USER_SETS)
     h = RecommendedStepSize(p)
     assert h > 5e-4                       # the old sweep rule min(5e-4, recommended) would differ here
     row = RunPoint({'run': 0, 'parameters': p, 'varied': {}, 'windows': [(0., 0.5)], 'endTime': 0.5,
@@ -44,9 +44,9 @@ def test_simulate_and_sweep_use_the_same_step():
 def test_simulate_default_step_is_the_recommended_one(capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     status, out, err = _Run(capsys, 'simulate', '--quiet', '--json', '--no-check-step', *SHORT,
-                            *[a for s in ISSUE_SETS for a in ('--set', s)])
+                            *[a for s in USER_SETS for a in ('--set', s)])
     assert status == 0, err
-    assert json.loads(out)['stepSize'] == RecommendedStepSize(ResolveParameters('reel-P1', sets=ISSUE_SETS))
+    assert json.loads(out)['stepSize'] == RecommendedStepSize(ResolveParameters('reel-P1', sets=USER_SETS))
 
 
 def test_linear_margin_is_the_least_damped_rightmost_mode():

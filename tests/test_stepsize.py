@@ -42,7 +42,7 @@ def test_frequencies_of_p1_are_those_of_the_linear_model():
 @pytest.mark.physics
 def test_period_error_is_the_trapezoidal_one():
     assert PeriodError(40.5, 1e-4) == pytest.approx((2 * math.pi * 40.5e-4)**2 / 12, rel=1e-3)
-    # P1 at h = 0.01 s: 40.5 Hz comes out as 40.5 / 1.41 = 28.8 Hz (the measured frequency of issue 9)
+    # P1 at h = 0.01 s: 40.5 Hz comes out as 40.5 / 1.41 = 28.8 Hz (the frequency a user measured at this step)
     assert 40.5 / (1 + PeriodError(40.5, 0.01)) == pytest.approx(28.8, abs=0.1)
     for cycles, error in ((RECOMMENDED_CYCLES, 0.005), (SOFT_CYCLES, 0.02), (HARD_CYCLES, 0.05)):
         assert PeriodError(1., cycles) == pytest.approx(error, rel=1e-9)
@@ -62,7 +62,7 @@ def test_recommended_step_follows_the_stiffest_mode():
 
 @pytest.mark.messages
 @pytest.mark.parametrize('stepSize', [0.05, 0.01, 3e-3])
-def test_coarse_step_of_issue_9_is_refused(stepSize):
+def test_coarse_step_that_lowers_the_frequency_is_refused(stepSize):
     with pytest.raises(ValueError, match=r"CheckStepSize: 'stepSize' must be <= 0.0025 s .* got "):
         CheckStepSize(GetPreset('reel-P1'), stepSize)
 

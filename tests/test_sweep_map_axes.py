@@ -1,4 +1,4 @@
-"""issue 16, item 9: the chatter map of `exudyn-worm sweep --plot` has the stability charts' axes (a stiffness
+"""The chatter map of `exudyn-worm sweep --plot` has the stability charts' axes (a stiffness
 across, an inertia up), whatever order the keys were varied in."""
 import pytest
 
