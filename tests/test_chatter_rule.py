@@ -8,6 +8,7 @@ import pytest
 from exudyn_worm import GetPreset, SimulateReelChanger
 from exudyn_worm.items.results import (CHATTER_AMPLITUDE, CHATTER_MIN_MESH_TORQUE, CHATTER_SUSTAIN,
                                        SimulationResult)
+from exudyn_worm.analysis.reelchanger import DefaultPhases
 
 _T = np.linspace(0., 1., 20001)
 #: frequency in Hz of the test tones: 100 periods in each quarter of the window [0, 1] s
@@ -107,7 +108,6 @@ def test_worm_side_stick_slip_of_a_hoist_is_chatter():
     """The worm vibrates against its soft shaft and turns back while lifting and lowering; the wheel barely
     moves, so its inertia torque stays far below a tenth of the mesh torque (the wheel's measure misses it),
     while the mesh's sliding measure exceeds 1 (the worm turns back). Standing still under load, no chatter."""
-    from exudyn_worm.analysis.reelchanger import DefaultPhases
     result = SimulateReelChanger(HOIST, progress=False)
     phases = DefaultPhases(HOIST, result.endTime)
     assert [ph for _, _, ph in phases] == ['lift', 'idle', 'lower', 'idle']

@@ -13,6 +13,7 @@ import exudyn_worm
 from exudyn_worm.cli import main as cli
 from exudyn_worm.cli.main import Main
 from exudyn_worm.model.stability import AnalyzeStability
+import exudyn_worm.analysis.linearization as linearization
 
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
 # the speed-dependent friction added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
@@ -265,7 +266,6 @@ def test_error_messages_are_specific(capsys, tmp_path):
 
 
 def test_exudyn_method_uses_linearization(capsys, monkeypatch):
-    import exudyn_worm.analysis.linearization as linearization
     calls = []
 
     def Fake(drive, useSymbolic=True, operatingPoint=None):

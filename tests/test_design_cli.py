@@ -1,11 +1,15 @@
 """``exudyn-worm check`` and the hint of ``exudyn-worm stability --json`` (run in-process with Main)."""
 import json
+import re
 
+import numpy as np
 import pytest
 
 from exudyn_worm import AnalyzeStability, ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.analysis import design
 from exudyn_worm.cli.main import Main
+from exudyn_worm.analysis.design import DesignCheck, LocalCharts
+from exudyn_worm.plotting.plot_design import PlotDesignCheck, _Dense
 from paper_model import BoundaryDecades, HurwitzStable
 
 
@@ -177,10 +181,6 @@ def test_heavy_damping_recommendations_get_a_remark(capsys):
 def test_check_plot_reads_well():
     """Readable: D_V / D_TV in mathtext, no label box over the boundary, the shading in the legend, and
     the legend off the chart."""
-    import re
-    import numpy as np
-    from exudyn_worm.analysis.design import DesignCheck, LocalCharts
-    from exudyn_worm.plotting.plot_design import PlotDesignCheck, _Dense
     result = DesignCheck(GetPreset('reel-P1'))
     fig = PlotDesignCheck(result, LocalCharts(result.parameters), title='reel-P1')
     ax = fig.axes[0]

@@ -3,6 +3,7 @@ import math
 import re
 from pathlib import Path
 
+import exudyn as exu
 import pytest
 
 import exudyn_worm as ew
@@ -101,7 +102,6 @@ def _DocsExample():
 def test_docs_example_linearizes_and_stays_at_rest(tmp_path, monkeypatch, equilibrium):
     """Runs the code of docs/equilibrium.md; then a simulation from that state keeps every speed and the load
     shaft's torque (to 1e-9); without the load shaft's pre-twist it does not (the check can fail)."""
-    import exudyn as exu
     monkeypatch.chdir(tmp_path)
     code = _DocsExample()
     if not equilibrium:          # a user's mistake: the load shaft started untwisted

@@ -4,11 +4,12 @@ import warnings
 
 import numpy as np
 import pytest
+from scipy.interpolate import PchipInterpolator
 
 import exudyn as exu
 from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact, SymbolicOps
-from exudyn_worm.model.friction import (FT_PER_MIN, AgmaFriction, ConstantFriction, FrictionLaw, FrictionTableRangeWarning,
-                                  StribeckFriction, TableFriction)
+from exudyn_worm.model.friction import (FT_PER_MIN, AgmaFriction, ConstantFriction, FrictionLaw,
+                                        FrictionTableRangeWarning, ReadFrictionTable, StribeckFriction, TableFriction)
 from exudyn_worm.model.gear import WormGear
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 
@@ -72,7 +73,6 @@ def test_agma_at_rest_and_units():
 
 
 def test_table_is_pchip():
-    from scipy.interpolate import PchipInterpolator
     reference = PchipInterpolator(TABLE.speeds, TABLE.values)
     v = np.linspace(0., 2., 401)
     np.testing.assert_allclose(TABLE.Mu(v, NUMPY_OPS), reference(v), rtol=1e-12, atol=1e-15)
@@ -209,7 +209,6 @@ def test_friction_law_factory():
 
 
 def test_read_friction_table(tmp_path):
-    from exudyn_worm.model.friction import ReadFrictionTable
     path = tmp_path / 'rig.csv'
     path.write_text('# test rig, oil X\nv_m_s, mu\n0, 0.15\n0.05; 0.10\n\n0.5 0.06\n2.0,0.04\n')
     assert ReadFrictionTable(path) == TABLE

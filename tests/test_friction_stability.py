@@ -7,12 +7,15 @@ import pytest
 
 from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
 from exudyn_worm.model.friction import StribeckFriction, TableFriction
-from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn
+from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn, LinearStabilityFromParameters
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.selflocking import GREY_ZONE, Rating, SelfLocking
 from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoefficients, EigenvaluesFromPolynomial,
-                                   EigenvaluesFromStateMatrix, LinearMatrices, OperatingPoint, OperatingPointAt,
-                                   OperatingPointFromParameters, PolynomialCoefficients)
+                                         EigenvaluesFromStateMatrix, FirstCriterionLimit, LinearMatrices,
+                                         OperatingPoint, OperatingPointAt, OperatingPointFromParameters,
+                                         PolynomialCoefficients)
+import exudyn_worm.analysis.reelchanger as rc
+import exudyn_worm.setups.wholedrive as wholedrive
 
 P3 = GetPreset('reel-P3')
 DRIVE = ElasticDriveFromParameters(P3)
@@ -172,7 +175,6 @@ def test_operating_point_rejects_bad_input():
 
 def _LoweringOscillation(monkeypatch, law):
     """J2 max|phi2''| (N*m) per half second of the reel-P3 simulation, the connector using ``law``."""
-    import exudyn_worm.analysis.reelchanger as rc
     original = rc.ElasticDriveFromParameters
 
     def WithLaw(parameters, *args):          # the parameter keys of the law are plumbed elsewhere: attach it here
@@ -199,8 +201,6 @@ def test_simulation_grows_where_the_linear_analysis_says_unstable(monkeypatch):
 def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
     """LinearStabilityFromParameters (the whole-drive path of `stability`) linearizes a speed-dependent law at the
     operating point: for the two-mass drive it equals the extended eq. (16)."""
-    import exudyn_worm.setups.wholedrive as wholedrive
-    from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
     original = wholedrive.ElasticDriveFromParameters
     monkeypatch.setattr(wholedrive, 'ElasticDriveFromParameters', lambda p, where='': Stribeck(original(p)))
     linear = LinearStabilityFromParameters(P3)
@@ -215,7 +215,6 @@ def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
 
 def test_first_criterion_limit_includes_the_slope():
     """(20) with the slope: at J1/J2 = FirstCriterionLimit the b1 of S = -1 vanishes."""
-    from exudyn_worm.model.stability import FirstCriterionLimit
     drive = Stribeck()
     op = OperatingPointFromParameters(P3, drive.gear)
     limit = FirstCriterionLimit(drive, op)

@@ -7,12 +7,13 @@ import pytest
 
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
+from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.items.results import SimulationResult
 from exudyn_worm.model.stability import StateMatrix
 from exudyn_worm.analysis.stepsize import (SMALL_MARGIN, UNRESOLVED, CompareHalfStep, LinearMargin, RecommendedStepSize,
                                   StepCheckByDefault)
-from exudyn_worm.analysis.study import RunPoint, Study, Variation
+from exudyn_worm.analysis.study import ReadResults, RunPoint, RunStudy, Study, Variation
+from exudyn_worm.cli.sweep import FormatStudy
 
 # a user's drive: J1 = 0.0247 kg*m^2, kT = 1508 N*m/rad on P1's gear and load
 USER_SETS = ['J1=0.0247', 'kT=1508']
@@ -52,7 +53,6 @@ def test_simulate_default_step_is_the_recommended_one(capsys, tmp_path, monkeypa
 def test_linear_margin_is_the_least_damped_rightmost_mode():
     """P1: the rightmost eigenvalue of S = +1 (eqs. (1)-(2)) has |Re|/|lambda| = 0.011 (printed by 'stability' as
     Lehr damping 0.0108), below SMALL_MARGIN; raising both damping measures to 0.1 takes it to 0.09."""
-    from exudyn_worm.setups.presets import ElasticDriveFromParameters
     p = GetPreset('reel-P1')
     lam = np.linalg.eigvals(StateMatrix(ElasticDriveFromParameters(p), +1))
     right = lam[np.argmax(lam.real)]
@@ -126,8 +126,6 @@ def test_a_verdict_that_flips_with_the_step_is_unresolved_in_sweep(monkeypatch):
 
 
 def test_unresolved_survives_the_csv_and_stays_out_of_the_agreement(tmp_path, monkeypatch):
-    from exudyn_worm.cli.sweep import FormatStudy
-    from exudyn_worm.analysis.study import ReadResults, RunStudy
     p = GetPreset('reel-P1')
     _FlipWithStep(monkeypatch, 0.75 * RecommendedStepSize(p))
     study = Study(p, [Variation('J1', (0.2,))], windows=[(3.8, 4.0), (4.0, 4.2)], endTime=4.2, checkStep=True)

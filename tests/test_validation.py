@@ -14,6 +14,7 @@ from validation.paper import eigenvalue_forensics
 from validation.report import Report
 from validation.runner import (KINDS, RULES, CheckGroup, HalfUnit, InputRounding, LoadKnownDifferences,
                                LoadReference, ReadingInterval, RegisterCheckGroup, RunValidation)
+from validation.baseline import CompareWithBaseline, LoadBaseline
 
 #: the checks that FAIL today, each stated with its reason in validation/REPORT.md. A new failure, or a fix,
 #: fails the test below: update this pin together with the report.
@@ -57,7 +58,6 @@ def test_quick_run_fails_exactly_the_pinned_checks(quickRun):
 def test_quick_run_matches_the_committed_baseline(quickRun):
     """The regression gate of CI (python -m validation --quick --baseline validation/baseline-quick.json): after a
     deliberate change of results, record the baseline again (validation/README.md)."""
-    from validation.baseline import CompareWithBaseline, LoadBaseline
     baseline = LoadBaseline(runner.VALIDATION_DIR / 'baseline-quick.json', 'quick')
     assert CompareWithBaseline(quickRun, baseline) == []
 
