@@ -84,7 +84,6 @@ def test_stiff_axial_bearing_gives_the_two_mass_orbit(orbitP1):
     assert SmallestDisturbance(p, duration=0.5, steps=1) <= 0.25
 
 
-@pytest.mark.slow
 def test_chain_orbit_matches_long_simulation(orbitChain):
     long = LongSimulationAmplitude(CHAIN, duration=4.0, stepSize=2e-4)
     assert orbitChain.converged and orbitChain.stable
@@ -93,7 +92,6 @@ def test_chain_orbit_matches_long_simulation(orbitChain):
     assert orbitChain.frequencyHz == pytest.approx(long['frequencyHz'], rel=0.005)
 
 
-@pytest.mark.slow
 def test_chain_branch_hopf_point_on_the_linear_boundary():
     branch = AnalyzeChatterBranch(CHAIN, 'J1', 0.06, 0.1, maxPoints=40)
     chainRoots, _ = LinearBoundaries(CHAIN, 'J1', 0.06, 0.1)           # DriveStability: the whole drive

@@ -83,7 +83,6 @@ def test_p1_steady_chatter_orbit(orbitP1):
     assert o.stable and mu.max() < 0.99
 
 
-@pytest.mark.slow
 def test_p1_orbit_matches_long_simulation(orbitP1):
     long = LongSimulationAmplitude(P1, duration=4.0, stepSize=2e-4)
     # required: within 2 %
@@ -104,7 +103,6 @@ def test_linear_boundaries_are_sign_changes():
         assert growth(r * (1 - 1e-6)) * growth(r * (1 + 1e-6)) < 0
 
 
-@pytest.mark.slow
 def test_branch_in_J1_hopf_points_on_the_linear_boundaries():
     branch = AnalyzeChatterBranch(P1, 'J1', 0.05, 0.3)
     assert len(branch.hopf) == 2
@@ -148,7 +146,6 @@ def test_cli_bad_input_one_line_exit_2(capsys, argv, message):
     assert err.startswith('exudyn-worm: error:') and __import__('re').search(message, err)
 
 
-@pytest.mark.slow
 def test_cli_json_and_plot(capsys, tmp_path):
     plot = tmp_path / 'branch.png'
     assert Main(['chatter', '--preset', 'reel-P1', '--vary', 'kT=6000:9500', '--json', '--plot', str(plot)]) == 0
@@ -177,7 +174,6 @@ def test_settle_starts_from_the_equilibrium_every_time():
     assert EquilibriumState(model)[0] != x0[0]                  # the shaft twist follows kT
 
 
-@pytest.mark.slow
 def test_backlash_rest_and_chatter_coexist():
     # J1 = 0.25 kg m^2 with 0.5 mm backlash: linearly stable (backlash does not enter the linearization), yet a
     # large worm-speed kick ends in chatter; the orbit found by shooting is that chatter (long run within 2 %),
@@ -210,7 +206,6 @@ def test_trivial_multiplier_near_one(orbitP1):
     assert np.min(np.abs(small - 1.)) > 2 * orbitP1.trivialMultiplierError
 
 
-@pytest.mark.slow
 def test_branch_in_two_processes_equals_serial():
     # the two directions from the first orbit run in two worker processes (each builds its own model) or one
     # after the other: the same orbits

@@ -103,7 +103,6 @@ HOIST = {'alphaN': math.radians(20), 'mx': 3e-3, 'z1': 1, 'z2': 50, 'q': 16, 'mu
                                 (1.6, -100 * _RPM), (2.5, -100 * _RPM), (2.6, 0), (3.0, 0)]}
 
 
-@pytest.mark.slow
 def test_worm_side_stick_slip_of_a_hoist_is_chatter():
     """The worm vibrates against its soft shaft and turns back while lifting and lowering; the wheel barely
     moves, so its inertia torque stays far below a tenth of the mesh torque (the wheel's measure misses it),

@@ -99,7 +99,7 @@ def test_hoist_is_unstable_while_lifting_and_lowering():
     assert 'Chart point: none' in text and 'Smallest single changes' in text
 
 
-@pytest.mark.parametrize('lumped', [False, True])
+@pytest.mark.parametrize('lumped', [pytest.param(False, marks=pytest.mark.slow), True])   # with the chain: 2.4 s
 def test_agma_hoist_gets_the_danger_verdict_with_and_without_its_load_side_chain(lumped, tmp_path):
     path = _LumpedAgma(tmp_path) if lumped else AGMA
     check = _Json('check', '--quiet', '--config', path)

@@ -163,7 +163,6 @@ def test_stability_json_has_the_tables_hint(capsys):
     assert Json(capsys, 'stability', '--preset', 'reel-P2')['hint'] is None
 
 
-@pytest.mark.slow
 def test_check_simulate(capsys):
     data = Json(capsys, 'check', '--preset', 'reel-P1', '--span', '1.5', '--simulate')
     # no single change within 1.5: the best pair is simulated (and the given drive)

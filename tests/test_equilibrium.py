@@ -97,7 +97,6 @@ def _DocsExample():
     return re.search(r"```python\n(.*?)```", text, re.S).group(1)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize('equilibrium', [True, False])
 def test_docs_example_linearizes_and_stays_at_rest(tmp_path, monkeypatch, equilibrium):
     """Runs the code of docs/equilibrium.md; then a simulation from that state keeps every speed and the load

@@ -186,7 +186,6 @@ def _LoweringOscillation(monkeypatch, law):
     return np.array([P3['J2'] * np.max(np.abs(alpha2[(t >= a) & (t < a + 0.5)])) for a in np.arange(0., 8., 0.5)])
 
 
-@pytest.mark.slow
 def test_simulation_grows_where_the_linear_analysis_says_unstable(monkeypatch):
     """reel-P3 lowers from t = 2 s to 6 s (S = -1), under full load near t = 4 s. With constant mu the oscillation
     left by the load reversal decays; with the steep Stribeck law (linearly unstable at full load, growth rate

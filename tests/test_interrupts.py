@@ -288,6 +288,7 @@ def test_sigint_during_sweep_keeps_the_finished_runs(folder):
     assert output.read_text().endswith('\n')                               # no cut-off last line
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(os.name != 'posix', reason='POSIX signals')
 def test_sigint_during_python_m_validation(folder):
     report = folder / 'r.md'

@@ -233,6 +233,7 @@ def test_lumping_judged_safe_gives_the_lumped_verdict(fileParameters, kL1):
     assert d.lumpedStable == d.wholeStable
 
 
+@pytest.mark.slow
 def test_design_check_analyses_the_whole_drive_with_its_chain(fileParameters):
     """The design check no longer lumps the chain into J2 (nor refuses a soft one): its verdict is the whole drive's,
     and the chain's own parameters are design parameters."""
@@ -247,6 +248,7 @@ def test_design_check_analyses_the_whole_drive_with_its_chain(fileParameters):
         DiagnoseLoadSide({k: v for k, v in fileParameters.items() if k not in ('JL1', 'kL1', 'dL1')})
 
 
+@pytest.mark.slow
 def test_cli_check_reports_the_whole_drive_and_the_cause(capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert Main(['check', '--config', str(LOAD_SHAFT)]) == 0

@@ -79,6 +79,7 @@ def test_cli_refusal_one_line_exit_2(tmp_path, sets, text):
     assert len(lines) == 1 and lines[0].startswith('exudyn-worm: error: ') and text in lines[0], run.stderr
 
 
+@pytest.mark.slow
 def test_cli_warns_once_on_stderr(tmp_path):
     """`check` builds the gear many times (the stabilizing changes): each warning is printed once."""
     run = _Run('check', '--set', 'mu=0.8', '--set', 'r1=0.2', cwd=tmp_path)

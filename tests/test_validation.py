@@ -138,6 +138,7 @@ SIMULATION_FAILURES = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.physics
 def test_time_domain_checks_under_both_readings():
     """The slow group: the statements of section 3.2 under both mesh readings (about a minute)."""
