@@ -7,13 +7,13 @@ import pytest
 
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
 from exudyn_worm.items.results import SimulationResult
-from exudyn_worm.model.stability import StateMatrix
 from exudyn_worm.analysis.stepsize import (SMALL_MARGIN, UNRESOLVED, CompareHalfStep, LinearMargin, RecommendedStepSize,
                                   StepCheckByDefault)
 from exudyn_worm.analysis.study import ReadResults, RunPoint, RunStudy, Study, Variation
 from exudyn_worm.cli.sweep import FormatStudy
+from paper_model import Eigenvalues
 
 # a user's drive: J1 = 0.0247 kg*m^2, kT = 1508 N*m/rad on P1's gear and load
 USER_SETS = ['J1=0.0247', 'kT=1508']
@@ -51,14 +51,20 @@ def test_simulate_default_step_is_the_recommended_one(capsys, tmp_path, monkeypa
 
 
 def test_linear_margin_is_the_least_damped_rightmost_mode():
-    """P1: the rightmost eigenvalue of S = +1 (eqs. (1)-(2)) has |Re|/|lambda| = 0.011 (printed by 'stability' as
-    Lehr damping 0.0108), below SMALL_MARGIN; raising both damping measures to 0.1 takes it to 0.09."""
+    """P1: the rightmost root of the characteristic polynomial (15) of each contact state, with the b's of eq. (16)
+    written out from the paper (tests/paper_model.py), gives |Re|/|lambda|; the smaller one, that of S = +1, is the
+    margin, below SMALL_MARGIN, so the step check runs by default; raising both damping measures to 0.1 lifts it
+    above."""
     p = GetPreset('reel-P1')
-    lam = np.linalg.eigvals(StateMatrix(ElasticDriveFromParameters(p), +1))
-    right = lam[np.argmax(lam.real)]
+    margins = {}
+    for S in (+1, -1):
+        lam = Eigenvalues(p, S)
+        right = lam[np.argmax(lam.real)]
+        margins[S] = abs(right.real) / abs(right)
     m = LinearMargin(p)
-    assert m['contactState'] == 1 and m['margin'] == pytest.approx(abs(right.real) / abs(right), rel=1e-12)
-    assert m['margin'] == pytest.approx(0.0108, abs=5e-5) and StepCheckByDefault(p)
+    assert m['contactState'] == 1 and margins[+1] < margins[-1]
+    assert m['margin'] == pytest.approx(margins[+1], rel=1e-9)
+    assert m['margin'] < SMALL_MARGIN and StepCheckByDefault(p)
     damped = ApplyOverrides(GetPreset('reel-P2'), {'DV': 0.1, 'DT': 0.1})
     assert LinearMargin(damped)['margin'] > SMALL_MARGIN and not StepCheckByDefault(damped)
 

@@ -39,13 +39,27 @@ def test_frequencies_of_p1_are_those_of_the_linear_model():
     assert LinearizedFrequencies(GetPreset('reel-P2'))['chatterHz'] is None
 
 
+def _TrapezoidalPeriodError(cycles):
+    """The period error of the trapezoidal rule at f h = ``cycles``, by another route than the formula of the module:
+    one step of the rule on x'' = -omega^2 x (f = 1 Hz, h = cycles) is the matrix (I - h A/2)^-1 (I + h A/2) of
+    the state (x, x'); its eigenvalues exp(+-i theta) (|.| = 1: the rule keeps the energy) turn the state by
+    theta per step, so the computed period is 2 pi h / theta against the true 1 s."""
+    h, A = cycles, np.array([[0., 1.], [-(2 * math.pi)**2, 0.]])
+    step = np.linalg.solve(np.eye(2) - 0.5 * h * A, np.eye(2) + 0.5 * h * A)
+    lam = np.linalg.eigvals(step)
+    assert np.abs(lam) == pytest.approx(1., abs=1e-12)
+    return 2 * math.pi * h / abs(np.angle(lam[0])) - 1.
+
+
 @pytest.mark.physics
 def test_period_error_is_the_trapezoidal_one():
     assert PeriodError(40.5, 1e-4) == pytest.approx((2 * math.pi * 40.5e-4)**2 / 12, rel=1e-3)
-    # P1 at h = 0.01 s: 40.5 Hz comes out as 40.5 / 1.41 = 28.8 Hz (the frequency a user measured at this step)
+    assert PeriodError(40.5, 0.01) == pytest.approx(_TrapezoidalPeriodError(0.405), rel=1e-9)
+    # P1 at h = 0.01 s: 40.5 Hz comes out as 40.5 / 1.41 = 28.8 Hz (the chatter frequency simulated at this step,
+    # the module's text)
     assert 40.5 / (1 + PeriodError(40.5, 0.01)) == pytest.approx(28.8, abs=0.1)
     for cycles, error in ((RECOMMENDED_CYCLES, 0.005), (SOFT_CYCLES, 0.02), (HARD_CYCLES, 0.05)):
-        assert PeriodError(1., cycles) == pytest.approx(error, rel=1e-9)
+        assert _TrapezoidalPeriodError(cycles) == pytest.approx(error, rel=1e-9)
 
 
 @pytest.mark.physics
