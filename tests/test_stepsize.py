@@ -166,4 +166,6 @@ def test_cli_step_rule_of_a_whole_drive_file(capsys, tmp_path, monkeypatch):
     status = Main(['simulate', '--config', str(FIGURE19), '--end-time', '0.02', '--windows', '0:0.02', '--json',
                    '--quiet'])
     out, err = capsys.readouterr()
-    assert status == 0 and json.loads(out)['stepSize'] == pytest.approx(RECOMMENDED_CYCLES / 116.03, rel=1e-3)
+    p = ResolveParameters(config=FIGURE19)
+    maxHz, _ = _Frequencies([ChainEigenvalues(p, [(p['J4'], p['k4'], p['d4'])], S) for S in (+1, -1)])
+    assert status == 0 and json.loads(out)['stepSize'] == pytest.approx(RECOMMENDED_CYCLES / maxHz, rel=1e-8)
