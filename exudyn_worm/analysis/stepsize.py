@@ -100,18 +100,18 @@ SOFT_CYCLES = _CyclesForPeriodError(0.02)
 HARD_CYCLES = _CyclesForPeriodError(0.05)
 
 
-#: what the recommended step gives (measured, not implied by the rule): the window peaks (max |phi2''|, max |Fn| of
-#: :meth:`~exudyn_worm.items.results.SimulationResult.WindowMetrics` in the default windows) within this fraction of a
-#: converged step (halved until no peak changes by 0.05 %): max |Fn| in every window of the reel presets and of the
-#: shipped drives figure19 and load-shaft, max |phi2''| in the reel presets' windows that do not follow chatter across a
-#: load reversal (measured at most 0.43 %); the other windows: :data:`TRANSIENT_PEAK_ACCURACY` (table in
-#: docs/simulation.md, benchmarks/step_convergence.py)
+#: what the recommended step gives (measured, not implied by the rule): the window peaks (``max |phi2''|``,
+#: ``max |Fn|`` of :meth:`~exudyn_worm.items.results.SimulationResult.WindowMetrics` in the default windows) within this
+#: fraction of a converged step (halved until no peak changes by 0.05 %): ``max |Fn|`` in every window of the reel
+#: presets and of the shipped drives figure19 and load-shaft, ``max |phi2''|`` in the reel presets' windows that do
+#: not follow chatter across a load reversal (measured at most 0.43 %); the other windows:
+#: :data:`TRANSIENT_PEAK_ACCURACY` (table in docs/simulation.md, benchmarks/step_convergence.py)
 PEAK_ACCURACY = 0.01
-#: the bound of max |phi2''| in the other windows: the lift after the lowering chatter of P1, P6, P7 (+0.66 %, -8.1 %,
-#: +3.0 %), whose peak is the transient just after the load reverses, with an amplitude set by the phase of the chatter
-#: at the reversal, which a fixed step resolves only to the period error accumulated over the chatter (at half the
-#: step -8.7 %, -4.2 %, +0.17 %: halving does not bound it); and every window of figure19 and load-shaft, whose
-#: lightly damped modes ring after each load reversal (load-shaft -4.3 %, without chatter)
+#: the bound of ``max |phi2''|`` in the other windows: the lift after the lowering chatter of P1, P6, P7 (+0.66 %,
+#: -8.1 %, +3.0 %), whose peak is the transient just after the load reverses, with an amplitude set by the phase of
+#: the chatter at the reversal, which a fixed step resolves only to the period error accumulated over the chatter (at
+#: half the step -8.7 %, -4.2 %, +0.17 %: halving does not bound it); and every window of figure19 and load-shaft,
+#: whose lightly damped modes ring after each load reversal (load-shaft -4.3 %, without chatter)
 TRANSIENT_PEAK_ACCURACY = 0.10
 
 
