@@ -39,7 +39,7 @@ from ..model.stability import (CONTACT_STATES, SortEigenvalues, AnalyzeStability
 from ..setups.wholedrive import Drive
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
-           'BuildLinearizationModel', 'LinearStabilityFromParameters', 'ExudynEigenvalues',
+           'BuildLinearizationModel', 'LinearizationStart', 'LinearStabilityFromParameters', 'ExudynEigenvalues',
            'AnalyzeStabilityExudyn']
 
 #: normal pre-deflection in m beyond half the backlash at which the 2-DOF model is linearized (any value > 0
@@ -377,6 +377,34 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
                            states=results)
 
 
+def LinearizationStart(gear, S: Optional[int] = None, operatingPoint: Optional[OperatingPoint] = None
+                       ) -> Tuple[float, float]:
+    """Worm speed in rad/s and the worm's turn into contact in rad of a linearization model (wheel at angle 0).
+
+    At rest (no ``operatingPoint``) the worm is turned over half the backlash and a small preload; at an operating
+    point everything turns at the worm speed ``slidingSpeed cos(gamma) / r1`` and the worm is turned so that the
+    mesh carries the point's normal force on the flank sigma = S.
+
+    Parameters
+    ----------
+    gear : WormGear
+        The gear.
+    S : int, optional
+        The flank to load at the operating point (+1 or -1).
+    operatingPoint : OperatingPoint, optional
+        The steady state; None: at rest.
+
+    Returns
+    -------
+    (float, float)
+    """
+    if operatingPoint is None:
+        return 0., (0.5 * gear.backlash + _PRELOAD) / gear.normalLever
+    speed = operatingPoint.slidingSpeed * math.cos(gear.gamma) / gear.r1
+    deflection = operatingPoint.normalForce / gear.kV if operatingPoint.normalForce > 0 else _PRELOAD
+    return speed, S * (0.5 * gear.backlash + deflection) / gear.normalLever
+
+
 def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True,
                             axialBearing: Optional[AxialBearing] = None,
                             chain: Sequence[Tuple[float, float, float]] = (),
@@ -424,14 +452,10 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
     g = drive.gear
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    speed, deltaPhi = 0., (0.5 * g.backlash + _PRELOAD) / g.normalLever
-    if operatingPoint is not None:
-        if S is None:
-            raise ValueError("BuildLinearizationModel: with an 'operatingPoint' give 'S' (+1 or -1), the flank to "
-                             "load, got None")
-        speed = operatingPoint.slidingSpeed * math.cos(g.gamma) / g.r1
-        deflection = operatingPoint.normalForce / g.kV if operatingPoint.normalForce > 0 else _PRELOAD
-        deltaPhi = S * (0.5 * g.backlash + deflection) / g.normalLever
+    if operatingPoint is not None and S is None:
+        raise ValueError("BuildLinearizationModel: with an 'operatingPoint' give 'S' (+1 or -1), the flank to "
+                         "load, got None")
+    speed, deltaPhi = LinearizationStart(g, S, operatingPoint)
     free, motor = motor, CreateRotor(mbs, 1e-3 if motor is None else motor[0], initialSpeed=speed, name='motor')
     worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, initialSpeed=speed, name='worm')
     wheel = CreateRotor(mbs, drive.J2, initialSpeed=speed / g.ratio, name='wheel')

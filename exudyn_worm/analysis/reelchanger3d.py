@@ -21,22 +21,22 @@ from typing import Any, Dict, Mapping, Optional
 import numpy as np
 
 from .._checks import CheckPositive
-from ..items.bearings import ShaftBearings, CreateShaftBearings
+from ..items.bearings import WHEEL_MASS, WORM_MASS, ShaftBearings, CreateShaftBearings, StoredBearingLoads
 from ..items.drivetrain import CreatePrescribedRotation, CreateRotor
 from ..items.equilibrium import SteadyInitialState
 from ..items._userfunctions import SetGenericForceLaw
-from ..items.rigidmesh import CreateRigidBodyWormGear, RigidBodyWormGearConnector
-from ..model.contact import ContactOptions
+from ..items.rigidmesh import CreateRigidBodyWormGear, MeshForceComponents, RigidBodyWormGearConnector
+from ..model.contact import MATH_OPS, ContactOptions, MeshContact
 from ..model.profiles import ConstantSpeed
-from ..setups.duty import LoadFromParameters
-from ..setups.presets import AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain
+from ..model.stability import OperatingPoint
+from ..setups.duty import LoadFromParameters, MotorFromParameters, MotorType
+from ..setups.presets import (AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain,
+                              ShaftSupportsFromParameters)
+from .linearization import LinearizationStart
 
-__all__ = ['RigidBodyReelChanger', 'BuildRigidBodyReelChanger', 'WORM_MASS', 'WHEEL_MASS']
+__all__ = ['RigidBodyReelChanger', 'BuildRigidBodyReelChanger', 'BuildRigidBodyLinearizationModel', 'AddSeriesSensors',
+           'StoredSeries', 'StoredShaftLoads', 'StoredMeshState', 'MeshForceSeries', 'MESH_FORCE_SERIES', 'WORM_MASS', 'WHEEL_MASS']
 
-#: default mass in kg of the worm body (a steel worm shaft of the reel changer's size; only the bearings feel it)
-WORM_MASS = 5.
-#: default mass in kg of the wheel body
-WHEEL_MASS = 30.
 
 
 @dataclass
@@ -58,6 +58,14 @@ class RigidBodyReelChanger:
         The two-mass drive of the parameter set.
     initial : dict
         The static equilibrium the run starts from (:func:`~exudyn_worm.items.equilibrium.SteadyInitialState`).
+    motor : dict
+        The motor rotor (:func:`~exudyn_worm.items.drivetrain.CreateRotor`).
+    load : object or None
+        The load law on the wheel.
+    axialBearing : AxialBearing or None
+        The worm's axial bearing ``kA, dA, mA`` (the worm slides on its joint), if the parameter set gives one.
+    sensors : dict
+        Sensors by name (:func:`AddSeriesSensors`).
     """
     systemContainer: Any
     mbs: Any
@@ -66,26 +74,42 @@ class RigidBodyReelChanger:
     bearings: Dict[str, Any]
     drive: Any
     initial: Dict[str, float] = field(default_factory=dict)
+    motor: Optional[Dict[str, Any]] = None
+    load: Optional[Any] = None
+    axialBearing: Optional[Any] = None
+    sensors: Dict[str, Any] = field(default_factory=dict)
 
 
 def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
                               useSymbolic: bool = True, wormBearings: Optional[ShaftBearings] = None,
-                              wheelBearings: Optional[ShaftBearings] = None, wormMass: float = WORM_MASS,
-                              wheelMass: float = WHEEL_MASS) -> RigidBodyReelChanger:
+                              wheelBearings: Optional[ShaftBearings] = None, wormMass: Optional[float] = None,
+                              wheelMass: Optional[float] = None, profile=None,
+                              startFromEquilibrium: bool = True) -> RigidBodyReelChanger:
     """Build the reel changer with worm and wheel as rigid bodies (module docstring), starting in equilibrium.
 
     Parameters
     ----------
     parameters : mapping
-        A reel-changer parameter set without chains, axial bearing or other duty (e.g. ``GetPreset('reel-P1')``).
+        A reel-changer parameter set without chains or a motor on its characteristic (e.g.
+        ``GetPreset('reel-P1')``); its shaft bearings and masses (``wormRadialStiffness``, ..., ``wormMass``,
+        :func:`~exudyn_worm.setups.presets.ShaftSupportsFromParameters`) are used where the arguments below do not
+        give them.
     contactOptions : ContactOptions
         Options of the contact law.
     useSymbolic : bool
-        C++ symbolic user functions (default) or plain Python.
+        C++ symbolic user functions (default) or plain Python for the drive and the load (the mesh law runs in
+        Python, docs/mesh-3d.md).
     wormBearings, wheelBearings : ShaftBearings, optional
-        Elastic bearings of the shafts; None (default): ideal revolute joints to ground.
-    wormMass, wheelMass : float
-        Masses in kg of the bodies (> 0); the moments of inertia about the axes are J1 and J2 of the set.
+        Elastic bearings of the shafts; None (default): those of the parameter set, else ideal revolute joints.
+    wormMass, wheelMass : float, optional
+        Masses in kg of the bodies (> 0); default those of the parameter set, else :data:`WORM_MASS`,
+        :data:`WHEEL_MASS`. The moments of inertia about the axes are J1 and J2 of the set.
+    profile : optional
+        Motor motion with ``AngleAndSpeed(t, ops)`` (default: the duty's motor,
+        :func:`~exudyn_worm.setups.duty.MotorFromParameters`).
+    startFromEquilibrium : bool
+        Start in the static equilibrium under the initial load at the motor's initial speed (default); otherwise
+        at rest with zero angles.
 
     Returns
     -------
@@ -94,14 +118,20 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
     Raises
     ------
     ValueError
-        For a parameter set with chains, an axial bearing or a motor other than constant speed, or a bad mass.
+        For a parameter set with chains, a motor on its characteristic, a bearing given twice or a bad mass.
     """
-    import exudyn as exu
-    from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, ObjectGenericODE2
-    from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixX, RotationMatrixZ
-
     w = 'BuildRigidBodyReelChanger'
-    wormMass, wheelMass = CheckPositive(w, 'wormMass', wormMass, 'kg'), CheckPositive(w, 'wheelMass', wheelMass, 'kg')
+    supports = ShaftSupportsFromParameters(parameters, w)
+    for name, value in (('wormBearings', wormBearings), ('wheelBearings', wheelBearings)):
+        if value is not None and supports is not None and getattr(supports, name) is not None:
+            raise ValueError(f"{w}: '{name}' are given twice, as the argument and in the parameter set; give them once")
+    if supports is not None:
+        wormBearings = wormBearings or supports.wormBearings
+        wheelBearings = wheelBearings or supports.wheelBearings
+        wormMass = supports.wormMass if wormMass is None else wormMass
+        wheelMass = supports.wheelMass if wheelMass is None else wheelMass
+    wormMass = CheckPositive(w, 'wormMass', WORM_MASS if wormMass is None else wormMass, 'kg')
+    wheelMass = CheckPositive(w, 'wheelMass', WHEEL_MASS if wheelMass is None else wheelMass, 'kg')
     if DriveSideChain(parameters) or LoadSideChain(parameters):
         raise ValueError(f"{w}: the rigid-body reel changer has no drive-side or load-side chain: remove J4.., JL1.. "
                          f"from the parameter set")
@@ -109,36 +139,94 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
     if axial is not None and wormBearings is not None:
         raise ValueError(f"{w}: give the worm's axial bearing once: as kA, dA, mA of the parameter set or in "
                          f"'wormBearings'")
-    if parameters.get('motorType', 'constantSpeed') != 'constantSpeed':
-        raise ValueError(f"{w}: the rigid-body reel changer drives the motor at constant speed, got motorType = "
-                         f"{parameters.get('motorType')!r}")
+    if MotorType(parameters) == 'characteristic':
+        raise ValueError(f"{w}: the rigid-body reel changer holds the motor on its path; a motor on its "
+                         f"characteristic (motorType = characteristic) is not supported")
     drive = ElasticDriveFromParameters(parameters)
-    gear = drive.gear
     load = LoadFromParameters(parameters, w)
-    motorSpeed = float(parameters['motorSpeed'])
-    init = SteadyInitialState(drive, load, motorSpeed, contactOptions, axial)
-    if axial is not None:
-        wormMass = axial.mass                  # the worm moves axially as a whole
+    profile = MotorFromParameters(parameters, w) if profile is None else profile
+    angle0, motorSpeed = (float(x) for x in profile.AngleAndSpeed(0., MATH_OPS))
+    if startFromEquilibrium:
+        init = SteadyInitialState(drive, load, motorSpeed, contactOptions, axial)
+    else:
+        init, angle0, motorSpeed = {'phi1': 0., 'omega1': 0., 'phi2': 0., 'omega2': 0.}, 0., 0.
+    init['phi0'], init['omega0'] = angle0, motorSpeed
+    wormMass = axial.mass if axial is not None else wormMass
+    if startFromEquilibrium and (wormBearings is not None or wheelBearings is not None):
+        init.update(_StaticPoses(parameters, drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass,
+                                 axial, init, profile, load))
+    return _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
+                  axial, init, profile, load)
 
+
+def _StaticPoses(parameters, drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, axial, init,
+                 profile, load) -> Dict[str, Any]:
+    """The bodies' poses with the bearings deflected by the initial mesh force: a static solve of the model at
+    t = 0 with the contact state of the one-angle equilibrium ``init`` held, so that a run starts without the
+    bearings' transient. Returns ``wormPose``, ``wheelPose`` (displacement, rotation matrix) and ``phi0``, the
+    motor's angle held (unchanged)."""
+    import exudyn as exu
+    S = 1 if init['omega1'] == 0. else int(np.sign(_StartS(drive, load, init, contactOptions)))
+    static = _Build(parameters, drive, ContactOptions(fixedS=S, frictionModel='regularized'), True, wormBearings,
+                    wheelBearings, wormMass, wheelMass, axial, {**init, 'omega0': 0., 'omega1': 0., 'omega2': 0.},
+                    ConstantSpeed(0.), load)
+    mbs = static.mbs
+    mbs.Assemble()
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False
+    ss.staticSolver.newton.relativeTolerance = 1e-10
+    ss.displayComputationTime = False
+    ss.staticSolver.verboseMode = 0
+    ss.linearSolverType = exu.LinearSolverType.EigenDense
+    mbs.SolveStatic(ss)
+    out = {}
+    for body in ('worm', 'wheel'):
+        node = static.bodies[body]['nodeNumber']
+        position = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.Displacement), dtype=float)
+        rotation = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.RotationMatrix), dtype=float).reshape(3, 3)
+        out[body + 'Pose'] = (position, rotation)
+    return out
+
+
+def _StartS(drive, load, init, contactOptions) -> float:
+    """The contact parameter S of the one-angle mesh at the start ``init`` (the flank and the sliding direction)."""
+    return float(np.asarray(MeshContact(drive.gear, init['phi1'], init['phi2'], init['omega1'], init['omega2'],
+                                        options=contactOptions, axialDisplacement=init.get('xA'),
+                                        axialSpeed=init.get('vA')).S))
+
+
+def _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
+           axial, init, profile, load) -> RigidBodyReelChanger:
+    """The system of :func:`BuildRigidBodyReelChanger` from the initial state ``init`` (phi0, omega0, phi1, omega1,
+    phi2, omega2, xA, vA), the motor ``profile`` and the ``load`` (None: none)."""
+    import exudyn as exu
+    from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, ObjectGenericODE2
+    from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixX, RotationMatrixZ
+
+    w = 'BuildRigidBodyReelChanger'
+    gear = drive.gear
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     a = gear.r1 + gear.r2
     # Rxyz angles: the worm's first angle is its turn about global x, the wheel's last its turn about global z
+    # a pose (displacement, rotation matrix) from the bearings' static deflection (_StaticPoses), else the turn alone
+    wormPose = init.get('wormPose', ([init.get('xA', 0.), 0., 0.], RotationMatrixX(init['phi1'])))
+    wheelPose = init.get('wheelPose', ([0., 0., 0.], RotationMatrixZ(init['phi2'])))
     worm = mbs.CreateRigidBody(name='worm', nodeType=exu.NodeType.RotationRxyz, referencePosition=[0., 0., 0.],
                                inertia=RigidBodyInertia(mass=wormMass,
                                                         inertiaTensor=np.diag([drive.J1, drive.J1, drive.J1])),
-                               initialRotationMatrix=RotationMatrixX(init['phi1']),
-                               initialDisplacement=[init.get('xA', 0.), 0., 0.], initialVelocity=[init.get('vA', 0.), 0., 0.],
+                               initialRotationMatrix=wormPose[1], initialDisplacement=list(wormPose[0]),
+                               initialVelocity=[init.get('vA', 0.), 0., 0.],
                                initialAngularVelocity=[init['omega1'], 0., 0.], returnDict=True)
     wheel = mbs.CreateRigidBody(name='wheel', nodeType=exu.NodeType.RotationRxyz, referencePosition=[0., a, 0.],
                                 inertia=RigidBodyInertia(mass=wheelMass,
                                                          inertiaTensor=np.diag([drive.J2, drive.J2, drive.J2])),
-                                initialRotationMatrix=RotationMatrixZ(init['phi2']),
+                                initialRotationMatrix=wheelPose[1], initialDisplacement=list(wheelPose[0]),
                                 initialAngularVelocity=[0., 0., init['omega2']], returnDict=True)
     bearings = {'worm': _Support(mbs, worm, [1., 0., 0.], wormBearings, 'worm', axial),
                 'wheel': _Support(mbs, wheel, [0., 0., 1.], wheelBearings, 'wheel')}
-    motor = CreateRotor(mbs, 1e-3, initialAngle=0., initialSpeed=motorSpeed, name='motor')
-    CreatePrescribedRotation(mbs, motor, ConstantSpeed(motorSpeed), name='motorDrive', useSymbolic=useSymbolic)
+    motor = CreateRotor(mbs, 1e-3, initialAngle=init['phi0'], initialSpeed=init['omega0'], name='motor')
+    CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
     wormAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=worm['nodeNumber'], coordinate=3))
     mbs.AddObject(CoordinateSpringDamper(markerNumbers=[motor['markerNumber'], wormAngle], stiffness=drive.kT,
                                          damping=drive.dT, name='driveShaft'))
@@ -150,7 +238,53 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
                            useSymbolic, where=w)
     connector = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=gear, wormAxis=[1., 0., 0.], wheelAxis=[0., 0., 1.],
                                         name='wormGear', contactOptions=contactOptions)
-    return RigidBodyReelChanger(SC, mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init))
+    return RigidBodyReelChanger(SC, mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init),
+                                motor=motor, load=load, axialBearing=axial)
+
+
+def BuildRigidBodyLinearizationModel(parameters: Mapping[str, float], S: Optional[int] = None,
+                                     operatingPoint: Optional[OperatingPoint] = None):
+    """The 3D model of a drive for its linearization, as
+    :func:`~exudyn_worm.analysis.linearization.BuildLinearizationModel` builds the one-angle model; returns
+    ``(SC, mbs)``, assembled.
+
+    Motor held on its path (at rest, or at the worm speed of ``operatingPoint``), no load; the worm is turned
+    into contact (against the flank sigma = S carrying the operating point's normal force) while the bearings
+    are undeflected (their springs are linear: the linearization does not depend on their preload).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with the shafts' bearings (:func:`~exudyn_worm.setups.presets.ShaftSupportsFromParameters`)
+        or the worm's axial bearing.
+    S : int, optional
+        Contact parameter held in the mesh, +1 or -1; None: S follows eq. (8) (for
+        :func:`~exudyn_worm.analysis.linearization.AnalyzeLinearStability`, which holds it itself).
+    operatingPoint : OperatingPoint, optional
+        Start in this steady state (needs ``S``); None: at rest.
+
+    Returns
+    -------
+    (exudyn.SystemContainer, exudyn.MainSystem)
+    """
+    w = 'BuildRigidBodyLinearizationModel'
+    if S is not None and S not in (1, -1):
+        raise ValueError(f"{w}: 'S' must be None, +1 or -1, got {S!r}")
+    if operatingPoint is not None and S is None:
+        raise ValueError(f"{w}: with an 'operatingPoint' give 'S' (+1 or -1), the flank to load, got None")
+    supports = ShaftSupportsFromParameters(parameters, w)
+    drive = ElasticDriveFromParameters(parameters)
+    g = drive.gear
+    speed, deltaPhi = LinearizationStart(g, S, operatingPoint)
+    init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0., 'omega2': speed / g.ratio}
+    options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
+    axial = AxialBearingFromParameters(parameters)
+    model = _Build(parameters, drive, options, True, None if supports is None else supports.wormBearings,
+                   None if supports is None else supports.wheelBearings,
+                   axial.mass if axial is not None else (WORM_MASS if supports is None else supports.wormMass),
+                   WHEEL_MASS if supports is None else supports.wheelMass, axial, init, ConstantSpeed(speed), None)
+    model.mbs.Assemble()
+    return model.systemContainer, model.mbs
 
 
 def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axial=None):
@@ -171,6 +305,11 @@ def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axia
                                              constrainedAxes=[0 if axial is not None else 1, 1, 1, 0, 1, 1],
                                              name=name + 'Joint'))
     out = {'joint': joint, 'markerNumbers': [mGround, mBody]}
+    from exudyn.itemInterface import SensorObject
+    OVT = exu.OutputVariableType
+    # the joint's reaction in its frame (x along the shaft): the load of the shaft's bearings together
+    out['sensors'] = {'joint': mbs.AddSensor(SensorObject(objectNumber=joint, outputVariableType=OVT.ForceLocal,
+                                                          storeInternal=True, writeToFile=False))}
     if axial is not None:                      # the worm's axial coordinate: its node's x (the axis is global x)
         from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, NodePointGround
         nGround = mbs.AddNode(NodePointGround())
@@ -178,4 +317,150 @@ def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axia
         m1 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=body['nodeNumber'], coordinate=0))
         out['axialSpring'] = mbs.AddObject(CoordinateSpringDamper(markerNumbers=[m0, m1], stiffness=axial.stiffness,
                                                                   damping=axial.damping, name=name + 'Axial'))
+        out['sensors']['axialSpring'] = mbs.AddSensor(SensorObject(objectNumber=out['axialSpring'],
+                                                                   outputVariableType=OVT.Force,
+                                                                   storeInternal=True, writeToFile=False))
     return out
+
+
+def StoredShaftLoads(model: RigidBodyReelChanger) -> Dict[str, np.ndarray]:
+    """The loads of both shafts' supports over the stored steps of a solved :class:`RigidBodyReelChanger`.
+
+    Elastic bearings: :func:`~exudyn_worm.items.bearings.StoredBearingLoads`; an ideal revolute joint: its reaction
+    force (along the shaft: the axial load; across: the radial load, the vector sum of the shaft's radial bearings);
+    with the worm's axial bearing ``kA`` the axial load is its spring's force.
+
+    Parameters
+    ----------
+    model : RigidBodyReelChanger
+        The model, after a solve.
+
+    Returns
+    -------
+    dict of ndarray
+        ``time`` (s), ``wormAxialLoad``, ``wheelAxialLoad`` (N, along the shaft's axis, signed as the item reports
+        it), ``wormRadialLoad``, ``wheelRadialLoad`` (N, magnitude of the radial force).
+    """
+    mbs = model.mbs
+    out = {}
+    for body, items in model.bearings.items():
+        if 'joint' not in items:
+            loads = StoredBearingLoads(mbs, items)
+            out['time'], axial, radial = loads['time'], loads['axial'], loads['radial']
+        else:
+            force = np.asarray(mbs.GetSensorStoredData(items['sensors']['joint']))
+            out['time'], axial, radial = force[:, 0], force[:, 1], np.hypot(force[:, 2], force[:, 3])
+            if 'axialSpring' in items['sensors']:
+                axial = np.asarray(mbs.GetSensorStoredData(items['sensors']['axialSpring']))[:, 1]
+        out[body + 'AxialLoad'], out[body + 'RadialLoad'] = np.asarray(axial, float), np.asarray(radial, float)
+    return out
+
+
+def StoredSeries(model: RigidBodyReelChanger) -> Dict[str, np.ndarray]:
+    """The series of a solved :class:`RigidBodyReelChanger` by the names of
+    :class:`~exudyn_worm.items.results.SimulationResult` (before the mesh quantities are added).
+
+    Parameters
+    ----------
+    model : RigidBodyReelChanger
+        The model, after a solve; needs :func:`AddSeriesSensors` before ``mbs.Assemble()``.
+
+    Returns
+    -------
+    dict of ndarray
+        ``time``; ``phi0, omega0`` (motor), ``phi1, omega1, alpha1`` (worm: its turn about its axis, the first
+        Tait-Bryan coordinate), ``phi2, omega2, alpha2`` (wheel: the last one), with the worm's axial bearing
+        ``xA, vA`` (the worm's axial displacement); the bearing loads of :func:`StoredShaftLoads`.
+    """
+    mbs = model.mbs
+    data = {k: np.asarray(mbs.GetSensorStoredData(s)) for k, s in model.sensors.items()}
+    out = {'time': data['motorAngle'][:, 0], 'phi0': data['motorAngle'][:, 1], 'omega0': data['motorSpeed'][:, 1]}
+    for body, prefix, column in (('worm', '1', 4), ('wheel', '2', 6)):
+        for name, key in (('phi', 'Coordinates'), ('omega', 'Velocities'), ('alpha', 'Accelerations')):
+            out[name + prefix] = data[body + key][:, column]
+    if model.axialBearing is not None:
+        out['xA'], out['vA'] = data['wormCoordinates'][:, 1], data['wormVelocities'][:, 1]
+    loads = StoredShaftLoads(model)
+    loads.pop('time')
+    out.update(loads)
+    return out
+
+
+def StoredMeshState(model: RigidBodyReelChanger, keep: Optional[np.ndarray] = None):
+    """The mesh quantities over the stored steps of a solved :class:`RigidBodyReelChanger` (those selected by the
+    boolean array ``keep``, default all), as :meth:`~exudyn_worm.items.rigidmesh.RigidBodyWormGearConnector.Evaluate`.
+
+    Parameters
+    ----------
+    model : RigidBodyReelChanger
+        The model, after a solve (with :func:`AddSeriesSensors`).
+    keep : ndarray of bool, optional
+        The stored steps to evaluate.
+
+    Returns
+    -------
+    MeshState
+    """
+    time, q, v = model.connector._Stored(model.mbs)
+    if keep is not None:
+        time, q, v = time[keep], q[keep], v[keep]
+    state = model.connector.Evaluate(q, v, time)
+    state.time = time
+    return state
+
+
+def MeshForceSeries(model: RigidBodyReelChanger, state) -> Dict[str, np.ndarray]:
+    """The mesh force on each body in its own terms (worm and wheel: tangential, axial, radial, N) per step of
+    ``state``, as :func:`~exudyn_worm.items.rigidmesh.MeshForceComponents` gives them.
+
+    Parameters
+    ----------
+    model : RigidBodyReelChanger
+        The model.
+    state : MeshState
+        Its mesh quantities (:func:`StoredMeshState`).
+
+    Returns
+    -------
+    dict of ndarray
+        ``meshWormTangential``, ``meshWormAxial``, ..., ``meshWheelRadial`` (:data:`MESH_FORCE_SERIES`).
+    """
+    components = MeshForceComponents(model.connector, state)
+    return {name: np.asarray(components[key], dtype=float) for key, name in MESH_FORCE_SERIES.items()}
+
+
+#: the mesh-force series of a run of the 3D model (:func:`MeshForceSeries`) by their
+#: :func:`~exudyn_worm.items.rigidmesh.MeshForceComponents` key
+MESH_FORCE_SERIES = {key: 'mesh' + key[0].upper() + key[1:] for key in
+                     ('wormTangential', 'wormAxial', 'wormRadial', 'wheelTangential', 'wheelAxial', 'wheelRadial')}
+
+
+def AddSeriesSensors(model: RigidBodyReelChanger) -> Dict[str, Any]:
+    """Add the internally stored sensors that :func:`StoredSeries` reads (before ``mbs.Assemble()``).
+
+    Parameters
+    ----------
+    model : RigidBodyReelChanger
+        The model, not yet assembled.
+
+    Returns
+    -------
+    dict
+        The sensors by name (also in ``model.sensors``).
+    """
+    import exudyn as exu
+    from exudyn.itemInterface import SensorNode
+    OVT = exu.OutputVariableType
+    mbs = model.mbs
+    for name, node, ovt in (('motorAngle', model.motor['nodeNumber'], OVT.Coordinates),
+                            ('motorSpeed', model.motor['nodeNumber'], OVT.Coordinates_t)):
+        model.sensors[name] = mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=ovt, storeInternal=True,
+                                                       writeToFile=False))
+    for body, info in model.bodies.items():
+        for key, ovt in (('Coordinates', OVT.Coordinates), ('Velocities', OVT.Coordinates_t),
+                         ('Accelerations', OVT.Coordinates_tt)):
+            model.sensors[body + key] = mbs.AddSensor(SensorNode(nodeNumber=info['nodeNumber'], outputVariableType=ovt,
+                                                                 storeInternal=True, writeToFile=False))
+    model.connector.sensors.update({k: model.sensors[k] for k in ('wormCoordinates', 'wormVelocities',
+                                                                   'wheelCoordinates', 'wheelVelocities')})
+    return model.sensors
