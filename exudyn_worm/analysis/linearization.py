@@ -32,6 +32,7 @@ from ..items.connector import CONNECTORS_KEY, AxialBearing, CreateWormAxialBeari
 from ..items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
 from ..model.contact import ContactOptions
 from ..model.drive import ElasticDrive
+from ..model.gear import WormGear
 from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft
 from ..model.profiles import ConstantSpeed
 from ..model.stability import (CONTACT_STATES, SortEigenvalues, AnalyzeStability, ContactStability,
@@ -377,7 +378,7 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
                            states=results)
 
 
-def LinearizationStart(gear, S: Optional[int] = None, operatingPoint: Optional[OperatingPoint] = None
+def LinearizationStart(gear: 'WormGear', S: Optional[int] = None, operatingPoint: Optional[OperatingPoint] = None
                        ) -> Tuple[float, float]:
     """Worm speed in rad/s and the worm's turn into contact in rad of a linearization model (wheel at angle 0).
 

@@ -16,7 +16,7 @@ joint against the axial spring-damper, the model of :func:`~exudyn_worm.items.co
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Dict, Mapping, Optional
+from typing import Any, Dict, Mapping, Optional, Tuple
 
 import numpy as np
 
@@ -26,7 +26,7 @@ from ..items.drivetrain import CreatePrescribedRotation, CreateRotor
 from ..items.equilibrium import SteadyInitialState
 from ..items._userfunctions import SetGenericForceLaw
 from ..items.rigidmesh import CreateRigidBodyWormGear, MeshForceComponents, RigidBodyWormGearConnector
-from ..model.contact import MATH_OPS, ContactOptions, MeshContact
+from ..model.contact import MATH_OPS, ContactOptions, MeshContact, MeshState
 from ..model.profiles import ConstantSpeed
 from ..model.stability import OperatingPoint
 from ..setups.duty import LoadFromParameters, MotorFromParameters, MotorType
@@ -83,7 +83,7 @@ class RigidBodyReelChanger:
 def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
                               useSymbolic: bool = True, wormBearings: Optional[ShaftBearings] = None,
                               wheelBearings: Optional[ShaftBearings] = None, wormMass: Optional[float] = None,
-                              wheelMass: Optional[float] = None, profile=None,
+                              wheelMass: Optional[float] = None, profile: Optional[Any] = None,
                               startFromEquilibrium: bool = True) -> RigidBodyReelChanger:
     """Build the reel changer with worm and wheel as rigid bodies (module docstring), starting in equilibrium.
 
@@ -175,9 +175,8 @@ def _StaticPoses(parameters, drive, contactOptions, wormBearings, wheelBearings,
     ss = exu.SimulationSettings()
     ss.solution.file.write = False
     ss.staticSolver.newton.relativeTolerance = 1e-10
-    ss.displayComputationTime = False
     ss.staticSolver.verboseMode = 0
-    ss.linearSolverType = exu.LinearSolverType.EigenDense
+    ss.linearSolver.solverType = exu.LinearSolverType.EigenDense
     mbs.SolveStatic(ss)
     out = {}
     for body in ('worm', 'wheel'):
@@ -243,7 +242,7 @@ def _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBe
 
 
 def BuildRigidBodyLinearizationModel(parameters: Mapping[str, float], S: Optional[int] = None,
-                                     operatingPoint: Optional[OperatingPoint] = None):
+                                     operatingPoint: Optional[OperatingPoint] = None) -> Tuple[Any, Any]:
     """The 3D model of a drive for its linearization, as
     :func:`~exudyn_worm.analysis.linearization.BuildLinearizationModel` builds the one-angle model; returns
     ``(SC, mbs)``, assembled.
@@ -386,7 +385,7 @@ def StoredSeries(model: RigidBodyReelChanger) -> Dict[str, np.ndarray]:
     return out
 
 
-def StoredMeshState(model: RigidBodyReelChanger, keep: Optional[np.ndarray] = None):
+def StoredMeshState(model: RigidBodyReelChanger, keep: Optional[np.ndarray] = None) -> MeshState:
     """The mesh quantities over the stored steps of a solved :class:`RigidBodyReelChanger` (those selected by the
     boolean array ``keep``, default all), as :meth:`~exudyn_worm.items.rigidmesh.RigidBodyWormGearConnector.Evaluate`.
 
@@ -409,7 +408,7 @@ def StoredMeshState(model: RigidBodyReelChanger, keep: Optional[np.ndarray] = No
     return state
 
 
-def MeshForceSeries(model: RigidBodyReelChanger, state) -> Dict[str, np.ndarray]:
+def MeshForceSeries(model: RigidBodyReelChanger, state: MeshState) -> Dict[str, np.ndarray]:
     """The mesh force on each body in its own terms (worm and wheel: tangential, axial, radial, N) per step of
     ``state``, as :func:`~exudyn_worm.items.rigidmesh.MeshForceComponents` gives them.
 
