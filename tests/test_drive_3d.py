@@ -20,7 +20,7 @@ pytest.importorskip('exudyn')
 DRIVE_3D = 'examples/drives/reel-3d.toml'
 LOAD_KEYS = {'wormAxial', 'wormRadial', 'wheelAxial', 'wheelRadial'}
 #: the bearings of examples/drives/reel-3d.toml
-WORM, WHEEL = ShaftBearings(5e8, 5e8, span=0.12), ShaftBearings(1e9, 1e9, span=0.05)
+WORM, WHEEL = ShaftBearings(5e8, 5e8, 1e3, 1e3, span=0.12), ShaftBearings(1e9, 1e9, 1e3, 1e3, span=0.05)
 
 
 def _Run(capsys, *argv):
