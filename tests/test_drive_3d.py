@@ -118,3 +118,23 @@ def test_stiff_bearings_give_the_verdict_of_the_one_angle_drive():
     assert rigid.frequencyHz == pytest.approx(reference.frequencyHz, rel=1e-3)
     elastic = dict(ResolveDrive(config=DRIVE_3D).parameters)
     assert RecommendedStepSize(elastic) > 0.5 * RecommendedStepSize(GetPreset('reel-P1'))
+
+
+def test_ideal_joint_loads_are_the_statics_of_the_mesh_force():
+    """On ideal joints the bearing loads are the joints' reactions: at the start (static equilibrium) the worm's
+    axial load is the wheel's tangential force, its radial load the worm's tangential and separating forces together,
+    and the wheel's loads the same forces seen from the wheel (to 1e-6)."""
+    model = BuildRigidBodyReelChanger(GetPreset('reel-P1'))
+    model.connector.AddSensors(model.mbs)
+    model.mbs.Assemble()
+    ss, solverType = SolverSettings(0.01, 1e-3)
+    model.mbs.SolveDynamic(ss, solverType=solverType)
+    loads = StoredShaftLoads(model)
+    forces = model.connector.StoredMeshForces(model.mbs)
+    assert abs(loads['wormAxialLoad'][0]) == pytest.approx(abs(forces['wormAxial'][0]), rel=1e-6)
+    assert loads['wormRadialLoad'][0] == pytest.approx(np.hypot(forces['wormTangential'][0], forces['wormRadial'][0]),
+                                                       rel=1e-6)
+    assert abs(loads['wheelAxialLoad'][0]) == pytest.approx(abs(forces['wheelAxial'][0]), rel=1e-6)
+    assert loads['wheelRadialLoad'][0] == pytest.approx(np.hypot(forces['wheelTangential'][0],
+                                                                 forces['wheelRadial'][0]), rel=1e-6)
+    assert abs(forces['wormAxial'][0]) > 1e4

@@ -288,32 +288,38 @@ def BuildRigidBodyLinearizationModel(parameters: Mapping[str, float], S: Optiona
 
 def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axial=None):
     """Ideal revolute joint about the global ``axis`` through the body's reference point, or the elastic bearings;
-    with ``axial`` (an AxialBearing) the joint lets the body slide along the axis on the axial spring-damper."""
+    with ``axial`` (an AxialBearing) the joint lets the body slide along the axis on the axial spring-damper.
+
+    The ideal joint holds the node's translations and the two Tait-Bryan angles that are not the body's turn at
+    their reference values, one linear ``ObjectConnectorCoordinateVector``: exact for the Rxyz nodes of this model
+    (the worm turns about its first angle, the wheel about its last), and its Jacobian does not turn with the body
+    (an ``ObjectJointGeneric`` made the modified Newton iteration take three times the iterations and a Jacobian
+    every ten steps, benchmarks/README.md). Its multipliers, the forces on the held coordinates, are the bearing
+    loads (global x, y, z)."""
     if bearings is not None:
         return CreateShaftBearings(mbs, body, axis=axis, bearings=bearings, name=name + 'Bearing')
     import exudyn as exu
-    from exudyn.itemInterface import MarkerBodyRigid, ObjectGround, ObjectJointGeneric
-    from exudyn.rigidBodyUtilities import RotationMatrixY
-    position = np.asarray(mbs.GetNode(body['nodeNumber'])['referenceCoordinates'][:3], dtype=float)
-    ground = mbs.AddObject(ObjectGround(referencePosition=list(position)))
-    # the joint's free rotation is its x axis: turned onto the shaft axis
-    rotation = np.eye(3) if axis[0] == 1. else RotationMatrixY(-np.pi / 2)
-    mGround = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localHT=exu.HT(rotation=rotation)))
-    mBody = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body['bodyNumber'], localHT=exu.HT(rotation=rotation)))
-    joint = mbs.AddObject(ObjectJointGeneric(markerNumbers=[mGround, mBody],
-                                             constrainedAxes=[0 if axial is not None else 1, 1, 1, 0, 1, 1],
-                                             name=name + 'Joint'))
-    out = {'joint': joint, 'markerNumbers': [mGround, mBody]}
-    from exudyn.itemInterface import SensorObject
+    from exudyn.itemInterface import (MarkerNodeCoordinates, NodePointGround, ObjectConnectorCoordinateVector,
+                                      SensorObject)
+    node = body['nodeNumber']
+    turn = 3 + int(np.argmax(np.abs(axis)))                 # the body's turn: Rxyz angle about its (global) axis
+    held = [k for k in range(6) if k != turn and not (axial is not None and k == turn - 3)]
+    reference = np.asarray(mbs.GetNode(node)['referenceCoordinates'], dtype=float)[held]
+    # the item couples two markers: the second is a ground node's (no coordinates)
+    joint = mbs.AddObject(ObjectConnectorCoordinateVector(
+        markerNumbers=[mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=node)),
+                       mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=mbs.AddNode(NodePointGround())))],
+        scalingMarker0=np.eye(6)[held], scalingMarker1=np.zeros((len(held), 0)), offset=list(-reference),
+        name=name + 'Joint'))
     OVT = exu.OutputVariableType
-    # the joint's reaction in its frame (x along the shaft): the load of the shaft's bearings together
-    out['sensors'] = {'joint': mbs.AddSensor(SensorObject(objectNumber=joint, outputVariableType=OVT.ForceLocal,
-                                                          storeInternal=True, writeToFile=False))}
+    out = {'joint': joint, 'heldCoordinates': held, 'axis': np.asarray(axis, dtype=float),
+           'sensors': {'joint': mbs.AddSensor(SensorObject(objectNumber=joint, outputVariableType=OVT.Force,
+                                                           storeInternal=True, writeToFile=False))}}
     if axial is not None:                      # the worm's axial coordinate: its node's x (the axis is global x)
         from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, NodePointGround
         nGround = mbs.AddNode(NodePointGround())
         m0 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nGround, coordinate=0))
-        m1 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=body['nodeNumber'], coordinate=0))
+        m1 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=0))
         out['axialSpring'] = mbs.AddObject(CoordinateSpringDamper(markerNumbers=[m0, m1], stiffness=axial.stiffness,
                                                                   damping=axial.damping, name=name + 'Axial'))
         out['sensors']['axialSpring'] = mbs.AddSensor(SensorObject(objectNumber=out['axialSpring'],
@@ -346,11 +352,15 @@ def StoredShaftLoads(model: RigidBodyReelChanger) -> Dict[str, np.ndarray]:
         if 'joint' not in items:
             loads = StoredBearingLoads(mbs, items)
             out['time'], axial, radial = loads['time'], loads['axial'], loads['radial']
-        else:
+        else:                      # the joint's forces on the held coordinates: translations first (global)
             force = np.asarray(mbs.GetSensorStoredData(items['sensors']['joint']))
-            out['time'], axial, radial = force[:, 0], force[:, 1], np.hypot(force[:, 2], force[:, 3])
-            if 'axialSpring' in items['sensors']:
-                axial = np.asarray(mbs.GetSensorStoredData(items['sensors']['axialSpring']))[:, 1]
+            out['time'] = force[:, 0]
+            along = int(np.argmax(np.abs(items['axis'])))
+            translations = {k: force[:, 1 + i] for i, k in enumerate(items['heldCoordinates']) if k < 3}
+            across = [translations[k] for k in range(3) if k != along]
+            radial = np.hypot(across[0], across[1])
+            axial = (np.asarray(mbs.GetSensorStoredData(items['sensors']['axialSpring']))[:, 1]
+                     if 'axialSpring' in items['sensors'] else translations[along])
         out[body + 'AxialLoad'], out[body + 'RadialLoad'] = np.asarray(axial, float), np.asarray(radial, float)
     return out
 

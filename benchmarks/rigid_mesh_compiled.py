@@ -1,0 +1,199 @@
+"""Investigation: can the mesh between rigid bodies run in C++ within 3x of the one-angle connector?
+
+Exudyn 1.13.6 cannot record a symbolic user function whose vector argument has 8 or more entries
+(docs/exudyn-notes.md), and the mesh's ``ObjectGenericODE2`` on the two rigid-body nodes has 12. This script tries a
+formulation that stays below the limit and keeps the one contact law (``MeshContact`` through
+``exudyn_worm.items.rigidmesh._Law``):
+
+- the four law inputs (worm angle, wheel angle, axial displacement, radial approach) are, for Tait-Bryan nodes whose
+  spin is the *last* angle, linear in the node coordinates to first order in the tilts (their gradient rows do not
+  change with the spin; checked below), so they are carried by 7 auxiliary coordinates: 3 tied to the worm's node
+  (its parts of the worm angle, the axial displacement and the radial approach), 4 to the wheel's (its parts and its
+  angle), each by one linear ``ObjectConnectorCoordinateVector``;
+- the law is one ``ObjectGenericODE2`` on the two auxiliary nodes (7 coordinates, recorded as a C++ symbolic user
+  function); the constraints' multipliers carry its forces to the bodies (the virtual work of the rows, as the
+  Python law's ``f @ rows``); the reel's load acts on the wheel-angle coordinate in the same function; the sticking
+  model's state is the connector's, read from named symbolic variables.
+
+The layout turns the worm onto global y (reference rotation Rx(-pi/2), spin about its local z = the last angle),
+the wheel about z, the centre line along x. Variants (P1, 8 s, recommended step, ``SOLVER_SETTINGS``, one run each)::
+
+    python benchmarks/rigid_mesh_compiled.py [--end-time 8]
+
+1. the one-angle connector (``BuildReelChanger``), the reference;
+2. the C++ law on auxiliary coordinates, the bodies on ``ObjectJointGeneric`` revolute joints;
+3. the same with each ideal joint as one linear coordinate constraint (the node's translations and tilt angles held);
+4. variant 3 with the law returning zero forces (what the bodies, joints and auxiliary coordinates cost alone).
+
+It prints wall seconds, Newton iterations and Jacobians, and the normal force's largest difference from the
+one-angle connector (relative to its peak) before the first loss of contact (2.4 s) and over the run. Nothing is
+written. Results in benchmarks/README.md.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+import time
+
+import numpy as np
+
+from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings, _SolverCounters
+from exudyn_worm.analysis.stepsize import RecommendedStepSize
+from exudyn_worm.items._userfunctions import SetGenericForceLaw
+from exudyn_worm.items.drivetrain import CreatePrescribedRotation, CreateRotor
+from exudyn_worm.items.equilibrium import SteadyInitialState
+from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear, _Law
+from exudyn_worm.model.contact import ContactOptions, FrictionState
+from exudyn_worm.model.profiles import ConstantSpeed
+from exudyn_worm.setups.duty import LoadFromParameters
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+
+__all__ = ['BuildCompiledRigidBodyReelChanger', 'Main']
+
+#: variants of the rigid-body model: (label, joints as coordinate constraints, law returns zero)
+VARIANTS = (('C++ law on 7 aux. coordinates, ObjectJointGeneric joints', False, False),
+            ('  + joints as linear coordinate constraints', True, False),
+            ('  + the law returning zero (bodies and constraints only)', True, True))
+
+
+def BuildCompiledRigidBodyReelChanger(parameters, coordinateJoints: bool = True, zeroLaw: bool = False):
+    """The reel changer P1 with worm and wheel as Rxyz rigid bodies on ideal joints and the mesh law in C++ on
+    auxiliary coordinates (module docstring). Returns ``(SC, mbs, connector)``, assembled, with the connector's
+    sensors."""
+    import exudyn as exu
+    from exudyn.itemInterface import (CoordinateSpringDamper, MarkerBodyRigid, MarkerNodeCoordinate,
+                                      MarkerNodeCoordinates, NodeGenericODE2, ObjectConnectorCoordinateVector,
+                                      ObjectGenericODE2, ObjectGround, ObjectJointGeneric)
+    from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixX, RotationMatrixZ
+    options = ContactOptions()
+    drive = ElasticDriveFromParameters(parameters)
+    gear, load, speed = drive.gear, LoadFromParameters(parameters), float(parameters['motorSpeed'])
+    init = SteadyInitialState(drive, load, speed, options)
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    R0 = RotationMatrixX(-math.pi / 2)            # the worm's local z (its spin, the last Rxyz angle) onto global y
+    worm = mbs.CreateRigidBody(name='worm', nodeType=exu.NodeType.RotationRxyz, referenceRotationMatrix=R0,
+                               inertia=RigidBodyInertia(mass=5., inertiaTensor=np.eye(3) * drive.J1),
+                               initialRotationMatrix=RotationMatrixZ(init['phi1']),
+                               initialAngularVelocity=list(R0 @ [0., 0., init['omega1']]), returnDict=True)
+    wheel = mbs.CreateRigidBody(name='wheel', nodeType=exu.NodeType.RotationRxyz,
+                                referencePosition=[gear.r1 + gear.r2, 0., 0.],
+                                inertia=RigidBodyInertia(mass=30., inertiaTensor=np.eye(3) * drive.J2),
+                                initialRotationMatrix=RotationMatrixZ(init['phi2']),
+                                initialAngularVelocity=[0., 0., init['omega2']], returnDict=True)
+    if coordinateJoints:        # each node's translations and tilt angles held: one linear constraint per body
+        nFix = mbs.AddNode(NodeGenericODE2(numberOfODE2Coordinates=1, referenceCoordinates=[0.],
+                                           initialCoordinates=[0.], initialCoordinates_t=[0.]))
+        mbs.AddObject(ObjectGenericODE2(nodeNumbers=[nFix], massMatrix=np.eye(1), stiffnessMatrix=np.eye(1),
+                                        dampingMatrix=np.zeros((1, 1))))
+        mFix = mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=nFix))
+        for body in (worm, wheel):
+            reference = np.asarray(mbs.GetNode(body['nodeNumber'])['referenceCoordinates'])[:5]
+            mbs.AddObject(ObjectConnectorCoordinateVector(
+                markerNumbers=[mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=body['nodeNumber'])), mFix],
+                scalingMarker0=np.eye(6)[:5], scalingMarker1=np.zeros((5, 1)), offset=list(-reference)))
+    else:
+        for body, R in ((worm, R0), (wheel, np.eye(3))):
+            position = mbs.GetNode(body['nodeNumber'])['referenceCoordinates'][:3]
+            ground = mbs.AddObject(ObjectGround(referencePosition=list(position)))
+            m0 = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localHT=exu.HT(rotation=R)))
+            m1 = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body['bodyNumber']))
+            mbs.AddObject(ObjectJointGeneric(markerNumbers=[m0, m1], constrainedAxes=[1, 1, 1, 1, 1, 0]))
+    motor = CreateRotor(mbs, 1e-3, initialSpeed=speed, name='motor')
+    CreatePrescribedRotation(mbs, motor, ConstantSpeed(speed), name='motorDrive')
+    wormAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=worm['nodeNumber'], coordinate=5))
+    mbs.AddObject(CoordinateSpringDamper(markerNumbers=[motor['markerNumber'], wormAngle], stiffness=drive.kT,
+                                         damping=drive.dT))
+    connector = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=gear, wormAxis=[0., 0., 1.], wheelAxis=[0., 0., 1.],
+                                        contactOptions=options)
+    # the law's inputs and their gradient rows at the initial state; the rows must not change with the spins
+    q0, v0 = connector._InitialVectors(mbs)
+    spins = [(a, math.cos(a), math.sin(a)) for a in connector._initialAngles]
+    x0, _, rows = connector._Inputs(q0, v0, spins)
+    turned = list(q0)
+    turned[5] += 1.
+    turned[11] += 0.3
+    _, _, rowsTurned = connector._Inputs(turned, v0, [(a + d, math.cos(a + d), math.sin(a + d))
+                                                      for a, d in zip(connector._initialAngles, (1., 0.3))])
+    rows = np.asarray(rows, dtype=float)
+    if np.max(np.abs(np.asarray(rowsTurned) - rows)) > 1e-12 or np.any(rows[1, :6]):
+        raise RuntimeError('the law inputs are not linear in the node coordinates for this layout')
+    SU, SV = rows[[0, 2, 3], :6], rows[[0, 2, 3, 1], 6:]
+    qw, qb, vw, vb = (np.asarray(a, dtype=float) for a in (q0[:6], q0[6:], v0[:6], v0[6:]))
+    U0 = SU @ qw
+    V0 = np.asarray(x0, dtype=float)[[0, 2, 3, 1]] - np.concatenate([U0, [0.]])
+    nU = mbs.AddNode(NodeGenericODE2(numberOfODE2Coordinates=3, referenceCoordinates=[0.] * 3,
+                                     initialCoordinates=list(U0), initialCoordinates_t=list(SU @ vw)))
+    nV = mbs.AddNode(NodeGenericODE2(numberOfODE2Coordinates=4, referenceCoordinates=[0.] * 4,
+                                     initialCoordinates=list(V0), initialCoordinates_t=list(SV @ vb)))
+    ties = [mbs.AddObject(ObjectConnectorCoordinateVector(
+        markerNumbers=[mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=aux)),
+                       mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=body['nodeNumber']))],
+        scalingMarker0=np.eye(len(S)), scalingMarker1=S, offset=[0.] * len(S)))
+        for aux, body, S in ((nU, worm, SU), (nV, wheel, SV))]
+    mbs.SetObjectParameter(connector.objectNumber, 'forceUserFunction', 0)      # the Python law off
+    stick = connector.stickSlip
+    esym = exu.symbolic
+    stick.variables = FrictionState(*(esym.Real(name, float(getattr(stick.state, name)))
+                                      for name in ('stuck', 'direction', 'anchor')))
+    zeros = np.zeros((7, 7))
+    oLaw = mbs.AddObject(ObjectGenericODE2(nodeNumbers=[nU, nV], massMatrix=zeros, stiffnessMatrix=zeros,
+                                           dampingMatrix=zeros))
+
+    def Law(t, q, q_t, ops):
+        if zeroLaw:
+            return [0. * q[0]] * 7
+        x = [q[0] + q[3], q[6], q[1] + q[4], q[2] + q[5]]
+        w = [q_t[0] + q_t[3], q_t[6], q_t[1] + q_t[4], q_t[2] + q_t[5]]
+        mesh = _Law(gear, options, x, w, ops, stick.LawState(ops))
+        f0, f2, f3 = mesh.wormTorque, mesh.axialForce, mesh.radialForce
+        return [f0, f2, f3, f0, f2, f3, mesh.wheelTorque + load.Torque(q[6], q_t[6], t, ops)]
+    mbs.variables['rigidMeshCompiledLaw'] = SetGenericForceLaw(mbs, oLaw, 7, Law, True, check=False)
+    connector.AddSensors(mbs)
+    mbs.Assemble()
+    for tie in ties:            # the constraints' offsets from their residuals at the initial state
+        residual = mbs.GetObjectOutput(tie, exu.OutputVariableType.ConstraintEquation)
+        mbs.SetObjectParameter(tie, 'offset', np.asarray(residual, dtype=float))
+    mbs.Assemble()
+    return SC, mbs, connector
+
+
+def _Solve(mbs, parameters, endTime):
+    ss, solverType = SolverSettings(endTime, RecommendedStepSize(parameters))
+    wall = time.perf_counter()
+    mbs.SolveDynamic(ss, solverType=solverType)
+    return time.perf_counter() - wall, _SolverCounters(mbs)
+
+
+def Main(argv=None) -> int:
+    """Run the variants and print the table."""
+    import exudyn as exu
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument('--end-time', type=float, default=8.)
+    args = parser.parse_args(argv)
+    exu.config.printToConsole = False
+    p1 = GetPreset('reel-P1')
+    reference = BuildReelChanger(p1)
+    reference.mbs.Assemble()
+    wall, counters = _Solve(reference.mbs, p1, args.end_time)
+    mesh = reference.connector.StoredMeshState(reference.mbs)
+    peak = np.max(np.abs(mesh.normalForce))
+    print(f"{'model (P1, ' + format(args.end_time, 'g') + ' s)':58s} {'wall s':>7s} {'ratio':>6s} {'Newton it.':>10s} "
+          f"{'Jac.':>5s} {'dFn <2.4 s':>10s} {'dFn all':>8s}")
+    print(f"{'one-angle connector (BuildReelChanger)':58s} {wall:7.3f} {1.:6.2f} {counters['newtonIterations']:10d} "
+          f"{counters['jacobians']:5d}")
+    for label, coordinateJoints, zeroLaw in VARIANTS:
+        SC, mbs, connector = BuildCompiledRigidBodyReelChanger(p1, coordinateJoints, zeroLaw)
+        seconds, c = _Solve(mbs, p1, args.end_time)
+        state = connector.StoredMeshState(mbs)
+        n = min(len(state.normalForce), len(mesh.normalForce))
+        d = np.abs(np.asarray(state.normalForce)[:n] - np.asarray(mesh.normalForce)[:n]) / peak
+        early = d[np.asarray(mesh.time)[:n] < 2.4]
+        print(f"{label:58s} {seconds:7.3f} {seconds / wall:6.2f} {c['newtonIterations']:10d} {c['jacobians']:5d} "
+              + (f"{'-':>10s} {'-':>8s}" if zeroLaw else f"{early.max():10.1e} {d.max():8.1e}"))
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(Main())
