@@ -1,7 +1,8 @@
 """Benchmark: the reel changer P1 with worm and wheel as rigid bodies on ideal joints against the one-angle connector.
 
 Runs once each, in one process: ``BuildReelChanger(GetPreset('reel-P1'))`` (one-angle connector, symbolic C++ law)
-and ``BuildRigidBodyReelChanger(GetPreset('reel-P1'))`` (the mesh between rigid bodies, a Python user function),
+and ``BuildRigidBodyReelChanger(GetPreset('reel-P1'))`` (the mesh between rigid bodies, a Python user function, on
+ideal joints that are linear coordinate constraints),
 8 s simulated at the drive's recommended step with the same solver settings; reports the solver call's wall and CPU
 seconds, their ratio, and the largest difference of the normal force between the two (relative to its peak).
 
