@@ -1,27 +1,20 @@
 """Investigation: can the mesh between rigid bodies run in C++ within 3x of the one-angle connector?
 
 Exudyn 1.13.6 cannot record a symbolic user function whose vector argument has 8 or more entries
-(docs/exudyn-notes.md), and the mesh's ``ObjectGenericODE2`` on the two rigid-body nodes has 12. This script tries a
-formulation that stays below the limit and keeps the one contact law (``MeshContact`` through
-``exudyn_worm.items.rigidmesh._Law``):
+(docs/exudyn-notes.md), and the mesh's ``ObjectGenericODE2`` on the two rigid-body nodes has 12.
+``CreateRigidBodyWormGear(..., useSymbolic=True)`` keeps below the limit and keeps the one contact law
+(``MeshContact``): for Tait-Bryan nodes whose turn is their *last* angle the four law inputs (worm angle, wheel
+angle, axial displacement, radial approach) are linear in the node coordinates to first order in the tilts, so 7
+auxiliary coordinates tied to the nodes by linear constraints carry them and the law is one symbolic
+``ObjectGenericODE2`` on those (docs/mesh-3d.md, "Speed").
 
-- the four law inputs (worm angle, wheel angle, axial displacement, radial approach) are, for Tait-Bryan nodes whose
-  spin is the *last* angle, linear in the node coordinates to first order in the tilts (their gradient rows do not
-  change with the spin; checked below), so they are carried by 7 auxiliary coordinates: 3 tied to the worm's node
-  (its parts of the worm angle, the axial displacement and the radial approach), 4 to the wheel's (its parts and its
-  angle), each by one linear ``ObjectConnectorCoordinateVector``;
-- the law is one ``ObjectGenericODE2`` on the two auxiliary nodes (7 coordinates, recorded as a C++ symbolic user
-  function); the constraints' multipliers carry its forces to the bodies (the virtual work of the rows, as the
-  Python law's ``f @ rows``); the reel's load acts on the wheel-angle coordinate in the same function; the sticking
-  model's state is the connector's, read from named symbolic variables.
-
-The layout turns the worm onto global y (reference rotation Rx(-pi/2), spin about its local z = the last angle),
+The layout turns the worm onto global y (reference rotation Rx(-pi/2), its turn about its local z = the last angle),
 the wheel about z, the centre line along x. Variants (P1, 8 s, recommended step, ``SOLVER_SETTINGS``, one run each)::
 
     python benchmarks/rigid_mesh_compiled.py [--end-time 8]
 
 1. the one-angle connector (``BuildReelChanger``), the reference;
-2. the C++ law on auxiliary coordinates, the bodies on ``ObjectJointGeneric`` revolute joints;
+2. the C++ law, the bodies on ``ObjectJointGeneric`` revolute joints;
 3. the same with each ideal joint as one linear coordinate constraint (the node's translations and tilt angles held);
 4. variant 3 with the law returning zero forces (what the bodies, joints and auxiliary coordinates cost alone).
 
@@ -43,8 +36,8 @@ from exudyn_worm.analysis.stepsize import RecommendedStepSize
 from exudyn_worm.items._userfunctions import SetGenericForceLaw
 from exudyn_worm.items.drivetrain import CreatePrescribedRotation, CreateRotor
 from exudyn_worm.items.equilibrium import SteadyInitialState
-from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear, _Law
-from exudyn_worm.model.contact import ContactOptions, FrictionState
+from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear
+from exudyn_worm.model.contact import ContactOptions
 from exudyn_worm.model.profiles import ConstantSpeed
 from exudyn_worm.setups.duty import LoadFromParameters
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
@@ -57,14 +50,16 @@ VARIANTS = (('C++ law on 7 aux. coordinates, ObjectJointGeneric joints', False, 
             ('  + the law returning zero (bodies and constraints only)', True, True))
 
 
-def BuildCompiledRigidBodyReelChanger(parameters, coordinateJoints: bool = True, zeroLaw: bool = False):
-    """The reel changer P1 with worm and wheel as Rxyz rigid bodies on ideal joints and the mesh law in C++ on
-    auxiliary coordinates (module docstring). Returns ``(SC, mbs, connector)``, assembled, with the connector's
-    sensors."""
+def BuildCompiledRigidBodyReelChanger(parameters, coordinateJoints: bool = True, zeroLaw: bool = False,
+                                      useSymbolic: bool = True):
+    """The reel changer P1 with worm and wheel as Rxyz rigid bodies on ideal joints and the mesh law in C++
+    (``useSymbolic=True``, module docstring; False: the same model with the plain-Python law). Returns
+    ``(SC, mbs, connector)``, assembled, with the connector's sensors."""
     import exudyn as exu
     from exudyn.itemInterface import (CoordinateSpringDamper, MarkerBodyRigid, MarkerNodeCoordinate,
-                                      MarkerNodeCoordinates, NodeGenericODE2, ObjectConnectorCoordinateVector,
-                                      ObjectGenericODE2, ObjectGround, ObjectJointGeneric)
+                                      MarkerNodeCoordinates, NodePointGround,
+                                      ObjectConnectorCoordinateVector, ObjectGenericODE2, ObjectGround,
+                                      ObjectJointGeneric)
     from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixX, RotationMatrixZ
     options = ContactOptions()
     drive = ElasticDriveFromParameters(parameters)
@@ -83,16 +78,12 @@ def BuildCompiledRigidBodyReelChanger(parameters, coordinateJoints: bool = True,
                                 initialRotationMatrix=RotationMatrixZ(init['phi2']),
                                 initialAngularVelocity=[0., 0., init['omega2']], returnDict=True)
     if coordinateJoints:        # each node's translations and tilt angles held: one linear constraint per body
-        nFix = mbs.AddNode(NodeGenericODE2(numberOfODE2Coordinates=1, referenceCoordinates=[0.],
-                                           initialCoordinates=[0.], initialCoordinates_t=[0.]))
-        mbs.AddObject(ObjectGenericODE2(nodeNumbers=[nFix], massMatrix=np.eye(1), stiffnessMatrix=np.eye(1),
-                                        dampingMatrix=np.zeros((1, 1))))
-        mFix = mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=nFix))
+        mFix = mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=mbs.AddNode(NodePointGround())))
         for body in (worm, wheel):
             reference = np.asarray(mbs.GetNode(body['nodeNumber'])['referenceCoordinates'])[:5]
             mbs.AddObject(ObjectConnectorCoordinateVector(
                 markerNumbers=[mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=body['nodeNumber'])), mFix],
-                scalingMarker0=np.eye(6)[:5], scalingMarker1=np.zeros((5, 1)), offset=list(-reference)))
+                scalingMarker0=np.eye(6)[:5], scalingMarker1=np.zeros((5, 0)), offset=list(-reference)))
     else:
         for body, R in ((worm, R0), (wheel, np.eye(3))):
             position = mbs.GetNode(body['nodeNumber'])['referenceCoordinates'][:3]
@@ -106,55 +97,17 @@ def BuildCompiledRigidBodyReelChanger(parameters, coordinateJoints: bool = True,
     mbs.AddObject(CoordinateSpringDamper(markerNumbers=[motor['markerNumber'], wormAngle], stiffness=drive.kT,
                                          damping=drive.dT))
     connector = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=gear, wormAxis=[0., 0., 1.], wheelAxis=[0., 0., 1.],
-                                        contactOptions=options)
-    # the law's inputs and their gradient rows at the initial state; the rows must not change with the spins
-    q0, v0 = connector._InitialVectors(mbs)
-    spins = [(a, math.cos(a), math.sin(a)) for a in connector._initialAngles]
-    x0, _, rows = connector._Inputs(q0, v0, spins)
-    turned = list(q0)
-    turned[5] += 1.
-    turned[11] += 0.3
-    _, _, rowsTurned = connector._Inputs(turned, v0, [(a + d, math.cos(a + d), math.sin(a + d))
-                                                      for a, d in zip(connector._initialAngles, (1., 0.3))])
-    rows = np.asarray(rows, dtype=float)
-    if np.max(np.abs(np.asarray(rowsTurned) - rows)) > 1e-12 or np.any(rows[1, :6]):
-        raise RuntimeError('the law inputs are not linear in the node coordinates for this layout')
-    SU, SV = rows[[0, 2, 3], :6], rows[[0, 2, 3, 1], 6:]
-    qw, qb, vw, vb = (np.asarray(a, dtype=float) for a in (q0[:6], q0[6:], v0[:6], v0[6:]))
-    U0 = SU @ qw
-    V0 = np.asarray(x0, dtype=float)[[0, 2, 3, 1]] - np.concatenate([U0, [0.]])
-    nU = mbs.AddNode(NodeGenericODE2(numberOfODE2Coordinates=3, referenceCoordinates=[0.] * 3,
-                                     initialCoordinates=list(U0), initialCoordinates_t=list(SU @ vw)))
-    nV = mbs.AddNode(NodeGenericODE2(numberOfODE2Coordinates=4, referenceCoordinates=[0.] * 4,
-                                     initialCoordinates=list(V0), initialCoordinates_t=list(SV @ vb)))
-    ties = [mbs.AddObject(ObjectConnectorCoordinateVector(
-        markerNumbers=[mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=aux)),
-                       mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=body['nodeNumber']))],
-        scalingMarker0=np.eye(len(S)), scalingMarker1=S, offset=[0.] * len(S)))
-        for aux, body, S in ((nU, worm, SU), (nV, wheel, SV))]
-    mbs.SetObjectParameter(connector.objectNumber, 'forceUserFunction', 0)      # the Python law off
-    stick = connector.stickSlip
-    esym = exu.symbolic
-    stick.variables = FrictionState(*(esym.Real(name, float(getattr(stick.state, name)))
-                                      for name in ('stuck', 'direction', 'anchor')))
-    zeros = np.zeros((7, 7))
-    oLaw = mbs.AddObject(ObjectGenericODE2(nodeNumbers=[nU, nV], massMatrix=zeros, stiffnessMatrix=zeros,
-                                           dampingMatrix=zeros))
-
-    def Law(t, q, q_t, ops):
-        if zeroLaw:
-            return [0. * q[0]] * 7
-        x = [q[0] + q[3], q[6], q[1] + q[4], q[2] + q[5]]
-        w = [q_t[0] + q_t[3], q_t[6], q_t[1] + q_t[4], q_t[2] + q_t[5]]
-        mesh = _Law(gear, options, x, w, ops, stick.LawState(ops))
-        f0, f2, f3 = mesh.wormTorque, mesh.axialForce, mesh.radialForce
-        return [f0, f2, f3, f0, f2, f3, mesh.wheelTorque + load.Torque(q[6], q_t[6], t, ops)]
-    mbs.variables['rigidMeshCompiledLaw'] = SetGenericForceLaw(mbs, oLaw, 7, Law, True, check=False)
+                                        contactOptions=options, useSymbolic=useSymbolic)
+    if zeroLaw:
+        SetGenericForceLaw(mbs, connector.compiled['objectNumber'], 7, lambda t, q, q_t, ops: [0. * q[0]] * 7, True,
+                           check=False)
+    # the reel's load on the wheel's turn, its last angle
+    zeros = np.zeros((6, 6))
+    oLoad = mbs.AddObject(ObjectGenericODE2(nodeNumbers=[wheel['nodeNumber']], massMatrix=zeros, stiffnessMatrix=zeros,
+                                            dampingMatrix=zeros))
+    mbs.variables['rigidMeshLoad'] = SetGenericForceLaw(
+        mbs, oLoad, 6, lambda t, q, q_t, ops: [0.] * 5 + [load.Torque(q[5], q_t[5], t, ops)], True)
     connector.AddSensors(mbs)
-    mbs.Assemble()
-    for tie in ties:            # the constraints' offsets from their residuals at the initial state
-        residual = mbs.GetObjectOutput(tie, exu.OutputVariableType.ConstraintEquation)
-        mbs.SetObjectParameter(tie, 'offset', np.asarray(residual, dtype=float))
     mbs.Assemble()
     return SC, mbs, connector
 
