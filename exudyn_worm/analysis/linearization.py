@@ -247,6 +247,17 @@ def _CoordinateLabels(mbs, size: int) -> List[str]:
     return labels
 
 
+def _MasslessCoordinates(mbs) -> List[int]:
+    """ODE2 indices of coordinates without mass of their own: the auxiliary law inputs of rigid-body meshes with the
+    law in C++ (tied to the bodies' coordinates, they would take a share of the bodies' kinetic energy)."""
+    out = []
+    for connector in mbs.variables.get(RIGID_CONNECTORS_KEY, []):
+        for node in (connector.compiled or {}).get('nodes', []):
+            start = mbs.GetNodeODE2Index(node)
+            out += range(start, start + len(np.ravel(mbs.GetNode(node)['referenceCoordinates'])))
+    return out
+
+
 def _LinearizeState(mbs, S, labels) -> ContactStateLinearization:
     linear = mbs.ComputeLinearizedSystem(projectIntoConstraintNullspace=True, returnConstraintNullspace=True)
     if len(linear) == 3:             # a system without constraints: Exudyn returns no nullspace (all independent)
@@ -261,6 +272,7 @@ def _LinearizeState(mbs, S, labels) -> ContactStateLinearization:
     values, vectors = np.linalg.eig(A)
     scale = np.max(np.abs(values)) if values.size else 1.
     massDiagonal = np.abs(np.diag(N.T @ M @ N)) if N.shape[0] == n else np.ones(len(labels))
+    massDiagonal[_MasslessCoordinates(mbs)] = 0.
     modes, rigid = [], 0
     for k in range(values.size):
         lam = values[k]

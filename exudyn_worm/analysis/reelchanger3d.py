@@ -4,10 +4,11 @@
 (motor at constant speed, drive shaft kT, dT, worm, mesh, wheel, the reel's lever load) with the worm and the wheel
 as ``mbs.CreateRigidBody`` bodies coupled by :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`. Each
 shaft sits on ideal revolute joints to ground, or on :func:`~exudyn_worm.items.bearings.CreateShaftBearings`
-(two radial bearings and an axial bearing, stiffness and damping). Both bodies use Tait-Bryan nodes (``Rxyz``):
-the worm turns about global x (its first angle), the wheel about global z (its last angle), so the drive shaft and
-the load act on those coordinates (the torque about the axis, for any tilt of the wheel and to first order in the
-worm's tilt). The centre line is global +y; the pitch point is at y = r1.
+(two radial bearings and an axial bearing, stiffness and damping). Both bodies use Tait-Bryan nodes (``Rxyz``)
+turning about their last angle (the worm's reference rotation puts its local z on global -y, the wheel turns about
+global z), so the drive shaft and the load act on those coordinates (the torque about the axis, for any tilt) and
+the mesh law runs in C++ (``useSymbolic``, :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`). The
+centre line is global +x; the pitch point is at x = r1.
 
 Parameter sets: those of the reel changer without drive-side or load-side chains, with a constant-speed motor (the
 presets reel-P1 ... reel-P7); an axial bearing ``kA, dA, mA`` lets the worm (of mass mA) slide on its revolute
@@ -37,6 +38,17 @@ from .linearization import LinearizationStart
 __all__ = ['RigidBodyReelChanger', 'BuildRigidBodyReelChanger', 'BuildRigidBodyLinearizationModel', 'AddSeriesSensors',
            'StoredSeries', 'StoredShaftLoads', 'StoredMeshState', 'MeshForceSeries', 'MESH_FORCE_SERIES', 'WORM_MASS', 'WHEEL_MASS']
 
+
+
+#: the worm's axis (global): its turn is about -y, so that with the wheel's axis +z and the centre line +x the thread is
+#: right-handed, as in the one-angle model's sign conventions
+WORM_AXIS = np.array([0., -1., 0.])
+#: the wheel's axis (global)
+WHEEL_AXIS = np.array([0., 0., 1.])
+#: the worm node's reference rotation: its local z (the last Rxyz angle, its turn) onto WORM_AXIS
+WORM_REFERENCE = np.array([[1., 0., 0.], [0., 0., -1.], [0., 1., 0.]])
+#: index of the bodies' turn among their node coordinates (the last Tait-Bryan angle)
+TURN = 5
 
 
 @dataclass
@@ -200,43 +212,46 @@ def _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBe
     phi2, omega2, xA, vA), the motor ``profile`` and the ``load`` (None: none)."""
     import exudyn as exu
     from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, ObjectGenericODE2
-    from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixX, RotationMatrixZ
+    from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixZ
 
     w = 'BuildRigidBodyReelChanger'
     gear = drive.gear
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     a = gear.r1 + gear.r2
-    # Rxyz angles: the worm's first angle is its turn about global x, the wheel's last its turn about global z
+    # Rxyz nodes turning about their last angle (what the law in C++ needs, CreateRigidBodyWormGear): the worm's
+    # local z turned onto global -y by its reference rotation, the wheel's local z is global z; centre line +x
     # a pose (displacement, rotation matrix) from the bearings' static deflection (_StaticPoses), else the turn alone
-    wormPose = init.get('wormPose', ([init.get('xA', 0.), 0., 0.], RotationMatrixX(init['phi1'])))
-    wheelPose = init.get('wheelPose', ([0., 0., 0.], RotationMatrixZ(init['phi2'])))
+    wormPose = init.get('wormPose', (init.get('xA', 0.) * WORM_AXIS, WORM_REFERENCE @ RotationMatrixZ(init['phi1'])))
+    wheelPose = init.get('wheelPose', (np.zeros(3), RotationMatrixZ(init['phi2'])))
     worm = mbs.CreateRigidBody(name='worm', nodeType=exu.NodeType.RotationRxyz, referencePosition=[0., 0., 0.],
+                               referenceRotationMatrix=WORM_REFERENCE,
                                inertia=RigidBodyInertia(mass=wormMass,
                                                         inertiaTensor=np.diag([drive.J1, drive.J1, drive.J1])),
-                               initialRotationMatrix=wormPose[1], initialDisplacement=list(wormPose[0]),
-                               initialVelocity=[init.get('vA', 0.), 0., 0.],
-                               initialAngularVelocity=[init['omega1'], 0., 0.], returnDict=True)
-    wheel = mbs.CreateRigidBody(name='wheel', nodeType=exu.NodeType.RotationRxyz, referencePosition=[0., a, 0.],
+                               initialRotationMatrix=WORM_REFERENCE.T @ wormPose[1],
+                               initialDisplacement=list(wormPose[0]),
+                               initialVelocity=list(init.get('vA', 0.) * WORM_AXIS),
+                               initialAngularVelocity=list(init['omega1'] * WORM_AXIS), returnDict=True)
+    wheel = mbs.CreateRigidBody(name='wheel', nodeType=exu.NodeType.RotationRxyz, referencePosition=[a, 0., 0.],
                                 inertia=RigidBodyInertia(mass=wheelMass,
                                                          inertiaTensor=np.diag([drive.J2, drive.J2, drive.J2])),
                                 initialRotationMatrix=wheelPose[1], initialDisplacement=list(wheelPose[0]),
-                                initialAngularVelocity=[0., 0., init['omega2']], returnDict=True)
-    bearings = {'worm': _Support(mbs, worm, [1., 0., 0.], wormBearings, 'worm', axial),
-                'wheel': _Support(mbs, wheel, [0., 0., 1.], wheelBearings, 'wheel')}
+                                initialAngularVelocity=list(init['omega2'] * WHEEL_AXIS), returnDict=True)
+    bearings = {'worm': _Support(mbs, worm, WORM_AXIS, wormBearings, 'worm', axial),
+                'wheel': _Support(mbs, wheel, WHEEL_AXIS, wheelBearings, 'wheel')}
     motor = CreateRotor(mbs, 1e-3, initialAngle=init['phi0'], initialSpeed=init['omega0'], name='motor')
     CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
-    wormAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=worm['nodeNumber'], coordinate=3))
+    wormAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=worm['nodeNumber'], coordinate=TURN))
     mbs.AddObject(CoordinateSpringDamper(markerNumbers=[motor['markerNumber'], wormAngle], stiffness=drive.kT,
                                          damping=drive.dT, name='driveShaft'))
-    if load is not None:                       # the load torque on the wheel's angle about z (its last Rxyz angle)
+    if load is not None:                       # the load torque on the wheel's turn about z (its last Rxyz angle)
         zeros = np.zeros((6, 6))
         oLoad = mbs.AddObject(ObjectGenericODE2(nodeNumbers=[wheel['nodeNumber']], massMatrix=zeros,
                                                 stiffnessMatrix=zeros, dampingMatrix=zeros, name='reelLoad'))
-        SetGenericForceLaw(mbs, oLoad, 6, lambda t, q, q_t, ops: [0.] * 5 + [load.Torque(q[5], q_t[5], t, ops)],
+        SetGenericForceLaw(mbs, oLoad, 6, lambda t, q, q_t, ops: [0.] * TURN + [load.Torque(q[TURN], q_t[TURN], t, ops)],
                            useSymbolic, where=w)
-    connector = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=gear, wormAxis=[1., 0., 0.], wheelAxis=[0., 0., 1.],
-                                        name='wormGear', contactOptions=contactOptions)
+    connector = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=gear, wormAxis=[0., 0., 1.], wheelAxis=[0., 0., 1.],
+                                        name='wormGear', contactOptions=contactOptions, useSymbolic=useSymbolic)
     return RigidBodyReelChanger(SC, mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init),
                                 motor=motor, load=load, axialBearing=axial)
 
@@ -302,8 +317,8 @@ def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axia
     from exudyn.itemInterface import (MarkerNodeCoordinates, NodePointGround, ObjectConnectorCoordinateVector,
                                       SensorObject)
     node = body['nodeNumber']
-    turn = 3 + int(np.argmax(np.abs(axis)))                 # the body's turn: Rxyz angle about its (global) axis
-    held = [k for k in range(6) if k != turn and not (axial is not None and k == turn - 3)]
+    along = int(np.argmax(np.abs(axis)))                    # the translation along the (global) axis
+    held = [k for k in range(6) if k != TURN and not (axial is not None and k == along)]
     reference = np.asarray(mbs.GetNode(node)['referenceCoordinates'], dtype=float)[held]
     # the item couples two markers: the second is a ground node's (no coordinates)
     joint = mbs.AddObject(ObjectConnectorCoordinateVector(
@@ -315,11 +330,11 @@ def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axia
     out = {'joint': joint, 'heldCoordinates': held, 'axis': np.asarray(axis, dtype=float),
            'sensors': {'joint': mbs.AddSensor(SensorObject(objectNumber=joint, outputVariableType=OVT.Force,
                                                            storeInternal=True, writeToFile=False))}}
-    if axial is not None:                      # the worm's axial coordinate: its node's x (the axis is global x)
+    if axial is not None:                      # the worm's axial coordinate: its node's translation along the axis
         from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, NodePointGround
         nGround = mbs.AddNode(NodePointGround())
         m0 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nGround, coordinate=0))
-        m1 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=0))
+        m1 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=along))
         out['axialSpring'] = mbs.AddObject(CoordinateSpringDamper(markerNumbers=[m0, m1], stiffness=axial.stiffness,
                                                                   damping=axial.damping, name=name + 'Axial'))
         out['sensors']['axialSpring'] = mbs.AddSensor(SensorObject(objectNumber=out['axialSpring'],
@@ -377,18 +392,20 @@ def StoredSeries(model: RigidBodyReelChanger) -> Dict[str, np.ndarray]:
     Returns
     -------
     dict of ndarray
-        ``time``; ``phi0, omega0`` (motor), ``phi1, omega1, alpha1`` (worm: its turn about its axis, the first
-        Tait-Bryan coordinate), ``phi2, omega2, alpha2`` (wheel: the last one), with the worm's axial bearing
+        ``time``; ``phi0, omega0`` (motor), ``phi1, omega1, alpha1`` (worm: its turn about its axis, the last
+        Tait-Bryan coordinate), ``phi2, omega2, alpha2`` (wheel: the same), with the worm's axial bearing
         ``xA, vA`` (the worm's axial displacement); the bearing loads of :func:`StoredShaftLoads`.
     """
     mbs = model.mbs
     data = {k: np.asarray(mbs.GetSensorStoredData(s)) for k, s in model.sensors.items()}
     out = {'time': data['motorAngle'][:, 0], 'phi0': data['motorAngle'][:, 1], 'omega0': data['motorSpeed'][:, 1]}
-    for body, prefix, column in (('worm', '1', 4), ('wheel', '2', 6)):
+    for body, prefix in (('worm', '1'), ('wheel', '2')):
         for name, key in (('phi', 'Coordinates'), ('omega', 'Velocities'), ('alpha', 'Accelerations')):
-            out[name + prefix] = data[body + key][:, column]
-    if model.axialBearing is not None:
-        out['xA'], out['vA'] = data['wormCoordinates'][:, 1], data['wormVelocities'][:, 1]
+            out[name + prefix] = data[body + key][:, 1 + TURN]
+    if model.axialBearing is not None:          # along the worm's axis, -y
+        along = 1 + int(np.argmax(np.abs(WORM_AXIS)))
+        out['xA'], out['vA'] = (float(WORM_AXIS[along - 1]) * data['worm' + key][:, along]
+                                for key in ('Coordinates', 'Velocities'))
     loads = StoredShaftLoads(model)
     loads.pop('time')
     out.update(loads)

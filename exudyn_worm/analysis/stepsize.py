@@ -88,9 +88,8 @@ def _CyclesForPeriodError(error: float) -> float:
 AXIAL_COORDINATE = 'wormAxial'
 #: labels of the coordinates by which the bearings of the 3D model (worm and wheel as rigid bodies on Tait-Bryan
 #: nodes, exudyn_worm.analysis.reelchanger3d) let the bodies move besides their turn about their axes: the
-#: translations and the tilts (the worm turns about its first angle, the wheel about its last); their modes are
-#: left out like the axial one
-BEARING_COORDINATES = tuple(f'Node:worm[{i}]' for i in (0, 1, 2, 4, 5)) + tuple(f'Node:wheel[{i}]' for i in range(5))
+#: translations and the tilts (both turn about their last angle); their modes are left out like the axial one
+BEARING_COORDINATES = tuple(f'Node:{body}[{i}]' for body in ('worm', 'wheel') for i in range(5))
 
 #: f_max * h of the recommended step (0.5 % period error of the highest linearized mode)
 RECOMMENDED_CYCLES = _CyclesForPeriodError(0.005)

@@ -689,14 +689,19 @@ def _CompileLaw(mbs, where: str, connector: RigidBodyWormGearConnector, found) -
                          f"angle, got node types {', '.join(types)}; use useSymbolic=False (plain Python) for them")
     q0, v0 = connector._InitialVectors(mbs)
     spins = [(a, math.cos(a), math.sin(a)) for a in connector._initialAngles]
-    x0, _, rows = connector._Inputs(q0, v0, spins)
-    rows = np.asarray(rows, dtype=float)
+    x0, _, _ = connector._Inputs(q0, v0, spins)             # the inputs at the initial state, exact
+    # the rows without tilts and translations (those of the linear map), and at other turns: they must be the same
     sizes = [b.size for b in connector._kinematics.bodies]
-    turned, turns = list(q0), (1., 0.3)
-    for k, (start, turn) in enumerate(zip((0, sizes[0]), turns)):
+    untilted = np.zeros(len(q0))
+    for start in (0, sizes[0]):
+        untilted[start + 5] = q0[start + 5]
+    _, _, rows = connector._Inputs(untilted.tolist(), v0, spins)
+    rows = np.asarray(rows, dtype=float)
+    turned, turns = untilted.copy(), (1., 0.3)
+    for start, turn in zip((0, sizes[0]), turns):
         turned[start + 5] += turn
-    _, _, rowsTurned = connector._Inputs(turned, v0, [(a + d, math.cos(a + d), math.sin(a + d))
-                                                      for a, d in zip(connector._initialAngles, turns)])
+    _, _, rowsTurned = connector._Inputs(turned.tolist(), v0, [(a + d, math.cos(a + d), math.sin(a + d))
+                                                               for a, d in zip(connector._initialAngles, turns)])
     change = float(np.max(np.abs(np.asarray(rowsTurned, dtype=float) - rows)))
     if change > LINEAR_ROWS_TOLERANCE * max(1., float(np.max(np.abs(rows)))) or np.any(rows[1, :sizes[0]]):
         raise ValueError(f"{where}: 'useSymbolic' needs Rxyz nodes whose turn about the axis is their last angle (a "
