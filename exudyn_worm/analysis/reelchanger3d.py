@@ -307,7 +307,7 @@ def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axia
 
     The ideal joint holds the node's translations and the two Tait-Bryan angles that are not the body's turn at
     their reference values, one linear ``ObjectConnectorCoordinateVector``: exact for the Rxyz nodes of this model
-    (the worm turns about its first angle, the wheel about its last), and its Jacobian does not turn with the body
+    (both turn about their last angle), and its Jacobian does not turn with the body
     (an ``ObjectJointGeneric`` made the modified Newton iteration take three times the iterations and a Jacobian
     every ten steps, benchmarks/README.md). Its multipliers, the forces on the held coordinates, are the bearing
     loads (global x, y, z)."""
