@@ -109,8 +109,8 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
     contactOptions : ContactOptions
         Options of the contact law.
     useSymbolic : bool
-        C++ symbolic user functions (default) or plain Python for the drive and the load (the mesh law runs in
-        Python, docs/mesh-3d.md).
+        C++ symbolic user functions (default) or plain Python for the drive, the load and the mesh law
+        (:func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`, docs/mesh-3d.md, "Speed").
     wormBearings, wheelBearings : ShaftBearings, optional
         Elastic bearings of the shafts; None (default): those of the parameter set, else ideal revolute joints.
     wormMass, wheelMass : float, optional
