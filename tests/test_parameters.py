@@ -230,7 +230,7 @@ def test_declared_key_reaches_checks_and_messages(declared):
     with pytest.raises(ValueError, match=r"parameter set: 'testSpeed' must be > 0 m/s, got 0 m/s"):
         CheckParameters({**base, 'testSpeed': 0.})
     with pytest.raises(ValueError, match=r"unknown parameter 'testlaw' \(did you mean 'testLaw'\?\); expected one "
-                                         r"of: .* mA testLaw testSpeed"):
+                                         r"of: .* mA .* wheelBearingSpan testLaw testSpeed"):
         CheckParameterKeys({**base, 'testlaw': 'agma'}, 'f')
     assert 'testLaw' in UnknownParameterMessage('f', 'x')
     with pytest.raises(ValueError, match=r"'testA' and 'testB' are given together, which describe the same quantity "

@@ -37,7 +37,9 @@ Lehr damping 0.04-0.25 from the mesh damping) is left out for the same reason: i
 bearing in series with the mesh, not a mode the chatter or the load excites, and the method damps it where the
 step does not resolve it. Resolving it would make the step fall with sqrt(kA) (5e-6 s at 1e10 N/m, more than
 the run-size limit for one rotation) while the rigid worm, its limit, needs 7.8e-4 s. The bearing's effect on
-the other modes (kV in series with kA) is included. Measured on P1 with mA = 5 kg over 6 s: at kA = 1e9 N/m
+the other modes (kV in series with kA) is included. The same holds for the bearings of the 3D model (worm and wheel
+as rigid bodies, docs/mesh-3d.md): modes with more than half their kinetic energy in the bodies' translations and
+tilts (:data:`BEARING_COORDINATES`; 0.9 to 2.3 kHz in examples/drives/reel-3d.toml) are left out. Measured on P1 with mA = 5 kg over 6 s: at kA = 1e9 N/m
 (chatter while lowering) the recommended step 8.0e-4 s gives the peak ``|phi2''|`` and the chatter frequency within
 0.1 % and 0.4 % of those at 1e-4 s; at kA = 5e8 N/m (stable) both steps give no chatter.
 
@@ -72,7 +74,7 @@ from ..setups.presets import ElasticDriveFromParameters
 __all__ = ['RECOMMENDED_CYCLES', 'SOFT_CYCLES', 'HARD_CYCLES', 'PEAK_ACCURACY', 'TRANSIENT_PEAK_ACCURACY',
            'SMALL_MARGIN', 'UNRESOLVED', 'PeriodError',
            'LinearizedFrequencies', 'RecommendedStepSize', 'StepSizeLimits', 'CheckStepSize', 'FrictionTimeConstant',
-           'CoarseStepWarning', 'LinearMargin', 'StepCheckByDefault', 'CompareHalfStep']
+           'CoarseStepWarning', 'LinearMargin', 'StepCheckByDefault', 'CompareHalfStep', 'BEARING_COORDINATES']
 
 
 def _PeriodError(x: float) -> float:
@@ -91,6 +93,10 @@ def _CyclesForPeriodError(error: float) -> float:
 
 #: label of the worm's axial coordinate in the linearized whole drive (its mode is left out, see the module text)
 AXIAL_COORDINATE = 'wormAxial'
+#: labels of the coordinates by which the bearings of the 3D model (worm and wheel as rigid bodies on Tait-Bryan
+#: nodes, exudyn_worm.analysis.reelchanger3d) let the bodies move besides their turn about their axes: the
+#: translations and the tilts (both turn about their last angle); their modes are left out like the axial one
+BEARING_COORDINATES = tuple(f'Node:{body}[{i}]' for body in ('worm', 'wheel') for i in range(5))
 
 #: f_max * h of the recommended step (0.5 % period error of the highest linearized mode)
 RECOMMENDED_CYCLES = _CyclesForPeriodError(0.005)
@@ -140,7 +146,8 @@ def _WholeDriveEigenvalues(analysis, S: int) -> np.ndarray:
     """Eigenvalues of the linearized whole drive for contact state S that the step must resolve: every mode but
     the worm's own axial mode (see the module text) and rigid-body modes."""
     return np.array([m.eigenvalue for m in analysis.State(S).modes
-                     if m.energyShare.get(AXIAL_COORDINATE, 0.) <= 0.5], dtype=complex)
+                     if sum(m.energyShare.get(k, 0.) for k in (AXIAL_COORDINATE,) + BEARING_COORDINATES) <= 0.5],
+                    dtype=complex)
 
 
 def _Eigenvalues(parameters: Mapping[str, float]) -> dict:
