@@ -293,7 +293,9 @@ def BuildRigidBodyLinearizationModel(parameters: Mapping[str, float], S: Optiona
     init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0., 'omega2': speed / g.ratio}
     options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
     axial = AxialBearingFromParameters(parameters)
-    model = _Build(parameters, drive, options, True, None if supports is None else supports.wormBearings,
+    # the plain-Python law: the C++ law's auxiliary coordinates give the same eigenvalues, but which coordinates
+    # Exudyn keeps independent then shifts the modes' energy shares between the bodies' coordinates
+    model = _Build(parameters, drive, options, False, None if supports is None else supports.wormBearings,
                    None if supports is None else supports.wheelBearings,
                    axial.mass if axial is not None else (WORM_MASS if supports is None else supports.wormMass),
                    WHEEL_MASS if supports is None else supports.wheelMass, axial, init, ConstantSpeed(speed), None)
