@@ -26,6 +26,7 @@ from ..items.equilibrium import SteadyInitialState  # re-exported: it lived here
 from ..setups.presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, ElasticDriveFromParameters, DriveSideChain,
                       LoadSideChain, MissingParameterError)
 from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
+from ..params.plausibility import CheckWormRotation, CheckWormSpeed
 from ..items.results import SimulationResult
 from ..items.solve import SolveDynamicInChunks, SolverDivergedError
 from .stepsize import CheckStepSize, RecommendedStepSize
@@ -614,6 +615,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
     steps = CheckRunSize(endTime, stepSize, maxSteps, w)
     CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
+    CheckWormRotation(parameters, stepSize, w)      # warns: a worm rotation in fewer than a few steps
     model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
     mbs = model.mbs
     mbs.Assemble()
@@ -650,6 +652,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
                   tangentialForce=mesh.wheelTorque / drive.gear.r2)
     if model.axialBearing is not None:
         series['axialForce'] = mesh.axialForce
+    CheckWormSpeed(series['omega1'], series.get('omega0', ()), parameters, w)   # warns: the load drives the worm
     return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
                             steps=steps, info={'stepSize': stepSize,
                                                'maxLoadTorque': model.load.maximum if model.load is not None else 0.,

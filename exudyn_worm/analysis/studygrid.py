@@ -9,9 +9,8 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from ..setups.config import ParseQuantity
 from ..params.parameters import PARAMETERS
-from ..setups.presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys
+from ..setups.presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, DriveSideChain, LoadSideChain
 from ..items.results import CheckWindows
 from .._checks import CheckPositive
 from ..setups.duty import IsReelChangerDuty
@@ -91,8 +90,8 @@ def ParseVariation(text: str, log: bool = False) -> Variation:
             fields = fields[:3]
         if len(fields) != 3:
             raise ValueError(f"{context}: a grid is START:STOP:COUNT[:lin|log], e.g. 'J1=0.01:0.4:8'")
-        start, stop = (ParseQuantity(key, f) if f else _Raise(context, 'START and STOP must be given')
-                       for f in fields[:2])
+        start, stop = (PARAMETERS.Parse(key, f, f"{context}: {name}") if f
+                       else _Raise(context, 'START and STOP must be given') for f, name in zip(fields[:2], ('START', 'STOP')))
         try:
             count = int(fields[2])
         except ValueError:
@@ -115,7 +114,9 @@ def ParseVariation(text: str, log: bool = False) -> Variation:
         items = [item.strip() for item in spec.split(',')]
         if any(not item for item in items):
             raise ValueError(f"{context}: empty value in the list (V1,V2,...)")
-        values = [ParseQuantity(key, item) for item in items]
+        values = [PARAMETERS.Parse(key, item, context) for item in items]
+    for value in values:                  # the range of the key (J1 > 0, z1 a whole number), before any run
+        PARAMETERS.Check(key, value, context)
     return Variation(key, tuple(values), text)
 
 
@@ -219,6 +220,12 @@ class Study:
                             f"got {self.checkStep!r}")
         self.points = StudyPoints(self.variations, self.zipped)
         first = ApplyOverrides(self.base, self.points[0])          # unknown keys raise here
+        for Chain in (DriveSideChain, LoadSideChain):   # a chain with a gap (J9 without J4) fails every run: refuse
+            try:
+                Chain(first)
+            except ValueError as err:
+                raise ValueError(f"Study: {err}; every run would fail (varied: {', '.join(self.keys) or 'none'})"
+                                 ) from None
         if self.windows is None and not IsReelChangerDuty(first):   # the phases of the first point's duty
             self.windows = DefaultWindows(first, self.endTime, minLength=1e-3)
 

@@ -133,9 +133,11 @@ def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, in
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.reelchanger import MAX_STEPS, CheckReelChangerKeys, CheckRunSize, DefaultSimulatedTime, DefaultWindows
     from ..analysis.stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
+    from ..params.plausibility import CheckWormRotation
     with BadInput():
         CheckReelChangerKeys(parameters, 'simulate')
         stepSize = args.step_size if args.step_size is not None else RecommendedStepSize(parameters)
+        CheckWormRotation(parameters, stepSize, 'simulate')   # warned before a run too short for one step is refused
     maxSteps = args.max_steps if args.max_steps is not None else MAX_STEPS
     with BadInput(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter('always', CoarseStepWarning)
@@ -181,11 +183,15 @@ def _Run(args: argparse.Namespace) -> int:
     from ..analysis.reelchanger import PhaseLabel, SimulateReelChanger, WindowPhases
     from ..items.solve import SolverDivergedError
     from ..analysis.stepsize import CoarseStepWarning, CompareHalfStep, UNRESOLVED
+    from ..params.plausibility import ImplausibleValueWarning, UnresolvedRotationWarning
 
     def Simulate(h):
         try:
             with StdoutToStderr(args.json), warnings.catch_warnings():
                 warnings.simplefilter('ignore', CoarseStepWarning)      # reported above
+                warnings.simplefilter('ignore', UnresolvedRotationWarning)
+                if h != stepSize:          # the run at half the step repeats what the run at the step said
+                    warnings.simplefilter('ignore', ImplausibleValueWarning)
                 return SimulateReelChanger(parameters, endTime=endTime, stepSize=h, maxSteps=maxSteps,
                                            useSymbolic=not args.python_user_functions,
                                            progress=False if args.quiet else None)
