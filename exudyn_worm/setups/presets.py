@@ -246,16 +246,17 @@ def _Require(parameters, keys, what):
 
 
 def _FiniteDamping(value: float, name: str, formula: str, inputs: Mapping[str, float]) -> float:
-    """``value``, a damping derived from its measure, if finite; else a ValueError naming the inputs, the largest
-    first (``J1 = 1e308`` overflows ``dT``: the message blames J1 and its unit, not the derived dT)."""
+    """``value``, a damping derived from its measure, if finite; else a ValueError naming the largest input, its
+    unit and range (``J1 = 1e308`` overflows ``dT``: the message blames J1, not the derived dT)."""
     if math.isfinite(value):
         return value
-    ordered = sorted(inputs, key=lambda k: -abs(inputs[k]))
-    values = ', '.join(f"{k} = {inputs[k]:g}{' ' + PARAMETER_UNITS[k] if PARAMETER_UNITS[k] else ''}" for k in ordered)
-    ranges = ', '.join(f"{k} ({PARAMETERS[k].rangeText})" for k in ordered)
-    raise ValueError(f"parameter set: out of range: the {name} ({formula}) is not finite with {values}: "
-                     f"{ordered[0]} = {inputs[ordered[0]]:g} {PARAMETER_UNITS[ordered[0]]} is far beyond any drive; "
-                     f"{ranges} must be of a size a drive can have; check these values and their units")
+    key = max(inputs, key=lambda k: abs(inputs[k]))
+    unit = PARAMETER_UNITS[key]
+    others = ', '.join(f"{k} = {v:g}{' ' + PARAMETER_UNITS[k] if PARAMETER_UNITS[k] else ''}"
+                       for k, v in inputs.items() if k != key)
+    raise ValueError(f"parameter set: '{key}' = {inputs[key]:g} {unit} is out of range (it must be "
+                     f"{PARAMETERS[key].rangeText} {unit} and of a size a drive can have): the {name} {formula} "
+                     f"overflows with {others}; check the value and its unit")
 
 
 def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set') -> None:
@@ -355,7 +356,7 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
         dV = p['dV']
     elif 'DV' in p:
         _Require(p, ('J2',), where)
-        dV = _FiniteDamping(MeshDampingFromMeasure(p['DV'], p['kV'], r2, p['J2']), 'mesh damping dV',
+        dV = _FiniteDamping(MeshDampingFromMeasure(p['DV'], p['kV'], r2, p['J2']), 'mesh damping',
                             'dV = 2 DV sqrt(kV r2^2 J2) / r2^2 of eq. (23)', {k: p[k] for k in ('J2', 'kV', 'DV')})
     else:
         raise ValueError(f"{where}: give the mesh damping as 'dV' (N*s/m) or as the measure 'DV'")
@@ -522,7 +523,7 @@ def ElasticDriveFromParameters(parameters: Mapping[str, float], where: str = 'El
         else:
             raise ValueError(f"{where}: give the shaft damping as 'dT' (N*m*s/rad), the measure 'DT' "
                              f"or the ratio 'DTV'")
-        dT = _FiniteDamping(TorsionalDampingFromMeasure(DT, p['kT'], p['J1']), 'shaft damping dT',
+        dT = _FiniteDamping(TorsionalDampingFromMeasure(DT, p['kT'], p['J1']), 'shaft damping',
                             'dT = 2 DT sqrt(kT J1) of eq. (22)', {'J1': p['J1'], 'kT': p['kT'], 'DT': DT})
     drive = ElasticDrive(gear=gear, J1=p['J1'], J2=p['J2'], kT=p['kT'], dT=dT)
     _CheckScale(drive, 'parameter set')
