@@ -384,7 +384,19 @@ def ShardIndices(numberOfRuns: int, shard: Optional[Tuple[int, int]]) -> List[in
 
 
 def ShardSize(numberOfRuns: int, shard: Optional[Tuple[int, int]]) -> int:
-    """``len(ShardIndices(numberOfRuns, shard))``, without building the list."""
+    """The number of runs of one shard, ``len(ShardIndices(numberOfRuns, shard))``, without building the list.
+
+    Parameters
+    ----------
+    numberOfRuns : int
+        Runs in the whole study.
+    shard : (int, int) or None
+        ``(i, N)`` from :func:`ParseShard`; None for all runs.
+
+    Returns
+    -------
+    int
+    """
     return numberOfRuns if shard is None else len(range(shard[0], numberOfRuns, shard[1]))
 
 

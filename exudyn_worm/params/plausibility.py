@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 
@@ -130,7 +131,7 @@ def CheckGearPlausibility(gear: 'WormGear', where: str = 'WormGear') -> None:
                       ImplausibleValueWarning, stacklevel=1)
 
 
-def _MotorSpeed(parameters) -> float:
+def _MotorSpeed(parameters: Mapping[str, Any]) -> float:
     """The motor's largest speed in rad/s from a flat parameter set: ``motorSpeed``, ``noLoadSpeed`` and the speeds
     of a ``motorSpeedOverTime`` given as rows (0 if none is given)."""
     speeds = [abs(float(parameters[k])) for k in ('motorSpeed', 'noLoadSpeed') if k in parameters]
@@ -140,7 +141,7 @@ def _MotorSpeed(parameters) -> float:
     return max(speeds, default=0.)
 
 
-def CheckWormRotation(parameters, stepSize: float, where: str = 'CheckWormRotation') -> None:
+def CheckWormRotation(parameters: Mapping[str, Any], stepSize: float, where: str = 'CheckWormRotation') -> None:
     """Warn if one rotation of the worm at the motor's largest speed takes fewer than
     :data:`MIN_STEPS_PER_ROTATION` time steps.
 
@@ -171,7 +172,8 @@ def CheckWormRotation(parameters, stepSize: float, where: str = 'CheckWormRotati
                   f"(--set '{key}={speed:g} rpm')", UnresolvedRotationWarning, stacklevel=1)
 
 
-def CheckWormSpeed(wormSpeed, motorSpeed, parameters, where: str = 'CheckWormSpeed') -> None:
+def CheckWormSpeed(wormSpeed: Sequence[float], motorSpeed: Sequence[float], parameters: Mapping[str, Any],
+                   where: str = 'CheckWormSpeed') -> None:
     """Warn if the worm of a simulation ran faster than :data:`MAX_WORM_SPEED_RATIO` times the motor.
 
     Parameters
