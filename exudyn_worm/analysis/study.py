@@ -117,7 +117,7 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
         Called with each new row (flat dict) as it arrives.
     maxRuns : int, optional
         Runs this call may hold (the study's, or its shard's), >= 1; default
-        :data:`~exudyn_worm.analysis.studygrid.MAX_RUNS` (100,000: about 1 GB in the parent). A larger study is
+        :data:`~exudyn_worm.analysis.studygrid.MAX_RUNS` (100,000: about 0.9 GB in the parent). A larger study is
         refused before any run, saying into how many shards to split it.
 
     Returns

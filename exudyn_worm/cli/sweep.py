@@ -36,7 +36,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='run only the runs i, i+N, i+2N, ... (0 <= i < N), e.g. one task of a job array')
     parser.add_argument('--max-runs', type=PositiveInt('runs'), default=None, metavar='N',
                         help='refuse a study (or shard) of more than N runs before any run, saying into how many '
-                             'shards to split it (default 100000: the parent holds about 10 kB per run)')
+                             'shards to split it (default 100000: the parent holds about 9 kB per run)')
     parser.add_argument('--end-time', type=float, default=None, metavar='S',
                         help='simulated time in s (default: one rotation of each run)')
     parser.add_argument('--step-size', type=float, default=None, metavar='S',
