@@ -137,7 +137,6 @@ def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, in
     with BadInput():
         CheckReelChangerKeys(parameters, 'simulate')
         stepSize = args.step_size if args.step_size is not None else RecommendedStepSize(parameters)
-        CheckWormRotation(parameters, stepSize, 'simulate')   # warned before a run too short for one step is refused
     maxSteps = args.max_steps if args.max_steps is not None else MAX_STEPS
     with BadInput(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter('always', CoarseStepWarning)
@@ -145,7 +144,8 @@ def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, in
             CheckStepSize(parameters, args.step_size, 'simulate --step-size')
     for warning in caught:
         print(f"exudyn-worm: warning: {warning.message}", file=sys.stderr)
-    with BadInput():
+    CheckWormRotation(parameters, stepSize, 'simulate')   # a step refused above stands alone; a run shorter than
+    with BadInput():                                       # one step is refused below, after this warning says why
         userWindows = ParseWindows(args.windows) if args.windows is not None else None
         endTime = args.end_time
         if endTime is None:
