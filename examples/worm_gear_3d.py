@@ -15,8 +15,8 @@ joints. Bearing values: the worm's radial bearings 5e8 N/m each, 0.12 m apart, t
   worm's axial degree of freedom (:func:`~exudyn_worm.items.connector.CreateWormAxialBearing`): the two agree, and
   P1 becomes stable when the axial bearing is softer than about 7e8 N/m (examples/worm_axial_bearing.py).
 
-Run ``python examples/worm_gear_3d.py`` for the table (about a minute: the rigid-body mesh runs as a Python user
-function).
+Run ``python examples/worm_gear_3d.py`` for the table (a few seconds: the rigid-body mesh's law runs in C++,
+docs/mesh-3d.md, "Speed").
 """
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The worm's axial bearing (issue 6): contact-law kinematics, default off, builder, equilibrium start."""
+"""The worm's axial bearing: contact-law kinematics, default off, builder, equilibrium start."""
 import math
 import os
 

@@ -71,7 +71,7 @@ def test_lifting_phase_agrees_pointwise(runs):
 def test_chatter_onset_agrees(runs):
     # 2.5..3 s: the chatter has built up (the paper's P1 chatters in the lowering phase). Self-excited
     # oscillations drift in phase, so the amplitudes are compared, not the samples: peak |phi2''| and peak
-    # normal force within 1 % (the agreement criterion; measured 0.07 % and 0.34 %, from the sampling
+    # normal force within 1 % (the required agreement; measured 0.07 % and 0.34 %, from the sampling
     # of the ~40 Hz oscillation and its harmonics at 2 kHz and Exudyn's step-size error), and the dominant
     # frequency within 2 Hz, the frequency resolution of a 0.5 s window.
     ours, scipy = runs

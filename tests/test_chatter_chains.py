@@ -7,14 +7,21 @@ linearization (DriveStability, the Exudyn linearization for a chain); the orbit 
 with the time simulations' own solver settings; a hand-built three-mass Exudyn system against the same drive
 given as a parameter set.
 """
+import json
+
+import exudyn as exu
 import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import (BuildLoweringModel, EquilibriumState, FindSteadyChatter, LongSimulationAmplitude,
-                                 LoweringModelOfSystem, SettleLowering, SteadyChatterOfSystem)
+from exudyn_worm.analysis.chatter import (BuildLoweringModel, EquilibriumState, FindSteadyChatter,
+                                          LongSimulationAmplitude, LoweringModelOfSystem, SettleLowering,
+                                          SteadyChatterOfSystem, _LinearlyStable)
 from exudyn_worm.cli.main import Main
 from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries, SmallestDisturbance
+from exudyn_worm.items.drivetrain import CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
+from exudyn_worm.model.profiles import ConstantSpeed, ConstantTorque
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
@@ -59,7 +66,7 @@ def test_stiff_load_shaft_gives_the_two_mass_orbit(orbitP1):
     # a 1e9 N m/rad load shaft (its stage at 1.6 kHz): the load follows the wheel, as lumped into J2 = 33
     stiff = FindSteadyChatter({**SPLIT, 'kL1': 1e9})
     assert stiff.converged and len(stiff.state) == 6
-    # item 4 of issue 18: amplitudes within 2 %
+    # required: amplitudes within 2 % of the long simulation's
     assert stiff.info['forceFactor'] == pytest.approx(orbitP1.info['forceFactor'], rel=0.02)
     assert stiff.info['maxWheelAcceleration'] == pytest.approx(orbitP1.info['maxWheelAcceleration'], rel=0.02)
     assert stiff.frequencyHz == pytest.approx(orbitP1.frequencyHz, rel=0.02)
@@ -74,11 +81,9 @@ def test_stiff_axial_bearing_gives_the_two_mass_orbit(orbitP1):
     assert orbit.info['forceFactor'] == pytest.approx(orbitP1.info['forceFactor'], rel=0.02)
     assert orbit.info['maxWheelAcceleration'] == pytest.approx(orbitP1.info['maxWheelAcceleration'], rel=0.02)
     # and the disturbance search reads the mesh with the axial coordinate too: P1 is linearly unstable
-    from exudyn_worm.analysis.chatterbranch import SmallestDisturbance
     assert SmallestDisturbance(p, duration=0.5, steps=1) <= 0.25
 
 
-@pytest.mark.slow
 def test_chain_orbit_matches_long_simulation(orbitChain):
     long = LongSimulationAmplitude(CHAIN, duration=4.0, stepSize=2e-4)
     assert orbitChain.converged and orbitChain.stable
@@ -87,16 +92,14 @@ def test_chain_orbit_matches_long_simulation(orbitChain):
     assert orbitChain.frequencyHz == pytest.approx(long['frequencyHz'], rel=0.005)
 
 
-@pytest.mark.slow
 def test_chain_branch_hopf_point_on_the_linear_boundary():
-    from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries
     branch = AnalyzeChatterBranch(CHAIN, 'J1', 0.06, 0.1, maxPoints=40)
     chainRoots, _ = LinearBoundaries(CHAIN, 'J1', 0.06, 0.1)           # DriveStability: the whole drive
     lumpedRoots, _ = LinearBoundaries(P1, 'J1', 0.06, 0.1)             # the load lumped into J2
     assert len(chainRoots) == 1 and len(branch.hopf) == 1
     # the chain moves the boundary by more than the tolerance, so the check tells chain from lumped drive
     assert abs(chainRoots[0] - lumpedRoots[0]) > 0.01 * chainRoots[0]
-    # issue 18 item 2: the Hopf point coincides with the linear boundary within 0.5 %
+    # required: the Hopf point coincides with the linear boundary within 0.5 %
     assert branch.hopf[0]['value'] == pytest.approx(chainRoots[0], rel=0.005)
     assert branch.hopf[0]['type'] == 'supercritical'
 
@@ -104,9 +107,6 @@ def test_chain_branch_hopf_point_on_the_linear_boundary():
 def _HandBuiltThreeMass(parameters):
     """motor (prescribed) --kT-- worm == mesh == wheel --kL1-- load inertia <- constant load torque, built with the
     public builders at the steady state, as a user would."""
-    import exudyn as exu
-    from exudyn_worm.items.drivetrain import CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
-    from exudyn_worm.model.profiles import ConstantSpeed, ConstantTorque
     drive = ew.ElasticDriveFromParameters(parameters)
     w = parameters['motorSpeed']
     M = parameters['loadMass'] * 9.80665 * parameters['leverArm']             # lowering: the load drives the wheel
@@ -164,7 +164,6 @@ def test_cli_chatter_with_a_load_side_chain(capsys):
                  '--vary', 'J1=0.09:0.1', '--max-points', '2', '--json'])
     out = capsys.readouterr().out
     assert code == 0
-    import json
     data = json.loads(out)
     assert data['parameter'] == 'J1' and len(data['points']) >= 2
     assert all(p['amplitude']['forceFactor'] > 2. for p in data['points'])
@@ -180,7 +179,6 @@ def test_cli_chatter_names_the_unsupported_component(capsys):
 
 
 def test_branch_in_a_load_shaft_stiffness():
-    from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch
     branch = AnalyzeChatterBranch(CHAIN, 'kL1', 8e6, 1.2e7, maxPoints=2)
     assert branch.parameter == 'kL1' and len(branch.points) >= 2
     # each value rebuilds the lowering model with its own load shaft: the amplitude changes along the branch
@@ -198,7 +196,6 @@ def test_own_system_at_rest_is_reported():
     p = {**CHAIN, 'J1': 0.3}
     assert DriveStability(p).State(-1).stable
     SC, mbs, connector = _HandBuiltThreeMass(p)
-    from exudyn_worm.analysis.chatter import _LinearlyStable
     assert _LinearlyStable(LoweringModelOfSystem(mbs, connector))
     SC, mbs, connector = _HandBuiltThreeMass(p)
     with pytest.raises(ValueError, match=r"SteadyChatterOfSystem: the system settles to rest"):

@@ -39,7 +39,6 @@ def test_the_corpus_is_seeded_and_has_both_phases():
     assert table[w['lifting'][0]] > 0 > table[w['lowering'][0]] and first[0]['loadTorque'] < 0   # lift, then lower
 
 
-@pytest.mark.slow
 def test_quick_run_writes_the_report_and_one_row_per_phase(tmp_path, capsys):
     report, table = tmp_path / 'corpus.md', tmp_path / 'corpus.csv'
     assert Main(['--quick', '--quiet', '--report', str(report), '--csv', str(table)]) in (0, 1)

@@ -7,7 +7,11 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import BuildLoweringModel, EquilibriumState, StateScale, _LoweringFlow
+from exudyn_worm.analysis.chatter import (BuildLoweringModel, EquilibriumState, FindSteadyChatter,
+                                          LongSimulationAmplitude, SettleLowering, SettledSimulationAmplitude,
+                                          StateScale, _LoweringFlow)
+from exudyn_worm.model.contact import FrictionState, SlidingCoordinate
+from exudyn_worm.analysis.speedchart import RPM
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
@@ -58,7 +62,6 @@ def test_carry_keeps_the_stretch_of_the_stuck_flanks(lowering):
     """A run continued in pieces (restart=False) shifts the coordinates back by the steady rotation; the anchor
     of stuck flanks must move with them, else the sticking spring is stretched by the sliding of a whole piece
     (reel-P3 with a Stribeck law at 200 rpm then ran into a different motion, force factor 10.4 instead of 2.31)."""
-    from exudyn_worm.model.contact import FrictionState, SlidingCoordinate
     model, flow = lowering
     stickSlip = model.connector.stickSlip
     mbs = model.mbs
@@ -80,7 +83,6 @@ def test_carry_keeps_the_stretch_of_the_stuck_flanks(lowering):
 
 
 def test_settled_simulation_stops_when_the_amplitude_stops_changing():
-    from exudyn_worm.analysis.chatter import LongSimulationAmplitude, SettledSimulationAmplitude
     p1 = ew.GetPreset('reel-P1')
     settled = SettledSimulationAmplitude(p1, maxDuration=20.)
     assert settled['settled'] and settled['duration'] < 20. and settled['change'] < 5e-4
@@ -93,7 +95,6 @@ def test_settled_simulation_stops_when_the_amplitude_stops_changing():
 
 
 def test_settled_simulation_rejects_a_piece_shorter_than_the_window():
-    from exudyn_worm.analysis.chatter import SettledSimulationAmplitude
     with pytest.raises(ValueError, match=r"SettledSimulationAmplitude: 'piece' must be longer than 'window'"):
         SettledSimulationAmplitude(ew.GetPreset('reel-P1'), piece=0.2, window=0.25)
 
@@ -102,9 +103,7 @@ def test_settled_simulation_rejects_a_piece_shorter_than_the_window():
 def test_friction_limited_orbit_near_the_hopf_point_equals_a_settled_run():
     """reel-P3 with a Stribeck law, 3.5 % above the lower linear boundary (85.08 rpm): the orbit stays in contact
     and its amplitude is set by the falling friction. Shot from a settled run and continued one step towards the
-    boundary, it equals a time simulation from rest run until settled within 2 % (issue 18, item 4)."""
-    from exudyn_worm.analysis.chatter import FindSteadyChatter, SettledSimulationAmplitude
-    from exudyn_worm.analysis.speedchart import RPM
+    boundary, it equals a time simulation from rest run until settled within 2 % (the required agreement)."""
     base = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,
             'stribeckVelocity': 0.9}
     orbit = FindSteadyChatter({**base, 'motorSpeed': 88. * RPM}, settleTime=40., maxIterations=40)
@@ -125,8 +124,6 @@ def test_one_period_run_started_at_the_largest_worm_speed_sees_the_reversal():
     """A one-period run that starts where the worm is fastest sees no acceleration at its first look; the check of
     a sliding worm was then put off by CHECK_INTERVAL (0.02 s), longer than a chatter period of reel-P3 (0.015 s),
     and the worm turned back without sticking (no switch, the friction still pushing it forward)."""
-    from exudyn_worm.analysis.chatter import SettleLowering
-    from exudyn_worm.analysis.speedchart import RPM
     p = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,
          'stribeckVelocity': 0.9, 'motorSpeed': 140. * RPM}
     model = BuildLoweringModel(p)

@@ -13,12 +13,15 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import (BuildLoweringModel, ConstantTorque, FindSteadyChatter, LongSimulationAmplitude,
-                                 UpdateLoweringModel)
-from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, ChatterBranchError, LinearBoundaries
+from exudyn_worm.analysis.chatter import (BuildLoweringModel, ConstantTorque, EquilibriumState, FindSteadyChatter,
+                                          LongSimulationAmplitude, SettleLowering, StateScale, UpdateLoweringModel)
+from exudyn_worm.analysis.chatterbranch import (AnalyzeChatterBranch, ChatterBranchError, ChattersAfterDisturbance,
+                                                LinearBoundaries, SmallestDisturbance)
 from exudyn_worm.cli.main import Main
 from exudyn_worm.model.contact import MATH_OPS
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
+from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm.analysis.orbits import FloquetMultipliers, Monodromy
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
@@ -80,10 +83,9 @@ def test_p1_steady_chatter_orbit(orbitP1):
     assert o.stable and mu.max() < 0.99
 
 
-@pytest.mark.slow
 def test_p1_orbit_matches_long_simulation(orbitP1):
     long = LongSimulationAmplitude(P1, duration=4.0, stepSize=2e-4)
-    # item 4 of issue 18: within 2 %
+    # required: within 2 %
     assert orbitP1.info['forceFactor'] == pytest.approx(long['forceFactor'], rel=0.02)
     assert orbitP1.info['maxWheelAcceleration'] == pytest.approx(long['maxWheelAcceleration'], rel=0.02)
     assert orbitP1.frequencyHz == pytest.approx(long['frequencyHz'], rel=0.005)
@@ -101,12 +103,11 @@ def test_linear_boundaries_are_sign_changes():
         assert growth(r * (1 - 1e-6)) * growth(r * (1 + 1e-6)) < 0
 
 
-@pytest.mark.slow
 def test_branch_in_J1_hopf_points_on_the_linear_boundaries():
     branch = AnalyzeChatterBranch(P1, 'J1', 0.05, 0.3)
     assert len(branch.hopf) == 2
     for h in branch.hopf:
-        assert h['relativeDifference'] < 0.005                  # issue 18, item 2: within 0.5 %
+        assert h['relativeDifference'] < 0.005                  # required: within 0.5 % of the linear boundary
         assert h['type'] == 'supercritical'
     assert branch.coexistence == []
     inside = [p for p in branch.points if p.info['forceFactor'] >= 2.]
@@ -147,7 +148,6 @@ def test_cli_bad_input_one_line_exit_2(capsys, argv, message):
     assert err.startswith('exudyn-worm: error:') and __import__('re').search(message, err)
 
 
-@pytest.mark.slow
 def test_cli_json_and_plot(capsys, tmp_path):
     plot = tmp_path / 'branch.png'
     assert Main(['chatter', '--preset', 'reel-P1', '--vary', 'kT=6000:9500', '--json', '--plot', str(plot)]) == 0
@@ -160,7 +160,6 @@ def test_cli_json_and_plot(capsys, tmp_path):
 
 
 def test_smallest_disturbance_unstable_and_stable_drive():
-    from exudyn_worm.analysis.chatterbranch import SmallestDisturbance
     # linearly unstable P1: the smallest kick tried already ends in chatter
     assert SmallestDisturbance(P1, steps=3) <= 0.5 / 2**3
     # P2 (J1 = 0.3) is linearly stable and its branch has no coexistence: even half the motor speed decays
@@ -168,7 +167,6 @@ def test_smallest_disturbance_unstable_and_stable_drive():
 
 
 def test_settle_starts_from_the_equilibrium_every_time():
-    from exudyn_worm.analysis.chatter import EquilibriumState, SettleLowering
     model = BuildLoweringModel(P1)
     x0 = EquilibriumState(model)
     SettleLowering(model, 0.05, kick=0.3)
@@ -178,13 +176,11 @@ def test_settle_starts_from_the_equilibrium_every_time():
     assert EquilibriumState(model)[0] != x0[0]                  # the shaft twist follows kT
 
 
-@pytest.mark.slow
 def test_backlash_rest_and_chatter_coexist():
     # J1 = 0.25 kg m^2 with 0.5 mm backlash: linearly stable (backlash does not enter the linearization), yet a
     # large worm-speed kick ends in chatter; the orbit found by shooting is that chatter (long run within 2 %),
     # and a small kick dies out
     p = {**P1, 'J1': 0.25, 'backlash': 5e-4}
-    from exudyn_worm.analysis.drivestability import DriveStability
     assert DriveStability(p).State(-1).stable
     orbit = FindSteadyChatter(p, kick=0.5)
     assert orbit.stable and orbit.info['forceFactor'] > 4.
@@ -194,7 +190,6 @@ def test_backlash_rest_and_chatter_coexist():
     rest = LongSimulationAmplitude(p, duration=4.0, stepSize=2e-4, kick=0.01)
     assert rest['forceFactor'] < 1.01
     # the one-line verdict for a design check; the threshold kick lies between the 1 % and 30 % runs above
-    from exudyn_worm.analysis.chatterbranch import ChattersAfterDisturbance
     verdict = ChattersAfterDisturbance(p)
     assert verdict.linearlyStable and verdict.chatterFound
     assert 0.01 * p['motorSpeed'] < verdict.smallestDisturbance < 0.3 * p['motorSpeed']
@@ -206,8 +201,6 @@ def test_trivial_multiplier_near_one(orbitP1):
     # mesh changes flank only to a step, a sawtooth on the one-period map: forward differences of 1e-6 of the state
     # scale see its slope (1.011 at P1), central differences over 5 % of the state scale average it out (1.0016
     # measured; docs/chatter-amplitude.md)
-    from exudyn_worm.analysis.chatter import StateScale
-    from exudyn_worm.analysis.orbits import FloquetMultipliers, Monodromy
     assert orbitP1.trivialMultiplierError < 5e-3
     assert max(abs(orbitP1.nontrivialMultipliers)) < 1. - orbitP1.trivialMultiplierError
     flow, scale = orbitP1.info['flow'], StateScale(orbitP1.info['model'])
@@ -215,7 +208,6 @@ def test_trivial_multiplier_near_one(orbitP1):
     assert np.min(np.abs(small - 1.)) > 2 * orbitP1.trivialMultiplierError
 
 
-@pytest.mark.slow
 def test_branch_in_two_processes_equals_serial():
     # the two directions from the first orbit run in two worker processes (each builds its own model) or one
     # after the other: the same orbits

@@ -8,6 +8,7 @@ import pytest
 from exudyn_worm import GetPreset, SimulateReelChanger
 from exudyn_worm.items.results import (CHATTER_AMPLITUDE, CHATTER_MIN_MESH_TORQUE, CHATTER_SUSTAIN,
                                        SimulationResult)
+from exudyn_worm.analysis.reelchanger import DefaultPhases
 
 _T = np.linspace(0., 1., 20001)
 #: frequency in Hz of the test tones: 100 periods in each quarter of the window [0, 1] s
@@ -102,12 +103,10 @@ HOIST = {'alphaN': math.radians(20), 'mx': 3e-3, 'z1': 1, 'z2': 50, 'q': 16, 'mu
                                 (1.6, -100 * _RPM), (2.5, -100 * _RPM), (2.6, 0), (3.0, 0)]}
 
 
-@pytest.mark.slow
 def test_worm_side_stick_slip_of_a_hoist_is_chatter():
     """The worm vibrates against its soft shaft and turns back while lifting and lowering; the wheel barely
     moves, so its inertia torque stays far below a tenth of the mesh torque (the wheel's measure misses it),
     while the mesh's sliding measure exceeds 1 (the worm turns back). Standing still under load, no chatter."""
-    from exudyn_worm.analysis.reelchanger import DefaultPhases
     result = SimulateReelChanger(HOIST, progress=False)
     phases = DefaultPhases(HOIST, result.endTime)
     assert [ph for _, _, ph in phases] == ['lift', 'idle', 'lower', 'idle']

@@ -43,7 +43,7 @@ def test_cli_follows_the_friction_branch_from_its_hopf_point(capsys):
     assert data['hopf']['type'] == 'supercritical'
     assert len(data['linearBoundaries']) == 1 and 84. < data['linearBoundaries'][0] / RPM < 86.
     assert hopf['linearBoundary'] == data['linearBoundaries'][0]
-    assert data['hopf']['value'] == pytest.approx(hopf['linearBoundary'], rel=0.005)    # issue 18, item 2
+    assert data['hopf']['value'] == pytest.approx(hopf['linearBoundary'], rel=0.005)    # required: 0.5 %
     assert len(points) >= 10
     values = [p['value'] for p in points]
     assert values == sorted(values) and values[0] > hopf['linearBoundary']

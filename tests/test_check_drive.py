@@ -19,6 +19,10 @@ from exudyn_worm import ApplyOverrides, GetPreset
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.setups.presets import DriveSideChain
+from exudyn_worm.analysis.design import DesignCheck, LocalCharts
+from exudyn_worm.setups import operatingpoints
+from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.drivestability import AnalyzeDrive
 from paper_model import ChainEigenvalues, HurwitzStable
 
 DRIVES = Path(__file__).resolve().parents[1] / 'examples' / 'drives'
@@ -95,7 +99,7 @@ def test_hoist_is_unstable_while_lifting_and_lowering():
     assert 'Chart point: none' in text and 'Smallest single changes' in text
 
 
-@pytest.mark.parametrize('lumped', [False, True])
+@pytest.mark.parametrize('lumped', [pytest.param(False, marks=pytest.mark.slow), True])   # with the chain: 2.4 s
 def test_agma_hoist_gets_the_danger_verdict_with_and_without_its_load_side_chain(lumped, tmp_path):
     path = _LumpedAgma(tmp_path) if lumped else AGMA
     check = _Json('check', '--quiet', '--config', path)
@@ -151,9 +155,6 @@ def test_load_side_chain_gets_its_own_parameters_and_notes():
 
 def test_operating_points_are_computed_once_per_check(monkeypatch):
     """Inertias, stiffnesses and dampings do not move the operating points: the scans reuse the drive's."""
-    from exudyn_worm.analysis.design import DesignCheck
-    from exudyn_worm.setups import operatingpoints
-    from exudyn_worm.setups.wholedrive import ResolveDrive
     calls = []
     original = operatingpoints._DutyOperatingPoints
     monkeypatch.setattr(operatingpoints, '_DutyOperatingPoints', lambda d: calls.append(1) or original(d))
@@ -162,8 +163,6 @@ def test_operating_points_are_computed_once_per_check(monkeypatch):
 
 
 def test_whole_drive_plot_says_there_is_no_chart(tmp_path):
-    from exudyn_worm.analysis.design import DesignCheck
-    from exudyn_worm.setups.wholedrive import ResolveDrive
     result = DesignCheck(ResolveDrive(config=FIGURE19), span=3.)
     fig = result.plot(title='figure19')
     ax = fig.axes[0]
@@ -179,9 +178,6 @@ def test_two_mass_plot_draws_the_chart_at_the_deciding_operating_point(tmp_path)
     """A Stribeck hoist without its load shaft: the chart is taken at mu(v0) and the slope of its one operating
     point (lifting only: a constant load torque at a constant speed); the drive's own point has the verdict of
     AnalyzeDrive, and a point the chart calls stable is stable for AnalyzeDrive too."""
-    from exudyn_worm.analysis.design import DesignCheck, LocalCharts
-    from exudyn_worm.analysis.drivestability import AnalyzeDrive
-    from exudyn_worm.setups.wholedrive import ResolveDrive
     drive = ResolveDrive(config=_LumpedAgma(tmp_path)).Replace(
         {'frictionLaw': 'stribeck', 'mu': 0.07, 'muStatic': 0.12, 'stribeckVelocity': 0.3,
          'motorType': 'constantSpeed', 'motorSpeed': 100 * 2 * math.pi / 60})

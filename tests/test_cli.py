@@ -13,9 +13,10 @@ import exudyn_worm
 from exudyn_worm.cli import main as cli
 from exudyn_worm.cli.main import Main
 from exudyn_worm.model.stability import AnalyzeStability
+import exudyn_worm.analysis.linearization as linearization
 
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
-# issue 15 added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
+# the speed-dependent friction added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
 TOP_KEYS = {'ratio', 'frictionAngle', 'selfLocking', 'efficiency', 'S', 'fuesgenLimit', 'firstCriterionLimit', 'hint',
             'stable', 'friction', 'selfLockingVerdict', 'operatingPoint',
             'geometry', 'method', 'model', 'components', 'maxRealPart', 'frequencyHz', 'operatingPoints', 'deciding',
@@ -273,7 +274,6 @@ def test_error_messages_are_specific(capsys, tmp_path):
 
 
 def test_exudyn_method_uses_linearization(capsys, monkeypatch):
-    import exudyn_worm.analysis.linearization as linearization
     calls = []
 
     def Fake(drive, useSymbolic=True, operatingPoint=None):

@@ -1,6 +1,7 @@
 """`exudyn-worm chart`: JSON shape and numbers, the chart preset without damping, points, plot file checked
 before computing, one-line errors with exit status 2."""
 import json
+from pathlib import Path
 
 import pytest
 from numpy.testing import assert_allclose
@@ -124,7 +125,6 @@ def test_own_drive_is_marked_with_its_verdict(capsys):
     """A whole drive from --config is marked at its chart coordinates: reel-P1 with the Figure 19 chain lies at P1's
     x = kT/(kV r1^2) = 7000 / (2e8 * 0.01805^2) and y = J1/J2 = 0.1/33 (set (28)), in the unstable region of
     D_TV = 1 (section 3.2: P1 chatters)."""
-    from pathlib import Path
     config = str(Path(__file__).resolve().parents[1] / 'examples' / 'drives' / 'figure19.toml')
     status, out, err = _Run(capsys, 'chart', '--config', config, '--DTV', '1', '--resolution', '60', '--json')
     assert status == 0, err

@@ -5,12 +5,16 @@ import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.presets import GetPreset
 from exudyn_worm.analysis.study import ReadResults
+from exudyn_worm.analysis.reelchanger import DefaultPhases
+from exudyn_worm.analysis.studypoint import DecidingWindow
+from exudyn_worm.setups.config import ResolveParameters
 
 SHORT = ['--windows', '0:0.5,0.5:1', '--end-time', '1', '--quiet']
 
@@ -160,11 +164,6 @@ def test_default_metric_belongs_to_the_deciding_phase():
     """The default --metric window is the first of the phase that decides the linear verdict: the reel changer at
     P1 chatters while lowering (section 3.2), its window 1; the hoist's lifting point decides (its file), a lifting
     window."""
-    from pathlib import Path
-    from exudyn_worm.analysis.reelchanger import DefaultPhases
-    from exudyn_worm.analysis.studypoint import DecidingWindow
-    from exudyn_worm.setups.config import ResolveParameters
-    from exudyn_worm.setups.presets import GetPreset
     assert DecidingWindow(GetPreset('reel-P1')) == 1
     hoist = ResolveParameters(config=Path(__file__).resolve().parents[1] / 'examples' / 'drives' / 'hoist.toml')
     i = DecidingWindow(hoist)

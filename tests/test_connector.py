@@ -19,7 +19,7 @@ REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 @pytest.mark.physics
 @pytest.mark.parametrize('name', REEL_PRESETS + ['chart'])
 def test_linearized_exudyn_model_reproduces_analytical_eigenvalues(name):
-    """Issue requirement: 1e-6 relative. The connector implements eqs. (1)-(2)."""
+    """Required: 1e-6 relative. The connector implements eqs. (1)-(2)."""
     p = GetPreset(name)
     if name == 'chart':                                   # the chart preset sweeps J1, kT: pick a point
         p = ApplyOverrides(p, {'J1': 1e-4, 'kT': 0.5, 'DT': 0.028})

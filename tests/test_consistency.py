@@ -1,4 +1,4 @@
-"""Consistency of the subcommands (issue 16, item 6): ``sweep --max-steps`` as ``simulate`` has it; a refused resume
+"""Consistency of the subcommands: ``sweep --max-steps`` as ``simulate`` has it; a refused resume
 names the option that differs with its old and new values; one policy for existing output files (refused unless
 ``--overwrite``) in every subcommand and in ``python -m validation``."""
 import json
@@ -8,6 +8,11 @@ import pytest
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study
+import exudyn_worm.analysis.design as design
+import exudyn_worm.analysis.reelchanger as reelchanger
+import exudyn_worm.analysis.charts as charts
+import validation.runner as runner
+from validation.cli import Main as ValidationMain
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')   # nothing written to the cwd
 
@@ -122,9 +127,6 @@ OUTPUT_CASES = ['simulate --csv', 'simulate --plot', 'chart --output', 'check --
 
 @pytest.mark.parametrize('case', OUTPUT_CASES)
 def test_existing_output_is_refused_without_overwrite(capsys, tmp_path, monkeypatch, case):
-    import exudyn_worm.analysis.design as design
-    import exudyn_worm.analysis.reelchanger as reelchanger
-    import exudyn_worm.analysis.charts as charts
     for module, name in ((design, 'DesignCheck'), (reelchanger, 'SimulateReelChanger'),
                          (charts, 'ComputeStabilityChart')):     # refused before anything is computed
         monkeypatch.setattr(module, name, lambda *a, **k: pytest.fail('computed before the output check'))
@@ -164,8 +166,6 @@ def test_new_output_needs_no_overwrite(capsys, tmp_path):
 
 @pytest.mark.parametrize('option', ['--report', '--record-baseline'])
 def test_validation_refuses_an_existing_file(capsys, tmp_path, monkeypatch, option):
-    import validation.runner as runner
-    from validation.cli import Main as ValidationMain
     monkeypatch.setattr(runner, 'RunValidation', lambda **kw: pytest.fail('computed before the output check'))
     path = tmp_path / 'existing'
     path.write_text('precious')

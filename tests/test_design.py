@@ -197,7 +197,6 @@ def test_nearest_stable_value():
 
 
 @pytest.mark.physics
-@pytest.mark.slow
 def test_simulation_confirms_recommendations(p1Check):
     # P1 chatters while lowering; none of its recommended drives does (one rotation each)
     calls = []

@@ -1,11 +1,15 @@
 """``exudyn-worm check`` and the hint of ``exudyn-worm stability --json`` (run in-process with Main)."""
 import json
+import re
 
+import numpy as np
 import pytest
 
 from exudyn_worm import AnalyzeStability, ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.analysis import design
 from exudyn_worm.cli.main import Main
+from exudyn_worm.analysis.design import DesignCheck, LocalCharts
+from exudyn_worm.plotting.plot_design import PlotDesignCheck, _Dense
 from paper_model import BoundaryDecades, HurwitzStable
 
 
@@ -159,7 +163,6 @@ def test_stability_json_has_the_tables_hint(capsys):
     assert Json(capsys, 'stability', '--preset', 'reel-P2')['hint'] is None
 
 
-@pytest.mark.slow
 def test_check_simulate(capsys):
     data = Json(capsys, 'check', '--preset', 'reel-P1', '--span', '1.5', '--simulate')
     # no single change within 1.5: the best pair is simulated (and the given drive)
@@ -175,12 +178,8 @@ def test_heavy_damping_recommendations_get_a_remark(capsys):
 
 
 def test_check_plot_reads_well():
-    """issue 16, item 9: D_V / D_TV in mathtext, no label box over the boundary, the shading in the legend, and
+    """Readable: D_V / D_TV in mathtext, no label box over the boundary, the shading in the legend, and
     the legend off the chart."""
-    import re
-    import numpy as np
-    from exudyn_worm.analysis.design import DesignCheck, LocalCharts
-    from exudyn_worm.plotting.plot_design import PlotDesignCheck, _Dense
     result = DesignCheck(GetPreset('reel-P1'))
     fig = PlotDesignCheck(result, LocalCharts(result.parameters), title='reel-P1')
     ax = fig.axes[0]

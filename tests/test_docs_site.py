@@ -36,18 +36,60 @@ TRACKER = re.compile(r'\bissues? #?\d+', re.IGNORECASE)
 OUTSIDE = re.compile(r'\.\./shared\b|/work' + '/')     # split: this file passes the same grep
 
 
-def _Hits(pattern):
-    return [f'{path.relative_to(ROOT)}:{number}: {line.strip()}' for path in PAGES
-            for number, line in enumerate(path.read_text(encoding='utf-8').splitlines(), 1) if pattern.search(line)]
+#: folders of build output, caches and environments (what .gitignore leaves out), when git cannot list the files
+_NOT_SOURCE = {'.git', '__pycache__', '.venv', '.pytest_cache', '.hypothesis', 'build', 'dist', 'out', 'solution',
+               'reel_changer_output'}
 
 
-def test_pages_name_no_tracker_entry():
+def _RepositoryFiles():
+    """Every file of the checkout that git does not ignore (tracked or new), or, without git, every file outside
+    the folders of build output."""
+    try:
+        listed = subprocess.run(['git', '-C', str(ROOT), 'ls-files', '-z', '--cached', '--others', '--exclude-standard'],
+                                capture_output=True, check=True).stdout.decode('utf-8').split('\0')
+        files = [ROOT / name for name in listed if name]
+    except (OSError, subprocess.CalledProcessError):
+        files = [path for path in ROOT.rglob('*') if not _NOT_SOURCE.intersection(path.relative_to(ROOT).parts)
+                 and not any(part.endswith('.egg-info') for part in path.relative_to(ROOT).parts)]
+    return sorted(path for path in files if path.is_file())
+
+
+def _TextFiles():
+    """The repository's text files (UTF-8 without NUL bytes; figures and other binary files are left out)."""
+    texts = {}
+    for path in _RepositoryFiles():
+        data = path.read_bytes()
+        try:
+            texts[path] = data.decode('utf-8') if b'\0' not in data else None
+        except UnicodeDecodeError:
+            texts[path] = None
+    return {path: text for path, text in texts.items() if text is not None}
+
+
+TEXT_FILES = _TextFiles()
+
+
+def _Hits(pattern, files):
+    return [f'{path.relative_to(ROOT)}:{number}: {line.strip()}' for path, text in files.items()
+            for number, line in enumerate(text.splitlines(), 1) if pattern.search(line)]
+
+
+def test_the_greps_cover_the_repository():
+    names = {path.relative_to(ROOT).as_posix() for path in TEXT_FILES}
+    assert {page.relative_to(ROOT).as_posix() for page in PAGES} <= names
+    assert {'tests/test_docs_site.py', 'exudyn_worm/__init__.py', 'validation/__main__.py', '.ci/run',
+            'pyproject.toml'} <= names
+    assert not any(name.startswith('.git/') or '__pycache__' in name or name.endswith('.png') for name in names)
+
+
+def test_no_file_names_a_tracker_entry():
+    """Code, docs, tests and reports name the requirement, never an entry of the project's tracker."""
     assert len(PAGES) > 40
-    assert _Hits(TRACKER) == []
+    assert _Hits(TRACKER, TEXT_FILES) == []
 
 
-def test_pages_name_no_path_outside_the_repository():
-    assert _Hits(OUTSIDE) == []
+def test_no_file_names_a_path_outside_the_repository():
+    assert _Hits(OUTSIDE, TEXT_FILES) == []
 
 
 def test_the_greps_find_what_they_look_for():

@@ -25,8 +25,8 @@ PUBLIC = sorted({(f'{obj.__module__}.{name}', obj) for module in MODULES for nam
                  for obj in [getattr(module, name)] if inspect.isfunction(obj) or inspect.isclass(obj)},
                 key=lambda item: item[0])
 
-# Arguments without an entry of their own. validation/ is restructured on the validation branch (issue 17,
-# item 4); its internals are documented in prose and listed here until that lands.
+# Arguments without an entry of their own. validation/ is restructured in its own
+# branch; its internals are documented in prose and listed here until that lands.
 UNDOCUMENTED = {
     'validation.analytical.AnalyticalChecks': ['ctx'],
     'validation.analytical.EigenvalueChecks': ['ctx'],
@@ -68,7 +68,7 @@ UNDOCUMENTED = {
 }
 
 # Arguments (and '->' for the return value) without a type hint, by reason. Adding the hints edits the
-# signatures that the parallel branches of issue 17 are moving between modules; the list records the debt.
+# signatures that the parallel branches of the layer split are moving between modules; the list records the debt.
 _EXUDYN = ('Exudyn objects (MainSystem, SimulationSettings, DynamicSolverType, NodeIndex, symbolic.Real) and the '
            'laws Exudyn calls: exudyn is imported lazily where start-up time matters, so a hint needs a '
            'TYPE_CHECKING import')

@@ -18,6 +18,8 @@ from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.setups.operatingpoints import DutyOperatingPoints, SteadyPhases
 from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
 from exudyn_worm.setups.wholedrive import Component, Drive, ResolveDrive
+from exudyn_worm.cli import main
+from exudyn_worm.analysis.chatter import LoweringPhaseParameters
 
 import paper_model
 
@@ -141,7 +143,7 @@ def test_hoist_points_are_its_plus_minus_100_rpm_phases():
         op = q.operatingPoint
         assert op.slidingSpeed == pytest.approx(v0, rel=1e-12)
         assert op.mu == pytest.approx(mu, rel=1e-12) and op.mu == pytest.approx(0.0947, abs=5e-5)   # the value the
-        assert op.dmuDv == pytest.approx(slope, rel=1e-9)                                          # issue reports
+        assert op.dmuDv == pytest.approx(slope, rel=1e-9)                                          # hoist.toml states
         assert op.normalForce == pytest.approx(367.875 / _C4(gear, q.S, mu), rel=1e-12)
 
 
@@ -225,7 +227,6 @@ def test_stability_command_names_the_phase_that_decides(capsys):
 def test_a_command_resolves_its_drive_once_and_analyses_each_point_once(capsys, monkeypatch):
     """The drive file is resolved once, the drive built once, and no operating point is analysed twice (the load
     side's lumped drive, another drive, has its own points)."""
-    from exudyn_worm.cli import main
     built, analysed, resolved = [], [], []
     build, atPoint, resolve = wholedrive.Drive.FromParameters.__func__, drivestability._AtPoint, \
         main.ResolveParametersWithSources
@@ -252,7 +253,6 @@ def test_a_command_resolves_its_drive_once_and_analyses_each_point_once(capsys, 
 
 # --- the periodic-orbit analysis follows the drive's own lowering phase -------------------------------------------
 def test_chatter_analysis_takes_the_lowering_point_of_any_duty():
-    from exudyn_worm.analysis.chatter import LoweringPhaseParameters
     p = LoweringPhaseParameters(ResolveParameters(config=HOIST))
     assert p['motorSpeed'] == pytest.approx(100 * RPM) and 'motorSpeedOverTime' not in p and 'loadType' not in p
     assert p['loadMass'] * G * p['leverArm'] == pytest.approx(367.875, rel=1e-14)

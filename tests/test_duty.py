@@ -1,4 +1,4 @@
-"""Duty cycles (issue 16, item 2): load and motor from a parameter set, in drive files and on the command line;
+"""Duty cycles: load and motor from a parameter set, in drive files and on the command line;
 the evaluation windows follow the duty (lowering = the load drives the gear)."""
 import json
 import math
@@ -9,6 +9,13 @@ import pytest
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS
 from exudyn_worm.model.profiles import ConstantTorque, SpeedTable, TorqueTable
+from exudyn_worm.analysis.reelchanger import (DefaultPhases, DefaultSimulatedTime, PhaseLabel, RotationPeriod,
+                                              SimulateReelChanger)
+from exudyn_worm.setups.duty import LoadFromParameters, MotorFromParameters, SteadyMotorSpeed
+from exudyn_worm.cli.main import Main
+from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm.setups.presets import ExtraComponents
+from exudyn_worm.analysis.design import ChatterWhileLowering
 
 
 def test_speed_table_angle_is_the_integral_of_its_speed():
@@ -42,7 +49,6 @@ def test_torque_table_interpolates_and_holds_its_ends():
 
 
 def test_reel_changer_phases_are_its_lift_lower_lift_quarters():
-    from exudyn_worm.analysis.reelchanger import DefaultPhases, RotationPeriod
     p = ResolveParameters('reel-P1')
     T = RotationPeriod(p)
     phases = DefaultPhases(p, 1.5 * T)
@@ -54,7 +60,6 @@ def test_reel_changer_phases_are_its_lift_lower_lift_quarters():
 def test_duty_phases_follow_the_load_power():
     """Lowering where the load drives the gear (M omega > 0): with the speed reversed at 1.5 s a constant
     driving torque becomes a lifted one; the rigid kinematics put the switch where the speed passes zero."""
-    from exudyn_worm.analysis.reelchanger import DefaultPhases, DefaultSimulatedTime
     p = ResolveParameters('reel-P1', sets=['loadType=constant', 'loadTorque=1500', 'motorType=speedTable',
                                            'motorSpeedOverTime=[[0, 0], [0.5, 50], [1.5, 50], [2, -50]]'])
     assert DefaultSimulatedTime(p) == 2.
@@ -68,7 +73,6 @@ def test_duty_phases_follow_the_load_power():
 
 
 def test_drive_file_gives_the_duty(tmp_path):
-    from exudyn_worm.setups.duty import LoadFromParameters, MotorFromParameters
     path = tmp_path / 'drive.toml'
     path.write_text('preset = "reel-P1"\n[load]\ntype = "angleTable"\ntorqueOverAngle = [[0, "-2 kN*m"], '
                     '["90 deg", 0], ["180 deg", "2 kN*m"]]\n[motor]\ntype = "startStop"\nspeed = "300 rpm"\n'
@@ -80,7 +84,6 @@ def test_drive_file_gives_the_duty(tmp_path):
 
 
 def test_table_from_a_csv_file(tmp_path):
-    from exudyn_worm.setups.duty import LoadFromParameters
     (tmp_path / 'torque.csv').write_text('# time s, torque N*m\n0, -10\n1, 10\n')
     p = ResolveParameters('reel-P1', sets=['loadType=timeTable', f"loadTorqueOverTime={tmp_path / 'torque.csv'}"])
     assert LoadFromParameters(p).points == ((0., -10.), (1., 10.))
@@ -94,7 +97,6 @@ def test_table_from_a_csv_file(tmp_path):
     (['motorType=startStop', 'rampTime=1', 'brakeTime=0.5'], "'brakeTime' must be >= rampTime = 1 s"),
 ])
 def test_bad_duty_is_one_line_exit_2(capsys, tmp_path, monkeypatch, sets, fragment):
-    from exudyn_worm.cli.main import Main
     monkeypatch.chdir(tmp_path)
     status = Main(['simulate', '--quiet', *[a for s in sets for a in ('--set', s)]])
     out, err = capsys.readouterr()
@@ -106,7 +108,6 @@ def test_simulated_lowering_under_a_driving_torque_has_the_worm_braking(capsys, 
     """A constant torque that drives the gear (the reel changer's 2060 N*m at most, here 1500 N*m): the whole run
     is one lowering window, the contact is on the braking flank (S < 0) throughout; started and stopped by
     ramps, the run begins from rest."""
-    from exudyn_worm.cli.main import Main
     monkeypatch.chdir(tmp_path)
     args = ['simulate', '--preset', 'reel-P2', '--quiet', '--json', '--set', 'loadType=constant', '--set',
             'loadTorque=1500', '--set', 'motorType=startStop', '--set', 'rampTime=0.1', '--set', 'brakeTime=0.2']
@@ -120,7 +121,6 @@ def test_simulated_lowering_under_a_driving_torque_has_the_worm_braking(capsys, 
 
 def test_simulation_with_each_duty_records_its_laws():
     """Every duty builds with symbolic user functions (recorded laws are checked against Python at build time)."""
-    from exudyn_worm.analysis.reelchanger import SimulateReelChanger
     for sets in (['loadType=angleTable', 'loadTorqueOverAngle=[[0, -2000], [3, 2000]]', 'motorType=speedTable',
                   'motorSpeedOverTime=[[0, 0], [0.05, 49.5]]'],
                  ['loadType=timeTable', 'loadTorqueOverTime=[[0, -2000], [0.1, 0]]'],
@@ -138,8 +138,6 @@ RAMPED_LOAD = ['loadType=timeTable', 'loadTorqueOverTime=[[0, -1500], [0.3, 1500
 def test_sweep_of_another_duty_takes_its_phases_as_windows(capsys, tmp_path, monkeypatch):
     """Without --windows a sweep of a non-reel duty evaluates the duty's own phases (the sign change of the load
     power at 0.15 s), as simulate does, and judges the lowering in the phase where the load drives."""
-    from exudyn_worm.cli.main import Main
-    from exudyn_worm.analysis.reelchanger import DefaultPhases
     monkeypatch.chdir(tmp_path)
     p = ResolveParameters('reel-P2', sets=RAMPED_LOAD)
     phases = DefaultPhases(p)
@@ -158,7 +156,6 @@ def test_sweep_of_another_duty_takes_its_phases_as_windows(capsys, tmp_path, mon
 def test_simulate_labels_each_window_with_its_phase(capsys, tmp_path, monkeypatch):
     """The text table names the phase of each window: lift / lower for the reel changer, lifting / lowering for
     another duty; a window over two phases names both."""
-    from exudyn_worm.cli.main import Main
     monkeypatch.chdir(tmp_path)
     assert Main(['simulate', '--preset', 'reel-P2', '--quiet', '--no-check-step',
                  *[a for s in RAMPED_LOAD for a in ('--set', s)]]) == 0
@@ -171,7 +168,6 @@ def test_simulate_labels_each_window_with_its_phase(capsys, tmp_path, monkeypatc
 
 def test_idle_window_is_a_standstill_under_load_or_no_load():
     """A hoist that pauses with its load on the drum stands still under load; a duty without load torque has none."""
-    from exudyn_worm.analysis.reelchanger import DefaultPhases, PhaseLabel
     hoist = ['loadType=constant', 'loadTorque=-1500', 'motorType=speedTable',
              'motorSpeedOverTime=[[0, 0], [0.1, 50], [0.5, 50], [0.6, 0], [1, 0], [1.1, -50], [1.5, -50], [1.6, 0]]']
     p = ResolveParameters('reel-P1', sets=hoist)
@@ -190,8 +186,6 @@ CHARACTERISTIC = ['motorType=characteristic', 'stallTorque=300', 'noLoadSpeed=50
 def test_motor_characteristic_starts_where_its_line_carries_the_load():
     """The steady speed: M(omega) = stallTorque (1 - omega / noLoadSpeed) equals the drive-shaft torque of the
     equilibrium; the run starts there without a jump and the speed follows the lever's load."""
-    from exudyn_worm.setups.duty import SteadyMotorSpeed
-    from exudyn_worm.analysis.reelchanger import SimulateReelChanger
     p = ResolveParameters('reel-P2', sets=CHARACTERISTIC)
     speed = SteadyMotorSpeed(p)
     result = SimulateReelChanger(p, endTime=0.2)
@@ -207,8 +201,6 @@ def test_motor_characteristic_starts_where_its_line_carries_the_load():
 def test_motor_characteristic_in_the_linear_analysis():
     """The free motor rotor is in the linearized drive: its inertia adds a mode, the line's slope damps the
     drive's free rotation (a real eigenvalue -slope / (J0 + J1 + ...) reflected), one rigid-body angle remains."""
-    from exudyn_worm.analysis.drivestability import DriveStability
-    from exudyn_worm.setups.presets import ExtraComponents
     p = ResolveParameters('reel-P2', sets=CHARACTERISTIC)
     assert ExtraComponents(p) == ['a motor on its characteristic (motorType characteristic)']
     state = DriveStability(p).State(1)
@@ -219,7 +211,6 @@ def test_motor_characteristic_in_the_linear_analysis():
 def test_check_simulate_judges_the_lowering_phases_of_a_duty():
     """check --simulate on another duty: chatter is looked for where the load drives the gear; a duty that only
     lifts has no lowering to chatter in."""
-    from exudyn_worm.analysis.design import ChatterWhileLowering
     lifting = ResolveParameters('reel-P7', sets=['loadType=constant', 'loadTorque=-2000', 'motorType=speedTable',
                                                  'motorSpeedOverTime=[[0, 49.5], [1, 49.5]]'])
     assert ChatterWhileLowering(lifting) is False
@@ -231,8 +222,6 @@ def test_check_simulate_judges_the_lowering_phases_of_a_duty():
 def test_check_of_a_characteristic_motor_is_the_whole_drives(capsys, tmp_path, monkeypatch, preset):
     """A motor on its characteristic: the check analyses the whole drive with the free motor and gives its verdict
     (P1: the whole drive is stable while lowering where the two-mass model, motor holding its speed, is not)."""
-    from exudyn_worm.cli.main import Main
-    from exudyn_worm.analysis.drivestability import DriveStability
     monkeypatch.chdir(tmp_path)
     p = ResolveParameters(preset, sets=CHARACTERISTIC)
     status = Main(['check', '--quiet', '--preset', preset, '--json', *[a for s in CHARACTERISTIC for a in ('--set', s)]])

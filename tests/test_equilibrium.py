@@ -1,8 +1,9 @@
-"""The static equilibrium under load (issue 16, item 4): exudyn_worm.items.equilibrium.SteadyInitialState."""
+"""The static equilibrium under load: exudyn_worm.items.equilibrium.SteadyInitialState."""
 import math
 import re
 from pathlib import Path
 
+import exudyn as exu
 import pytest
 
 import exudyn_worm as ew
@@ -96,15 +97,13 @@ def _DocsExample():
     return re.search(r"```python\n(.*?)```", text, re.S).group(1)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize('equilibrium', [True, False])
 def test_docs_example_linearizes_and_stays_at_rest(tmp_path, monkeypatch, equilibrium):
     """Runs the code of docs/equilibrium.md; then a simulation from that state keeps every speed and the load
     shaft's torque (to 1e-9); without the load shaft's pre-twist it does not (the check can fail)."""
-    import exudyn as exu
     monkeypatch.chdir(tmp_path)
     code = _DocsExample()
-    if not equilibrium:          # the user's mistake of issue 16: the load shaft started untwisted
+    if not equilibrium:          # a user's mistake: the load shaft started untwisted
         code = code.replace("initialAngle=state['phiL1']", "initialAngle=state['phi2']")
     namespace = {}
     exec(compile(code, 'docs/equilibrium.md', 'exec'), namespace)

@@ -1,4 +1,4 @@
-"""examples/friction_speed.py (issue 15, items 3 and 5): mu(v), the largest real part and the simulated chatter
+"""examples/friction_speed.py: mu(v), the largest real part and the simulated chatter
 amplitude over motor speed, and the gear that is self-locking at rest but runs away once moving."""
 import math
 
@@ -52,7 +52,7 @@ def test_the_same_gear_holds_from_rest(example):
     hold = example.HoldAtRest('agma', endTime=8.)
     assert hold['verdict'].dangerous
     k = int(np.searchsorted(hold['time'], 5.))      # after the mesh's own lightly damped oscillation decayed
-    assert np.max(np.abs(hold['phi2'][k:] - hold['phi2'][k])) < 1e-6     # no creep (issue 15: below 1e-6 rad)
+    assert np.max(np.abs(hold['phi2'][k:] - hold['phi2'][k])) < 1e-6     # no creep (required: below 1e-6 rad)
     # still at the horizontal, but for the mesh's elastic deflection under the load: Delta s = Fn / kV with
     # Fn = M / c4 (eq. (12)), seen at the wheel as Delta s / (u r1 cos(alphaN) sin(gamma)) (eqs. (3)-(5))
     p = ew.GetPreset('reel-P1')

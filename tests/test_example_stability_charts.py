@@ -5,9 +5,10 @@ import numpy as np
 import pytest
 
 from conftest import LoadScript
-from exudyn_worm.analysis.charts import ChartCoordinates
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.analysis.charts import ChartCoordinates, MaxRealPartGrid
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, GearFromParameters, GetPreset
 from exudyn_worm.model.stability import AnalyzeStability
+from exudyn_worm.plotting.plot_charts import HATCHES, POINT_SIZE, NearestBoundary, PlotStabilityCharts
 
 example = LoadScript('examples/stability_charts.py', 'example_stability_charts')
 
@@ -70,7 +71,7 @@ def test_main_writes_the_three_figures(tmp_path, capsys):
     assert 'fig04_chart_DV0.014.png' in capsys.readouterr().out
 
 
-# --- issue 16, item 9: regions that do not blend into an unexplained grey, P3 drawn truthfully, the points of
+# --- readable charts: regions that do not blend into an unexplained grey, P3 drawn truthfully, the points of
 # set (28) explained in the figure ---------------------------------------------------------------------------
 
 @pytest.fixture(scope='module')
@@ -85,7 +86,6 @@ def _Chart(drawn, figure):
 
 @pytest.mark.parametrize('figure', [4, 5])
 def test_regions_are_hatched_not_blended_and_all_explained(drawn, figure):
-    from exudyn_worm.plotting.plot_charts import HATCHES
     ax = _Chart(drawn, figure)
     regions = [c for c in ax.collections if (c.get_gid() or '').startswith('region DTV=')]
     assert [c.get_gid() for c in regions] == [f'region DTV={v:g}' for v in example.DTV_VALUES]
@@ -109,14 +109,11 @@ def test_p3_is_outside_the_DTV25_region_and_drawn_so(figures, drawn):
     """P3 (set (28), J1 / 3) is stable on all three charts of Figure 4, analytically; the D_TV = 25 boundary
     passes 0.05 decades from it, which the main axes cannot show: the inset does, with a verdict computed
     from the chart."""
-    from exudyn_worm.plotting.plot_charts import POINT_SIZE, NearestBoundary
     p3 = figures['points']['P3']
     chart25 = next(c for c in figures[4] if c.DTV == 25.)
     assert not any(c.IsUnstable(p3['x'], p3['y']) for c in figures[4])
     # analytically, at P3's exact (x, y): the largest real part of the S = -1 eigenvalues of the D_TV = 25 chart
     # is negative (the grid's boundary line is not consulted)
-    from exudyn_worm.analysis.charts import MaxRealPartGrid
-    from exudyn_worm.setups.presets import GearFromParameters
     parameters = GetPreset('chart')
     growth = MaxRealPartGrid(GearFromParameters(parameters, meshDamping=False), parameters['J2'],
                              np.array([p3['x']]), np.array([p3['y']]), chart25.DV, 25.)
@@ -145,7 +142,6 @@ def test_p3_is_outside_the_DTV25_region_and_drawn_so(figures, drawn):
 def test_inset_is_the_default_for_a_point_next_to_a_boundary(figures):
     """`exudyn-worm chart --points P3` draws through PlotStabilityCharts' default: the same inset; zoom=None: none;
     the note goes into the legend, where it meets no inset."""
-    from exudyn_worm.plotting.plot_charts import PlotStabilityCharts
     points = {k: (c['x'], c['y']) for k, c in figures['points'].items() if k in ('P1', 'P3', 'P7')}
     ax = PlotStabilityCharts(figures[4], points=points, note='gear: preset reel-P1')
     assert [a.get_gid() for a in ax.child_axes] == ['zoom P3']

@@ -1,4 +1,4 @@
-"""The worm's axial bearing, linear part (issue 6): the 3-DOF characteristic problem from the Exudyn model,
+"""The worm's axial bearing, linear part: the 3-DOF characteristic problem from the Exudyn model,
 checked against an independent matrix model, and examples/worm_axial_bearing.py's statements with numbers."""
 import numpy as np
 import pytest

@@ -29,9 +29,15 @@ def test_axial_bearing_stiffness_moves_the_boundary_as_in_the_one_angle_model(ex
 
 @pytest.mark.physics
 def test_bearing_loads_start_from_the_static_mesh_force(example):
-    """A short run: the mesh starts at the static normal force of the one-angle model, and every bearing is loaded."""
-    loads = example.BearingLoads(endTime=0.05)
+    """A short run starts in the static equilibrium with the bearings deflected: the normal force is the one-angle
+    model's static force (to 1e-5: the bodies' tilts in their bearings shift it by 1e-6), every bearing is loaded from
+    the first step, and nothing rings (the loads stay within 1e-4 of their start over 0.05 s; started with undeflected
+    bearings the worm's axial load peaked 32 % above it)."""
+    series = example.BearingLoadSeries(endTime=0.05)
+    loads = example.BearingLoads(series=series)
     reference = BuildReelChanger(GetPreset('reel-P1'))
     static = abs(float(reference.connector.InitialMeshState(reference.mbs).normalForce))
-    assert loads['initialNormalForce'] == pytest.approx(static, rel=1e-9)
-    assert all(loads[k] > 100. for k in ('wormAxial', 'wormRadial', 'wheelAxial', 'wheelRadial'))
+    assert loads['initialNormalForce'] == pytest.approx(static, rel=1e-5)
+    for key in ('wormAxial', 'wormRadial', 'wheelAxial', 'wheelRadial'):
+        assert series[key][0] > 100.
+        assert loads[key] == pytest.approx(series[key][0], rel=1e-4), key

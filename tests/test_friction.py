@@ -1,14 +1,15 @@
-"""Friction laws mu(v) (issue 15, items 1 and 7): closed forms, the AGMA curve, slopes, the three backends, bad input."""
+"""Friction laws mu(v): closed forms, the AGMA curve, slopes, the three backends, bad input."""
 import math
 import warnings
 
 import numpy as np
 import pytest
+from scipy.interpolate import PchipInterpolator
 
 import exudyn as exu
 from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact, SymbolicOps
-from exudyn_worm.model.friction import (FT_PER_MIN, AgmaFriction, ConstantFriction, FrictionLaw, FrictionTableRangeWarning,
-                                  StribeckFriction, TableFriction)
+from exudyn_worm.model.friction import (FT_PER_MIN, AgmaFriction, ConstantFriction, FrictionLaw,
+                                        FrictionTableRangeWarning, ReadFrictionTable, StribeckFriction, TableFriction)
 from exudyn_worm.model.gear import WormGear
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 
@@ -67,12 +68,11 @@ def test_agma_at_rest_and_units():
     assert FT_PER_MIN == 0.3048 / 60 and 10 * FT_PER_MIN == pytest.approx(0.0508, rel=1e-15)
     assert law.Mu(1 * FT_PER_MIN) == pytest.approx(0.124 * math.exp(-0.074), rel=1e-15)      # V = 1 ft/min
     assert law.Mu(100 * FT_PER_MIN) == pytest.approx(0.103 * math.exp(-0.110 * 100**0.45) + 0.012, rel=1e-15)
-    # the issue's reading of the curve: 0.15 at rest, about 0.124 just above, a few hundredths at 0.9 m/s
+    # a reading of the AGMA curve: 0.15 at rest, about 0.124 just above, a few hundredths at 0.9 m/s
     assert law.Mu(1e-9) == pytest.approx(0.124, abs=5e-4) and 0.03 < law.Mu(0.9) < 0.06
 
 
 def test_table_is_pchip():
-    from scipy.interpolate import PchipInterpolator
     reference = PchipInterpolator(TABLE.speeds, TABLE.values)
     v = np.linspace(0., 2., 401)
     np.testing.assert_allclose(TABLE.Mu(v, NUMPY_OPS), reference(v), rtol=1e-12, atol=1e-15)
@@ -209,7 +209,6 @@ def test_friction_law_factory():
 
 
 def test_read_friction_table(tmp_path):
-    from exudyn_worm.model.friction import ReadFrictionTable
     path = tmp_path / 'rig.csv'
     path.write_text('# test rig, oil X\nv_m_s, mu\n0, 0.15\n0.05; 0.10\n\n0.5 0.06\n2.0,0.04\n')
     assert ReadFrictionTable(path) == TABLE

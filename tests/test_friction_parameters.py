@@ -1,6 +1,6 @@
-"""The friction-law parameter keys (issue 15, item 1): one declaration in the registry, usable with --set, in
+"""The friction-law parameter keys: one declaration in the registry, usable with --set, in
 parameter dicts and in drive files; a gear built from parameters carries its law; bad input names key, range,
-unit and value (item 7)."""
+unit and value."""
 import math
 import subprocess
 import sys

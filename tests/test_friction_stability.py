@@ -1,4 +1,4 @@
-"""Linear stability with speed-dependent friction (issue 15, items 3 and 4): eq. (16) extended in place, the Exudyn
+"""Linear stability with speed-dependent friction: eq. (16) extended in place, the Exudyn
 linearization and a finite-difference Jacobian of the nonlinear contact law agree; self-locking verdicts."""
 import math
 
@@ -7,12 +7,15 @@ import pytest
 
 from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
 from exudyn_worm.model.friction import StribeckFriction, TableFriction
-from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn
+from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn, LinearStabilityFromParameters
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.selflocking import GREY_ZONE, Rating, SelfLocking
 from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoefficients, EigenvaluesFromPolynomial,
-                                   EigenvaluesFromStateMatrix, LinearMatrices, OperatingPoint, OperatingPointAt,
-                                   OperatingPointFromParameters, PolynomialCoefficients)
+                                         EigenvaluesFromStateMatrix, FirstCriterionLimit, LinearMatrices,
+                                         OperatingPoint, OperatingPointAt, OperatingPointFromParameters,
+                                         PolynomialCoefficients)
+import exudyn_worm.analysis.reelchanger as rc
+import exudyn_worm.setups.wholedrive as wholedrive
 
 P3 = GetPreset('reel-P3')
 DRIVE = ElasticDriveFromParameters(P3)
@@ -96,7 +99,7 @@ def test_extended_damping_matches_the_nonlinear_contact_law(S):
 
 @pytest.mark.parametrize('useSymbolic', [True, False])
 def test_exudyn_linearization_agrees_with_extended_equation_16(useSymbolic):
-    """Issue 15 item 4: 1e-6 relative. Eigenvalues, b2..b4 to rtol 1e-6; b1 is a difference of the damping terms
+    """The required agreement: 1e-6 relative. Eigenvalues, b2..b4 to rtol 1e-6; b1 is a difference of the damping terms
     D11/J1 and D22/J2 (it is small near the stability boundary), so it is compared relative to the size of those
     terms: Exudyn differentiates the connector by forward differences (relative step 1e-7), whose truncation error
     on the curved mu(v) is about 4e-8 N*m*s/rad on D11 here."""
@@ -115,7 +118,7 @@ def test_exudyn_linearization_agrees_with_extended_equation_16(useSymbolic):
 
 
 def test_reel_p3_with_a_falling_friction_through_the_same_mu():
-    """The issue's claim, checked: reel-P3 is stable with constant mu = 0.132; with a Stribeck law through 0.132 at
+    """The claim, checked: reel-P3 is stable with constant mu = 0.132; with a Stribeck law through 0.132 at
     the operating speed it is unstable if the slope is steep enough (muStatic 0.2, stribeckVelocity 0.9 m/s), and
     stays stable with a gentle one (muStatic 0.15)."""
     assert AnalyzeStability(DRIVE, OperatingPointFromParameters(P3, DRIVE.gear)).stable
@@ -144,7 +147,7 @@ def test_self_locking_verdicts():
     verdict = SelfLocking(gear)
     assert verdict.static.selfLocking and verdict.dynamic.selfLocking and not verdict.dangerous
     assert verdict.static.efficiencyWormDriving == pytest.approx(math.tan(gear.gamma) / math.tan(gear.gamma + gear.rho))
-    # the issue's Stribeck gear: mu 0.05, muStatic 0.15, 0.1 m/s: holds at rest, runs away at lowering speed
+    # the Stribeck gear of the hold test: mu 0.05, muStatic 0.15, 0.1 m/s: holds at rest, runs away at lowering speed
     law = StribeckFriction(0.05, 0.15, 0.1)
     stribeck = gear.Replace(mu=0.05, friction=law)
     verdict = SelfLocking(stribeck, stribeck.SlidingSpeed(P3['motorSpeed']))
@@ -172,7 +175,6 @@ def test_operating_point_rejects_bad_input():
 
 def _LoweringOscillation(monkeypatch, law):
     """J2 max|phi2''| (N*m) per half second of the reel-P3 simulation, the connector using ``law``."""
-    import exudyn_worm.analysis.reelchanger as rc
     original = rc.ElasticDriveFromParameters
 
     def WithLaw(parameters, *args):          # the parameter keys of the law are plumbed elsewhere: attach it here
@@ -184,7 +186,6 @@ def _LoweringOscillation(monkeypatch, law):
     return np.array([P3['J2'] * np.max(np.abs(alpha2[(t >= a) & (t < a + 0.5)])) for a in np.arange(0., 8., 0.5)])
 
 
-@pytest.mark.slow
 def test_simulation_grows_where_the_linear_analysis_says_unstable(monkeypatch):
     """reel-P3 lowers from t = 2 s to 6 s (S = -1), under full load near t = 4 s. With constant mu the oscillation
     left by the load reversal decays; with the steep Stribeck law (linearly unstable at full load, growth rate
@@ -199,8 +200,6 @@ def test_simulation_grows_where_the_linear_analysis_says_unstable(monkeypatch):
 def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
     """LinearStabilityFromParameters (the whole-drive path of `stability`) linearizes a speed-dependent law at the
     operating point: for the two-mass drive it equals the extended eq. (16)."""
-    import exudyn_worm.setups.wholedrive as wholedrive
-    from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
     original = wholedrive.ElasticDriveFromParameters
     monkeypatch.setattr(wholedrive, 'ElasticDriveFromParameters', lambda p, where='': Stribeck(original(p)))
     linear = LinearStabilityFromParameters(P3)
@@ -215,7 +214,6 @@ def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
 
 def test_first_criterion_limit_includes_the_slope():
     """(20) with the slope: at J1/J2 = FirstCriterionLimit the b1 of S = -1 vanishes."""
-    from exudyn_worm.model.stability import FirstCriterionLimit
     drive = Stribeck()
     op = OperatingPointFromParameters(P3, drive.gear)
     limit = FirstCriterionLimit(drive, op)

@@ -1,4 +1,4 @@
-"""Gear geometry from its designation (issue 16, item 3): exudyn_worm/model/geometry.py and the [gear] forms."""
+"""Gear geometry from its designation: exudyn_worm/model/geometry.py and the [gear] forms."""
 import json
 import math
 import subprocess

@@ -1,4 +1,4 @@
-"""The layers of the package: the graph of its internal imports (issue 17, "layers you can see").
+"""The layers of the package: the graph of its internal imports.
 
 Every module of ``exudyn_worm`` is parsed with :mod:`ast`. An import at module level (outside every function;
 ``if TYPE_CHECKING:`` blocks are left out, they never run) is an edge of the import graph; an import inside a
@@ -24,7 +24,7 @@ from test_startup import HEAVY
 
 PACKAGE = 'exudyn_worm'
 ROOT = Path(__file__).resolve().parents[1] / PACKAGE
-#: lazy imports of these packages need no comment (issue 17: exudyn, scipy, matplotlib, pint)
+#: lazy imports of these packages need no comment (the heavy packages of docs/development.md)
 LAZY_PACKAGES = ('exudyn', 'scipy', 'matplotlib', 'pint')
 _LAZY_COMMENT = re.compile(r'#\s*lazy\b\W*(.*)', re.IGNORECASE)
 
@@ -33,7 +33,7 @@ ALLOWED: Dict[Tuple[str, str], str] = {
 }
 
 
-#: the layers of docs/development.md, lowest first: the subpackages of issue 17 (item 2) and the helpers below them.
+#: the layers of docs/development.md, lowest first: the subpackages and the helpers below them.
 #: A module imports (at module level) only modules of its own or a lower layer; inside a subpackage any module may
 #: import any other, as long as there is no cycle. A new module goes into the subpackage it belongs to.
 LAYERS = (
@@ -221,7 +221,7 @@ def test_every_module_has_a_layer():
 
 
 def test_the_package_has_no_flat_modules_beyond_the_helpers():
-    # issue 17, item 2: the layers show as subpackages
+    # the layers show as subpackages
     flat = sorted(m for m in MODULES if m.count('.') == 1 and not (ROOT / m.split('.')[1]).is_dir())
     assert flat == [f'{PACKAGE}.{name}' for name in sorted('__main__ _checks _files _moved _roots _spacing _workers progress'.split())]
 

@@ -1,19 +1,32 @@
-"""Ctrl-C everywhere (issue 16, item 5): every subcommand and ``python -m validation`` end an interrupt with one
+"""Ctrl-C everywhere: every subcommand and ``python -m validation`` end an interrupt with one
 line on stderr and exit status 130, without a traceback and without a half-written file; the validation stops
 instead of recording FAILs; ``sweep`` cancels its queued runs, terminates its running ones and keeps the finished
 ones; a study draws one progress bar, not one per worker."""
 import json
+import multiprocessing
 import os
 import signal
 import subprocess
 import sys
 import time
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 import pytest
 
 from exudyn_worm.cli.main import INTERRUPTED_STATUS, Main, WriteAtomically
 from exudyn_worm.items.solve import Interruptible, IsInterrupt
+import exudyn_worm.plotting.plot as plot
+import exudyn_worm.analysis.reelchanger as reelchanger
+import exudyn_worm.items.results as results
+import exudyn_worm.analysis.charts as charts
+import exudyn_worm.analysis.design as design
+from validation.runner import CheckGroup, RunValidation, WriteText
+import validation.runner as runner
+from validation.cli import Main as ValidationMain
+from exudyn_worm._workers import CancelPool
+from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.analysis.study import ReadResults, RunPoint, Study, StudySidecarPath, Variation
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -61,11 +74,6 @@ def _AssertInterrupted(status, out, err):
 def _InterruptCases(tmp_path, monkeypatch):
     """name -> (argv, patch): patch() installs the interrupt; the files the run must not leave behind are
     checked by the test (the folder tmp_path must stay empty)."""
-    import exudyn_worm.plotting.plot as plot
-    import exudyn_worm.analysis.reelchanger as reelchanger
-    import exudyn_worm.items.results as results
-    import exudyn_worm.analysis.charts as charts
-    import exudyn_worm.analysis.design as design
     short = ['--end-time', '0.3', '--quiet']
     return {
         'simulate: in the solver (Exudyn SystemError)': (
@@ -145,7 +153,6 @@ def test_exudyn_error_around_an_interrupt_is_an_interrupt():
 
 def test_validation_stops_on_interrupt_instead_of_recording_fails():
     """A check group interrupted inside Exudyn used to turn into FAIL rows and the run went on."""
-    from validation.runner import CheckGroup, RunValidation
     ran = []
 
     def Interrupted(ctx):
@@ -160,8 +167,6 @@ def test_validation_stops_on_interrupt_instead_of_recording_fails():
 
 
 def test_validation_cli_interrupt(capsys, folder, monkeypatch):
-    import validation.runner as runner
-    from validation.cli import Main as ValidationMain
     monkeypatch.setattr(runner, 'RunValidation', lambda **kw: _ExudynStyleInterrupt())
     report = folder / 'r.md'
     status = ValidationMain(['--quick', '--report', str(report)])
@@ -171,7 +176,6 @@ def test_validation_cli_interrupt(capsys, folder, monkeypatch):
 
 
 def test_validation_report_write_is_atomic(folder, monkeypatch):
-    from validation.runner import WriteText
     path = folder / 'r.md'
 
     def Interrupted(self, text, *args, **kwargs):
@@ -190,9 +194,6 @@ def _Sleep(seconds):
 
 
 def test_cancel_terminates_running_workers_and_drops_queued_runs():
-    import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-    from exudyn_worm._workers import CancelPool
     executor = ProcessPoolExecutor(max_workers=2, mp_context=multiprocessing.get_context('fork'))
     futures = [executor.submit(_Sleep, 60.) for _ in range(5)]
     while not all(f.running() for f in futures[:2]):
@@ -214,9 +215,6 @@ def test_cancel_terminates_running_workers_and_drops_queued_runs():
 
 
 def test_a_study_run_draws_no_bar_of_its_own(monkeypatch):
-    import exudyn_worm.analysis.reelchanger as reelchanger
-    from exudyn_worm.setups.config import ResolveParameters
-    from exudyn_worm.analysis.study import RunPoint, Study, Variation
     seen = {}
 
     def Capture(p, **kwargs):
@@ -270,7 +268,6 @@ def test_sigint_during_simulate(folder):
 
 @pytest.mark.skipif(os.name != 'posix', reason='POSIX signals')
 def test_sigint_during_sweep_keeps_the_finished_runs(folder):
-    from exudyn_worm.analysis.study import ReadResults, StudySidecarPath
     output = folder / 'runs.csv'
     process = _Started(
         "import sys, signal, exudyn_worm.cli.main, exudyn_worm.analysis.reelchanger\n"
@@ -291,6 +288,7 @@ def test_sigint_during_sweep_keeps_the_finished_runs(folder):
     assert output.read_text().endswith('\n')                               # no cut-off last line
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(os.name != 'posix', reason='POSIX signals')
 def test_sigint_during_python_m_validation(folder):
     report = folder / 'r.md'

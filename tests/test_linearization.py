@@ -1,4 +1,4 @@
-"""Linearized stability of any Exudyn system with worm-gear connectors (issue 6, Figure 19)."""
+"""Linearized stability of any Exudyn system with worm-gear connectors (the paper's Figure 19)."""
 import json
 
 import numpy as np
@@ -15,7 +15,7 @@ REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 @pytest.mark.physics
 @pytest.mark.parametrize('name', REEL_PRESETS)
 def test_two_mass_drive_agrees_with_the_analytical_model(name):
-    """Issue requirement: on the two-mass drive the generic analysis equals eqs. (15)-(16) to 1e-6."""
+    """Required: on the two-mass drive the generic analysis equals eqs. (15)-(16) to 1e-6."""
     drive = ElasticDriveFromParameters(GetPreset(name))
     SC, mbs = BuildLinearizationModel(drive)
     linear = AnalyzeLinearStability(mbs)

@@ -1,23 +1,40 @@
-"""Load-side chains (issue 16, item 1): the driven machine behind load shafts, wheel J2 --(kL1, dL1)-- JL1 -- ...
+"""Load-side chains: the driven machine behind load shafts, wheel J2 --(kL1, dL1)-- JL1 -- ...
 
-The drive of the issue: centre distance 40 mm, ratio 40, lead angle 3.5 deg, mu = 0.08, worm-side inertia 2e-4 kg*m^2,
+The drive of examples/drives/load-shaft.toml: centre distance 40 mm, ratio 40, lead angle 3.5 deg, mu = 0.08, worm-side inertia 2e-4 kg*m^2,
 the driven machine (0.5 kg*m^2) behind a 2e4 N*m/rad load shaft, written as examples/drives/load-shaft.toml."""
+import json
 import math
 import subprocess
 import sys
 from pathlib import Path
 
+import exudyn as exu
 import numpy as np
 import pytest
+from exudyn.itemInterface import (CoordinateSpringDamper, MarkerNodeCoordinate, Node1D, NodePointGround,
+                                  ObjectRotationalMass1D)
 
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability
 from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm import ContactOptions, CreateWormGear, WormGear
+from exudyn_worm.analysis.design import DesignCheck
+from exudyn_worm.setups.presets import (ElasticDriveFromParameters, ExtraComponents, GetPreset, LoadSideChain,
+                                        LumpedLoadSide)
+from exudyn_worm.cli.main import Main
+from exudyn_worm.params.drivefile import StageKey
+from exudyn_worm.model.profiles import GravityLeverTorque
+from exudyn_worm.items.equilibrium import SteadyInitialState
+from exudyn_worm.model.contact import MATH_OPS
+from exudyn_worm.analysis.reelchanger import SimulateReelChanger
+from exudyn_worm.items.results import SeriesUnit
+from exudyn_worm.analysis.study import RunPoint
+from exudyn_worm.analysis.loadside import DiagnoseLoadSide
 
 ROOT = Path(__file__).resolve().parents[1]
 LOAD_SHAFT = ROOT / 'examples' / 'drives' / 'load-shaft.toml'
 
-# the issue's drive, derived by hand: a = r1 + r2 and u = r2 / (r1 tan(gamma)) give r1 = a / (1 + u tan(gamma))
+# the load-shaft drive, derived by hand: a = r1 + r2 and u = r2 / (r1 tan(gamma)) give r1 = a / (1 + u tan(gamma))
 A, U, GAMMA, MU = 0.040, 40., math.radians(3.5), 0.08
 R1 = A / (1 + U * math.tan(GAMMA))
 R2 = A - R1
@@ -34,10 +51,6 @@ def fileParameters():
 def _HandBuiltEigenvalues(J2Wheel, load):
     """The drive built by hand in Exudyn: ground --kT-- worm, mesh, wheel --kL1-- load (``load`` None: no load
     shaft, the load lumped into ``J2Wheel``); linearized with the contact state held."""
-    import exudyn as exu
-    from exudyn.itemInterface import (CoordinateSpringDamper, MarkerNodeCoordinate, Node1D, NodePointGround,
-                                      ObjectRotationalMass1D)
-    from exudyn_worm import ContactOptions, CreateWormGear, WormGear
     gear = WormGear(alphaN=math.radians(20), gamma=GAMMA, r1=R1, r2=R2, kV=KV, dV=DV, backlash=0., mu=MU)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
@@ -74,7 +87,7 @@ def test_drive_file_gives_the_three_mass_drive(fileParameters):
 
 
 def test_drive_file_equals_the_drive_built_by_hand_in_exudyn(fileParameters):
-    """The done-when of issue 16: same verdict and same eigenvalues (to 1e-6) as the hand-built Exudyn model."""
+    """Required: same verdict and same eigenvalues (to 1e-6) as the hand-built Exudyn model."""
     fromFile = DriveStability(fileParameters)
     byHand = _HandBuiltEigenvalues(J2, (JL1, KL1))
     assert fromFile.stable == byHand.stable
@@ -85,10 +98,8 @@ def test_drive_file_equals_the_drive_built_by_hand_in_exudyn(fileParameters):
 
 
 def test_lumping_the_load_into_j2_turns_the_verdict(fileParameters):
-    """The issue's report: lumped into J2 the drive looks stable (with margin), with the load shaft it chatters at
+    """Lumped into J2 the drive looks stable (with margin), with the load shaft it chatters at
     about 200 Hz in the wheel's mode. Both verdicts from hand-built Exudyn models and from the package."""
-    from exudyn_worm.analysis.design import DesignCheck
-    from exudyn_worm.setups.presets import LumpedLoadSide
     lumped = LumpedLoadSide(fileParameters)
     assert lumped['J2'] == pytest.approx(J2 + JL1) and 'JL1' not in lumped and 'kL1' not in lumped
     assert _HandBuiltEigenvalues(J2 + JL1, None).stable and DriveStability(lumped).stable
@@ -101,7 +112,6 @@ def test_lumping_the_load_into_j2_turns_the_verdict(fileParameters):
 
 
 def test_set_keys_build_a_chain_of_any_length():
-    from exudyn_worm.setups.presets import ExtraComponents, LoadSideChain
     p = ResolveParameters('reel-P1', sets=['JL1=1 kg*m^2', 'kL1=2 kN*m', 'JL2=2', 'kL2=1e6', 'dL2=3', 'JL3=0.5',
                                            'kL3=5e5'])
     assert LoadSideChain(p) == [(1., 2000., 0.), (2., 1e6, 3.), (0.5, 5e5, 0.)]
@@ -117,7 +127,6 @@ def test_set_keys_build_a_chain_of_any_length():
     (['JL1=0.5', 'kL1=1e4', 'dL1=-1'], "'dL1' must be >= 0 N*m*s/rad"),
 ])
 def test_bad_load_side_chain_is_one_line_exit_2(capsys, tmp_path, monkeypatch, sets, fragment):
-    from exudyn_worm.cli.main import Main
     monkeypatch.chdir(tmp_path)
     status = Main(['stability', *[a for s in sets for a in ('--set', s)]])
     out, err = capsys.readouterr()
@@ -143,7 +152,6 @@ def test_bad_load_side_table_names_file_line_and_stage(tmp_path, body, fragment)
 
 
 def test_stage_keys_of_a_drive_file_in_order(tmp_path):
-    from exudyn_worm.params.drivefile import StageKey
     path = tmp_path / 'drive.toml'
     path.write_text('preset = "reel-P1"\n[[loadSide]]\ninertia = 1\nstiffness = "3 kN*m"\n'
                     '[[loadSide]]\ninertia = 2\nstiffness = 4e5\ndamping = 7\n')
@@ -155,14 +163,10 @@ def test_stage_keys_of_a_drive_file_in_order(tmp_path):
 
 
 def test_equilibrium_every_load_shaft_carries_the_load_torque():
-    from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
-    from exudyn_worm.model.profiles import GravityLeverTorque
-    from exudyn_worm.analysis.reelchanger import SteadyInitialState
     p = GetPreset('reel-P2')
     load = GravityLeverTorque(mass=p['loadMass'], leverArm=p['leverArm'])
     stages = ((5., 2e5, 1.), (10., 4e5, 0.))
     state = SteadyInitialState(ElasticDriveFromParameters(p), load, p['motorSpeed'], loadSide=stages)
-    from exudyn_worm.model.contact import MATH_OPS
     torque = load.Torque(state['phiL2'], 0., 0., MATH_OPS)             # the load acts on the last inertia
     assert torque < 0
     assert 2e5 * (state['phiL1'] - state['phi2']) == pytest.approx(torque, rel=1e-9)
@@ -171,8 +175,6 @@ def test_equilibrium_every_load_shaft_carries_the_load_torque():
 
 
 def test_simulation_starts_in_equilibrium_and_reports_the_load_inertia(fileParameters):
-    from exudyn_worm.analysis.reelchanger import SimulateReelChanger
-    from exudyn_worm.items.results import SeriesUnit
     result = SimulateReelChanger(fileParameters, endTime=0.02)
     for key in ('phiL1', 'omegaL1', 'alphaL1'):
         assert key in result.series
@@ -183,7 +185,6 @@ def test_simulation_starts_in_equilibrium_and_reports_the_load_inertia(fileParam
 
 
 def test_cli_stability_and_sweep_treat_the_whole_drive(tmp_path, fileParameters):
-    import json
     run = subprocess.run([sys.executable, '-m', 'exudyn_worm', 'stability', '--config', str(LOAD_SHAFT), '--json'],
                          capture_output=True, text=True, cwd=tmp_path)
     assert run.returncode == 0, run.stderr
@@ -199,7 +200,6 @@ def test_cli_stability_and_sweep_treat_the_whole_drive(tmp_path, fileParameters)
 @pytest.mark.parametrize('kL1, stable', [(2e4, False), (2e7, True)])
 def test_sweep_point_takes_the_verdict_of_the_whole_drive(fileParameters, kL1, stable):
     """A sweep over the load shaft: the soft one chatters (whole drive), the stiff one is the lumped drive."""
-    from exudyn_worm.analysis.study import RunPoint
     row = RunPoint({'run': 0, 'parameters': {**fileParameters, 'kL1': kL1}, 'varied': {'kL1': kL1},
                     'windows': [(0., 0.01)], 'endTime': 0.01, 'stepSize': None})
     assert row['status'] == 'ok', row['error']
@@ -207,7 +207,6 @@ def test_sweep_point_takes_the_verdict_of_the_whole_drive(fileParameters, kL1, s
 
 
 def test_diagnosis_names_the_soft_load_shaft_as_the_cause(fileParameters):
-    from exudyn_worm.analysis.loadside import DiagnoseLoadSide
     d = DiagnoseLoadSide(fileParameters)
     assert d.stages[0].frequencyHz == pytest.approx(math.sqrt(KL1 / JL1) / (2 * math.pi), rel=1e-12)
     assert d.lumpedStable and not d.wholeStable and not d.lumpingSafe and d.cause == 1
@@ -218,7 +217,6 @@ def test_diagnosis_names_the_soft_load_shaft_as_the_cause(fileParameters):
 
 def test_second_stage_named_when_it_is_the_soft_one(fileParameters):
     """A stiff first stage and a soft second: the second stage carries the blame."""
-    from exudyn_worm.analysis.loadside import DiagnoseLoadSide
     p = {**fileParameters, 'JL1': 0.01, 'kL1': 1e8, 'JL2': JL1, 'kL2': KL1}
     d = DiagnoseLoadSide(p)
     assert not d.wholeStable and d.cause == 2
@@ -229,17 +227,16 @@ def test_second_stage_named_when_it_is_the_soft_one(fileParameters):
 def test_lumping_judged_safe_gives_the_lumped_verdict(fileParameters, kL1):
     """Where the criterion calls lumping safe, the whole drive's verdict is the lumped one (the criterion
     includes that check; the stage frequency alone must pass too)."""
-    from exudyn_worm.analysis.loadside import DiagnoseLoadSide
     d = DiagnoseLoadSide({**fileParameters, 'kL1': kL1})
     assert d.lumpingSafe and d.cause is None
     assert all(s.frequencyHz >= d.limitFactor * max(d.wheelModesHz) for s in d.stages)
     assert d.lumpedStable == d.wholeStable
 
 
+@pytest.mark.slow
 def test_design_check_analyses_the_whole_drive_with_its_chain(fileParameters):
     """The design check no longer lumps the chain into J2 (nor refuses a soft one): its verdict is the whole drive's,
     and the chain's own parameters are design parameters."""
-    from exudyn_worm.analysis.design import DesignCheck
     result = DesignCheck(fileParameters)
     assert result.stable is DriveStability(fileParameters).stable is False and result.recommendations
     assert {'JL1', 'kL1'} <= set(result.scans)
@@ -248,13 +245,11 @@ def test_design_check_analyses_the_whole_drive_with_its_chain(fileParameters):
     assert result.parameters['J2'] == J2 and result.parameters['JL1'] == JL1
     assert result.stable is DriveStability(stiff).stable
     with pytest.raises(ValueError, match='DiagnoseLoadSide: the parameter set has no load-side chain'):
-        from exudyn_worm.analysis.loadside import DiagnoseLoadSide
         DiagnoseLoadSide({k: v for k, v in fileParameters.items() if k not in ('JL1', 'kL1', 'dL1')})
 
 
+@pytest.mark.slow
 def test_cli_check_reports_the_whole_drive_and_the_cause(capsys, tmp_path, monkeypatch):
-    import json
-    from exudyn_worm.cli.main import Main
     monkeypatch.chdir(tmp_path)
     assert Main(['check', '--config', str(LOAD_SHAFT)]) == 0
     out, err = capsys.readouterr()

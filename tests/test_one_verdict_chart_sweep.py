@@ -38,7 +38,8 @@ def _Json(capsys, *argv, status=0):
     return json.loads(capsys.readouterr().out)
 
 
-@pytest.mark.parametrize('name', sorted(CASES))
+@pytest.mark.parametrize('name', [pytest.param(n, marks=pytest.mark.slow) if n == 'load-shaft' else n   # 2.1 s
+                                  for n in sorted(CASES)])
 def test_stability_chart_and_sweep_give_one_verdict(capsys, name):
     drive, J2, expected = CASES[name]
     simulates = True           # the step rule takes the operating points (at rest AGMA's slope asked for 6e-12 s)

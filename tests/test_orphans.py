@@ -110,7 +110,6 @@ def test_sigterm_is_one_line_exit_143_and_no_file(name, argv, tmp_path):
     _AssertTerminated(process, folder)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize('name', ['chatter', 'sweep'])
 def test_sigterm_stops_the_workers_with_one_line(name, tmp_path):
     folder = tmp_path / 'out'

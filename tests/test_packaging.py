@@ -1,8 +1,9 @@
-"""issue 16, item 10: the example drives and the docs ship with the package; `--config NAME` loads a shipped
+"""The example drives and the docs ship with the package; `--config NAME` loads a shipped
 drive; `--help` points to documentation that exists; a built wheel, installed into a fresh venv, runs
 `exudyn-worm stability` on a shipped drive."""
 import json
 import os
+import shutil
 import subprocess
 import sys
 import sysconfig
@@ -72,7 +73,6 @@ def test_help_points_to_docs_that_exist(capsys):
 def test_wheel_ships_drives_and_docs_and_runs_stability(tmp_path):
     """Build the wheel, install it (no dependencies: they come from this environment through a .pth file)
     into a fresh venv without the source checkout, and run `exudyn-worm stability --config figure19`."""
-    import shutil
     source = tmp_path / 'src'                  # a copy: building writes build/ and *.egg-info next to the sources
     ignore = shutil.ignore_patterns('__pycache__', '*.egg-info', 'build')
     source.mkdir()

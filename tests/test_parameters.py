@@ -1,6 +1,6 @@
 """The parameter registry (exudyn_worm.params.parameters): each key declared once, and everything derived from it.
 
-The test-only keys below (``testLaw``, ``testSpeed``, ``testTable``, ...) stand for the friction keys of issue 15:
+The test-only keys below (``testLaw``, ``testSpeed``, ``testTable``, ...) stand for the friction-law keys:
 a choice, a number in m/s and a table of (speed, mu) rows. They prove that a key declared in the registry alone
 reaches --set, drive files, the checks, the messages and the docs.
 """
@@ -230,7 +230,7 @@ def test_declared_key_reaches_checks_and_messages(declared):
     with pytest.raises(ValueError, match=r"parameter set: 'testSpeed' must be > 0 m/s, got 0 m/s"):
         CheckParameters({**base, 'testSpeed': 0.})
     with pytest.raises(ValueError, match=r"unknown parameter 'testlaw' \(did you mean 'testLaw'\?\); expected one "
-                                         r"of: .* mA testLaw testSpeed"):
+                                         r"of: .* mA .* wheelBearingSpan testLaw testSpeed"):
         CheckParameterKeys({**base, 'testlaw': 'agma'}, 'f')
     assert 'testLaw' in UnknownParameterMessage('f', 'x')
     with pytest.raises(ValueError, match=r"'testA' and 'testB' are given together, which describe the same quantity "

@@ -1,4 +1,4 @@
-"""Plausibility of a worm gear (issue 16, item 8): refusals and warnings naming the likely unit slip."""
+"""Plausibility of a worm gear: refusals and warnings naming the likely unit slip."""
 import math
 import re
 import subprocess
@@ -25,7 +25,7 @@ def test_presets_are_plausible(name):
 
 
 def test_radius_in_mm_given_as_m_is_refused():
-    """The issue's case: r1 = 18.05 (mm typed as m) gives u = 0.063."""
+    """A user's case: r1 = 18.05 (mm typed as m) gives u = 0.063."""
     with pytest.raises(ValueError, match=r"WormGear: the transmission ratio u = r2/\(r1 tan\(gamma\)\) of eq. \(3\) "
                                          r"must be >= 1 .*got u = 0.063 .*mm given as m\? 18.05 mm = 0.01805 m"):
         WormGear(**{**GEAR, 'r1': 18.05})
@@ -81,6 +81,7 @@ def test_cli_refusal_one_line_exit_2(tmp_path, sets, text):
     assert len(lines) == 1 and lines[0].startswith('exudyn-worm: error: ') and text in lines[0], run.stderr
 
 
+@pytest.mark.slow
 def test_cli_warns_once_on_stderr(tmp_path):
     """`check` builds the gear many times (the stabilizing changes): each warning is printed once."""
     run = _Run('check', '--set', 'mu=0.8', '--set', 'r1=0.2', cwd=tmp_path)

@@ -23,7 +23,10 @@ def result():
               'alpha1': chatter, 'phi2': phi2, 'omega2': np.pi / 2 + 0 * t, 'alpha2': 100 * chatter,
               'deltaPhi': chatter, 'deltaS': 1e-6 * chatter, 'normalForce': 2e4 * np.cos(phi2) + 3e4 * chatter,
               'S': np.sign(chatter) + (chatter == 0), 'sf': 1 + 0 * t, 'wormTorque': 0 * t, 'wheelTorque': 0 * t,
-              'driveTorque': -80 * np.cos(phi2), 'tangentialForce': 0 * t}
+              'driveTorque': -80 * np.cos(phi2), 'tangentialForce': 0 * t,
+              # the bearing loads of a run of the 3D model (the 'bearingLoads' kind)
+              'wormAxialLoad': 2e4 * np.cos(phi2), 'wormRadialLoad': 8e3 + 3e3 * chatter,
+              'wheelAxialLoad': 5e3 * np.cos(phi2), 'wheelRadialLoad': 2e4 + 3e3 * chatter}
     return SimulationResult(time=t, series=series, J2=33., r2=0.106, info={'maxLoadTorque': 2060.})
 
 

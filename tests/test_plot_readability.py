@@ -1,10 +1,13 @@
 """Figures a reader can read: S drawn as the paper's +-1 in its own panel over a whole run, one panel per flank
 with the mean the chatter exceeds, titles naming the run."""
+import sys
+
 import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.plotting.plot import MEAN_WINDOW, PlotSimulation, _RunningMean
+from exudyn_worm.plotting.plot import DENSE_SWITCHES_PER_INCH, MEAN_WINDOW, PlotSimulation, TorqueSignNote, _RunningMean
+from exudyn_worm.items.results import SimulationResult
 
 
 @pytest.fixture(scope='module')
@@ -44,20 +47,18 @@ def test_running_mean_of_an_oscillation_does_not_drift_at_the_ends():
     np.testing.assert_allclose(_RunningMean(t, np.full_like(t, 7.), 0.25), 7.)
 
 
-# --- issue 16, item 9: labels outside the data, the first time tick, the sign of M_an, a readable sign(S) -------
+# --- readable figures: labels outside the data, the first time tick, the sign of M_an, a readable sign(S) -------
 
 @pytest.fixture(autouse=True)
 def _CloseFigures():
     """Figures go through pyplot once another test imported it: close them (pyplot keeps them)."""
     yield
-    import sys
     if 'matplotlib.pyplot' in sys.modules:
         sys.modules['matplotlib.pyplot'].close('all')
 
 
 def _Record(seconds=2., chatterHz=40., omegaSign=1.):
     """Synthetic reel-changer-like record: a quarter turn of the wheel per s, chatter while lowering."""
-    from exudyn_worm.items.results import SimulationResult
     t = np.linspace(0., seconds, int(1000 * seconds) + 1)
     phi2 = 0.5 * np.pi * t
     chatter = np.where(np.cos(phi2) < 0, np.sin(2 * np.pi * chatterHz * t), 0.)
@@ -76,7 +77,6 @@ def _Record(seconds=2., chatterHz=40., omegaSign=1.):
 @pytest.mark.parametrize('kind', ['acceleration', 'speed', 'normalForce', 'driveTorque', 'zoom'])
 def test_phase_names_lie_outside_the_data(kind):
     """No curve can run through 'lift' / 'lower': the names sit above the axes, where the data is clipped."""
-    from exudyn_worm.plotting.plot import PlotSimulation
     fig = PlotSimulation(_Record(), kind=kind, tZoom=(0.9, 1.4) if kind == 'zoom' else None)
     fig.draw_without_rendering()
     renderer = fig._get_renderer()
@@ -91,7 +91,6 @@ def test_phase_names_lie_outside_the_data(kind):
 
 def test_zoom_starting_just_after_a_round_time_keeps_its_first_tick():
     """A zoom from 1.20015 s (the paper's 4.0 s at the simulated rotation period) shows the tick 1.2."""
-    from exudyn_worm.plotting.plot import PlotSimulation
     fig = PlotSimulation(_Record(), kind='zoom', tZoom=(1.20015, 1.30015))
     ax = fig.axes[0]
     lo, hi = ax.get_xlim()
@@ -104,7 +103,6 @@ def test_zoom_starting_just_after_a_round_time_keeps_its_first_tick():
 
 @pytest.mark.parametrize('omegaSign', [1., -1.])
 def test_drive_torque_says_what_its_sign_means(omegaSign):
-    from exudyn_worm.plotting.plot import PlotSimulation, TorqueSignNote
     result = _Record(omegaSign=omegaSign)
     fig = PlotSimulation(result, kind='driveTorque')
     legend = next(ax.get_legend() for ax in fig.axes if ax.get_legend() and ax.get_legend().get_gid() == 'torque sign')
@@ -121,7 +119,6 @@ def test_drive_torque_says_what_its_sign_means(omegaSign):
 
 def test_dense_contact_sign_is_drawn_as_share_of_time_and_zoom():
     """P7's sign(S) over a whole run switches about a thousand times: a step line would be a solid block."""
-    from exudyn_worm.plotting.plot import DENSE_SWITCHES_PER_INCH, PlotSimulation
     result = _Record(seconds=8., chatterHz=60.)
     sign = np.sign(result.series['S'])
     assert np.count_nonzero(np.diff(sign)) > DENSE_SWITCHES_PER_INCH * 8
@@ -145,6 +142,5 @@ def test_dense_contact_sign_is_drawn_as_share_of_time_and_zoom():
 
 
 def test_sparse_contact_sign_keeps_its_step_line():
-    from exudyn_worm.plotting.plot import PlotSimulation
     fig = PlotSimulation(_Record(seconds=2., chatterHz=5.), kind='driveTorque')
     assert len(fig.axes) == 2 and fig.axes[1].lines[0].get_drawstyle() == 'steps-post'

@@ -1,4 +1,4 @@
-"""Plots only draw (issue 17, item 3): the plotting modules take results and draw; every analysis lives on the
+"""Plots only draw: the plotting modules take results and draw; every analysis lives on the
 analysis side with its result object; numerical modules never import matplotlib; one spelling, ``.plot()``."""
 import ast
 import importlib
@@ -13,6 +13,16 @@ import numpy as np
 import pytest
 
 import exudyn_worm
+from exudyn_worm.items.results import SimulationResult
+from exudyn_worm.analysis.study import ParseVariation, Study, StudyResult
+from exudyn_worm.analysis.charts import (ChartCoordinates, ChartPoints, ComputeStabilityChart, FirstCriterionCurves,
+                                         PresetChartPoints, StabilityChart)
+from exudyn_worm.analysis.design import DesignCheckResult
+from exudyn_worm.analysis.speedchart import SpeedChart
+from exudyn_worm.plotting.plot_charts import PlotStabilityChart
+from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.analysis.studymap import ComputeChatterMap
 
 PACKAGE = Path(exudyn_worm.__file__).parent
 PLOT_DIR = PACKAGE / 'plotting'
@@ -91,12 +101,10 @@ def test_no_numerical_module_imports_matplotlib():
 
 
 def _SimulationResult():
-    from exudyn_worm.items.results import SimulationResult
     return object.__new__(SimulationResult)     # the spelling is tested, not the drawing: no data needed
 
 
 def _StudyResult():
-    from exudyn_worm.analysis.study import StudyResult
     return object.__new__(StudyResult)
 
 
@@ -113,11 +121,6 @@ def test_capital_Plot_is_a_deprecated_alias_of_plot(make, monkeypatch):
 
 def test_every_result_object_spells_plot_in_lower_case():
     """The result objects of the analyses draw with ``.plot()``; ``.Plot`` exists only as the deprecated alias."""
-    from exudyn_worm.analysis.charts import FirstCriterionCurves, StabilityChart
-    from exudyn_worm.analysis.design import DesignCheckResult
-    from exudyn_worm.items.results import SimulationResult
-    from exudyn_worm.analysis.speedchart import SpeedChart
-    from exudyn_worm.analysis.study import StudyResult
     for cls in (SimulationResult, StudyResult, StabilityChart, FirstCriterionCurves, SpeedChart, DesignCheckResult):
         assert callable(getattr(cls, 'plot', None)), cls.__name__
     assert all(cls.Plot.__doc__.startswith('Deprecated') for cls in (SimulationResult, StudyResult))
@@ -137,9 +140,6 @@ def test_chart_points_are_resolved_before_drawing():
     """charts.ChartPoints turns preset names and drives into chart coordinates; the plotting function only
     takes coordinates and names the resolver for anything else."""
     pytest.importorskip('matplotlib')
-    from exudyn_worm.analysis.charts import ChartCoordinates, ChartPoints, ComputeStabilityChart, PresetChartPoints
-    from exudyn_worm.plotting.plot_charts import PlotStabilityChart
-    from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
     drive = ElasticDriveFromParameters(GetPreset('reel-P7'))
     c = ChartCoordinates(drive)
     p1 = PresetChartPoints(['reel-P1'])['P1']
@@ -161,9 +161,6 @@ def test_chart_points_are_resolved_before_drawing():
 
 @pytest.mark.messages
 def test_chatter_map_names_itself_for_a_key_not_varied():
-    from exudyn_worm.setups.config import ResolveParameters
-    from exudyn_worm.analysis.study import ParseVariation, Study, StudyResult
-    from exudyn_worm.analysis.studymap import ComputeChatterMap
     study = Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.1,0.2'), ParseVariation('kT=7000,8000')])
     with pytest.raises(ValueError, match=r"ComputeChatterMap: 'y' must be a varied key \(J1, kT\), got 'kV'"):
         ComputeChatterMap(StudyResult(study, []), 'J1', 'kV')

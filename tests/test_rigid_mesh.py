@@ -4,14 +4,21 @@ import math
 
 import numpy as np
 import pytest
+from exudyn.itemInterface import (CoordinateSpringDamper, MarkerBodyRigid, MarkerNodeCoordinate, NodePointGround,
+                                  ObjectGround, ObjectJointGeneric)
+from exudyn.rigidBodyUtilities import (InertiaCylinder, RigidBodyInertia, RotationMatrixX, RotationMatrixY,
+                                       RotationMatrixZ)
 
 from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
 from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.stepsize import RecommendedStepSize
 from exudyn_worm.items.bearings import CreateShaftBearings, ShaftBearings, StoredBearingLoads
 from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear, MeshForceComponents
-from exudyn_worm.model.contact import MATH_OPS, ContactOptions
+from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.items._rigidnodes import RIGID_NODES
+from exudyn_worm.items.connector import CreateWormGear
+from exudyn_worm.items.drivetrain import CreateRotor
 
 exu = pytest.importorskip('exudyn')
 P1 = GetPreset('reel-P1')
@@ -22,8 +29,6 @@ NODE_TYPES = ('RotationEulerParameters', 'RotationRxyz', 'RotationRotationVector
 def _Pair(nodeType='RotationRxyz', phi1=0., phi2=0., omega1=0., omega2=0., gear=GEAR, wheelSide=1., joints=True,
           wormRotation=None):
     """Worm (axis global x) and wheel (axis global z, at y = wheelSide * a) as rigid bodies of a new system."""
-    from exudyn.itemInterface import MarkerBodyRigid, ObjectGround, ObjectJointGeneric
-    from exudyn.rigidBodyUtilities import InertiaCylinder, RotationMatrixX, RotationMatrixY, RotationMatrixZ
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
     nt = getattr(exu.NodeType, nodeType)
@@ -57,7 +62,6 @@ def _Forces(connector, mbs):
 
 def _Moment(node, Qrot, qNode, mbs):
     """Global moment of the generalized forces on a node's rotation coordinates (Q = G^T R^T M)."""
-    from exudyn_worm.items._rigidnodes import RIGID_NODES
     info = mbs.GetNode(node)
     kin = RIGID_NODES[info['nodeType']]
     theta = np.asarray(info['referenceCoordinates'], dtype=float)[3:] + np.asarray(qNode[3:])
@@ -120,7 +124,6 @@ def test_wheel_on_the_other_side_is_a_left_hand_thread_with_the_same_law():
 @pytest.mark.physics
 def test_axial_worm_shift_and_approach_enter_the_mesh_as_in_the_contact_law():
     """A worm shifted along its axis by x deflects the mesh by cos(aN) cos(g) x; an approach c by sin(aN) c."""
-    from exudyn_worm.items._rigidnodes import RIGID_NODES  # noqa: F401 (the node kinematics the mesh uses)
     SC, mbs, worm, wheel = _Pair(joints=False)
     mesh = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=GEAR, contactOptions=ContactOptions(dampingCanPull=True,
                                                                                                 fixedS=1))
@@ -196,7 +199,6 @@ def test_shaft_bearing_reactions_are_the_statics_of_the_mesh_force():
     """A worm on two radial bearings (span L) and an axial bearing, held against turning, under a mesh force F at
     the pitch point (radius r1 on +y): the axial bearing takes F_x, the radial bearings F_y, F_z in sum and the
     couple of the axial force, r1 F_x = (L/2)(F_y1 - F_y0)... in the static equilibrium (Exudyn's static solver)."""
-    from exudyn.itemInterface import MarkerNodeCoordinate, NodePointGround, CoordinateSpringDamper
     gear = GEAR
     SC, mbs, worm, wheel = _Pair(joints=False)
     bearings = ShaftBearings(radialStiffness=5e8, axialStiffness=3e8, span=0.12)
@@ -236,7 +238,6 @@ def test_shaft_bearing_reactions_are_the_statics_of_the_mesh_force():
 @pytest.mark.messages
 def test_bad_input_gives_one_clear_line():
     """Axes not perpendicular, a centre distance in mm, a mass point, a body without mass: one line each."""
-    from exudyn.rigidBodyUtilities import RotationMatrixZ
     SC, mbs, worm, wheel = _Pair(joints=False)
     with pytest.raises(ValueError, match=r"must cross at 90 deg .* got 78.69 deg"):
         CreateRigidBodyWormGear(mbs, [worm, wheel], gear=GEAR, wheelAxis=[0.2, 0., 1.])
@@ -247,7 +248,6 @@ def test_bad_input_gives_one_clear_line():
     point = mbs.CreateMassPoint(mass=1., returnDict=True)
     with pytest.raises(ValueError, match=r"must be a 3D rigid body \(ObjectRigidBody.*got object type 'MassPoint'"):
         CreateRigidBodyWormGear(mbs, [worm, point['bodyNumber']], gear=GEAR)
-    from exudyn.rigidBodyUtilities import RigidBodyInertia
     massless = mbs.CreateRigidBody(inertia=RigidBodyInertia(mass=0., inertiaTensor=np.zeros((3, 3))),
                                    referencePosition=[0., GEAR.r1 + GEAR.r2, 0.], returnDict=True)
     with pytest.raises(ValueError, match=r"has no mass \(mass = 0.0 kg\)"):
@@ -273,8 +273,6 @@ def test_bearings_reject_bad_values():
 def test_markers_place_the_axes_through_their_points():
     """The wheel body's reference point 0.05 m off its axis: with a marker on the axis the mesh is the same as with
     the body on its axis (the same deflection for the same rotations)."""
-    from exudyn.itemInterface import MarkerBodyRigid
-    from exudyn.rigidBodyUtilities import InertiaCylinder, RotationMatrixZ
     SC, mbs, worm, wheel = _Pair(phi1=1e-4, joints=False)
     reference = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=GEAR).InitialMeshState(mbs).deltaS
     offset = mbs.CreateRigidBody(inertia=InertiaCylinder(7800., 0.03, GEAR.r2, axis=2),
@@ -295,8 +293,6 @@ def test_free_mesh_oscillation_matches_the_one_angle_connector(nodeType):
     """Worm and wheel on ideal joints, no drive or load, the mesh pre-deflected: the mesh oscillation of the one-angle
     connector on two rotors with the bodies' moments of inertia within 1e-6 (full Newton: with modified Newton the
     rotation-vector nodes do not converge; docs/mesh-3d.md)."""
-    from exudyn_worm.items.connector import CreateWormGear
-    from exudyn_worm.items.drivetrain import CreateRotor
     options = ContactOptions(frictionModel='regularized')
     settings = {'timeIntegration.newton.useModifiedNewton': False}
     SC, mbs, worm, wheel = _Pair(nodeType, phi1=3e-4, omega1=40., omega2=40. / GEAR.ratio)
@@ -322,7 +318,6 @@ def test_free_mesh_oscillation_matches_the_one_angle_connector(nodeType):
 def test_axial_force_is_the_worms_thrust_without_an_axial_bearing():
     """MeshState.axialForce is -wheelTorque / r2 also without an axial degree of freedom (the rigid bearing's thrust),
     as documented."""
-    from exudyn_worm.model.contact import MeshContact
     state = MeshContact(GEAR, 2e-4, 0., 40., 40. / GEAR.ratio, ContactOptions(frictionModel='regularized'))
     assert state.axialForce == pytest.approx(-state.wheelTorque / GEAR.r2, rel=1e-15)
     assert state.axialForce < 0.

@@ -1,4 +1,4 @@
-"""Stability over motor speed with a speed-dependent friction law (issue 15, item 4): the chart over speed, the
+"""Stability over motor speed with a speed-dependent friction law: the chart over speed, the
 command line, the design check's speed recommendation and the study's verdict at the operating point."""
 import json
 import math

@@ -39,13 +39,27 @@ def test_frequencies_of_p1_are_those_of_the_linear_model():
     assert LinearizedFrequencies(GetPreset('reel-P2'))['chatterHz'] is None
 
 
+def _TrapezoidalPeriodError(cycles):
+    """The period error of the trapezoidal rule at f h = ``cycles``, by another route than the formula of the module:
+    one step of the rule on x'' = -omega^2 x (f = 1 Hz, h = cycles) is the matrix (I - h A/2)^-1 (I + h A/2) of
+    the state (x, x'); its eigenvalues exp(+-i theta) (|.| = 1: the rule keeps the energy) turn the state by
+    theta per step, so the computed period is 2 pi h / theta against the true 1 s."""
+    h, A = cycles, np.array([[0., 1.], [-(2 * math.pi)**2, 0.]])
+    step = np.linalg.solve(np.eye(2) - 0.5 * h * A, np.eye(2) + 0.5 * h * A)
+    lam = np.linalg.eigvals(step)
+    assert np.abs(lam) == pytest.approx(1., abs=1e-12)
+    return 2 * math.pi * h / abs(np.angle(lam[0])) - 1.
+
+
 @pytest.mark.physics
 def test_period_error_is_the_trapezoidal_one():
     assert PeriodError(40.5, 1e-4) == pytest.approx((2 * math.pi * 40.5e-4)**2 / 12, rel=1e-3)
-    # P1 at h = 0.01 s: 40.5 Hz comes out as 40.5 / 1.41 = 28.8 Hz (the measured frequency of issue 9)
+    assert PeriodError(40.5, 0.01) == pytest.approx(_TrapezoidalPeriodError(0.405), rel=1e-9)
+    # P1 at h = 0.01 s: 40.5 Hz comes out as 40.5 / 1.41 = 28.8 Hz (the chatter frequency simulated at this step,
+    # the module's text)
     assert 40.5 / (1 + PeriodError(40.5, 0.01)) == pytest.approx(28.8, abs=0.1)
     for cycles, error in ((RECOMMENDED_CYCLES, 0.005), (SOFT_CYCLES, 0.02), (HARD_CYCLES, 0.05)):
-        assert PeriodError(1., cycles) == pytest.approx(error, rel=1e-9)
+        assert _TrapezoidalPeriodError(cycles) == pytest.approx(error, rel=1e-9)
 
 
 @pytest.mark.physics
@@ -62,7 +76,7 @@ def test_recommended_step_follows_the_stiffest_mode():
 
 @pytest.mark.messages
 @pytest.mark.parametrize('stepSize', [0.05, 0.01, 3e-3])
-def test_coarse_step_of_issue_9_is_refused(stepSize):
+def test_coarse_step_that_lowers_the_frequency_is_refused(stepSize):
     with pytest.raises(ValueError, match=r"CheckStepSize: 'stepSize' must be <= 0.0025 s .* got "):
         CheckStepSize(GetPreset('reel-P1'), stepSize)
 
@@ -152,4 +166,6 @@ def test_cli_step_rule_of_a_whole_drive_file(capsys, tmp_path, monkeypatch):
     status = Main(['simulate', '--config', str(FIGURE19), '--end-time', '0.02', '--windows', '0:0.02', '--json',
                    '--quiet'])
     out, err = capsys.readouterr()
-    assert status == 0 and json.loads(out)['stepSize'] == pytest.approx(RECOMMENDED_CYCLES / 116.03, rel=1e-3)
+    p = ResolveParameters(config=FIGURE19)
+    maxHz, _ = _Frequencies([ChainEigenvalues(p, [(p['J4'], p['k4'], p['d4'])], S) for S in (+1, -1)])
+    assert status == 0 and json.loads(out)['stepSize'] == pytest.approx(RECOMMENDED_CYCLES / maxHz, rel=1e-8)

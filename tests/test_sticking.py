@@ -1,9 +1,9 @@
-"""True sticking of the worm at zero sliding speed (issue 15, item 2): ContactOptions(frictionModel='sticking').
+"""True sticking of the worm at zero sliding speed: ContactOptions(frictionModel='sticking').
 
-The hold test of the issue: the reel-P1 gear (gamma 5.32 deg < rho 8 deg, self-locking) with the hanging
+The hold test: the reel-P1 gear (gamma 5.32 deg < rho 8 deg, self-locking) with the hanging
 175 kg load at 1.2 m and no motor. The drift is measured after 5 s, when the mesh's own oscillation (39 Hz,
 1.3 % damping, excited by the load applied at t = 0 or by the stop) has decayed; the creep of the regularized
-law (0.0095 rad in 18 s, from the issue) is a steady sinking, which the same measure shows.
+law (0.0095 rad in 18 s, measured with the regularized law) is a steady sinking, which the same measure shows.
 """
 import math
 
@@ -23,7 +23,7 @@ from exudyn_worm.model.profiles import GravityLeverTorque
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger, SolverSettings
 
 P1 = GetPreset('reel-P1')
-SETTLE, HOLD = 5., 18.         # s: settling of the mesh oscillation, then the hold time of the issue
+SETTLE, HOLD = 5., 18.         # s: settling of the mesh oscillation, then the hold time
 STEP = 1e-3
 
 
@@ -60,7 +60,7 @@ def _Drift(states, settle=SETTLE):
 def test_self_locking_gear_holds_from_rest():
     mbs, mesh, s = _Hold()
     assert ElasticDriveFromParameters(P1).gear.selfLocking
-    assert _Drift(s) < 1e-6                      # issue 15, Done-when: below 1e-6 rad over 18 s
+    assert _Drift(s) < 1e-6                      # required: below 1e-6 rad over 18 s
     m = mesh.StoredMeshState(mbs)
     assert np.all(m.stuck[s['time'] > 0.1] == 1.)
     fn = np.abs(m.normalForce[-1])
@@ -78,7 +78,7 @@ def test_self_locking_gear_stops_after_lowering_and_holds():
 def test_regularized_law_creeps_and_stays_available():
     _, mesh, s = _Hold(ContactOptions(frictionModel='regularized'))
     assert mesh.stickSlip is None
-    assert _Drift(s) > 1e-3                      # the issue's 0.0095 rad in 18 s
+    assert _Drift(s) > 1e-3                      # the regularized law's 0.0095 rad in 18 s
 
 
 def test_gear_that_is_not_self_locking_runs_away():
@@ -88,7 +88,7 @@ def test_gear_that_is_not_self_locking_runs_away():
 
 
 def _StribeckGear():
-    """Issue 15, Done-when: mu 0.05 (kinetic, below tan(gamma) cos(alphaN): not self-locking once moving),
+    """The required runaway case: mu 0.05 (kinetic, below tan(gamma) cos(alphaN): not self-locking once moving),
     muStatic 0.15 (self-locking at rest), stribeckVelocity 0.1 m/s."""
     return ElasticDriveFromParameters(P1).gear.Replace(mu=0.05).Replace(
         friction=StribeckFriction(mu=0.05, muStatic=0.15, stribeckVelocity=0.1))
@@ -148,7 +148,7 @@ def test_reel_changer_unchanged_where_the_worm_never_stops(name):
     ma, mb = a.WindowMetrics([window])[0], b.WindowMetrics([window])[0]
     assert np.min(np.abs(b.series['omega1'])) > 1.           # the worm never stops
     for key in ('maxAbsWheelAcceleration', 'maxNormalForce'):
-        assert mb[key] == pytest.approx(ma[key], rel=3e-3)   # issue 15: at most 0.3 %
+        assert mb[key] == pytest.approx(ma[key], rel=3e-3)   # required: at most 0.3 %
 
 
 def test_stick_slip_update_rules():

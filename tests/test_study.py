@@ -93,7 +93,7 @@ def _Study(*vary, **kw):
 
 
 def test_failed_run_is_recorded_and_others_finish(tmp_path):
-    # loadMass = 1e20 kg: the Exudyn solver fails (1e9 kg runs through with the sticking friction of issue 15);
+    # loadMass = 1e20 kg: the Exudyn solver fails (1e9 kg runs through with the sticking friction);
     # J1 < 0: the model refuses it (a Variation built directly: ParseVariation refuses it at once); 175 kg: fine
     study = _Study('loadMass=175,1e20')
     with pytest.raises(ValueError, match=r"ParseVariation: 'J1=0.1,-0.1': 'J1' must be > 0 kg\*m\^2, got -0.1"):

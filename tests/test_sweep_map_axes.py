@@ -1,9 +1,10 @@
-"""issue 16, item 9: the chatter map of `exudyn-worm sweep --plot` has the stability charts' axes (a stiffness
+"""The chatter map of `exudyn-worm sweep --plot` has the stability charts' axes (a stiffness
 across, an inertia up), whatever order the keys were varied in."""
 import pytest
 
 from exudyn_worm.cli.main import Main
 from exudyn_worm.plotting.plot_study import ChartAxes
+from exudyn_worm.plotting import plot
 
 pytest.importorskip('matplotlib')
 
@@ -21,7 +22,6 @@ def test_chart_axes(keys, expected):
 
 @pytest.mark.parametrize('order', [('J1=0.1,0.2', 'kT=3000,7000'), ('kT=3000,7000', 'J1=0.1,0.2')])
 def test_sweep_map_puts_kT_across_and_J1_up(order, monkeypatch, tmp_path, capsys):
-    from exudyn_worm.plotting import plot
     drawn = []
     monkeypatch.setattr(plot, 'SaveFigure', lambda fig, path, dpi=150: (drawn.append(fig), open(path, 'wb').close()))
     argv = ['sweep', '--vary', order[0], '--vary', order[1], '--windows', '0:0.5', '--end-time', '0.5', '--quiet',

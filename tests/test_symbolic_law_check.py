@@ -16,7 +16,7 @@ def _System():
 
 @pytest.mark.messages
 @pytest.mark.parametrize('law', [
-    lambda phi, om, t, ops: 1. if t < 0.5 else 0.,                 # the example
+    lambda phi, om, t, ops: 1. if t < 0.5 else 0.,                 # a Python if on the time
     lambda phi, om, t, ops: 10. * math.cos(phi),
     lambda phi, om, t, ops: min(10. * t, 50.),
     lambda phi, om, t, ops: -2. * om if om > 0 else 0.,

@@ -14,11 +14,12 @@ from validation.paper import eigenvalue_forensics
 from validation.report import Report
 from validation.runner import (KINDS, RULES, CheckGroup, HalfUnit, InputRounding, LoadKnownDifferences,
                                LoadReference, ReadingInterval, RegisterCheckGroup, RunValidation)
+from validation.baseline import CompareWithBaseline, LoadBaseline
 
 #: the checks that FAIL today, each stated with its reason in validation/REPORT.md. A new failure, or a fix,
 #: fails the test below: update this pin together with the report.
 #: - three exclusion rows whose rejected reading lies within the propagated rounding of the printed inputs
-#:   (issue 8, finding 2): the printed digits do not reject rho = 8 deg for mu = 0.134, dT = 0.741, u = 63.
+#:   (the rounding of the paper's printed digits): the printed digits do not reject rho = 8 deg for mu = 0.134, dT = 0.741, u = 63.
 #: - six section 2.3 chart statements on the domain fixed in validation/README.md (every unstable set reaches the
 #:   domain's lower-left edges; the D_TV = 1 region ends at x = 5.2, not about 3).
 EXPECTED_FAILURES_QUICK = {'mu_28_from_rho', 'b1_28_dT0741', 'b4_28_u63',
@@ -57,7 +58,6 @@ def test_quick_run_fails_exactly_the_pinned_checks(quickRun):
 def test_quick_run_matches_the_committed_baseline(quickRun):
     """The regression gate of CI (python -m validation --quick --baseline validation/baseline-quick.json): after a
     deliberate change of results, record the baseline again (validation/README.md)."""
-    from validation.baseline import CompareWithBaseline, LoadBaseline
     baseline = LoadBaseline(runner.VALIDATION_DIR / 'baseline-quick.json', 'quick')
     assert CompareWithBaseline(quickRun, baseline) == []
 
@@ -132,12 +132,13 @@ SIMULATION_FAILURES = {
                                     'P7_backlash_independence')
       for reading in ('', '@paperMesh')),
     'P1_backlash_0.5@paperMesh',
-    # with the sticking friction (issue 15) P7's share of S < 0 while lifting is within the paper's 40 +- 5 %
+    # with the sticking friction P7's share of S < 0 while lifting is within the paper's 40 +- 5 %
     # under the normal reading (it was outside with the regularized law); the paper-mesh reading stays outside
     'P7_S_negative_lifting@paperMesh',
 }
 
 
+@pytest.mark.slow
 @pytest.mark.physics
 def test_time_domain_checks_under_both_readings():
     """The slow group: the statements of section 3.2 under both mesh readings (about a minute)."""

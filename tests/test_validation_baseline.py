@@ -13,6 +13,9 @@ import pytest
 from validation.baseline import BaselineRecord, CompareWithBaseline, LoadBaseline, Tolerance
 from validation.model import Check, ReferenceRow, ValidationSummary
 from validation.runner import ReadingInterval
+import validation.runner as runner
+from validation.cli import Main
+import exudyn_worm.cli.main as cli
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -104,7 +107,6 @@ def test_load_baseline_checks_file_and_mode(tmp_path):
 @pytest.fixture
 def fakeRun(monkeypatch):
     """python -m validation with a stand-in run: returns the summary set in fakeRun['summary']."""
-    import validation.runner as runner
     state = {'summary': _Base()}
 
     def Fake(reportPath=None, quick=False, full=False, quiet=None):
@@ -115,7 +117,6 @@ def fakeRun(monkeypatch):
 
 
 def _Main(capsys, *argv):
-    from validation.cli import Main
     status = Main([str(a) for a in argv])
     out, err = capsys.readouterr()
     return status, out, err
@@ -164,7 +165,6 @@ def _Imports(path: Path):
 
 def test_package_does_not_reach_into_the_checkout():
     """No subcommand imports the validation or edits sys.path (it could not work in an installed package)."""
-    import exudyn_worm.cli.main as cli
     assert 'validate' not in cli.COMMAND_MODULES
     for path in (ROOT / 'exudyn_worm').rglob('*.py'):
         text = path.read_text()

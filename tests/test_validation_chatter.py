@@ -1,5 +1,7 @@
 """validation/chatter.py: the report's verdicts come from the numbers (synthetic studies, no simulation)."""
-from validation.chatter import TOLERANCE, WriteCsv, WriteReport
+import pytest
+
+from validation.chatter import TOLERANCE, Main, WriteCsv, WriteReport
 
 
 def _Row(value, orbit, long, stable=True):
@@ -57,8 +59,6 @@ def test_friction_branch_needs_enough_settled_points_and_its_hopf_point(tmp_path
 
 
 def test_only_matching_no_study_is_refused(capsys):
-    import pytest
-    from validation.chatter import Main
     with pytest.raises(SystemExit) as exit:
         Main(['--only', 'no such study'])
     assert exit.value.code == 2 and "--only 'no such study' matches no study" in capsys.readouterr().err

@@ -233,8 +233,7 @@ def _AtRest(drive: Drive, model: str = ANALYTICAL):
         if drive.isTwoMass:
             return AnalyzeStability(drive.elastic) if model == ANALYTICAL else \
                 linearization.AnalyzeStabilityExudyn(drive.elastic)
-        SC, mbs = linearization.BuildLinearizationModel(drive.elastic, None, True, drive.axialBearing,
-                                                        drive.driveSideChain, drive.loadSideChain, drive.freeMotor)
+        SC, mbs = _WholeDriveModel(drive, None)
         return linearization.AnalyzeLinearStability(mbs)
     return drive.Cached(f'stabilityAtRest.{model}', Compute)
 
@@ -269,10 +268,19 @@ def AnalyzeAtOperatingPoint(drive: Drive, operatingPoint: OperatingPoint, model:
         return AnalyzeStability(drive.elastic, op)
     if drive.isTwoMass:             # the same result type as the analytical model, from Exudyn's eigenvalues
         return linearization.AnalyzeStabilityExudyn(drive.elastic, operatingPoint=op)
-    SC, mbs = linearization.BuildLinearizationModel(drive.elastic, op.S, True, drive.axialBearing,
-                                                    drive.driveSideChain, drive.loadSideChain, drive.freeMotor,
-                                                    operatingPoint=op)
+    SC, mbs = _WholeDriveModel(drive, op.S, op)
     return linearization.AnalyzeLinearStability(mbs, contactStates=[(op.S,)])
+
+
+def _WholeDriveModel(drive: Drive, S: Optional[int], operatingPoint: Optional[OperatingPoint] = None):
+    """(SC, mbs) of the whole Exudyn drive to linearize: the 3D model of worm and wheel as rigid bodies where the
+    drive has shaft bearings, else the one-angle model with its chains, axial bearing and free motor."""
+    if drive.isRigidBody:
+        # lazy: the 3D model is built only for drives with shaft bearings
+        from .reelchanger3d import BuildRigidBodyLinearizationModel
+        return BuildRigidBodyLinearizationModel(drive.parameters, S, operatingPoint)
+    return linearization.BuildLinearizationModel(drive.elastic, S, True, drive.axialBearing, drive.driveSideChain,
+                                                 drive.loadSideChain, drive.freeMotor, operatingPoint=operatingPoint)
 
 
 def AnalyzeDrive(drive: Union[Drive, Mapping[str, Any]], model: Optional[str] = None) -> DriveAnalysis:

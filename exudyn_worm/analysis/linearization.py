@@ -32,6 +32,7 @@ from ..items.connector import CONNECTORS_KEY, AxialBearing, CreateWormAxialBeari
 from ..items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
 from ..model.contact import ContactOptions
 from ..model.drive import ElasticDrive
+from ..model.gear import WormGear
 from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft
 from ..model.profiles import ConstantSpeed
 from ..model.stability import (CONTACT_STATES, SortEigenvalues, AnalyzeStability, ContactStability,
@@ -39,7 +40,7 @@ from ..model.stability import (CONTACT_STATES, SortEigenvalues, AnalyzeStability
 from ..setups.wholedrive import Drive
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
-           'BuildLinearizationModel', 'LinearStabilityFromParameters', 'ExudynEigenvalues',
+           'BuildLinearizationModel', 'LinearizationStart', 'LinearStabilityFromParameters', 'ExudynEigenvalues',
            'AnalyzeStabilityExudyn']
 
 #: normal pre-deflection in m beyond half the backlash at which the 2-DOF model is linearized (any value > 0
@@ -246,6 +247,17 @@ def _CoordinateLabels(mbs, size: int) -> List[str]:
     return labels
 
 
+def _MasslessCoordinates(mbs) -> List[int]:
+    """ODE2 indices of coordinates without mass of their own: the auxiliary law inputs of rigid-body meshes with the
+    law in C++ (tied to the bodies' coordinates, they would take a share of the bodies' kinetic energy)."""
+    out = []
+    for connector in mbs.variables.get(RIGID_CONNECTORS_KEY, []):
+        for node in (connector.compiled or {}).get('nodes', []):
+            start = mbs.GetNodeODE2Index(node)
+            out += range(start, start + len(np.ravel(mbs.GetNode(node)['referenceCoordinates'])))
+    return out
+
+
 def _LinearizeState(mbs, S, labels) -> ContactStateLinearization:
     linear = mbs.ComputeLinearizedSystem(projectIntoConstraintNullspace=True, returnConstraintNullspace=True)
     if len(linear) == 3:             # a system without constraints: Exudyn returns no nullspace (all independent)
@@ -260,6 +272,7 @@ def _LinearizeState(mbs, S, labels) -> ContactStateLinearization:
     values, vectors = np.linalg.eig(A)
     scale = np.max(np.abs(values)) if values.size else 1.
     massDiagonal = np.abs(np.diag(N.T @ M @ N)) if N.shape[0] == n else np.ones(len(labels))
+    massDiagonal[_MasslessCoordinates(mbs)] = 0.
     modes, rigid = [], 0
     for k in range(values.size):
         lam = values[k]
@@ -377,6 +390,34 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
                            states=results)
 
 
+def LinearizationStart(gear: 'WormGear', S: Optional[int] = None, operatingPoint: Optional[OperatingPoint] = None
+                       ) -> Tuple[float, float]:
+    """Worm speed in rad/s and the worm's turn into contact in rad of a linearization model (wheel at angle 0).
+
+    At rest (no ``operatingPoint``) the worm is turned over half the backlash and a small preload; at an operating
+    point everything turns at the worm speed ``slidingSpeed cos(gamma) / r1`` and the worm is turned so that the
+    mesh carries the point's normal force on the flank sigma = S.
+
+    Parameters
+    ----------
+    gear : WormGear
+        The gear.
+    S : int, optional
+        The flank to load at the operating point (+1 or -1).
+    operatingPoint : OperatingPoint, optional
+        The steady state; None: at rest.
+
+    Returns
+    -------
+    (float, float)
+    """
+    if operatingPoint is None:
+        return 0., (0.5 * gear.backlash + _PRELOAD) / gear.normalLever
+    speed = operatingPoint.slidingSpeed * math.cos(gear.gamma) / gear.r1
+    deflection = operatingPoint.normalForce / gear.kV if operatingPoint.normalForce > 0 else _PRELOAD
+    return speed, S * (0.5 * gear.backlash + deflection) / gear.normalLever
+
+
 def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True,
                             axialBearing: Optional[AxialBearing] = None,
                             chain: Sequence[Tuple[float, float, float]] = (),
@@ -424,14 +465,10 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
     g = drive.gear
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    speed, deltaPhi = 0., (0.5 * g.backlash + _PRELOAD) / g.normalLever
-    if operatingPoint is not None:
-        if S is None:
-            raise ValueError("BuildLinearizationModel: with an 'operatingPoint' give 'S' (+1 or -1), the flank to "
-                             "load, got None")
-        speed = operatingPoint.slidingSpeed * math.cos(g.gamma) / g.r1
-        deflection = operatingPoint.normalForce / g.kV if operatingPoint.normalForce > 0 else _PRELOAD
-        deltaPhi = S * (0.5 * g.backlash + deflection) / g.normalLever
+    if operatingPoint is not None and S is None:
+        raise ValueError("BuildLinearizationModel: with an 'operatingPoint' give 'S' (+1 or -1), the flank to "
+                         "load, got None")
+    speed, deltaPhi = LinearizationStart(g, S, operatingPoint)
     free, motor = motor, CreateRotor(mbs, 1e-3 if motor is None else motor[0], initialSpeed=speed, name='motor')
     worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, initialSpeed=speed, name='worm')
     wheel = CreateRotor(mbs, drive.J2, initialSpeed=speed / g.ratio, name='wheel')

@@ -23,7 +23,7 @@ from ..model.contact import MATH_OPS, ContactOptions
 from ..model.drive import ElasticDrive
 from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
 from ..items.equilibrium import SteadyInitialState  # re-exported: it lived here before
-from ..setups.presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, ElasticDriveFromParameters, DriveSideChain,
+from ..setups.presets import (REEL_KEYS, AxialBearingFromParameters, ShaftSupportsFromParameters, CheckParameterKeys, ElasticDriveFromParameters, DriveSideChain,
                       LoadSideChain, MissingParameterError)
 from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
 from ..params.plausibility import CheckWormRotation, CheckWormSpeed
@@ -616,7 +616,15 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     steps = CheckRunSize(endTime, stepSize, maxSteps, w)
     CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
     CheckWormRotation(parameters, stepSize, w)      # warns: a worm rotation in fewer than a few steps
-    model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
+    rigid = ShaftSupportsFromParameters(parameters, w) is not None     # the 3D model (docs/mesh-3d.md)
+    if rigid:
+        # lazy: the 3D model's module builds on this one's helpers
+        from . import reelchanger3d
+        model = reelchanger3d.BuildRigidBodyReelChanger(parameters, contactOptions, useSymbolic, profile=profile,
+                                                        startFromEquilibrium=startFromEquilibrium)
+        reelchanger3d.AddSeriesSensors(model)
+    else:
+        model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
     mbs = model.mbs
     mbs.Assemble()
     ss, solverType = SolverSettings(endTime, stepSize, solverOptions, w)
@@ -632,18 +640,24 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     finally:
         exu.config.printToConsole = printing
 
-    series = model.connector.StoredStates(mbs)
+    if rigid:
+        series = reelchanger3d.StoredSeries(model)
+    else:
+        series = model.connector.StoredStates(mbs)
+        for key in [k for k in model.sensors if k not in model.connector.sensors]:
+            series[key] = mbs.GetSensorStoredData(model.sensors[key])[:, 1]
     time = series.pop('time')
-    for key in [k for k in model.sensors if k not in model.connector.sensors]:
-        series[key] = mbs.GetSensorStoredData(model.sensors[key])[:, 1]
     # each chunk of the solve stores its start once more: keep one sample per time
     keep = np.concatenate([[True], np.diff(time) > 1e-6 * stepSize])
     time = time[keep]
     series = {k: v[keep] for k, v in series.items()}
-    mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'],
-                                    series.get('xA'), series.get('vA'), time)
+    if rigid:
+        mesh = reelchanger3d.StoredMeshState(model, keep)
+    else:
+        mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'],
+                                        series.get('xA'), series.get('vA'), time)
     drive = model.drive
-    motorSide = '4' if model.chain else '0'            # the drive shaft (spring-Damper1) ends at inertia4 or the motor
+    motorSide = '4' if not rigid and model.chain else '0'   # the drive shaft (spring-Damper1) ends at inertia4 or the motor
     series.update(deltaPhi=mesh.deltaPhi, deltaS=mesh.deltaS, normalForce=mesh.normalForce, S=mesh.S, sf=mesh.sf,
                   wormTorque=mesh.wormTorque, wheelTorque=mesh.wheelTorque,
                   # eq. (6): torque in the drive shaft; eq. (7): tangential force at the wheel
@@ -652,6 +666,8 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
                   tangentialForce=mesh.wheelTorque / drive.gear.r2)
     if model.axialBearing is not None:
         series['axialForce'] = mesh.axialForce
+    if rigid:
+        series.update(reelchanger3d.MeshForceSeries(model, mesh))
     CheckWormSpeed(series['omega1'], series.get('omega0', ()), parameters, w)   # warns: the load drives the worm
     return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
                             steps=steps, info={'stepSize': stepSize,

@@ -98,7 +98,12 @@ def _Run(args: argparse.Namespace) -> int:
     from ..analysis.chatter import LoweringPhaseParameters
     name, low, high = ParseVary(args.vary)
     with BadInput():      # any drive: the periodic orbits of its lowering phase
-        parameters = LoweringPhaseParameters(dict(WholeDriveFromArgs(args).parameters))
+        drive = WholeDriveFromArgs(args)
+        if drive.isRigidBody:
+            raise UsageError("chatter: the periodic orbits are those of the one-angle model, which has no shaft "
+                             "bearings ([wormBearing], [wheelBearing]: the 3D model); use 'exudyn-worm simulate' for "
+                             "the 3D model, or remove the bearing tables")
+        parameters = LoweringPhaseParameters(dict(drive.parameters))
     if args.plot:
         with BadInput():
             CheckOutputPath(args.plot, '--plot')

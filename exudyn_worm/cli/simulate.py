@@ -8,8 +8,8 @@ import warnings
 from pathlib import Path
 from typing import List, Tuple
 
-from .main import (AddOverwriteOption, BadInput, CheckOutputPath, DriveFromArgs, PositiveFloat, PositiveInt,
-                   PrintJson, SourceInfo, SourceText, StdoutToStderr, Subcommand, UsageError, WriteAtomically)
+from .main import (AddOverwriteOption, BadInput, CheckOutputPath, PositiveFloat, PositiveInt, PrintJson, SourceInfo,
+                   SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
 
 __all__ = ['COMMAND', 'ParseWindows']
 
@@ -45,6 +45,11 @@ _SIMULATE_HEADER = '{:>12}  {:<22}{:>20} {:>10} {:>7} {:>6} {:>16}  chatter'.for
     'window [s]', 'phase', "max|phi2''| rad/s^2", 'max Fn kN', 'f Hz', 'S<0 %', "min phi1' rad/s")
 
 
+_BEARING_HEADER = ('peak bearing loads [kN] (3D model; radial: vector sum of a shaft\'s radial bearings)\n'
+                   + '{:>12} {:>14}{:>14}{:>14}{:>14}'.format('window [s]', 'worm axial', 'worm radial', 'wheel axial',
+                                                             'wheel radial'))
+
+
 def _StepCheckLine(check: dict) -> str:
     """One line saying whether and why the verdicts were checked at half the step."""
     margin = f"linear margin |Re lambda|/|lambda| = {check['margin']:.3g}"
@@ -60,16 +65,27 @@ def _StepCheckLine(check: dict) -> str:
 _SIMULATE_FIGURES = ('overview', 'acceleration', 'speed', 'normalForce', 'driveTorque')
 
 
+#: the figure a run of the 3D model adds (worm and wheel as rigid bodies on their shafts' bearings)
+_BEARING_FIGURE = 'bearingLoads'
+
+
+def _Figures(rigidBody: bool) -> Tuple[str, ...]:
+    return _SIMULATE_FIGURES + ((_BEARING_FIGURE,) if rigidBody else ())
+
+
 def _SaveFigures(result, folder: Path, subtitle: str = '', quiet=None) -> List[Path]:
     """Write the standard figures of a simulation as PNG files into ``folder`` (created if missing;
-    its parent was checked by :func:`~exudyn_worm.cli.main.CheckOutputPath`)."""
+    its parent was checked by :func:`~exudyn_worm.cli.main.CheckOutputPath`); a run of the 3D model adds its
+    bearing loads."""
     # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..items.results import BEARING_LOADS
     from ..plotting import plot
     from ..progress import ProgressBar
     folder.mkdir(exist_ok=True)
     paths = []
-    with ProgressBar(total=len(_SIMULATE_FIGURES), desc='figures', unit='figure', quiet=quiet, delay=2.) as bar:
-        for kind in _SIMULATE_FIGURES:
+    kinds = _Figures(all(name in result.series for name in BEARING_LOADS.values()))
+    with ProgressBar(total=len(kinds), desc='figures', unit='figure', quiet=quiet, delay=2.) as bar:
+        for kind in kinds:
             path = folder / f'{kind}.png'
             figure = plot.PlotSimulation(result, kind=kind, subtitle=subtitle)
             WriteAtomically(path, lambda tmp: plot.SaveFigure(figure, tmp))
@@ -173,10 +189,12 @@ def _Write(what: str, path, write):
 
 
 def _Run(args: argparse.Namespace) -> int:
-    parameters, drive = DriveFromArgs(args)
+    drive = WholeDriveFromArgs(args)
+    parameters = dict(drive.parameters)
     csv = CheckOutputPath(args.csv, '--csv', overwrite=args.overwrite) if args.csv is not None else None
     plots = (CheckOutputPath(args.plot, '--plot', 'folder', overwrite=args.overwrite,
-                             contents=[f'{kind}.png' for kind in _SIMULATE_FIGURES]) if args.plot is not None else None)
+                             contents=[f'{kind}.png' for kind in _Figures(drive.isRigidBody)])
+             if args.plot is not None else None)
     endTime, stepSize, maxSteps, windows = _RunSettings(args, parameters)
     stepCheck = _StepCheck(args, parameters, endTime, stepSize, maxSteps)
     # lazy: start-up (exudyn-worm --help imports every command module)
@@ -226,6 +244,13 @@ def _Run(args: argparse.Namespace) -> int:
                   f"{m['maxAbsWheelAcceleration']:>20.1f} {m['maxNormalForce'] / 1e3:>10.1f} "
                   f"{m['dominantFrequencyHz']:>7.1f} {100 * m['fractionSNegative']:>6.0f} {m['minWormSpeed']:>16.2f}  "
                   f"{verdict}")
+        if drive.isRigidBody:
+            print(_BEARING_HEADER)
+            for m in metrics:
+                loads = m['bearingLoads']
+                print(f"{m['t0']:>5.2f} - {m['t1']:<5.2f} " + ''.join(f"{loads[k] / 1e3:>14.2f}" for k in
+                                                                     ('wormAxial', 'wormRadial', 'wheelAxial',
+                                                                      'wheelRadial')))
         sys.stdout.flush()
     written = []
     if csv is not None:

@@ -30,8 +30,11 @@ def _RecordSymbolic(mbs, itemIndex, userFunctionName: str, arguments, returnType
     recording = esym.GetRecording()
     esym.SetRecording(True)
     try:
-        args = [mbs] + [esym.Vector(name, [0.] * size) if typ == 'StdVector' else esym.Real(name, 0.)
-                        for name, typ, size in arguments]
+        # the MainSystem argument is a placeholder that the recording never reads: None instead of mbs, because
+        # the user function keeps fnDict, the system keeps the user function, and mbs in fnDict would close a
+        # cycle through C++ objects that Python's garbage collector cannot see (the system would never be freed)
+        args = [None] + [esym.Vector(name, [0.] * size) if typ == 'StdVector' else esym.Real(name, 0.)
+                         for name, typ, size in arguments]
         value = build(args, SymbolicOps())
         fnDict = {'functionName': userFunctionName, 'argList': args,
                   'argTypeList': ['MainSystem'] + [typ for _, typ, _ in arguments],

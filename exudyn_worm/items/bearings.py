@@ -17,7 +17,7 @@ import numpy as np
 
 from .._checks import CheckName, CheckNonNegative, CheckPositive, CheckSystem
 
-__all__ = ['ShaftBearings', 'CreateShaftBearings', 'StoredBearingLoads']
+__all__ = ['ShaftBearings', 'ShaftSupports', 'WORM_MASS', 'WHEEL_MASS', 'CreateShaftBearings', 'StoredBearingLoads']
 
 
 @dataclass(frozen=True)
@@ -48,6 +48,39 @@ class ShaftBearings:
         for name in ('radialDamping', 'axialDamping'):
             object.__setattr__(self, name, CheckNonNegative(w, name, getattr(self, name), 'N*s/m'))
         object.__setattr__(self, 'span', CheckPositive(w, 'span', self.span, 'm'))
+
+
+#: default mass in kg of the worm body (a steel worm shaft of the reel changer's size; only the bearings feel it)
+WORM_MASS = 5.
+#: default mass in kg of the wheel body
+WHEEL_MASS = 30.
+
+
+@dataclass(frozen=True)
+class ShaftSupports:
+    """How the 3D model holds its two bodies: each shaft's bearings (None: an ideal revolute joint) and the masses.
+
+    Parameters
+    ----------
+    wormBearings, wheelBearings : ShaftBearings or None
+        The shafts' elastic bearings; None: the shaft turns on an ideal revolute joint (with the worm's axial
+        bearing ``kA, dA, mA`` of the parameter set, the worm slides along its joint on it).
+    wormMass, wheelMass : float
+        Masses in kg (> 0) of the worm and the wheel body (the moments of inertia about the axes are J1 and J2).
+    """
+    wormBearings: Optional[ShaftBearings]
+    wheelBearings: Optional[ShaftBearings]
+    wormMass: float
+    wheelMass: float
+
+    def __post_init__(self):
+        w = 'ShaftSupports'
+        for name in ('wormBearings', 'wheelBearings'):
+            value = getattr(self, name)
+            if value is not None and not isinstance(value, ShaftBearings):
+                raise TypeError(f"{w}: '{name}' must be a ShaftBearings or None, got {type(value).__name__}")
+        for name in ('wormMass', 'wheelMass'):
+            object.__setattr__(self, name, CheckPositive(w, name, getattr(self, name), 'kg'))
 
 
 def _AxisFrame(axis: np.ndarray) -> np.ndarray:

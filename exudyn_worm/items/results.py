@@ -14,7 +14,7 @@ from typing import Dict, List, Optional, Sequence, Tuple
 import numpy as np
 from ..model.contact import NormalForceFlanks
 
-__all__ = ['SimulationResult', 'SeriesUnit', 'SERIES_UNITS', 'CheckWindows', 'CHATTER_AMPLITUDE', 'CHATTER_SUSTAIN',
+__all__ = ['SimulationResult', 'SeriesUnit', 'SERIES_UNITS', 'BEARING_LOADS', 'CheckWindows', 'CHATTER_AMPLITUDE', 'CHATTER_SUSTAIN',
            'CHATTER_MIN_MESH_TORQUE', 'CHATTER_TORQUE_FRACTION']
 
 # The chatter rule of SimulationResult.Chatter, fixed with its reasons in validation/CHATTER_RULE.md: the mesh's
@@ -223,7 +223,10 @@ class SimulationResult:
 
     def WindowMetrics(self, windows: Sequence[Tuple[float, float]]) -> List[Dict]:
         """Per window: t0, t1, maxAbsWheelAcceleration (rad/s^2), maxNormalForce (N), dominantFrequencyHz,
-        fractionSNegative, minWormSpeed (rad/s, in the motor's direction: :meth:`MinWormSpeed`), chatter."""
+        fractionSNegative, minWormSpeed (rad/s, in the motor's direction: :meth:`MinWormSpeed`), chatter; for a run
+        of the 3D model (worm and wheel as rigid bodies) also ``bearingLoads``: the peak magnitudes in N of
+        :data:`BEARING_LOADS` (``wormAxial``, ``wormRadial``, ``wheelAxial``, ``wheelRadial``; radial: the vector sum
+        over the shaft's radial bearings)."""
         out = []
         for t0, t1 in CheckWindows(windows, self.endTime, 'SimulationResult.WindowMetrics'):
             m = self._Window(t0, t1)
@@ -236,6 +239,9 @@ class SimulationResult:
                         'fractionSNegative': float(np.mean(self.series['S'][m] < 0)),
                         'minWormSpeed': self.MinWormSpeed(t0, t1),
                         'chatter': self.Chatter(t0, t1)})
+            if all(name in self.series for name in BEARING_LOADS.values()):     # the 3D model
+                out[-1]['bearingLoads'] = {key: float(np.max(np.abs(self.series[name][m])))
+                                           for key, name in BEARING_LOADS.items()}
         return out
 
     def ToCsv(self, path) -> Path:
@@ -293,9 +299,15 @@ class SimulationResult:
 
 
 #: SI units of the mesh and bearing series of a :class:`SimulationResult` (rotor series: :func:`SeriesUnit`)
+#: the bearing loads of a run of the 3D model: key of the peak in :meth:`SimulationResult.WindowMetrics` -> series
+BEARING_LOADS = {'wormAxial': 'wormAxialLoad', 'wormRadial': 'wormRadialLoad', 'wheelAxial': 'wheelAxialLoad',
+                 'wheelRadial': 'wheelRadialLoad'}
 SERIES_UNITS = {'deltaPhi': 'rad', 'deltaS': 'm', 'normalForce': 'N', 'S': '-', 'sf': '-', 'wormTorque': 'N*m',
                 'wheelTorque': 'N*m', 'driveTorque': 'N*m', 'tangentialForce': 'N',
-                'xA': 'm', 'vA': 'm/s', 'aA': 'm/s^2', 'axialForce': 'N'}
+                'xA': 'm', 'vA': 'm/s', 'aA': 'm/s^2', 'axialForce': 'N',
+                # the 3D model (worm and wheel as rigid bodies): bearing loads and the mesh force on each body
+                **{f'{body}{d}Load': 'N' for body in ('worm', 'wheel') for d in ('Axial', 'Radial')},
+                **{f'mesh{body}{d}': 'N' for body in ('Worm', 'Wheel') for d in ('Tangential', 'Axial', 'Radial')}}
 #: angle, speed and acceleration of rotor i (0 motor, 1 worm, 2 wheel, 4, 5, ... the drive-side chain)
 _ROTOR_UNITS = {'phi': 'rad', 'omega': 'rad/s', 'alpha': 'rad/s^2'}
 

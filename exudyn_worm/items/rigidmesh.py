@@ -40,7 +40,7 @@ from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
 
-from .._checks import CheckName, CheckReal, CheckSystem
+from .._checks import CheckBool, CheckName, CheckReal, CheckSystem
 from ._rigidnodes import RIGID_NODES
 from ._userfunctions import CheckPlainForceLaw, SetGenericForceLaw
 from .connector import _AddStickSlip, _StartFrictionState, _StickSlip
@@ -48,7 +48,7 @@ from ..model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, FrictionState, 
 from ..model.gear import WormGear
 
 __all__ = ['RigidBodyWormGearConnector', 'CreateRigidBodyWormGear', 'MeshGeometry', 'RIGID_CONNECTORS_KEY',
-           'PERPENDICULAR_TOLERANCE', 'CENTRE_DISTANCE_TOLERANCE']
+           'PERPENDICULAR_TOLERANCE', 'CENTRE_DISTANCE_TOLERANCE', 'LINEAR_ROWS_TOLERANCE']
 
 #: ``mbs.variables`` key of the list of rigid-body worm meshes built in a system
 RIGID_CONNECTORS_KEY = 'exudynWorm.rigidConnectors'
@@ -372,7 +372,10 @@ class RigidBodyWormGearConnector:
     stickSlip : object or None
         The stick/slip state of the sticking friction model; None with the regularized model or a fixed S.
     userFunction : callable or None
-        The plain-Python user function given to Exudyn (kept alive here).
+        The user function given to Exudyn (kept alive here).
+    compiled : dict or None
+        With ``useSymbolic``: the auxiliary nodes (``nodes``), their ties (``ties``) and the law's object
+        (``objectNumber``); ``objectNumber`` above then carries no force. None: the plain-Python law.
     """
     objectNumber: Any
     bodyNumbers: List[Any]
@@ -385,6 +388,7 @@ class RigidBodyWormGearConnector:
     sensors: Dict[str, Any] = field(default_factory=dict)
     stickSlip: Any = field(default=None, repr=False)
     userFunction: Any = field(default=None, repr=False)
+    compiled: Optional[Dict[str, Any]] = field(default=None, repr=False)
     _kinematics: Any = field(default=None, repr=False)
     _spin: Any = field(default=None, repr=False)
     _initialAngles: List[float] = field(default_factory=lambda: [0., 0.], repr=False)
@@ -434,6 +438,9 @@ class RigidBodyWormGearConnector:
             self.stickSlip.options = options
             self.stickSlip.clock[1] = -np.inf
         self.options = options
+        if self.compiled is not None:
+            _RecordCompiledLaw(mbs, self, options)
+            return
         self.userFunction = SetGenericForceLaw(mbs, self.objectNumber, self.coordinates, self._ForceLaw(options),
                                                useSymbolic=False)
 
@@ -665,11 +672,93 @@ def _Rotation(body: _Body, theta) -> np.ndarray:
     return np.array(body.kinematics.rotationMatrix([float(x) for x in theta], MATH_OPS), dtype=float)
 
 
+#: largest change of the law inputs' gradient rows with the bodies' turns for which :func:`CreateRigidBodyWormGear`
+#: with ``useSymbolic`` takes them as linear in the node coordinates
+LINEAR_ROWS_TOLERANCE = 1e-9
+
+
+def _CompileLaw(mbs, where: str, connector: RigidBodyWormGearConnector, found) -> None:
+    """The law in C++ on auxiliary coordinates (docs/mesh-3d.md, "Speed"): 3 tied to the worm's node (its parts of
+    the worm angle, axial displacement and radial approach), 4 to the wheel's (its parts and its angle), each tie one
+    linear ``ObjectConnectorCoordinateVector``; the law one symbolic ``ObjectGenericODE2`` on the 7."""
+    from exudyn.itemInterface import MarkerNodeCoordinates, NodeGenericODE2, ObjectConnectorCoordinateVector, \
+        ObjectGenericODE2
+    types = [str(f[3]['nodeType']) for f in found]
+    if any(t != 'RigidBodyRxyz' for t in types):
+        raise ValueError(f"{where}: 'useSymbolic' needs Tait-Bryan (RotationRxyz) nodes turning about their last "
+                         f"angle, got node types {', '.join(types)}; use useSymbolic=False (plain Python) for them")
+    q0, v0 = connector._InitialVectors(mbs)
+    spins = [(a, math.cos(a), math.sin(a)) for a in connector._initialAngles]
+    x0, _, _ = connector._Inputs(q0, v0, spins)             # the inputs at the initial state, exact
+    # the rows without tilts and translations (those of the linear map), and at other turns: they must be the same
+    sizes = [b.size for b in connector._kinematics.bodies]
+    untilted = np.zeros(len(q0))
+    for start in (0, sizes[0]):
+        untilted[start + 5] = q0[start + 5]
+    _, _, rows = connector._Inputs(untilted.tolist(), v0, spins)
+    rows = np.asarray(rows, dtype=float)
+    turned, turns = untilted.copy(), (1., 0.3)
+    for start, turn in zip((0, sizes[0]), turns):
+        turned[start + 5] += turn
+    _, _, rowsTurned = connector._Inputs(turned.tolist(), v0, [(a + d, math.cos(a + d), math.sin(a + d))
+                                                               for a, d in zip(connector._initialAngles, turns)])
+    change = float(np.max(np.abs(np.asarray(rowsTurned, dtype=float) - rows)))
+    if change > LINEAR_ROWS_TOLERANCE * max(1., float(np.max(np.abs(rows)))) or np.any(rows[1, :sizes[0]]):
+        raise ValueError(f"{where}: 'useSymbolic' needs Rxyz nodes whose turn about the axis is their last angle (a "
+                         f"reference rotation puts the axis on the node's local z); here the law's inputs change with "
+                         f"the turns (rows change by {change:.3g}); use useSymbolic=False (plain Python)")
+    SU, SV = rows[[0, 2, 3], :sizes[0]], rows[[0, 2, 3, 1], sizes[0]:]
+    q0, v0 = np.asarray(q0, dtype=float), np.asarray(v0, dtype=float)
+    U0 = SU @ q0[:sizes[0]]
+    V0 = np.asarray(x0, dtype=float)[[0, 2, 3, 1]] - np.concatenate([U0, [0.]])
+    nodes, ties = [], []
+    for (body, info, node, nodeInfo), S, X0, v, label in zip(found, (SU, SV), (U0, V0),
+                                                             (v0[:sizes[0]], v0[sizes[0]:]), ('Worm', 'Wheel')):
+        aux = mbs.AddNode(NodeGenericODE2(numberOfODE2Coordinates=len(X0), referenceCoordinates=[0.] * len(X0),
+                                          initialCoordinates=list(X0), initialCoordinates_t=list(S @ v),
+                                          name=f'{connector.name or "wormGear"}{label}Inputs'))
+        # the tie reads S q_node - X - offset = 0 with q_node the node's coordinates including their reference values
+        total = np.asarray(nodeInfo['referenceCoordinates'], dtype=float) + np.asarray(nodeInfo['initialCoordinates'],
+                                                                                       dtype=float)
+        ties.append(mbs.AddObject(ObjectConnectorCoordinateVector(
+            markerNumbers=[mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=aux)),
+                           mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=node))],
+            scalingMarker0=np.eye(len(X0)), scalingMarker1=S, offset=list(S @ total - X0))))
+        nodes.append(aux)
+    zeros = np.zeros((7, 7))
+    law = mbs.AddObject(ObjectGenericODE2(nodeNumbers=nodes, massMatrix=zeros, stiffnessMatrix=zeros,
+                                          dampingMatrix=zeros, name=(connector.name + 'Law') if connector.name else ''))
+    connector.compiled = {'nodes': nodes, 'ties': ties, 'objectNumber': law}
+    _RecordCompiledLaw(mbs, connector, connector.options)
+
+
+def _RecordCompiledLaw(mbs, connector: RigidBodyWormGearConnector, options: ContactOptions) -> None:
+    """(Re)record the law on the 7 auxiliary coordinates as a C++ symbolic user function; the sticking model's state
+    is read from named symbolic variables of the connector's stick/slip state."""
+    import exudyn
+    stickSlip = connector.stickSlip if options.hasStickState else None
+    if stickSlip is not None and stickSlip.variables is None:
+        esym = exudyn.symbolic
+        stickSlip.variables = FrictionState(*(esym.Real(name, float(getattr(stickSlip.state, name)))
+                                              for name in ('stuck', 'direction', 'anchor')))
+    gear = connector.gear
+
+    def CompiledLaw(t, q, q_t, ops):
+        x = [q[0] + q[3], q[6], q[1] + q[4], q[2] + q[5]]
+        w = [q_t[0] + q_t[3], q_t[6], q_t[1] + q_t[4], q_t[2] + q_t[5]]
+        mesh = _Law(gear, options, x, w, ops, None if stickSlip is None else stickSlip.LawState(ops))
+        f0, f2, f3 = mesh.wormTorque, mesh.axialForce, mesh.radialForce
+        return [f0, f2, f3, f0, f2, f3, mesh.wheelTorque]
+    connector.userFunction = SetGenericForceLaw(mbs, connector.compiled['objectNumber'], 7, CompiledLaw,
+                                                useSymbolic=True, where='CreateRigidBodyWormGear')
+
+
 def CreateRigidBodyWormGear(mbs, bodyNumbers: Optional[Sequence[Any]] = None, gear: Optional[WormGear] = None,
                             wormAxis: Sequence[float] = (1., 0., 0.), wheelAxis: Sequence[float] = (0., 0., 1.),
                             name: str = '', contactOptions: ContactOptions = ContactOptions(),
                             referenceAngles: Sequence[float] = (0., 0.),
-                            markerNumbers: Optional[Sequence[Any]] = None) -> RigidBodyWormGearConnector:
+                            markerNumbers: Optional[Sequence[Any]] = None,
+                            useSymbolic: bool = False) -> RigidBodyWormGearConnector:
     """Add a worm mesh between a worm body and a wheel body (3D rigid bodies on the user's joints or bearings).
 
     Parameters
@@ -700,6 +789,12 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Optional[Sequence[Any]] = None, ge
     markerNumbers : [worm, wheel], optional
         Instead of ``bodyNumbers``: a ``MarkerBodyRigid`` or ``MarkerBodyPosition`` on each body, at a point of its
         rotation axis.
+    useSymbolic : bool
+        False (default): the law is a plain-Python user function on both nodes (every node type). True: the law runs
+        in C++ (a symbolic user function) on 7 auxiliary coordinates tied to the nodes by linear constraints
+        (docs/mesh-3d.md, "Speed"); needs Tait-Bryan (Rxyz) nodes whose turn about the axis is their *last* angle (a
+        reference rotation can put any axis there), where the law's inputs are linear in the node coordinates to
+        first order in the tilts; refused otherwise.
 
     Returns
     -------
@@ -710,10 +805,11 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Optional[Sequence[Any]] = None, ge
     ValueError, TypeError
         For a body that is not a 3D rigid body of ``mbs`` or has no mass or inertia, axes that are not
         perpendicular, axes whose distance is not r1 + r2 (a unit slip?), a pitch point far from a body, or a bad
-        gear, options or name.
+        gear, options or name; with ``useSymbolic``, nodes whose coordinates the law's inputs are not linear in.
     """
     w = 'CreateRigidBodyWormGear'
     CheckSystem(w, mbs)
+    CheckBool(w, 'useSymbolic', useSymbolic)
     CheckName(w, 'name', name)
     if not isinstance(gear, WormGear):
         raise TypeError(f"{w}: 'gear' must be a WormGear, got {type(gear).__name__}")
@@ -798,7 +894,11 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Optional[Sequence[Any]] = None, ge
     zeros = np.zeros((n, n))
     connector.objectNumber = mbs.AddObject(ObjectGenericODE2(nodeNumbers=nodes, massMatrix=zeros, stiffnessMatrix=zeros,
                                                              dampingMatrix=zeros, name=name))
-    connector.userFunction = SetGenericForceLaw(mbs, connector.objectNumber, n, law, useSymbolic=False, check=False)
+    if useSymbolic:
+        _CompileLaw(mbs, w, connector, found)
+    else:
+        connector.userFunction = SetGenericForceLaw(mbs, connector.objectNumber, n, law, useSymbolic=False,
+                                                    check=False)
     _AddStickSlip(mbs, connector._spin)
     if connector.stickSlip is not None:
         _AddStickSlip(mbs, connector.stickSlip)

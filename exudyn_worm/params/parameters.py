@@ -938,6 +938,23 @@ PARAMETERS = ParameterRegistry([
               fileKey='damping'),
     Parameter('mA', 'kg', 'positive', "the worm's axially moving mass (required with kA > 0)", table='axialBearing',
               fileKey='mass'),
+    # the 3D model: worm and wheel as rigid bodies on elastic shaft bearings (docs/mesh-3d.md)
+    Parameter('wormMass', 'kg', 'positive', 'mass of the worm body (3D model: required with [wormBearing])',
+              table='worm', fileKey='mass'),
+    Parameter('wheelMass', 'kg', 'positive', 'mass of the wheel body (3D model: required with [wheelBearing])',
+              table='wheel', fileKey='mass'),
+    *[Parameter(f'{body}{key[0].upper()}{key[1:]}', unit, rng, text.format(body=body), table=f'{body}Bearing',
+                fileKey='span' if key == 'bearingSpan' else key)
+      for body in ('worm', 'wheel')
+      for key, unit, rng, text in (
+          ('radialStiffness', 'N/m', 'positive', "stiffness of each of the {body}'s two radial bearings, across the "
+           "axis (3D model; with axialStiffness)"),
+          ('axialStiffness', 'N/m', 'positive', "stiffness of the {body}'s axial bearing (3D model; with "
+           "radialStiffness)"),
+          ('radialDamping', 'N*s/m', 'nonNegative', "damping of each of the {body}'s radial bearings (default 0)"),
+          ('axialDamping', 'N*s/m', 'nonNegative', "damping of the {body}'s axial bearing (default 0)"),
+          ('bearingSpan', 'm', 'positive', "distance of the {body}'s two radial bearings along the axis, centred on "
+           "the mesh (default 0.1 m)"))],
 ], seriesText={'driveSide': 'drive-side chain', 'loadSide': 'load-side chain'})
 
 

@@ -35,7 +35,7 @@ __all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'MEAN_WINDOW', 'S_SIGN_LABEL',
            'DENSE_SWITCHES_PER_INCH', 'PlotSimulation', 'PlotComparison', 'SaveFigure', 'TorqueSignNote']
 
 #: the kinds :func:`PlotSimulation` draws
-PLOT_KINDS = ('overview', 'acceleration', 'zoom', 'speed', 'normalForce', 'driveTorque')
+PLOT_KINDS = ('overview', 'acceleration', 'zoom', 'speed', 'normalForce', 'driveTorque', 'bearingLoads')
 #: named quantities of :func:`PlotComparison` (any key of ``result.series`` works too)
 COMPARISON_QUANTITIES = ('normalForce', 'acceleration', 'speed', 'driveTorque')
 
@@ -62,7 +62,8 @@ _DEFAULT_TITLES = {'acceleration': r'Wheel acceleration $\ddot\varphi_2$',
                    'speed': r'Worm speed $\dot\varphi_1$ and flank friction state $s_f$',
                    'normalForce': 'Normal force on the tooth flanks',
                    'driveTorque': r'Drive shaft torque $M_{an}$ and contact parameter $S$',
-                   'overview': 'Simulation overview'}
+                   'overview': 'Simulation overview',
+                   'bearingLoads': 'Bearing loads (3D model: worm and wheel as rigid bodies)'}
 _PHASE_COLORS = {'lift': '#dcebf7', 'lower': '#fbe6cf'}
 _C_MAIN, _C_SECOND, _C_FLANK1, _C_FLANK2 = '#1f4e79', '#c0392b', '#1f77b4', '#d62728'
 _LINE_WIDTH = 0.6
@@ -387,7 +388,8 @@ def _DrawDenseSign(share, zoom, result, mask, interval, phases):
 
 _REQUIRED = {'acceleration': ('alpha2',), 'zoom': ('alpha2', 'S'), 'speed': ('omega1', 'sf'),
              'normalForce': ('normalForce',), 'driveTorque': ('driveTorque', 'S'),
-             'overview': ('alpha2', 'omega1', 'normalForce', 'driveTorque')}
+             'overview': ('alpha2', 'omega1', 'normalForce', 'driveTorque'),
+             'bearingLoads': ('wormAxialLoad', 'wormRadialLoad', 'wheelAxialLoad', 'wheelRadialLoad')}
 
 
 # ---------------------------------------------------------------------------------- public functions
@@ -410,7 +412,8 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
     kind : str
         One of :data:`PLOT_KINDS`: ``'acceleration'`` (Fig. 8/13), ``'zoom'`` (phi2'' and S, Fig. 9/14/16),
         ``'speed'`` (phi1' and sf, Fig. 10/15), ``'normalForce'`` (both flanks, Fig. 11),
-        ``'driveTorque'`` (M_an and S, Fig. 18) or ``'overview'`` (2 x 2 panels).
+        ``'driveTorque'`` (M_an and S, Fig. 18), ``'overview'`` (2 x 2 panels) or ``'bearingLoads'`` (a run of
+        the 3D model: the axial and radial load of each shaft's bearings).
     tZoom : (float, float), optional
         Time interval in s to show. Default: the whole record, except for ``'zoom'``, which shows
         0.1 s in the middle of the record.
@@ -467,6 +470,23 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
         fig.suptitle(title)
         return fig
 
+    if kind == 'bearingLoads':             # one panel per shaft: axial and radial load (magnitudes)
+        fig, axes = _NewFigure(2, 1, figsize=figsize or (8., 5.6), sharex=True)
+        t = np.asarray(result.time)[mask]
+        for body, ax in (('worm', axes[0, 0]), ('wheel', axes[1, 0])):
+            if phases:
+                _ShadePhases(ax, phases, interval, labels=(body == 'worm'))
+            for direction, color in (('Axial', _C_MAIN), ('Radial', _C_SECOND)):
+                ax.plot(t, 1e-3 * np.abs(np.asarray(result.series[body + direction + 'Load'])[mask]), color=color,
+                        lw=_LINE_WIDTH, label=f'{direction.lower()} bearing' if direction == 'Axial'
+                        else 'radial bearings (vector sum)')
+            ax.set_ylabel(f'{body} bearing load [kN]')
+            ax.legend(loc='upper right', fontsize=8)
+            _Decorate(ax, interval)
+        axes[0, 0].set_xlabel('')
+        axes[1, 0].set_xlabel('time $t$ [s]')
+        _SetTitle(axes[0, 0], title, fontsize=11)
+        return fig
     if kind == 'speed':                    # speed on top, friction state below: both stay readable
         fig, axes = _NewFigure(2, 1, figsize=figsize or (8., 5.), sharex=True, heightRatios=(3, 1))
         _Draw('speed', axes[0, 0], result, mask, interval, phases)

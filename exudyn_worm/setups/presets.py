@@ -47,6 +47,7 @@ from ..model.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDamping
 from ..model.gear import WormGear
 from ..model.geometry import GEOMETRY_FORMS, GEOMETRY_KEYS, GeometryForm, GeometryFromParameters, MissingGeometryKeys
 from ..params.parameters import PARAMETERS, MissingParameterError
+from ..items.bearings import WHEEL_MASS, WORM_MASS, ShaftBearings, ShaftSupports
 from ..items.connector import AxialBearing
 from ..model.friction import FrictionLaw, ReadFrictionTable
 from ..model.stability import CharacteristicCoefficients
@@ -59,7 +60,7 @@ __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', '
            'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
            'FrictionLawFromParameters',
            'DriveFromParameters', 'ElasticDriveFromParameters', 'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
-           'AxialBearingFromParameters', 'MAX_RATE', 'MIN_RATE_SPREAD', 'MissingParameterError']
+           'AxialBearingFromParameters', 'ShaftSupportsFromParameters', 'SHAFT_KEYS', 'MAX_RATE', 'MIN_RATE_SPREAD', 'MissingParameterError']
 
 #: keys of the elastic drive (Figure 2): the drive-file tables [gear], [worm], [wheel], [driveShaft]
 DRIVE_KEYS = PARAMETERS.KeysOf('gear', 'worm', 'wheel', 'driveShaft')
@@ -74,6 +75,8 @@ CHAIN_KEYS = PARAMETERS.KeysOf('driveSide')
 LOAD_CHAIN_KEYS = PARAMETERS.KeysOf('loadSide')
 #: keys of the worm's axial bearing
 AXIAL_KEYS = PARAMETERS.KeysOf('axialBearing')
+#: keys of the 3D model (worm and wheel as rigid bodies, docs/mesh-3d.md): the shafts' bearings and the masses
+SHAFT_KEYS = PARAMETERS.KeysOf('wormBearing', 'wheelBearing') + ('wormMass', 'wheelMass')
 
 #: SI unit of every key (pint syntax), used to parse quantities such as ``8 deg`` or ``0.5 mm``; the
 #: chain keys J5, k5, d5, J6, ... are accepted too (``'J5' in PARAMETER_UNITS``), though only J4/k4/d4 are listed.
@@ -697,3 +700,72 @@ def AxialBearingFromParameters(parameters: Mapping[str, float]) -> Optional['Axi
     if 'mA' not in parameters:
         raise ValueError(f"{w}: 'kA' = {kA:g} N/m > 0 needs the worm's axially moving mass 'mA' (kg)")
     return AxialBearing(stiffness=kA, damping=parameters.get('dA', 0.), mass=parameters['mA'])
+
+
+def ShaftSupportsFromParameters(parameters: Mapping[str, float], where: str = 'ShaftSupportsFromParameters'
+                                ) -> Optional[ShaftSupports]:
+    """The 3D model's :class:`~exudyn_worm.items.bearings.ShaftSupports` from the bearing keys, or None without them.
+
+    A drive is simulated and analysed as the 3D model (worm and wheel as rigid bodies, docs/mesh-3d.md) when it
+    gives a shaft's bearings (drive file ``[wormBearing]``, ``[wheelBearing]``; keys ``wormRadialStiffness``,
+    ``wormAxialStiffness``, ``wormRadialDamping``, ``wormAxialDamping``, ``wormBearingSpan`` and the same for the
+    wheel). A shaft with bearings needs both stiffnesses and its body's mass (``wormMass``, ``wheelMass``); a shaft
+    without turns on an ideal revolute joint (its mass defaults to 5 kg for the worm, 30 kg for the wheel: only the
+    joint feels it). With the worm's axial bearing ``kA, dA, mA`` the worm slides on its joint, its mass is ``mA``.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (SI).
+    where : str, optional
+        Caller named in messages.
+
+    Returns
+    -------
+    ShaftSupports or None
+        None if no shaft has bearings (the one-angle model).
+
+    Raises
+    ------
+    MissingParameterError
+        For a shaft's bearings without a stiffness or without the body's mass.
+    ValueError
+        For a mass without any bearings (the one-angle model does not use it), the worm's axial bearing given twice
+        (``[axialBearing]`` and ``[wormBearing]``) or its mass given twice (``mA`` and ``wormMass``).
+    """
+    bearings = {}
+    for body in ('worm', 'wheel'):
+        keys = PARAMETERS.KeysOf(f'{body}Bearing')
+        given = [k for k in keys if k in parameters]
+        if not given:
+            bearings[body] = None
+            continue
+        needed = [f'{body}RadialStiffness', f'{body}AxialStiffness'] + ([] if f'{body}Mass' in parameters
+                                                                         else [f'{body}Mass'])
+        missing = [k for k in needed if k not in parameters]
+        if missing:
+            raise MissingParameterError(
+                f"{where}: the {body}'s bearings ([{body}Bearing]) need its radialStiffness, axialStiffness (N/m) "
+                f"and the {body}'s mass ([{body}] mass, kg); missing {', '.join(missing)} (give them in the drive "
+                f"file or with --set KEY=VALUE)", missing)
+        bearings[body] = ShaftBearings(
+            radialStiffness=parameters[f'{body}RadialStiffness'], axialStiffness=parameters[f'{body}AxialStiffness'],
+            radialDamping=parameters.get(f'{body}RadialDamping', 0.), axialDamping=parameters.get(f'{body}AxialDamping', 0.),
+            span=parameters.get(f'{body}BearingSpan', 0.1))
+    masses = [k for k in ('wormMass', 'wheelMass') if k in parameters]
+    if bearings['worm'] is None and bearings['wheel'] is None:
+        if masses:
+            raise ValueError(f"{where}: '{masses[0]}' (the {masses[0][:-4]}'s mass, kg) is used only by the 3D model, "
+                             f"which the shafts' bearings select ([wormBearing], [wheelBearing]); add them or remove "
+                             f"'{masses[0]}'")
+        return None
+    axial = AxialBearingFromParameters(parameters)
+    if axial is not None and bearings['worm'] is not None:
+        raise ValueError(f"{where}: the worm's axial bearing is given twice, as kA ([axialBearing]) and as "
+                         f"wormAxialStiffness ([wormBearing]); give it once")
+    if axial is not None and 'wormMass' in parameters:
+        raise ValueError(f"{where}: the worm's mass is given twice, as mA ([axialBearing] mass) and as wormMass "
+                         f"([worm] mass); give it once")
+    return ShaftSupports(wormBearings=bearings['worm'], wheelBearings=bearings['wheel'],
+                         wormMass=axial.mass if axial is not None else parameters.get('wormMass', WORM_MASS),
+                         wheelMass=parameters.get('wheelMass', WHEEL_MASS))

@@ -27,6 +27,7 @@ import types
 from dataclasses import dataclass, field
 from typing import Any, Dict, Iterable, Mapping, Optional, Tuple, Union
 
+from ..items.bearings import ShaftSupports
 from ..items.connector import AxialBearing
 from ..params.drives import ConfigPath
 from ..model.drive import ElasticDrive
@@ -34,7 +35,7 @@ from ..model.gear import WormGear
 from .config import ResolveParametersWithSources
 from .duty import LOAD_TYPES, MOTOR_TYPES, LoadType, MotorType, _LoadLaw, _MotorLaw
 from .presets import (ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
-                      ElasticDriveFromParameters, LoadSideChain, MissingParameterError)
+                      ElasticDriveFromParameters, LoadSideChain, MissingParameterError, ShaftSupportsFromParameters)
 
 __all__ = ['Component', 'Drive', 'ResolveDrive', 'AsDrive']
 
@@ -51,6 +52,7 @@ class Component(str, enum.Enum):
     LOAD_SIDE_CHAIN = 'load-side chain'
     AXIAL_BEARING = 'worm axial bearing'
     MOTOR_CHARACTERISTIC = 'motor on its characteristic'
+    SHAFT_BEARINGS = 'shaft bearings'
 
     @property
     def text(self) -> str:
@@ -61,7 +63,9 @@ class Component(str, enum.Enum):
 _COMPONENT_TEXT = {Component.DRIVE_SIDE_CHAIN: 'a drive-side chain (J4, ...)',
                    Component.LOAD_SIDE_CHAIN: 'a load-side chain (JL1, ...)',
                    Component.AXIAL_BEARING: 'a worm axial bearing (kA > 0)',
-                   Component.MOTOR_CHARACTERISTIC: 'a motor on its characteristic (motorType characteristic)'}
+                   Component.MOTOR_CHARACTERISTIC: 'a motor on its characteristic (motorType characteristic)',
+                   Component.SHAFT_BEARINGS: 'shaft bearings of worm and wheel as rigid bodies ([wormBearing], '
+                                             '[wheelBearing])'}
 
 #: keys of the motor types that do not take 'motorSpeed'
 _NO_MOTOR_SPEED = ('speedTable', 'characteristic')
@@ -89,6 +93,9 @@ class Drive:
         Load-side chain ``(JL1, kL1, dL1), ...``, wheel side first; empty: none.
     axialBearing : AxialBearing or None
         The worm's axial bearing; None: axially rigid worm.
+    shaftSupports : ShaftSupports or None
+        The shafts' bearings and the bodies' masses of the 3D model (worm and wheel as rigid bodies,
+        docs/mesh-3d.md); None: the one-angle model.
     load : object or None
         The load law (:mod:`exudyn_worm.setups.duty`); None: no load torque given.
     motor : object or None
@@ -102,6 +109,7 @@ class Drive:
     driveSideChain: Tuple[Tuple[float, float, float], ...] = ()
     loadSideChain: Tuple[Tuple[float, float, float], ...] = ()
     axialBearing: Optional[AxialBearing] = None
+    shaftSupports: Optional[ShaftSupports] = None
     load: Optional[Any] = None
     motor: Optional[Any] = None
     name: str = 'drive'
@@ -146,9 +154,17 @@ class Drive:
                                  f"remove it or choose motorType constantSpeed or startStop")
         elastic = ElasticDriveFromParameters(p, where)
         load, motor = _Duty(p, where)
+        supports = ShaftSupportsFromParameters(p, where)
+        driveSideChain, loadSideChain = tuple(DriveSideChain(p)), tuple(LoadSideChain(p))
+        if supports is not None and (driveSideChain or loadSideChain or MotorType(p) == 'characteristic'):
+            other = ('a drive-side chain ([[driveSide]])' if driveSideChain else 'a load-side chain ([[loadSide]])'
+                     if loadSideChain else 'a motor on its characteristic (motorType characteristic)')
+            raise ValueError(f"{where}: the shafts' bearings ([wormBearing], [wheelBearing]) make the drive the 3D "
+                             f"model of worm and wheel as rigid bodies, which has no {other[2:]}; remove one of them")
         drive = cls(parameters=types.MappingProxyType(p), sources=types.MappingProxyType(src), elastic=elastic,
-                    driveSideChain=tuple(DriveSideChain(p)), loadSideChain=tuple(LoadSideChain(p)),
-                    axialBearing=AxialBearingFromParameters(p), load=load, motor=motor, name=name)
+                    driveSideChain=driveSideChain, loadSideChain=loadSideChain,
+                    axialBearing=AxialBearingFromParameters(p), shaftSupports=supports, load=load, motor=motor,
+                    name=name)
         return drive
 
     def Replace(self, changes: Mapping[str, Any]) -> 'Drive':
@@ -199,7 +215,13 @@ class Drive:
         return tuple(c for c, present in ((Component.DRIVE_SIDE_CHAIN, bool(self.driveSideChain)),
                                           (Component.LOAD_SIDE_CHAIN, bool(self.loadSideChain)),
                                           (Component.MOTOR_CHARACTERISTIC, self.hasMotorCharacteristic),
-                                          (Component.AXIAL_BEARING, self.axialBearing is not None)) if present)
+                                          (Component.AXIAL_BEARING, self.axialBearing is not None),
+                                          (Component.SHAFT_BEARINGS, self.shaftSupports is not None)) if present)
+
+    @property
+    def isRigidBody(self) -> bool:
+        """True if the drive is the 3D model: worm and wheel as rigid bodies on their shafts' bearings."""
+        return self.shaftSupports is not None
 
     @property
     def isTwoMass(self) -> bool:

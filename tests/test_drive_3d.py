@@ -1,0 +1,146 @@
+"""Drive files and the command line with the shafts' bearings: the 3D model (worm and wheel as rigid bodies) is
+simulated and linearized, simulate reports the bearing loads; bad bearing tables give one line; [axialBearing]
+files keep the one-angle model."""
+import csv
+import json
+
+import numpy as np
+import pytest
+
+from exudyn_worm.analysis.drivestability import AnalyzeDrive
+from exudyn_worm.analysis.reelchanger import SolverSettings
+from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger, StoredShaftLoads
+from exudyn_worm.analysis.stepsize import RecommendedStepSize
+from exudyn_worm.cli.main import Main
+from exudyn_worm.items.bearings import ShaftBearings
+from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.setups.wholedrive import Component, ResolveDrive
+
+pytest.importorskip('exudyn')
+DRIVE_3D = 'examples/drives/reel-3d.toml'
+LOAD_KEYS = {'wormAxial', 'wormRadial', 'wheelAxial', 'wheelRadial'}
+#: the bearings of examples/drives/reel-3d.toml
+WORM, WHEEL = ShaftBearings(5e8, 5e8, 1e3, 1e3, span=0.12), ShaftBearings(1e9, 1e9, 1e3, 1e3, span=0.05)
+
+
+def _Run(capsys, *argv):
+    status = Main(list(argv))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def test_bearing_tables_make_the_drive_the_3d_model():
+    drive = ResolveDrive(config=DRIVE_3D)
+    assert drive.isRigidBody and Component.SHAFT_BEARINGS in drive.components and not drive.isTwoMass
+    supports = drive.shaftSupports
+    assert (supports.wormBearings, supports.wheelBearings) == (WORM, WHEEL)
+    assert (supports.wormMass, supports.wheelMass) == (5., 30.)
+    assert drive.sources['wormRadialStiffness'].endswith('[wormBearing] radialStiffness')
+
+
+def _File(tmp_path, text):
+    path = tmp_path / 'drive.toml'
+    path.write_text('preset = "reel-P1"\n' + text)
+    return str(path)
+
+
+BAD = [('[wormBearing]\nradialStiffness = "5e8 N/m"\naxialStiffness = "5e8 N/m"\n',
+        "the worm's bearings ([wormBearing]) need its radialStiffness, axialStiffness (N/m) and the worm's mass "
+        "([worm] mass, kg); missing wormMass"),
+       ('[worm]\nmass = "5 kg"\n[wormBearing]\nradialStiffness = "5e8 N/m"\n', 'missing wormAxialStiffness'),
+       ('[wheel]\nmass = "30 kg"\n', "'wheelMass' (the wheel's mass, kg) is used only by the 3D model"),
+       ('[worm]\nmass = "5 kg"\n[wormBearing]\nradialStiffness = 5e8\naxialStiffness = 5e8\n'
+        '[axialBearing]\nstiffness = 1e8\nmass = 5\n', "the worm's axial bearing is given twice"),
+       ('[wheel]\nmass = 30\n[wheelBearing]\nradialStiffness = 1e9\naxialStiffness = 1e9\n'
+        '[[loadSide]]\ninertia = 0.5\nstiffness = 2e4\n', 'which has no load-side chain'),
+       ('[wheel]\nmass = 30\n[wheelBearing]\nradialStiffness = -1e9\naxialStiffness = 1e9\n',
+        "'wheelRadialStiffness' must be > 0 N/m, got -1e+09")]
+
+
+@pytest.mark.parametrize('text, message', BAD)
+def test_bad_bearing_tables_give_one_line(capsys, tmp_path, text, message):
+    status, out, err = _Run(capsys, 'simulate', '--config', _File(tmp_path, text), '--end-time', '0.1')
+    assert status == 2
+    assert message in err and len(err.strip().splitlines()) == 1 and 'Traceback' not in err
+
+
+@pytest.mark.slow
+def test_simulate_reports_bearing_loads_as_the_python_builder(capsys, tmp_path):
+    """simulate on the drive file: exit 0, windows with bearingLoads, the series in the CSV; the same peaks (1e-6)
+    as the Python builder with the same bearings, masses and step, run as one solve."""
+    path = tmp_path / 'run.csv'
+    status, out, err = _Run(capsys, 'simulate', '--config', DRIVE_3D, '--end-time', '0.4', '--windows',
+                            '0:0.2,0.2:0.4', '--no-check-step', '--json', '--csv', str(path), '--quiet')
+    assert status == 0, err
+    data = json.loads(out)
+    assert all(set(w['bearingLoads']) == LOAD_KEYS for w in data['windows'])
+    with path.open() as f:
+        header = next(csv.reader(f))
+    assert {'wormAxialLoad [N]', 'wormRadialLoad [N]', 'wheelAxialLoad [N]', 'wheelRadialLoad [N]',
+            'meshWheelTangential [N]'} <= set(header)
+
+    model = BuildRigidBodyReelChanger(GetPreset('reel-P1'), wormBearings=WORM, wheelBearings=WHEEL, wormMass=5.,
+                                      wheelMass=30.)
+    model.connector.AddSensors(model.mbs)
+    model.mbs.Assemble()
+    ss, solverType = SolverSettings(0.4, data['stepSize'])
+    model.mbs.SolveDynamic(ss, solverType=solverType)
+    loads = StoredShaftLoads(model)
+    for window in data['windows']:
+        inside = (loads['time'] >= window['t0'] - 1e-9) & (loads['time'] <= window['t1'] + 1e-9)
+        for key in LOAD_KEYS:
+            expected = np.max(np.abs(loads[key + 'Load'][inside]))
+            assert window['bearingLoads'][key] == pytest.approx(expected, rel=1e-6), key
+    # lifting in steady state: the worm's axial bearing carries the wheel's tangential force
+    assert data['windows'][0]['bearingLoads']['wormAxial'] == pytest.approx(
+        data['windows'][0]['maxNormalForce'] * 0.9234, rel=0.01)
+
+
+def test_axial_bearing_file_keeps_the_one_angle_model(capsys, tmp_path):
+    path = _File(tmp_path, '[axialBearing]\nstiffness = "1e9 N/m"\nmass = "5 kg"\n')
+    drive = ResolveDrive(config=path)
+    assert not drive.isRigidBody and drive.components == (Component.AXIAL_BEARING,)
+    status, out, err = _Run(capsys, 'simulate', '--config', path, '--end-time', '0.2', '--no-check-step', '--json',
+                            '--quiet')
+    assert status == 0, err
+    assert all('bearingLoads' not in w for w in json.loads(out)['windows'])
+
+
+def test_stiff_bearings_give_the_verdict_of_the_one_angle_drive():
+    """AnalyzeDrive linearizes the 3D model for a drive with shaft bearings: with bearings of 1e13 N/m the deciding
+    eigenvalue of P1 is the two-mass drive's (1e-3); with the file's bearings the step rule leaves the bearings'
+    own modes (above 900 Hz) out."""
+    stiff = {f'{b}{k}': 1e13 for b in ('worm', 'wheel') for k in ('RadialStiffness', 'AxialStiffness')}
+    stiff.update(wormMass=5., wheelMass=30., wormBearingSpan=0.5, wheelBearingSpan=0.5)
+    rigid, reference = AnalyzeDrive({**GetPreset('reel-P1'), **stiff}), AnalyzeDrive(GetPreset('reel-P1'))
+    assert rigid.drive.isRigidBody and rigid.model == 'linearized' and rigid.stable == reference.stable
+    assert rigid.maxRealPart == pytest.approx(reference.maxRealPart, rel=1e-3)
+    assert rigid.frequencyHz == pytest.approx(reference.frequencyHz, rel=1e-3)
+    elastic = dict(ResolveDrive(config=DRIVE_3D).parameters)
+    assert RecommendedStepSize(elastic) > 0.5 * RecommendedStepSize(GetPreset('reel-P1'))
+
+
+def test_ideal_joint_loads_are_the_statics_of_the_mesh_force():
+    """On ideal joints the bearing loads are the joints' reactions: at the start (static equilibrium) the worm's
+    axial load is the wheel's tangential force, its radial load the worm's tangential and separating forces together,
+    and the wheel's loads the same forces seen from the wheel (to 1e-6)."""
+    model = BuildRigidBodyReelChanger(GetPreset('reel-P1'))
+    model.connector.AddSensors(model.mbs)
+    model.mbs.Assemble()
+    ss, solverType = SolverSettings(0.01, 1e-3)
+    model.mbs.SolveDynamic(ss, solverType=solverType)
+    loads = StoredShaftLoads(model)
+    forces = model.connector.StoredMeshForces(model.mbs)
+    assert abs(loads['wormAxialLoad'][0]) == pytest.approx(abs(forces['wormAxial'][0]), rel=1e-6)
+    assert loads['wormRadialLoad'][0] == pytest.approx(np.hypot(forces['wormTangential'][0], forces['wormRadial'][0]),
+                                                       rel=1e-6)
+    assert abs(loads['wheelAxialLoad'][0]) == pytest.approx(abs(forces['wheelAxial'][0]), rel=1e-6)
+    assert loads['wheelRadialLoad'][0] == pytest.approx(np.hypot(forces['wheelTangential'][0],
+                                                                 forces['wheelRadial'][0]), rel=1e-6)
+    assert abs(forces['wormAxial'][0]) > 1e4
+
+
+def test_chatter_command_refuses_the_3d_model(capsys):
+    status, out, err = _Run(capsys, 'chatter', '--config', DRIVE_3D, '--vary', 'J1=0.05:0.3')
+    assert status == 2 and len(err.strip().splitlines()) == 1
+    assert 'the periodic orbits are those of the one-angle model' in err
