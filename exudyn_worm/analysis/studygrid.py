@@ -219,7 +219,12 @@ class StudyGrid(_SequenceABC):
         return {k: point[k] for k in self._keys}
 
     def __eq__(self, other) -> bool:
+        if isinstance(other, StudyGrid):         # two grids: by their definition, without building a point
+            return (self._keys, self._values, self._size) == (other._keys, other._values, other._size) and (
+                self._zipped == other._zipped or len(self._keys) < 2)
         return isinstance(other, _SequenceABC) and len(other) == len(self) and all(a == b for a, b in zip(self, other))
+
+    __hash__ = None
 
     def Shape(self) -> str:
         """``'J1: 10000 x kT: 10000'`` (zipped: ``'J1, kT zipped: 100'``), for messages."""
