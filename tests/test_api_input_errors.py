@@ -13,6 +13,8 @@ from exudyn_worm.analysis.charts import ComputeStabilityChart, PresetChartPoints
 from exudyn_worm.model.contact import MeshContact, NUMPY_OPS
 from exudyn_worm.analysis.design import DesignCheck
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability
+from exudyn_worm.model.friction import AgmaFriction
+from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.setups.presets import GearFromParameters
 
 P1 = ew.GetPreset('reel-P1')
@@ -172,6 +174,25 @@ CASES = {
                                 "ContactOptions: 'dampingCanPull' must be True or False, got str 'yes'"),
     'fixedS True': (lambda: ew.ContactOptions(fixedS=True), ValueError,
                     "ContactOptions: 'fixedS' must be None, +1 or -1, got True"),
+    # "can't multiply sequence by non-int of type 'float'"
+    'friction speed a string': (lambda: AgmaFriction().Mu('1'), TypeError,
+                                ("AgmaFriction.Mu: 'v' (sliding speed) must be a number >= 0 in m/s", "got str '1'")),
+    # taken as the default preset
+    'empty preset name': (lambda: ResolveParameters(preset=''), ValueError,
+                          ("ResolveParameters: 'preset' must name a preset, got an empty name ''",
+                           'expected one of: chart, reel-P1')),
+    # "ElasticDrive: 'dT' must be finite (N*m*s/rad), got inf"
+    'inertia that overflows the damping': (lambda: ew.DriveFromParameters({**P1, 'J1': 1e308}), ValueError,
+                                           ("parameter set: 'J1' = 1e+308 kg*m^2 is out of range (it must be > 0 "
+                                            "kg*m^2", 'dT = 2 DT sqrt(kT J1)')),
+    # "missing parameter(s) mx, z2, q" although z1 itself is out of range
+    'fractional starts': (lambda: ew.DriveFromParameters(ew.ApplyOverrides(P1, {'z1': 1.5})), ValueError,
+                          "parameter set: 'z1' must be a whole number >= 1 (a count of teeth or starts), got 1.5"),
+    # a list of 1e8 floats per axis, then 48 GB of coefficients
+    'chart grid too large': (lambda: ComputeStabilityChart(GearFromParameters(ew.GetPreset('chart'), meshDamping=False),
+                                                           0.1, 0.014, 1., resolution=20000), ValueError,
+                             ("ComputeStabilityChart: 'resolution' 20000 x 20000 = 400,000,000 grid points is above "
+                              "the limit of 4,000,000",)),
 }
 
 

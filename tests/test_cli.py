@@ -192,6 +192,11 @@ BAD_CASES = {
     'wrong unit in config': "'kT' must be in N*m/rad",
     'missing --set value': 'argument --set: expected one argument',
     'removed validate command': "invalid choice: 'validate'",
+    # the messages of the fault corpus: an empty preset name was taken as the default, J1 = 1e308 blamed dT,
+    # z1 = 1.5 asked for the other keys of its geometry form
+    'empty preset': "'preset' must name a preset, got an empty name ''; expected one of: chart, reel-P1",
+    'huge inertia': "'J1' = 1e+308 kg*m^2 is out of range (it must be > 0 kg*m^2 and of a size a drive can have)",
+    'fractional starts': "'z1' must be a whole number >= 1 (a count of teeth or starts), got 1.5",
 }
 
 
@@ -227,6 +232,9 @@ def _Bad(tmp_path):
         'wrong unit in config': ['stability', '--config', str(wrongUnit)],
         'missing --set value': ['stability', '--set'],
         'removed validate command': ['validate', '--quick'],
+        'empty preset': ['stability', '--preset', ''],
+        'huge inertia': ['stability', '--set', 'J1=1e308'],
+        'fractional starts': ['stability', '--set', 'z1=1.5'],
     }
 
 

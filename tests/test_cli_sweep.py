@@ -48,6 +48,29 @@ def test_bad_input(capsys, argv, text):
     _Error(capsys, argv, text)
 
 
+@pytest.mark.parametrize('argv, texts', [
+    (['--vary', 'J9=1:2:2'], ["the drive-side chain must be J4, J5, ... without gaps", "missing 'J4'",
+                              'every run would fail (varied: J9)']),
+    (['--vary', 'J1=nan:0.3:3'], ["ParseVariation: 'J1=nan:0.3:3': START: 'J1' must be finite, got 'nan'"]),
+    (['--vary', 'z1=1,1.5'], ["'z1' must be a whole number >= 1 (a count of teeth or starts), got 1.5"]),
+    (['--vary', 'J1=0.01:0.4:10000', '--vary', 'kT=700:14000:10000'],
+     ['the study has 100,000,000 runs (J1: 10,000 x kT: 10,000), above the limit of 100,000 runs per call',
+      'split it into at least 1,000 shards', '--shard i/1000 for i = 0 ... 999', 'raise --max-runs']),
+    (['--vary', 'J1=0.01:0.4:100000000'], ['100,000,000 values are above the limit of 1,000,000 values']),
+    (['--vary', 'J1=0.1:0.2:10', '--max-runs', '4', '--shard', '0/2'],
+     ["shard 0/2 has 5 of the study's 10 runs (J1: 10), above the limit of 4 runs", 'at least 3 shards']),
+])
+@pytest.mark.messages
+def test_refused_before_any_run(capsys, tmp_path, argv, texts):
+    """A study that would fail every run, or is too large for one call, is refused at once: one line, exit 2,
+    nothing written (the 1e8-point grid grew to 11.5 GB before a MemoryError)."""
+    assert Main(['sweep', *argv, '--output', str(tmp_path / 's.csv')] + SHORT) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith('exudyn-worm: error:'), err
+    assert all(t in err[0] for t in texts), err
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_output_checked_before_computing(capsys, tmp_path):
     _Error(capsys, ['sweep', '--vary', 'J1=0.1', '--output', str(tmp_path / 'no' / 'a.csv')] + SHORT, 'does not exist')
     (tmp_path / 'other.csv').write_text('x\n')

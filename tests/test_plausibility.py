@@ -8,7 +8,9 @@ import warnings
 import pytest
 
 from exudyn_worm.model.gear import WormGear
-from exudyn_worm.params.plausibility import ImplausibleValueWarning
+from exudyn_worm.analysis.stepsize import RecommendedStepSize
+from exudyn_worm.params.plausibility import (MAX_WORM_SPEED_RATIO, MIN_STEPS_PER_ROTATION, CheckWormRotation,
+                                             CheckWormSpeed, ImplausibleValueWarning, UnresolvedRotationWarning)
 from exudyn_worm.setups.presets import PRESETS, ElasticDriveFromParameters, GearFromParameters, GetPreset
 
 deg = math.radians
@@ -94,3 +96,67 @@ def test_cli_warns_once_on_stderr(tmp_path):
 def test_api_refusal_from_a_parameter_set():
     with pytest.raises(ValueError, match=r"mm given as m\? 18.05 mm = 0.01805 m"):
         ElasticDriveFromParameters({**GetPreset('reel-P1'), 'r1': 18.05})
+
+
+# --- speeds and loads of a simulation --------------------------------------------------------------------------
+REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
+
+
+@pytest.mark.parametrize('name', REEL_PRESETS)
+def test_preset_speeds_are_plausible(name):
+    p = GetPreset(name)
+    with warnings.catch_warnings():
+        warnings.simplefilter('error')
+        CheckWormRotation(p, RecommendedStepSize(p))
+        CheckWormSpeed([0., p['motorSpeed'], -2. * p['motorSpeed']], [p['motorSpeed']], p)   # chatter: a few times
+
+
+def test_a_worm_rotation_in_fewer_than_a_few_steps_is_warned():
+    """The corpus's case: motorSpeed = 1e6 rad/s turns the worm once in 6.3 us, far less than one step."""
+    p = {**GetPreset('reel-P1'), 'motorSpeed': 1e6}
+    with pytest.warns(UnresolvedRotationWarning, match=r"'motorSpeed' = 1e\+06 rad/s \(9.549e\+06 rpm\) turns the worm "
+                                                       r"once in 6.28e-06 s, fewer than 10 time steps of 0.000776 s"):
+        CheckWormRotation(p, 7.76e-4, 'SimulateReelChanger')
+    assert issubclass(UnresolvedRotationWarning, ImplausibleValueWarning)
+    # at the limit: 10 steps per rotation are not warned about, 9.9 are
+    with warnings.catch_warnings():
+        warnings.simplefilter('error')
+        CheckWormRotation({'motorSpeed': 2 * math.pi / (MIN_STEPS_PER_ROTATION * 1e-3)}, 1e-3)
+    with pytest.warns(UnresolvedRotationWarning):
+        CheckWormRotation({'motorSpeed': 2 * math.pi / (MIN_STEPS_PER_ROTATION * 0.99e-3)}, 1e-3)
+    with pytest.warns(UnresolvedRotationWarning, match="'noLoadSpeed' = 5000 rad/s"):
+        CheckWormRotation({'motorType': 'characteristic', 'noLoadSpeed': 5000.}, 1e-3)
+
+
+def test_a_worm_far_faster_than_the_motor_is_warned():
+    p = {**GetPreset('reel-P1'), 'loadMass': 1e9}
+    with pytest.warns(ImplausibleValueWarning, match=r"the worm reached -3.4e\+06 rad/s, 6.87e\+04 times the motor's "
+                                                     r"largest speed 49.48 rad/s .*loadMass = 1e\+09 kg, leverArm = "
+                                                     r"1.2 m\); check the load values"):
+        CheckWormSpeed([49.48, -3.4e6], [49.48, 49.48], p, 'SimulateReelChanger')
+    with warnings.catch_warnings():          # ten times the motor's speed is the limit
+        warnings.simplefilter('error')
+        CheckWormSpeed([MAX_WORM_SPEED_RATIO * 49.48], [49.48], p)
+
+
+def test_cli_warns_of_a_load_that_drives_the_worm(tmp_path):
+    """loadMass = 1e9 kg ran through without a word, the worm at millions of rad/s; now one warning line."""
+    run = _Run('simulate', '--set', 'loadMass=1e9', '--end-time', '0.1', '--windows', '0:0.05,0.05:0.1', '--quiet',
+               '--no-check-step', cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith('exudyn-worm: warning: SimulateReelChanger: the worm reached '), lines
+    assert 'loadMass = 1e+09 kg' in lines[0] and 'Traceback' not in run.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_cli_names_a_rotation_shorter_than_a_step(tmp_path):
+    """motorSpeed = 1e6 rad/s: the warning says why before the refusal of a run shorter than one step."""
+    run = _Run('simulate', '--set', 'motorSpeed=1e6', cwd=tmp_path)
+    assert run.returncode == 2 and run.stdout == ''
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 2 and 'Traceback' not in run.stderr, run.stderr
+    assert lines[0].startswith("exudyn-worm: warning: simulate: 'motorSpeed' = 1e+06 rad/s (9.549e+06 rpm) turns the "
+                               "worm once in 6.28e-06 s")
+    assert lines[1].startswith('exudyn-worm: error: ')
+    assert list(tmp_path.iterdir()) == []

@@ -152,5 +152,6 @@ def test_cli_chart_over_speed(tmp_path):
 
 def test_cli_chart_over_speed_bad_input():
     run = _Cli('--speed', '0:100rpm:3')
-    assert run.returncode == 2 and "'motorSpeeds[0]' must be > 0 rad/s, got 0" in run.stderr
+    # refused as the --vary grid of a sweep is: at parsing, naming the specification and the key
+    assert run.returncode == 2 and "'motorSpeed=0:100rpm:3': 'motorSpeed' must be > 0 rad/s, got 0" in run.stderr
     assert 'Traceback' not in run.stderr

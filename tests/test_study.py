@@ -94,9 +94,11 @@ def _Study(*vary, **kw):
 
 def test_failed_run_is_recorded_and_others_finish(tmp_path):
     # loadMass = 1e20 kg: the Exudyn solver fails (1e9 kg runs through with the sticking friction);
-    # J1 < 0: the model refuses it; 175 kg: fine
+    # J1 < 0: the model refuses it (a Variation built directly: ParseVariation refuses it at once); 175 kg: fine
     study = _Study('loadMass=175,1e20')
-    study2 = Study(study.base, [ParseVariation('J1=0.1,-0.1')], **SHORT)
+    with pytest.raises(ValueError, match=r"ParseVariation: 'J1=0.1,-0.1': 'J1' must be > 0 kg\*m\^2, got -0.1"):
+        ParseVariation('J1=0.1,-0.1')
+    study2 = Study(study.base, [Variation('J1', (0.1, -0.1))], **SHORT)
     r = RunStudy(study, tmp_path / 'a.csv', workers=2, quiet=True)
     assert [row['status'] for row in r.rows] == ['ok', 'failed']
     assert 'Solve' in r.rows[1]['error'] and r.rows[1]['w0.t0'] is None

@@ -10,7 +10,8 @@ from pathlib import Path
 import pytest
 
 from exudyn_worm._files import OutputBusyError, OutputLock, WriteTextAtomically
-from exudyn_worm.analysis.study import ReadResults, RunStudy, Study, StudySidecarPath, Variation
+from exudyn_worm.analysis.study import (ReadResults, RunStudy, Study, StudyGrid, StudyPoints, StudySidecarPath,
+                                        Variation)
 from exudyn_worm.analysis.studyfiles import StudyFileWarning
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
@@ -141,3 +142,49 @@ def test_the_shards_of_a_job_array_merge_into_the_whole_study(tmp_path):
         other = tmp_path / 'other.csv'
         RunStudy(_Study(2), other, workers=1, quiet=True)
         ReadResults(shards[0], other)
+
+
+def test_a_shard_cut_short_resumes_alone_and_merges_with_the_others(tmp_path):
+    """One task of a job array killed after its first run: the same call again runs only the rest of its shard,
+    and the shard files merge into every run of the study once."""
+    study = _Study(5)
+    shards = [tmp_path / f'part-{i}.csv' for i in range(2)]
+    RunStudy(study, shards[0], workers=1, quiet=True, shard='0/2')              # runs 0, 2, 4
+
+    def Killed(row):
+        raise KeyboardInterrupt                                               # after its row is saved
+    with pytest.raises(KeyboardInterrupt):
+        RunStudy(study, shards[1], workers=1, quiet=True, shard='1/2', onRow=Killed)   # runs 1, 3: only 1 saved
+    assert [r['run'] for r in ReadResults(shards[1]).rows] == [1]
+    seen = []
+    resumed = RunStudy(study, shards[1], workers=1, quiet=True, shard='1/2', onRow=seen.append)
+    assert [r['run'] for r in seen] == [3] and [r['run'] for r in resumed.rows] == [1, 3]
+    merged = ReadResults(*shards)
+    assert [r['run'] for r in merged.rows] == [0, 1, 2, 3, 4]
+    assert [r['J1'] for r in merged.rows] == [p['J1'] for p in study.points]
+    assert all(r['status'] == 'ok' for r in merged.rows)
+    with pytest.raises(ValueError, match='shard'):                            # a shard file resumed as another shard
+        RunStudy(study, shards[1], workers=1, quiet=True, shard='0/2')
+
+
+def test_a_huge_grid_is_counted_not_built_and_refused_with_the_shards_to_split_into(tmp_path):
+    """A grid of 1e8 points grew to 11.5 GB before a MemoryError: its points are built only when asked for."""
+    base = ResolveParameters('reel-P1')
+    study = Study(base, [Variation('J1', tuple(0.01 + 1e-5 * i for i in range(10_000))),
+                         Variation('kT', tuple(700. + i for i in range(10_000)))])
+    assert len(study.points) == 100_000_000
+    assert study.points[10_001] == {'J1': 0.01 + 1e-5, 'kT': 701.} and study.points[-1] == study.points[99_999_999]
+    with pytest.raises(ValueError, match=r"^RunStudy: the study has 100,000,000 runs \(J1: 10,000 x kT: 10,000\), above "
+                                         r"the limit of 100,000 runs per call .* split it into at least 1,000 shards"):
+        RunStudy(study, tmp_path / 'big.csv')
+    with pytest.raises(ValueError, match=r"shard 1/2 has 2 of the study's 5 runs \(J1: 5\), above the limit of 1 runs "
+                                         r".*at least 5 shards"):
+        RunStudy(_Study(5), tmp_path / 'big.csv', shard='1/2', maxRuns=1)
+    assert list(tmp_path.iterdir()) == []
+    small = [Variation('J1', (1., 2., 3.)), Variation('kT', (10., 20.))]    # the order of StudyPoints: first slowest
+    assert list(StudyGrid(small)) == StudyPoints(small) == [{'J1': a, 'kT': b} for a in (1., 2., 3.) for b in (10., 20.)]
+    assert list(StudyGrid(small[:1] + [Variation('kT', (10., 20., 30.))], zipped=True)) == [
+        {'J1': 1., 'kT': 10.}, {'J1': 2., 'kT': 20.}, {'J1': 3., 'kT': 30.}]
+    assert list(StudyGrid([])) == [{}]
+    with pytest.raises(IndexError):
+        StudyGrid(small)[6]

@@ -42,7 +42,7 @@ from .quartic import MaxRealPart
 __all__ = ['StabilityChart', 'ComputeStabilityChart', 'ChartCoordinates', 'ChartCoefficients',
            'UnstableGrid', 'MaxRealPartGrid',
            'ChartPoints', 'PresetChartPoints', 'FirstCriterionCurves', 'FirstCriterionChart', 'DEFAULT_X_RANGE', 'DEFAULT_Y_RANGE',
-           'DEFAULT_RESOLUTION']
+           'DEFAULT_RESOLUTION', 'MAX_CHART_POINTS']
 
 #: default stiffness-ratio range kT/(kV r1^2) (validation/README.md fixes this chart domain)
 DEFAULT_X_RANGE = (1e-4, 1e2)
@@ -50,6 +50,11 @@ DEFAULT_X_RANGE = (1e-4, 1e2)
 DEFAULT_Y_RANGE = (1e-6, 1.)
 #: default number of grid points per axis
 DEFAULT_RESOLUTION = 400
+#: grid points of one chart (nx * ny) above which it is refused before any array is built: the coefficients, the
+#: verdicts and the margin take about 120 bytes per point (measured: 2000 x 2000 peaks at 0.51 GB), so the limit
+#: holds a chart below 0.5 GB
+MAX_CHART_POINTS = 4_000_000
+_BYTES_PER_CHART_POINT = 120
 
 # --- evaluation at chart coordinates (broadcasting) ---------------------------------------------------------
 def _CheckGear(where, gear, J2):
@@ -493,6 +498,11 @@ def _Resolution(where, resolution) -> Tuple[int, int]:
         if not 2 <= n <= 20000:
             raise ValueError(f"{where}: 'resolution' must be in [2, 20000] grid points per axis, got {n}")
         out.append(int(n))
+    if out[0] * out[1] > MAX_CHART_POINTS:     # refused before any array: about 120 bytes per grid point
+        raise ValueError(f"{where}: 'resolution' {out[0]} x {out[1]} = {out[0] * out[1]:,} grid points is above the "
+                         f"limit of {MAX_CHART_POINTS:,} (about {_BYTES_PER_CHART_POINT} bytes of memory each: "
+                         f"{out[0] * out[1] * _BYTES_PER_CHART_POINT / 1e9:.3g} GB); give a coarser resolution, or "
+                         f"split 'xRange' / 'yRange' into several charts")
     return out[0], out[1]
 
 

@@ -26,6 +26,7 @@ from ..items.equilibrium import SteadyInitialState  # re-exported: it lived here
 from ..setups.presets import (REEL_KEYS, AxialBearingFromParameters, ShaftSupportsFromParameters, CheckParameterKeys, ElasticDriveFromParameters, DriveSideChain,
                       LoadSideChain, MissingParameterError)
 from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
+from ..params.plausibility import CheckWormRotation, CheckWormSpeed
 from ..items.results import SimulationResult
 from ..items.solve import SolveDynamicInChunks, SolverDivergedError
 from .stepsize import CheckStepSize, RecommendedStepSize
@@ -614,6 +615,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
     steps = CheckRunSize(endTime, stepSize, maxSteps, w)
     CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
+    CheckWormRotation(parameters, stepSize, w)      # warns: a worm rotation in fewer than a few steps
     rigid = ShaftSupportsFromParameters(parameters, w) is not None     # the 3D model (docs/mesh-3d.md)
     if rigid:
         # lazy: the 3D model's module builds on this one's helpers
@@ -666,6 +668,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
         series['axialForce'] = mesh.axialForce
     if rigid:
         series.update(reelchanger3d.MeshForceSeries(model, mesh))
+    CheckWormSpeed(series['omega1'], series.get('omega0', ()), parameters, w)   # warns: the load drives the worm
     return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
                             steps=steps, info={'stepSize': stepSize,
                                                'maxLoadTorque': model.load.maximum if model.load is not None else 0.,

@@ -46,7 +46,8 @@ from .._workers import CancelPool, SigtermAsInterrupt, WorkerInit
 from ..progress import ProgressBar
 # the definition, one run and the files live in their own modules (documented there); their public names are
 # importable from here, as before the split
-from .studygrid import ParseShard, ParseVariation, ShardIndices, Study, StudyPoints, Variation
+from .studygrid import (MAX_RUNS, CheckStudySize, ParseShard, ParseVariation, ShardIndices, Study, StudyGrid, StudyPoints,
+                        Variation)
 from .studypoint import HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, RunPoint, VibrationSeconds
 from .studyfiles import (ReadResults, StudyResult, StudySidecarPath, _CheckOutput, _CheckOutputPath, _Columns, _CsvText, _Versions,
                          _WriteSidecar)
@@ -87,7 +88,8 @@ def _Executor(engine: str, workers: Optional[int]):
 
 def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers: Optional[int] = None,
              engine: str = 'process', shard: Union[str, Tuple[int, int], None] = None, quiet: Optional[bool] = None,
-             overwrite: bool = False, onRow: Optional[Callable[[Dict], None]] = None) -> StudyResult:
+             overwrite: bool = False, onRow: Optional[Callable[[Dict], None]] = None,
+             maxRuns: Optional[int] = None) -> StudyResult:
     """Run a study in parallel; write each run to ``output`` as it finishes; resume a study cut short.
 
     Parameters
@@ -113,6 +115,10 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
         Delete an existing ``output`` (and sidecar) instead of resuming it.
     onRow : callable, optional
         Called with each new row (flat dict) as it arrives.
+    maxRuns : int, optional
+        Runs this call may hold (the study's, or its shard's), >= 1; default
+        :data:`~exudyn_worm.analysis.studygrid.MAX_RUNS` (100,000: about 0.9 GB in the parent). A larger study is
+        refused before any run, saying into how many shards to split it.
 
     Returns
     -------
@@ -122,7 +128,8 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     Raises
     ------
     ValueError
-        For bad arguments or an output file that cannot be written or belongs to another study.
+        For bad arguments, a study (or shard) of more than ``maxRuns`` runs, or an output file that cannot be
+        written or belongs to another study.
     KeyboardInterrupt
         On Ctrl-C or SIGTERM, after the finished runs are saved (rerun the same call to resume); the queued
         runs are cancelled and the running ones stopped at once (a process pool's workers are terminated).
@@ -138,6 +145,7 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
         raise ValueError(f"{where}: 'workers' must be a whole number >= 1, got {workers!r}")
     output = Path(output) if output is not None else None
+    CheckStudySize(study, shard, maxRuns, where)          # before the list of runs is built
     indices = ShardIndices(len(study.points), shard)
     with contextlib.ExitStack() as stack:
         stack.enter_context(SigtermAsInterrupt())         # SIGTERM (a scheduler's limit) saves the runs as Ctrl-C

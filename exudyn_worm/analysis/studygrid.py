@@ -2,25 +2,37 @@
 factorial or zipped study, the :class:`Study` itself and the shards of a job array."""
 from __future__ import annotations
 
-import itertools
 import json
+import math
+import operator
+from collections.abc import Sequence as _SequenceABC
 from dataclasses import dataclass, field
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from ..setups.config import ParseQuantity
 from ..params.parameters import PARAMETERS
-from ..setups.presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys
+from ..setups.presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, DriveSideChain, LoadSideChain
 from ..items.results import CheckWindows
 from .._checks import CheckPositive
 from ..setups.duty import IsReelChangerDuty
 from .reelchanger import DefaultWindows
 
-__all__ = ['Variation', 'ParseVariation', 'StudyPoints', 'Study', 'ParseShard', 'ShardIndices']
+__all__ = ['MAX_RUNS', 'MAX_VALUES', 'BYTES_PER_RUN', 'Variation', 'ParseVariation', 'StudyPoints', 'StudyGrid', 'Study',
+           'ParseShard', 'ShardIndices', 'ShardSize', 'CheckStudySize']
 
 
 _NUMBER_OF_DEFAULT_WINDOWS = 3          # DefaultWindows: lift, lower, lift
+
+#: runs one call of :func:`~exudyn_worm.analysis.study.RunStudy` (a study, or one shard of it) may hold: the parent
+#: keeps each run's work item and row until the call ends (about 9 kB per run, :data:`BYTES_PER_RUN`), so the
+#: limit keeps it below 1 GB; a larger study runs as shards (``shard='i/N'``, ``exudyn-worm sweep --shard i/N``)
+MAX_RUNS = 100_000
+#: memory of the parent per run of a study, in bytes: work item, its pickle, future and result row (measured with
+#: tracemalloc over 2,000 runs of a P1 study with 47 columns: 8.7 kB)
+BYTES_PER_RUN = 9_000
+#: values one variation may hold (each is kept in the study's definition and its JSON sidecar)
+MAX_VALUES = 1_000_000
 
 
 @dataclass(frozen=True)
@@ -91,14 +103,15 @@ def ParseVariation(text: str, log: bool = False) -> Variation:
             fields = fields[:3]
         if len(fields) != 3:
             raise ValueError(f"{context}: a grid is START:STOP:COUNT[:lin|log], e.g. 'J1=0.01:0.4:8'")
-        start, stop = (ParseQuantity(key, f) if f else _Raise(context, 'START and STOP must be given')
-                       for f in fields[:2])
+        start, stop = (PARAMETERS.Parse(key, f, f"{context}: {name}") if f
+                       else _Raise(context, 'START and STOP must be given') for f, name in zip(fields[:2], ('START', 'STOP')))
         try:
             count = int(fields[2])
         except ValueError:
             raise ValueError(f"{context}: COUNT must be a whole number >= 1, got {fields[2]!r}") from None
         if count < 1:
             raise ValueError(f"{context}: COUNT must be >= 1, got {count}")
+        _CheckValueCount(context, count)
         if count > 1 and start == stop:
             raise ValueError(f"{context}: START and STOP must differ for COUNT > 1")
         if log:
@@ -113,10 +126,20 @@ def ParseVariation(text: str, log: bool = False) -> Variation:
         values[-1] = stop if count > 1 else start
     else:
         items = [item.strip() for item in spec.split(',')]
+        _CheckValueCount(context, len(items))
         if any(not item for item in items):
             raise ValueError(f"{context}: empty value in the list (V1,V2,...)")
-        values = [ParseQuantity(key, item) for item in items]
+        values = [PARAMETERS.Parse(key, item, context) for item in items]
+    for value in values:                  # the range of the key (J1 > 0, z1 a whole number), before any run
+        PARAMETERS.Check(key, value, context)
     return Variation(key, tuple(values), text)
+
+
+def _CheckValueCount(context: str, count: int) -> None:
+    if count > MAX_VALUES:        # refused before the values are built
+        raise ValueError(f"{context}: {count:,} values are above the limit of {MAX_VALUES:,} values of one varied "
+                         f"parameter; give fewer (a study of more runs varies several parameters and runs as "
+                         f"shards, --shard i/N)")
 
 
 def _Raise(context, message):
@@ -143,15 +166,71 @@ def StudyPoints(variations: Sequence[Variation], zipped: bool = False) -> List[D
     ValueError
         For a key varied twice, or zipped variations of different lengths.
     """
-    keys = [v.key for v in variations]
-    repeated = sorted({k for k in keys if keys.count(k) > 1})
-    if repeated:
-        raise ValueError(f"StudyPoints: parameter(s) {', '.join(repeated)} varied more than once")
-    if zipped and len({len(v.values) for v in variations}) > 1:
-        lengths = ', '.join(f"{v.key}: {len(v.values)}" for v in variations)
-        raise ValueError(f"StudyPoints: zipped variations need equal numbers of values, got {lengths}")
-    combos = zip(*(v.values for v in variations)) if zipped else itertools.product(*(v.values for v in variations))
-    return [dict(zip(keys, combo)) for combo in combos]
+    return list(StudyGrid(variations, zipped, 'StudyPoints'))
+
+
+class StudyGrid(_SequenceABC):
+    """The points of a study as a sequence that builds each point when asked (the order of :func:`StudyPoints`):
+    its size is known at once, and no memory is taken by the points of a grid however large.
+
+    Parameters
+    ----------
+    variations : sequence of Variation
+        One per varied key; keys must be distinct.
+    zipped : bool, optional
+        Pair the i-th values of all variations (equal lengths) instead of the full factorial.
+    where : str, optional
+        Prefix of the error messages.
+
+    Raises
+    ------
+    ValueError
+        For a key varied twice, or zipped variations of different lengths.
+    """
+
+    def __init__(self, variations: Sequence[Variation], zipped: bool = False, where: str = 'StudyGrid'):
+        keys = [v.key for v in variations]
+        repeated = sorted({k for k in keys if keys.count(k) > 1})
+        if repeated:
+            raise ValueError(f"{where}: parameter(s) {', '.join(repeated)} varied more than once")
+        if zipped and len({len(v.values) for v in variations}) > 1:
+            lengths = ', '.join(f"{v.key}: {len(v.values)}" for v in variations)
+            raise ValueError(f"{where}: zipped variations need equal numbers of values, got {lengths}")
+        self._keys, self._values, self._zipped = keys, [tuple(v.values) for v in variations], bool(zipped)
+        self._size = (len(self._values[0]) if self._values else 1) if zipped else math.prod(map(len, self._values))
+
+    def __len__(self) -> int:
+        return self._size
+
+    def __getitem__(self, index):
+        if isinstance(index, slice):
+            return [self[i] for i in range(*index.indices(self._size))]
+        i = operator.index(index)
+        if i < 0:
+            i += self._size
+        if not 0 <= i < self._size:
+            raise IndexError(f"StudyGrid: point {index} of a study of {self._size} points")
+        if self._zipped:
+            return {k: values[i] for k, values in zip(self._keys, self._values)}
+        point = {}
+        for k, values in zip(reversed(self._keys), reversed(self._values)):   # the first key varies slowest
+            i, j = divmod(i, len(values))
+            point[k] = values[j]
+        return {k: point[k] for k in self._keys}
+
+    def __eq__(self, other) -> bool:
+        if isinstance(other, StudyGrid):         # two grids: by their definition, without building a point
+            return (self._keys, self._values, self._size) == (other._keys, other._values, other._size) and (
+                self._zipped == other._zipped or len(self._keys) < 2)
+        return isinstance(other, _SequenceABC) and len(other) == len(self) and all(a == b for a, b in zip(self, other))
+
+    __hash__ = None
+
+    def Shape(self) -> str:
+        """``'J1: 10000 x kT: 10000'`` (zipped: ``'J1, kT zipped: 100'``), for messages."""
+        if self._zipped:
+            return f"{', '.join(self._keys)} zipped: {self._size:,}"
+        return ' x '.join(f"{k}: {len(v):,}" for k, v in zip(self._keys, self._values)) or 'no variation'
 
 
 @dataclass
@@ -197,7 +276,7 @@ class Study:
     source: str = ''
     maxSteps: Optional[int] = None
     checkStep: Optional[bool] = None
-    points: List[Dict[str, float]] = field(init=False, repr=False)
+    points: StudyGrid = field(init=False, repr=False)
 
     def __post_init__(self):
         CheckParameterKeys(self.base, 'Study', 'base')
@@ -217,8 +296,14 @@ class Study:
         if self.checkStep is not None and not isinstance(self.checkStep, bool):
             raise TypeError(f"Study: 'checkStep' must be True, False or None (by the linear margin), "
                             f"got {self.checkStep!r}")
-        self.points = StudyPoints(self.variations, self.zipped)
+        self.points = StudyGrid(self.variations, self.zipped, 'Study')      # no point is built here
         first = ApplyOverrides(self.base, self.points[0])          # unknown keys raise here
+        for Chain in (DriveSideChain, LoadSideChain):   # a chain with a gap (J9 without J4) fails every run: refuse
+            try:
+                Chain(first)
+            except ValueError as err:
+                raise ValueError(f"Study: {err}; every run would fail (varied: {', '.join(self.keys) or 'none'})"
+                                 ) from None
         if self.windows is None and not IsReelChangerDuty(first):   # the phases of the first point's duty
             self.windows = DefaultWindows(first, self.endTime, minLength=1e-3)
 
@@ -302,6 +387,66 @@ def ShardIndices(numberOfRuns: int, shard: Optional[Tuple[int, int]]) -> List[in
         return list(range(numberOfRuns))
     i, n = shard
     return list(range(i, numberOfRuns, n))
+
+
+def ShardSize(numberOfRuns: int, shard: Optional[Tuple[int, int]]) -> int:
+    """The number of runs of one shard, ``len(ShardIndices(numberOfRuns, shard))``, without building the list.
+
+    Parameters
+    ----------
+    numberOfRuns : int
+        Runs in the whole study.
+    shard : (int, int) or None
+        ``(i, N)`` from :func:`ParseShard`; None for all runs.
+
+    Returns
+    -------
+    int
+    """
+    return numberOfRuns if shard is None else len(range(shard[0], numberOfRuns, shard[1]))
+
+
+def CheckStudySize(study: 'Study', shard: Optional[Tuple[int, int]] = None, maxRuns: Optional[int] = None,
+                   where: str = 'RunStudy', names: Tuple[str, str] = ('maxRuns', 'shard')) -> int:
+    """Refuse a study (or shard) of more than ``maxRuns`` runs before any run or list of runs is built.
+
+    Parameters
+    ----------
+    study : Study
+        The study (its points are not built: :class:`StudyGrid`).
+    shard : (int, int), optional
+        ``(i, N)`` from :func:`ParseShard`; None for the whole study.
+    maxRuns : int, optional
+        Runs one call may hold, >= 1 (default :data:`MAX_RUNS`).
+    where : str
+        Prefix of the message.
+    names : (str, str)
+        How the message names the limit and the shard (``('--max-runs', '--shard')`` on the command line).
+
+    Returns
+    -------
+    int
+        The runs of this call.
+
+    Raises
+    ------
+    ValueError
+        Above the limit: the message says the size, the limit and into how many shards the study must be split.
+    """
+    limit = MAX_RUNS if maxRuns is None else maxRuns
+    if isinstance(limit, bool) or not isinstance(limit, int) or limit < 1:
+        raise ValueError(f"{where}: '{names[0]}' must be a whole number >= 1 (runs), got {maxRuns!r}")
+    total = len(study.points)
+    runs = ShardSize(total, shard)
+    if runs <= limit:
+        return runs
+    shards = -(-total // limit)
+    what = (f"the study has {total:,} runs ({study.points.Shape()})" if shard is None else
+            f"shard {shard[0]}/{shard[1]} has {runs:,} of the study's {total:,} runs ({study.points.Shape()})")
+    raise ValueError(f"{where}: {what}, above the limit of {limit:,} runs per call ({names[0]}; the parent holds "
+                     f"about {BYTES_PER_RUN // 1000} kB per run: {runs * BYTES_PER_RUN / 1e9:,.1f} GB); split it into "
+                     f"at least {shards:,} shards, one call each with its own output: {names[1]} i/{shards} for "
+                     f"i = 0 ... {shards - 1} (a job array; ReadResults joins the files), or raise {names[0]}")
 
 
 def _Identity(definition: Mapping) -> Dict:

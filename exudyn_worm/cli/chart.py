@@ -209,7 +209,7 @@ def _Run(args: argparse.Namespace) -> int:
     if args.speed is not None:
         return _RunSpeed(args)
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.charts import ChartCoordinates, ComputeStabilityChart, PresetChartPoints
+    from ..analysis.charts import MAX_CHART_POINTS, ChartCoordinates, ComputeStabilityChart, PresetChartPoints
     from ..analysis.charttable import FormatChartTable
     from ..setups.presets import GearFromParameters, MissingParameterError
     from ..progress import ProgressBar
@@ -231,7 +231,7 @@ def _Run(args: argparse.Namespace) -> int:
                               S=args.S)
         for DTV in args.DTV[1:]:
             ComputeStabilityChart(gear, J2, DV, DTV, resolution=2, S=args.S)
-        if not 2 <= args.resolution <= 20000:
+        if not 2 <= args.resolution <= 20000 or args.resolution ** 2 > MAX_CHART_POINTS:
             ComputeStabilityChart(gear, J2, DV, args.DTV[0], resolution=args.resolution)
     if drive.components:
         print(f"exudyn-worm chart: note: the chart is the two-mass drive of Figure 2 with this gear and J2; "

@@ -33,13 +33,13 @@ def ParseVary(text: str) -> Tuple[str, float, float]:
     if not sep or len(parts) != 2 or not name or not all(p.strip() for p in parts):
         raise UsageError(f"--vary must be NAME=LOW:HIGH in SI units or with units (e.g. J1=0.05:0.3, "
                          f"motorSpeed=80rpm:89rpm), got {text!r}")
-    try:
-        low, high = (float(p) for p in parts)
-    except ValueError:
+    bounds = []
+    for bound, part in zip(('LOW', 'HIGH'), parts):    # a unit, a finite number (nan is no bound), a known key
         try:
-            low, high = (float(ParseQuantity(name, p.strip())) for p in parts)
+            bounds.append(float(ParseQuantity(name, part.strip())))
         except (ValueError, TypeError) as err:
-            raise UsageError(f"--vary {text}: {err}") from None
+            raise UsageError(f"--vary {text}: {bound}: {err}") from None
+    low, high = bounds
     if not low < high:
         raise UsageError(f"--vary {text}: LOW must be below HIGH, got {low:g}:{high:g}")
     return name, low, high

@@ -149,6 +149,7 @@ def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, in
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.reelchanger import MAX_STEPS, CheckReelChangerKeys, CheckRunSize, DefaultSimulatedTime, DefaultWindows
     from ..analysis.stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
+    from ..params.plausibility import CheckWormRotation
     with BadInput():
         CheckReelChangerKeys(parameters, 'simulate')
         stepSize = args.step_size if args.step_size is not None else RecommendedStepSize(parameters)
@@ -159,7 +160,8 @@ def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, in
             CheckStepSize(parameters, args.step_size, 'simulate --step-size')
     for warning in caught:
         print(f"exudyn-worm: warning: {warning.message}", file=sys.stderr)
-    with BadInput():
+    CheckWormRotation(parameters, stepSize, 'simulate')   # a step refused above stands alone; a run shorter than
+    with BadInput():                                       # one step is refused below, after this warning says why
         userWindows = ParseWindows(args.windows) if args.windows is not None else None
         endTime = args.end_time
         if endTime is None:
@@ -199,11 +201,15 @@ def _Run(args: argparse.Namespace) -> int:
     from ..analysis.reelchanger import PhaseLabel, SimulateReelChanger, WindowPhases
     from ..items.solve import SolverDivergedError
     from ..analysis.stepsize import CoarseStepWarning, CompareHalfStep, UNRESOLVED
+    from ..params.plausibility import ImplausibleValueWarning, UnresolvedRotationWarning
 
     def Simulate(h):
         try:
             with StdoutToStderr(args.json), warnings.catch_warnings():
                 warnings.simplefilter('ignore', CoarseStepWarning)      # reported above
+                warnings.simplefilter('ignore', UnresolvedRotationWarning)
+                if h != stepSize:          # the run at half the step repeats what the run at the step said
+                    warnings.simplefilter('ignore', ImplausibleValueWarning)
                 return SimulateReelChanger(parameters, endTime=endTime, stepSize=h, maxSteps=maxSteps,
                                            useSymbolic=not args.python_user_functions,
                                            progress=False if args.quiet else None)

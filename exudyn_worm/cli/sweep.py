@@ -34,6 +34,9 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                              "under 'mpiexec -n N python -m mpi4py.futures -m exudyn_worm sweep ...'")
     parser.add_argument('--shard', metavar='i/N', default=None,
                         help='run only the runs i, i+N, i+2N, ... (0 <= i < N), e.g. one task of a job array')
+    parser.add_argument('--max-runs', type=PositiveInt('runs'), default=None, metavar='N',
+                        help='refuse a study (or shard) of more than N runs before any run, saying into how many '
+                             'shards to split it (default 100000: the parent holds about 9 kB per run)')
     parser.add_argument('--end-time', type=float, default=None, metavar='S',
                         help='simulated time in s (default: one rotation of each run)')
     parser.add_argument('--step-size', type=float, default=None, metavar='S',
@@ -114,8 +117,10 @@ def _DefaultMetric(study) -> str:
 
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.study import RunStudy, StudySidecarPath
+    from ..analysis.study import CheckStudySize, ParseShard, RunStudy, StudySidecarPath
     study = _Study(args)
+    with BadInput():              # a grid too large for one call is refused before anything is built or written
+        CheckStudySize(study, ParseShard(args.shard), args.max_runs, 'sweep', ('--max-runs', '--shard'))
     if args.output:
         # an existing results file is resumed (same study) or refused naming what differs (RunStudy)
         CheckOutputPath(args.output, '--output', overwrite=True)
@@ -125,7 +130,8 @@ def _Run(args: argparse.Namespace) -> int:
     try:
         with BadInput(), StdoutToStderr(args.json):
             result = RunStudy(study, output=args.output, workers=args.workers, engine=args.engine,
-                              shard=args.shard, quiet=True if args.quiet else None, overwrite=args.overwrite)
+                              shard=args.shard, quiet=True if args.quiet else None, overwrite=args.overwrite,
+                              maxRuns=args.max_runs)
     except KeyboardInterrupt as err:
         return InterruptedLine(err, f"finished runs are saved in '{args.output}'; run the same command again to "
                                     f"resume" if args.output else

@@ -42,7 +42,7 @@ import re
 import warnings
 from dataclasses import dataclass, field
 from types import SimpleNamespace
-from typing import Optional, Sequence, Tuple, Union
+from typing import Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -86,6 +86,9 @@ def _IsSymbolic(v) -> bool:
 
 def _CheckSpeed(where: str, v):
     """Python and numpy speeds must be >= 0 m/s (symbolic ones are recorded as given)."""
+    if v is None or isinstance(v, (str, bytes, bool, Mapping)):        # no speed, and not symbolic either
+        raise TypeError(f"{where}: 'v' (sliding speed) must be a number >= 0 in m/s, an array of them or a "
+                        f"symbolic expression, got {type(v).__name__} {v!r}")
     if _IsSymbolic(v):
         return v
     if np.ndim(v) == 0 and not isinstance(v, np.ndarray):

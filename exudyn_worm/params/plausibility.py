@@ -16,18 +16,35 @@ reasons for each choice are in docs/gear-data.md, "Plausibility checks".
   gamma + rho < 90 deg; mu >= 1 is named as a percentage given as a number (``5`` for 5 %).
 - worm radius r1 above the wheel radius r2: **warned**. Unusual (the diameter quotient q above the number
   of wheel teeth z2) but not impossible when u >= 1.
+
+Speeds and loads of a simulation (:func:`CheckWormRotation` before it, :func:`CheckWormSpeed` after it):
+
+- one rotation of the worm at the motor's largest speed shorter than :data:`MIN_STEPS_PER_ROTATION` time steps:
+  **warned**. The mesh is not resolved in time; the usual cause is a speed in rpm given as rad/s.
+- the worm faster than :data:`MAX_WORM_SPEED_RATIO` times the motor's largest speed: **warned**. The load
+  overpowers the drive (``loadMass = 1e9`` kg spins the worm backwards at millions of rad/s); the usual cause
+  is a mass, lever or torque off by orders of magnitude.
 """
 from __future__ import annotations
 
 import math
 import warnings
+from typing import Any, Mapping, Sequence
+
+import numpy as np
 
 from .parameters import PARAMETERS
 
-__all__ = ['ImplausibleValueWarning', 'MAX_PLAUSIBLE_MU', 'CheckGearPlausibility']
+__all__ = ['ImplausibleValueWarning', 'UnresolvedRotationWarning', 'MAX_PLAUSIBLE_MU', 'MIN_STEPS_PER_ROTATION', 'MAX_WORM_SPEED_RATIO',
+           'CheckGearPlausibility', 'CheckWormRotation', 'CheckWormSpeed']
 
 #: flank friction coefficient above which a gear is warned about; the paper's gears have 0.132
 MAX_PLAUSIBLE_MU = 0.5
+#: time steps per worm rotation below which a run is warned about (the mesh of each tooth passes in a few steps)
+MIN_STEPS_PER_ROTATION = 10
+#: worm speed, in multiples of the motor's largest speed, above which a run is warned about (chatter moves the worm
+#: by a fraction of its speed; ten times the motor's speed means the load drives the worm)
+MAX_WORM_SPEED_RATIO = 10.
 #: worm radius in m from which a message suggests mm given as m (a worm of 1 m diameter; a hint, not a limit)
 _LARGE_RADIUS = 0.5
 #: lead angle in rad above which a message suggests degrees given as rad (28.6 deg)
@@ -40,6 +57,11 @@ class ImplausibleValueWarning(UserWarning):
     Issued from one place (``stacklevel=1``), so that Python's default filter shows each message once per
     place; the command line shows each message once per run (filter ``'once'``).
     """
+
+
+class UnresolvedRotationWarning(ImplausibleValueWarning):
+    """One rotation of the worm in fewer than :data:`MIN_STEPS_PER_ROTATION` time steps (:func:`CheckWormRotation`);
+    a class of its own so that a caller that has said it once can silence the repetitions of the same run."""
 
 
 def _FileLine(key: str, value: float, unit: str) -> str:
@@ -107,3 +129,80 @@ def CheckGearPlausibility(gear: 'WormGear', where: str = 'WormGear') -> None:
         warnings.warn(f"{where}: the worm radius r1 = {r1:g} m is larger than the wheel radius r2 = {r2:g} m "
                       f"(unusual: diameter quotient q above the wheel teeth z2){_RadiusSlip('r1', r1)}",
                       ImplausibleValueWarning, stacklevel=1)
+
+
+def _MotorSpeed(parameters: Mapping[str, Any]) -> float:
+    """The motor's largest speed in rad/s from a flat parameter set: ``motorSpeed``, ``noLoadSpeed`` and the speeds
+    of a ``motorSpeedOverTime`` given as rows (0 if none is given)."""
+    speeds = [abs(float(parameters[k])) for k in ('motorSpeed', 'noLoadSpeed') if k in parameters]
+    table = parameters.get('motorSpeedOverTime')
+    if table is not None and not isinstance(table, str):
+        speeds += [abs(float(row[1])) for row in table]
+    return max(speeds, default=0.)
+
+
+def CheckWormRotation(parameters: Mapping[str, Any], stepSize: float, where: str = 'CheckWormRotation') -> None:
+    """Warn if one rotation of the worm at the motor's largest speed takes fewer than
+    :data:`MIN_STEPS_PER_ROTATION` time steps.
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (``motorSpeed``, ``noLoadSpeed`` or ``motorSpeedOverTime`` in rad/s).
+    stepSize : float
+        Time step of the simulation in s, > 0.
+    where : str
+        Prefix of the message.
+
+    Warns
+    -----
+    UnresolvedRotationWarning
+        (an :class:`ImplausibleValueWarning`) naming the speed in rad/s and rpm, the rotation time, the step and the
+        likely slip (rpm given as rad/s).
+    """
+    speed = _MotorSpeed(parameters)
+    if not speed > 0. or 2. * math.pi / speed >= MIN_STEPS_PER_ROTATION * stepSize:
+        return
+    key = next((k for k in ('motorSpeed', 'noLoadSpeed') if abs(float(parameters.get(k, 0.))) == speed),
+               'motorSpeedOverTime')
+    rpm = speed * 30. / math.pi
+    warnings.warn(f"{where}: '{key}' = {speed:g} rad/s ({rpm:.4g} rpm) turns the worm once in "
+                  f"{2. * math.pi / speed:.3g} s, fewer than {MIN_STEPS_PER_ROTATION} time steps of {stepSize:.3g} s: "
+                  f"the mesh is not resolved; rpm given as rad/s? {speed:g} rpm = {speed * math.pi / 30.:.4g} rad/s "
+                  f"(--set '{key}={speed:g} rpm')", UnresolvedRotationWarning, stacklevel=1)
+
+
+def CheckWormSpeed(wormSpeed: Sequence[float], motorSpeed: Sequence[float], parameters: Mapping[str, Any],
+                   where: str = 'CheckWormSpeed') -> None:
+    """Warn if the worm of a simulation ran faster than :data:`MAX_WORM_SPEED_RATIO` times the motor.
+
+    Parameters
+    ----------
+    wormSpeed : array_like
+        The worm's speed over the run in rad/s.
+    motorSpeed : array_like
+        The motor's speed over the run in rad/s.
+    parameters : mapping
+        The run's flat parameter set (its load keys are named in the message).
+    where : str
+        Prefix of the message.
+
+    Warns
+    -----
+    ImplausibleValueWarning
+        Naming the worm's extreme speed, the motor's largest speed, their ratio and the load values.
+    """
+    worm = np.asarray(wormSpeed, dtype=float)
+    if worm.size == 0 or not np.isfinite(worm).all():
+        return
+    reference = max(float(np.max(np.abs(motorSpeed))) if np.size(motorSpeed) else 0., _MotorSpeed(parameters))
+    extreme = float(worm[np.argmax(np.abs(worm))])
+    if abs(extreme) <= MAX_WORM_SPEED_RATIO * reference:
+        return
+    ratio = f", {abs(extreme) / reference:.3g} times the motor's largest speed {reference:.4g} rad/s" \
+        if reference > 0. else ' while the motor stands'
+    load = ', '.join(f"{k} = {parameters[k]:g} {PARAMETERS[k].unit}".rstrip() for k in
+                     ('loadMass', 'leverArm', 'loadTorque') if isinstance(parameters.get(k), (int, float)))
+    warnings.warn(f"{where}: the worm reached {extreme:.3g} rad/s{ratio} (warned above {MAX_WORM_SPEED_RATIO:g} "
+                  f"times): the load overpowers the drive{' (' + load + ')' if load else ''}; check the load values "
+                  f"and their units", ImplausibleValueWarning, stacklevel=1)

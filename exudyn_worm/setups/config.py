@@ -252,8 +252,8 @@ def ResolveParameters(preset: Optional[str] = None,
     Raises
     ------
     ValueError
-        For an unknown preset or key, an invalid value, an unreadable config file, or overrides giving
-        two forms of one quantity (e.g. ``dT`` and ``DT``).
+        For an unknown or empty preset name, an unknown key, an invalid value, an unreadable config file, or
+        overrides giving two forms of one quantity (e.g. ``dT`` and ``DT``).
 
     Examples
     --------
@@ -295,6 +295,9 @@ def ResolveParametersWithSources(preset: Optional[str] = None,
         raise TypeError(f"ResolveParameters: 'config' must be a path or a dict, got {type(config).__name__}")
     if preset is not None and not isinstance(preset, str):
         raise TypeError(f"ResolveParameters: 'preset' must be a string, got {type(preset).__name__}")
+    if preset is not None and not preset.strip():      # '' is no name: never taken silently for the default
+        raise ValueError(f"ResolveParameters: 'preset' must name a preset, got an empty name {preset!r}; expected "
+                         f"one of: {', '.join(PRESETS)} (or no preset: the default {DEFAULT_PRESET})")
     name = preset or cfg['preset'] or (None if cfg['wholeDrive'] else DEFAULT_PRESET)
     parameters = ApplyOverrides(GetPreset(name) if name else {}, cfg['parameters'])
     if isinstance(sets, (str, bytes)):

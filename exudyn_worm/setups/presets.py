@@ -248,6 +248,20 @@ def _Require(parameters, keys, what):
                                     f"KEY=VALUE or in the config file", missing)
 
 
+def _FiniteDamping(value: float, name: str, formula: str, inputs: Mapping[str, float]) -> float:
+    """``value``, a damping derived from its measure, if finite; else a ValueError naming the largest input, its
+    unit and range (``J1 = 1e308`` overflows ``dT``: the message blames J1, not the derived dT)."""
+    if math.isfinite(value):
+        return value
+    key = max(inputs, key=lambda k: abs(inputs[k]))
+    unit = PARAMETER_UNITS[key]
+    others = ', '.join(f"{k} = {v:g}{' ' + PARAMETER_UNITS[k] if PARAMETER_UNITS[k] else ''}"
+                       for k, v in inputs.items() if k != key)
+    raise ValueError(f"parameter set: '{key}' = {inputs[key]:g} {unit} is out of range (it must be "
+                     f"{PARAMETERS[key].rangeText} {unit} and of a size a drive can have): the {name} {formula} "
+                     f"overflows with {others}; check the value and its unit")
+
+
 def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set') -> None:
     """Check a flat parameter dictionary: its keys (:func:`CheckParameterKeys`: known keys, one form per
     quantity) and the range of every value, naming the key as the user wrote it.
@@ -345,7 +359,8 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
         dV = p['dV']
     elif 'DV' in p:
         _Require(p, ('J2',), where)
-        dV = MeshDampingFromMeasure(p['DV'], p['kV'], r2, p['J2'])
+        dV = _FiniteDamping(MeshDampingFromMeasure(p['DV'], p['kV'], r2, p['J2']), 'mesh damping',
+                            'dV = 2 DV sqrt(kV r2^2 J2) / r2^2 of eq. (23)', {k: p[k] for k in ('J2', 'kV', 'DV')})
     else:
         raise ValueError(f"{where}: give the mesh damping as 'dV' (N*s/m) or as the measure 'DV'")
     gear = WormGear(alphaN=p['alphaN'], gamma=gamma, r1=r1, r2=r2, kV=p['kV'], dV=dV,
@@ -497,6 +512,7 @@ def ElasticDriveFromParameters(parameters: Mapping[str, float], where: str = 'El
     """
     CheckParameterKeys(parameters, where)
     p = dict(parameters)
+    CheckParameters(p)                   # a value out of range (z1 = 1.5) is named before the keys it leaves missing
     _Require(p, ('alphaN',) + MissingGeometryKeys(p) + ('kV', 'J1', 'J2', 'kT'), where)
     gear = GearFromParameters(p, where=where)
     if 'dT' in p:
@@ -510,7 +526,8 @@ def ElasticDriveFromParameters(parameters: Mapping[str, float], where: str = 'El
         else:
             raise ValueError(f"{where}: give the shaft damping as 'dT' (N*m*s/rad), the measure 'DT' "
                              f"or the ratio 'DTV'")
-        dT = TorsionalDampingFromMeasure(DT, p['kT'], p['J1'])
+        dT = _FiniteDamping(TorsionalDampingFromMeasure(DT, p['kT'], p['J1']), 'shaft damping',
+                            'dT = 2 DT sqrt(kT J1) of eq. (22)', {'J1': p['J1'], 'kT': p['kT'], 'DT': DT})
     drive = ElasticDrive(gear=gear, J1=p['J1'], J2=p['J2'], kT=p['kT'], dT=dT)
     _CheckScale(drive, 'parameter set')
     return drive
