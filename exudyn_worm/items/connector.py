@@ -660,14 +660,12 @@ def _WormGearLaw(gear, options, referenceAngles, axial, axialReference, stickSli
     if not axial:
         def WormGearLaw(t, q, q_t, ops):
             """Generalized forces [worm torque, wheel torque] of the mesh."""
-            state = MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
-                                frictionState=StateOf(ops))
-            return [state.wormTorque, state.wheelTorque]
+            return MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
+                               frictionState=StateOf(ops)).generalizedForces
     else:
         def WormGearLaw(t, q, q_t, ops):
             """Generalized forces [worm torque, wheel torque, worm axial force] of the mesh."""
-            state = MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
-                                axialDisplacement=Shifted(q[2], axialReference), axialSpeed=q_t[2],
-                                frictionState=StateOf(ops))
-            return [state.wormTorque, state.wheelTorque, state.axialForce]
+            return MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
+                               axialDisplacement=Shifted(q[2], axialReference), axialSpeed=q_t[2],
+                               frictionState=StateOf(ops)).generalizedForces
     return WormGearLaw
