@@ -55,7 +55,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import List, Mapping, Sequence
+from typing import Any, List, Mapping, Sequence
 
 import numpy as np
 
@@ -370,7 +370,7 @@ def CompareHalfStep(metrics: Sequence[Mapping], halfStepMetrics: Sequence[Mappin
 VERDICT_FACTOR = 2.
 
 
-def CloseVerdicts(result, windows: Sequence) -> List[int]:
+def CloseVerdicts(result: Any, windows: Sequence) -> List[int]:
     """The windows whose chatter verdict is close: the
     :meth:`~exudyn_worm.items.results.SimulationResult.ChatterRatio` of the run is within :data:`VERDICT_FACTOR` of 1.
 

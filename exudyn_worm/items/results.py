@@ -198,12 +198,15 @@ class SimulationResult:
         -------
         list of str
         """
+        return [name for name, a in self._LoadedOscillation(t0, t1).items()
+                if a[3] >= CHATTER_AMPLITUDE and a[3] >= CHATTER_SUSTAIN * a[2]]
+
+    def _LoadedOscillation(self, t0: float, t1: float) -> Dict[str, List[float]]:
+        """:meth:`MeshOscillation` of [t0, t1], empty for an unloaded mesh (its torque on the wheel never above
+        :data:`CHATTER_MIN_MESH_TORQUE`)."""
         m = self._Window(t0, t1)
         meshTorque = np.max(np.abs(self.series['wheelTorque'][m])) if m.any() else 0.
-        if not meshTorque > CHATTER_MIN_MESH_TORQUE:
-            return []
-        return [name for name, a in self.MeshOscillation(t0, t1).items()
-                if a[3] >= CHATTER_AMPLITUDE and a[3] >= CHATTER_SUSTAIN * a[2]]
+        return self.MeshOscillation(t0, t1) if meshTorque > CHATTER_MIN_MESH_TORQUE else {}
 
     def ChatterRatio(self, t0: float, t1: float) -> float:
         """How clearly [t0, t1] chatters or not: for each measure of :meth:`MeshOscillation`, the last quarter's
@@ -222,11 +225,8 @@ class SimulationResult:
         float
             Dimensionless, >= 0.
         """
-        m = self._Window(t0, t1)
-        meshTorque = np.max(np.abs(self.series['wheelTorque'][m])) if m.any() else 0.
-        if not meshTorque > CHATTER_MIN_MESH_TORQUE:
-            return 0.
-        return max(a[3] / max(CHATTER_AMPLITUDE, CHATTER_SUSTAIN * a[2]) for a in self.MeshOscillation(t0, t1).values())
+        return max((a[3] / max(CHATTER_AMPLITUDE, CHATTER_SUSTAIN * a[2])
+                    for a in self._LoadedOscillation(t0, t1).values()), default=0.)
 
     def MinWormSpeed(self, t0: float, t1: float) -> float:
         """Smallest worm speed in [t0, t1] in rad/s, counted in the direction the motor turns in the window
