@@ -130,6 +130,12 @@ def _Eigenvalues(parameters: Mapping[str, float]) -> dict:
     linearized at zero sliding speed has a slope there that no run sees, e.g. AGMA's: a spurious real
     eigenvalue of about 1e11 1/s that would ask for a step of 1e-11 s)."""
     analysis = DriveStability(parameters)
+    # once per drive (the step, its check and the linear margin of one run ask for the same set)
+    return analysis.drive.Cached('stepSize.eigenvalues', lambda: _ComputeEigenvalues(analysis))
+
+
+def _ComputeEigenvalues(analysis) -> dict:
+    """The eigenvalues of :func:`_Eigenvalues`, computed from the drive's analysis."""
     if analysis.drive.isTwoMass:                           # two-mass drive: eqs. (1)-(2)
         return {S: np.linalg.eigvals(StateMatrix(analysis.drive.elastic, S)) for S in CONTACT_STATES}
     if not analysis.operatingPoints:                       # chain or axial bearing, no steady phase
