@@ -251,8 +251,11 @@ class _StickSlip(MeshReading):
     def _LawInputs(self, q, v):
         """The law's coordinates (with the node references) and speeds from whole-system ODE2 vectors ``q``, ``v``
         (a mesh of another kind, e.g. between rigid bodies, overrides this and the three methods below)."""
-        return ([float(q[i]) + ref for i, ref in zip(self._indices, self.references)],
-                [float(v[i]) for i in self._indices])
+        indices, references = self._indices, self.references
+        if len(indices) == 2:                       # worm and wheel (the common case): no loop
+            i, k = indices
+            return [float(q[i]) + references[0], float(q[k]) + references[1]], [float(v[i]), float(v[k])]
+        return ([float(q[i]) + ref for i, ref in zip(indices, references)], [float(v[i]) for i in indices])
 
     def _WormSpeed(self, data, v) -> float:
         """The worm speed in rad/s that the friction law reads, from the whole-system ODE2 velocities ``v``."""
@@ -334,10 +337,15 @@ def _AddStickSlip(mbs, item) -> None:
                 clock.lastTime = t
                 return noSwitch
             clock.lastTime = t
-            error = 0.
-            for item in items:
-                error += item.PostNewton(mbs, t)
-            clock.nextCheck = min(item.NextCheck() for item in items)
+            if len(items) == 1:                     # one mesh (the common case): no loop
+                item = items[0]
+                error = item.PostNewton(mbs, t)
+                clock.nextCheck = item.NextCheck()
+            else:
+                error = 0.
+                for item in items:
+                    error += item.PostNewton(mbs, t)
+                clock.nextCheck = min(item.NextCheck() for item in items)
             return [error, -1.] if error else noSwitch
 
         mbs.SetPostNewtonUserFunction(PostNewtonUserFunction)

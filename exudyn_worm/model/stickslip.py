@@ -222,15 +222,16 @@ def NextCheck(schedule: StickSlipSchedule) -> float:
     return schedule.nextCheck if schedule.state.stuck < 0.5 else -math.inf
 
 
-def _Interval(schedule: StickSlipSchedule, t: float, omega1: float, rate: float) -> float:
-    """Time in s to the next check of a worm sliding at ``omega1`` that decelerates at ``rate`` (see the module)."""
+def _Interval(startTime: Optional[float], t: float, omega1: float, rate: float) -> float:
+    """Time in s to the next check of a worm sliding at ``omega1`` that decelerates at ``rate``, in a solve that
+    started at ``startTime`` (see the module)."""
     horizon = CHECK_FRACTION * abs(omega1)
     interval = min(horizon / rate, CHECK_INTERVAL) if rate > 0 else CHECK_INTERVAL
     # early in a solve the largest acceleration is not known yet (a start at the worm's largest speed sees none):
     # wait at most as long as the solve has run, so the waits double until it is (a chatter period of reel-P3,
     # 0.015 s, is shorter than CHECK_INTERVAL: a one-period run otherwise missed the reversal)
-    if schedule.startTime is not None:
-        interval = min(interval, t - schedule.startTime)
+    if startTime is not None:
+        interval = min(interval, t - startTime)
     return interval
 
 
@@ -278,16 +279,14 @@ def StickSlipStep(schedule: StickSlipSchedule, t: float, reading: MeshReading) -
         else:
             rate = abs(reading.WormAcceleration())
         rate = max(rate, schedule.maxRate)
-        planned = StickSlipSchedule(state, -math.inf, None, rate, startTime, t)
-        interval = _Interval(planned, t, omega1, rate)
+        interval = _Interval(startTime, t, omega1, rate)
         s = reading.SlidingCoordinate() if interval < REVERSAL_WINDOW else None   # a reversal may come: keep s
         return StickSlipDecision(StickSlipSchedule(state, t + interval, CheckPoint(t, omega1, s), rate, startTime, t))
     reversal = _ReversalCoordinate(schedule.lastCheck, t, omega1, reading.SlidingCoordinate()) if sliding else None
     new, jump = reading.Switch(state, reversal)
+    if new is None and not sliding:                           # the flanks hold: looked at after every step
+        return StickSlipDecision(StickSlipSchedule(state, schedule.nextCheck, schedule.lastCheck, schedule.maxRate,
+                                                   startTime, t))
     # after a reversal has been looked at, or a switch, the mesh is looked at after the next step again
     after = StickSlipSchedule(state if new is None else new, t, None, schedule.maxRate, startTime, t)
-    if new is None:
-        if not sliding:
-            after = StickSlipSchedule(state, schedule.nextCheck, schedule.lastCheck, schedule.maxRate, startTime, t)
-        return StickSlipDecision(after)
-    return StickSlipDecision(after, True, jump)
+    return StickSlipDecision(after) if new is None else StickSlipDecision(after, True, jump)
