@@ -235,7 +235,7 @@ class MeshState:
         Mesh force on the worm along the centre line towards the wheel in N: ``-sin(alphaN) Fn``, the separating
         force (<= 0 unless ``dampingCanPull``); the wheel takes the opposite force.
     generalizedForces : list or symbolic vector
-        ``[wormTorque, wheelTorque]`` (with an axial displacement also ``axialForce``): the forces on the law's
+        ``[wormTorque, wheelTorque]`` in N*m (with an axial displacement also ``axialForce`` in N): the forces on the law's
         coordinates. With the symbolic backend one vector expression in which each shared term (the normal force,
         the friction state) is evaluated once (a recorded expression is a tree, evaluated node by node).
     """
