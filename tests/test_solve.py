@@ -123,3 +123,31 @@ def test_a_sample_every_step(endTime):
     h = endTime / round(endTime / result.info['stepSize'])
     assert result.time[1] == pytest.approx(h, rel=1e-6)
     assert np.max(np.diff(result.time)) < 1.001 * h
+
+
+@pytest.mark.messages
+@pytest.mark.parametrize('progress', [False, True])
+def test_a_run_stopped_before_its_end_time_raises(progress, capsys):
+    """A pre-step user function that stops the solver at 0.02 s: Exudyn returns normally with a truncated run;
+    SolveDynamicInChunks refuses it (without and with a bar, i.e. one solve or chunks), naming both times."""
+    from exudyn_worm.items.solve import IncompleteSolveError   # the error class under test
+    model = BuildReelChanger(GetPreset('reel-P1'))
+    mbs = model.mbs
+    mbs.SetPreStepUserFunction(lambda mbs, t: t < 0.02)
+    mbs.Assemble()
+    ss, solverType = SolverSettings(0.05, 5e-4)
+    with pytest.raises(IncompleteSolveError, match=r"SolveDynamicInChunks: the run ended at t = 0.02 s, before its "
+                                                   r"end time 0.05 s \(step size 0.0005 s\)") as info:
+        SolveDynamicInChunks(mbs, ss, solverType, progress=progress, chunkSteps=20)
+    assert info.value.timeReached == pytest.approx(0.02) and info.value.endTime == pytest.approx(0.05)
+    assert isinstance(info.value, SolverDivergedError)         # callers that handle a failed solve handle it too
+
+
+def test_a_run_that_reaches_its_end_time_is_accepted():
+    model = BuildReelChanger(GetPreset('reel-P1'))
+    mbs = model.mbs
+    mbs.SetPreStepUserFunction(lambda mbs, t: True)
+    mbs.Assemble()
+    ss, solverType = SolverSettings(0.05, 5e-4)
+    solver = SolveDynamicInChunks(mbs, ss, solverType, progress=False)
+    assert solver.it.currentTime == pytest.approx(0.05)

@@ -156,3 +156,51 @@ def test_compare_half_step_needs_the_same_windows():
     assert CompareHalfStep(a, [{'t0': 0., 't1': 1., 'chatter': True}])[0]['chatter'] is True
     with pytest.raises(ValueError, match="CompareHalfStep: 'halfStepMetrics' must have the windows"):
         CompareHalfStep(a, [{'t0': 0., 't1': 2., 'chatter': True}])
+
+
+def test_the_chatter_ratio_decides_as_the_chatter_rule():
+    """ChatterRatio >= 1 exactly where Chatter says yes (reel-P7: lift, lowering chatter, chattering lift), and
+    CloseVerdicts picks the windows within VERDICT_FACTOR of the threshold."""
+    from exudyn_worm.analysis.reelchanger import DefaultWindows, SimulateReelChanger   # a simulation: Exudyn
+    from exudyn_worm.analysis.stepsize import VERDICT_FACTOR, CloseVerdicts
+    p = GetPreset('reel-P7')
+    result = SimulateReelChanger(p, endTime=4.4, progress=False)
+    windows = [(0., 1.8), (2.2, 3.8), (3.8, 4.4)]
+    ratios = [result.ChatterRatio(t0, t1) for t0, t1 in windows]
+    assert [r >= 1. for r in ratios] == [result.Chatter(t0, t1) for t0, t1 in windows]
+    assert ratios[0] < 0.1 and ratios[1] > 1.
+    assert CloseVerdicts(result, windows) == [i for i, r in enumerate(ratios) if 1 / VERDICT_FACTOR < r < VERDICT_FACTOR]
+
+
+def _RatioOfWindow(monkeypatch, ratio):
+    """Make every window's chatter ratio ``ratio`` (the verdicts themselves stay those of the run)."""
+    monkeypatch.setattr(SimulationResult, 'ChatterRatio', lambda self, t0, t1: ratio)
+
+
+@pytest.mark.parametrize('ratio, checked', [(0.3, False), (0.7, True), (1.5, True), (3., False)])
+def test_by_default_the_step_is_checked_only_where_a_verdict_is_close(ratio, checked, capsys, tmp_path, monkeypatch):
+    """P1 has a small linear margin; the run at half the step follows only where a window's verdict is close."""
+    monkeypatch.chdir(tmp_path)
+    _RatioOfWindow(monkeypatch, ratio)
+    status, out, err = _Run(capsys, 'simulate', '--quiet', '--json', *SHORT)
+    assert status == 0, err
+    check = json.loads(out)['stepCheck']
+    assert check['checked'] is checked and check['closeWindows'] == ([0, 1] if checked else [])
+    assert check['reason'] == ('default' if checked else 'clearVerdicts')
+    status, out, err = _Run(capsys, 'simulate', '--quiet', *SHORT)
+    assert ('step check: verdicts compared' in out) is checked
+    assert ("every window's verdict is clear" in out) is not checked
+    row = RunPoint(Study(GetPreset('reel-P1'), [Variation('J1', (0.2,))], windows=[(0., 0.5), (0.5, 1.)],
+                         endTime=1.).Task(0))
+    assert row['status'] == 'ok' and row['stepChecked'] is checked
+    assert ('w0.halfStep.chatter' in row) is checked
+
+
+def test_an_explicit_step_check_ignores_clear_verdicts(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    _RatioOfWindow(monkeypatch, 100.)
+    status, out, err = _Run(capsys, 'simulate', '--quiet', '--json', '--check-step', *SHORT)
+    assert json.loads(out)['stepCheck']['checked'] is True
+    row = RunPoint(Study(GetPreset('reel-P1'), [Variation('J1', (0.2,))], windows=[(0., 0.5)], endTime=1.,
+                         checkStep=True).Task(0))
+    assert row['stepChecked'] is True and 'w0.halfStep.chatter' in row

@@ -28,7 +28,7 @@ from ..setups.presets import (REEL_KEYS, AxialBearingFromParameters, ShaftSuppor
 from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
 from ..params.plausibility import CheckWormRotation, CheckWormSpeed
 from ..items.results import SimulationResult
-from ..items.solve import SolveDynamicInChunks, SolverDivergedError
+from ..items.solve import IncompleteSolveError, SolveDynamicInChunks, SolverDivergedError
 from .stepsize import CheckStepSize, RecommendedStepSize
 from .._checks import CheckBool, CheckPositive
 from ..setups.duty import (CheckDutyKeys, DefaultEndTime, DutyPhases, IsReelChangerDuty, LoadFromParameters,
@@ -634,6 +634,8 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
         t0, c0 = _time.perf_counter(), _time.process_time()
         SolveDynamicInChunks(mbs, ss, solverType, progress=progress, desc=w)
         solveSeconds, solveCpuSeconds = _time.perf_counter() - t0, _time.process_time() - c0
+    except IncompleteSolveError:           # stopped, not diverged: no likely cause of a divergence
+        raise
     except SolverDivergedError as err:
         raise SolverDivergedError(f"{w}: {err}; {_LikelyCause(model.drive, stepSize)}",
                                   err.timeReached, err.endTime, err.stepSize) from err

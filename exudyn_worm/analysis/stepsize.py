@@ -46,7 +46,8 @@ tilts (:data:`BEARING_COORDINATES`; 0.9 to 2.3 kHz in examples/drives/reel-3d.to
 The rule bounds the period error of the linear modes, not the amplitudes that the nonlinear events of a run (load
 reversal, contact flips, chatter ringing down into the next phase) leave behind. ``simulate`` and ``sweep`` therefore
 check a run against the same run at half the step (:func:`CompareHalfStep`: a window whose chatter verdict changes is
-:data:`UNRESOLVED`), by default where the linear margin is small (:func:`LinearMargin` below :data:`SMALL_MARGIN`).
+:data:`UNRESOLVED`), by default where the linear margin is small (:func:`LinearMargin` below :data:`SMALL_MARGIN`)
+and a window's own verdict is close (:func:`CloseVerdicts`).
 Measured for J1 = 0.0247 kg m^2, kT = 1508 N m/rad on P1: the lift window after the lowering chatter peaks
 at 11.7 rad/s^2 at the recommended step 6.4e-4 s and 22.9 rad/s^2 at 2e-5 s (converged within 5 % from 1e-4 s on);
 the verdict (no chatter: the normal-force amplitude of its last quarter stays at 0.016-0.038 of the steady force
@@ -62,7 +63,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import List, Mapping, Sequence
+from typing import Any, List, Mapping, Sequence
 
 import numpy as np
 
@@ -74,7 +75,8 @@ from ..setups.presets import ElasticDriveFromParameters
 __all__ = ['RECOMMENDED_CYCLES', 'SOFT_CYCLES', 'HARD_CYCLES', 'PEAK_ACCURACY', 'TRANSIENT_PEAK_ACCURACY',
            'SMALL_MARGIN', 'UNRESOLVED', 'PeriodError',
            'LinearizedFrequencies', 'RecommendedStepSize', 'StepSizeLimits', 'CheckStepSize', 'FrictionTimeConstant',
-           'CoarseStepWarning', 'LinearMargin', 'StepCheckByDefault', 'CompareHalfStep', 'BEARING_COORDINATES']
+           'CoarseStepWarning', 'LinearMargin', 'StepCheckByDefault', 'CompareHalfStep', 'BEARING_COORDINATES',
+           'VERDICT_FACTOR', 'CloseVerdicts']
 
 
 def _PeriodError(x: float) -> float:
@@ -157,6 +159,12 @@ def _Eigenvalues(parameters: Mapping[str, float]) -> dict:
     linearized at zero sliding speed has a slope there that no run sees, e.g. AGMA's: a spurious real
     eigenvalue of about 1e11 1/s that would ask for a step of 1e-11 s)."""
     analysis = DriveStability(parameters)
+    # once per drive (the step, its check and the linear margin of one run ask for the same set)
+    return analysis.drive.Cached('stepSize.eigenvalues', lambda: _ComputeEigenvalues(analysis))
+
+
+def _ComputeEigenvalues(analysis) -> dict:
+    """The eigenvalues of :func:`_Eigenvalues`, computed from the drive's analysis."""
     if analysis.drive.isTwoMass:                           # two-mass drive: eqs. (1)-(2)
         return {S: np.linalg.eigvals(StateMatrix(analysis.drive.elastic, S)) for S in CONTACT_STATES}
     if not analysis.operatingPoints:                       # chain or axial bearing, no steady phase
@@ -345,8 +353,9 @@ def LinearMargin(parameters: Mapping[str, float]) -> dict:
 
 
 def StepCheckByDefault(parameters: Mapping[str, float]) -> bool:
-    """Whether ``simulate`` and ``sweep`` check their verdicts at half the step when not told: the linear margin
-    (:func:`LinearMargin`) is below :data:`SMALL_MARGIN`.
+    """Whether ``simulate`` and ``sweep`` may check their verdicts at half the step when not told: the linear margin
+    (:func:`LinearMargin`) is below :data:`SMALL_MARGIN`. They then run at half the step only if a window's own
+    verdict is close (:func:`CloseVerdicts`).
 
     Parameters
     ----------
@@ -386,3 +395,35 @@ def CompareHalfStep(metrics: Sequence[Mapping], halfStepMetrics: Sequence[Mappin
         chatter = a['chatter'] if bool(a['chatter']) == bool(b['chatter']) else UNRESOLVED
         out.append(dict(a, chatter=chatter, halfStep={k: v for k, v in b.items() if k not in ('t0', 't1')}))
     return out
+
+
+#: a window's chatter verdict counts as close, and is checked at half the step by default, when its
+#: :meth:`~exudyn_worm.items.results.SimulationResult.ChatterRatio` is within this factor of 1 (between 1/2 and 2).
+#: Halving the recommended step moved the ratio of every window of reel-P1, P6 and P7 by 6 % at most (P7's
+#: lowering 5.08 -> 4.79, its chattering lift 2.02 -> 1.96; h/4 within 1 % of h/2); in the drive of the module text
+#: the lift window's peak doubled while its ratio stayed below 0.16: a factor 2 covers a doubling of the amplitude
+VERDICT_FACTOR = 2.
+
+
+def CloseVerdicts(result: Any, windows: Sequence) -> List[int]:
+    """The windows whose chatter verdict is close: the
+    :meth:`~exudyn_worm.items.results.SimulationResult.ChatterRatio` of the run is within :data:`VERDICT_FACTOR` of 1.
+
+    By default ``simulate`` and ``sweep`` run at half the step only where the linear margin is small
+    (:func:`StepCheckByDefault`) and some window's verdict is close; a verdict far from its threshold does not change
+    when the step is halved (see :data:`VERDICT_FACTOR`).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        The run at the chosen step.
+    windows : sequence of (float, float)
+        The evaluation windows in s.
+
+    Returns
+    -------
+    list of int
+        Indices into ``windows``.
+    """
+    return [i for i, (t0, t1) in enumerate(windows)
+            if 1. / VERDICT_FACTOR < result.ChatterRatio(t0, t1) < VERDICT_FACTOR]

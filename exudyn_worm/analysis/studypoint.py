@@ -16,7 +16,7 @@ from ..params.plausibility import ImplausibleValueWarning
 from ..setups.duty import IsReelChangerDuty
 from .drivestability import DriveAnalysis, DriveStability
 from .reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedTime
-from .stepsize import UNRESOLVED, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
+from .stepsize import UNRESOLVED, CloseVerdicts, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
 from . import reelchanger
 
 __all__ = ['WINDOW_METRICS', 'RUN_COLUMNS', 'HALF_STEP_METRICS', 'VibrationSeconds', 'LoweringVerdict',
@@ -158,9 +158,9 @@ def RunPoint(task: Mapping) -> Dict:
         row['stepSize'] = stepSize
         maxSteps = MAX_STEPS if task.get('maxSteps') is None else task['maxSteps']
         check = task.get('checkStep')
-        if check is None:      # by the linear margin, unless the run at half the step would exceed the limit
+        byDefault = check is None
+        if byDefault:          # by the linear margin, unless the run at half the step would exceed the limit
             check = StepCheckByDefault(p) and 2 * endTime / stepSize <= maxSteps
-        row['stepChecked'] = bool(check)
 
         def Simulate(h):       # no bar per run: the study draws one bar for all runs
             with warnings.catch_warnings():
@@ -175,6 +175,9 @@ def RunPoint(task: Mapping) -> Dict:
         result = Simulate(stepSize)
         row['solveSeconds'] = result.solveSeconds
         metrics = result.WindowMetrics(windows)
+        if check and byDefault:         # ... and only where a window's own verdict is close
+            check = bool(CloseVerdicts(result, windows))
+        row['stepChecked'] = bool(check)
         if check:
             half = Simulate(0.5 * stepSize)
             row['solveSeconds'] += half.solveSeconds

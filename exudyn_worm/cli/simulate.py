@@ -55,10 +55,14 @@ def _StepCheckLine(check: dict) -> str:
     margin = f"linear margin |Re lambda|/|lambda| = {check['margin']:.3g}"
     if check['checked']:
         why = ('--check-step' if check['reason'] == 'option'
-               else f"{margin} < {check['smallMargin']:g}, near the stability boundary")
+               else f"{margin} < {check['smallMargin']:g}, near the stability boundary, and the verdict of window(s) "
+                    f"{', '.join(str(i + 1) for i in check.get('closeWindows', []))} within a factor "
+                    f"{check['verdictFactor']:g} of the chatter threshold")
         return (f"step check: verdicts compared with a run at half the step ({check['halfStepSize']:g} s; {why}); "
                 f"'unresolved' where they differ")
-    why = {'option': '--no-check-step', 'maxSteps': 'the run at half the step would exceed --max-steps'}.get(
+    why = {'option': '--no-check-step', 'maxSteps': 'the run at half the step would exceed --max-steps',
+           'clearVerdicts': f"{margin} < {check['smallMargin']:g}, but every window's verdict is clear: its chatter "
+                            f"measure is not within a factor {check['verdictFactor']:g} of the threshold"}.get(
         check['reason'], f"{margin} >= {check['smallMargin']:g}")
     return f"step check: off ({why}); --check-step compares with a run at half the step"
 
@@ -127,11 +131,12 @@ def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: f
     """Whether the verdicts are checked at half the step, and why (--check-step, or the linear margin)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.reelchanger import CheckRunSize
-    from ..analysis.stepsize import SMALL_MARGIN, LinearMargin
+    from ..analysis.stepsize import SMALL_MARGIN, VERDICT_FACTOR, LinearMargin
     with BadInput():
         margin = LinearMargin(parameters)
     check = {'checked': margin['small'] if args.check_step is None else args.check_step,
              'halfStepSize': 0.5 * stepSize, 'margin': margin['margin'], 'smallMargin': SMALL_MARGIN,
+             'verdictFactor': VERDICT_FACTOR,
              'reason': 'option' if args.check_step is not None else 'default'}
     if check['checked']:
         try:
@@ -200,7 +205,7 @@ def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.reelchanger import PhaseLabel, SimulateReelChanger, WindowPhases
     from ..items.solve import SolverDivergedError
-    from ..analysis.stepsize import CoarseStepWarning, CompareHalfStep, UNRESOLVED
+    from ..analysis.stepsize import CloseVerdicts, CoarseStepWarning, CompareHalfStep, UNRESOLVED
     from ..params.plausibility import ImplausibleValueWarning, UnresolvedRotationWarning
 
     def Simulate(h):
@@ -219,6 +224,10 @@ def _Run(args: argparse.Namespace) -> int:
 
     result = Simulate(stepSize)
     metrics = result.WindowMetrics(windows)
+    if stepCheck['checked'] and stepCheck['reason'] == 'default':      # ... and only where a verdict is close
+        stepCheck['closeWindows'] = CloseVerdicts(result, windows)
+        if not stepCheck['closeWindows']:
+            stepCheck['checked'], stepCheck['reason'] = False, 'clearVerdicts'
     if stepCheck['checked']:
         metrics = CompareHalfStep(metrics, Simulate(0.5 * stepSize).WindowMetrics(windows))
     phases = WindowPhases(parameters, windows, endTime)

@@ -24,7 +24,7 @@ freedom (mass ``mA`` on a spring-damper ``kA, dA`` to ground); pass its node as 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Sequence
+from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
 
@@ -33,6 +33,8 @@ from ._userfunctions import AddGenericForce, SetGenericForceLaw
 from ..model.contact import (MATH_OPS, NUMPY_OPS, ContactOptions, FrictionState, MeshContact, MeshState, SlidingCoordinate,
                       StickSlipUpdate, SymbolicOps)
 from ..model.gear import WormGear
+from ..model.stickslip import (CarrySchedule, MeshReading, NextCheck, StartFrictionState, StartSchedule,
+                               StickSlipSchedule, StickSlipStep)
 
 __all__ = ['WormGearConnector', 'CreateWormGear', 'AxialBearing', 'CreateWormAxialBearing', 'CONNECTORS_KEY']
 
@@ -109,41 +111,52 @@ def CreateWormAxialBearing(mbs, bearing: AxialBearing, initialDisplacement: floa
     return {'nodeNumber': nNode, 'objectNumber': oMass, 'markerNumber': mNode, 'springDamperNumber': oSpring}
 
 
-class _StickSlip:
+class _PostNewtonClock:
+    """The system's post-Newton clock, shared by every item its post-Newton user function looks at.
+
+    Attributes
+    ----------
+    lastTime : float
+        Time in s of the last call.
+    nextCheck : float
+        Earliest time in s at which any item must be looked at (-inf: after the next step).
+    """
+    __slots__ = ('lastTime', 'nextCheck')
+
+    def __init__(self):
+        self.lastTime = self.nextCheck = -np.inf
+
+    def Wake(self) -> None:
+        """Look at every item after the next step."""
+        self.nextCheck = -np.inf
+
+
+class _StickSlip(MeshReading):
     """Stick/slip state of one connector with the sticking friction model, switched between time steps.
 
-    The state lives in Python (:attr:`state`, floats) and, for the symbolic (C++) law, in three named Exudyn
-    symbolic variables that the recorded law reads. The system's post-Newton user function calls
-    :meth:`PostNewton` after every converged step; the decision itself is the contact law's
+    The schedule (:class:`~exudyn_worm.model.stickslip.StickSlipSchedule`: the state and when to look again) is
+    advanced by the pure policy :func:`~exudyn_worm.model.stickslip.StickSlipStep`, with this object as its
+    :class:`~exudyn_worm.model.stickslip.MeshReading` of Exudyn's state. The state lives in Python (:attr:`state`,
+    floats) and, for the symbolic (C++) law, in three named Exudyn symbolic variables that the recorded law reads;
+    :meth:`_Apply` is the one place that writes both. The system's post-Newton user function calls
+    :meth:`PostNewton` when the mesh is due; the switch rule is the contact law's
     :func:`~exudyn_worm.model.contact.StickSlipUpdate`, with the friction and normal force evaluated by a second
-    recording of :func:`~exudyn_worm.model.contact.MeshContact` in C++ (symbolic connectors). While the worm slides
-    it is looked at again only after a fifth of the time it would need to stop at the largest deceleration seen
-    in the solve (at most :attr:`CHECK_INTERVAL`), so a drive that never stops pays about one Python call per
-    step.
+    recording of :func:`~exudyn_worm.model.contact.MeshContact` in C++ (symbolic connectors).
     """
-
-    #: fraction of the time to stop (|omega1| / |alpha1|) after which a sliding worm is checked again
-    CHECK_FRACTION = 0.2
-    #: longest time in s between two checks of a sliding worm (P7: 0.005 and 0.02 s give the same peaks as a
-    #: check after every step; 0.05 s saw a reversal late and moved them by -1.2 %, docs/friction-sticking.md)
-    CHECK_INTERVAL = 0.02
-    #: a check at most this many s before a reversal also keeps the sliding coordinate, to locate the reversal
-    REVERSAL_WINDOW = 0.002
 
     def __init__(self, gear: WormGear, options: ContactOptions, nodes, references, initial: FrictionState,
                  symbolic: bool):
         self.gear, self.options = gear, options
         self.nodes, self.references = list(nodes), list(references)
-        self.state = initial
         self.variables = self._probe = None
         if symbolic:
             self._Record(initial)
+        self.schedule = StartSchedule(initial)
         self.history = [(-np.inf, initial)]     # (time from which a state holds, state)
         self.switches = 0
-        self._lastTime = None
-        self._ForgetSchedule()
-        self._data = None
-        self.clock = [-np.inf, -np.inf]         # the system's post-Newton clock (set by _AddStickSlip)
+        self._indices = self._data = None
+        self._v = self._inputs = None           # Exudyn's state, read once per call
+        self.clock = None                       # the system's _PostNewtonClock (set by _AddStickSlip)
 
     def _Record(self, initial: FrictionState) -> None:
         """Named symbolic state variables, and (friction force, normal force) recorded in C++ for the checks."""
@@ -163,10 +176,30 @@ class _StickSlip:
         finally:
             esym.SetRecording(recording)
 
-    def _ForgetSchedule(self) -> None:
-        """Forget what the checks of a solve learnt (a new solve starts): the coordinate indices, the next and last
-        check, the largest deceleration seen and the time of the solve's first step."""
-        self._indices, self._nextCheck, self._lastCheck, self._maxRate, self._startTime = None, -np.inf, None, 0., None
+    @property
+    def state(self) -> FrictionState:
+        """The stick/slip state in force (floats); setting it writes the law's variables too."""
+        return self.schedule.state
+
+    @state.setter
+    def state(self, state: FrictionState) -> None:
+        self._Apply(self.schedule._replace(state=state))
+
+    def _Apply(self, schedule: StickSlipSchedule, t: Optional[float] = None, restart: bool = False) -> None:
+        """Put ``schedule`` in force: its state into the law's symbolic variables, and into the history of the
+        switches (a switch at time ``t``; ``restart``: the history starts anew with it)."""
+        state = schedule.state
+        self.schedule = schedule
+        if self.variables is not None:
+            for name in ('stuck', 'direction', 'anchor'):
+                getattr(self.variables, name).SetValue(float(getattr(state, name)))
+        if restart:
+            self.history = [(-np.inf, state)]
+        elif t is not None:
+            while len(self.history) > 1 and self.history[-1][0] >= t:    # a repeated step replaces its switch
+                self.history.pop()
+            self.history.append((t, state))
+            self.switches += 1
 
     def Restart(self, mbs, coordinates, velocities) -> FrictionState:
         """Start a new solve from the ODE2 ``coordinates`` and ``velocities`` (whole-system vectors without the
@@ -181,17 +214,11 @@ class _StickSlip:
         """
         self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
         x, w = self._LawInputs(coordinates, velocities)
-        state = _StartFrictionState(self.gear, x[0], x[1], w[0])
-        self.state = state
-        if self.variables is not None:
-            for name in ('stuck', 'direction', 'anchor'):
-                getattr(self.variables, name).SetValue(float(getattr(state, name)))
-        self.history = [(-np.inf, state)]
+        self._Apply(StartSchedule(StartFrictionState(self.gear, x[0], x[1], w[0])), restart=True)
         self.switches = 0
-        self._lastTime = None
-        self._ForgetSchedule()
-        self.clock[0] = self.clock[1] = -np.inf        # the system's post-Newton function looks at every mesh
-        return state
+        if self.clock is not None:
+            self.clock.Wake()                   # the system's post-Newton function looks at every mesh
+        return self.state
 
     def Carry(self, mbs, fromCoordinates, toCoordinates) -> FrictionState:
         """Keep the state across a shift of the coordinates (a run continued in the coordinates relative to a
@@ -207,26 +234,12 @@ class _StickSlip:
         self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
         old, new = (self._LawInputs(q, q)[0] for q in (fromCoordinates, toCoordinates))
         shift = SlidingCoordinate(self.gear, new[0], new[1]) - SlidingCoordinate(self.gear, old[0], old[1])
-        state = FrictionState(self.state.stuck, self.state.direction, self.state.anchor + shift)
-        self.state = state
-        if self.variables is not None:
-            self.variables.anchor.SetValue(float(state.anchor))
-        self.history = [(-np.inf, state)]
-        return state
+        self._Apply(CarrySchedule(self.schedule, shift), restart=True)
+        return self.state
 
     def LawState(self, ops):
         """The state as the law reads it: the symbolic variables, or the current floats in plain Python."""
         return self.state if ops is MATH_OPS or self.variables is None else self.variables
-
-    def _Set(self, state: FrictionState, t: float) -> None:
-        self.state = state
-        if self.variables is not None:
-            for name in ('stuck', 'direction', 'anchor'):
-                getattr(self.variables, name).SetValue(float(getattr(state, name)))
-        while len(self.history) > 1 and self.history[-1][0] >= t:    # a repeated step replaces its switch
-            self.history.pop()
-        self.history.append((t, state))
-        self.switches += 1
 
     def StatesAt(self, times) -> FrictionState:
         """The states in force at ``times`` (s), as arrays (from the recorded switches)."""
@@ -235,42 +248,14 @@ class _StickSlip:
         return FrictionState(*(np.array([getattr(h[1], name) for h in self.history])[np.maximum(k, 0)]
                                for name in ('stuck', 'direction', 'anchor')))
 
-    def _ScheduleCheck(self, data, t: float, omega1: float) -> None:
-        """Next time a worm sliding at ``omega1`` (same direction) is checked for a reversal."""
-        last, self._lastCheck = self._lastCheck, (t, omega1, None)
-        if last is not None and t > last[0]:                      # mean acceleration since the last check
-            rate = abs(omega1 - last[1]) / (t - last[0])
-        else:
-            rate = abs(self._WormAcceleration(data))
-        horizon = self.CHECK_FRACTION * abs(omega1)
-        # the largest acceleration seen in this solve: a worm that once decelerated hard may do so again, and a
-        # missed reversal would let the friction push the worm the wrong way until the next check
-        self._maxRate = rate = max(rate, self._maxRate)
-        interval = min(horizon / rate, self.CHECK_INTERVAL) if rate > 0 else self.CHECK_INTERVAL
-        # early in a solve the largest acceleration is not known yet (a start at the worm's largest speed sees
-        # none): wait at most as long as the solve has run, so the waits double until it is (a chatter period of
-        # reel-P3, 0.015 s, is shorter than CHECK_INTERVAL: a one-period run otherwise missed the reversal)
-        if self._startTime is not None:
-            interval = min(interval, t - self._startTime)
-        self._nextCheck = t + interval
-        if self._nextCheck - t < self.REVERSAL_WINDOW:      # a reversal may come: keep s to locate it
-            q = data.GetODE2Coordinates()
-            x = self._LawInputs(q, q)[0]
-            self._lastCheck = (t, omega1, SlidingCoordinate(self.gear, x[0], x[1]))
-
-    def _ReversalCoordinate(self, t: float, omega1: float, s: float):
-        """Sliding coordinate at which the worm turned back, interpolated linearly in time between the last
-        check (if it was at most :attr:`REVERSAL_WINDOW` ago) and now; None if unknown."""
-        last = self._lastCheck
-        if last is None or last[2] is None or not 0. < t - last[0] <= self.REVERSAL_WINDOW or last[1] == omega1:
-            return None
-        return last[2] + (s - last[2]) * last[1] / (last[1] - omega1)
-
     def _LawInputs(self, q, v):
         """The law's coordinates (with the node references) and speeds from whole-system ODE2 vectors ``q``, ``v``
-        (a mesh of another kind, e.g. between rigid bodies, overrides this and the two methods below)."""
-        return ([float(q[i]) + ref for i, ref in zip(self._indices, self.references)],
-                [float(v[i]) for i in self._indices])
+        (a mesh of another kind, e.g. between rigid bodies, overrides this and the three methods below)."""
+        indices, references = self._indices, self.references
+        if len(indices) == 2:                       # worm and wheel (the common case): no loop
+            i, k = indices
+            return [float(q[i]) + references[0], float(q[k]) + references[1]], [float(v[i]), float(v[k])]
+        return ([float(q[i]) + ref for i, ref in zip(indices, references)], [float(v[i]) for i in indices])
 
     def _WormSpeed(self, data, v) -> float:
         """The worm speed in rad/s that the friction law reads, from the whole-system ODE2 velocities ``v``."""
@@ -287,92 +272,95 @@ class _StickSlip:
         self._probe[0].SetVector(list(x) + list(w))
         return self._probe[1].Evaluate()
 
+    # the MeshReading of the policy, on the system's state after the step (read once per call)
+    def _Inputs(self):
+        if self._inputs is None:
+            if self._v is None:
+                self._v = self._data.GetODE2Coordinates_t()
+            self._inputs = self._LawInputs(self._data.GetODE2Coordinates(), self._v)
+        return self._inputs
+
+    def WormSpeed(self) -> float:
+        if self._v is None:
+            self._v = self._data.GetODE2Coordinates_t()
+        return self._WormSpeed(self._data, self._v)
+
+    def WormAcceleration(self) -> float:
+        return self._WormAcceleration(self._data)
+
+    def SlidingCoordinate(self) -> float:
+        x = self._Inputs()[0]
+        return SlidingCoordinate(self.gear, x[0], x[1])
+
+    def Switch(self, state, reversalCoordinate):
+        x, w = self._Inputs()
+        axial = (x[2], w[2]) if len(x) == 3 else (None, None)
+        return StickSlipUpdate(self.gear, self.options, state, x[0], x[1], w[0], w[1], *axial,
+                               forces=self._Forces(x, w), reversalCoordinate=reversalCoordinate)
+
     def NextCheck(self) -> float:
         """Earliest time in s at which this mesh must be looked at again (-inf: after every step)."""
         if not self.options.hasStickState:
             return np.inf
-        return self._nextCheck if self.state.stuck < 0.5 else -np.inf
+        return NextCheck(self.schedule)
 
     def PostNewton(self, mbs, t: float) -> float:
         """Switch the state after a converged step; return the jump of the friction force in N (0: no switch)."""
         if not self.options.hasStickState:
             return 0.
-        newStep = t != self._lastTime
-        if self._lastTime is not None and t < self._lastTime:     # a new solve from an earlier time
-            self._ForgetSchedule()
-        if self._startTime is None:
-            self._startTime = t
-        self._lastTime = t
-        state = self.state
-        sliding = state.stuck < 0.5
-        if sliding and newStep and t < self._nextCheck:
-            return 0.
-        if self._indices is None:
-            self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
+        if self._indices is None or (self.schedule.lastTime is not None and t < self.schedule.lastTime):
+            self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]     # a new solve: look the indices up
+        if self._data is None:
             self._data = mbs.systemData            # fetched once: about 10 us per access during a solve
-        data = self._data
-        v = data.GetODE2Coordinates_t()
-        omega1 = self._WormSpeed(data, v)
-        if sliding and omega1 * state.direction >= 0.:          # still sliding the same way
-            self._ScheduleCheck(data, t, omega1)
+        self._v = self._inputs = None
+        decision = StickSlipStep(self.schedule, t, self)
+        if not decision.switched:
+            self.schedule = decision.schedule
             return 0.
-        x, w = self._LawInputs(data.GetODE2Coordinates(), v)
-        reversal = self._ReversalCoordinate(t, omega1, SlidingCoordinate(self.gear, x[0], x[1])) if sliding else None
-        if sliding:
-            self._lastCheck, self._nextCheck = None, t
-        forces = self._Forces(x, w)
-        axial = (x[2], w[2]) if len(x) == 3 else (None, None)
-        new, jump = StickSlipUpdate(self.gear, self.options, state, x[0], x[1], w[0], w[1], *axial, forces=forces,
-                                    reversalCoordinate=reversal)
-        if new is None:
-            return 0.
-        self._lastCheck, self._nextCheck = None, t
-        self._Set(new, t)
+        self._Apply(decision.schedule, t)
         mbs.solverSignalJacobianUpdate = True       # the tangential stiffness changed: modified Newton renews it
-        return jump
+        return decision.jump
 
 
-def _AddStickSlip(mbs, stickSlip: _StickSlip) -> None:
-    """Register a connector's stick/slip state with the system's post-Newton user function (one per system)."""
+def _AddStickSlip(mbs, item) -> None:
+    """Register a connector's stick/slip state (or another item with ``PostNewton`` and ``NextCheck``) with the
+    system's post-Newton user function (one per system)."""
     items = mbs.variables.get(_STICK_SLIP_KEY)
     if items is None:
         items = mbs.variables[_STICK_SLIP_KEY] = []
         noSwitch = [0., -1.]
-        clock = [-np.inf, -np.inf]          # time of the last call, earliest next check of all meshes
-        mbs.variables[_STICK_SLIP_KEY + '.clock'] = clock
+        clock = mbs.variables[_STICK_SLIP_KEY + '.clock'] = _PostNewtonClock()
 
         def PostNewtonUserFunction(mbs, t):
             """Exudyn's discontinuous iteration: [friction force jump in N, no step size recommendation]."""
-            if clock[0] <= t < clock[1]:    # every mesh slides and none is due: the call of almost every step
-                clock[0] = t
+            if clock.lastTime <= t < clock.nextCheck:    # every mesh slides and none is due: most steps' call
+                clock.lastTime = t
                 return noSwitch
-            clock[0] = t
-            error = 0.
-            for item in items:
-                error += item.PostNewton(mbs, t)
-            clock[1] = min(item.NextCheck() for item in items)
+            clock.lastTime = t
+            if len(items) == 1:                     # one mesh (the common case): no loop
+                item = items[0]
+                error = item.PostNewton(mbs, t)
+                clock.nextCheck = item.NextCheck()
+            else:
+                error = 0.
+                for item in items:
+                    error += item.PostNewton(mbs, t)
+                clock.nextCheck = min(item.NextCheck() for item in items)
             return [error, -1.] if error else noSwitch
 
         mbs.SetPostNewtonUserFunction(PostNewtonUserFunction)
-    stickSlip.clock = mbs.variables[_STICK_SLIP_KEY + '.clock']
-    items.append(stickSlip)
-
-
-def _StartFrictionState(gear: WormGear, phi1: float, phi2: float, omega1: float) -> FrictionState:
-    """Sliding in the direction of the worm's speed ``omega1``; stuck (without force) if the worm is at rest."""
-    if omega1 != 0:
-        return FrictionState(0., float(np.sign(omega1)), SlidingCoordinate(gear, phi1, phi2))
-    return FrictionState(1., 1., SlidingCoordinate(gear, phi1, phi2))
+    item.clock = mbs.variables[_STICK_SLIP_KEY + '.clock']
+    items.append(item)
 
 
 def _InitialFrictionState(gear: WormGear, mbs, nodes, references) -> FrictionState:
-    """The start state (:func:`_StartFrictionState`) of the nodes' initial values."""
+    """The start state (:func:`~exudyn_worm.model.stickslip.StartFrictionState`) of the nodes' initial values."""
     x, v = [], []
     for node, ref in zip(nodes[:2], references[:2]):
         info = mbs.GetNode(node)
         x.append(float(np.ravel(info['initialCoordinates'])[0]) + ref)
         v.append(float(np.ravel(info['initialVelocities'])[0]))
-    return _StartFrictionState(gear, x[0], x[1], v[0])
+    return StartFrictionState(gear, x[0], x[1], v[0])
 
 
 @dataclass
@@ -449,7 +437,7 @@ class WormGearConnector:
                                               self._References(), self.useSymbolic)
         if self.stickSlip is not None:
             self.stickSlip.options = options
-            self.stickSlip.clock[1] = -np.inf      # look at every mesh after the next step
+            self.stickSlip.clock.Wake()            # look at every mesh after the next step
         law = _WormGearLaw(self.gear, options, self.referenceAngles, self.axialNodeNumber is not None,
                            self.axialReference, self.stickSlip)
         self.userFunction = SetGenericForceLaw(mbs, self.objectNumber, len(self.coordinateNodes), law,
@@ -680,14 +668,12 @@ def _WormGearLaw(gear, options, referenceAngles, axial, axialReference, stickSli
     if not axial:
         def WormGearLaw(t, q, q_t, ops):
             """Generalized forces [worm torque, wheel torque] of the mesh."""
-            state = MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
-                                frictionState=StateOf(ops))
-            return [state.wormTorque, state.wheelTorque]
+            return MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
+                               frictionState=StateOf(ops)).generalizedForces
     else:
         def WormGearLaw(t, q, q_t, ops):
             """Generalized forces [worm torque, wheel torque, worm axial force] of the mesh."""
-            state = MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
-                                axialDisplacement=Shifted(q[2], axialReference), axialSpeed=q_t[2],
-                                frictionState=StateOf(ops))
-            return [state.wormTorque, state.wheelTorque, state.axialForce]
+            return MeshContact(gear, Shifted(q[0], ref1), Shifted(q[1], ref2), q_t[0], q_t[1], options, ops,
+                               axialDisplacement=Shifted(q[2], axialReference), axialSpeed=q_t[2],
+                               frictionState=StateOf(ops)).generalizedForces
     return WormGearLaw

@@ -198,12 +198,35 @@ class SimulationResult:
         -------
         list of str
         """
+        return [name for name, a in self._LoadedOscillation(t0, t1).items()
+                if a[3] >= CHATTER_AMPLITUDE and a[3] >= CHATTER_SUSTAIN * a[2]]
+
+    def _LoadedOscillation(self, t0: float, t1: float) -> Dict[str, List[float]]:
+        """:meth:`MeshOscillation` of [t0, t1], empty for an unloaded mesh (its torque on the wheel never above
+        :data:`CHATTER_MIN_MESH_TORQUE`)."""
         m = self._Window(t0, t1)
         meshTorque = np.max(np.abs(self.series['wheelTorque'][m])) if m.any() else 0.
-        if not meshTorque > CHATTER_MIN_MESH_TORQUE:
-            return []
-        return [name for name, a in self.MeshOscillation(t0, t1).items()
-                if a[3] >= CHATTER_AMPLITUDE and a[3] >= CHATTER_SUSTAIN * a[2]]
+        return self.MeshOscillation(t0, t1) if meshTorque > CHATTER_MIN_MESH_TORQUE else {}
+
+    def ChatterRatio(self, t0: float, t1: float) -> float:
+        """How clearly [t0, t1] chatters or not: for each measure of :meth:`MeshOscillation`, the last quarter's
+        amplitude over the larger of its two thresholds in :meth:`Chatter` (:data:`CHATTER_AMPLITUDE`, and
+        :data:`CHATTER_SUSTAIN` times the third quarter's amplitude); the largest over the measures. At least 1
+        where the window chatters (the mesh loaded), below 1 where it does not; 0 for an unloaded mesh. Near 1 the
+        verdict is close (the step check of :mod:`exudyn_worm.analysis.stepsize` looks there).
+
+        Parameters
+        ----------
+        t0, t1 : float
+            The window in s.
+
+        Returns
+        -------
+        float
+            Dimensionless, >= 0.
+        """
+        return max((a[3] / max(CHATTER_AMPLITUDE, CHATTER_SUSTAIN * a[2])
+                    for a in self._LoadedOscillation(t0, t1).values()), default=0.)
 
     def MinWormSpeed(self, t0: float, t1: float) -> float:
         """Smallest worm speed in [t0, t1] in rad/s, counted in the direction the motor turns in the window

@@ -43,9 +43,10 @@ import numpy as np
 from .._checks import CheckBool, CheckName, CheckReal, CheckSystem
 from ._rigidnodes import RIGID_NODES
 from ._userfunctions import CheckPlainForceLaw, SetGenericForceLaw
-from .connector import _AddStickSlip, _StartFrictionState, _StickSlip
+from .connector import _AddStickSlip, _StickSlip
 from ..model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, FrictionState, MeshContact, MeshState
 from ..model.gear import WormGear
+from ..model.stickslip import StartFrictionState
 
 __all__ = ['RigidBodyWormGearConnector', 'CreateRigidBodyWormGear', 'MeshGeometry', 'RIGID_CONNECTORS_KEY',
            'PERPENDICULAR_TOLERANCE', 'CENTRE_DISTANCE_TOLERANCE', 'LINEAR_ROWS_TOLERANCE']
@@ -264,7 +265,7 @@ class _SpinReference:
     def __init__(self, kinematics: _Kinematics, nodes, angles: Sequence[float]):
         self.kinematics, self.nodes = kinematics, list(nodes)
         self.angles = [float(a) for a in angles]
-        self.clock = [-np.inf, -np.inf]
+        self.clock = None       # the system's post-Newton clock (set by _AddStickSlip)
         self._next, self._last, self._indices, self._data = -np.inf, None, None, None
 
     def LawSpins(self):
@@ -436,7 +437,7 @@ class RigidBodyWormGearConnector:
             _AddStickSlip(mbs, self.stickSlip)
         if self.stickSlip is not None:
             self.stickSlip.options = options
-            self.stickSlip.clock[1] = -np.inf
+            self.stickSlip.clock.Wake()
         self.options = options
         if self.compiled is not None:
             _RecordCompiledLaw(mbs, self, options)
@@ -455,7 +456,7 @@ class RigidBodyWormGearConnector:
     def _StartState(self, mbs) -> FrictionState:
         q, v = self._InitialVectors(mbs)
         x, w, _ = self._Inputs(q, v)
-        return _StartFrictionState(self.gear, float(x[0]), float(x[1]), float(w[0]))
+        return StartFrictionState(self.gear, float(x[0]), float(x[1]), float(w[0]))
 
     def InitialMeshState(self, mbs) -> MeshState:
         """Mesh quantities at the system's initial state (the nodes' initial coordinates and velocities).

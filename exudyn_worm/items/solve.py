@@ -24,7 +24,7 @@ from typing import Iterator
 
 from ..progress import ProgressBar, ProgressEnabled
 
-__all__ = ['SolverDivergedError', 'SolveDynamicInChunks', 'CHUNK_STEPS', 'IsInterrupt', 'Interruptible']
+__all__ = ['SolverDivergedError', 'IncompleteSolveError', 'SolveDynamicInChunks', 'CHUNK_STEPS', 'IsInterrupt', 'Interruptible']
 
 #: solver steps per chunk: small enough for a live progress bar (a chunk of the slowest reel-changer run,
 #: P7, takes about 0.3 s), large enough that the per-chunk restart costs nothing measurable
@@ -52,6 +52,26 @@ class SolverDivergedError(RuntimeError):
     def __init__(self, message: str, timeReached: float, endTime: float, stepSize: float):
         super().__init__(message)
         self.timeReached, self.endTime, self.stepSize = timeReached, endTime, stepSize
+
+
+class IncompleteSolveError(SolverDivergedError):
+    """The solver returned without failing, but before the end time (a user function stopped it, e.g. a pre-step
+    function returning False or ``mbs.StopSimulation()``): its result would be a truncated run.
+
+    The attributes are those of :class:`SolverDivergedError` (``timeReached`` < ``endTime``).
+    """
+
+
+def _CheckEndReached(solver, endTime: float, stepSize: float, until=None, where: str = 'SolveDynamicInChunks') -> None:
+    """Raise :class:`IncompleteSolveError` if ``solver`` stopped before ``until`` (s; default the run's ``endTime``,
+    a chunk's end in a chunked run) by more than a thousandth of the step ``stepSize`` (s; the solver's clock sums
+    steps and may miss the end by round-off)."""
+    reached = float(solver.it.currentTime)
+    if not reached >= (endTime if until is None else until) - 1e-3 * stepSize:
+        raise IncompleteSolveError(f"{where}: the run ended at t = {reached:.6g} s, before its end time "
+                                   f"{endTime:g} s (step size {stepSize:g} s), without a solver failure: a user "
+                                   f"function or a stop request ended it early; its result would be truncated",
+                                   reached, endTime, stepSize)
 
 
 def IsInterrupt(err: BaseException) -> bool:
@@ -124,7 +144,9 @@ def _SolveInOnePiece(mbs, ss, solverType):
         raise SolverDivergedError(f"the Exudyn solver ({solverType}) failed at t = {reached:.6g} s of "
                                   f"{ti.endTime:g} s ({err})", reached, ti.endTime,
                                   (ti.endTime - ti.startTime) / ti.numberOfSteps) from err
-    return mbs.sys['dynamicSolver']
+    solver = mbs.sys['dynamicSolver']
+    _CheckEndReached(solver, ti.endTime, (ti.endTime - ti.startTime) / ti.numberOfSteps)
+    return solver
 
 
 def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None, desc: str = 'simulate',
@@ -159,6 +181,9 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
     ------
     SolverDivergedError
         If the solver fails; the message gives the simulated time reached.
+    IncompleteSolveError
+        If the solver returns before the end time without failing (a user function stopped it): the message
+        gives the time reached and the end time.
     ValueError, TypeError
         For ``chunkSteps < 1``, a ``solverType`` that is not an ``exudyn.DynamicSolverType``, or an explicit
         solver on a system with constraints.
@@ -203,6 +228,7 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
                     raise Diverged(err) from err
                 if not ok:
                     raise Diverged()
+                _CheckEndReached(solver, T, h)
                 return solver
             with ProgressBar(total=T - t0, desc=desc, unit='s', quiet=quiet, delay=2. if progress is None else 0.,
                              bar_format='{desc}: {percentage:3.0f}%|{bar}| {n:.3g}/{total:.3g} s simulated '
@@ -218,10 +244,12 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
                     for k in range(1, chunks + 1):
                         if not ok:
                             raise Diverged()
-                        solver.it.endTime = T if k == chunks else t0 + h * round(n * k / chunks)
+                        solver.it.endTime = chunkEnd = T if k == chunks else t0 + h * round(n * k / chunks)
                         ok = solver.SolveSteps(mbs, ss)
                         mbs.sys['dynamicSolverSteps'] += int(solver.it.currentStepIndex) - 1
                         bar.update(solver.it.currentTime - t0 - bar.n)
+                        if ok:
+                            _CheckEndReached(solver, T, h, chunkEnd)   # stopped early: T is not reached either
                     if not ok:
                         raise Diverged()
                 except exu.ExudynError as err:    # SolverError and others raised by the C++ solver

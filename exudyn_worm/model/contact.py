@@ -75,8 +75,9 @@ def SymbolicOps():
     def Where(condition, a, b):  # IfThenElse takes symbolic operands only
         return esym.IfThenElse(condition, *(x if isinstance(x, esym.Real) else esym.Real(float(x)) for x in (a, b)))
 
+    # Vector: a constant vector times a scalar expression evaluates the scalar once (MeshContact's generalized forces)
     return SimpleNamespace(sin=esym.sin, cos=esym.cos, abs=esym.abs, sign=esym.sign, max=esym.max, min=esym.min,
-                           where=Where, exp=esym.exp, atan=esym.atan)
+                           where=Where, exp=esym.exp, atan=esym.atan, Vector=esym.Vector)
 
 
 @dataclass(frozen=True)
@@ -233,6 +234,10 @@ class MeshState:
     radialForce : float or ndarray
         Mesh force on the worm along the centre line towards the wheel in N: ``-sin(alphaN) Fn``, the separating
         force (<= 0 unless ``dampingCanPull``); the wheel takes the opposite force.
+    generalizedForces : list or symbolic vector
+        ``[wormTorque, wheelTorque]`` in N*m (with an axial displacement also ``axialForce`` in N): the forces on the law's
+        coordinates. With the symbolic backend one vector expression in which each shared term (the normal force,
+        the friction state) is evaluated once (a recorded expression is a tree, evaluated node by node).
     """
     deltaPhi: Any
     deltaS: Any
@@ -246,6 +251,7 @@ class MeshState:
     frictionForce: Any = 0.
     stuck: Any = 0.
     radialForce: Any = 0.
+    generalizedForces: Any = None
 
     @property
     def normalForceFlanks(self):
@@ -365,6 +371,7 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
         else:
             fn = ops.where(lever * ops.abs(d) + sinAlpha * radialApproach > 0.5 * gear.backlash, fn, 0.)
     normalForce = sigma * fn
+    vector = getattr(ops, 'Vector', None)        # the symbolic backend's constant vectors (see generalizedForces)
     if options.frictionModel == 'regularized' or options.fixedS is not None:   # eqs. (10), (12) as printed
         if options.frictionSpeed > 0:
             sf = ops.max(-1., ops.min(1., omega1 * (1. / options.frictionSpeed)))
@@ -379,18 +386,34 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
         frictionForce = (wormTorque * (-1. / gear.r1) - math.cos(gear.alphaN) * math.sin(gear.gamma) * normalForce) \
             * (1. / math.cos(gear.gamma))
         stuck = 0.
+        levers = [-c2, c4] + ([c4 * (-1. / gear.r2)] if axialDisplacement is not None else [])
+        generalized = (vector(levers) * normalForce if vector is not None
+                       else [wormTorque, wheelTorque] + ([wheelTorque * (-1. / gear.r2)] if len(levers) > 2 else []))
     else:
-        frictionForce, sf, stuck = _FrictionForce(gear, options, ops, sigma, fn, phi1, phi2, omega1, omega2,
-                                                  frictionState)
+        frictionForce, sf, stuck, slipFactor, stickForce = _FrictionForce(gear, options, ops, sigma, fn, phi1, phi2,
+                                                                           omega1, omega2, frictionState)
         S = sigma * sf
         # eqs. (10), (12) with the friction force written out (module text): levers of normal and friction force
-        wormTorque = -((gear.r1 * math.cos(gear.alphaN) * math.sin(gear.gamma)) * normalForce
-                       + (gear.r1 * math.cos(gear.gamma)) * frictionForce)
-        wheelTorque = (gear.r2 * math.cos(gear.alphaN) * math.cos(gear.gamma)) * normalForce \
-            - (gear.r2 * math.sin(gear.gamma)) * frictionForce
+        normalLevers = [-(gear.r1 * math.cos(gear.alphaN) * math.sin(gear.gamma)),
+                        gear.r2 * math.cos(gear.alphaN) * math.cos(gear.gamma)]
+        frictionLevers = [-(gear.r1 * math.cos(gear.gamma)), -(gear.r2 * math.sin(gear.gamma))]
+        if axialDisplacement is not None:        # axialForce = -wheelTorque / r2
+            normalLevers.append(normalLevers[1] * (-1. / gear.r2))
+            frictionLevers.append(frictionLevers[1] * (-1. / gear.r2))
+        # frictionForce = slipFactor * normalForce + stickForce (slipFactor = mu m sigma sliding, 0 stuck; stickForce
+        # the stuck flanks' force, 0 sliding): each generalized force is (a + b slipFactor) normalForce + b stickForce
+        if vector is not None:                   # one vector expression: each shared term once
+            generalized = (vector(normalLevers) + vector(frictionLevers) * slipFactor) * normalForce
+            if stickForce is not None:
+                generalized = generalized + vector(frictionLevers) * stickForce
+        wormTorque, wheelTorque = (a * normalForce + b * frictionForce
+                                   for a, b in zip(normalLevers[:2], frictionLevers[:2]))
+        if vector is None:
+            generalized = [wormTorque, wheelTorque] + ([wheelTorque * (-1. / gear.r2)] if len(normalLevers) > 2 else [])
     return MeshState(deltaPhi=deltaPhi, deltaS=lever * d, normalForce=normalForce, S=S, sf=sf,
                      wormTorque=wormTorque, wheelTorque=wheelTorque, axialForce=wheelTorque * (-1. / gear.r2),
-                     frictionForce=frictionForce, stuck=stuck, radialForce=fn * (-sinAlpha))
+                     frictionForce=frictionForce, stuck=stuck, radialForce=fn * (-sinAlpha),
+                     generalizedForces=generalized)
 
 
 def FrictionCoefficientAt(gear: WormGear, omega1: Any, ops: Any = MATH_OPS) -> Any:
@@ -417,11 +440,12 @@ def FrictionCoefficientAt(gear: WormGear, omega1: Any, ops: Any = MATH_OPS) -> A
 
 
 def _FrictionForce(gear, options, ops, sigma, fn, phi1, phi2, omega1, omega2, state):
-    """Friction force (N), sf and the stuck flag of the sticking model (see the module text)."""
+    """Friction force (N), sf, the stuck flag of the sticking model (see the module text), and the friction force
+    split as ``slipFactor * normalForce + stickForce`` (``stickForce`` None without a stick state)."""
     mu = FrictionCoefficientAt(gear, omega1, ops)
     if state is None:                                      # exact Coulomb law, no stick state
         sf = ops.sign(omega1)
-        return mu * sf * fn, sf, 0.
+        return mu * sf * fn, sf, 0., mu * sf * sigma, None
     sfSlip = state.direction           # held during Newton's iteration; a reversal is a switch to sticking
     slip = mu * sfSlip * fn
     stick = options.StickingStiffness(gear) * (SlidingCoordinate(gear, phi1, phi2) - state.anchor) \
@@ -434,7 +458,9 @@ def _FrictionForce(gear, options, ops, sigma, fn, phi1, phi2, omega1, omega2, st
         sf = ops.where(isStuck, sfStick, sfSlip)
     else:
         sf = sfSlip
-    return frictionForce, sf, ops.where(isStuck, 1., 0.)
+    # sliding: mu m fn = (mu m sigma) (sigma fn), exactly (sigma = +-1, or 0 where fn = 0)
+    slipFactor = ops.where(isStuck, 0., mu * sfSlip * sigma)
+    return frictionForce, sf, ops.where(isStuck, 1., 0.), slipFactor, ops.where(isStuck, stick, 0.)
 
 
 def StickSlipUpdate(gear: WormGear, options: ContactOptions, state: FrictionState, phi1: float, phi2: float,

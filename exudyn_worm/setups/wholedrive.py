@@ -34,7 +34,7 @@ from ..model.drive import ElasticDrive
 from ..model.gear import WormGear
 from .config import ResolveParametersWithSources
 from .duty import LOAD_TYPES, MOTOR_TYPES, LoadType, MotorType, _LoadLaw, _MotorLaw
-from .presets import (ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
+from .presets import (ParameterKey, ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
                       ElasticDriveFromParameters, LoadSideChain, MissingParameterError, ShaftSupportsFromParameters)
 
 __all__ = ['Component', 'Drive', 'ResolveDrive', 'AsDrive']
@@ -350,7 +350,7 @@ def AsDrive(drive: Union[Drive, Mapping[str, Any]], where: str = 'AsDrive') -> D
     if isinstance(drive, ElasticDrive):
         raise TypeError(f"{where}: 'drive' must be a Drive (exudyn_worm.ResolveDrive) or a flat parameter set, got "
                         f"an ElasticDrive (the two-mass core only); for it use AnalyzeStability")
-    key = _Key(drive)
+    key = ParameterKey(drive)
     if key is None:
         return Drive.FromParameters(drive)
     if key not in _RECENT:         # the same set passed again (a command's steps): the same drive, analysed once
@@ -366,19 +366,3 @@ _RECENT: 'collections.OrderedDict' = collections.OrderedDict()
 _RECENT_SIZE = 32
 
 
-def _Freeze(value):
-    if isinstance(value, (list, tuple)):
-        return tuple(_Freeze(v) for v in value)
-    if isinstance(value, os.PathLike):
-        return os.fspath(value)
-    return value
-
-
-def _Key(parameters) -> Optional[tuple]:
-    """A hashable image of a flat parameter set, or None if it has a value that cannot be one."""
-    try:
-        key = tuple(sorted((k, type(v).__name__, _Freeze(v)) for k, v in parameters.items()))
-        hash(key)
-    except TypeError:
-        return None
-    return key
