@@ -13,10 +13,6 @@ and :mod:`~exudyn_worm.cli`.
 """
 import importlib
 
-from ._moved import InstallMovedModuleFinder
-
-InstallMovedModuleFinder()      # old module paths (exudyn_worm.presets, ...) still import, with a DeprecationWarning
-
 #: public name -> submodule that defines it; imported on first access (PEP 562), so that
 #: ``import exudyn_worm.cli.main`` and light subcommands do not pay for exudyn, scipy, pint or matplotlib
 _LAZY = {'WormGear': 'model.gear',

@@ -37,7 +37,7 @@ ALLOWED: Dict[Tuple[str, str], str] = {
 #: A module imports (at module level) only modules of its own or a lower layer; inside a subpackage any module may
 #: import any other, as long as there is no cycle. A new module goes into the subpackage it belongs to.
 LAYERS = (
-    ('helpers', '_checks _files _moved _roots _spacing _workers progress'),
+    ('helpers', '_checks _files _roots _spacing _workers progress'),
     ('parameters and files', 'params'),
     ('gear model', 'model'),
     ('Exudyn items', 'items'),
@@ -223,12 +223,12 @@ def test_every_module_has_a_layer():
 def test_the_package_has_no_flat_modules_beyond_the_helpers():
     # issue 17, item 2: the layers show as subpackages
     flat = sorted(m for m in MODULES if m.count('.') == 1 and not (ROOT / m.split('.')[1]).is_dir())
-    assert flat == [f'{PACKAGE}.{name}' for name in sorted('__main__ _checks _files _moved _roots _spacing _workers progress'.split())]
+    assert flat == [f'{PACKAGE}.{name}' for name in sorted('__main__ _checks _files _roots _spacing _workers progress'.split())]
 
 
 def test_module_level_imports_go_down_the_layers():
     layer = {module: LayerOf(module) for module in MODULES if module != PACKAGE}
-    layer[PACKAGE] = 0        # the package's __init__: lazy attributes; it imports only a helper (_moved) at module level
+    layer[PACKAGE] = 0        # the package's __init__: lazy attributes; no internal import at module level
     upward = sorted(f'{module} ({LAYERS[layer[module]][0]}) imports {target} ({LAYERS[layer[target]][0]})'
                     for module, targets in ModuleGraph().items() for target in targets
                     if layer[target] > layer[module])
