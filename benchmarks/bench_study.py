@@ -40,7 +40,9 @@ import numpy as np                                                  # noqa: E402
 from exudyn_worm.setups.config import ResolveParameters                   # noqa: E402
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset      # noqa: E402
 from exudyn_worm.model.stability import AnalyzeStability                  # noqa: E402
-from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study, VibrationSeconds  # noqa: E402
+from exudyn_worm.analysis.study import RunStudy  # noqa: E402
+from exudyn_worm.analysis.studygrid import ParseVariation, Study
+from exudyn_worm.analysis.studypoint import VibrationSeconds
 
 __all__ = ['SpeedUp', 'Overhead', 'MapWallTime', 'Main']
 

@@ -36,7 +36,8 @@ from exudyn_worm.model.contact import NUMPY_OPS, ContactOptions, MeshContact, Sl
 from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque           # noqa: E402
 from exudyn_worm.setups.presets import ElasticDriveFromParameters                         # noqa: E402
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque          # noqa: E402
-from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings, SteadyInitialState  # noqa: E402
+from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings  # noqa: E402
+from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult                            # noqa: E402
 from exudyn_worm.analysis.stepsize import RecommendedStepSize                        # noqa: E402
 

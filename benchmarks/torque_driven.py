@@ -18,7 +18,8 @@ from exudyn_worm.model.contact import MATH_OPS, ContactOptions
 from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque
 from exudyn_worm.setups.presets import ElasticDriveFromParameters
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque
-from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings, SteadyInitialState
+from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings
+from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
 
 __all__ = ['SimulateTorqueDriven']

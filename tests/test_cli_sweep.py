@@ -10,7 +10,7 @@ import pytest
 
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.analysis.study import ReadResults
+from exudyn_worm.analysis.studyfiles import ReadResults
 
 SHORT = ['--windows', '0:0.5,0.5:1', '--end-time', '1', '--quiet']
 

@@ -7,7 +7,8 @@ import pytest
 
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study
+from exudyn_worm.analysis.study import RunStudy
+from exudyn_worm.analysis.studygrid import ParseVariation, Study
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')   # nothing written to the cwd
 

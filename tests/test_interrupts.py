@@ -216,7 +216,8 @@ def test_cancel_terminates_running_workers_and_drops_queued_runs():
 def test_a_study_run_draws_no_bar_of_its_own(monkeypatch):
     import exudyn_worm.analysis.reelchanger as reelchanger
     from exudyn_worm.setups.config import ResolveParameters
-    from exudyn_worm.analysis.study import RunPoint, Study, Variation
+    from exudyn_worm.analysis.studygrid import Study, Variation
+    from exudyn_worm.analysis.studypoint import RunPoint
     seen = {}
 
     def Capture(p, **kwargs):
@@ -270,7 +271,7 @@ def test_sigint_during_simulate(folder):
 
 @pytest.mark.skipif(os.name != 'posix', reason='POSIX signals')
 def test_sigint_during_sweep_keeps_the_finished_runs(folder):
-    from exudyn_worm.analysis.study import ReadResults, StudySidecarPath
+    from exudyn_worm.analysis.studyfiles import ReadResults, StudySidecarPath
     output = folder / 'runs.csv'
     process = _Started(
         "import sys, signal, exudyn_worm.cli.main, exudyn_worm.analysis.reelchanger\n"

@@ -157,7 +157,7 @@ def test_stage_keys_of_a_drive_file_in_order(tmp_path):
 def test_equilibrium_every_load_shaft_carries_the_load_torque():
     from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
     from exudyn_worm.model.profiles import GravityLeverTorque
-    from exudyn_worm.analysis.reelchanger import SteadyInitialState
+    from exudyn_worm.items.equilibrium import SteadyInitialState
     p = GetPreset('reel-P2')
     load = GravityLeverTorque(mass=p['loadMass'], leverArm=p['leverArm'])
     stages = ((5., 2e5, 1.), (10., 4e5, 0.))
@@ -199,7 +199,7 @@ def test_cli_stability_and_sweep_treat_the_whole_drive(tmp_path, fileParameters)
 @pytest.mark.parametrize('kL1, stable', [(2e4, False), (2e7, True)])
 def test_sweep_point_takes_the_verdict_of_the_whole_drive(fileParameters, kL1, stable):
     """A sweep over the load shaft: the soft one chatters (whole drive), the stiff one is the lumped drive."""
-    from exudyn_worm.analysis.study import RunPoint
+    from exudyn_worm.analysis.studypoint import RunPoint
     row = RunPoint({'run': 0, 'parameters': {**fileParameters, 'kL1': kL1}, 'varied': {'kL1': kL1},
                     'windows': [(0., 0.01)], 'endTime': 0.01, 'stepSize': None})
     assert row['status'] == 'ok', row['error']

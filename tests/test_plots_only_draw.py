@@ -90,47 +90,16 @@ def test_no_numerical_module_imports_matplotlib():
             'exudyn_worm.items.results', 'exudyn_worm.analysis.charttable'} <= set(NON_PLOT_MODULES)
 
 
-def _SimulationResult():
-    from exudyn_worm.items.results import SimulationResult
-    return object.__new__(SimulationResult)     # the spelling is tested, not the drawing: no data needed
-
-
-def _StudyResult():
-    from exudyn_worm.analysis.study import StudyResult
-    return object.__new__(StudyResult)
-
-
-@pytest.mark.parametrize('make', [_SimulationResult, _StudyResult], ids=['SimulationResult', 'StudyResult'])
-def test_capital_Plot_is_a_deprecated_alias_of_plot(make, monkeypatch):
-    result = make()
-    calls = []
-    monkeypatch.setattr(type(result), 'plot', lambda self, *args, **kwargs: calls.append((args, kwargs)) or 'fig')
-    with pytest.warns(DeprecationWarning, match=rf'{type(result).__name__}\.Plot is deprecated; use '
-                                                rf'{type(result).__name__}\.plot'):
-        assert result.Plot('J1', 'kT', title='t') == 'fig'
-    assert calls == [(('J1', 'kT'), {'title': 't'})]
-
-
 def test_every_result_object_spells_plot_in_lower_case():
-    """The result objects of the analyses draw with ``.plot()``; ``.Plot`` exists only as the deprecated alias."""
+    """The result objects of the analyses draw with ``.plot()``, and only with it."""
     from exudyn_worm.analysis.charts import FirstCriterionCurves, StabilityChart
     from exudyn_worm.analysis.design import DesignCheckResult
     from exudyn_worm.items.results import SimulationResult
     from exudyn_worm.analysis.speedchart import SpeedChart
-    from exudyn_worm.analysis.study import StudyResult
+    from exudyn_worm.analysis.studyfiles import StudyResult
     for cls in (SimulationResult, StudyResult, StabilityChart, FirstCriterionCurves, SpeedChart, DesignCheckResult):
         assert callable(getattr(cls, 'plot', None)), cls.__name__
-    assert all(cls.Plot.__doc__.startswith('Deprecated') for cls in (SimulationResult, StudyResult))
-
-
-def test_format_chart_table_moved_to_charttable():
-    from exudyn_worm.analysis import charts
-    from exudyn_worm.analysis import charttable
-    assert 'FormatChartTable' not in charts.__all__
-    with pytest.warns(DeprecationWarning, match='charttable.FormatChartTable'):
-        assert charts.FormatChartTable is charttable.FormatChartTable
-    with pytest.raises(AttributeError):
-        charts.NoSuchName
+        assert not hasattr(cls, 'Plot'), cls.__name__
 
 
 def test_chart_points_are_resolved_before_drawing():
@@ -162,7 +131,8 @@ def test_chart_points_are_resolved_before_drawing():
 @pytest.mark.messages
 def test_chatter_map_names_itself_for_a_key_not_varied():
     from exudyn_worm.setups.config import ResolveParameters
-    from exudyn_worm.analysis.study import ParseVariation, Study, StudyResult
+    from exudyn_worm.analysis.studyfiles import StudyResult
+    from exudyn_worm.analysis.studygrid import ParseVariation, Study
     from exudyn_worm.analysis.studymap import ComputeChatterMap
     study = Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.1,0.2'), ParseVariation('kT=7000,8000')])
     with pytest.raises(ValueError, match=r"ComputeChatterMap: 'y' must be a varied key \(J1, kT\), got 'kV'"):

@@ -12,7 +12,8 @@ from exudyn_worm.items.results import SimulationResult
 from exudyn_worm.model.stability import StateMatrix
 from exudyn_worm.analysis.stepsize import (SMALL_MARGIN, UNRESOLVED, CompareHalfStep, LinearMargin, RecommendedStepSize,
                                   StepCheckByDefault)
-from exudyn_worm.analysis.study import RunPoint, Study, Variation
+from exudyn_worm.analysis.studygrid import Study, Variation
+from exudyn_worm.analysis.studypoint import RunPoint
 
 # the drive of issue 16: J1 = 0.0247 kg*m^2, kT = 1508 N*m/rad on P1's gear and load
 ISSUE_SETS = ['J1=0.0247', 'kT=1508']
@@ -127,7 +128,8 @@ def test_a_verdict_that_flips_with_the_step_is_unresolved_in_sweep(monkeypatch):
 
 def test_unresolved_survives_the_csv_and_stays_out_of_the_agreement(tmp_path, monkeypatch):
     from exudyn_worm.cli.sweep import FormatStudy
-    from exudyn_worm.analysis.study import ReadResults, RunStudy
+    from exudyn_worm.analysis.study import RunStudy
+    from exudyn_worm.analysis.studyfiles import ReadResults
     p = GetPreset('reel-P1')
     _FlipWithStep(monkeypatch, 0.75 * RecommendedStepSize(p))
     study = Study(p, [Variation('J1', (0.2,))], windows=[(3.8, 4.0), (4.0, 4.2)], endTime=4.2, checkStep=True)

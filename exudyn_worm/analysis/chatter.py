@@ -36,8 +36,8 @@ from ..setups.wholedrive import Component
 from ..setups.duty import IsReelChangerDuty
 from ..setups.presets import (DUTY_KEYS, REEL_KEYS, AxialBearingFromParameters, ElasticDriveFromParameters,
                               DriveSideChain, LoadSideChain)
-from .reelchanger import (SOLVER_SETTINGS, BuildReelChanger, CheckReelChangerKeys, SolverSettings,
-                          SteadyInitialState)
+from .reelchanger import SOLVER_SETTINGS, BuildReelChanger, CheckReelChangerKeys, SolverSettings
+from ..items.equilibrium import SteadyInitialState
 from ..items.solve import SolverDivergedError
 
 __all__ = ['LoweringModel', 'BuildLoweringModel', 'ExudynFlow', 'FindSteadyChatter',

@@ -22,7 +22,7 @@ from ..items.connector import CreateWormAxialBearing, CreateWormGear, WormGearCo
 from ..model.contact import MATH_OPS, ContactOptions
 from ..model.drive import ElasticDrive
 from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
-from ..items.equilibrium import SteadyInitialState  # re-exported: it lived here before
+from ..items.equilibrium import SteadyInitialState
 from ..setups.presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, ElasticDriveFromParameters, DriveSideChain,
                       LoadSideChain, MissingParameterError)
 from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
@@ -36,7 +36,7 @@ from ..model.stability import CharacteristicCoefficients, EigenvaluesFromPolynom
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
            'DefaultPhases', 'DefaultSimulatedTime', 'WindowPhases', 'PhaseLabel',
-           'SteadyInitialState', 'CheckRunSize', 'CheckReelChangerKeys', 'SolverSettings', 'DEFAULT_STEP_SIZE',
+           'CheckRunSize', 'CheckReelChangerKeys', 'SolverSettings', 'DEFAULT_STEP_SIZE',
            'SOLVER_SETTINGS', 'MAX_STEPS']
 
 #: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change

@@ -87,7 +87,7 @@ def _RunSpeed(args: argparse.Namespace) -> int:
     (:mod:`exudyn_worm.analysis.speedchart`)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.speedchart import SpeedStabilityChart
-    from ..analysis.study import ParseVariation
+    from ..analysis.studygrid import ParseVariation
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
     drive = WholeDriveFromArgs(args)

@@ -60,7 +60,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 def _Study(args: argparse.Namespace):
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.reelchanger import CheckReelChangerKeys
-    from ..analysis.study import ParseVariation, Study
+    from ..analysis.studygrid import ParseVariation, Study
     from .simulate import ParseWindows
     parameters = ParametersFromArgs(args)
     if args.overwrite and not (args.output or args.plot):
@@ -93,7 +93,7 @@ def _CheckPlot(args, study) -> None:
     if len(study.keys) not in (1, 2):
         raise UsageError(f"--plot needs one or two varied keys, got {len(study.keys)}")
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.study import RUN_COLUMNS, WINDOW_METRICS
+    from ..analysis.studypoint import RUN_COLUMNS, WINDOW_METRICS
     if len(study.keys) == 1:
         if args.metric is None:
             args.metric = _DefaultMetric(study)
@@ -114,7 +114,8 @@ def _DefaultMetric(study) -> str:
 
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.study import RunStudy, StudySidecarPath
+    from ..analysis.study import RunStudy
+    from ..analysis.studyfiles import StudySidecarPath
     study = _Study(args)
     if args.output:
         # an existing results file is resumed (same study) or refused naming what differs (RunStudy)
