@@ -92,7 +92,8 @@ def SpeedUp(repeat: int = 3) -> Dict:
 def Overhead(repeat: int = 5) -> Dict:
     """Per-run overhead of a P1 run, by stage, against its solve time (best of ``repeat`` per stage)."""
     import exudyn as exu
-    from exudyn_worm.analysis.reelchanger import BuildReelChanger, DefaultWindows, RotationPeriod
+    from exudyn_worm.analysis.reelchanger import DefaultWindows, RotationPeriod
+    from exudyn_worm.setups.build import BuildReelChanger
     p = GetPreset('reel-P1')
     stages = {k: [] for k in ('buildPython', 'buildSymbolic', 'assemble', 'solve', 'postProcess', 'writeRow')}
     for _ in range(repeat):

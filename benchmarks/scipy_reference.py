@@ -25,7 +25,8 @@ from typing import Callable, Mapping, Optional, Tuple
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact
+from exudyn_worm.model.contact import ContactOptions, MeshContact
+from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.model.drive import ElasticDrive
 from exudyn_worm.setups.presets import ElasticDriveFromParameters
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque

@@ -13,11 +13,11 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import (BuildLoweringModel, ConstantTorque, FindSteadyChatter, LongSimulationAmplitude,
-                                 UpdateLoweringModel)
+from exudyn_worm.analysis.chatter import (BuildLoweringModel, FindSteadyChatter, LongSimulationAmplitude, UpdateLoweringModel)
+from exudyn_worm.model.profiles import ConstantTorque
 from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, ChatterBranchError, LinearBoundaries
 from exudyn_worm.cli.main import Main
-from exudyn_worm.model.contact import MATH_OPS
+from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 from exudyn_worm import AnalyzeStability, ApplyOverrides, ElasticDriveFromParameters, GetPreset
-from exudyn_worm.analysis.design import (DEFAULT_MARGIN, ConfirmBySimulation, DesignCheck, DesignParameters,
-                                NearestStableValue, StabilizingChanges)
+from exudyn_worm.analysis.design import (DEFAULT_MARGIN, ConfirmBySimulation, DesignCheck, NearestStableValue, StabilizingChanges)
+from exudyn_worm.analysis.designscan import DesignParameters
 
 
 def _Stable(p):

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS
+from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.model.profiles import ConstantTorque, SpeedTable, TorqueTable
 
 

@@ -6,8 +6,9 @@ from pathlib import Path
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.items.connector import AxialBearing
-from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
+from exudyn_worm.model.drive import AxialBearing
+from exudyn_worm.model.contact import ContactOptions, MeshContact
+from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, DriveSideChain, GetPreset
 from exudyn_worm.model.profiles import GravityLeverTorque

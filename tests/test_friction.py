@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import exudyn as exu
-from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact, SymbolicOps
+from exudyn_worm.model.contact import ContactOptions, MeshContact, SymbolicOps
+from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.model.friction import (FT_PER_MIN, AgmaFriction, ConstantFriction, FrictionLaw, FrictionTableRangeWarning,
                                   StribeckFriction, TableFriction)
 from exudyn_worm.model.gear import WormGear

@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
+from exudyn_worm.model.contact import ContactOptions, MeshContact
+from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.model.friction import StribeckFriction, TableFriction
 from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset

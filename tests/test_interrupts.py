@@ -12,7 +12,9 @@ from pathlib import Path
 
 import pytest
 
-from exudyn_worm.cli.main import INTERRUPTED_STATUS, Main, WriteAtomically
+from exudyn_worm.cli.main import Main
+from exudyn_worm._files import WriteAtomically
+from exudyn_worm._workers import INTERRUPTED_STATUS
 from exudyn_worm.items.solve import Interruptible, IsInterrupt
 
 ROOT = Path(__file__).resolve().parents[1]

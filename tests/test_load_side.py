@@ -162,7 +162,7 @@ def test_equilibrium_every_load_shaft_carries_the_load_torque():
     load = GravityLeverTorque(mass=p['loadMass'], leverArm=p['leverArm'])
     stages = ((5., 2e5, 1.), (10., 4e5, 0.))
     state = SteadyInitialState(ElasticDriveFromParameters(p), load, p['motorSpeed'], loadSide=stages)
-    from exudyn_worm.model.contact import MATH_OPS
+    from exudyn_worm.model.friction import MATH_OPS
     torque = load.Torque(state['phiL2'], 0., 0., MATH_OPS)             # the load acts on the last inertia
     assert torque < 0
     assert 2e5 * (state['phiL1'] - state['phi2']) == pytest.approx(torque, rel=1e-9)

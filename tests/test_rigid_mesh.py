@@ -5,12 +5,14 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
+from exudyn_worm.analysis.reelchanger import SolverSettings
+from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.stepsize import RecommendedStepSize
 from exudyn_worm.items.bearings import CreateShaftBearings, ShaftBearings, StoredBearingLoads
 from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear, MeshForceComponents
-from exudyn_worm.model.contact import MATH_OPS, ContactOptions
+from exudyn_worm.model.contact import ContactOptions
+from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 
 exu = pytest.importorskip('exudyn')

@@ -6,7 +6,8 @@ import pytest
 
 import exudyn_worm as ew
 from exudyn_worm import GetPreset, SimulateReelChanger
-from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
+from exudyn_worm.analysis.reelchanger import SolverSettings
+from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.items.solve import SolveDynamicInChunks, SolverDivergedError
 
 

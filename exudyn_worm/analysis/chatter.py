@@ -25,7 +25,8 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ..model.contact import MATH_OPS, ContactOptions
+from ..model.contact import ContactOptions
+from ..model.friction import MATH_OPS
 from .orbits import FindPeriodicOrbit, PeriodicOrbit, ShootingError
 from ..model.profiles import STANDARD_GRAVITY, ConstantSpeed, ConstantTorque, GravityLeverTorque
 from .._checks import CheckPositive, CheckReal, CheckSystem
@@ -36,7 +37,8 @@ from ..setups.wholedrive import Component
 from ..setups.duty import IsReelChangerDuty
 from ..setups.presets import (DUTY_KEYS, REEL_KEYS, AxialBearingFromParameters, ElasticDriveFromParameters,
                               DriveSideChain, LoadSideChain)
-from .reelchanger import SOLVER_SETTINGS, BuildReelChanger, CheckReelChangerKeys, SolverSettings
+from .reelchanger import SOLVER_SETTINGS, SolverSettings
+from ..setups.build import BuildReelChanger, CheckReelChangerKeys
 from ..items.equilibrium import SteadyInitialState
 from ..items.solve import SolverDivergedError
 
@@ -182,7 +184,7 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
     ``loadMass * g * leverArm`` driving the wheel (the last rotor of a load-side chain), starting in the steady
     state (static mesh deflection, every shaft of the chains pre-twisted by the torque it carries).
 
-    The system is the time simulation's own (:func:`~exudyn_worm.analysis.reelchanger.BuildReelChanger` with the duty
+    The system is the time simulation's own (:func:`~exudyn_worm.setups.build.BuildReelChanger` with the duty
     ``loadType = constant``, ``loadTorque = loadMass * g * leverArm`` and the motor at ``motorSpeed``), so the
     drive-side chain (``J4, k4, d4, ...``), the load-side chain (``JL1, kL1, dL1, ...``) and the worm's axial
     bearing (``kA, dA, mA``) are built as a simulation builds them. The flow state holds every free ODE2
@@ -254,7 +256,7 @@ def _Configuration():
 def _SteadyState(drive, parameters: Mapping[str, float], loadTorque: float, motorSpeed: float,
                  contactOptions: ContactOptions) -> Dict[str, float]:
     """The steady state of lowering with the parameter set's chains and axial bearing, as
-    :func:`~exudyn_worm.analysis.reelchanger.BuildReelChanger` starts its system."""
+    :func:`~exudyn_worm.setups.build.BuildReelChanger` starts its system."""
     return SteadyInitialState(drive, ConstantTorque(loadTorque), motorSpeed, contactOptions,
                               AxialBearingFromParameters(parameters), tuple(DriveSideChain(parameters)),
                               loadSide=tuple(LoadSideChain(parameters)))

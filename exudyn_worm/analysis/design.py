@@ -50,16 +50,16 @@ from ..model.stability import CONTACT_STATES
 from ..setups.presets import PARAMETER_UNITS, ApplyOverrides
 from ..setups.wholedrive import Drive
 from .charts import ChartCoordinates, ComputeStabilityChart
-from .designscan import (SCAN_STEP, SPEED_KEY, WHOLE_DRIVE_TOLERANCE, AsCheckedDrive, AxisScan, DesignKeys, DesignParameters, Scanner,
-                         ScanMotorSpeed, ScanParameter, _ScaledDrives, _SymmetricGrid)
+from .designscan import (SPEED_KEY, WHOLE_DRIVE_TOLERANCE, AsCheckedDrive, AxisScan, DesignKeys, DesignParameters, Scanner,
+                         _ScaledDrives, _SymmetricGrid)
 from .drivestability import AnalyzeDrive, DriveAnalysis
-from .reelchanger import CheckReelChangerKeys, DefaultPhases
+from .reelchanger import DefaultPhases
+from ..setups.build import CheckReelChangerKeys
 from . import reelchanger
 
-__all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'LocalCharts', 'ChartGrid',
-           'AxisScan', 'ScanParameter', 'Recommendation', 'PairRecommendation', 'DesignCheckResult',
+__all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'LocalCharts', 'ChartGrid', 'Recommendation', 'PairRecommendation', 'DesignCheckResult',
            'DesignCheck', 'ChatterWhileLowering', 'ConfirmBySimulation',
-           'StableRange', 'NearestStableValue', 'StabilizingChanges', 'ScanMotorSpeed', 'SPEED_KEY']
+           'StableRange', 'NearestStableValue', 'StabilizingChanges']
 
 #: default margin in decades of a parameter factor (10^0.1 = 1.26: a 26 % error keeps the drive stable)
 DEFAULT_MARGIN = 0.1

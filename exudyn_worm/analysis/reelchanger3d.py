@@ -1,6 +1,6 @@
 """The reel changer with worm and wheel as 3D rigid bodies, on ideal revolute joints or on elastic bearings.
 
-:func:`BuildRigidBodyReelChanger` builds the drive of :func:`~exudyn_worm.analysis.reelchanger.BuildReelChanger`
+:func:`BuildRigidBodyReelChanger` builds the drive of :func:`~exudyn_worm.setups.build.BuildReelChanger`
 (motor at constant speed, drive shaft kT, dT, worm, mesh, wheel, the reel's lever load) with the worm and the wheel
 as ``mbs.CreateRigidBody`` bodies coupled by :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`. Each
 shaft sits on ideal revolute joints to ground, or on :func:`~exudyn_worm.items.bearings.CreateShaftBearings`

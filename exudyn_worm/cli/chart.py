@@ -14,8 +14,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Dict, List
 
-from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceInfo,
-                   SourceText, Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
+from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceInfo, SourceText, Subcommand, UsageError, WholeDriveFromArgs)
+from .._files import WriteAtomically
 
 if TYPE_CHECKING:
     from ..analysis.speedchart import SpeedChart
@@ -211,7 +211,8 @@ def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.charts import ChartCoordinates, ComputeStabilityChart, PresetChartPoints
     from ..analysis.charttable import FormatChartTable
-    from ..setups.presets import GearFromParameters, MissingParameterError
+    from ..setups.presets import GearFromParameters
+    from ..params.parameters import MissingParameterError
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
     parameters = ParametersFromArgs(args)

@@ -9,8 +9,8 @@ import math
 import sys
 from typing import TYPE_CHECKING, List
 
-from .main import (AddOverwriteOption, BadInput, CheckFigurePath, PositiveFloat, PrintJson, SourceText, StdoutToStderr,
-                   Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
+from .main import (AddOverwriteOption, BadInput, CheckFigurePath, PositiveFloat, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs)
+from .._files import WriteAtomically
 from .stability import DangerLines, OperatingPointLines
 
 if TYPE_CHECKING:
@@ -188,7 +188,7 @@ def _Run(args: argparse.Namespace) -> int:
     parameters = dict(drive.parameters)
     if args.simulate:
         # lazy: start-up (exudyn-worm --help imports every command module)
-        from ..analysis.reelchanger import CheckReelChangerKeys
+        from ..setups.build import CheckReelChangerKeys
         with BadInput():
             CheckReelChangerKeys(parameters, 'check --simulate')
     elif args.step_size is not None:
@@ -245,14 +245,14 @@ def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
         return None
     if args.disturbance == 'auto':
         # lazy: start-up (exudyn-worm --help imports every command module)
-        from ..analysis.reelchanger import REEL_KEYS
+        from ..setups.presets import REEL_KEYS
         lowering = result.ContactStates().get(-1)
         if not (float(parameters.get('backlash', 0.)) > 0. and lowering is not None and lowering.stable
                 and all(k in parameters for k in REEL_KEYS)):
             return None
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.chatterbranch import ChattersAfterDisturbance
-    from ..analysis.reelchanger import CheckReelChangerKeys
+    from ..setups.build import CheckReelChangerKeys
     if args.disturbance == 'auto':
         try:
             with StdoutToStderr(args.json):

@@ -6,8 +6,8 @@ import sys
 from pathlib import Path
 from typing import List
 
-from .main import (BadInput, InterruptedLine, CheckFigurePath, CheckOutputPath, ParametersFromArgs, PositiveInt,
-                   PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WriteAtomically)
+from .main import (BadInput, InterruptedLine, CheckFigurePath, CheckOutputPath, ParametersFromArgs, PositiveInt, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError)
+from .._files import WriteAtomically
 from ..params.parameters import PARAMETERS
 
 __all__ = ['COMMAND', 'FormatStudy']
@@ -59,7 +59,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _Study(args: argparse.Namespace):
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.reelchanger import CheckReelChangerKeys
+    from ..setups.build import CheckReelChangerKeys
     from ..analysis.studygrid import ParseVariation, Study
     from .simulate import ParseWindows
     parameters = ParametersFromArgs(args)

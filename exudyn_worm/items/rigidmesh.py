@@ -44,7 +44,8 @@ from .._checks import CheckName, CheckReal, CheckSystem
 from ._rigidnodes import RIGID_NODES
 from ._userfunctions import CheckPlainForceLaw, SetGenericForceLaw
 from .connector import _AddStickSlip, _StartFrictionState, _StickSlip
-from ..model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, FrictionState, MeshContact, MeshState
+from ..model.contact import ContactOptions, FrictionState, MeshContact, MeshState
+from ..model.friction import MATH_OPS, NUMPY_OPS
 from ..model.gear import WormGear
 
 __all__ = ['RigidBodyWormGearConnector', 'CreateRigidBodyWormGear', 'MeshGeometry', 'RIGID_CONNECTORS_KEY',

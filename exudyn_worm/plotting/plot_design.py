@@ -10,7 +10,8 @@ import textwrap
 from typing import Mapping, Optional
 
 import numpy as np
-from ..analysis.design import SPEED_KEY, DesignCheckResult
+from ..analysis.design import DesignCheckResult
+from ..analysis.designscan import SPEED_KEY
 from .plot import _NewFigure
 from .plot_charts import _Legend, PlotStabilityChart
 

@@ -27,14 +27,14 @@ import types
 from dataclasses import dataclass, field
 from typing import Any, Dict, Iterable, Mapping, Optional, Tuple, Union
 
-from ..items.connector import AxialBearing
+from ..model.drive import AxialBearing
 from ..params.drives import ConfigPath
 from ..model.drive import ElasticDrive
 from ..model.gear import WormGear
 from .config import ResolveParametersWithSources
 from .duty import LOAD_TYPES, MOTOR_TYPES, LoadType, MotorType, _LoadLaw, _MotorLaw
-from .presets import (ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
-                      ElasticDriveFromParameters, LoadSideChain, MissingParameterError)
+from .presets import (ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain, ElasticDriveFromParameters, LoadSideChain)
+from ..params.parameters import MissingParameterError
 
 __all__ = ['Component', 'Drive', 'ResolveDrive', 'AsDrive']
 
