@@ -179,7 +179,8 @@ def test_two_mass_plot_draws_the_chart_at_the_deciding_operating_point(tmp_path)
     """A Stribeck hoist without its load shaft: the chart is taken at mu(v0) and the slope of its one operating
     point (lifting only: a constant load torque at a constant speed); the drive's own point has the verdict of
     AnalyzeDrive, and a point the chart calls stable is stable for AnalyzeDrive too."""
-    from exudyn_worm.analysis.design import DesignCheck, LocalCharts
+    from exudyn_worm.analysis.design import DesignCheck
+    from exudyn_worm.analysis.designchart import LocalCharts
     from exudyn_worm.analysis.drivestability import AnalyzeDrive
     from exudyn_worm.setups.wholedrive import ResolveDrive
     drive = ResolveDrive(config=_LumpedAgma(tmp_path)).Replace(

@@ -179,7 +179,8 @@ def test_check_plot_reads_well():
     the legend off the chart."""
     import re
     import numpy as np
-    from exudyn_worm.analysis.design import DesignCheck, LocalCharts
+    from exudyn_worm.analysis.design import DesignCheck
+    from exudyn_worm.analysis.designchart import LocalCharts
     from exudyn_worm.plotting.plot_design import PlotDesignCheck, _Dense
     result = DesignCheck(GetPreset('reel-P1'))
     fig = PlotDesignCheck(result, LocalCharts(result.parameters), title='reel-P1')

@@ -219,7 +219,7 @@ def test_motor_characteristic_in_the_linear_analysis():
 def test_check_simulate_judges_the_lowering_phases_of_a_duty():
     """check --simulate on another duty: chatter is looked for where the load drives the gear; a duty that only
     lifts has no lowering to chatter in."""
-    from exudyn_worm.analysis.design import ChatterWhileLowering
+    from exudyn_worm.analysis.designconfirm import ChatterWhileLowering
     lifting = ResolveParameters('reel-P7', sets=['loadType=constant', 'loadTorque=-2000', 'motorType=speedTable',
                                                  'motorSpeedOverTime=[[0, 49.5], [1, 49.5]]'])
     assert ChatterWhileLowering(lifting) is False

@@ -20,7 +20,7 @@ __all__ = ['COMMAND', 'FormatDesignCheck', 'SelfLockingLines']
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.design import DEFAULT_MARGIN, DEFAULT_SPAN
+    from ..analysis.designrules import DEFAULT_MARGIN, DEFAULT_SPAN
     parser.add_argument('--margin', type=float, default=DEFAULT_MARGIN, metavar='DECADES',
                         help=f'stability margin in decades of the changed parameter (default {DEFAULT_MARGIN:g}: '
                              f'the drive stays stable if that parameter is off by a factor {10 ** DEFAULT_MARGIN:.2f})')
@@ -97,7 +97,7 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
     Parameters
     ----------
     result : DesignCheckResult
-        From :func:`~exudyn_worm.analysis.design.DesignCheck` (optionally :func:`~exudyn_worm.analysis.design.ConfirmBySimulation`).
+        From :func:`~exudyn_worm.analysis.design.DesignCheck` (optionally :func:`~exudyn_worm.analysis.designconfirm.ConfirmBySimulation`).
     title : str, optional
         First line.
 
@@ -180,7 +180,7 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
 
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis import design
+    from ..analysis import design, designconfirm
     from ..analysis.designscan import DesignKeys
     from ..progress import ProgressBar
     plotPath = CheckFigurePath(args.plot, '--plot', args.overwrite) if args.plot is not None else None
@@ -202,7 +202,7 @@ def _Run(args: argparse.Namespace) -> int:
         runs = 1 + len(result.recommendations) + (result.bestPair is not None)
         with ProgressBar(total=runs, desc='check --simulate', unit='run', quiet=quiet) as bar:
             with BadInput(), StdoutToStderr(args.json):
-                result = design.ConfirmBySimulation(result, stepSize=args.step_size, progress=bar.update)
+                result = designconfirm.ConfirmBySimulation(result, stepSize=args.step_size, progress=bar.update)
     loadSide = None
     if drive.loadSideChain:          # as stability: may the driven machine be lumped into J2? which stage is not?
         # lazy: start-up (exudyn-worm --help imports every command module)

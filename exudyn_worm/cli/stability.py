@@ -6,7 +6,7 @@ import math
 from typing import Dict, List, Union
 
 from .main import BadInput, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs
-from ..analysis.design import StabilizingChanges
+from ..analysis.stabilityhint import StabilizingChanges
 from ..analysis.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, DriveAnalysis
 from ..model.geometry import DescribeGeometry, GeometryForm
 from ..model.stability import CONTACT_STATES, StabilityAnalysis
@@ -262,7 +262,7 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability', where
 
 def StabilityHintData(parameters: Union[Drive, Dict[str, float]], span: float = 100.) -> Dict:
     """The design hint of an unstable drive as data: the nearest stable J1 and kT
-    (:func:`~exudyn_worm.analysis.design.StabilizingChanges`), other parameters as given; the table's hint line
+    (:func:`~exudyn_worm.analysis.stabilityhint.StabilizingChanges`), other parameters as given; the table's hint line
     and the ``--json`` key ``hint`` both come from here.
 
     Parameters
