@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import (BuildLoweringModel, EquilibriumState, FindSteadyChatter, LongSimulationAmplitude,
-                                 LoweringModelOfSystem, SettleLowering, SteadyChatterOfSystem)
+from exudyn_worm.analysis.chatter import FindSteadyChatter, SteadyChatterOfSystem
+from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude
+from exudyn_worm.analysis.lowering import BuildLoweringModel, EquilibriumState, LoweringModelOfSystem, SettleLowering
 from exudyn_worm.cli.main import Main
 from exudyn_worm.analysis.drivestability import DriveStability
 
@@ -74,7 +75,7 @@ def test_stiff_axial_bearing_gives_the_two_mass_orbit(orbitP1):
     assert orbit.info['forceFactor'] == pytest.approx(orbitP1.info['forceFactor'], rel=0.02)
     assert orbit.info['maxWheelAcceleration'] == pytest.approx(orbitP1.info['maxWheelAcceleration'], rel=0.02)
     # and the disturbance search reads the mesh with the axial coordinate too: P1 is linearly unstable
-    from exudyn_worm.analysis.chatterbranch import SmallestDisturbance
+    from exudyn_worm.analysis.disturbance import SmallestDisturbance
     assert SmallestDisturbance(p, duration=0.5, steps=1) <= 0.25
 
 

@@ -1,4 +1,4 @@
-"""The one-period map of the Exudyn model (exudyn_worm.analysis.chatter.ExudynFlow) with the sticking friction model:
+"""The one-period map of the Exudyn model (exudyn_worm.analysis.exudynflow.ExudynFlow) with the sticking friction model:
 its result must depend on the start state and the time alone, not on the calls before it (the stick/slip state
 of the connector lives outside the ODE2 coordinates; before the fix it was left from the previous call, and a
 call from the same start after a call that ended with the worm turning back differed by 1e-3 of the state
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import BuildLoweringModel, EquilibriumState, StateScale, _LoweringFlow
+from exudyn_worm.analysis.lowering import BuildLoweringModel, EquilibriumState, StateScale, _LoweringFlow
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
@@ -80,7 +80,7 @@ def test_carry_keeps_the_stretch_of_the_stuck_flanks(lowering):
 
 
 def test_settled_simulation_stops_when_the_amplitude_stops_changing():
-    from exudyn_worm.analysis.chatter import LongSimulationAmplitude, SettledSimulationAmplitude
+    from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude, SettledSimulationAmplitude
     p1 = ew.GetPreset('reel-P1')
     settled = SettledSimulationAmplitude(p1, maxDuration=20.)
     assert settled['settled'] and settled['duration'] < 20. and settled['change'] < 5e-4
@@ -93,7 +93,7 @@ def test_settled_simulation_stops_when_the_amplitude_stops_changing():
 
 
 def test_settled_simulation_rejects_a_piece_shorter_than_the_window():
-    from exudyn_worm.analysis.chatter import SettledSimulationAmplitude
+    from exudyn_worm.analysis.longsimulation import SettledSimulationAmplitude
     with pytest.raises(ValueError, match=r"SettledSimulationAmplitude: 'piece' must be longer than 'window'"):
         SettledSimulationAmplitude(ew.GetPreset('reel-P1'), piece=0.2, window=0.25)
 
@@ -103,7 +103,8 @@ def test_friction_limited_orbit_near_the_hopf_point_equals_a_settled_run():
     """reel-P3 with a Stribeck law, 3.5 % above the lower linear boundary (85.08 rpm): the orbit stays in contact
     and its amplitude is set by the falling friction. Shot from a settled run and continued one step towards the
     boundary, it equals a time simulation from rest run until settled within 2 % (issue 18, item 4)."""
-    from exudyn_worm.analysis.chatter import FindSteadyChatter, SettledSimulationAmplitude
+    from exudyn_worm.analysis.chatter import FindSteadyChatter
+    from exudyn_worm.analysis.longsimulation import SettledSimulationAmplitude
     from exudyn_worm.analysis.speedchart import RPM
     base = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,
             'stribeckVelocity': 0.9}
@@ -125,7 +126,7 @@ def test_one_period_run_started_at_the_largest_worm_speed_sees_the_reversal():
     """A one-period run that starts where the worm is fastest sees no acceleration at its first look; the check of
     a sliding worm was then put off by CHECK_INTERVAL (0.02 s), longer than a chatter period of reel-P3 (0.015 s),
     and the worm turned back without sticking (no switch, the friction still pushing it forward)."""
-    from exudyn_worm.analysis.chatter import SettleLowering
+    from exudyn_worm.analysis.lowering import SettleLowering
     from exudyn_worm.analysis.speedchart import RPM
     p = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,
          'stribeckVelocity': 0.9, 'motorSpeed': 140. * RPM}

@@ -13,9 +13,12 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import (BuildLoweringModel, FindSteadyChatter, LongSimulationAmplitude, UpdateLoweringModel)
+from exudyn_worm.analysis.chatter import FindSteadyChatter
+from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude
+from exudyn_worm.analysis.lowering import BuildLoweringModel, UpdateLoweringModel
 from exudyn_worm.model.profiles import ConstantTorque
-from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, ChatterBranchError, LinearBoundaries
+from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries
+from exudyn_worm.analysis.smoothbranch import ChatterBranchError
 from exudyn_worm.cli.main import Main
 from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
@@ -158,7 +161,7 @@ def test_cli_json_and_plot(capsys, tmp_path):
 
 
 def test_smallest_disturbance_unstable_and_stable_drive():
-    from exudyn_worm.analysis.chatterbranch import SmallestDisturbance
+    from exudyn_worm.analysis.disturbance import SmallestDisturbance
     # linearly unstable P1: the smallest kick tried already ends in chatter
     assert SmallestDisturbance(P1, steps=3) <= 0.5 / 2**3
     # P2 (J1 = 0.3) is linearly stable and its branch has no coexistence: even half the motor speed decays
@@ -166,7 +169,7 @@ def test_smallest_disturbance_unstable_and_stable_drive():
 
 
 def test_settle_starts_from_the_equilibrium_every_time():
-    from exudyn_worm.analysis.chatter import EquilibriumState, SettleLowering
+    from exudyn_worm.analysis.lowering import EquilibriumState, SettleLowering
     model = BuildLoweringModel(P1)
     x0 = EquilibriumState(model)
     SettleLowering(model, 0.05, kick=0.3)
@@ -192,7 +195,7 @@ def test_backlash_rest_and_chatter_coexist():
     rest = LongSimulationAmplitude(p, duration=4.0, stepSize=2e-4, kick=0.01)
     assert rest['forceFactor'] < 1.01
     # the one-line verdict for a design check; the threshold kick lies between the 1 % and 30 % runs above
-    from exudyn_worm.analysis.chatterbranch import ChattersAfterDisturbance
+    from exudyn_worm.analysis.disturbance import ChattersAfterDisturbance
     verdict = ChattersAfterDisturbance(p)
     assert verdict.linearlyStable and verdict.chatterFound
     assert 0.01 * p['motorSpeed'] < verdict.smallestDisturbance < 0.3 * p['motorSpeed']
@@ -204,7 +207,7 @@ def test_trivial_multiplier_near_one(orbitP1):
     # mesh changes flank only to a step, a sawtooth on the one-period map: forward differences of 1e-6 of the state
     # scale see its slope (1.011 at P1), central differences over 5 % of the state scale average it out (1.0016
     # measured; docs/chatter-amplitude.md)
-    from exudyn_worm.analysis.chatter import StateScale
+    from exudyn_worm.analysis.lowering import StateScale
     from exudyn_worm.analysis.orbits import FloquetMultipliers, Monodromy
     assert orbitP1.trivialMultiplierError < 5e-3
     assert max(abs(orbitP1.nontrivialMultipliers)) < 1. - orbitP1.trivialMultiplierError

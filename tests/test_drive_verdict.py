@@ -252,7 +252,7 @@ def test_a_command_resolves_its_drive_once_and_analyses_each_point_once(capsys, 
 
 # --- the periodic-orbit analysis follows the drive's own lowering phase -------------------------------------------
 def test_chatter_analysis_takes_the_lowering_point_of_any_duty():
-    from exudyn_worm.analysis.chatter import LoweringPhaseParameters
+    from exudyn_worm.analysis.lowering import LoweringPhaseParameters
     p = LoweringPhaseParameters(ResolveParameters(config=HOIST))
     assert p['motorSpeed'] == pytest.approx(100 * RPM) and 'motorSpeedOverTime' not in p and 'loadType' not in p
     assert p['loadMass'] * G * p['leverArm'] == pytest.approx(367.875, rel=1e-14)

@@ -94,8 +94,9 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
 
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.chatterbranch import AnalyzeChatterBranch, ChatterBranchError
-    from ..analysis.chatter import LoweringPhaseParameters
+    from ..analysis.chatterbranch import AnalyzeChatterBranch
+    from ..analysis.smoothbranch import ChatterBranchError
+    from ..analysis.lowering import LoweringPhaseParameters
     name, low, high = ParseVary(args.vary)
     with BadInput():      # any drive: the periodic orbits of its lowering phase
         parameters = LoweringPhaseParameters(dict(WholeDriveFromArgs(args).parameters))

@@ -238,7 +238,7 @@ def _Run(args: argparse.Namespace) -> int:
 
 
 def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
-    """:func:`~exudyn_worm.analysis.chatterbranch.ChattersAfterDisturbance` of the drive, or None where it is not asked
+    """:func:`~exudyn_worm.analysis.disturbance.ChattersAfterDisturbance` of the drive, or None where it is not asked
     for: ``--no-disturbance``; by default only for a drive with backlash that is linearly stable while lowering
     (S = -1) and has the reel changer's keys. ``--disturbance`` asks for it for any drive (missing keys: exit 2)."""
     if args.disturbance == 'no':
@@ -251,7 +251,7 @@ def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
                 and all(k in parameters for k in REEL_KEYS)):
             return None
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.chatterbranch import ChattersAfterDisturbance
+    from ..analysis.disturbance import ChattersAfterDisturbance
     from ..setups.build import CheckReelChangerKeys
     if args.disturbance == 'auto':
         try:

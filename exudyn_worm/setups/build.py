@@ -18,12 +18,13 @@ from .._checks import CheckBool, CheckPositive
 from ..items.connector import CreateWormAxialBearing, CreateWormGear, WormGearConnector
 from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
 from ..items.equilibrium import SteadyInitialState
-from ..model.contact import MATH_OPS, ContactOptions
+from ..model.contact import ContactOptions
+from ..model.friction import MATH_OPS
 from ..model.drive import ElasticDrive
 from ..model.profiles import ConstantSpeed, ConstantTorque
 from .duty import CheckDutyKeys, IsReelChangerDuty, LoadFromParameters, MotorFromParameters, MotorType, SteadyMotorSpeed
-from .presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
-                      ElasticDriveFromParameters, LoadSideChain, MissingParameterError)
+from .presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain, ElasticDriveFromParameters, LoadSideChain)
+from ..params.parameters import MissingParameterError
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'CheckReelChangerKeys', 'CheckModelOptions']
 
