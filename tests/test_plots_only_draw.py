@@ -87,7 +87,7 @@ def test_no_numerical_module_imports_matplotlib():
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout.split()
     assert out == ['none', str(len(NON_PLOT_MODULES))], f'{out[0]} imports matplotlib'
     assert {'exudyn_worm.analysis.charts', 'exudyn_worm.analysis.studymap', 'exudyn_worm.analysis.design', 'exudyn_worm.analysis.study',
-            'exudyn_worm.items.results', 'exudyn_worm.analysis.charttable'} <= set(NON_PLOT_MODULES)
+            'exudyn_worm.items.results', 'exudyn_worm.cli.formatchart'} <= set(NON_PLOT_MODULES)
 
 
 def test_every_result_object_spells_plot_in_lower_case():

@@ -127,7 +127,7 @@ def test_a_verdict_that_flips_with_the_step_is_unresolved_in_sweep(monkeypatch):
 
 
 def test_unresolved_survives_the_csv_and_stays_out_of_the_agreement(tmp_path, monkeypatch):
-    from exudyn_worm.cli.sweep import FormatStudy
+    from exudyn_worm.cli.formatsweep import FormatStudy
     from exudyn_worm.analysis.study import RunStudy
     from exudyn_worm.analysis.studyfiles import ReadResults
     p = GetPreset('reel-P1')

@@ -15,7 +15,6 @@ from .reelchanger import DefaultPhases
 __all__ = ['ChatterWhileLowering', 'ConfirmBySimulation']
 
 
-
 def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[float] = None) -> bool:
     """Time-domain verdict: does the reel changer chatter while lowering the load?
 

@@ -18,7 +18,6 @@ from .reelchanger import SOLVER_SETTINGS
 __all__ = ['LongSimulationAmplitude', 'SettledSimulationAmplitude']
 
 
-
 def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3.0, stepSize: float = 1e-4,
                             kick: float = 0.01, window: float = 0.25,
                             contactOptions: ContactOptions = ContactOptions(),

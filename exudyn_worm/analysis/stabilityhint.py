@@ -16,7 +16,6 @@ from .designscan import AsCheckedDrive, Scanner
 __all__ = ['StableRange', 'NearestStableValue', 'StabilizingChanges']
 
 
-
 @dataclass(frozen=True)
 class StableRange:
     """Nearest stable values of one parameter on both sides of the given value (None: not found).
