@@ -8,7 +8,7 @@ Timed, on the gear of set (25) (preset 'chart'), D_V = 0.014, D_TV = 1, S = -1, 
 - ``mask``: :func:`~exudyn_worm.analysis.charts.ComputeStabilityChart` (coefficients (16) on the grid, Hurwitz (17)-(19),
   the margin field), the target is under 1 s;
 - ``maxRealPart``: the largest real part of the eigenvalues on the whole grid (closed-form quartic + Newton
-  polish, :func:`~exudyn_worm.analysis.charts.MaxRealPart`);
+  polish, :func:`~exudyn_worm.analysis.quartic.MaxRealPart`);
 - ``eigvals``: numpy's batched ``eigvals`` of the companion matrices on a 100000-point subset, scaled to the
   grid (the straightforward alternative to ``maxRealPart``);
 - ``boundaries``: marching squares and joining into curves; ``ranges``: the refined unstable x and y ranges.
@@ -24,7 +24,8 @@ from typing import Dict, Optional, Sequence
 
 import numpy as np
 
-from exudyn_worm.analysis.charts import ComputeStabilityChart, MaxRealPart
+from exudyn_worm.analysis.charts import ComputeStabilityChart
+from exudyn_worm.analysis.quartic import MaxRealPart
 from exudyn_worm.setups.presets import GearFromParameters, GetPreset
 
 __all__ = ['TimeCharts', 'main']

@@ -25,8 +25,8 @@ import time
 import numpy as np
 
 import exudyn_worm as ew
-from exudyn_worm.analysis import chatter, chatterbranch
-from exudyn_worm.analysis.chatter import LongSimulationAmplitude
+from exudyn_worm.analysis import chatterbranch, exudynflow
+from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude
 from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch
 
 #: (parameter, low, high, changes to reel-P1)
@@ -87,8 +87,8 @@ class _Timers:
         setattr(owner, attribute, Timed)
 
     def __enter__(self):
-        self._Wrap(chatter.ExudynFlow, 'Solve', 'flow')
-        chatter.ExudynFlow.__call__ = chatter.ExudynFlow.Solve
+        self._Wrap(exudynflow.ExudynFlow, 'Solve', 'flow')
+        exudynflow.ExudynFlow.__call__ = exudynflow.ExudynFlow.Solve
         self._Wrap(chatterbranch, 'LinearBoundaries', 'linearScan')
         self._Wrap(chatterbranch, 'FindSteadyChatter', 'settleAndFirstOrbit')
         return self
@@ -96,7 +96,7 @@ class _Timers:
     def __exit__(self, *exc):
         for owner, attribute, original in reversed(self._saved):
             setattr(owner, attribute, original)
-        chatter.ExudynFlow.__call__ = chatter.ExudynFlow.Solve
+        exudynflow.ExudynFlow.__call__ = exudynflow.ExudynFlow.Solve
 
 
 def FiftyPoints():

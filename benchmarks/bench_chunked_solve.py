@@ -20,7 +20,8 @@ def Solve(preset: str, mode: str):
     """CPU seconds and Newton statistics of one solve of ``preset`` in ``mode`` ('one', 'chunks', 'bar')."""
     import exudyn as exu
     from exudyn_worm import GetPreset
-    from exudyn_worm.analysis.reelchanger import BuildReelChanger, RotationPeriod, SolverSettings
+    from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings
+    from exudyn_worm.setups.build import BuildReelChanger
     from exudyn_worm.items.solve import SolveDynamicInChunks
     from exudyn_worm.analysis.stepsize import RecommendedStepSize
     p = GetPreset(preset)

@@ -47,8 +47,8 @@ import scipy                                         # noqa: E402
 import exudyn as exu                                 # noqa: E402
 import exudyn_worm                                   # noqa: E402
 from exudyn_worm.setups.presets import GetPreset            # noqa: E402
-from exudyn_worm.analysis.reelchanger import (BuildReelChanger, DefaultWindows, RotationPeriod,  # noqa: E402
-                                     SimulateReelChanger, SolverSettings)
+from exudyn_worm.analysis.reelchanger import DefaultWindows, RotationPeriod, SimulateReelChanger, SolverSettings
+from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.analysis.stepsize import RecommendedStepSize  # noqa: E402
 from scipy_reference import SolveReelChangerScipy    # noqa: E402
 from compiled_reference import CompiledReelChanger   # noqa: E402

@@ -21,7 +21,8 @@ import time
 
 import numpy as np
 
-from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
+from exudyn_worm.analysis.reelchanger import SolverSettings
+from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.stepsize import RecommendedStepSize
 from exudyn_worm.setups.presets import GetPreset

@@ -40,7 +40,9 @@ import numpy as np                                                  # noqa: E402
 from exudyn_worm.setups.config import ResolveParameters                   # noqa: E402
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset      # noqa: E402
 from exudyn_worm.model.stability import AnalyzeStability                  # noqa: E402
-from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study, VibrationSeconds  # noqa: E402
+from exudyn_worm.analysis.study import RunStudy  # noqa: E402
+from exudyn_worm.analysis.studygrid import ParseVariation, Study
+from exudyn_worm.analysis.studypoint import VibrationSeconds
 
 __all__ = ['SpeedUp', 'Overhead', 'MapWallTime', 'Main']
 
@@ -90,7 +92,8 @@ def SpeedUp(repeat: int = 3) -> Dict:
 def Overhead(repeat: int = 5) -> Dict:
     """Per-run overhead of a P1 run, by stage, against its solve time (best of ``repeat`` per stage)."""
     import exudyn as exu
-    from exudyn_worm.analysis.reelchanger import BuildReelChanger, DefaultWindows, RotationPeriod
+    from exudyn_worm.analysis.reelchanger import DefaultWindows, RotationPeriod
+    from exudyn_worm.setups.build import BuildReelChanger
     p = GetPreset('reel-P1')
     stages = {k: [] for k in ('buildPython', 'buildSymbolic', 'assemble', 'solve', 'postProcess', 'writeRow')}
     for _ in range(repeat):

@@ -32,11 +32,13 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from exudyn_worm import GetPreset                                           # noqa: E402
 from exudyn_worm.items._userfunctions import AddGenericForce                      # noqa: E402
 from exudyn_worm.items.connector import CreateWormGear                            # noqa: E402
-from exudyn_worm.model.contact import NUMPY_OPS, ContactOptions, MeshContact, SlidingCoordinate  # noqa: E402
+from exudyn_worm.model.contact import ContactOptions, MeshContact, SlidingCoordinate  # noqa: E402
+from exudyn_worm.model.friction import NUMPY_OPS
 from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque           # noqa: E402
 from exudyn_worm.setups.presets import ElasticDriveFromParameters                         # noqa: E402
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque          # noqa: E402
-from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings, SteadyInitialState  # noqa: E402
+from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings  # noqa: E402
+from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult                            # noqa: E402
 from exudyn_worm.analysis.stepsize import RecommendedStepSize                        # noqa: E402
 

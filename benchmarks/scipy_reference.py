@@ -10,7 +10,7 @@ with the prescribed motor angle ``phi0(t) = motorSpeed * t`` (:class:`~exudyn_wo
 the mesh torques from :func:`exudyn_worm.model.contact.MeshContact` with the plain-Python backend ``MATH_OPS``
 (the same law the Exudyn connector records; nothing is re-derived here), the load torque
 ``M2 = -m g l cos(phi2)`` from :meth:`GravityLeverTorque.Torque` and the same initial state as the
-Exudyn model (:func:`exudyn_worm.analysis.reelchanger.SteadyInitialState`).
+Exudyn model (:func:`exudyn_worm.items.equilibrium.SteadyInitialState`).
 
 The result is a :class:`exudyn_worm.items.results.SimulationResult` with the same series names as
 :func:`exudyn_worm.analysis.reelchanger.SimulateReelChanger`, so both are evaluated by the same
@@ -25,11 +25,13 @@ from typing import Callable, Mapping, Optional, Tuple
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact
+from exudyn_worm.model.contact import ContactOptions, MeshContact
+from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.model.drive import ElasticDrive
 from exudyn_worm.setups.presets import ElasticDriveFromParameters
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque
-from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SteadyInitialState
+from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod
+from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
 
 #: the reference models have no stick state: they use the regularized friction law (docs/friction-sticking.md);

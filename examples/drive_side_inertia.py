@@ -60,7 +60,8 @@ from exudyn_worm._checks import CheckOutputFolder
 from exudyn_worm.model.drive import TorsionalDampingFromMeasure
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability, LinearStability
 from exudyn_worm.setups.presets import DriveSideChain
-from exudyn_worm.analysis.reelchanger import RotationPeriod, SteadyInitialState
+from exudyn_worm.analysis.reelchanger import RotationPeriod
+from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
 
 __all__ = ['PRESET', 'J4', 'D4', 'MODE_HZ', 'STEP_SIZE', 'LOWERING', 'ZOOM', 'DriveSideParameters',

@@ -35,7 +35,7 @@ import numpy as np
 
 from exudyn_worm.analysis.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, PresetChartPoints,
                                 StabilityChart)
-from exudyn_worm.analysis.charttable import FormatChartTable
+from exudyn_worm.cli.formatchart import FormatChartTable
 from exudyn_worm._checks import CheckOutputFolder
 from exudyn_worm.plotting.plot_charts import ZOOM_DECADES, PointsToZoom
 from exudyn_worm.setups.presets import GearFromParameters, GetPreset

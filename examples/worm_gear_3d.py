@@ -25,7 +25,8 @@ from typing import Dict, List, Mapping, Optional, Sequence
 import numpy as np
 
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability
-from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
+from exudyn_worm.analysis.reelchanger import SolverSettings
+from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.stepsize import RecommendedStepSize
 from exudyn_worm.items.bearings import ShaftBearings, StoredBearingLoads

@@ -13,18 +13,14 @@ and :mod:`~exudyn_worm.cli`.
 """
 import importlib
 
-from ._moved import InstallMovedModuleFinder
-
-InstallMovedModuleFinder()      # old module paths (exudyn_worm.presets, ...) still import, with a DeprecationWarning
-
 #: public name -> submodule that defines it; imported on first access (PEP 562), so that
 #: ``import exudyn_worm.cli.main`` and light subcommands do not pay for exudyn, scipy, pint or matplotlib
 _LAZY = {'WormGear': 'model.gear',
-         **dict.fromkeys(('ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMeasure', 'TorsionalDampingFromMeasure',
+         **dict.fromkeys(('ElasticDrive', 'AxialBearing', 'MeshDampingFromMeasure', 'MeshDampingMeasure', 'TorsionalDampingFromMeasure',
                           'TorsionalDampingMeasure'), 'model.drive'),
          **dict.fromkeys(('AnalyzeStability', 'StabilityAnalysis', 'ContactStability'), 'model.stability'),
          **dict.fromkeys(('ContactOptions', 'MeshContact', 'MeshState'), 'model.contact'),
-         **dict.fromkeys(('AxialBearing', 'CreateWormAxialBearing', 'CreateWormGear', 'WormGearConnector'), 'items.connector'),
+         **dict.fromkeys(('CreateWormAxialBearing', 'CreateWormGear', 'WormGearConnector'), 'items.connector'),
          **dict.fromkeys(('CreatePrescribedRotation', 'CreateRotor', 'CreateShaft', 'CreateRotorTorque',
                           'CreateLoadSideChain'), 'items.drivetrain'),
          **dict.fromkeys(('ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque', 'LinearMotorCharacteristic',
@@ -38,7 +34,7 @@ _LAZY = {'WormGear': 'model.gear',
          **dict.fromkeys(('DutyOperatingPoints', 'DutyPoint'), 'setups.operatingpoints'),
          **dict.fromkeys(('AnalyzeDrive', 'DriveAnalysis', 'OperatingPointStability', 'DriveStability'),
                          'analysis.drivestability'),
-         **dict.fromkeys(('BuildReelChanger', 'SimulateReelChanger'), 'analysis.reelchanger'),
+         'BuildReelChanger': 'setups.build', 'SimulateReelChanger': 'analysis.reelchanger',
          'SteadyInitialState': 'items.equilibrium',
          'SimulationResult': 'items.results',
          **dict.fromkeys(('ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction', 'FrictionLaw'),

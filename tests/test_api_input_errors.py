@@ -10,7 +10,8 @@ import pytest
 
 import exudyn_worm as ew
 from exudyn_worm.analysis.charts import ComputeStabilityChart, PresetChartPoints
-from exudyn_worm.model.contact import MeshContact, NUMPY_OPS
+from exudyn_worm.model.contact import MeshContact
+from exudyn_worm.model.friction import NUMPY_OPS
 from exudyn_worm.analysis.design import DesignCheck
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability
 from exudyn_worm.model.friction import AgmaFriction

@@ -6,11 +6,13 @@ import numpy as np
 import pytest
 
 from exudyn_worm.setups.config import ParseSetOption
-from exudyn_worm.items.connector import AxialBearing
-from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact
+from exudyn_worm.model.drive import AxialBearing
+from exudyn_worm.model.contact import ContactOptions, MeshContact
+from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.setups.presets import (PARAMETER_UNITS, ApplyOverrides, AxialBearingFromParameters, ElasticDriveFromParameters,
                                  DriveSideChain, GetPreset)
-from exudyn_worm.analysis.reelchanger import BuildReelChanger, SimulateReelChanger
+from exudyn_worm.analysis.reelchanger import SimulateReelChanger
+from exudyn_worm.setups.build import BuildReelChanger
 
 P1 = GetPreset('reel-P1')
 

@@ -9,8 +9,9 @@ import pytest
 from hypothesis import assume, given, settings, strategies as st
 from numpy.testing import assert_allclose
 
-from exudyn_worm.analysis.charts import (ChartCoefficients, ChartCoordinates, ComputeStabilityChart, ContourLines,
-                                MaxRealPart, MaxRealPartGrid, UnstableGrid)
+from exudyn_worm.analysis.charts import (ChartCoefficients, ChartCoordinates, ComputeStabilityChart, MaxRealPartGrid, UnstableGrid)
+from exudyn_worm.analysis.contours import ContourLines
+from exudyn_worm.analysis.quartic import MaxRealPart
 from exudyn_worm.model.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GearFromParameters, GetPreset
 from exudyn_worm.model.stability import AnalyzeStability, CharacteristicCoefficients, HurwitzStable

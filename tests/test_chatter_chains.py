@@ -14,9 +14,9 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import (BuildLoweringModel, EquilibriumState, FindSteadyChatter,
-                                          LongSimulationAmplitude, LoweringModelOfSystem, SettleLowering,
-                                          SteadyChatterOfSystem, _LinearlyStable)
+from exudyn_worm.analysis.chatter import (BuildLoweringModel, FindSteadyChatter, LoweringModelOfSystem, SettleLowering, SteadyChatterOfSystem, _LinearlyStable)
+from exudyn_worm.analysis.lowering import EquilibriumState
+from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude
 from exudyn_worm.cli.main import Main
 from exudyn_worm.analysis.drivestability import DriveStability
 from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries, SmallestDisturbance

@@ -13,12 +13,14 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import (BuildLoweringModel, ConstantTorque, EquilibriumState, FindSteadyChatter,
-                                          LongSimulationAmplitude, SettleLowering, StateScale, UpdateLoweringModel)
-from exudyn_worm.analysis.chatterbranch import (AnalyzeChatterBranch, ChatterBranchError, ChattersAfterDisturbance,
-                                                LinearBoundaries, SmallestDisturbance)
+from exudyn_worm.analysis.chatter import BuildLoweringModel, FindSteadyChatter, SettleLowering, StateScale
+from exudyn_worm.model.profiles import ConstantTorque
+from exudyn_worm.analysis.lowering import EquilibriumState, UpdateLoweringModel
+from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude
+from exudyn_worm.analysis.chatterbranch import (AnalyzeChatterBranch, ChatterBranchError, LinearBoundaries, SmallestDisturbance)
+from exudyn_worm.analysis.disturbance import ChattersAfterDisturbance
 from exudyn_worm.cli.main import Main
-from exudyn_worm.model.contact import MATH_OPS
+from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
 from exudyn_worm.analysis.drivestability import DriveStability
 from exudyn_worm.analysis.orbits import FloquetMultipliers, Monodromy

@@ -11,7 +11,7 @@ import pytest
 
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.analysis.study import ReadResults
+from exudyn_worm.analysis.studyfiles import ReadResults
 from exudyn_worm.analysis.reelchanger import DefaultPhases
 from exudyn_worm.analysis.studypoint import DecidingWindow
 from exudyn_worm.setups.config import ResolveParameters

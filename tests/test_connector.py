@@ -11,7 +11,8 @@ from exudyn_worm.items.connector import CreateWormGear
 from exudyn_worm.items.drivetrain import CreateRotor, CreateShaft
 from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn, ExudynEigenvalues
 from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
-from exudyn_worm.analysis.reelchanger import BuildReelChanger, SimulateReelChanger
+from exudyn_worm.analysis.reelchanger import SimulateReelChanger
+from exudyn_worm.setups.build import BuildReelChanger
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 

@@ -7,7 +7,8 @@ import pytest
 
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study
+from exudyn_worm.analysis.studygrid import ParseVariation
+from exudyn_worm.analysis.study import RunStudy, Study
 import exudyn_worm.analysis.design as design
 import exudyn_worm.analysis.reelchanger as reelchanger
 import exudyn_worm.analysis.charts as charts

@@ -5,7 +5,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 import exudyn as exu
-from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshContact, SymbolicOps
+from exudyn_worm.model.contact import ContactOptions, MeshContact, SymbolicOps
+from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 
 GEAR = ElasticDriveFromParameters(GetPreset('reel-P1')).gear

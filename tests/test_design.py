@@ -9,8 +9,11 @@ import numpy as np
 import pytest
 
 from exudyn_worm import AnalyzeStability, ApplyOverrides, ElasticDriveFromParameters, GetPreset
-from exudyn_worm.analysis.design import (DEFAULT_MARGIN, ConfirmBySimulation, DesignCheck, DesignParameters,
-                                NearestStableValue, StabilizingChanges)
+from exudyn_worm.analysis.design import DesignCheck
+from exudyn_worm.analysis.designconfirm import ConfirmBySimulation
+from exudyn_worm.analysis.designrules import DEFAULT_MARGIN
+from exudyn_worm.analysis.stabilityhint import NearestStableValue, StabilizingChanges
+from exudyn_worm.analysis.designscan import DesignParameters
 
 
 def _Stable(p):

@@ -19,7 +19,7 @@ from exudyn_worm.setups.operatingpoints import DutyOperatingPoints, SteadyPhases
 from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
 from exudyn_worm.setups.wholedrive import Component, Drive, ResolveDrive
 from exudyn_worm.cli import main
-from exudyn_worm.analysis.chatter import LoweringPhaseParameters
+from exudyn_worm.analysis.lowering import LoweringPhaseParameters
 
 import paper_model
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS
+from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.items.drivetrain import _ConstantSpeedFromStart
 from exudyn_worm.model.profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque,
                                   LinearMotorCharacteristic, StartStopProfile)

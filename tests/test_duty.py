@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS
+from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.model.profiles import ConstantTorque, SpeedTable, TorqueTable
 from exudyn_worm.analysis.reelchanger import (DefaultPhases, DefaultSimulatedTime, PhaseLabel, RotationPeriod,
                                               SimulateReelChanger)
@@ -15,7 +15,7 @@ from exudyn_worm.setups.duty import LoadFromParameters, MotorFromParameters, Ste
 from exudyn_worm.cli.main import Main
 from exudyn_worm.analysis.drivestability import DriveStability
 from exudyn_worm.setups.presets import ExtraComponents
-from exudyn_worm.analysis.design import ChatterWhileLowering
+from exudyn_worm.analysis.designconfirm import ChatterWhileLowering
 
 
 def test_speed_table_angle_is_the_integral_of_its_speed():

@@ -7,8 +7,9 @@ import exudyn as exu
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.items.connector import AxialBearing
-from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
+from exudyn_worm.model.drive import AxialBearing
+from exudyn_worm.model.contact import ContactOptions, MeshContact
+from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, DriveSideChain, GetPreset
 from exudyn_worm.model.profiles import GravityLeverTorque
@@ -66,11 +67,7 @@ def test_load_shafts_are_pretwisted_by_the_transmitted_torque(M):
 
 
 def test_reel_changer_keeps_its_equilibrium():
-    """BuildReelChanger starts from the same state (the function moved from reelchanger.py, results unchanged;
-    the old and the new code were compared bit for bit on all reel presets with and without chain, bearing and
-    backlash when it moved)."""
-    from exudyn_worm.analysis.reelchanger import SteadyInitialState as Old
-    assert Old is SteadyInitialState
+    """The steady state of the reel changer with a drive-side chain and an axial bearing has their coordinates."""
     load = GravityLeverTorque(P1['loadMass'], P1['leverArm'])
     p = {**P1, 'J4': 0.05, 'k4': 2000., 'kA': 1e8, 'mA': 3.}
     state = SteadyInitialState(ElasticDriveFromParameters(p), load, SPEED, ContactOptions(), AxialBearing(1e8, 0., 3.),

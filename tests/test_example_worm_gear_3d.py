@@ -2,7 +2,7 @@
 import numpy as np
 import pytest
 
-from exudyn_worm.analysis.reelchanger import BuildReelChanger
+from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.setups.presets import GetPreset
 
 from conftest import LoadScript

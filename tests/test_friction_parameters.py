@@ -10,8 +10,8 @@ import pytest
 from exudyn_worm.setups.config import LoadConfig, ResolveParameters
 from exudyn_worm.model.friction import AgmaFriction, StribeckFriction, TableFriction
 from exudyn_worm.params.parameters import PARAMETERS
-from exudyn_worm.setups.presets import (ApplyOverrides, ElasticDriveFromParameters, GearFromParameters, GetPreset,
-                                 MissingParameterError)
+from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GearFromParameters, GetPreset
+from exudyn_worm.params.parameters import MissingParameterError
 from exudyn_worm.model.stability import OperatingPointFromParameters
 
 STRIBECK = {'frictionLaw': 'stribeck', 'muStatic': 0.15, 'stribeckVelocity': 0.1}

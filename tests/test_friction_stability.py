@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
+from exudyn_worm.model.contact import ContactOptions, MeshContact
+from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.model.friction import StribeckFriction, TableFriction
 from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn, LinearStabilityFromParameters
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
@@ -15,6 +16,8 @@ from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoeffic
                                          OperatingPoint, OperatingPointAt, OperatingPointFromParameters,
                                          PolynomialCoefficients)
 import exudyn_worm.analysis.reelchanger as rc
+import exudyn_worm.setups.build as build
+import exudyn_worm.setups.build as build
 import exudyn_worm.setups.wholedrive as wholedrive
 
 P3 = GetPreset('reel-P3')
@@ -175,12 +178,12 @@ def test_operating_point_rejects_bad_input():
 
 def _LoweringOscillation(monkeypatch, law):
     """J2 max|phi2''| (N*m) per half second of the reel-P3 simulation, the connector using ``law``."""
-    original = rc.ElasticDriveFromParameters
+    original = build.ElasticDriveFromParameters
 
     def WithLaw(parameters, *args):          # the parameter keys of the law are plumbed elsewhere: attach it here
         drive = original(parameters, *args)
         return drive if law is None else Stribeck(drive, law)
-    monkeypatch.setattr(rc, 'ElasticDriveFromParameters', WithLaw)
+    monkeypatch.setattr(build, 'ElasticDriveFromParameters', WithLaw)   # the drive the builder gives the connector
     result = rc.SimulateReelChanger(P3)
     t, alpha2 = result.time, result.series['alpha2']
     return np.array([P3['J2'] * np.max(np.abs(alpha2[(t >= a) & (t < a + 0.5)])) for a in np.arange(0., 8., 0.5)])

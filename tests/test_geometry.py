@@ -11,8 +11,8 @@ from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.model.contact import ContactOptions, MeshContact
 from exudyn_worm.model.geometry import (DescribeGeometry, DesignationFromRadii, GeometryFromParameters,
                                   MeshStiffnessFromWheelTorsion, RadiiFromCentreDistance, RadiiFromDesignation)
-from exudyn_worm.setups.presets import (ApplyOverrides, CheckParameterKeys, ElasticDriveFromParameters, GetPreset,
-                                 MissingParameterError)
+from exudyn_worm.setups.presets import ApplyOverrides, CheckParameterKeys, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.params.parameters import MissingParameterError
 
 deg = math.radians
 P1 = GetPreset('reel-P1')

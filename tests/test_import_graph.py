@@ -5,6 +5,8 @@ Every module of ``exudyn_worm`` is parsed with :mod:`ast`. An import at module l
 function is *lazy*. The rules, also written down in docs/development.md:
 
 - the module-level graph has no cycle;
+- a module's ``__all__`` lists only names it defines, and an internal import takes a name from the module that
+  defines it (no re-exports; the package's ``__init__`` alone hands on the public names);
 - a lazy import is of exudyn, scipy, matplotlib or pint (or a submodule), or it is the ``plot`` method of a
   result object importing its ``plot*`` module, or it says why on the same line or the line above with a
   comment ``# lazy: <reason>``. A cycle is not a reason (break it instead); a reason that names the start-up
@@ -15,6 +17,7 @@ shrink: an entry that is no longer needed fails the test too.
 """
 import ast
 import re
+import sys
 from pathlib import Path
 from typing import Dict, List, NamedTuple, Set, Tuple
 
@@ -37,7 +40,7 @@ ALLOWED: Dict[Tuple[str, str], str] = {
 #: A module imports (at module level) only modules of its own or a lower layer; inside a subpackage any module may
 #: import any other, as long as there is no cycle. A new module goes into the subpackage it belongs to.
 LAYERS = (
-    ('helpers', '_checks _files _moved _roots _spacing _workers progress'),
+    ('helpers', '_checks _files _roots _spacing _workers progress'),
     ('parameters and files', 'params'),
     ('gear model', 'model'),
     ('Exudyn items', 'items'),
@@ -223,12 +226,12 @@ def test_every_module_has_a_layer():
 def test_the_package_has_no_flat_modules_beyond_the_helpers():
     # the layers show as subpackages
     flat = sorted(m for m in MODULES if m.count('.') == 1 and not (ROOT / m.split('.')[1]).is_dir())
-    assert flat == [f'{PACKAGE}.{name}' for name in sorted('__main__ _checks _files _moved _roots _spacing _workers progress'.split())]
+    assert flat == [f'{PACKAGE}.{name}' for name in sorted('__main__ _checks _files _roots _spacing _workers progress'.split())]
 
 
 def test_module_level_imports_go_down_the_layers():
     layer = {module: LayerOf(module) for module in MODULES if module != PACKAGE}
-    layer[PACKAGE] = 0        # the package's __init__: lazy attributes; it imports only a helper (_moved) at module level
+    layer[PACKAGE] = 0        # the package's __init__: lazy attributes; no internal import at module level
     upward = sorted(f'{module} ({LAYERS[layer[module]][0]}) imports {target} ({LAYERS[layer[target]][0]})'
                     for module, targets in ModuleGraph().items() for target in targets
                     if layer[target] > layer[module])
@@ -264,3 +267,64 @@ def test_allowed_list_only_shrinks():
 def test_rule_on_examples(comment, target, ok):
     item = Import('exudyn_worm.analysis.study', target, 'RunStudy', 1, comment)
     assert (_Problem(item, ModuleGraph()) == '') is ok
+
+
+_DEFINED: Dict[Path, Set[str]] = {}
+
+
+def _Defined(module: str) -> Set[str]:
+    """Names a module defines at its top level (functions, classes, assignments), not the ones it imports."""
+    path = MODULES[module]
+    if path in _DEFINED:
+        return _DEFINED[path]
+    names = _DEFINED[path] = set()
+    for node in ast.parse(path.read_text(encoding='utf-8')).body:
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        elif isinstance(node, (ast.Assign, ast.AnnAssign)):
+            for target in (node.targets if isinstance(node, ast.Assign) else [node.target]):
+                names.update(n.id for n in ast.walk(target) if isinstance(n, ast.Name))
+    return names
+
+
+def _ListedNames(module: str) -> List[str]:
+    for node in ast.parse(MODULES[module].read_text(encoding='utf-8')).body:
+        if isinstance(node, ast.Assign) and any(getattr(t, 'id', '') == '__all__' for t in node.targets):
+            return [e.value for e in node.value.elts]
+    return []
+
+
+def test_a_module_lists_only_the_names_it_defines():
+    # one home per name: a module's __all__ names what it defines (the package itself hands on the public names)
+    foreign = sorted(f'{module}.{name}' for module in MODULES if module != PACKAGE
+                     for name in _ListedNames(module) if name not in _Defined(module))
+    assert foreign == []
+
+
+def test_an_internal_import_takes_a_name_from_the_module_that_defines_it():
+    # no name is imported through a module that only imports it itself (the old re-exports)
+    through = []
+    for module, path in MODULES.items():
+        for node in ast.walk(ast.parse(path.read_text(encoding='utf-8'))):
+            if not isinstance(node, ast.ImportFrom):
+                continue
+            source = _Targets(module, node)
+            for alias, target in zip(node.names, source):
+                if target.rsplit('.', 1)[-1] == alias.name:       # 'from . import study': the module itself
+                    continue
+                if target in MODULES and target != PACKAGE and alias.name not in _Defined(target):
+                    through.append(f'{module}:{node.lineno} imports {alias.name} from {target}')
+    assert through == []
+
+
+def test_the_guards_see_a_re_export(tmp_path, monkeypatch):
+    """The two checks above are not vacuous: a module that hands on a name it imports fails both."""
+    (tmp_path / 'a.py').write_text('X = 1\n')
+    (tmp_path / 'b.py').write_text("from .a import X\n__all__ = ['X']\n")
+    (tmp_path / 'c.py').write_text('from .b import X\n')
+    fake = {f'{PACKAGE}.fake.{n}': tmp_path / f'{n}.py' for n in 'abc'}
+    monkeypatch.setattr(sys.modules[__name__], 'MODULES', fake)
+    with pytest.raises(AssertionError, match='fake.b.X'):
+        test_a_module_lists_only_the_names_it_defines()
+    with pytest.raises(AssertionError, match='imports X from exudyn_worm.fake.b'):
+        test_an_internal_import_takes_a_name_from_the_module_that_defines_it()

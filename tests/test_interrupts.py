@@ -14,7 +14,9 @@ from pathlib import Path
 
 import pytest
 
-from exudyn_worm.cli.main import INTERRUPTED_STATUS, Main, WriteAtomically
+from exudyn_worm.cli.main import Main
+from exudyn_worm._files import WriteAtomically
+from exudyn_worm._workers import INTERRUPTED_STATUS
 from exudyn_worm.items.solve import Interruptible, IsInterrupt
 import exudyn_worm.plotting.plot as plot
 import exudyn_worm.analysis.reelchanger as reelchanger
@@ -26,7 +28,9 @@ import validation.runner as runner
 from validation.cli import Main as ValidationMain
 from exudyn_worm._workers import CancelPool
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.study import ReadResults, RunPoint, Study, StudySidecarPath, Variation
+from exudyn_worm.analysis.studyfiles import ReadResults
+from exudyn_worm.analysis.study import RunPoint, Study, StudySidecarPath
+from exudyn_worm.analysis.studygrid import Variation
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -9,7 +9,7 @@ from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.analysis.design import DesignCheck
 from exudyn_worm.setups.presets import CheckParameterKeys, GearFromParameters, PRESETS
-from exudyn_worm.analysis.study import Study
+from exudyn_worm.analysis.studygrid import Study
 
 
 @pytest.mark.messages

@@ -14,7 +14,7 @@ from exudyn_worm.params.drivefile import DRIVE_FILE_TABLES, FileKeyOf, FlattenDr
 from exudyn_worm.params.parameters import PARAMETERS, Parameter, ParameterRegistry, ParametersMarkdown, WithGeneratedTables
 from exudyn_worm.setups.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, CheckParameters, GetPreset,
                                  UnknownParameterMessage)
-from exudyn_worm.analysis.study import ParseVariation
+from exudyn_worm.analysis.studygrid import ParseVariation
 
 DOCS = Path(__file__).resolve().parents[1] / 'docs'
 

@@ -14,7 +14,8 @@ import pytest
 
 import exudyn_worm
 from exudyn_worm.items.results import SimulationResult
-from exudyn_worm.analysis.study import ParseVariation, Study, StudyResult
+from exudyn_worm.analysis.studygrid import ParseVariation
+from exudyn_worm.analysis.study import Study, StudyResult
 from exudyn_worm.analysis.charts import (ChartCoordinates, ChartPoints, ComputeStabilityChart, FirstCriterionCurves,
                                          PresetChartPoints, StabilityChart)
 from exudyn_worm.analysis.design import DesignCheckResult
@@ -97,43 +98,14 @@ def test_no_numerical_module_imports_matplotlib():
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout.split()
     assert out == ['none', str(len(NON_PLOT_MODULES))], f'{out[0]} imports matplotlib'
     assert {'exudyn_worm.analysis.charts', 'exudyn_worm.analysis.studymap', 'exudyn_worm.analysis.design', 'exudyn_worm.analysis.study',
-            'exudyn_worm.items.results', 'exudyn_worm.analysis.charttable'} <= set(NON_PLOT_MODULES)
-
-
-def _SimulationResult():
-    return object.__new__(SimulationResult)     # the spelling is tested, not the drawing: no data needed
-
-
-def _StudyResult():
-    return object.__new__(StudyResult)
-
-
-@pytest.mark.parametrize('make', [_SimulationResult, _StudyResult], ids=['SimulationResult', 'StudyResult'])
-def test_capital_Plot_is_a_deprecated_alias_of_plot(make, monkeypatch):
-    result = make()
-    calls = []
-    monkeypatch.setattr(type(result), 'plot', lambda self, *args, **kwargs: calls.append((args, kwargs)) or 'fig')
-    with pytest.warns(DeprecationWarning, match=rf'{type(result).__name__}\.Plot is deprecated; use '
-                                                rf'{type(result).__name__}\.plot'):
-        assert result.Plot('J1', 'kT', title='t') == 'fig'
-    assert calls == [(('J1', 'kT'), {'title': 't'})]
+            'exudyn_worm.items.results', 'exudyn_worm.cli.formatchart'} <= set(NON_PLOT_MODULES)
 
 
 def test_every_result_object_spells_plot_in_lower_case():
-    """The result objects of the analyses draw with ``.plot()``; ``.Plot`` exists only as the deprecated alias."""
+    """The result objects of the analyses draw with ``.plot()``, and only with it."""
     for cls in (SimulationResult, StudyResult, StabilityChart, FirstCriterionCurves, SpeedChart, DesignCheckResult):
         assert callable(getattr(cls, 'plot', None)), cls.__name__
-    assert all(cls.Plot.__doc__.startswith('Deprecated') for cls in (SimulationResult, StudyResult))
-
-
-def test_format_chart_table_moved_to_charttable():
-    from exudyn_worm.analysis import charts
-    from exudyn_worm.analysis import charttable
-    assert 'FormatChartTable' not in charts.__all__
-    with pytest.warns(DeprecationWarning, match='charttable.FormatChartTable'):
-        assert charts.FormatChartTable is charttable.FormatChartTable
-    with pytest.raises(AttributeError):
-        charts.NoSuchName
+        assert not hasattr(cls, 'Plot'), cls.__name__
 
 
 def test_chart_points_are_resolved_before_drawing():

@@ -7,7 +7,7 @@ import pytest
 from exudyn_worm import ApplyOverrides, GetPreset, SimulateReelChanger
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.items.results import SeriesUnit
-from exudyn_worm.analysis.study import ParseVariation, Study
+from exudyn_worm.analysis.studygrid import ParseVariation, Study
 
 
 @pytest.fixture(scope='module')

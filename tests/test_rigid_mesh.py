@@ -9,7 +9,8 @@ from exudyn.itemInterface import (CoordinateSpringDamper, MarkerBodyRigid, Marke
 from exudyn.rigidBodyUtilities import (InertiaCylinder, RigidBodyInertia, RotationMatrixX, RotationMatrixY,
                                        RotationMatrixZ)
 
-from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
+from exudyn_worm.analysis.reelchanger import SolverSettings
+from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.stepsize import RecommendedStepSize
 from exudyn_worm.items.bearings import CreateShaftBearings, ShaftBearings, StoredBearingLoads

@@ -1,8 +1,11 @@
 """The rigid-body mesh with its law in C++ (CreateRigidBodyWormGear(useSymbolic=True)): the same runs as the
 plain-Python law and the one-angle connector; node layouts it cannot take are refused in one line."""
+import exudyn as exu
 import numpy as np
 import pytest
+from exudyn.rigidBodyUtilities import RigidBodyInertia
 
+from exudyn_worm.analysis.linearization import AnalyzeLinearStability
 from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
 from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
@@ -44,8 +47,6 @@ def test_compiled_law_gives_the_python_law_and_the_one_angle_connector(bench, co
 
 def test_compiled_law_refuses_nodes_it_cannot_take():
     """Euler-parameter nodes, and Rxyz nodes turning about their first angle: one line naming the way out."""
-    import exudyn as exu       # only here: the module imports without Exudyn's system objects
-    from exudyn.rigidBodyUtilities import RigidBodyInertia
     gear = ElasticDriveFromParameters(P1).gear
     for nodeType, message in ((exu.NodeType.RotationEulerParameters, 'needs Tait-Bryan \\(RotationRxyz\\) nodes'),
                               (exu.NodeType.RotationRxyz, 'the law\'s inputs change with the turns')):
@@ -63,7 +64,6 @@ def test_compiled_law_refuses_nodes_it_cannot_take():
 def test_compiled_law_gives_the_two_mass_eigenvalues(bench):
     """AnalyzeLinearStability holds S in the C++ law too: on ideal joints the eigenvalues of P1 are the two-mass
     drive's (1e-6; Exudyn differentiates the law numerically)."""
-    from exudyn_worm.analysis.linearization import AnalyzeLinearStability    # only here: the linear analysis
     reference = BuildReelChanger(P1)
     reference.mbs.Assemble()
     expected = AnalyzeLinearStability(reference.mbs)

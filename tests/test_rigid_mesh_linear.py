@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability
-from exudyn_worm.analysis.reelchanger import BuildReelChanger
+from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.items.bearings import ShaftBearings
 from exudyn_worm.setups.presets import GetPreset

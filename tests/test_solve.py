@@ -6,8 +6,10 @@ import pytest
 
 import exudyn_worm as ew
 from exudyn_worm import GetPreset, SimulateReelChanger
-from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
+from exudyn_worm.analysis.reelchanger import SolverSettings
+from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.items.solve import SolveDynamicInChunks, SolverDivergedError
+from exudyn_worm.items.solve import IncompleteSolveError
 
 
 def _Plain(parameters, endTime, stepSize):
@@ -130,7 +132,6 @@ def test_a_sample_every_step(endTime):
 def test_a_run_stopped_before_its_end_time_raises(progress, capsys):
     """A pre-step user function that stops the solver at 0.02 s: Exudyn returns normally with a truncated run;
     SolveDynamicInChunks refuses it (without and with a bar, i.e. one solve or chunks), naming both times."""
-    from exudyn_worm.items.solve import IncompleteSolveError   # the error class under test
     model = BuildReelChanger(GetPreset('reel-P1'))
     mbs = model.mbs
     mbs.SetPreStepUserFunction(lambda mbs, t: t < 0.02)

@@ -8,7 +8,8 @@ import sys
 import numpy as np
 import pytest
 
-from exudyn_worm.analysis.design import SPEED_KEY, DesignCheck
+from exudyn_worm.analysis.design import DesignCheck
+from exudyn_worm.analysis.designscan import SPEED_KEY
 from exudyn_worm.analysis.drivestability import DriveStability
 from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.profiles import STANDARD_GRAVITY

@@ -11,7 +11,11 @@ from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
 from exudyn_worm.items.results import SimulationResult
 from exudyn_worm.analysis.stepsize import (SMALL_MARGIN, UNRESOLVED, CompareHalfStep, LinearMargin, RecommendedStepSize,
                                   StepCheckByDefault)
-from exudyn_worm.analysis.study import ReadResults, RunPoint, RunStudy, Study, Variation
+from exudyn_worm.analysis.studyfiles import ReadResults
+from exudyn_worm.analysis.study import RunPoint, RunStudy, Study
+from exudyn_worm.analysis.studygrid import Variation
+from exudyn_worm.analysis.reelchanger import SimulateReelChanger
+from exudyn_worm.analysis.stepsize import VERDICT_FACTOR, CloseVerdicts
 from exudyn_worm.cli.sweep import FormatStudy
 from paper_model import Eigenvalues
 
@@ -161,8 +165,6 @@ def test_compare_half_step_needs_the_same_windows():
 def test_the_chatter_ratio_decides_as_the_chatter_rule():
     """ChatterRatio >= 1 exactly where Chatter says yes (reel-P7: lift, lowering chatter, chattering lift), and
     CloseVerdicts picks the windows within VERDICT_FACTOR of the threshold."""
-    from exudyn_worm.analysis.reelchanger import DefaultWindows, SimulateReelChanger   # a simulation: Exudyn
-    from exudyn_worm.analysis.stepsize import VERDICT_FACTOR, CloseVerdicts
     p = GetPreset('reel-P7')
     result = SimulateReelChanger(p, endTime=4.4, progress=False)
     windows = [(0., 1.8), (2.2, 3.8), (3.8, 4.4)]

@@ -14,8 +14,8 @@ exu = pytest.importorskip('exudyn')
 
 from exudyn_worm import GetPreset
 from exudyn_worm.items.connector import CreateWormGear
-from exudyn_worm.model.contact import (MATH_OPS, ContactOptions, FrictionState, MeshContact, SlidingCoordinate,
-                                 StickSlipUpdate)
+from exudyn_worm.model.contact import ContactOptions, FrictionState, MeshContact, SlidingCoordinate, StickSlipUpdate
+from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque
 from exudyn_worm.model.friction import StribeckFriction
 from exudyn_worm.setups.presets import ElasticDriveFromParameters

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from exudyn_worm.setups.presets import PRESETS
-from exudyn_worm.analysis.study import RunStudy, Study, Variation
+from exudyn_worm.analysis.study import RunStudy
+from exudyn_worm.analysis.studygrid import Study, Variation
 from validation import studies
 
 

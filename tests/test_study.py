@@ -18,8 +18,10 @@ from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
 from exudyn_worm.setups.presets import ElasticDriveFromParameters
 from exudyn_worm.model.stability import AnalyzeStability
-from exudyn_worm.analysis.study import (HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, ParseShard, ParseVariation, ReadResults, RunPoint,
-                               RunStudy, ShardIndices, Study, StudyPoints, StudyResult, StudySidecarPath, Variation)
+from exudyn_worm.analysis.study import RunStudy
+from exudyn_worm.analysis.studyfiles import ReadResults, StudyResult, StudySidecarPath
+from exudyn_worm.analysis.studygrid import ParseShard, ParseVariation, ShardIndices, Study, StudyPoints, Variation
+from exudyn_worm.analysis.studypoint import HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, RunPoint
 
 # short runs: 1 s of the reel changer (lifting), two windows
 SHORT = dict(windows=[(0., 0.5), (0.5, 1.)], endTime=1.)
@@ -197,7 +199,8 @@ def test_shards_together_give_the_whole_study(tmp_path):
 _KILLABLE = textwrap.dedent('''
     import sys
     from exudyn_worm.setups.config import ResolveParameters
-    from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study
+    from exudyn_worm.analysis.study import RunStudy
+    from exudyn_worm.analysis.studygrid import ParseVariation, Study
     study = Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.02:0.3:12:log')],
                   windows=[(0., 0.5), (0.5, 1.)], endTime=1.)
     RunStudy(study, sys.argv[1], workers=1, quiet=True)

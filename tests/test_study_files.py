@@ -10,8 +10,9 @@ from pathlib import Path
 import pytest
 
 from exudyn_worm._files import OutputBusyError, OutputLock, WriteTextAtomically
-from exudyn_worm.analysis.study import (ReadResults, RunStudy, Study, StudyGrid, StudyPoints, StudySidecarPath,
-                                        Variation)
+from exudyn_worm.analysis.studyfiles import ReadResults
+from exudyn_worm.analysis.study import RunStudy, Study, StudySidecarPath
+from exudyn_worm.analysis.studygrid import StudyGrid, StudyPoints, Variation
 from exudyn_worm.analysis.studyfiles import StudyFileWarning
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters

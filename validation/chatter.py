@@ -18,9 +18,9 @@ It computes, with :mod:`exudyn_worm.analysis.chatterbranch` (docs/chatter-amplit
   and beyond it long runs and single orbits that show why no periodic orbit can be confirmed there.
 
 At ``--checks`` orbits spread along each study a long time simulation
-(:func:`~exudyn_worm.analysis.chatter.LongSimulationAmplitude`: 4 s, step 2e-4 s, the time simulations' solver settings;
+(:func:`~exudyn_worm.analysis.longsimulation.LongSimulationAmplitude`: 4 s, step 2e-4 s, the time simulations' solver settings;
 where rest and chatter coexist it starts on the orbit with a 1 % worm-speed kick; for the friction branch
-:func:`~exudyn_worm.analysis.chatter.SettledSimulationAmplitude`, from rest until settled, because near a smooth Hopf point
+:func:`~exudyn_worm.analysis.longsimulation.SettledSimulationAmplitude`, from rest until settled, because near a smooth Hopf point
 the chatter grows and settles slowly) gives the steady amplitude; the orbit must equal it within 2 % (our requirement).
 Every sentence of the report is generated from the numbers.
 """
@@ -36,9 +36,10 @@ from typing import Dict, List, Optional
 import numpy as np
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import FindSteadyChatter, LongSimulationAmplitude, SettledSimulationAmplitude
-from exudyn_worm.analysis.chatterbranch import (SMOOTH_OFFSETS, SMOOTH_SEED, AnalyzeChatterBranch, LinearBoundaries,
-                                                SmoothHopfBranch)
+from exudyn_worm.analysis.chatter import FindSteadyChatter
+from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude, SettledSimulationAmplitude
+from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries
+from exudyn_worm.analysis.smoothbranch import SMOOTH_OFFSETS, SMOOTH_SEED, SmoothHopfBranch
 from exudyn_worm.analysis.orbits import ShootingError
 from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
 
@@ -135,7 +136,7 @@ def _Sweep(study: str, name: str, base: Dict, values, checks: int, settleTime: f
 def _FrictionBranch(study: str, base: Dict, checks: int) -> Dict:
     """The branch of friction-limited chatter from the lower linear boundary (a smooth Hopf point: the orbit
     stays in contact and its amplitude starts from zero), by the library's
-    :func:`~exudyn_worm.analysis.chatterbranch.SmoothHopfBranch`: started from a settled time simulation at
+    :func:`~exudyn_worm.analysis.smoothbranch.SmoothHopfBranch`: started from a settled time simulation at
     SMOOTH_SEED above the boundary, continued from orbit to orbit at SMOOTH_OFFSETS (the library's defaults) towards
     the boundary and away from it until the worm turns back within the orbit."""
     t0 = time.perf_counter()

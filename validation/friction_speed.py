@@ -12,7 +12,7 @@ For each preset and each of 21 motor speeds (20 ... 2000 rpm, log-spaced) it com
   ``exudyn-worm sweep``), with
 * the simulation's verdict: the chatter rule of ``exudyn-worm simulate`` in the lowering phase (T/4 ... 3T/4 of the
   wheel's rotation period T) of the reel-changer model with the friction law evaluated in the connector, run by
-  :func:`exudyn_worm.analysis.study.RunPoint` (the one-run function of ``exudyn-worm sweep``) with the end time cut to the end
+  :func:`exudyn_worm.analysis.studypoint.RunPoint` (the one-run function of ``exudyn-worm sweep``) with the end time cut to the end
   of the lowering phase (3T/4), so that no lifting phase after it is simulated.
 
 Law and rule, fixed before the agreement was looked at (only the analytical curves were used to choose them):
@@ -39,7 +39,8 @@ import numpy as np
 from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
 from exudyn_worm.analysis.reelchanger import RotationPeriod
 from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
-from exudyn_worm.analysis.study import ParseVariation, RunPoint, Study
+from exudyn_worm.analysis.studygrid import ParseVariation, Study
+from exudyn_worm.analysis.studypoint import RunPoint
 
 __all__ = ['PRESETS', 'LAWS', 'SPEEDS', 'LawParameters', 'AnalyticalBoundaries', 'RunSpeedStudy', 'Summary',
            'WriteReport', 'Main']
@@ -176,7 +177,7 @@ def WriteReport(rows: List[Dict], path: Path = _REPORT) -> str:
              'The rule and the laws are in the docstring of `validation/friction_speed.py` (fixed '
              'before the agreement was looked at): analytical verdict = lowering state S = -1 of eq. (16) extended at '
              'the operating point; simulated verdict = the chatter rule of `exudyn-worm simulate` in the lowering '
-             'phase (T/4 to 3T/4) of the reel-changer model, one run per speed with `exudyn_worm.analysis.study.RunPoint`, '
+             'phase (T/4 to 3T/4) of the reel-changer model, one run per speed with `exudyn_worm.analysis.studypoint.RunPoint`, '
              'ending at 3T/4.', '']
     for preset in PRESETS:
         sub = [r for r in rows if r['preset'] == preset]

@@ -33,7 +33,9 @@ import numpy as np
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters
 from exudyn_worm.model.stability import AnalyzeStability
-from exudyn_worm.analysis.study import ParseVariation, RunStudy, Study, StudyResult, StudySidecarPath
+from exudyn_worm.analysis.study import RunStudy
+from exudyn_worm.analysis.studyfiles import StudyResult, StudySidecarPath
+from exudyn_worm.analysis.studygrid import ParseVariation, Study
 
 __all__ = ['MAP_DV', 'MapStudy', 'BacklashStudy', 'RunStudies', 'MapAnalysis', 'BacklashAnalysis', 'WriteReport',
            'Main']

@@ -18,12 +18,11 @@ longer dimensionless: it belongs to that drive's J2 and load.
 The largest real part of the four eigenvalues per point is computed by a vectorized closed-form quartic
 solution (:func:`~exudyn_worm.analysis.quartic.MaxRealPart`). Boundaries are traced by marching squares
 (:func:`~exudyn_worm.analysis.contours.ContourLines`, own code, no matplotlib) on a continuous margin field whose
-sign is the Hurwitz verdict, interpolated linearly in log10 coordinates. Both are importable from here.
+sign is the Hurwitz verdict, interpolated linearly in log10 coordinates.
 """
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, field
 from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
@@ -35,8 +34,7 @@ from ..model.gear import WormGear
 from ..model.stability import (CONTACT_STATES, FirstCriterionLimit, HurwitzConditions, HurwitzStable, OperatingPoint,
                                PolynomialCoefficients)
 from ..setups.presets import PRESETS, ElasticDriveFromParameters, GetPreset
-from . import charttable   # for the deprecated charts.FormatChartTable (module __getattr__ below)
-from .contours import ContourLines      # importable from here too (documented in its module)
+from .contours import ContourLines
 from .quartic import MaxRealPart
 
 __all__ = ['StabilityChart', 'ComputeStabilityChart', 'ChartCoordinates', 'ChartCoefficients',
@@ -663,12 +661,3 @@ def FirstCriterionChart(gear: WormGear, gamma: Sequence[float], rho: Sequence[fl
             mesh = gear.Replace(gamma=g, rho=r, r2=u * gear.r1 * math.tan(g), dV=1., friction=None)
             limit[i, j] = FirstCriterionLimit(ElasticDrive(mesh, J1=1., J2=1., kT=1., dT=0.))
     return FirstCriterionCurves(gamma=gamma, rho=rho, ratio=u, limit=limit)
-
-
-def __getattr__(name: str):
-    """``charts.FormatChartTable``, deprecated: the text table moved to :mod:`exudyn_worm.analysis.charttable`."""
-    if name == 'FormatChartTable':
-        warnings.warn("exudyn_worm.analysis.charts.FormatChartTable moved to exudyn_worm.analysis.charttable.FormatChartTable",
-                      DeprecationWarning, stacklevel=2)
-        return charttable.FormatChartTable
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

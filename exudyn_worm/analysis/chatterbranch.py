@@ -8,7 +8,9 @@ it is one of the neutral orbits of the linearized drive, i.e. the branch has rea
 the range, and reports per point the amplitude (normal-force factor, largest ``|phi2''|``), the frequency and the
 Floquet stability; for the branch the Hopf points beside the linear boundaries (roots of the largest real part
 of the S = -1 eigenvalues, :func:`~exudyn_worm.analysis.drivestability.DriveStability`), their type, the folds and the
-ranges in which rest and stable chatter coexist.
+ranges in which rest and stable chatter coexist. The smooth branch from a linear boundary (speed-dependent friction)
+is :mod:`exudyn_worm.analysis.smoothbranch`, the smallest disturbance that starts chatter
+:mod:`exudyn_worm.analysis.disturbance`.
 """
 from __future__ import annotations
 
@@ -19,68 +21,34 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
-from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Callable, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .chatter import (MONODROMY_PERTURBATION, BuildLoweringModel, FindSteadyChatter, OrbitAmplitude, SettleLowering,
-                      StateScale, UpdateLoweringModel, _LoweringFlow, _MeshAt)
+from .chatter import MONODROMY_PERTURBATION, FindSteadyChatter, OrbitAmplitude
+from .lowering import BuildLoweringModel, StateScale, UpdateLoweringModel, _LoweringFlow
 from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import PeriodicOrbit, ShootingError
-from .._checks import CheckPositive, JsonNumber
+from .._checks import CheckPositive
 from .drivestability import DriveStability
 from .._workers import CancelPool, WorkerInit
 from ..params.parameters import PARAMETERS
 from ..setups.presets import ElasticDriveFromParameters
+from .disturbance import COEXISTENCE_KICK, SmallestDisturbance
+from .smoothbranch import ChatterBranchError, SmoothHopfBranch
 
 # prefixes of the chain keys (``J4, k4, d4``, ``JL1, kL1, dL1``, ...)
 _SERIES_PREFIXES = tuple(p for table in PARAMETERS.arrayTables.values() for p in table.values())
 
-__all__ = ['CONTINUABLE', 'ChatterBranchError', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch',
-           'SmallestDisturbance', 'REST_FORCE_FACTOR', 'COEXISTENCE_KICK', 'DisturbanceVerdict',
-           'ChattersAfterDisturbance', 'SmoothBranch', 'SmoothHopfBranch', 'SMOOTH_OFFSETS', 'SMOOTH_SEED',
-           'SMOOTH_STEP', 'SMOOTH_SETTLE_TIME', 'SMOOTH_MAX_ITERATIONS']
+__all__ = ['CONTINUABLE', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch', 'REST_FORCE_FACTOR']
 
 #: parameters that can be continued (flat parameter keys, SI units); ``muStatic`` and ``stribeckVelocity`` exist
 #: with the Stribeck friction law
 CONTINUABLE = ('J1', 'J2', 'kT', 'dT', 'DT', 'DTV', 'kV', 'dV', 'DV', 'mu', 'muStatic', 'stribeckVelocity',
                'backlash', 'motorSpeed', 'loadMass', 'leverArm')
-#: worm-speed kick (fraction of the motor speed) tried when the drive is linearly stable on the whole range
-COEXISTENCE_KICK = 0.5
 #: an orbit whose largest normal force is below this multiple of the static force stays in contact all the time:
 #: it is an orbit of the linearized drive, so the branch has reached its Hopf point (the linear boundary)
 REST_FORCE_FACTOR = 1.9
-#: smooth (friction-limited) branch from a linear boundary (:func:`SmoothHopfBranch`): the distances from the boundary,
-#: as fractions of its value into the linearly unstable side, at which orbits are computed; the amplitude grows as the
-#: square root of the distance, so they are dense near it (reel-P3 with a Stribeck law, docs/chatter-amplitude.md)
-SMOOTH_OFFSETS = (0.001, 0.002, 0.004, 0.006, 0.008, 0.011, 0.014, 0.017, 0.020, 0.023, 0.026, 0.029, 0.032,
-                  0.035, 0.038, 0.041, 0.044, 0.047, 0.050)
-#: beyond the last of :data:`SMOOTH_OFFSETS` the smooth branch goes on in steps of this fraction of the boundary
-SMOOTH_STEP = 0.003
-#: the smooth branch starts from a settled time simulation this fraction of the boundary into the unstable side
-SMOOTH_SEED = 0.035
-#: settling time in s of the start of a smooth branch: the chatter grows and settles slowly near a smooth Hopf point
-#: (reel-P3, Stribeck, 3.5 % above the boundary: shooting after 10 s of settling did not converge, after 40 s in
-#: 3 Newton steps; measured, docs/chatter-amplitude.md)
-SMOOTH_SETTLE_TIME = 40.
-#: Newton steps at most for each orbit of a smooth branch
-SMOOTH_MAX_ITERATIONS = 40
-
-
-class ChatterBranchError(ValueError):
-    """The branch could not be computed; ``.branch`` holds what was computed so far (or None).
-
-    Parameters
-    ----------
-    message : str
-        The error message.
-    branch : ChatterBranch or None
-        What was computed so far.
-    """
-
-    def __init__(self, message: str, branch: Optional['ChatterBranch'] = None):
-        super().__init__(message)
-        self.branch = branch
 
 
 @dataclass
@@ -212,7 +180,7 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         stuck (at a kink of the non-smooth map); each restart is noted in ``messages``.
     stepLength : float
         First continuation step in scaled units (the parameter in units of 1/25 of the range, the state in units
-        of :func:`~exudyn_worm.analysis.chatter.StateScale`), > 0; the step grows to at most 4 times this after easy steps
+        of :func:`~exudyn_worm.analysis.lowering.StateScale`), > 0; the step grows to at most 4 times this after easy steps
         (a smaller value gives more orbits along the branch).
     processes : int
         Worker processes: with 2 (default) the two directions of the branch from the first orbit are computed at
@@ -344,7 +312,6 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     return result
 
 
-
 def _SpeedDependentFriction(parameters: Mapping[str, float]) -> bool:
     """Whether the mesh's friction coefficient depends on the sliding speed. With a constant one the contact law is
     piecewise linear, so an orbit that stays in contact is one of the linearized drive: no smooth Hopf branch."""
@@ -353,7 +320,7 @@ def _SpeedDependentFriction(parameters: Mapping[str, float]) -> bool:
 
 def _SmoothBranches(base: Dict, name: str, low: float, high: float, roots: List[float], Growth: Callable,
                     maxPoints: int, onPoint: Optional[Callable], result: ChatterBranch) -> bool:
-    """The smooth branches (:func:`SmoothHopfBranch`) from the linear boundaries ``roots`` into their linearly
+    """The smooth branches (:func:`~exudyn_worm.analysis.smoothbranch.SmoothHopfBranch`) from the linear boundaries ``roots`` into their linearly
     unstable sides, put into ``result``; False (only why in ``result.messages``) if no boundary has one (each
     start orbit loses contact or none is found): the branch is then limited by the mesh."""
     edges = [low] + list(roots) + [high]
@@ -481,334 +448,3 @@ def _RunDirections(jobs: List[Tuple], processes: int, onPoint: Optional[Callable
     return [_FollowDirection(*job, onPoint=onPoint) for job in jobs]
 
 
-@dataclass
-class SmoothBranch:
-    """Result of :func:`SmoothHopfBranch`: the friction-limited branch from one linear boundary.
-
-    Attributes
-    ----------
-    parameter : str
-        The continued parameter.
-    boundary : float
-        The linear boundary the branch starts from.
-    side : int
-        +1 if the drive is linearly unstable above the boundary, -1 if below (the branch lies on that side).
-    points : list of BranchPoint
-        The orbits, from the boundary outwards; ``info`` holds ``forceFactor``, ``maxWheelAcceleration`` (rad/s^2),
-        ``minWormSpeed`` (rad/s) and ``offset`` (distance from the boundary as a fraction of it).
-    hopf : dict or None
-        ``value``, ``type`` ('supercritical' if the two orbits nearest the boundary are stable, else
-        'subcritical'), ``linearBoundary`` and ``relativeDifference``; None with fewer than two orbits.
-    failed : list of (float, str)
-        Parameter values at which no orbit was found, and why.
-    ends : list of dict
-        Why each direction stopped: ``direction`` ('towards the boundary' or 'away from the boundary'), ``reason``
-        ('reversal': the worm turns back within the orbit, 'failures': two failed points in a row or a failed last
-        one, 'offsets': the last distance was reached, 'maxPoints'), ``value`` (the parameter value where it stopped) and ``minWormSpeed`` (rad/s,
-        for 'reversal').
-    messages : list of str
-        The ends in words.
-    """
-    parameter: str
-    boundary: float
-    side: int
-    points: List[BranchPoint] = field(default_factory=list)
-    hopf: Optional[Dict] = None
-    failed: List[Tuple[float, str]] = field(default_factory=list)
-    ends: List[Dict] = field(default_factory=list)
-    messages: List[str] = field(default_factory=list)
-
-
-def _SmoothOffsets(reach: float, count: int) -> List[float]:
-    """:data:`SMOOTH_OFFSETS` up to ``reach`` (fraction of the boundary), then steps of :data:`SMOOTH_STEP` (or
-    wider, so that at most ``count`` distances are used in all)."""
-    offsets = [f for f in SMOOTH_OFFSETS if f <= reach]
-    if reach > SMOOTH_OFFSETS[-1]:
-        room = max(count - len(offsets), 1)
-        step = max(SMOOTH_STEP, (reach - SMOOTH_OFFSETS[-1]) / room)
-        offsets += list(SMOOTH_OFFSETS[-1] + step * np.arange(1, int((reach - SMOOTH_OFFSETS[-1]) / step + 1e-9) + 1))
-    return offsets[:count]
-
-
-def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float, side: int,
-                     limit: Optional[float] = None, offsets: Optional[Sequence[float]] = None,
-                     seed: float = SMOOTH_SEED, settleTime: float = SMOOTH_SETTLE_TIME,
-                     maxIterations: int = SMOOTH_MAX_ITERATIONS, maxPoints: int = 60,
-                     maxSeedForceFactor: float = math.inf, onPoint: Optional[Callable] = None) -> SmoothBranch:
-    """The branch of steady chatter from a smooth Hopf point at the linear boundary ``boundary``: chatter whose
-    amplitude starts from zero there and is limited by a friction law that falls with the sliding speed (the
-    mesh stays in contact), followed until the worm turns back within the orbit.
-
-    Started from a settled time simulation ``seed`` (a fraction of the boundary) into the linearly unstable side
-    (:func:`~exudyn_worm.analysis.chatter.FindSteadyChatter` after ``settleTime`` s), then natural-parameter
-    continuation from orbit to orbit at the distances ``offsets``, towards the boundary and away from it; each
-    orbit is shot from the previous one (towards the boundary from the larger orbit: started below its amplitude,
-    Newton would head for the rest state, which solves the shooting equations too). A failed point does not end a
-    direction, two in a row do; away from the boundary the branch ends where the worm turns back within the orbit
-    (it then sticks in every period and the steady chatter is no longer periodic with the chatter period,
-    docs/chatter-amplitude.md). The Hopf point is where the line through the squared largest ``|phi2''|`` of the
-    two orbits nearest the boundary meets zero (near a smooth Hopf point the squared amplitude is linear in the
-    parameter).
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's keys (e.g. reel-P3 with ``frictionLaw = 'stribeck'``).
-    name : str
-        The continued parameter (see :data:`CONTINUABLE`).
-    boundary : float
-        The linear boundary in the parameter's SI unit (:func:`LinearBoundaries`), != 0.
-    side : int
-        +1 if the drive is linearly unstable above ``boundary``, -1 if below.
-    limit : float, optional
-        Farthest parameter value on that side (the end of the range or the next boundary); default: the last of
-        ``offsets``.
-    offsets : sequence of float, optional
-        Distances from the boundary as fractions of it (> 0); default :data:`SMOOTH_OFFSETS`, then steps of
-        :data:`SMOOTH_STEP` up to ``limit``.
-    seed : float
-        Distance of the start (fraction of the boundary, > 0); moved to three quarters of the way to ``limit`` if
-        that is nearer.
-    settleTime : float
-        Settling time in s of the start, > 0.
-    maxIterations : int
-        Newton steps at most per orbit.
-    maxPoints : int
-        Largest number of orbits.
-    maxSeedForceFactor : float
-        Refuse the branch if the start orbit's force factor is not below this (it loses contact: not a smooth branch).
-    onPoint : callable, optional
-        Called with each new :class:`~exudyn_worm.analysis.continuation.BranchPoint`.
-
-    Returns
-    -------
-    SmoothBranch
-
-    Raises
-    ------
-    ValueError
-        For a bad ``side``, ``boundary``, ``seed`` or ``limit``.
-    ShootingError
-        If no orbit is found at the start.
-    ChatterBranchError
-        If the start orbit's force factor is ``maxSeedForceFactor`` or more.
-    """
-    w = 'SmoothHopfBranch'
-    if side not in (-1, 1):
-        raise ValueError(f"{w}: 'side' must be +1 or -1 (the linearly unstable side of the boundary), got {side!r}")
-    boundary = float(boundary)
-    if not (math.isfinite(boundary) and boundary != 0.):
-        raise ValueError(f"{w}: 'boundary' must be a finite non-zero value of {name}, got {boundary!r}")
-    seed = CheckPositive(w, 'seed', seed)
-    Value = lambda f: boundary * (1. + side * f)
-    given = offsets is not None
-    reach = max(offsets) if given else SMOOTH_OFFSETS[-1]
-    if limit is not None:
-        reach = side * (float(limit) / boundary - 1.) if boundary > 0 else side * (1. - float(limit) / boundary)
-        if not reach > 0:
-            raise ValueError(f"{w}: 'limit' must lie on the unstable side ({'above' if side > 0 else 'below'}) of the "
-                             f"boundary {name} = {boundary:g}, got {limit!r}")
-    offsets = sorted(f for f in offsets if 0 < f <= reach) if given else _SmoothOffsets(reach, maxPoints)
-    seed = seed if seed < reach else 0.75 * reach
-    start = FindSteadyChatter({**parameters, name: Value(seed)}, settleTime=settleTime, maxIterations=maxIterations)
-    if start.info['forceFactor'] >= maxSeedForceFactor:
-        raise ChatterBranchError(f"{w}: the orbit at {name} = {Value(seed):.6g} ({seed:.1%} from the linear boundary "
-                                 f"{boundary:.6g}) loses contact (force factor {start.info['forceFactor']:.3f}): the "
-                                 f"branch there is limited by the mesh, not a smooth one")
-    result = SmoothBranch(name, boundary, side)
-    kept = ('forceFactor', 'maxWheelAcceleration', 'minWormSpeed')    # the orbits keep no model or flow
-    start.info = {k: start.info[k] for k in kept}
-    orbits = {seed: start}
-    directions = (('towards the boundary', sorted((f for f in offsets if f < seed), reverse=True)),
-                  ('away from the boundary', sorted(f for f in offsets if f > seed)))
-    for direction, todo in directions:
-        last, misses, end = start, 0, {'direction': direction, 'reason': 'offsets', 'value': Value(seed)}
-        for f in todo:
-            if len(orbits) >= maxPoints:
-                end = {'direction': direction, 'reason': 'maxPoints', 'value': end['value']}
-                break
-            v = Value(f)
-            try:
-                orbit = FindSteadyChatter({**parameters, name: v}, start=(last.state, last.period),
-                                          maxIterations=maxIterations)
-            except ShootingError as err:
-                result.failed.append((v, str(err).split(';')[0]))
-                misses += 1
-                if misses == 2:
-                    end = {'direction': direction, 'reason': 'failures', 'value': v}
-                    break
-                continue
-            misses = 0
-            if orbit.info['minWormSpeed'] <= 0.:
-                end = {'direction': direction, 'reason': 'reversal', 'value': v,
-                       'minWormSpeed': float(orbit.info['minWormSpeed'])}
-                break
-            orbit.info = {k: orbit.info[k] for k in kept}
-            orbits[f] = last = orbit
-            end['value'] = v
-            if onPoint is not None:
-                onPoint(BranchPoint(v, orbit, {**orbit.info, 'offset': f}))
-        else:
-            if misses:                      # the last value tried found no orbit
-                end = {'direction': direction, 'reason': 'failures', 'value': v}
-        result.ends.append(end)
-    near = sorted(orbits)
-    result.points = [BranchPoint(Value(f), orbits[f], {**orbits[f].info, 'offset': f}) for f in near]
-    for e in result.ends:
-        if e['reason'] == 'reversal':
-            result.messages.append(f"the branch ends at {name} = {e['value']:.6g}: the worm turns back within the orbit "
-                                   f"(smallest worm speed {e['minWormSpeed']:.3f} rad/s); from there on it sticks in "
-                                   f"every period and the steady chatter is not periodic with the chatter period, "
-                                   f"so no orbit is followed beyond")
-        elif e['reason'] == 'failures' and e['direction'].startswith('away') and len(orbits) >= 2:
-            # the smallest worm speed of the last two orbits, extrapolated to zero: where the worm would turn back
-            (fa, oa), (fb, ob) = [(f, orbits[f]) for f in sorted(orbits)[-2:]]
-            sa, sb = oa.info['minWormSpeed'], ob.info['minWormSpeed']
-            turn = Value(fb) + (Value(fb) - Value(fa)) * sb / (sa - sb) if sa > sb else math.nan
-            result.messages.append(
-                f"the branch ends at {name} = {Value(fb):.6g}: no orbit found beyond it (tried up to "
-                f"{name} = {e['value']:.6g}); the last orbit's smallest worm speed is {sb:.3g} rad/s"
-                + (f", which extrapolates to zero (the worm turns back within the orbit and sticks) at about "
-                   f"{name} = {turn:.6g}" if math.isfinite(turn) else ''))
-        elif e['reason'] == 'failures':
-            result.messages.append(f"{e['direction']}: two points in a row found no orbit, the branch ends at {name} = "
-                                   f"{e['value']:.6g}")
-        elif e['reason'] == 'maxPoints':
-            result.messages.append(f"{e['direction']}: stopped after {maxPoints} orbits at {name} = {e['value']:.6g}")
-        elif e['direction'].startswith('away'):
-            result.messages.append(f"the branch reaches {name} = {e['value']:.6g}, the end of the range looked at, "
-                                   f"with the worm still sliding forward")
-    if len(near) >= 2:
-        (f1, o1), (f2, o2) = [(f, orbits[f]) for f in near[:2]]
-        a1, a2 = o1.info['maxWheelAcceleration'] ** 2, o2.info['maxWheelAcceleration'] ** 2
-        v1, v2 = Value(f1), Value(f2)
-        hopf = v1 - a1 * (v2 - v1) / (a2 - a1)
-        result.hopf = {'value': float(hopf), 'type': 'supercritical' if o1.stable and o2.stable else 'subcritical',
-                       'linearBoundary': boundary, 'relativeDifference': float(abs(hopf / boundary - 1.))}
-    else:
-        result.messages.append(f"fewer than two orbits near the linear boundary {name} = {boundary:.6g}: no Hopf point "
-                               f"estimated")
-    return result
-
-
-def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 3.0, largest: float = 0.5,
-                        steps: int = 8) -> float:
-    """Smallest initial worm-speed disturbance (fraction of the motor speed) after which the lowering phase ends
-    in chatter, by bisection on time simulations from the steady state; ``math.inf`` if ``largest`` does not.
-
-    A run ends in chatter if the mesh still loses contact (largest normal force at least twice the static force)
-    in its last 0.2 s. The basin of chatter need not be an interval of kicks; the bisection assumes it is.
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set (a drive that is linearly stable but may chatter).
-    duration : float
-        Simulated time in s per trial, >= 0.5.
-    largest : float
-        Largest disturbance tried.
-    steps : int
-        Bisection steps.
-
-    Returns
-    -------
-    float
-    """
-    if not duration >= 0.5:
-        raise ValueError(f"SmallestDisturbance: 'duration' must be >= 0.5 s, got {duration!r}")
-    model = BuildLoweringModel(parameters)
-
-    def Chatters(kick):
-        # chatter: the mesh still loses contact (largest normal force >= twice the static force) in the last 0.2 s;
-        # a decaying transient of a linearly stable drive has long stayed in contact by then
-        SettleLowering(model, duration, kick=kick, store=True)
-        s = model.connector.StoredStates(model.mbs)
-        last = s['time'] >= s['time'][-1] - 0.2
-        mesh = _MeshAt(model.connector, s, last)
-        return float(np.max(np.abs(mesh.normalForce))) >= 2. * model.staticNormalForce
-
-    if not Chatters(largest):
-        return math.inf
-    a, b = 0., largest
-    for _ in range(steps):
-        m = 0.5 * (a + b)
-        a, b = (a, m) if Chatters(m) else (m, b)
-    return b
-
-
-@dataclass
-class DisturbanceVerdict:
-    """Result of :func:`ChattersAfterDisturbance`.
-
-    Attributes
-    ----------
-    linearlyStable : bool
-        Verdict of the linearized lowering phase (S = -1).
-    chatterFound : bool
-        Whether a steady chatter orbit was found (after a kick of :data:`COEXISTENCE_KICK` if linearly stable).
-    smallestDisturbance : float
-        Smallest worm-speed kick in rad/s that ends in chatter (``inf`` if none up to the largest tried; 0 if the
-        drive is linearly unstable).
-    forceFactor, maxWheelAcceleration, frequencyHz : float
-        Amplitude and frequency of the chatter orbit (nan if none).
-    text : str
-        One line for a report, e.g. "linearly stable, but chatters after a worm-speed disturbance of 8.3 rad/s".
-    """
-    linearlyStable: bool
-    chatterFound: bool
-    smallestDisturbance: float
-    forceFactor: float
-    maxWheelAcceleration: float
-    frequencyHz: float
-    text: str
-
-    def ToDict(self) -> Dict:
-        """JSON-ready dictionary (the ``disturbance`` object of ``exudyn-worm check --json``); infinite or
-        undefined numbers are None.
-
-        Returns
-        -------
-        dict
-        """
-        return {'linearlyStable': self.linearlyStable, 'chatterFound': self.chatterFound,
-                'smallestDisturbance': JsonNumber(self.smallestDisturbance), 'forceFactor': JsonNumber(self.forceFactor),
-                'maxWheelAcceleration': JsonNumber(self.maxWheelAcceleration), 'frequencyHz': JsonNumber(self.frequencyHz),
-                'text': self.text}
-
-
-def ChattersAfterDisturbance(parameters: Mapping[str, float]) -> DisturbanceVerdict:
-    """Does a drive chatter in the lowering phase, and if it is linearly stable, after which disturbance?
-
-    Meant for a design check: a linearly stable drive may still chatter after a disturbance where rest and chatter
-    coexist (e.g. with backlash, see docs/chatter-amplitude.md).
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's keys (two-mass drive).
-
-    Returns
-    -------
-    DisturbanceVerdict
-    """
-    stable = bool(DriveStability(parameters).State(-1).stable)
-    nan = math.nan
-    try:
-        orbit = FindSteadyChatter(parameters, kick=COEXISTENCE_KICK if stable else 0.01)
-    except ShootingError:
-        text = ('linearly stable, and a worm-speed kick of {:.0%} of the motor speed dies out'.format(COEXISTENCE_KICK)
-                if stable else 'linearly unstable, but no steady chatter orbit was found')
-        return DisturbanceVerdict(stable, False, math.inf if stable else nan, nan, nan, nan, text)
-    speed = float(parameters['motorSpeed'])
-    kick = SmallestDisturbance(parameters) * speed if stable else 0.
-    amplitude = (f"normal force up to {orbit.info['forceFactor']:.2f} times the static force, |phi2''| up to "
-                 f"{orbit.info['maxWheelAcceleration']:.3g} rad/s^2, {orbit.frequencyHz:.1f} Hz")
-    if not stable:
-        text = f"linearly unstable: chatters ({amplitude})"
-    elif math.isfinite(kick):
-        text = f"linearly stable, but chatters after a worm-speed disturbance of {kick:.3g} rad/s ({amplitude})"
-    else:
-        text = (f"linearly stable; a chatter orbit exists ({amplitude}), but no kick from rest up to "
-                f"{0.5 * speed:.3g} rad/s reached it")
-    return DisturbanceVerdict(stable, True, kick, orbit.info['forceFactor'], orbit.info['maxWheelAcceleration'],
-                              orbit.frequencyHz, text)

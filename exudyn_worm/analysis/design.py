@@ -19,27 +19,19 @@ D_V (as the paper's chart points assume), so a larger J1 or kT brings a larger d
 gives ``dT``/``dV`` keeps those constants. With ``DTV`` a change of D_V changes D_T in proportion (the paper's move
 of P6 from Figure 4 to Figure 5).
 
-**Margin rule** (one rule, applied everywhere; ``margin`` = delta in decades, default
-:data:`DEFAULT_MARGIN` = 0.1, i.e. a factor 10^0.1 = 1.26): a drive is *stable with margin* along a
-parameter if it stays stable when that parameter alone is multiplied by any factor between 10^-delta and
-10^+delta. A recommendation is the smallest change of one parameter (smallest increase and smallest
-decrease, each within a factor ``span`` = 100) after which the drive is stable with margin along that
-parameter: usually the boundary crossed plus delta decades, further where the stable band beyond the
-boundary is narrower than 2 delta. A pair of parameters (given only where no single parameter suffices, for the
-two-mass drive) must be stable for every combination of both factors within 10^-delta..10^+delta, and the best
-pair is the one with the smallest Euclidean change in decades. A drive gets recommendations iff it is not stable
-with margin along some design parameter; the changes are then along those parameters (for an unstable
-drive: all of them). For the two-mass drive the distance to the stability boundary is measured in the same
-unit: decades, Euclidean in the chart plane (log10 x, log10 y) at the drive's D_V and D_TV, on the charts at the
-operating point that decides in each contact state (mu(v0) and its slope). The chart does not describe a whole
-drive: it then has no chart distance.
+**Margin rule** (:mod:`exudyn_worm.analysis.designrules`): a drive is *stable with margin* along a parameter if
+it stays stable when that parameter alone is multiplied by any factor within 10^-delta..10^+delta; a
+recommendation is the smallest change of one parameter after which it is (a pair where no single parameter
+suffices). For the two-mass drive the distance to the stability boundary is measured in the same unit, decades,
+in the chart plane (:mod:`exudyn_worm.analysis.designchart`). The recommendations are confirmed in the time domain
+by :mod:`exudyn_worm.analysis.designconfirm`.
 
 How the scans are computed and what they cost: :mod:`exudyn_worm.analysis.designscan`.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from itertools import combinations
 from typing import Callable, Dict, List, Mapping, Optional, Tuple, Union
 
@@ -47,215 +39,17 @@ import numpy as np
 
 from .._checks import CheckRange, JsonNumber
 from ..model.stability import CONTACT_STATES
-from ..setups.presets import PARAMETER_UNITS, ApplyOverrides
 from ..setups.wholedrive import Drive
-from .charts import ChartCoordinates, ComputeStabilityChart
-from .designscan import (SCAN_STEP, SPEED_KEY, WHOLE_DRIVE_TOLERANCE, AsCheckedDrive, AxisScan, DesignKeys, DesignParameters, Scanner,
-                         ScanMotorSpeed, ScanParameter, _ScaledDrives, _SymmetricGrid)
+from .charts import ChartCoordinates
+from .designchart import LocalCharts, _ChartDistance
+from .designrules import DEFAULT_MARGIN, DEFAULT_SPAN, MarginRule, PairRecommendation, Recommendation
+from .designscan import (SPEED_KEY, WHOLE_DRIVE_TOLERANCE, AsCheckedDrive, AxisScan, DesignKeys, Scanner,
+                         _ScaledDrives, _SymmetricGrid)
 from .drivestability import AnalyzeDrive, DriveAnalysis
-from .reelchanger import CheckReelChangerKeys, DefaultPhases
-from . import reelchanger
 
-__all__ = ['DEFAULT_MARGIN', 'DEFAULT_SPAN', 'SCAN_STEP', 'DesignParameters', 'LocalCharts', 'ChartGrid',
-           'AxisScan', 'ScanParameter', 'Recommendation', 'PairRecommendation', 'DesignCheckResult',
-           'DesignCheck', 'ChatterWhileLowering', 'ConfirmBySimulation',
-           'StableRange', 'NearestStableValue', 'StabilizingChanges', 'ScanMotorSpeed', 'SPEED_KEY']
+__all__ = ['DesignCheckResult', 'DesignCheck']
 
-#: default margin in decades of a parameter factor (10^0.1 = 1.26: a 26 % error keeps the drive stable)
-DEFAULT_MARGIN = 0.1
-#: default search range: factors from 1/100 to 100
-DEFAULT_SPAN = 100.
 _PAIR_STEP = 0.01           # grid step of the pair search in decades
-_CHART_DECADES = 2.         # the chart-plane distance is searched within +-2 decades of the drive's point
-_CHART_STEP = 0.01
-
-
-def _DecidingPerState(analysis: DriveAnalysis) -> Dict[int, object]:
-    """Per contact state of the duty: the operating point with the largest real part (None: at rest, both)."""
-    if not analysis.operatingPoints:
-        return {S: None for S in CONTACT_STATES}
-    out = {}
-    for p in sorted(analysis.operatingPoints, key=lambda p: p.maxRealPart):
-        out[p.S] = p.point.operatingPoint
-    return dict(sorted(out.items()))
-
-
-def LocalCharts(drive: Union[Drive, Mapping[str, float]], decades: float = _CHART_DECADES,
-                step: float = _CHART_STEP):
-    """The two-mass drive's stability charts (:func:`~exudyn_worm.analysis.charts.ComputeStabilityChart`) on a log
-    grid of +-``decades`` around its chart point, at its D_V and D_TV, one per contact state of its duty, each at the
-    operating point that decides in that state (mu(v0) and its slope; without a steady phase: both contact states
-    at rest, constant mu).
-
-    Parameters
-    ----------
-    drive : Drive or mapping
-        The two-mass drive or its flat parameter set.
-    decades : float, optional
-        Half-width of the grid in decades of x and y, > 0.
-    step : float, optional
-        Grid step in decades, in (0, decades].
-
-    Returns
-    -------
-    dict
-        ``{S: StabilityChart}`` (S = -1 and/or +1), on the same grid with the drive's point at its centre.
-
-    Raises
-    ------
-    ValueError
-        For a drive beyond two masses (the chart of eqs. (15)-(19) does not describe it).
-    """
-    CheckRange('LocalCharts', 'decades', decades, low=0., lowOpen=True)
-    CheckRange('LocalCharts', 'step', step, low=0., high=decades, lowOpen=True)
-    drive = AsCheckedDrive(drive, 'LocalCharts')
-    if not drive.isTwoMass:
-        raise ValueError(f"LocalCharts: the stability chart (eqs. (15)-(19)) describes the two-mass drive of Figure 2; "
-                         f"this drive has {drive.ComponentsText()}")
-    core = drive.elastic
-    p = ChartCoordinates(core)
-    n = 2 * int(math.ceil(decades / step)) + 1
-    span = 10. ** decades
-    return {S: ComputeStabilityChart(core.gear, core.J2, p['DV'], p['DTV'], xRange=(p['x'] / span, p['x'] * span),
-                                     yRange=(p['y'] / span, p['y'] * span), resolution=n, S=S, operatingPoint=op)
-            for S, op in _DecidingPerState(AnalyzeDrive(drive)).items()}
-
-
-def ChartGrid(drive: Union[Drive, Mapping[str, float]], decades: float = _CHART_DECADES, step: float = _CHART_STEP):
-    """Stability (every chart of :func:`LocalCharts`) on the grid around the drive's chart point.
-
-    Parameters
-    ----------
-    drive : Drive or mapping
-        The two-mass drive or its flat parameter set.
-    decades : float, optional
-        Half-width of the grid in decades of x and y, > 0.
-    step : float, optional
-        Grid step in decades, in (0, decades].
-
-    Returns
-    -------
-    x, y, stable : numpy.ndarray
-        1-D grids of x = kT/(kV r1^2) and y = J1/J2 and the boolean stability of shape ``(len(y), len(x))``.
-    """
-    charts = list(LocalCharts(drive, decades, step).values())
-    return charts[0].x, charts[0].y, ~np.logical_or.reduce([c.unstable for c in charts])
-
-
-def _ChartDistance(drive: Drive) -> Tuple[Optional[float], Optional[Dict[str, float]]]:
-    """Distance in decades from the drive's point to the nearest point of opposite verdict in the chart plane
-    (grid of :func:`LocalCharts`, then refined along the ray to that point with the charts' exact verdict)."""
-    charts = list(LocalCharts(drive).values())
-    x, y = charts[0].x, charts[0].y
-    stable = ~np.logical_or.reduce([c.unstable for c in charts])
-    t = np.log10(x / x[x.size // 2])
-    c = t.size // 2
-    other = stable != stable[c, c]
-    if not other.any():
-        return None, None
-    d2 = np.where(other, t[None, :] ** 2 + t[:, None] ** 2, np.inf)
-    iy, ix = np.unravel_index(np.argmin(d2), d2.shape)
-    length = math.sqrt(d2[iy, ix])
-    direction = np.array([t[ix], t[iy]]) / length            # (log x, log y)
-    r = np.linspace(0., length, 4001)
-    rx, ry = x[c] * 10. ** (r * direction[0]), y[c] * 10. ** (r * direction[1])
-    ray = ~np.logical_or.reduce([chart.IsUnstable(rx, ry) for chart in charts])
-    first = int(np.argmax(ray != ray[0]))
-    distance = float(r[first]) if first > 0 else length
-    return distance, {'x': float(x[c] * 10. ** (distance * direction[0])),
-                      'y': float(y[c] * 10. ** (distance * direction[1]))}
-
-
-@dataclass(frozen=True)
-class Recommendation:
-    """One recommended change of one design parameter.
-
-    Attributes
-    ----------
-    parameter : str
-        The key changed.
-    factor : float
-        New value / given value (> 1: increase, < 1: decrease).
-    newValue : float
-        The new value (unit of the key, :data:`~exudyn_worm.setups.presets.PARAMETER_UNITS`).
-    maxRealPartAfter : float
-        Largest real part of the eigenvalues of the changed drive in 1/s at its deciding operating point (< 0:
-        stable).
-    chartPointAfter : dict
-        The chart point of the changed drive's two-mass core (:func:`~exudyn_worm.analysis.charts.ChartCoordinates`).
-    simulatedChatter : bool or None
-        Chatter while lowering in the reel-changer simulation (:func:`ConfirmBySimulation`), None if
-        not simulated.
-    """
-    parameter: str
-    factor: float
-    newValue: float
-    maxRealPartAfter: float
-    chartPointAfter: Dict[str, float]
-    simulatedChatter: Optional[bool] = None
-
-    @property
-    def unit(self) -> str:
-        """SI unit of the parameter."""
-        return PARAMETER_UNITS.get(self.parameter, '')
-
-    @property
-    def changes(self) -> Dict[str, float]:
-        """The change as ``{key: newValue}`` (for :func:`~exudyn_worm.setups.presets.ApplyOverrides`)."""
-        return {self.parameter: self.newValue}
-
-    def ToDict(self) -> Dict:
-        """JSON-ready dictionary."""
-        return {'parameter': self.parameter, 'factor': self.factor, 'newValue': self.newValue, 'unit': self.unit,
-                'maxRealPartAfter': self.maxRealPartAfter,
-                'chartPointAfter': {k: JsonNumber(v) for k, v in self.chartPointAfter.items()},
-                'simulatedChatterWhileLowering': self.simulatedChatter}
-
-
-@dataclass(frozen=True)
-class PairRecommendation:
-    """A change of two design parameters together (given where no single parameter suffices).
-
-    Attributes
-    ----------
-    parameters : tuple of str
-        The two keys.
-    factors : tuple of float
-        New value / given value of each.
-    newValues : tuple of float
-        The new values.
-    maxRealPartAfter : float
-        Largest real part of the eigenvalues of the changed drive in 1/s at its deciding operating point.
-    chartPointAfter : dict
-        The changed drive's chart point.
-    simulatedChatter : bool or None
-        Chatter while lowering in the simulation, None if not simulated.
-    """
-    parameters: Tuple[str, str]
-    factors: Tuple[float, float]
-    newValues: Tuple[float, float]
-    maxRealPartAfter: float
-    chartPointAfter: Dict[str, float]
-    simulatedChatter: Optional[bool] = None
-
-    @property
-    def changes(self) -> Dict[str, float]:
-        """The change as ``{key: newValue, ...}``."""
-        return dict(zip(self.parameters, self.newValues))
-
-    def ToDict(self) -> Dict:
-        """JSON-ready dictionary."""
-        return {'parameters': list(self.parameters), 'factors': list(self.factors),
-                'newValues': list(self.newValues), 'units': [PARAMETER_UNITS.get(k, '') for k in self.parameters],
-                'maxRealPartAfter': self.maxRealPartAfter,
-                'chartPointAfter': {k: JsonNumber(v) for k, v in self.chartPointAfter.items()},
-                'simulatedChatterWhileLowering': self.simulatedChatter}
-
-
-def _MarginRule(margin: float, span: float) -> str:
-    return (f"stable with margin = stable when the changed parameter alone is multiplied by any factor between "
-            f"10^-{margin:g} and 10^{margin:g} ({10 ** -margin:.3g} to {10 ** margin:.3g}); a recommendation is the "
-            f"smallest increase or decrease within a factor {span:g} that makes the drive stable with margin")
 
 
 @dataclass(frozen=True)
@@ -281,7 +75,7 @@ class DesignCheckResult:
     nearestBoundaryPoint : dict or None
         ``{'x', 'y'}`` of that boundary point.
     scans : dict
-        :class:`AxisScan` of each design parameter.
+        :class:`~exudyn_worm.analysis.designscan.AxisScan` of each design parameter.
     marginShortBy : list of str
         Design parameters along which the drive is not stable with margin (empty: stable with margin).
     recommendations : list of Recommendation
@@ -398,7 +192,7 @@ class DesignCheckResult:
         data = {**self.analysis.ToDict(),
                 'stable': self.stable, 'stableWithMargin': self.stableWithMargin, 'maxRealPart': self.maxRealPart,
                 'S': contact, 'chartPoint': point,
-                'margin': {'decades': self.margin, 'factor': 10. ** self.margin, 'rule': _MarginRule(self.margin, self.span)},
+                'margin': {'decades': self.margin, 'factor': 10. ** self.margin, 'rule': MarginRule(self.margin, self.span)},
                 'span': self.span, 'designParameters': list(self.scans), 'marginShortBy': list(self.marginShortBy),
                 'recommendations': [r.ToDict() for r in self.recommendations],
                 'noRecommendation': [{'parameter': k, 'direction': 'increase' if d > 0 else 'decrease'}
@@ -464,8 +258,9 @@ def DesignCheck(drive: Union[Drive, Mapping[str, float]], margin: float = DEFAUL
     """Check a drive for chatter and recommend the smallest changes that make it stable with a margin.
 
     The verdict is :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive` (the drive's own operating points);
-    the margin rule, the design parameters and what is held when one changes are described in the module
-    docstring of :mod:`exudyn_worm.analysis.design`, the scans in :mod:`exudyn_worm.analysis.designscan`.
+    the design parameters and what is held when one changes are described in the module docstring of
+    :mod:`exudyn_worm.analysis.design`, the margin rule in :mod:`exudyn_worm.analysis.designrules`, the scans in
+    :mod:`exudyn_worm.analysis.designscan`.
 
     Parameters
     ----------
@@ -535,169 +330,3 @@ def DesignCheck(drive: Union[Drive, Mapping[str, float]], margin: float = DEFAUL
     distance, boundaryPoint = _ChartDistance(drive) if drive.isTwoMass else (None, None)
     return DesignCheckResult(drive, margin, span, analysis, ChartCoordinates(drive.elastic), distance, boundaryPoint,
                              scans, short, recommendations, bestPair, notes, evaluations=scanner.evaluations)
-
-
-def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[float] = None) -> bool:
-    """Time-domain verdict: does the reel changer chatter while lowering the load?
-
-    One rotation with :func:`~exudyn_worm.analysis.reelchanger.SimulateReelChanger`; the verdict is
-    :meth:`~exudyn_worm.items.results.SimulationResult.Chatter` on the lowering window of
-    :func:`~exudyn_worm.analysis.reelchanger.DefaultWindows` (the rule of ``exudyn-worm simulate``); for another duty
-    (:mod:`exudyn_worm.setups.duty`) on each of its lowering phases (False if it has none).
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed`` (or another duty's).
-    stepSize : float, optional
-        Time step in s. Default: the simulation's default, the drive's own
-        :func:`~exudyn_worm.analysis.stepsize.RecommendedStepSize` (a recommended drive can have a higher natural
-        frequency than the given one).
-
-    Returns
-    -------
-    bool
-
-    Raises
-    ------
-    ValueError
-        For a parameter set without the reel-changer keys, or a ``stepSize`` the simulation refuses.
-    """
-    CheckReelChangerKeys(parameters, 'ChatterWhileLowering')
-    lowering = [(t0, t1) for t0, t1, phase in DefaultPhases(parameters) if phase == 'lower']   # the load drives
-    if not lowering:
-        return False
-    result = reelchanger.SimulateReelChanger(parameters, stepSize=stepSize)          # the default time the phases cover
-    return any(result.Chatter(t0, t1) for t0, t1 in lowering)
-
-
-def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = None,
-                        progress=None) -> DesignCheckResult:
-    """Simulate the given drive and every recommended drive; return the result with the simulated verdicts.
-
-    Parameters
-    ----------
-    result : DesignCheckResult
-        From :func:`DesignCheck`; its parameter set must hold ``loadMass``, ``leverArm``, ``motorSpeed``.
-    stepSize : float, optional
-        Time step in s (default: see :func:`ChatterWhileLowering`).
-    progress : callable, optional
-        Called with no argument after each simulation (e.g. a progress bar's ``update``).
-
-    Returns
-    -------
-    DesignCheckResult
-        A copy with ``simulatedChatter`` set on the result, each recommendation and the best pair.
-    """
-    if not isinstance(result, DesignCheckResult):
-        raise TypeError(f"ConfirmBySimulation: 'result' must be a DesignCheckResult, got {type(result).__name__}")
-    p = result.parameters
-
-    def Verdict(changes):
-        chatter = ChatterWhileLowering(ApplyOverrides(p, changes), stepSize)
-        if progress is not None:
-            progress()
-        return chatter
-
-    base = Verdict({})
-    recommendations = [replace(r, simulatedChatter=Verdict(r.changes)) for r in result.recommendations]
-    pair = replace(result.bestPair, simulatedChatter=Verdict(result.bestPair.changes)) if result.bestPair else None
-    return replace(result, recommendations=recommendations, bestPair=pair, simulatedChatter=base)
-
-
-# --- nearest stable values (the hint of ``exudyn-worm stability``): the margin-0 case of the same scan ---
-
-@dataclass(frozen=True)
-class StableRange:
-    """Nearest stable values of one parameter on both sides of the given value (None: not found).
-
-    Attributes
-    ----------
-    key : str
-        The parameter key (``'J1'`` or ``'kT'``).
-    given : float
-        Its given value, in ``unit``.
-    below, above : float or None
-        Nearest stable value below and above the given one, in ``unit`` (None: none within the span).
-    ratioName : str
-        The chart ratio the parameter is shown as (``'J1/J2'``, ``'kT/(kV r1^2)'``).
-    ratioScale : float
-        Multiply a value by this to get the chart ratio.
-    unit : str
-        Unit of ``given``, ``below`` and ``above``.
-    """
-    key: str
-    given: float
-    below: Optional[float]
-    above: Optional[float]
-    ratioName: str
-    ratioScale: float       #: multiply a value by this to get the chart ratio
-    unit: str
-
-    def ToDict(self) -> Dict:
-        """JSON-ready dictionary."""
-        return {'parameter': self.key, 'given': self.given, 'below': self.below, 'above': self.above,
-                'unit': self.unit, 'ratioName': self.ratioName,
-                'ratioBelow': None if self.below is None else self.below * self.ratioScale,
-                'ratioAbove': None if self.above is None else self.above * self.ratioScale}
-
-
-#: parameters of the nearest-stable hint, with the chart ratio they are shown as
-_HINT_KEYS = {'J1': 'J1/J2', 'kT': 'kT/(kV r1^2)'}
-
-
-def NearestStableValue(parameters: Union[Drive, Mapping[str, float]], key: str, direction: int,
-                       span: float = DEFAULT_SPAN) -> Optional[float]:
-    """Nearest value of ``key`` below (``direction = -1``) or above (+1) the given one at which the drive is
-    stable (S = +1 and -1), other parameters as given; the given value if it is stable; None if there is
-    none within ``span`` times (the margin-0 case of :meth:`AxisScan.Move`).
-
-    Parameters
-    ----------
-    parameters : Drive or mapping
-        The drive or its flat parameter set.
-    key : str
-        Parameter to vary.
-    direction : int
-        -1 or +1.
-    span : float, optional
-        Search up to this factor, > 1.
-
-    Returns
-    -------
-    float or None
-    """
-    if direction not in (-1, 1):
-        raise ValueError(f"NearestStableValue: 'direction' must be -1 or +1, got {direction!r}")
-    CheckRange('NearestStableValue', 'span', span, low=1., lowOpen=True)
-    drive = AsCheckedDrive(parameters, 'NearestStableValue')
-    t = Scanner(drive).Scan(key, math.log10(span)).Move(direction, 0., span)
-    return None if t is None else drive.parameters[key] * 10. ** t
-
-
-def StabilizingChanges(parameters: Union[Drive, Mapping[str, float]], span: float = DEFAULT_SPAN) -> List[StableRange]:
-    """For J1 and kT separately: the nearest values that make the drive stable.
-
-    Parameters
-    ----------
-    parameters : Drive or mapping
-        The drive or its flat parameter set (see :func:`~exudyn_worm.setups.presets.DriveFromParameters`).
-    span : float
-        Search from 1/span to span times the given value, > 1.
-
-    Returns
-    -------
-    list of StableRange
-    """
-    CheckRange('StabilizingChanges', 'span', span, low=1., lowOpen=True)
-    drive = AsCheckedDrive(parameters, 'StabilizingChanges')
-    parameters, core, scanner = drive.parameters, drive.elastic, Scanner(drive)
-    scales = {'J1': 1. / core.J2, 'kT': 1. / (core.gear.kV * core.gear.r1**2)}
-    out = []
-    for key, ratioName in _HINT_KEYS.items():
-        scan = scanner.Scan(key, math.log10(span))
-        below, above = (scan.Move(d, 0., span) for d in (-1, 1))
-        out.append(StableRange(key, parameters[key], None if below is None else parameters[key] * 10. ** below,
-                               None if above is None else parameters[key] * 10. ** above, ratioName, scales[key],
-                               PARAMETER_UNITS[key]))
-    return out

@@ -10,7 +10,7 @@ verdict and the mode shapes (which coordinates take part in each mode). The conn
 afterwards.
 
 The initial state must have every mesh in contact (``|Delta s|`` beyond half the backlash), e.g. the static
-equilibrium under load that :func:`~exudyn_worm.analysis.reelchanger.BuildReelChanger` starts from; for a model of your
+equilibrium under load that :func:`~exudyn_worm.setups.build.BuildReelChanger` starts from; for a model of your
 own, start every rotor from :func:`~exudyn_worm.items.equilibrium.SteadyInitialState` (docs/equilibrium.md). With S held and
 ``dampingCanPull`` the mesh law is linear on either flank, so the result does not depend on how deep the
 pre-deflection is.
@@ -28,7 +28,8 @@ from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from .._checks import CheckSystem, JsonNumber
-from ..items.connector import CONNECTORS_KEY, AxialBearing, CreateWormAxialBearing, CreateWormGear, WormGearConnector
+from ..items.connector import CONNECTORS_KEY, CreateWormAxialBearing, CreateWormGear, WormGearConnector
+from ..model.drive import AxialBearing
 from ..items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
 from ..model.contact import ContactOptions
 from ..model.drive import ElasticDrive
@@ -308,8 +309,8 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
     ----------
     mbs : exudyn.MainSystem, or an object with one as ``.mbs``
         The system, built with :func:`~exudyn_worm.items.connector.CreateWormGear` (and any Exudyn items), or a model
-        that holds it (e.g. the :class:`~exudyn_worm.analysis.reelchanger.ReelChangerModel` of
-        :func:`~exudyn_worm.analysis.reelchanger.BuildReelChanger`). It is linearized about its initial state, in which
+        that holds it (e.g. the :class:`~exudyn_worm.setups.build.ReelChangerModel` of
+        :func:`~exudyn_worm.setups.build.BuildReelChanger`). It is linearized about its initial state, in which
         every mesh must be in contact: build your own model at :func:`~exudyn_worm.items.equilibrium.SteadyInitialState`
         (docs/equilibrium.md).
     connectors : sequence of WormGearConnector or RigidBodyWormGearConnector, optional

@@ -1,4 +1,5 @@
-"""The paper's paper-reel changer (section 3.2): model building and simulation.
+"""The paper's paper-reel changer (section 3.2) simulated: :func:`SimulateReelChanger` solves the system that
+:func:`~exudyn_worm.setups.build.BuildReelChanger` builds, and the phases and windows of its duty.
 
 Motor (prescribed rotation phi0) -- elastic shaft kT, dT -- worm J1 -- worm-gear mesh -- wheel and
 frame J2 -- load torque of the reel, M2 = -m2 g l2 cos(phi2) (eq. (27)). The frame is horizontal at
@@ -13,31 +14,27 @@ from __future__ import annotations
 
 import math
 import time as _time
-from dataclasses import dataclass
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ..items.connector import CreateWormAxialBearing, CreateWormGear, WormGearConnector
-from ..model.contact import MATH_OPS, ContactOptions
-from ..model.drive import ElasticDrive
-from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft, CreateRotorTorque
-from ..items.equilibrium import SteadyInitialState  # re-exported: it lived here before
-from ..setups.presets import (REEL_KEYS, AxialBearingFromParameters, ShaftSupportsFromParameters, CheckParameterKeys, ElasticDriveFromParameters, DriveSideChain,
-                      LoadSideChain, MissingParameterError)
-from ..model.profiles import ConstantSpeed, ConstantTorque, GravityLeverTorque
-from ..params.plausibility import CheckWormRotation, CheckWormSpeed
+from .._checks import CheckPositive
 from ..items.results import SimulationResult
 from ..items.solve import IncompleteSolveError, SolveDynamicInChunks, SolverDivergedError
-from .stepsize import CheckStepSize, RecommendedStepSize
-from .._checks import CheckBool, CheckPositive
-from ..setups.duty import (CheckDutyKeys, DefaultEndTime, DutyPhases, IsReelChangerDuty, LoadFromParameters,
-                   MotorFromParameters, MotorMotion, MotorType, SteadyMotorSpeed)
+from ..model.contact import ContactOptions
+from ..model.friction import MATH_OPS
+from ..model.drive import ElasticDrive
+from ..params.plausibility import CheckWormRotation, CheckWormSpeed
+from ..setups.presets import ShaftSupportsFromParameters
 from ..model.stability import CharacteristicCoefficients, EigenvaluesFromPolynomial
+from ..setups.build import BuildReelChanger, CheckModelOptions, CheckReelChangerKeys
+from ..setups.duty import DefaultEndTime, DutyPhases, IsReelChangerDuty, LoadFromParameters, MotorMotion
+from ..setups.presets import ElasticDriveFromParameters
+from .stepsize import CheckStepSize, RecommendedStepSize
 
-__all__ = ['ReelChangerModel', 'BuildReelChanger', 'SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
+__all__ = ['SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
            'DefaultPhases', 'DefaultSimulatedTime', 'WindowPhases', 'PhaseLabel',
-           'SteadyInitialState', 'CheckRunSize', 'CheckReelChangerKeys', 'SolverSettings', 'DEFAULT_STEP_SIZE',
+           'CheckRunSize', 'SolverSettings', 'DEFAULT_STEP_SIZE',
            'SOLVER_SETTINGS', 'MAX_STEPS']
 
 #: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change
@@ -51,7 +48,6 @@ DEFAULT_STEP_SIZE = 5e-4
 SOLVER_SETTINGS = {'timeIntegration.newton.useModifiedNewton': True, 'timeIntegration.newton.maxIterations': 10,
                    'timeIntegration.newton.relativeTolerance': 1e-6,
                    'timeIntegration.generalizedAlpha.spectralRadius': 0.8}
-_MOTOR_INERTIA = 1e-3   # kg*m^2; the motor node is prescribed, its inertia does not matter
 
 #: default limit of solver steps (= stored samples, one per step) of one run: 1e6 steps is about 0.4 GB of
 #: stored results and 15 s (P1) to 3.5 min (P7) of solving (780 s simulated of P1 at its recommended step);
@@ -114,37 +110,6 @@ def CheckRunSize(endTime: float, stepSize: float, maxSteps: int = MAX_STEPS, whe
                          f"{_Duration(slow)} and store about {ratio * _BYTES_PER_STEP / 1e9:.2g} GB of results. "
                          f"Raise {nMax} to run it anyway")
     return max(1, int(round(ratio)))
-
-
-def CheckReelChangerKeys(parameters: Mapping[str, float], where: str) -> None:
-    """Refuse a parameter set without the reel changer's own keys (``REEL_KEYS``: loadMass, leverArm,
-    motorSpeed), e.g. the ``chart`` preset, naming the missing ones and how to give them; for another duty
-    (``loadType``, ``motorType``: :mod:`exudyn_worm.setups.duty`) the keys that duty needs.
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set.
-    where : str
-        Who needs them (function or command), first in the message.
-
-    Raises
-    ------
-    MissingParameterError
-        A ValueError naming the missing keys, if a key is missing.
-    ValueError, TypeError
-        If ``parameters`` is not a mapping or has an unknown key or two forms of one quantity
-        (:func:`~exudyn_worm.setups.presets.CheckParameterKeys`).
-    """
-    CheckParameterKeys(parameters, where)
-    if not IsReelChangerDuty(parameters):         # another duty (loadType / motorType): its own keys
-        CheckDutyKeys(parameters, where)
-        return
-    missing = [k for k in REEL_KEYS if k not in parameters]
-    if missing:
-        raise MissingParameterError(f"{where}: the reel-changer simulation needs {', '.join(REEL_KEYS)}; missing "
-                                    f"{', '.join(missing)} (use a reel-P* preset or give them with --set KEY=VALUE "
-                                    f"or in the config file)", missing)
 
 
 def RotationPeriod(parameters: Mapping[str, float]) -> float:
@@ -306,172 +271,6 @@ def DefaultSimulatedTime(parameters: Mapping[str, float]) -> float:
     return DefaultEndTime(parameters, ElasticDriveFromParameters(parameters).gear.ratio)
 
 
-def _CheckModelOptions(where: str, contactOptions, profile, useSymbolic, startFromEquilibrium) -> None:
-    """The options of :func:`BuildReelChanger` and :func:`SimulateReelChanger`, checked before anything is built."""
-    if not isinstance(contactOptions, ContactOptions):
-        raise TypeError(f"{where}: 'contactOptions' must be a ContactOptions (e.g. ContactOptions(frictionSpeed=0.05)), "
-                        f"got {type(contactOptions).__name__} {contactOptions!r}")
-    if profile is not None and not callable(getattr(profile, 'AngleAndSpeed', None)):
-        raise TypeError(f"{where}: 'profile' must be None (constant motor speed) or have AngleAndSpeed(t, ops) "
-                        f"(e.g. ConstantSpeed, StartStopProfile), got {type(profile).__name__} {profile!r}")
-    CheckBool(where, 'useSymbolic', useSymbolic)
-    CheckBool(where, 'startFromEquilibrium', startFromEquilibrium)
-
-
-@dataclass
-class ReelChangerModel:
-    """The Exudyn system of the reel changer and what is needed to read its results.
-
-    Attributes
-    ----------
-    systemContainer : exudyn.SystemContainer
-        The container of ``mbs`` (kept alive with it).
-    mbs : exudyn.MainSystem
-        The system, assembled.
-    drive : ElasticDrive
-        The two-mass drive of eqs. (1)-(2).
-    load : GravityLeverTorque
-        The reel's load torque, eq. (27).
-    motorSpeed : float
-        Nominal motor speed in rad/s.
-    connector : WormGearConnector
-        The worm-gear mesh.
-    rotors : dict
-        Rotor dicts of :func:`~exudyn_worm.items.drivetrain.CreateRotor` by name (``'worm'``, ``'wheel'``, ...).
-    sensors : dict
-        Sensors by name.
-    axialBearing : dict or None
-        The worm axial bearing of :func:`~exudyn_worm.items.connector.CreateWormAxialBearing` (None: rigid).
-    chain : tuple of (float, float, float)
-        The drive-side chain ``(J, k, d)`` of inertia4, spring-Damper4, ... (empty: none).
-    loadChain : tuple of (float, float, float)
-        The load-side chain ``(J, k, d)`` behind the wheel, wheel side first (empty: none).
-    """
-    systemContainer: Any
-    mbs: Any
-    drive: ElasticDrive
-    load: Any                     # the duty's load law (GravityLeverTorque for the reel changer) or None
-    motorSpeed: float             # the motor speed at t = 0 in rad/s
-    connector: WormGearConnector
-    rotors: Dict[str, Dict]
-    sensors: Dict[str, Any]
-    axialBearing: Optional[Dict[str, Any]] = None
-    chain: Tuple[Tuple[float, float, float], ...] = ()
-    loadChain: Tuple[Tuple[float, float, float], ...] = ()
-
-
-def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
-                     useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None) -> ReelChangerModel:
-    """Build the reel changer of section 3.2 in a new Exudyn system.
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set (see :mod:`exudyn_worm.setups.presets`), including ``loadMass`` (kg), ``leverArm`` (m)
-        and ``motorSpeed`` (rad/s), or another duty (``loadType``, ``motorType``: :mod:`exudyn_worm.setups.duty`; the
-        load acts where the lever would); optional drive-side chain ``J4, k4, d4, J5, ...`` (rotors ``inertia4``,
-        ... and shafts ``springDamper4``, ...), load-side chain ``JL1, kL1, dL1, ...`` (rotors ``loadInertia1``,
-        ... and shafts ``loadShaft1``, ...; the load acts on the last one) and axial bearing ``kA, dA, mA``.
-    contactOptions : ContactOptions
-        Options of the worm-gear contact law.
-    useSymbolic : bool
-        C++ symbolic user functions (default) or plain Python.
-    startFromEquilibrium : bool
-        Start in the static equilibrium under the initial load at nominal speed (default); otherwise
-        all rotors start at rest with zero angles.
-    profile : optional
-        Motor motion: an object with ``AngleAndSpeed(t, ops)`` such as :class:`ConstantSpeed` or
-        :class:`~exudyn_worm.model.profiles.StartStopProfile` (default: the duty's motor,
-        :func:`~exudyn_worm.setups.duty.MotorFromParameters`: :class:`ConstantSpeed` at ``motorSpeed`` for the reel changer).
-
-    Returns
-    -------
-    ReelChangerModel
-
-    Raises
-    ------
-    ValueError, TypeError
-        For a bad parameter set (:func:`~exudyn_worm.setups.presets.DriveFromParameters`, :func:`CheckReelChangerKeys`),
-        ``contactOptions`` that is not a :class:`~exudyn_worm.model.contact.ContactOptions`, or a ``profile`` without
-        ``AngleAndSpeed``.
-    """
-    import exudyn as exu
-    from exudyn.itemInterface import SensorNode
-
-    w = 'BuildReelChanger'
-    CheckParameterKeys(parameters, w)
-    _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
-    drive = ElasticDriveFromParameters(parameters)
-    CheckReelChangerKeys(parameters, w)
-    if MotorType(parameters) in ('constantSpeed', 'startStop'):
-        CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
-    load = LoadFromParameters(parameters, w)            # the duty: lever (reel changer), constant, table or None
-    characteristic = None                               # a free motor on its torque-speed line, else prescribed
-    if MotorType(parameters) == 'characteristic':
-        if profile is not None:
-            raise ValueError(f"{w}: 'profile' prescribes the motor, but the parameter set drives it by its "
-                             f"characteristic (motorType = characteristic); give one of them")
-        characteristic = MotorFromParameters(parameters, w)
-        profile = ConstantSpeed(SteadyMotorSpeed(parameters, w))          # its start: the steady speed
-    profile = profile if profile is not None else MotorFromParameters(parameters, w)
-    motorSpeed = float(profile.AngleAndSpeed(0., MATH_OPS)[1])         # the motor's speed at t = 0
-    chain = tuple(DriveSideChain(parameters))
-    loadChain = tuple(LoadSideChain(parameters))
-    bearing = AxialBearingFromParameters(parameters)
-
-    if startFromEquilibrium:
-        init = SteadyInitialState(drive, load or ConstantTorque(0.), motorSpeed, contactOptions, bearing, chain,
-                                  loadSide=loadChain)
-        init0 = profile.AngleAndSpeed(0., MATH_OPS)
-    else:
-        init, init0 = {}, (0., 0.)
-
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    motor = CreateRotor(mbs, _MOTOR_INERTIA if characteristic is None else parameters['motorInertia'],
-                        initialAngle=init0[0], initialSpeed=init0[1], name='motor')
-    worm = CreateRotor(mbs, drive.J1, initialAngle=init.get('phi1', 0.), initialSpeed=init.get('omega1', 0.),
-                       name='worm')
-    wheel = CreateRotor(mbs, drive.J2, initialAngle=init.get('phi2', 0.), initialSpeed=init.get('omega2', 0.),
-                        name='wheel')
-    if characteristic is None:
-        CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
-    else:
-        CreateRotorTorque(mbs, motor, characteristic, name='motorTorque', useSymbolic=useSymbolic)
-    rotors = {'motor': motor, 'worm': worm, 'wheel': wheel}
-    # drive-side chain, worm side first: worm --kT-- inertia4 --k4-- inertia5 ... --kn-- motor
-    chainRotors = [CreateRotor(mbs, J, initialAngle=init.get(f'phi{i}', 0.), initialSpeed=init.get(f'omega{i}', 0.),
-                               name=f'inertia{i}') for i, (J, _, _) in enumerate(chain, start=4)]
-    rotors.update({f'inertia{i}': r for i, r in enumerate(chainRotors, start=4)})
-    CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT, name='driveShaft')
-    for i, (rotor, motorSide, (_, k, d)) in enumerate(zip(chainRotors, chainRotors[1:] + [motor], chain), start=4):
-        CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d, name=f'springDamper{i}')
-    axial = None
-    if bearing is not None:
-        axial = CreateWormAxialBearing(mbs, bearing, initialDisplacement=init.get('xA', 0.),
-                                       initialSpeed=init.get('vA', 0.), name='wormAxial')
-    connector = CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=drive.gear, name='wormGear',
-                               contactOptions=contactOptions, useSymbolic=useSymbolic,
-                               axialNodeNumber=None if axial is None else axial['nodeNumber'])
-    # load-side chain, wheel side first: wheel --kL1-- loadInertia1 --kL2-- loadInertia2 ...; the load on the last
-    loadRotors = CreateLoadSideChain(mbs, wheel, loadChain, init)
-    rotors.update({f'loadInertia{i}': r for i, r in enumerate(loadRotors, start=1)})
-    if load is not None:
-        CreateRotorTorque(mbs, (loadRotors or [wheel])[-1], load, name='reelLoad', useSymbolic=useSymbolic)
-
-    sensors = dict(connector.AddSensors(mbs))
-    OVT = exu.OutputVariableType
-    for index, rotor in ([('0', motor)] + [(str(i), r) for i, r in enumerate(chainRotors, start=4)]
-                         + [(f'L{i}', r) for i, r in enumerate(loadRotors, start=1)]):
-        quantities = (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t))
-        if index != '0':
-            quantities += (('alpha', OVT.Coordinates_tt),)
-        for prefix, ovt in quantities:
-            sensors[prefix + index] = mbs.AddSensor(SensorNode(nodeNumber=rotor['nodeNumber'], outputVariableType=ovt,
-                                                               storeInternal=True, writeToFile=False))
-    return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain, loadChain)
-
-
 def _SolverCounters(mbs) -> Dict[str, Any]:
     """Work counters of the last solve: steps taken, Newton iterations, Jacobians, rejected (halved) steps."""
     it = mbs.sys['dynamicSolver'].it
@@ -572,14 +371,14 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
         :func:`exudyn_worm.analysis.stepsize.CheckStepSize`. Default: the drive's own
         :func:`~exudyn_worm.analysis.stepsize.RecommendedStepSize` (7.8e-4 s for P1, 5.1e-4 s for P7).
     contactOptions : ContactOptions
-        Options of the worm-gear contact law (see :func:`BuildReelChanger`).
+        Options of the worm-gear contact law (see :func:`~exudyn_worm.setups.build.BuildReelChanger`).
     useSymbolic : bool
         C++ symbolic user functions (default) or plain Python.
     startFromEquilibrium : bool
-        Start in the static equilibrium under the initial load (default); see :func:`BuildReelChanger`.
+        Start in the static equilibrium under the initial load (default); see :func:`~exudyn_worm.setups.build.BuildReelChanger`.
     profile : optional
         Motor motion with ``AngleAndSpeed(t, ops)`` (default: constant ``motorSpeed``); see
-        :func:`BuildReelChanger`.
+        :func:`~exudyn_worm.setups.build.BuildReelChanger`.
     solverOptions : mapping, optional
         Changes to the solver settings, keyed by their path in ``exudyn.SimulationSettings`` (e.g.
         ``{'timeIntegration.newton.maxIterations': 10}``), and ``'solverType'`` (a name of
@@ -610,7 +409,7 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     import exudyn as exu
     w = 'SimulateReelChanger'
     CheckReelChangerKeys(parameters, w)
-    _CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
+    CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
     endTime = DefaultSimulatedTime(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
     stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
     steps = CheckRunSize(endTime, stepSize, maxSteps, w)

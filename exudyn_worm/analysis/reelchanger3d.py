@@ -1,6 +1,6 @@
 """The reel changer with worm and wheel as 3D rigid bodies, on ideal revolute joints or on elastic bearings.
 
-:func:`BuildRigidBodyReelChanger` builds the drive of :func:`~exudyn_worm.analysis.reelchanger.BuildReelChanger`
+:func:`BuildRigidBodyReelChanger` builds the drive of :func:`~exudyn_worm.setups.build.BuildReelChanger`
 (motor at constant speed, drive shaft kT, dT, worm, mesh, wheel, the reel's lever load) with the worm and the wheel
 as ``mbs.CreateRigidBody`` bodies coupled by :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`. Each
 shaft sits on ideal revolute joints to ground, or on :func:`~exudyn_worm.items.bearings.CreateShaftBearings`
@@ -27,7 +27,8 @@ from ..items.drivetrain import CreatePrescribedRotation, CreateRotor
 from ..items.equilibrium import SteadyInitialState
 from ..items._userfunctions import SetGenericForceLaw
 from ..items.rigidmesh import CreateRigidBodyWormGear, MeshForceComponents, RigidBodyWormGearConnector
-from ..model.contact import MATH_OPS, ContactOptions, MeshContact, MeshState
+from ..model.contact import ContactOptions, MeshContact, MeshState
+from ..model.friction import MATH_OPS
 from ..model.profiles import ConstantSpeed
 from ..model.stability import OperatingPoint
 from ..setups.duty import LoadFromParameters, MotorFromParameters, MotorType
@@ -36,7 +37,7 @@ from ..setups.presets import (AxialBearingFromParameters, ElasticDriveFromParame
 from .linearization import LinearizationStart
 
 __all__ = ['RigidBodyReelChanger', 'BuildRigidBodyReelChanger', 'BuildRigidBodyLinearizationModel', 'AddSeriesSensors',
-           'StoredSeries', 'StoredShaftLoads', 'StoredMeshState', 'MeshForceSeries', 'MESH_FORCE_SERIES', 'WORM_MASS', 'WHEEL_MASS']
+           'StoredSeries', 'StoredShaftLoads', 'StoredMeshState', 'MeshForceSeries', 'MESH_FORCE_SERIES']
 
 
 

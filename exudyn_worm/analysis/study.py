@@ -1,9 +1,9 @@
 """Parameter studies: many reel-changer simulations over a grid of parameters, on every core or a cluster.
 
-A :class:`Study` varies keys of a flat parameter set (any key of
+A :class:`~exudyn_worm.analysis.studygrid.Study` varies keys of a flat parameter set (any key of
 :data:`~exudyn_worm.setups.presets.PARAMETER_UNITS`, e.g. ``J1``, ``kT``, ``backlash``, ``motorSpeed``,
-``loadMass``) over grids or lists (:func:`ParseVariation`), as a full factorial or zipped. For every
-point, :func:`RunPoint` runs :func:`~exudyn_worm.analysis.reelchanger.SimulateReelChanger`, takes the window
+``loadMass``) over grids or lists (:func:`~exudyn_worm.analysis.studygrid.ParseVariation`), as a full factorial or zipped. For every
+point, :func:`~exudyn_worm.analysis.studypoint.RunPoint` runs :func:`~exudyn_worm.analysis.reelchanger.SimulateReelChanger`, takes the window
 metrics and chatter verdicts of ``exudyn-worm simulate``
 (:meth:`~exudyn_worm.items.results.SimulationResult.WindowMetrics`), adds the linear verdict of the same
 parameter set (:func:`~exudyn_worm.analysis.drivestability.DriveStability`, as ``exudyn-worm stability``: the analytical
@@ -23,8 +23,8 @@ partial results and cannot resume.
 
 The study lives in four modules: :mod:`~exudyn_worm.analysis.studygrid` (what it varies),
 :mod:`~exudyn_worm.analysis.studypoint` (one run, in a worker), :mod:`~exudyn_worm.analysis.studyfiles` (the
-results table, its sidecar and provenance, resuming) and this one (executors, progress, Ctrl-C and SIGTERM); the
-public names of all four are importable from here. No matplotlib here: plots are in
+results table, its sidecar and provenance, resuming) and this one (executors, progress, Ctrl-C and SIGTERM); each
+name is imported from the module that defines it. No matplotlib here: plots are in
 :mod:`exudyn_worm.plotting.plot_study`.
 """
 from __future__ import annotations
@@ -44,13 +44,10 @@ from typing import Callable, Dict, Optional, Tuple, Union
 from .._files import OutputLock
 from .._workers import CancelPool, SigtermAsInterrupt, WorkerInit
 from ..progress import ProgressBar
-# the definition, one run and the files live in their own modules (documented there); their public names are
-# importable from here, as before the split
-from .studygrid import (MAX_RUNS, CheckStudySize, ParseShard, ParseVariation, ShardIndices, Study, StudyGrid, StudyPoints,
-                        Variation)
-from .studypoint import HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, RunPoint, VibrationSeconds
-from .studyfiles import (ReadResults, StudyResult, StudySidecarPath, _CheckOutput, _CheckOutputPath, _Columns, _CsvText, _Versions,
+from .studyfiles import (StudyResult, StudySidecarPath, _CheckOutput, _CheckOutputPath, _Columns, _CsvText, _Versions,
                          _WriteSidecar)
+from .studygrid import CheckStudySize, ParseShard, ShardIndices, Study
+from .studypoint import RunPoint
 
 __all__ = ['ENGINES', 'DefaultWorkers', 'RunStudy']
 
@@ -98,7 +95,7 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
         The study.
     output : str or path-like, optional
         CSV results file (one row per run, written as runs finish) with a JSON sidecar
-        (:func:`StudySidecarPath`: definition, versions, units, counts, ``wallSeconds`` summed over the
+        (:func:`~exudyn_worm.analysis.studyfiles.StudySidecarPath`: definition, versions, units, counts, ``wallSeconds`` summed over the
         invocations that computed it). If it exists with the sidecar of the same
         study (and shard), its finished runs are kept and only the others are run. Checked before computing.
     workers : int, optional
@@ -108,7 +105,7 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     engine : {'process', 'mpi'}
         ``concurrent.futures.ProcessPoolExecutor`` (default) or ``mpi4py.futures.MPIPoolExecutor``.
     shard : str or (int, int), optional
-        ``'i/N'``: run only the runs i, i + N, i + 2N, ... (:func:`ShardIndices`), for job arrays.
+        ``'i/N'``: run only the runs i, i + N, i + 2N, ... (:func:`~exudyn_worm.analysis.studygrid.ShardIndices`), for job arrays.
     quiet : bool, optional
         No progress bar (default: a bar on stderr if it is a terminal).
     overwrite : bool, optional

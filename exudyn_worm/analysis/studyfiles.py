@@ -294,21 +294,6 @@ class StudyResult:
             return plot_study.PlotMetric(self, x, metric, **kwargs)
         return plot_study.PlotChatterMap(self, ComputeChatterMap(self, x, y, resolution), **kwargs)
 
-    def Plot(self, *args, **kwargs):
-        """Deprecated spelling of :meth:`plot` (warns; removed in the next release).
-
-        Parameters
-        ----------
-        *args, **kwargs
-            As for :meth:`plot`.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-        """
-        warnings.warn("StudyResult.Plot is deprecated; use StudyResult.plot", DeprecationWarning, stacklevel=2)
-        return self.plot(*args, **kwargs)
-
 
 def _Versions(engine: str) -> Dict[str, str]:
     versions = {'python': platform.python_version(), 'platform': platform.platform()}

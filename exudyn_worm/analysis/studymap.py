@@ -1,7 +1,7 @@
 """The analytical chatter map of a two-parameter study: where the linear model predicts chatter while lowering.
 
 Computes what :func:`~exudyn_worm.plotting.plot_study.PlotChatterMap` draws under the simulated runs of a
-:class:`~exudyn_worm.analysis.study.StudyResult`: the S = -1 stability chart over a J1-kT map at fixed damping measures
+:class:`~exudyn_worm.analysis.studyfiles.StudyResult`: the S = -1 stability chart over a J1-kT map at fixed damping measures
 (:func:`~exudyn_worm.analysis.charts.ComputeStabilityChart`), else the largest real part of the S = -1 eigenvalues on a
 grid (:func:`AnalyticalMap`). No matplotlib here.
 """
@@ -20,7 +20,7 @@ from ..setups.presets import ApplyOverrides
 from ..setups.wholedrive import AsDrive
 
 if TYPE_CHECKING:
-    from .study import StudyResult
+    from .studyfiles import StudyResult
 
 __all__ = ['ChatterMap', 'ComputeChatterMap', 'AnalyticalMap', 'LoweringGrowth', 'WHOLE_DRIVE_RESOLUTION']
 

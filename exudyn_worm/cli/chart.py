@@ -12,15 +12,13 @@ import argparse
 import sys
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Dict, List
+from typing import Dict, List
 
-from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceInfo,
-                   SourceText, Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
+from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceInfo, SourceText, Subcommand, UsageError, WholeDriveFromArgs)
+from .formatchart import FormatChartTable, FormatSpeedChart
+from .._files import WriteAtomically
 
-if TYPE_CHECKING:
-    from ..analysis.speedchart import SpeedChart
-
-__all__ = ['COMMAND', 'PAPER_DTV', 'FormatSpeedChart']
+__all__ = ['COMMAND', 'PAPER_DTV']
 
 #: D_TV values of the paper's Figures 4 and 5 (the default of --DTV)
 PAPER_DTV = (1., 5., 25.)
@@ -87,7 +85,7 @@ def _RunSpeed(args: argparse.Namespace) -> int:
     (:mod:`exudyn_worm.analysis.speedchart`)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.speedchart import SpeedStabilityChart
-    from ..analysis.study import ParseVariation
+    from ..analysis.studygrid import ParseVariation
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
     drive = WholeDriveFromArgs(args)
@@ -107,52 +105,6 @@ def _RunSpeed(args: argparse.Namespace) -> int:
         return 0
     print('\n'.join(FormatSpeedChart(chart, SourceText(args))))
     return 0
-
-
-def FormatSpeedChart(chart: 'SpeedChart', source: str) -> List[str]:
-    """The text of ``chart --speed``: a row per speed (one real part per direction of the duty), the unstable
-    ranges per direction and the verdict at the drive's own operating points.
-
-    Parameters
-    ----------
-    chart : SpeedChart
-        From :func:`~exudyn_worm.analysis.speedchart.SpeedStabilityChart`.
-    source : str
-        Where the drive came from (first line).
-
-    Returns
-    -------
-    list of str
-    """
-    # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.speedchart import RPM
-    model = ('eq. (16) extended by the friction slope' if chart.model == 'analytical' else
-             f"the linearized whole drive: it has {' and '.join(chart.components)}")
-    lines = [f"exudyn-worm chart --speed: {source}; {chart.frictionLaw} friction law; each direction of the duty at "
-             f"its load torque, linearized at each speed ({model})"]
-    heads = [f"{c.phase} Re [1/s]" for c in chart.curves]
-    lines.append(f"  {'motor [rpm]':>11} {'v0 [m/s]':>9} {'mu(v0)':>8} {'dmu/dv [s/m]':>13} "
-                 + ' '.join(f'{h:>18}' for h in heads) + '  verdict')
-    for i, (n, v, mu, slope) in enumerate(zip(chart.motorSpeeds / RPM, chart.slidingSpeeds, chart.mu, chart.dmuDv)):
-        res = [c.maxRealPart[i] for c in chart.curves]
-        bad = [c.phase for c, r in zip(chart.curves, res) if r > 0]
-        lines.append(f"  {n:11.4g} {v:9.4g} {mu:8.4g} {slope:13.4g} " + ' '.join(f'{r:18.4g}' for r in res)
-                     + ('  CHATTER while ' + ', '.join(bad) if bad else '  stable'))
-    for c in chart.curves:
-        ranges, bounds = c.unstableRanges, c.Boundaries()
-        what = f"{c.phase} (S = {c.S:+d}, load torque {c.loadTorque:.4g} N*m)"
-        lines.append(f"Chatter while {what} at " + ', '.join(f'{a / RPM:.4g} to {b / RPM:.4g} rpm' for a, b in ranges)
-                     + (' (of the speeds computed; boundaries near ' + ', '.join(f'{b / RPM:.4g}' for b in bounds)
-                        + ' rpm)' if bounds else '') if ranges else
-                     f"No chatter while {what} at any of these speeds.")
-    if chart.ownPoints:
-        lines.append("At the drive's own operating points (the verdict of exudyn-worm stability): "
-                     + '; '.join(f"{p.point.Label()}: {'stable' if p.stable else 'UNSTABLE'} "
-                                 f"({p.maxRealPart:.4g} 1/s at {p.frequencyHz:.4g} Hz)" for p in chart.ownPoints)
-                     + f"; the drive is {'stable' if chart.stable else 'UNSTABLE'}")
-    else:
-        lines.append("The drive has no motor: no operating point of its own (the load is taken at every speed).")
-    return lines
 
 
 def _ChartDrive(args: argparse.Namespace, parameters: Dict[str, float], gear):
@@ -210,8 +162,8 @@ def _Run(args: argparse.Namespace) -> int:
         return _RunSpeed(args)
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.charts import MAX_CHART_POINTS, ChartCoordinates, ComputeStabilityChart, PresetChartPoints
-    from ..analysis.charttable import FormatChartTable
-    from ..setups.presets import GearFromParameters, MissingParameterError
+    from ..setups.presets import GearFromParameters
+    from ..params.parameters import MissingParameterError
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
     parameters = ParametersFromArgs(args)

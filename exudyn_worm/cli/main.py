@@ -54,10 +54,11 @@ from ..setups.config import DEFAULT_PRESET, LoadConfig, ResolveParameters, Resol
 from ..setups.wholedrive import Drive
 from ..params.plausibility import ImplausibleValueWarning
 from ..model.drive import ElasticDrive
-from ..setups.presets import PRESETS, ElasticDriveFromParameters, MissingParameterError
+from ..setups.presets import PRESETS
+from ..params.parameters import MissingParameterError
 from .. import _files
 from .._files import WriteAtomically
-from .._workers import INTERRUPTED_STATUS, TERMINATED_STATUS, InterruptStatus, SigtermAsInterrupt
+from .._workers import TERMINATED_STATUS, InterruptStatus, SigtermAsInterrupt
 from ..items.solve import IsInterrupt
 from ..params.drivefile import FileKeyOf
 from ..params.drives import ConfigArgument, DocPath, ShippedDrives
@@ -65,8 +66,7 @@ from ..params.drives import ConfigArgument, DocPath, ShippedDrives
 __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'SUBCOMMANDS', 'Subcommands',
            'AddParameterOptions', 'ParametersFromArgs', 'WholeDriveFromArgs', 'DriveFromArgs', 'SourceText', 'SourceInfo',
            'StdoutToStderr', 'PrintJson', 'CheckOutputPath', 'CheckFigurePath', 'FIGURE_SUFFIXES',
-           'AddOverwriteOption', 'WriteAtomically',
-           'INTERRUPTED_STATUS', 'TERMINATED_STATUS', 'InterruptedLine', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
+           'AddOverwriteOption', 'InterruptedLine', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
 
 #: program name used in help and error messages
 PROG = 'exudyn-worm'

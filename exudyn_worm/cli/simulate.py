@@ -8,8 +8,9 @@ import warnings
 from pathlib import Path
 from typing import List, Tuple
 
-from .main import (AddOverwriteOption, BadInput, CheckOutputPath, PositiveFloat, PositiveInt, PrintJson, SourceInfo,
-                   SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs, WriteAtomically)
+from .main import (AddOverwriteOption, BadInput, CheckOutputPath, PositiveFloat, PositiveInt, PrintJson,
+                   SourceInfo, SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs)
+from .._files import WriteAtomically
 
 __all__ = ['COMMAND', 'ParseWindows']
 
@@ -152,7 +153,8 @@ def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: f
 def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, int, List[Tuple[float, float]]]:
     """End time, step size, step limit and windows of a run, checked before anything is computed."""
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.reelchanger import MAX_STEPS, CheckReelChangerKeys, CheckRunSize, DefaultSimulatedTime, DefaultWindows
+    from ..analysis.reelchanger import MAX_STEPS, CheckRunSize, DefaultSimulatedTime, DefaultWindows
+    from ..setups.build import CheckReelChangerKeys
     from ..analysis.stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
     from ..params.plausibility import CheckWormRotation
     with BadInput():

@@ -4,13 +4,12 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import List
 
-from .main import (BadInput, InterruptedLine, CheckFigurePath, CheckOutputPath, ParametersFromArgs, PositiveInt,
-                   PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WriteAtomically)
-from ..params.parameters import PARAMETERS
+from .main import (BadInput, InterruptedLine, CheckFigurePath, CheckOutputPath, ParametersFromArgs, PositiveInt, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError)
+from .formatsweep import FormatStudy
+from .._files import WriteAtomically
 
-__all__ = ['COMMAND', 'FormatStudy']
+__all__ = ['COMMAND']
 
 #: the metric plotted by default, in the first window of the phase that decides the linear verdict
 _DEFAULT_METRIC = 'maxAbsWheelAcceleration'
@@ -62,8 +61,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _Study(args: argparse.Namespace):
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.reelchanger import CheckReelChangerKeys
-    from ..analysis.study import ParseVariation, Study
+    from ..setups.build import CheckReelChangerKeys
+    from ..analysis.studygrid import ParseVariation, Study
     from .simulate import ParseWindows
     parameters = ParametersFromArgs(args)
     if args.overwrite and not (args.output or args.plot):
@@ -96,7 +95,7 @@ def _CheckPlot(args, study) -> None:
     if len(study.keys) not in (1, 2):
         raise UsageError(f"--plot needs one or two varied keys, got {len(study.keys)}")
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.study import RUN_COLUMNS, WINDOW_METRICS
+    from ..analysis.studypoint import RUN_COLUMNS, WINDOW_METRICS
     if len(study.keys) == 1:
         if args.metric is None:
             args.metric = _DefaultMetric(study)
@@ -117,7 +116,9 @@ def _DefaultMetric(study) -> str:
 
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.study import CheckStudySize, ParseShard, RunStudy, StudySidecarPath
+    from ..analysis.study import RunStudy
+    from ..analysis.studygrid import CheckStudySize, ParseShard
+    from ..analysis.studyfiles import StudySidecarPath
     study = _Study(args)
     with BadInput():              # a grid too large for one call is refused before anything is built or written
         CheckStudySize(study, ParseShard(args.shard), args.max_runs, 'sweep', ('--max-runs', '--shard'))
@@ -162,56 +163,6 @@ def _Run(args: argparse.Namespace) -> int:
                  if any('more than the limit maxSteps' in (r['error'] or '') for r in result.rows) else ''),
               file=sys.stderr)
     return 1 if failed else 0                            # as documented: 1 when any run failed
-
-
-#: the chatter cell of a window in the table: chatter, none, unresolved (changes at half the step), not computed
-_VERDICT_CELLS = {True: 'YES', False: 'no', 'unresolved': 'UNR', None: '-'}
-
-
-def FormatStudy(result, title: str = 'Study') -> List[str]:
-    """Human-readable table of a study: one line per run (varied values, status, chatter per window, the
-    drive's linear verdict at the operating points of its duty as ``exudyn-worm stability`` gives it (the
-    analytical two-mass model or the linearized whole drive), the verdict of its lowering points; time) and a
-    summary with the agreement.
-
-    Parameters
-    ----------
-    result : StudyResult
-        Result of :func:`~exudyn_worm.analysis.study.RunStudy`.
-    title : str, optional
-        First line.
-
-    Returns
-    -------
-    list of str
-        The lines, without trailing newlines.
-    """
-    keys = result.study.keys
-    n = result.study.numberOfWindows
-    heads = [PARAMETERS.AxisLabel(k, display=False, dash='-')[0] for k in keys]
-    widths = [max(12, len(h)) for h in heads]
-    lines = [title, '', '  '.join(['run'.rjust(5)] + [h.rjust(w) for h, w in zip(heads, widths)]
-                                  + ['status', 'chatter per window'.ljust(max(18, 4 * n)), 'linear drive ',
-                                     'S=-1 linear  ', 'seconds'])]
-    for r in result.rows:
-        chatter = ' '.join(_VERDICT_CELLS.get(r.get(f'w{i}.chatter'), '?') for i in range(n))
-        drive, verdict = ({None: '-', True: 'stable', False: 'UNSTABLE'}[r[k]]
-                          for k in ('analyticStable', 'analyticStableLowering'))
-        cells = [f"{r['run']:>5d}"] + [f"{r[k]:>{w}.5g}" for k, w in zip(keys, widths)]
-        cells += [f"{r['status']:<6}", chatter.ljust(max(18, 4 * n)), f"{drive:<13}", f"{verdict:<13}",
-                  f"{r['seconds']:7.2f}"]
-        lines.append('  '.join(cells) + (f"  {r['error']}" if r['error'] else ''))
-    agreement = result.agreement
-    unresolved = sum(any(r.get(f'w{i}.chatter') == 'unresolved' for i in range(n)) for r in result.rows)
-    checked = sum(bool(r.get('stepChecked')) for r in result.rows)
-    lines += ['', f"step check (a second run at half the step): {checked} of {len(result.rows)} runs; "
-                  f"{unresolved} with an unresolved verdict (UNR: it changes when the step is halved)"]
-    lines += [f"{len(result.rows)} runs: {len(result.finished)} ok, {len(result.failed)} failed; "
-                  f"agreement of chatter while lowering with the linear verdict of the duty's lowering "
-                  f"operating points (S = -1; 'linear drive' is the verdict of 'exudyn-worm stability', the "
-                  f"worst operating point): "
-                  + ('n/a (no lowering window)' if agreement is None else f"{100 * agreement:.0f} %")]
-    return lines
 
 
 COMMAND = Subcommand('sweep', 'parameter study: many simulations over a grid, on every core or an MPI cluster',

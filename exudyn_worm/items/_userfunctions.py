@@ -11,7 +11,8 @@ from typing import Any, Callable, Sequence, Tuple
 
 import numpy as np
 
-from ..model.contact import MATH_OPS, SymbolicOps
+from ..model.contact import SymbolicOps
+from ..model.friction import MATH_OPS
 
 __all__ = ['AddGenericForce', 'SetGenericForceLaw', 'SetOffsetFunction', 'CheckSymbolicLaw', 'CheckForceLaw',
            'CheckOffsetLaw', 'CheckPlainForceLaw', 'CheckPlainOffsetLaw']

@@ -16,8 +16,8 @@ Supported nodes: nodes with exactly one ODE2 coordinate that is a rotation angle
 (with ``ObjectRotationalMass1D``) and ``NodeGenericODE2`` with one coordinate. 3D rigid-body nodes
 are not supported: their rotation parameters wrap at +-pi (see docs/exudyn notes).
 
-The worm's axial bearing (optional): :func:`CreateWormAxialBearing` adds the worm's axial degree of
-freedom (mass ``mA`` on a spring-damper ``kA, dA`` to ground); pass its node as ``axialNodeNumber`` to
+The worm's axial bearing (optional, :class:`~exudyn_worm.model.drive.AxialBearing`): :func:`CreateWormAxialBearing`
+adds the worm's axial degree of freedom (mass ``mA`` on a spring-damper ``kA, dA`` to ground); pass its node as ``axialNodeNumber`` to
 :func:`CreateWormGear` and the mesh displacement includes the worm's axial motion
 (:func:`exudyn_worm.model.contact.MeshContact` documents the kinematics).
 """
@@ -28,44 +28,21 @@ from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
 
-from .._checks import CheckBool, CheckName, CheckNonNegative, CheckPositive, CheckReal, CheckSystem
+from .._checks import CheckBool, CheckName, CheckReal, CheckSystem
 from ._userfunctions import AddGenericForce, SetGenericForceLaw
-from ..model.contact import (MATH_OPS, NUMPY_OPS, ContactOptions, FrictionState, MeshContact, MeshState, SlidingCoordinate,
-                      StickSlipUpdate, SymbolicOps)
+from ..model.drive import AxialBearing
+from ..model.contact import (ContactOptions, FrictionState, MeshContact, MeshState, SlidingCoordinate, StickSlipUpdate, SymbolicOps)
+from ..model.friction import MATH_OPS, NUMPY_OPS
 from ..model.gear import WormGear
 from ..model.stickslip import (CarrySchedule, MeshReading, NextCheck, StartFrictionState, StartSchedule,
                                StickSlipSchedule, StickSlipStep)
 
-__all__ = ['WormGearConnector', 'CreateWormGear', 'AxialBearing', 'CreateWormAxialBearing', 'CONNECTORS_KEY']
+__all__ = ['WormGearConnector', 'CreateWormGear', 'CreateWormAxialBearing', 'CONNECTORS_KEY']
 
 #: ``mbs.variables`` key of the list of worm-gear connectors built in a system (found by the linear analysis)
 CONNECTORS_KEY = 'exudynWorm.connectors'
 #: ``mbs.variables`` key of the stick/slip states switched by the system's post-Newton user function
 _STICK_SLIP_KEY = 'exudynWorm.stickSlip'
-
-
-@dataclass(frozen=True)
-class AxialBearing:
-    """Axial bearing of the worm: the worm's axially moving mass on an axial spring-damper to the housing.
-
-    Parameters
-    ----------
-    stiffness : float
-        Axial stiffness kA in N/m, > 0.
-    damping : float
-        Axial damping dA in N*s/m, >= 0.
-    mass : float
-        Axially moving mass of the worm mA in kg, > 0 (worm, shaft and the bearing parts moving with it).
-    """
-    stiffness: float
-    damping: float
-    mass: float
-
-    def __post_init__(self):
-        w = 'AxialBearing'
-        object.__setattr__(self, 'stiffness', CheckPositive(w, 'stiffness', self.stiffness, 'N/m'))
-        object.__setattr__(self, 'damping', CheckNonNegative(w, 'damping', self.damping, 'N*s/m'))
-        object.__setattr__(self, 'mass', CheckPositive(w, 'mass', self.mass, 'kg'))
 
 
 def CreateWormAxialBearing(mbs, bearing: AxialBearing, initialDisplacement: float = 0., initialSpeed: float = 0.,

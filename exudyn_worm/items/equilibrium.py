@@ -25,8 +25,9 @@ from typing import Any, Dict, Optional, Sequence, Tuple
 
 from .._checks import CheckNonNegative, CheckPositive, CheckReal
 from .._roots import FindRoot
-from .connector import AxialBearing
-from ..model.contact import MATH_OPS, ContactOptions, MeshContact
+from ..model.drive import AxialBearing
+from ..model.contact import ContactOptions, MeshContact
+from ..model.friction import MATH_OPS
 from ..model.drive import ElasticDrive
 
 __all__ = ['SteadyInitialState', 'LoadSideStages']

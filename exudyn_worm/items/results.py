@@ -6,7 +6,6 @@ connector uses (:func:`exudyn_worm.model.contact.MeshContact` on numpy arrays).
 from __future__ import annotations
 
 import csv
-import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple
@@ -303,22 +302,6 @@ class SimulationResult:
         """
         from ..plotting import plot                         # lazy: matplotlib only when drawing
         return plot.PlotSimulation(self, kind=kind, **kwargs)
-
-    def Plot(self, *args, **kwargs):
-        """Deprecated spelling of :meth:`plot` (warns; removed in the next release).
-
-        Parameters
-        ----------
-        *args, **kwargs
-            As for :meth:`plot`.
-
-        Returns
-        -------
-        matplotlib.figure.Figure
-        """
-        warnings.warn("SimulationResult.Plot is deprecated; use SimulationResult.plot", DeprecationWarning,
-                      stacklevel=2)
-        return self.plot(*args, **kwargs)
 
 
 #: SI units of the mesh and bearing series of a :class:`SimulationResult` (rotor series: :func:`SeriesUnit`)

@@ -44,7 +44,8 @@ from .._checks import CheckBool, CheckName, CheckReal, CheckSystem
 from ._rigidnodes import RIGID_NODES
 from ._userfunctions import CheckPlainForceLaw, SetGenericForceLaw
 from .connector import _AddStickSlip, _StickSlip
-from ..model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, FrictionState, MeshContact, MeshState
+from ..model.contact import ContactOptions, FrictionState, MeshContact, MeshState
+from ..model.friction import MATH_OPS, NUMPY_OPS
 from ..model.gear import WormGear
 from ..model.stickslip import StartFrictionState
 

@@ -59,7 +59,7 @@ from .friction import MATH_OPS, NUMPY_OPS  # the arithmetic backends live in fri
 from .gear import WormGear
 from .._checks import CheckBool, CheckNonNegative, CheckPositive, Suggest
 
-__all__ = ['MATH_OPS', 'NUMPY_OPS', 'SymbolicOps', 'MeshState', 'MeshContact', 'ContactOptions',
+__all__ = ['SymbolicOps', 'MeshState', 'MeshContact', 'ContactOptions',
            'NormalForceFlanks', 'FRICTION_MODELS', 'FrictionState', 'SlidingCoordinate', 'StickSlipUpdate',
            'FrictionCoefficientAt']
 

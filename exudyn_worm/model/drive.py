@@ -9,7 +9,7 @@ import numpy as np
 from .._checks import CheckArray, CheckNonNegative, CheckPositive
 from .gear import WormGear
 
-__all__ = ['ElasticDrive', 'TorsionalDampingFromMeasure', 'TorsionalDampingMeasure',
+__all__ = ['ElasticDrive', 'AxialBearing', 'TorsionalDampingFromMeasure', 'TorsionalDampingMeasure',
            'MeshDampingFromMeasure', 'MeshDampingMeasure']
 
 
@@ -169,3 +169,27 @@ class ElasticDrive:
     def Replace(self, **changes) -> 'ElasticDrive':
         """Return a copy with some drive parameters changed."""
         return replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class AxialBearing:
+    """Axial bearing of the worm: the worm's axially moving mass on an axial spring-damper to the housing.
+
+    Parameters
+    ----------
+    stiffness : float
+        Axial stiffness kA in N/m, > 0.
+    damping : float
+        Axial damping dA in N*s/m, >= 0.
+    mass : float
+        Axially moving mass of the worm mA in kg, > 0 (worm, shaft and the bearing parts moving with it).
+    """
+    stiffness: float
+    damping: float
+    mass: float
+
+    def __post_init__(self):
+        w = 'AxialBearing'
+        object.__setattr__(self, 'stiffness', CheckPositive(w, 'stiffness', self.stiffness, 'N/m'))
+        object.__setattr__(self, 'damping', CheckNonNegative(w, 'damping', self.damping, 'N*s/m'))
+        object.__setattr__(self, 'mass', CheckPositive(w, 'mass', self.mass, 'kg'))

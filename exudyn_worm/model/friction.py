@@ -74,7 +74,7 @@ class FrictionTableRangeWarning(UserWarning):
 
 
 def _Ops(ops):
-    """The backend: ``None`` means plain Python floats, :data:`~exudyn_worm.model.contact.MATH_OPS`."""
+    """The backend: ``None`` means plain Python floats, :data:`~exudyn_worm.model.friction.MATH_OPS`."""
     if ops is None:
         return MATH_OPS
     return ops
@@ -195,7 +195,7 @@ class StribeckFriction:
         v : float, ndarray or symbolic
             Sliding speed in m/s, >= 0.
         ops : namespace, optional
-            Arithmetic backend (:data:`~exudyn_worm.model.contact.MATH_OPS`, ``NUMPY_OPS``, ``SymbolicOps()``); None:
+            Arithmetic backend (:data:`~exudyn_worm.model.friction.MATH_OPS`, ``NUMPY_OPS``, ``SymbolicOps()``); None:
             Python floats.
         """
         v = _CheckSpeed('StribeckFriction.Mu', v)

@@ -162,7 +162,7 @@ class WormGear:
         omega1 : float, ndarray or symbolic
             Worm speed in rad/s (either sign).
         ops : namespace
-            Backend supplying ``abs`` (``math``/:data:`~exudyn_worm.model.contact.MATH_OPS`, numpy, symbolic).
+            Backend supplying ``abs`` (``math``/:data:`~exudyn_worm.model.friction.MATH_OPS`, numpy, symbolic).
         """
         absolute = abs if ops is math else ops.abs
         return absolute(omega1) * (self.r1 / math.cos(self.gamma))

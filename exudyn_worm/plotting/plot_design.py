@@ -10,7 +10,8 @@ import textwrap
 from typing import Mapping, Optional
 
 import numpy as np
-from ..analysis.design import SPEED_KEY, DesignCheckResult
+from ..analysis.design import DesignCheckResult
+from ..analysis.designscan import SPEED_KEY
 from .plot import _NewFigure
 from .plot_charts import _Legend, PlotStabilityChart
 
@@ -24,7 +25,7 @@ def PlotDesignCheck(result, charts: Optional[Mapping[int, 'StabilityChart']], ax
     y = J1/J2) for the two-mass drive, as the stable ranges of the scanned parameters for any other drive.
 
     Only draws: the charts are computed by the caller (:meth:`DesignCheckResult.plot
-    <exudyn_worm.analysis.design.DesignCheckResult.plot>` passes :func:`~exudyn_worm.analysis.design.LocalCharts`).
+    <exudyn_worm.analysis.design.DesignCheckResult.plot>` passes :func:`~exudyn_worm.analysis.designchart.LocalCharts`).
     **Two-mass drive**: the charts that decide, at the drive's D_V and D_TV and at the operating point that decides in
     each contact state of its duty (mu(v0) and its slope; the title names it where the friction depends on speed),
     drawn with :func:`~exudyn_worm.plotting.plot_charts.PlotStabilityChart` (S = +1 only where it has an unstable
@@ -41,7 +42,7 @@ def PlotDesignCheck(result, charts: Optional[Mapping[int, 'StabilityChart']], ax
     result : DesignCheckResult
         From :func:`~exudyn_worm.analysis.design.DesignCheck`.
     charts : mapping of int to StabilityChart, or None
-        ``{S: chart}`` for the contact states of the duty (:func:`~exudyn_worm.analysis.design.LocalCharts` of
+        ``{S: chart}`` for the contact states of the duty (:func:`~exudyn_worm.analysis.designchart.LocalCharts` of
         ``result.drive``); None for a drive the chart does not describe (``result.chartApplies`` False).
     ax : matplotlib.axes.Axes, optional
         Axes to draw into (default: a new figure).
@@ -61,7 +62,7 @@ def PlotDesignCheck(result, charts: Optional[Mapping[int, 'StabilityChart']], ax
         return _PlotScans(result, ax, title)
     if not isinstance(charts, Mapping) or not charts or not set(charts) <= {-1, +1}:
         raise TypeError(f"PlotDesignCheck: 'charts' must be a mapping {{S: StabilityChart}} with S in -1, +1 "
-                        f"(design.LocalCharts(result.drive)), got {type(charts).__name__}")
+                        f"(designchart.LocalCharts(result.drive)), got {type(charts).__name__}")
     primary = -1 if -1 in charts else +1
     ax = PlotStabilityChart(charts[primary], ax=ax, label=f'$S = {primary:+d}$: unstable region (shaded), boundary')
     if primary == -1 and +1 in charts and charts[+1].unstable.any():

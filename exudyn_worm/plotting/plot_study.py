@@ -144,7 +144,7 @@ def PlotChatterMap(result, chatterMap: 'ChatterMap', ax=None,
     """Chatter while lowering of every run over two varied parameters, over the analytical S = -1 region.
 
     Only draws: the region is computed by :func:`~exudyn_worm.analysis.studymap.ComputeChatterMap` (which
-    :meth:`StudyResult.plot <exudyn_worm.analysis.study.StudyResult.plot>` calls). The shaded region and its boundary
+    :meth:`StudyResult.plot <exudyn_worm.analysis.studyfiles.StudyResult.plot>` calls). The shaded region and its boundary
     line are where the linear model (eqs. (15)-(16), S = -1) predicts chatter: for a map of J1 and kT at fixed
     damping measures the stability chart of :func:`~exudyn_worm.analysis.charts.ComputeStabilityChart`, else
     :func:`~exudyn_worm.analysis.studymap.AnalyticalMap` on a finer grid; red filled dots: the simulation chatters

@@ -35,11 +35,11 @@ from typing import Any, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .presets import (AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain,
-                      MissingParameterError)
+from .presets import AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain
+from ..params.parameters import MissingParameterError
 from ..model.profiles import (ConstantSpeed, ConstantTorque, GravityLeverTorque, LinearMotorCharacteristic, SpeedTable,
                        StartStopProfile, TorqueTable)
-from ..model.contact import MATH_OPS
+from ..model.friction import MATH_OPS
 from ..items.equilibrium import SteadyInitialState
 
 __all__ = ['LOAD_TYPES', 'MOTOR_TYPES', 'LoadType', 'MotorType', 'DutyKeys', 'CheckDutyKeys', 'LoadFromParameters',

@@ -32,7 +32,7 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from ..model.contact import MATH_OPS
+from ..model.friction import MATH_OPS
 from ..model.profiles import SpeedTable, StartStopProfile
 from ..model.stability import OperatingPoint, OperatingPointAt
 from .duty import DefaultEndTime

@@ -39,29 +39,25 @@ from __future__ import annotations
 import collections
 import math
 import os
-from typing import TYPE_CHECKING, Dict, List, Mapping, Optional, Tuple
+from typing import Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
 from .._checks import CheckMapping, CheckNonNegative
-from ..model.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
+from ..model.drive import AxialBearing, ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from ..model.gear import WormGear
 from ..model.geometry import GEOMETRY_FORMS, GEOMETRY_KEYS, GeometryForm, GeometryFromParameters, MissingGeometryKeys
 from ..params.parameters import PARAMETERS, MissingParameterError
 from ..items.bearings import WHEEL_MASS, WORM_MASS, ShaftBearings, ShaftSupports
-from ..items.connector import AxialBearing
 from ..model.friction import FrictionLaw, ReadFrictionTable
 from ..model.stability import CharacteristicCoefficients
-
-if TYPE_CHECKING:
-    from ..items.connector import AxialBearing
 
 __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', 'PARAMETER_UNITS', 'PRESETS', 'GetPreset',
            'ExtraComponents',
            'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
            'FrictionLawFromParameters',
            'DriveFromParameters', 'ElasticDriveFromParameters', 'ParameterKey', 'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
-           'AxialBearingFromParameters', 'ShaftSupportsFromParameters', 'SHAFT_KEYS', 'MAX_RATE', 'MIN_RATE_SPREAD', 'MissingParameterError']
+           'AxialBearingFromParameters', 'ShaftSupportsFromParameters', 'SHAFT_KEYS', 'MAX_RATE', 'MIN_RATE_SPREAD']
 
 #: keys of the elastic drive (Figure 2): the drive-file tables [gear], [worm], [wheel], [driveShaft]
 DRIVE_KEYS = PARAMETERS.KeysOf('gear', 'worm', 'wheel', 'driveShaft')
@@ -727,7 +723,7 @@ def LumpedLoadSide(parameters: Mapping[str, float]) -> Dict[str, float]:
 
 
 def AxialBearingFromParameters(parameters: Mapping[str, float]) -> Optional['AxialBearing']:
-    """The worm's :class:`~exudyn_worm.items.connector.AxialBearing` from ``kA, dA, mA``, or None (absent or kA = 0).
+    """The worm's :class:`~exudyn_worm.model.drive.AxialBearing` from ``kA, dA, mA``, or None (absent or kA = 0).
 
     Parameters
     ----------

@@ -28,14 +28,15 @@ from dataclasses import dataclass, field
 from typing import Any, Dict, Iterable, Mapping, Optional, Tuple, Union
 
 from ..items.bearings import ShaftSupports
-from ..items.connector import AxialBearing
+from ..model.drive import AxialBearing
 from ..params.drives import ConfigPath
 from ..model.drive import ElasticDrive
 from ..model.gear import WormGear
 from .config import ResolveParametersWithSources
 from .duty import LOAD_TYPES, MOTOR_TYPES, LoadType, MotorType, _LoadLaw, _MotorLaw
 from .presets import (ParameterKey, ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
-                      ElasticDriveFromParameters, LoadSideChain, MissingParameterError, ShaftSupportsFromParameters)
+                      ElasticDriveFromParameters, LoadSideChain, ShaftSupportsFromParameters)
+from ..params.parameters import MissingParameterError
 
 __all__ = ['Component', 'Drive', 'ResolveDrive', 'AsDrive']
 

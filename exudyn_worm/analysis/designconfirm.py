@@ -1,0 +1,83 @@
+"""The design check confirmed in the time domain: the reel changer simulated for the given drive and every
+recommended drive, with the chatter rule of ``exudyn-worm simulate`` on the lowering phases.
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Mapping, Optional
+
+from ..setups.build import CheckReelChangerKeys
+from ..setups.presets import ApplyOverrides
+from . import reelchanger
+from .design import DesignCheckResult
+from .reelchanger import DefaultPhases
+
+__all__ = ['ChatterWhileLowering', 'ConfirmBySimulation']
+
+
+def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[float] = None) -> bool:
+    """Time-domain verdict: does the reel changer chatter while lowering the load?
+
+    One rotation with :func:`~exudyn_worm.analysis.reelchanger.SimulateReelChanger`; the verdict is
+    :meth:`~exudyn_worm.items.results.SimulationResult.Chatter` on the lowering window of
+    :func:`~exudyn_worm.analysis.reelchanger.DefaultWindows` (the rule of ``exudyn-worm simulate``); for another duty
+    (:mod:`exudyn_worm.setups.duty`) on each of its lowering phases (False if it has none).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed`` (or another duty's).
+    stepSize : float, optional
+        Time step in s. Default: the simulation's default, the drive's own
+        :func:`~exudyn_worm.analysis.stepsize.RecommendedStepSize` (a recommended drive can have a higher natural
+        frequency than the given one).
+
+    Returns
+    -------
+    bool
+
+    Raises
+    ------
+    ValueError
+        For a parameter set without the reel-changer keys, or a ``stepSize`` the simulation refuses.
+    """
+    CheckReelChangerKeys(parameters, 'ChatterWhileLowering')
+    lowering = [(t0, t1) for t0, t1, phase in DefaultPhases(parameters) if phase == 'lower']   # the load drives
+    if not lowering:
+        return False
+    result = reelchanger.SimulateReelChanger(parameters, stepSize=stepSize)          # the default time the phases cover
+    return any(result.Chatter(t0, t1) for t0, t1 in lowering)
+
+
+def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = None,
+                        progress=None) -> DesignCheckResult:
+    """Simulate the given drive and every recommended drive; return the result with the simulated verdicts.
+
+    Parameters
+    ----------
+    result : DesignCheckResult
+        From :func:`~exudyn_worm.analysis.design.DesignCheck`; its parameter set must hold ``loadMass``, ``leverArm``, ``motorSpeed``.
+    stepSize : float, optional
+        Time step in s (default: see :func:`ChatterWhileLowering`).
+    progress : callable, optional
+        Called with no argument after each simulation (e.g. a progress bar's ``update``).
+
+    Returns
+    -------
+    DesignCheckResult
+        A copy with ``simulatedChatter`` set on the result, each recommendation and the best pair.
+    """
+    if not isinstance(result, DesignCheckResult):
+        raise TypeError(f"ConfirmBySimulation: 'result' must be a DesignCheckResult, got {type(result).__name__}")
+    p = result.parameters
+
+    def Verdict(changes):
+        chatter = ChatterWhileLowering(ApplyOverrides(p, changes), stepSize)
+        if progress is not None:
+            progress()
+        return chatter
+
+    base = Verdict({})
+    recommendations = [replace(r, simulatedChatter=Verdict(r.changes)) for r in result.recommendations]
+    pair = replace(result.bestPair, simulatedChatter=Verdict(result.bestPair.changes)) if result.bestPair else None
+    return replace(result, recommendations=recommendations, bestPair=pair, simulatedChatter=base)
