@@ -17,11 +17,16 @@ from exudyn_symbolic_leak import Rss
 __all__ = ['WorkerGrowth', 'main']
 
 
-def WorkerGrowth(preset: str = 'reel-P7', runs: int = 64, endTime=None, warmUp: int = 3) -> dict:
-    """Resident memory in MB before and after ``runs`` study points of ``preset``, and seconds per run."""
+def WorkerGrowth(preset: str = 'reel-P7', runs: int = 64, endTime=None, warmUp: int = 3, checkStep=True) -> dict:
+    """Resident memory in MB before and after ``runs`` study points of ``preset``, and seconds per run.
+
+    ``checkStep``: the half-step check of each point (True: forced, so that every point builds and frees three
+    systems; None: the study's default, which checks only close verdicts).
+    """
     from exudyn_worm import GetPreset
     from exudyn_worm.analysis.studypoint import RunPoint
-    task = dict(run=0, parameters=GetPreset(preset), varied={}, windows=None, endTime=endTime, stepSize=None)
+    task = dict(run=0, parameters=GetPreset(preset), varied={}, windows=None, endTime=endTime, stepSize=None,
+                checkStep=checkStep)
     for _ in range(warmUp):
         RunPoint(task)
     gc.collect()
