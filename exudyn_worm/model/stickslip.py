@@ -32,7 +32,7 @@ __all__ = ['CHECK_FRACTION', 'CHECK_INTERVAL', 'REVERSAL_WINDOW', 'CheckPoint', 
            'StickSlipDecision', 'StartFrictionState', 'StartSchedule', 'CarrySchedule', 'IsDue', 'NextCheck',
            'StickSlipStep']
 
-#: fraction of the time to stop (|omega1| / |alpha1|) after which a sliding worm is checked again
+#: fraction of the time to stop (``|omega1| / |alpha1|``) after which a sliding worm is checked again
 CHECK_FRACTION = 0.2
 #: longest time in s between two checks of a sliding worm (reel-P7: 0.005 and 0.02 s give the same peaks as a
 #: check after every step; 0.05 s saw a reversal late and moved them by -1.2 %, docs/friction-sticking.md)
