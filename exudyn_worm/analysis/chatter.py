@@ -22,10 +22,12 @@ from ..items.connector import WormGearConnector
 from .linearization import AnalyzeLinearStability
 from .drivestability import DriveStability
 from .exudynflow import STEPS_PER_PERIOD, ExudynFlow, _Configuration
-from .lowering import (BuildLoweringModel, LoweringModel, LoweringModelOfSystem, SettleLowering, StateScale,
-                       _LoweringFlow, _MeshAt, _PeriodFromSignal, _StoredFlowStates)
+from .lowering import (BuildLoweringModel, BuildRigidBodyLoweringModel, LoweringModel, LoweringModelOfSystem,
+                       SettleLowering, StateScale,
+                       _LoweringFlow, _MeshAt, _PeriodFromSignal, _StoredFlowStates, _StoredStates)
 
-__all__ = ['FindSteadyChatter', 'OrbitAmplitude', 'SteadyChatterOfSystem', 'MONODROMY_PERTURBATION']
+__all__ = ['FindSteadyChatter', 'OrbitAmplitude', 'SteadyChatterOfSystem', 'SteadyChatterSummary',
+           'MONODROMY_PERTURBATION']
 
 #: relative step (of :func:`~exudyn_worm.analysis.lowering.StateScale`) of the central differences for an orbit's monodromy matrix: the fixed-step
 #: integrator resolves the force jump where the mesh changes flank only to a step, which leaves a sawtooth on the
@@ -51,14 +53,22 @@ def OrbitAmplitude(model: LoweringModel, flow: ExudynFlow, state: Sequence[float
     -------
     dict
         ``forceFactor`` (largest normal force over the static normal force), ``maxWheelAcceleration`` (largest
-        ``|phi2''|`` in rad/s^2), ``minWormSpeed`` (rad/s).
+        ``|phi2''|`` in rad/s^2), ``minWormSpeed`` (rad/s); for the 3D model (``model.rigidBody``) also the largest
+        bearing loads in N over the orbit, ``maxWormAxialLoad``, ``maxWormRadialLoad``, ``maxWheelAxialLoad``,
+        ``maxWheelRadialLoad`` (:func:`~exudyn_worm.analysis.reelchanger3d.StoredShaftLoads`).
     """
     flow.Solve(state, period, storeSensors=True)
-    s = model.connector.StoredStates(model.mbs)
+    s = _StoredStates(model)
     mesh = _MeshAt(model.connector, s)
-    return {'forceFactor': float(np.max(np.abs(mesh.normalForce)) / model.staticNormalForce),
-            'maxWheelAcceleration': float(np.max(np.abs(s['alpha2']))),
-            'minWormSpeed': float(np.min(s['omega1']))}
+    out = {'forceFactor': float(np.max(np.abs(mesh.normalForce)) / model.staticNormalForce),
+           'maxWheelAcceleration': float(np.max(np.abs(s['alpha2']))),
+           'minWormSpeed': float(np.min(s['omega1']))}
+    if model.rigidBody is not None:            # the 3D model: the shafts' bearing loads over the orbit
+        # lazy: the 3D model's module is loaded only for drives with shaft bearings
+        from .reelchanger3d import StoredShaftLoads
+        loads = StoredShaftLoads(model.rigidBody)
+        out.update({'max' + k[0].upper() + k[1:]: float(np.max(np.abs(v))) for k, v in loads.items() if k != 'time'})
+    return out
 
 
 def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, stepsPerPeriod: int = STEPS_PER_PERIOD,
@@ -140,7 +150,7 @@ def _FindChatter(model: LoweringModel, where: str, what: str, settleTime: float,
                                                                                settleTime)
         probe = _LoweringFlow(model, 4000)
         x = probe.Solve(x, 0.4, storeSensors=True)
-        s = model.connector.StoredStates(model.mbs)
+        s = _StoredStates(model)
         quarter = len(s['omega1']) // 4
         first, swing = np.ptp(s['omega1'][:quarter]), np.ptp(s['omega1'][-quarter:])
         tail = _MeshAt(model.connector, s, slice(-quarter, None))
@@ -234,3 +244,45 @@ def SteadyChatterOfSystem(mbs: Any, connector: WormGearConnector, coordinates: O
     model = LoweringModelOfSystem(mbs, connector, coordinates)
     return _FindChatter(model, 'SteadyChatterOfSystem', 'the system', settleTime, stepsPerPeriod, start,
                         maxIterations, tolerance, kick, initialState)
+
+
+def SteadyChatterSummary(parameters: Mapping[str, float], rigidBody: bool = False,
+                         stepsPerPeriod: int = STEPS_PER_PERIOD) -> Dict[str, Any]:
+    """The steady chatter of the lowering phase (:func:`FindSteadyChatter`) as a JSON-ready dictionary, on the
+    one-angle model or on the 3D model (:func:`~exudyn_worm.analysis.lowering.BuildRigidBodyLoweringModel`: worm and
+    wheel as rigid bodies on the shafts' bearings of the parameter set).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with the reel changer's duty keys
+        (:func:`~exudyn_worm.analysis.lowering.LoweringPhaseParameters`), with the bearings for ``rigidBody``.
+    rigidBody : bool
+        The 3D model (True) or the one-angle model (False, default).
+    stepsPerPeriod : int
+        Solver steps per period in the shooting runs.
+
+    Returns
+    -------
+    dict
+        ``model`` ('3D' or 'one-angle'), ``periodS``, ``frequencyHz``, ``stable``, ``multipliers`` (the nontrivial
+        Floquet multipliers' moduli, largest first), ``trivialMultiplierError``, ``staticNormalForce`` and
+        ``maxNormalForce`` (N), ``amplitude`` (:func:`OrbitAmplitude`: ``forceFactor``, ``maxWheelAcceleration``,
+        ``minWormSpeed``, and for the 3D model the largest bearing loads), ``motorSpeed`` (rad/s), ``loadTorque``
+        (N*m).
+
+    Raises
+    ------
+    ShootingError
+        If the lowering phase settles to rest (no chatter) or shooting does not converge.
+    """
+    model = BuildRigidBodyLoweringModel(parameters) if rigidBody else BuildLoweringModel(parameters)
+    orbit = FindSteadyChatter(parameters, stepsPerPeriod=stepsPerPeriod, model=model)
+    amplitude = {k: float(v) for k, v in orbit.info.items() if k not in ('model', 'flow')}
+    multipliers = sorted((abs(complex(m)) for m in orbit.nontrivialMultipliers), reverse=True)
+    return {'model': '3D' if rigidBody else 'one-angle', 'periodS': float(orbit.period),
+            'frequencyHz': float(orbit.frequencyHz), 'stable': bool(orbit.stable), 'multipliers': multipliers,
+            'trivialMultiplierError': float(orbit.trivialMultiplierError),
+            'staticNormalForce': float(model.staticNormalForce),
+            'maxNormalForce': float(amplitude['forceFactor'] * model.staticNormalForce), 'amplitude': amplitude,
+            'motorSpeed': float(model.motorSpeed), 'loadTorque': float(model.loadTorque)}

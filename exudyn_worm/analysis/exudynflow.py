@@ -9,6 +9,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from ..items.connector import CONNECTORS_KEY
+from ..items.rigidmesh import RIGID_CONNECTORS_KEY
 from ..items.solve import SolverDivergedError
 from .reelchanger import SolverSettings
 
@@ -77,7 +78,8 @@ class ExudynFlow:
     start at their position ``fixedPositions`` (default: the system's initial values) and steady speed.
     The discrete state is not part of ``x``: every solve starts with the data coordinates the system had when
     the flow was made and with the stick/slip state of each worm-gear connector that the start implies
-    (sliding in the direction of the worm's speed, :meth:`~exudyn_worm.items.connector._StickSlip.Restart`), so
+    (sliding in the direction of the worm's speed, :meth:`~exudyn_worm.items.connector._StickSlip.Restart`; a
+    rigid-body connector's reference angles of the turns from the start state as well), so
     ``flow(x, T)`` depends on ``x`` and ``T`` alone, not on the previous call.
 
     Parameters
@@ -92,10 +94,16 @@ class ExudynFlow:
         Solver steps per call (the step is ``T / stepsPerPeriod``).
     solverSettings : mapping, optional
         Dotted ``SimulationSettings`` paths applied over :data:`ORBIT_SOLVER_SETTINGS`.
+    dependent : (sequence of int, ndarray), optional
+        Coordinates outside the state that linear constraints tie to the others (a rigid-body mesh law's auxiliary
+        coordinates, :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`): their indices and the matrix
+        ``D`` (rows: these coordinates, columns: all ODE2 coordinates) with which each start sets them consistent,
+        ``q = q0 + D (q - q0)``, ``q' = D q'``; massless, they would otherwise start off their constraint.
     """
 
     def __init__(self, mbs: Any, coordinates: Sequence[int], steadySpeeds: Sequence[float],
-                 stepsPerPeriod: int = STEPS_PER_PERIOD, solverSettings: Optional[Mapping[str, Any]] = None):
+                 stepsPerPeriod: int = STEPS_PER_PERIOD, solverSettings: Optional[Mapping[str, Any]] = None,
+                 dependent: Optional[Tuple[Sequence[int], Any]] = None):
         import exudyn as exu
         self.mbs = mbs
         self.coordinates = np.asarray(coordinates, dtype=int)
@@ -113,6 +121,8 @@ class ExudynFlow:
         #: data coordinates every solve starts from (Exudyn keeps the last solve's in the system otherwise)
         self.data0 = (np.array(mbs.systemData.GetDataCoordinates(configuration=C.Initial), dtype=float)
                       if mbs.systemData.DataSize() else None)
+        self.dependent = None if dependent is None else (np.asarray(dependent[0], dtype=int),
+                                                         np.asarray(dependent[1], dtype=float))
         self.calls = 0
 
     def StartState(self) -> np.ndarray:
@@ -127,23 +137,28 @@ class ExudynFlow:
         C, i, n = self._C, self.coordinates, self.coordinates.size
         q, v = self.q0.copy(), self.speeds.copy()
         q[i], v[i] = x[:n], x[n:] + self.speeds[i]
+        if self.dependent is not None:
+            d, D = self.dependent
+            q[d], v[d] = self.q0[d] + D @ (q - self.q0), D @ v
         self.mbs.systemData.SetODE2Coordinates(q.tolist(), configuration=C.Initial)
         self.mbs.systemData.SetODE2Coordinates_t(v.tolist(), configuration=C.Initial)
         # the discrete state must follow from x alone, else the map depends on the previous call (and the
         # finite-difference monodromy on the order of its columns): data coordinates back to their start
         # values, the worm-gear connectors' stick/slip state to the one the start implies
+        for connector in self.mbs.variables.get(RIGID_CONNECTORS_KEY, []):
+            connector.RestartAngles(self.mbs, q)       # the turns' reference angles from the start, not the end
         if not restart:             # go on from the previous solve's end (a long run in pieces)
             if self.data0 is not None:
                 data = self.mbs.systemData.GetDataCoordinates(configuration=C.Current)
                 self.mbs.systemData.SetDataCoordinates(data, configuration=C.Initial)
             end = np.array(self.mbs.systemData.GetODE2Coordinates(configuration=C.Current), dtype=float)
-            for connector in self.mbs.variables.get(CONNECTORS_KEY, []):
+            for connector in self._Connectors():
                 if connector.stickSlip is not None:      # the stuck flanks' anchor shifts with the coordinates
                     connector.stickSlip.Carry(self.mbs, end, q)
             return
         if self.data0 is not None:
             self.mbs.systemData.SetDataCoordinates(self.data0.tolist(), configuration=C.Initial)
-        for connector in self.mbs.variables.get(CONNECTORS_KEY, []):
+        for connector in self._Connectors():
             if connector.stickSlip is not None:
                 connector.stickSlip.Restart(self.mbs, q, v)
 
@@ -176,11 +191,13 @@ class ExudynFlow:
         try:
             ok = self.mbs.SolveDynamic(ss, solverType=self._solver)
         except Exception as err:         # Exudyn raises a RuntimeError-like error on a failed step
-            raise SolverDivergedError(f"ExudynFlow: the solver failed over T = {T:g} s: {err}") from err
+            raise SolverDivergedError(f"ExudynFlow: the solver failed over T = {T:g} s: {err}", float('nan'), T,
+                                      T / self.steps) from err
         finally:
             exu.config.printToConsole = printing
         if ok is False:
-            raise SolverDivergedError(f"ExudynFlow: the solver failed over T = {T:g} s")
+            raise SolverDivergedError(f"ExudynFlow: the solver failed over T = {T:g} s", float('nan'), T,
+                                      T / self.steps)
         self.calls += 1
         C, i = self._C, self.coordinates
         q = np.array(self.mbs.systemData.GetODE2Coordinates(configuration=C.Current), dtype=float)
@@ -188,6 +205,10 @@ class ExudynFlow:
         return np.concatenate([q[i] - self.speeds[i] * T, v[i] - self.speeds[i]])
 
     __call__ = Solve
+
+    def _Connectors(self) -> list:
+        """The system's worm-gear connectors, one-angle and rigid-body."""
+        return list(self.mbs.variables.get(CONNECTORS_KEY, [])) + list(self.mbs.variables.get(RIGID_CONNECTORS_KEY, []))
 
 
 def _HeldCoordinates(mbs) -> List[int]:

@@ -21,6 +21,7 @@ from ..model.contact import ContactOptions
 from ..model.profiles import STANDARD_GRAVITY, ConstantSpeed, ConstantTorque, GravityLeverTorque
 from .._checks import CheckPositive, CheckSystem
 from ..items.connector import CONNECTORS_KEY, WormGearConnector
+from ..items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
 from .drivestability import DriveStability
 from ..setups.wholedrive import Component
 from ..setups.duty import IsReelChangerDuty
@@ -31,6 +32,7 @@ from ..items.equilibrium import SteadyInitialState
 from .exudynflow import ExudynFlow, _AddFlowSensors, _Configuration, _HeldCoordinates
 
 __all__ = ['LoweringModel', 'LOWERING_LEVER_ARM', 'LoweringPhaseParameters', 'BuildLoweringModel', 'IN_PLACE_KEYS',
+           'BuildRigidBodyLoweringModel',
            'UpdateLoweringModel', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LoweringModelOfSystem']
 
 
@@ -74,6 +76,11 @@ class LoweringModel:
     nodeSensors : tuple of (int, int, int)
         Per coordinate of ``coordinates``: the node sensors of its node's positions and velocities and the
         coordinate's column in them.
+    rigidBody : RigidBodyReelChanger or None
+        The 3D model the system was built as (:func:`BuildRigidBodyLoweringModel`), for its bearing loads.
+    dependent : (tuple of int, ndarray) or None
+        The coordinates outside the state that the flow sets from the others (a rigid-body mesh law's auxiliary
+        coordinates, :class:`~exudyn_worm.analysis.exudynflow.ExudynFlow` ``dependent``).
     """
     systemContainer: Any
     mbs: Any
@@ -91,6 +98,8 @@ class LoweringModel:
     stateKeys: Tuple[str, ...] = ()
     initialCoordinates: Any = None
     nodeSensors: Tuple[Tuple[int, int, int], ...] = ()
+    rigidBody: Any = None
+    dependent: Any = None
 
 
 #: lever arm in m with which :func:`LoweringPhaseParameters` writes a drive's lowering load torque as the reel keys
@@ -214,6 +223,53 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
                          tuple(p for _, p, _ in nodes), initial, sensors)
 
 
+def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
+                                contactOptions: ContactOptions = ContactOptions()) -> LoweringModel:
+    """The lowering model of :func:`BuildLoweringModel` on the 3D model: worm and wheel as rigid bodies on their
+    shafts' bearings (:func:`~exudyn_worm.analysis.reelchanger3d.BuildRigidBodyReelChanger`), motor at constant
+    speed ``motorSpeed``, constant load torque ``loadMass * g * leverArm`` on the wheel's turn, starting in the
+    static equilibrium under that load (the mesh and the bearings deflected). The flow state holds every free ODE2
+    coordinate (both bodies' six, the C++ mesh law's auxiliary ones: :func:`LoweringModelOfSystem`).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with the reel changer's keys and the shafts' bearings (``wormRadialStiffness``, ...,
+        :func:`~exudyn_worm.setups.presets.ShaftSupportsFromParameters`), without chains.
+    contactOptions : ContactOptions
+        Options of the contact law.
+
+    Returns
+    -------
+    LoweringModel
+        ``rigidBody`` holds the 3D model (its bearings, for
+        :func:`~exudyn_worm.analysis.reelchanger3d.StoredShaftLoads`).
+
+    Raises
+    ------
+    ValueError, TypeError
+        For a bad parameter set (as :func:`BuildLoweringModel` and the 3D model refuse it).
+    """
+    # lazy: the 3D model is built only for drives with shaft bearings
+    from .reelchanger3d import AddSeriesSensors, BuildRigidBodyReelChanger
+    w = 'BuildRigidBodyLoweringModel'
+    CheckReelChangerKeys(parameters, w)
+    if not isinstance(contactOptions, ContactOptions):
+        raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
+    motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
+    loadTorque = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm']).maximum
+    reel = BuildRigidBodyReelChanger({**parameters, 'loadType': 'constant', 'loadTorque': loadTorque}, contactOptions,
+                                     profile=ConstantSpeed(motorSpeed), startFromEquilibrium=True)
+    sensors = AddSeriesSensors(reel)
+    reel.connector.sensors.update(wormAccelerations=sensors['wormAccelerations'],
+                                  wheelAccelerations=sensors['wheelAccelerations'])
+    reel.mbs.Assemble()
+    model = LoweringModelOfSystem(reel.mbs, reel.connector)
+    model.systemContainer, model.drive, model.rigidBody = reel.systemContainer, reel.drive, reel
+    model.motorSpeed, model.loadTorque, model.parameters = motorSpeed, loadTorque, dict(parameters)
+    return model
+
+
 def _SteadyState(drive, parameters: Mapping[str, float], loadTorque: float, motorSpeed: float,
                  contactOptions: ContactOptions) -> Dict[str, float]:
     """The steady state of lowering with the parameter set's chains and axial bearing, as
@@ -225,10 +281,48 @@ def _SteadyState(drive, parameters: Mapping[str, float], loadTorque: float, moto
 
 def _MeshAt(connector, state: Mapping[str, Any], mask=None):
     """The connector's mesh quantities for the states in ``state`` (keys ``phi1, phi2, omega1, omega2`` and, with
-    an axial node, ``xA, vA``: a steady state or stored sensor series), at ``mask`` (None: all)."""
+    an axial node, ``xA, vA``: a steady state or stored sensor series), at ``mask`` (None: all). A rigid-body
+    connector's are in ``state['mesh']`` (:func:`_StoredStates`; the steady state's from its initial state)."""
+    if isinstance(connector, RigidBodyWormGearConnector):
+        mesh = state['mesh']
+        if mask is None:
+            return mesh
+        return _Masked(normalForce=np.asarray(mesh.normalForce)[mask], S=np.asarray(mesh.S)[mask])
     keys = ('phi1', 'phi2', 'omega1', 'omega2') + (() if connector.axialNodeNumber is None else ('xA', 'vA'))
     values = [np.asarray(state[k]) if mask is None else np.asarray(state[k])[mask] for k in keys]
     return connector.Evaluate(*values)
+
+
+@dataclass
+class _Masked:
+    """The mesh quantities the orbit functions read, at some of the stored steps."""
+    normalForce: Any
+    S: Any
+
+
+def _StoredStates(model: LoweringModel) -> Dict[str, Any]:
+    """The stored series of the last solve with stored sensors: ``time``, ``omega1``, ``alpha2`` (the worm's and the
+    wheel's turns; a rigid body's turn is its last Tait-Bryan angle) and, for a rigid-body connector, ``mesh`` (the
+    mesh quantities of every stored step, :meth:`~exudyn_worm.items.rigidmesh.RigidBodyWormGearConnector.Evaluate`)."""
+    connector, mbs = model.connector, model.mbs
+    if not isinstance(connector, RigidBodyWormGearConnector):
+        return connector.StoredStates(mbs)
+    time, q, v = connector._Stored(mbs)
+    out = {'time': time, 'mesh': connector.Evaluate(q, v, time)}
+    size = connector._kinematics.bodies[0].size
+    for body, column in (('1', _RIGID_TURN), ('2', size + _RIGID_TURN)):
+        out['phi' + body], out['omega' + body] = q[:, column], v[:, column]
+    for body, key in (('1', 'wormAccelerations'), ('2', 'wheelAccelerations')):
+        if key in connector.sensors:
+            out['alpha' + body] = np.asarray(mbs.GetSensorStoredData(connector.sensors[key]))[:, 1 + _RIGID_TURN]
+        else:                         # no acceleration sensor: the speed's slope
+            out['alpha' + body] = np.gradient(out['omega' + body], time)
+    return out
+
+
+#: the turn among a rigid-body node's coordinates that the lowering model follows: the last Tait-Bryan angle of an
+#: Rxyz node turning about it (as :func:`~exudyn_worm.analysis.reelchanger3d.BuildRigidBodyReelChanger` builds them)
+_RIGID_TURN = 5
 
 
 def _StoredFlowStates(model: LoweringModel) -> Tuple[np.ndarray, np.ndarray]:
@@ -279,7 +373,8 @@ def UpdateLoweringModel(model: LoweringModel, parameters: Mapping[str, float]) -
 
 def _LoweringFlow(model: LoweringModel, stepsPerPeriod: int,
                   solverSettings: Optional[Mapping[str, Any]] = None) -> ExudynFlow:
-    flow = ExudynFlow(model.mbs, model.coordinates, model.steadySpeeds, stepsPerPeriod, solverSettings=solverSettings)
+    flow = ExudynFlow(model.mbs, model.coordinates, model.steadySpeeds, stepsPerPeriod, solverSettings=solverSettings,
+                      dependent=model.dependent)
     flow.q0 = np.array(model.initialCoordinates, dtype=float)     # coordinates outside the state (the motor)
     return flow
 
@@ -352,7 +447,8 @@ def StateScale(model: LoweringModel) -> np.ndarray:
     g = model.connector.gear
     deflection = max(model.staticNormalForce / g.kV, 1e-9) / g.normalLever         # worm angle of the deflection
     speeds = np.abs(model.steadySpeeds[np.asarray(model.coordinates)])
-    angles = np.where(speeds > 0, deflection * speeds / speeds[0], deflection * g.normalLever)
+    # a speed of round-off size (a tilt angle's rate from the rotation matrix of a rigid body's pose) is at rest
+    angles = np.where(speeds > 1e-9 * speeds[0], deflection * speeds / speeds[0], deflection * g.normalLever)
     return np.concatenate([angles, angles * 2 * math.pi * 40.])
 
 
@@ -373,9 +469,11 @@ def LoweringModelOfSystem(mbs: Any, connector: WormGearConnector,
     ----------
     mbs : exudyn.MainSystem
         The assembled system, in its steady state.
-    connector : WormGearConnector
-        The mesh of ``mbs`` (:func:`~exudyn_worm.items.connector.CreateWormGear`) whose chatter is looked for; its worm
-        must turn (initial worm speed != 0).
+    connector : WormGearConnector or RigidBodyWormGearConnector
+        The mesh of ``mbs`` (:func:`~exudyn_worm.items.connector.CreateWormGear`, or
+        :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear` with ``useSymbolic`` on Rxyz nodes turning about
+        their last angle, the worm's and the wheel's coordinate of the flow state) whose chatter is looked for; its
+        worm must turn (initial worm speed != 0).
     coordinates : sequence of int, optional
         ODE2 coordinate indices of the flow state; default: every ODE2 coordinate not held by a coordinate
         constraint (``ObjectConnectorCoordinate``, e.g. the motor of ``CreatePrescribedRotation``). The worm's
@@ -390,16 +488,18 @@ def LoweringModelOfSystem(mbs: Any, connector: WormGearConnector,
     Raises
     ------
     TypeError
-        If ``mbs`` is not an ``exudyn.MainSystem`` or ``connector`` not a WormGearConnector of ``mbs``.
+        If ``mbs`` is not an ``exudyn.MainSystem`` or ``connector`` not a (rigid-body) worm-gear connector of ``mbs``.
     ValueError
         If the system is not assembled, the worm does not turn, the mesh carries no load at the initial state, or
         ``coordinates`` is not a set of ODE2 indices with the worm's and the wheel's.
     """
     w = 'LoweringModelOfSystem'
     CheckSystem(w, mbs)
-    if not isinstance(connector, WormGearConnector) or connector not in mbs.variables.get(CONNECTORS_KEY, []):
-        raise TypeError(f"{w}: 'connector' must be a WormGearConnector built in 'mbs' by CreateWormGear, got "
-                        f"{type(connector).__name__}")
+    rigid = isinstance(connector, RigidBodyWormGearConnector)
+    if not (rigid and connector in mbs.variables.get(RIGID_CONNECTORS_KEY, [])
+            or isinstance(connector, WormGearConnector) and connector in mbs.variables.get(CONNECTORS_KEY, [])):
+        raise TypeError(f"{w}: 'connector' must be a WormGearConnector built in 'mbs' by CreateWormGear or a "
+                        f"RigidBodyWormGearConnector built by CreateRigidBodyWormGear, got {type(connector).__name__}")
     size = mbs.systemData.ODE2Size()
     if not size:
         raise ValueError(f"{w}: 'mbs' has no ODE2 coordinates: call mbs.Assemble() first")
@@ -407,11 +507,19 @@ def LoweringModelOfSystem(mbs: Any, connector: WormGearConnector,
     q0 = np.array(mbs.systemData.GetODE2Coordinates(configuration=C.Initial), dtype=float)
     v0 = np.array(mbs.systemData.GetODE2Coordinates_t(configuration=C.Initial), dtype=float)
     worm, wheel = (int(mbs.GetNodeODE2Index(n)) for n in connector.nodeNumbers)
+    if rigid:                      # the turns: the flow state subtracts v0 t, exact for the last Rxyz angle only
+        types = [str(mbs.GetNode(n)['nodeType']) for n in connector.nodeNumbers]
+        if any(t != 'RigidBodyRxyz' for t in types) or connector.compiled is None:
+            raise ValueError(f"{w}: a rigid-body mesh needs Tait-Bryan (RotationRxyz) nodes turning about their last "
+                             f"angle and the law in C++ (CreateRigidBodyWormGear(useSymbolic=True)), got node types "
+                             f"{', '.join(types)}" + ('' if connector.compiled is not None else ', the law in Python'))
+        worm, wheel = worm + _RIGID_TURN, wheel + _RIGID_TURN
     if v0[worm] == 0.:
         raise ValueError(f"{w}: the worm's initial speed must be its steady speed (!= 0 rad/s): start the system in "
                          f"the steady rotation (SteadyInitialState), got 0 rad/s")
+    dependent = _AuxiliaryCoordinates(mbs, connector) if rigid else None
     if coordinates is None:
-        held = set(_HeldCoordinates(mbs))
+        held = set(_HeldCoordinates(mbs)) | (set() if dependent is None else set(dependent[0].tolist()))
         coordinates = [i for i in range(size) if i not in held]
     if isinstance(coordinates, (str, bytes)) or not hasattr(coordinates, '__iter__'):
         raise TypeError(f"{w}: 'coordinates' must be a sequence of ODE2 indices, got {type(coordinates).__name__}")
@@ -430,12 +538,35 @@ def LoweringModelOfSystem(mbs: Any, connector: WormGearConnector,
     keys = ['phi1', 'phi2'] + [f'q{i}' for i in index[2:]]
     steady = {k: float(q0[i]) for k, i in zip(keys, index)}
     steady.update(omega1=float(v0[worm]), omega2=float(v0[wheel]))
-    if connector.axialNodeNumber is not None:
+    if rigid:
+        steady['mesh'] = connector.InitialMeshState(mbs)
+    elif connector.axialNodeNumber is not None:
         a = int(mbs.GetNodeODE2Index(connector.axialNodeNumber))
         steady.update(xA=float(q0[a]), vA=float(v0[a]))
     force = abs(float(_MeshAt(connector, steady).normalForce))
     if not force > 0:
         raise ValueError(f"{w}: the mesh carries no load at the initial state (normal force 0 N): start the system "
                          f"in the static equilibrium under its load (SteadyInitialState)")
+    if dependent is not None and set(dependent[0].tolist()) & set(index):
+        raise ValueError(f"{w}: 'coordinates' must leave out the mesh law's auxiliary coordinates "
+                         f"{dependent[0].tolist()} (the flow sets them from the bodies' coordinates), got {chosen!r}")
     return LoweringModel(None, mbs, None, connector, {}, steady, abs(float(v0[worm])), math.nan, force,
-                         connector.options, {}, tuple(index), v0, tuple(keys), q0, sensors)
+                         connector.options, {}, tuple(index), v0, tuple(keys), q0, sensors, dependent=dependent)
+
+
+def _AuxiliaryCoordinates(mbs, connector: RigidBodyWormGearConnector) -> Tuple[np.ndarray, np.ndarray]:
+    """The ODE2 indices of a C++ rigid-body mesh law's auxiliary coordinates and the matrix that maps all ODE2
+    coordinates to them (their ties: ``X = S q_node`` up to a constant,
+    :func:`~exudyn_worm.items.rigidmesh._CompileLaw`)."""
+    size = mbs.systemData.ODE2Size()
+    rows, maps = [], []
+    for aux, tie in zip(connector.compiled['nodes'], connector.compiled['ties']):
+        item = mbs.GetObject(tie)
+        S = np.atleast_2d(np.asarray(item['scalingMarker1'], dtype=float))
+        node = int(mbs.GetMarker(item['markerNumbers'][1])['nodeNumber'])
+        first, start = int(mbs.GetNodeODE2Index(aux)), int(mbs.GetNodeODE2Index(node))
+        D = np.zeros((S.shape[0], size))
+        D[:, start:start + S.shape[1]] = S
+        rows.extend(range(first, first + S.shape[0]))
+        maps.append(D)
+    return np.asarray(rows, dtype=int), np.vstack(maps)

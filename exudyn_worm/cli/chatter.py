@@ -5,7 +5,7 @@ import argparse
 import sys
 from typing import Tuple
 
-from .formatchatter import FormatBranch
+from .formatchatter import FormatBranch, FormatSteadyChatter
 from .main import (BadInput, CheckOutputPath, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError,
                    WholeDriveFromArgs)
 
@@ -47,9 +47,10 @@ def ParseVary(text: str) -> Tuple[str, float, float]:
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument('--vary', metavar='NAME=LOW:HIGH', required=True,
+    parser.add_argument('--vary', metavar='NAME=LOW:HIGH', default=None,
                         help='the parameter to continue and its range in SI units or with units, e.g. J1=0.05:0.3 '
-                             'or motorSpeed=80rpm:89rpm (the output is in SI units)')
+                             'or motorSpeed=80rpm:89rpm (the output is in SI units); without it: the steady chatter '
+                             'at the drive\'s own lowering operating point, one orbit')
     parser.add_argument('--plot', metavar='FILE', default=None,
                         help='draw the branch (stable solid, unstable dashed, linear boundary dotted) into FILE')
     parser.add_argument('--max-points', type=int, default=60, dest='max_points',
@@ -61,14 +62,17 @@ def _Run(args: argparse.Namespace) -> int:
     from ..analysis.chatterbranch import AnalyzeChatterBranch
     from ..analysis.smoothbranch import ChatterBranchError
     from ..analysis.lowering import LoweringPhaseParameters
-    name, low, high = ParseVary(args.vary)
+    name, low, high = ParseVary(args.vary) if args.vary is not None else (None, None, None)
     with BadInput():      # any drive: the periodic orbits of its lowering phase
         drive = WholeDriveFromArgs(args)
         if drive.isRigidBody:
-            raise UsageError("chatter: the periodic orbits are those of the one-angle model, which has no shaft "
-                             "bearings ([wormBearing], [wheelBearing]: the 3D model); use 'exudyn-worm simulate' for "
-                             "the 3D model, or remove the bearing tables")
+            raise UsageError("chatter: this drive has shaft bearings ([wormBearing], [wheelBearing]: the 3D "
+                             "model), whose periodic orbit shooting does not find yet (it stalls on the bearings' "
+                             "barely damped modes); use 'exudyn-worm simulate' for the 3D model, or remove the bearing tables for "
+                             "the one-angle model's orbits")
         parameters = LoweringPhaseParameters(dict(drive.parameters))
+    if name is None:
+        return _RunSteady(args, drive, parameters)
     if args.plot:
         with BadInput():
             CheckOutputPath(args.plot, '--plot')
@@ -93,6 +97,22 @@ def _Run(args: argparse.Namespace) -> int:
         return 0
     print('\n'.join(FormatBranch(branch, f"exudyn-worm chatter: {SourceText(args)}, {name} in [{low:g}, {high:g}], "
                                          f"lowering phase (constant load torque)")))
+    return 0
+
+
+def _RunSteady(args: argparse.Namespace, drive, parameters) -> int:
+    """The steady chatter at the lowering operating point: one periodic orbit of the one-angle model."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.chatter import SteadyChatterSummary
+    if args.plot:
+        raise UsageError("chatter: --plot draws the branch of --vary; without --vary there is one orbit to report")
+    with StdoutToStderr(args.json), BadInput():
+        summary = SteadyChatterSummary(parameters)
+    if args.json:
+        PrintJson(summary)
+        return 0
+    print('\n'.join(FormatSteadyChatter(summary, f"exudyn-worm chatter: {SourceText(args)}, steady chatter of the "
+                                                  f"lowering phase (constant load torque)")))
     return 0
 
 

@@ -1,12 +1,13 @@
-"""Text of ``exudyn-worm chatter``: the chatter branch as a table (the numbers come from
-:mod:`exudyn_worm.analysis.chatterbranch`; this module only formats them).
+"""Text of ``exudyn-worm chatter``: the chatter branch as a table, or the steady chatter at the lowering operating
+point (the numbers come from :mod:`exudyn_worm.analysis.chatterbranch` and
+:func:`~exudyn_worm.analysis.chatter.SteadyChatterSummary`; this module only formats them).
 """
 from __future__ import annotations
 
 from typing import List
 
 
-__all__ = ['FormatBranch']
+__all__ = ['FormatBranch', 'FormatSteadyChatter']
 
 
 def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
@@ -43,4 +44,32 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
     if not branch.coexistence:
         lines.append('No range in which rest and stable chatter coexist was found on this branch.')
     lines += [f"Note: {m}" for m in branch.messages]
+    return lines
+
+
+#: the bearing loads of the 3D model's orbit, by their key in the summary's ``amplitude``
+_BEARING_LOADS = (('maxWormAxialLoad', 'worm axial'), ('maxWormRadialLoad', 'worm radial'),
+                  ('maxWheelAxialLoad', 'wheel axial'), ('maxWheelRadialLoad', 'wheel radial'))
+
+
+def FormatSteadyChatter(summary: dict, title: str) -> List[str]:
+    """The lines of one steady chatter orbit: ``title``, the model, the period, the amplitudes, the Floquet
+    multipliers and, for the 3D model, the largest bearing loads, from ``summary``
+    (:func:`~exudyn_worm.analysis.chatter.SteadyChatterSummary`)."""
+    a = summary['amplitude']
+    model = ('3D model (worm and wheel as rigid bodies on their shafts\' bearings)' if summary['model'] == '3D'
+             else 'one-angle model')
+    multipliers = ', '.join(f'{m:.4g}' for m in summary['multipliers'][:4])
+    lines = [title, f"  {model}; motor {summary['motorSpeed']:.6g} rad/s, load torque {summary['loadTorque']:.6g} N*m",
+             '',
+             f"  period                  {summary['periodS'] * 1e3:10.4f} ms ({summary['frequencyHz']:.3f} Hz)",
+             f"  max normal force        {summary['maxNormalForce'] / 1e3:10.3f} kN "
+             f"({a['forceFactor']:.3f} x the static {summary['staticNormalForce'] / 1e3:.3f} kN)",
+             f"  max |phi2''|            {a['maxWheelAcceleration']:10.2f} rad/s^2",
+             f"  min worm speed          {a['minWormSpeed']:10.3f} rad/s",
+             f"  Floquet multipliers     {multipliers} (largest |mu|; trivial one off by "
+             f"{summary['trivialMultiplierError']:.2g}): {'stable' if summary['stable'] else 'unstable'} orbit"]
+    if any(k in a for k, _ in _BEARING_LOADS):
+        lines.append('  bearing loads over the orbit (largest |F|): ' + ', '.join(
+            f"{text} {a[k] / 1e3:.3f} kN" for k, text in _BEARING_LOADS if k in a))
     return lines

@@ -292,6 +292,15 @@ class _SpinReference:
             out.extend(float(x) for x in vector[start:start + b.size])
         return out
 
+    def Restart(self, mbs, coordinates, initialAngles: Sequence[float]) -> None:
+        """Move the references to the bodies' angles at the whole-system ODE2 ``coordinates`` (without the
+        reference values), followed from ``initialAngles`` (those of the initial state, within a quarter turn of
+        them): a new solve from a start near the initial state, after a solve that ended turns away."""
+        self.angles = [float(a) for a in initialAngles]
+        self._indices = None
+        self.angles = self.Angles(self.NodeCoordinates(mbs, coordinates))
+        self._next, self._last = -np.inf, None
+
     def NextCheck(self) -> float:
         """Time in s at which the references must be moved again."""
         return self._next
@@ -419,6 +428,20 @@ class RigidBodyWormGearConnector:
             f = np.array([mesh.wormTorque, mesh.wheelTorque, mesh.axialForce, mesh.radialForce], dtype=float)
             return (f @ rows).tolist()
         return RigidBodyWormGearLaw
+
+    def RestartAngles(self, mbs, coordinates) -> None:
+        """Measure the turns of a new solve from the whole-system ODE2 ``coordinates`` (without the reference
+        values; within a quarter turn of the initial state), not from where the previous solve ended (the orbit
+        functions' flow, :class:`~exudyn_worm.analysis.exudynflow.ExudynFlow`).
+
+        Parameters
+        ----------
+        mbs : exudyn.MainSystem
+            The system the connector belongs to.
+        coordinates : array_like
+            The start's ODE2 coordinates.
+        """
+        self._spin.Restart(mbs, coordinates, self._initialAngles)
 
     def SetContactOptions(self, mbs, options: ContactOptions) -> None:
         """Replace the contact options (e.g. hold S for a linearization); re-records the law.
