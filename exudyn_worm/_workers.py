@@ -18,7 +18,7 @@ import signal
 import sys
 from typing import Iterable, Iterator, Optional
 
-__all__ = ['Terminated', 'SigtermAsInterrupt', 'InterruptStatus', 'WorkerInit', 'CancelPool',
+__all__ = ['Terminated', 'TerminationRequested', 'SigtermAsInterrupt', 'InterruptStatus', 'WorkerInit', 'CancelPool',
            'INTERRUPTED_STATUS', 'TERMINATED_STATUS']
 
 #: exit status after Ctrl-C (SIGINT): 128 + 2, the shell's convention
@@ -33,8 +33,24 @@ class Terminated(KeyboardInterrupt):
     """SIGTERM, raised like Ctrl-C by the handler of :func:`SigtermAsInterrupt`."""
 
 
+#: set when SIGTERM arrives inside :func:`SigtermAsInterrupt` (a solver that swallowed the exception of its user
+#: function and stopped early learns from it that it was terminated, :func:`TerminationRequested`)
+_terminated = [False]
+
+
 def _RaiseTerminated(signum, frame):
+    _terminated[0] = True
     raise Terminated()
+
+
+def TerminationRequested() -> bool:
+    """Whether SIGTERM arrived inside the current :func:`SigtermAsInterrupt` block.
+
+    Returns
+    -------
+    bool
+    """
+    return _terminated[0]
 
 
 @contextlib.contextmanager
@@ -44,6 +60,7 @@ def SigtermAsInterrupt() -> Iterator[None]:
     Outside the main thread (where Python cannot set a handler) the block runs unchanged. The previous handler
     is restored on leaving.
     """
+    _terminated[0] = False
     try:
         previous = signal.signal(signal.SIGTERM, _RaiseTerminated)
     except (ValueError, AttributeError):      # not the main thread, or no SIGTERM

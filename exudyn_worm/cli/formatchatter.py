@@ -54,8 +54,20 @@ _BEARING_LOADS = (('maxWormAxialLoad', 'worm axial'), ('maxWormRadialLoad', 'wor
 
 def FormatSteadyChatter(summary: dict, title: str) -> List[str]:
     """The lines of one steady chatter orbit: ``title``, the model, the period, the amplitudes, the Floquet
-    multipliers and, for the 3D model, the largest bearing loads, from ``summary``
-    (:func:`~exudyn_worm.analysis.chatter.SteadyChatterSummary`)."""
+    multipliers and, for the 3D model, the largest bearing loads, from ``summary``.
+
+    Parameters
+    ----------
+    summary : dict
+        From :func:`~exudyn_worm.analysis.chatter.SteadyChatterSummary` (SI units).
+    title : str
+        The first line (what was analysed).
+
+    Returns
+    -------
+    list of str
+        The lines to print.
+    """
     a = summary['amplitude']
     model = ('3D model (worm and wheel as rigid bodies on their shafts\' bearings)' if summary['model'] == '3D'
              else 'one-angle model')

@@ -22,6 +22,7 @@ import contextlib
 import math
 from typing import Iterator
 
+from .._workers import Terminated, TerminationRequested
 from ..progress import ProgressBar, ProgressEnabled
 
 __all__ = ['SolverDivergedError', 'IncompleteSolveError', 'SolveDynamicInChunks', 'CHUNK_STEPS', 'IsInterrupt', 'Interruptible']
@@ -68,6 +69,8 @@ def _CheckEndReached(solver, endTime: float, stepSize: float, until=None, where:
     steps and may miss the end by round-off)."""
     reached = float(solver.it.currentTime)
     if not reached >= (endTime if until is None else until) - 1e-3 * stepSize:
+        if TerminationRequested():       # SIGTERM in a user function: Exudyn stopped the solve and kept quiet
+            raise Terminated()
         raise IncompleteSolveError(f"{where}: the run ended at t = {reached:.6g} s, before its end time "
                                    f"{endTime:g} s (step size {stepSize:g} s), without a solver failure: a user "
                                    f"function or a stop request ended it early; its result would be truncated",
