@@ -160,3 +160,23 @@ def test_cli_names_a_rotation_shorter_than_a_step(tmp_path):
                                "worm once in 6.28e-06 s")
     assert lines[1].startswith('exudyn-worm: error: ')
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize('command', ['stability', 'check'])
+def test_linear_commands_warn_of_a_speed_no_run_could_resolve(tmp_path, command):
+    """stability and check simulate nothing, yet motorSpeed = 1e6 (rpm typed as rad/s) passed them without a word:
+    they warn at the drive's own recommended step, once, and still give their verdict."""
+    run = _Run(command, '--set', 'motorSpeed=1e6', *(['--quiet'] if command == 'check' else []), cwd=tmp_path)
+    assert run.returncode in (0, 1), run.stderr
+    warned = [line for line in run.stderr.splitlines() if 'turns the worm once' in line]
+    assert len(warned) == 1, run.stderr
+    assert warned[0].startswith(f"exudyn-worm: warning: {command} (at the drive's recommended step): 'motorSpeed' = "
+                                f"1e+06 rad/s (9.549e+06 rpm) turns the worm once in 6.28e-06 s, fewer than 10 time "
+                                f"steps of 0.000776 s"), warned[0]
+    assert 'Traceback' not in run.stderr and run.stdout.strip()
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_linear_commands_are_quiet_at_a_plausible_speed(tmp_path):
+    run = _Run('stability', cwd=tmp_path)
+    assert run.returncode in (0, 1) and 'turns the worm once' not in run.stderr, run.stderr

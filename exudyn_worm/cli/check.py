@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import argparse
 import sys
-from .main import (AddOverwriteOption, BadInput, CheckFigurePath, PositiveFloat, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs)
+from .main import (AddOverwriteOption, BadInput, CheckFigurePath, PositiveFloat, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WarnUnresolvedRotation, WholeDriveFromArgs)
 from .formatcheck import FormatDesignCheck
 from .._files import WriteAtomically
 
@@ -51,6 +51,8 @@ def _Run(args: argparse.Namespace) -> int:
     plotPath = CheckFigurePath(args.plot, '--plot', args.overwrite) if args.plot is not None else None
     drive = WholeDriveFromArgs(args)              # resolved once: every analysis below takes this drive
     parameters = dict(drive.parameters)
+    if not args.simulate:                         # a run checks the speed against its own step
+        WarnUnresolvedRotation(drive, 'check')
     if args.simulate:
         # lazy: start-up (exudyn-worm --help imports every command module)
         from ..setups.build import CheckReelChangerKeys

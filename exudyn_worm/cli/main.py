@@ -64,7 +64,8 @@ from ..params.drivefile import FileKeyOf
 from ..params.drives import ConfigArgument, DocPath, ShippedDrives
 
 __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'SUBCOMMANDS', 'Subcommands',
-           'AddParameterOptions', 'ParametersFromArgs', 'WholeDriveFromArgs', 'DriveFromArgs', 'SourceText', 'SourceInfo',
+           'AddParameterOptions', 'ParametersFromArgs', 'WholeDriveFromArgs', 'WarnUnresolvedRotation', 'DriveFromArgs',
+           'SourceText', 'SourceInfo',
            'StdoutToStderr', 'PrintJson', 'CheckOutputPath', 'CheckFigurePath', 'FIGURE_SUFFIXES',
            'AddOverwriteOption', 'InterruptedLine', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
 
@@ -336,6 +337,27 @@ def WholeDriveFromArgs(args: argparse.Namespace) -> Drive:
             drive = Drive.FromParameters(parameters, sources, name=SourceText(args))
         args._drive = drive
     return drive
+
+
+def WarnUnresolvedRotation(drive: Drive, where: str) -> None:
+    """Warn, for a command that does not simulate, if any simulation of ``drive`` at its own recommended time step
+    (:func:`~exudyn_worm.analysis.stepsize.RecommendedStepSize`) would turn the worm once in fewer than
+    :data:`~exudyn_worm.params.plausibility.MIN_STEPS_PER_ROTATION` steps (a speed in rpm given as rad/s):
+    the linear verdict holds for that speed, but no run of the drive could check it.
+
+    Parameters
+    ----------
+    drive : Drive
+        The resolved drive.
+    where : str
+        The command, the prefix of the warning.
+    """
+    # lazy: the step rule loads the linearization (start-up of exudyn-worm --help)
+    from ..analysis.stepsize import RecommendedStepSize
+    from ..params.plausibility import CheckWormRotation
+    parameters = dict(drive.parameters)
+    with BadInput():
+        CheckWormRotation(parameters, RecommendedStepSize(parameters), f"{where} (at the drive's recommended step)")
 
 
 def DriveFromArgs(args: argparse.Namespace) -> Tuple[Dict[str, float], ElasticDrive]:

@@ -4,7 +4,8 @@ from __future__ import annotations
 import argparse
 from typing import Dict, Union
 
-from .main import BadInput, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs
+from .main import (BadInput, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WarnUnresolvedRotation,
+                   WholeDriveFromArgs)
 from .formatstability import DangerLines, FormatStability, OperatingPointLines, VerdictLine, _G
 from ..analysis.stabilityhint import StabilizingChanges
 from ..analysis.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, DriveAnalysis
@@ -63,6 +64,7 @@ def _Run(args: argparse.Namespace) -> int:
     if drive.components and args.method == 'analytical':
         raise UsageError(f"--method analytical: eqs. (15)-(19) describe the two-mass drive of Figure 2; this "
                          f"drive has {drive.ComponentsText()}; use --method exudyn (the default for such a drive)")
+    WarnUnresolvedRotation(drive, 'stability')
     model = LINEARIZED if drive.components or args.method == 'exudyn' else ANALYTICAL
     with StdoutToStderr(args.json), BadInput():
         analysis = AnalyzeDrive(drive, model)
