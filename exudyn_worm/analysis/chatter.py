@@ -85,8 +85,8 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
     settleTime : float
         Duration in s of the time simulation (from the steady state, worm speed kicked by 1 %) whose end is
         the first guess, if ``start`` is not given. For the 3D model (``model`` from
-        :func:`~exudyn_worm.analysis.lowering.BuildRigidBodyLoweringModel`) the guess is instead the state on the
-        Poincare section of a run that has settled there (:func:`~exudyn_worm.analysis.settling.SettleOnSection`,
+        :func:`~exudyn_worm.analysis.lowering.BuildRigidBodyLoweringModel`) with elastic shaft bearings the guess
+        is instead taken from a run that has settled on its Poincare section (:func:`~exudyn_worm.analysis.settling.SettleOnSection`,
         15-20 s for ``examples/drives/reel-3d.toml``: its tilt modes are barely damped).
     stepsPerPeriod : int
         Solver steps per period in the shooting runs.
@@ -144,8 +144,9 @@ def _FindChatter(model: LoweringModel, where: str, what: str, settleTime: float,
     """:func:`FindSteadyChatter` on a built model (``what`` names the system in messages)."""
     w = where
     scale = StateScale(model)
-    if start is None and initialState is None and model.rigidBody is not None:
-        # the 3D model settles slowly (barely damped tilt modes): a long run watched on the Poincare section
+    if start is None and initialState is None and _ElasticBearings(model):
+        # the 3D model on elastic bearings settles slowly (barely damped tilt modes): a long run watched on the
+        # Poincare section
         start = _SettledStart(model, w, what)
     if start is None:
         CheckPositive(w, 'settleTime', settleTime, 's')
@@ -187,6 +188,11 @@ def _FindChatter(model: LoweringModel, where: str, what: str, settleTime: float,
                               monodromyPerturbation=MONODROMY_PERTURBATION, where=w)
     orbit.info.update(OrbitAmplitude(model, flow, orbit.state, orbit.period), model=model, flow=flow)
     return orbit
+
+
+def _ElasticBearings(model: LoweringModel) -> bool:
+    """Whether ``model`` is the 3D model with a shaft on elastic bearings (not on an ideal revolute joint)."""
+    return model.rigidBody is not None and any('joint' not in items for items in model.rigidBody.bearings.values())
 
 
 def _SettledStart(model: LoweringModel, where: str, what: str, settled: Optional[Dict[str, Any]] = None):
@@ -322,6 +328,10 @@ def _SteadyChatterSummary3D(parameters: Mapping[str, float], stepsPerPeriod: int
     shooting does not converge from there, the settled run's vibration (``method`` 'long simulation')."""
     w = 'SteadyChatterSummary'
     model = BuildRigidBodyLoweringModel(parameters)
+    if not _ElasticBearings(model):                  # ideal joints: the one-angle model's dynamics, its start
+        summary = _OrbitSummary(model, FindSteadyChatter(parameters, stepsPerPeriod=stepsPerPeriod, model=model), '3D')
+        summary.update(method='shooting', reason='periodic orbit by shooting (shafts on ideal joints)')
+        return summary
     settled = SettleOnSection(model)
     start = _SettledStart(model, w, 'the lowering phase', settled)
     settledText = (f"started on the Poincare section of a {settled['duration']:g} s time simulation (the section "

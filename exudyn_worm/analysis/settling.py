@@ -96,7 +96,8 @@ def SettleOnSection(model: LoweringModel, maxDuration: float = 40., piece: float
     Returns
     -------
     dict
-        ``state`` (the flow state at the last section crossing), ``period`` (s, the median time between the
+        ``state`` (the flow state in the last period where the mesh is deepest in contact: the start of an orbit
+        search), ``period`` (s, the median time between the
         crossings of the last piece; nan if the wheel speed does not oscillate), ``settled`` (bool), ``duration``
         (simulated s), ``change`` (the section point's last move in state scales), ``vibration`` (over the last
         ``window`` s: ``forceFactor``, ``maxWheelAcceleration``, ``minWormSpeed``, ``maxWormSpeed``, and for the 3D
@@ -123,10 +124,24 @@ def SettleOnSection(model: LoweringModel, maxDuration: float = 40., piece: float
         if times.size < 3 or not swing > 1e-6 * model.motorSpeed:
             state, period, before = x, math.nan, None                   # no oscillation (yet)
             continue
-        state, period = points[-1], float(np.median(np.diff(times)))
+        section, period = points[-1], float(np.median(np.diff(times)))
+        state = _DeepestContact(model, period)
         if before is not None:
-            change = float(np.max(np.abs(state - before) / scale))
+            change = float(np.max(np.abs(section - before) / scale))
             settled = change < tolerance
-        before = state
+        before = section
     return {'state': np.array(state, dtype=float), 'period': period, 'settled': settled, 'duration': duration,
             'change': change, 'vibration': _TailVibration(model, window), 'seconds': time.perf_counter() - t0}
+
+
+def _DeepestContact(model: LoweringModel, period: float) -> np.ndarray:
+    """The flow state of the last stored period's step where the mesh is deepest in contact, among the steps where
+    the worm clearly slides forward: far from the contact law's switches, as the orbit search starts
+    (:func:`~exudyn_worm.analysis.chatter.FindSteadyChatter`)."""
+    s = _StoredStates(model)
+    t = s['time']
+    last = np.nonzero(t >= t[-1] - period)[0]
+    if np.min(s['omega1'][last]) <= 0.:
+        last = last[s['omega1'][last] >= 0.5 * np.max(s['omega1'][last])]
+    k = last[int(np.argmax(np.abs(_MeshAt(model.connector, s, last).normalForce)))]
+    return _StoredFlowStates(model)[1][k]
