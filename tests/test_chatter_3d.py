@@ -7,9 +7,12 @@ import json
 import numpy as np
 import pytest
 
+import exudyn_worm.analysis.chatter as chatter
 from exudyn_worm.analysis.chatter import FindSteadyChatter, SteadyChatterSummary
 from exudyn_worm.analysis.drivestability import DriveStability
-from exudyn_worm.analysis.lowering import BuildRigidBodyLoweringModel
+from exudyn_worm.analysis.lowering import BuildRigidBodyLoweringModel, LoweringPhaseParameters
+from exudyn_worm.analysis.orbits import PeriodicOrbit, ShootingError
+from exudyn_worm.cli.formatchatter import FormatSteadyChatter
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.presets import GetPreset
 from exudyn_worm.setups.wholedrive import ResolveDrive
@@ -131,3 +134,31 @@ def test_chatter_vary_refuses_a_drive_with_shaft_bearings_in_one_line_with_the_r
 def test_chatter_on_a_bearing_drive_with_a_bad_option_prints_one_line(capsys):
     status, out, err = _Run(capsys, 'chatter', '--config', DRIVE_3D, '--plot', 'x.png')
     assert status == 2 and len(err.strip().splitlines()) == 1 and not out and '--plot' in err
+
+
+def test_bearing_drive_without_a_converged_orbit_reports_the_settled_long_simulation(monkeypatch):
+    # where shooting does not converge from the settled state, the summary is the settled run's vibration, labelled
+    # as such, with the reason (the settling run and the shooting are replaced here: the labelling is under test)
+    vibration = {'forceFactor': 2.7, 'maxWheelAcceleration': 110., 'minWormSpeed': 48.2, 'maxWormSpeed': 50.8,
+                 'maxWormAxialLoad': 5.3e4, 'maxWormRadialLoad': 1.9e4, 'maxWheelAxialLoad': 4.5e3,
+                 'maxWheelRadialLoad': 5.7e4}
+    monkeypatch.setattr(chatter, 'SettleOnSection', lambda model: {
+        'state': np.zeros(24), 'period': 0.032224, 'settled': False, 'duration': 40., 'change': 0.5,
+        'vibration': vibration, 'seconds': 0.})
+
+    def Stall(*args, **kwargs):
+        last = PeriodicOrbit(state=np.zeros(24), period=0.032, monodromy=np.eye(24), velocity=np.zeros(24),
+                             residual=0.21, iterations=30, converged=False)
+        raise ShootingError('stalled', last)
+
+    monkeypatch.setattr(chatter, 'FindSteadyChatter', Stall)
+    parameters = LoweringPhaseParameters(dict(ResolveDrive(config=DRIVE_3D).parameters))
+    summary = chatter.SteadyChatterSummary(parameters, rigidBody=True)
+    json.dumps(summary)
+    assert summary['method'] == 'long simulation' and summary['stable'] is None and summary['multipliers'] == []
+    assert 'no periodic orbit' in summary['reason'] and 'residual 0.21' in summary['reason']
+    assert summary['amplitude'] == vibration and summary['frequencyHz'] == pytest.approx(1. / 0.032224)
+    assert summary['maxNormalForce'] == pytest.approx(2.7 * summary['staticNormalForce'])
+    text = '\n'.join(FormatSteadyChatter(summary, 'title'))
+    assert 'method: long simulation' in text and 'no periodic orbit' in text and 'stable orbit' not in text
+    assert 'worm speed                  48.200 to 50.800 rad/s' in text and 'bearing loads over the last 0.5 s' in text
