@@ -25,6 +25,7 @@ from .exudynflow import STEPS_PER_PERIOD, ExudynFlow, _Configuration
 from .lowering import (BuildLoweringModel, BuildRigidBodyLoweringModel, LoweringModel, LoweringModelOfSystem,
                        SettleLowering, StateScale,
                        _LoweringFlow, _MeshAt, _PeriodFromSignal, _StoredFlowStates, _StoredStates)
+from .settling import SettleOnSection
 
 __all__ = ['FindSteadyChatter', 'OrbitAmplitude', 'SteadyChatterOfSystem', 'SteadyChatterSummary',
            'MONODROMY_PERTURBATION']
@@ -83,7 +84,10 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
         Flat parameter set with the reel changer's keys (e.g. ``GetPreset('reel-P1')``).
     settleTime : float
         Duration in s of the time simulation (from the steady state, worm speed kicked by 1 %) whose end is
-        the first guess, if ``start`` is not given.
+        the first guess, if ``start`` is not given. For the 3D model (``model`` from
+        :func:`~exudyn_worm.analysis.lowering.BuildRigidBodyLoweringModel`) with elastic shaft bearings the guess
+        is instead taken from a run that has settled on its Poincare section (:func:`~exudyn_worm.analysis.settling.SettleOnSection`,
+        15-20 s for ``examples/drives/reel-3d.toml``: its tilt modes are barely damped).
     stepsPerPeriod : int
         Solver steps per period in the shooting runs.
     contactOptions : ContactOptions
@@ -140,6 +144,10 @@ def _FindChatter(model: LoweringModel, where: str, what: str, settleTime: float,
     """:func:`FindSteadyChatter` on a built model (``what`` names the system in messages)."""
     w = where
     scale = StateScale(model)
+    if start is None and initialState is None and _ElasticBearings(model):
+        # the 3D model on elastic bearings settles slowly (barely damped tilt modes): a long run watched on the
+        # Poincare section
+        start = _SettledStart(model, w, what)
     if start is None:
         CheckPositive(w, 'settleTime', settleTime, 's')
         # settle, then record a few periods to estimate the period
@@ -180,6 +188,20 @@ def _FindChatter(model: LoweringModel, where: str, what: str, settleTime: float,
                               monodromyPerturbation=MONODROMY_PERTURBATION, where=w)
     orbit.info.update(OrbitAmplitude(model, flow, orbit.state, orbit.period), model=model, flow=flow)
     return orbit
+
+
+def _ElasticBearings(model: LoweringModel) -> bool:
+    """Whether ``model`` is the 3D model with a shaft on elastic bearings (not on an ideal revolute joint)."""
+    return model.rigidBody is not None and any('joint' not in items for items in model.rigidBody.bearings.values())
+
+
+def _SettledStart(model: LoweringModel, where: str, what: str, settled: Optional[Dict[str, Any]] = None):
+    """(state, period) on the Poincare section of a settled long run (:func:`~exudyn_worm.analysis.settling.SettleOnSection`)."""
+    settled = SettleOnSection(model) if settled is None else settled
+    if not np.isfinite(settled['period']):
+        raise ShootingError(f"{where}: {what} does not oscillate after {settled['duration']:g} s: no steady chatter "
+                            f"at these parameters")
+    return settled['state'], settled['period']
 
 
 def SteadyChatterOfSystem(mbs: Any, connector: WormGearConnector, coordinates: Optional[Sequence[int]] = None,
@@ -269,20 +291,65 @@ def SteadyChatterSummary(parameters: Mapping[str, float], rigidBody: bool = Fals
         Floquet multipliers' moduli, largest first), ``trivialMultiplierError``, ``staticNormalForce`` and
         ``maxNormalForce`` (N), ``amplitude`` (:func:`OrbitAmplitude`: ``forceFactor``, ``maxWheelAcceleration``,
         ``minWormSpeed``, and for the 3D model the largest bearing loads), ``motorSpeed`` (rad/s), ``loadTorque``
-        (N*m).
+        (N*m). The 3D model's summary also holds ``method``, ``settledS`` (the simulated time after which the
+        state on the Poincare section stopped moving, :func:`~exudyn_worm.analysis.settling.SettleOnSection`),
+        ``sectionChange`` (its last move in state scales) and ``reason`` (how the result was found). Its
+        ``method`` is 'shooting' (the orbit, started from that state), or 'long simulation' where shooting does not
+        converge from there: then the values are those of the settled run's last 0.5 s (``amplitude`` with
+        ``maxWormSpeed`` too), ``stable`` and ``trivialMultiplierError`` are None and ``multipliers`` is empty, and
+        ``reason`` says why no orbit is given.
 
     Raises
     ------
     ShootingError
-        If the lowering phase settles to rest (no chatter) or shooting does not converge.
+        If the lowering phase settles to rest (no chatter) or, on the one-angle model, shooting does not converge.
     """
-    model = BuildRigidBodyLoweringModel(parameters) if rigidBody else BuildLoweringModel(parameters)
+    if rigidBody:
+        return _SteadyChatterSummary3D(parameters, stepsPerPeriod)
+    model = BuildLoweringModel(parameters)
     orbit = FindSteadyChatter(parameters, stepsPerPeriod=stepsPerPeriod, model=model)
+    return _OrbitSummary(model, orbit, 'one-angle')
+
+
+def _OrbitSummary(model: LoweringModel, orbit: PeriodicOrbit, name: str) -> Dict[str, Any]:
+    """The JSON-ready summary of a converged orbit."""
     amplitude = {k: float(v) for k, v in orbit.info.items() if k not in ('model', 'flow')}
     multipliers = sorted((abs(complex(m)) for m in orbit.nontrivialMultipliers), reverse=True)
-    return {'model': '3D' if rigidBody else 'one-angle', 'periodS': float(orbit.period),
+    return {'model': name, 'periodS': float(orbit.period),
             'frequencyHz': float(orbit.frequencyHz), 'stable': bool(orbit.stable), 'multipliers': multipliers,
             'trivialMultiplierError': float(orbit.trivialMultiplierError),
             'staticNormalForce': float(model.staticNormalForce),
             'maxNormalForce': float(amplitude['forceFactor'] * model.staticNormalForce), 'amplitude': amplitude,
             'motorSpeed': float(model.motorSpeed), 'loadTorque': float(model.loadTorque)}
+
+
+def _SteadyChatterSummary3D(parameters: Mapping[str, float], stepsPerPeriod: int) -> Dict[str, Any]:
+    """:func:`SteadyChatterSummary` on the 3D model: shooting from a run settled on the Poincare section, or, where
+    shooting does not converge from there, the settled run's vibration (``method`` 'long simulation')."""
+    w = 'SteadyChatterSummary'
+    model = BuildRigidBodyLoweringModel(parameters)
+    if not _ElasticBearings(model):                  # ideal joints: the one-angle model's dynamics, its start
+        summary = _OrbitSummary(model, FindSteadyChatter(parameters, stepsPerPeriod=stepsPerPeriod, model=model), '3D')
+        summary.update(method='shooting', reason='periodic orbit by shooting (shafts on ideal joints)')
+        return summary
+    settled = SettleOnSection(model)
+    start = _SettledStart(model, w, 'the lowering phase', settled)
+    settledText = (f"started on the Poincare section of a {settled['duration']:g} s time simulation (the section "
+                   f"point moved by {settled['change']:.2g} of the state scale over its last 2 s)")
+    try:
+        orbit = FindSteadyChatter(parameters, stepsPerPeriod=stepsPerPeriod, model=model, start=start)
+    except ShootingError as err:
+        residual = getattr(err.lastOrbit, 'residual', float('nan'))
+        vibration = settled['vibration']
+        return {'model': '3D', 'method': 'long simulation', 'periodS': float(settled['period']),
+                'frequencyHz': float(1. / settled['period']), 'stable': None, 'multipliers': [],
+                'trivialMultiplierError': None, 'staticNormalForce': float(model.staticNormalForce),
+                'maxNormalForce': float(vibration['forceFactor'] * model.staticNormalForce), 'amplitude': vibration,
+                'motorSpeed': float(model.motorSpeed), 'loadTorque': float(model.loadTorque),
+                'settledS': float(settled['duration']), 'sectionChange': float(settled['change']),
+                'reason': f"no periodic orbit: shooting {settledText} did not converge (residual {residual:.2g} of "
+                          f"the state scale); the values are the largest over the run's last 0.5 s"}
+    summary = _OrbitSummary(model, orbit, '3D')
+    summary.update(method='shooting', settledS=float(settled['duration']), sectionChange=float(settled['change']),
+                   reason=f"periodic orbit by shooting, {settledText}")
+    return summary

@@ -71,17 +71,26 @@ def FormatSteadyChatter(summary: dict, title: str) -> List[str]:
     a = summary['amplitude']
     model = ('3D model (worm and wheel as rigid bodies on their shafts\' bearings)' if summary['model'] == '3D'
              else 'one-angle model')
-    multipliers = ', '.join(f'{m:.4g}' for m in summary['multipliers'][:4])
-    lines = [title, f"  {model}; motor {summary['motorSpeed']:.6g} rad/s, load torque {summary['loadTorque']:.6g} N*m",
-             '',
-             f"  period                  {summary['periodS'] * 1e3:10.4f} ms ({summary['frequencyHz']:.3f} Hz)",
-             f"  max normal force        {summary['maxNormalForce'] / 1e3:10.3f} kN "
-             f"({a['forceFactor']:.3f} x the static {summary['staticNormalForce'] / 1e3:.3f} kN)",
-             f"  max |phi2''|            {a['maxWheelAcceleration']:10.2f} rad/s^2",
-             f"  min worm speed          {a['minWormSpeed']:10.3f} rad/s",
-             f"  Floquet multipliers     {multipliers} (largest |mu|; trivial one off by "
-             f"{summary['trivialMultiplierError']:.2g}): {'stable' if summary['stable'] else 'unstable'} orbit"]
+    orbit = summary.get('method', 'shooting') == 'shooting'
+    lines = [title, f"  {model}; motor {summary['motorSpeed']:.6g} rad/s, load torque {summary['loadTorque']:.6g} N*m"]
+    if 'method' in summary:                  # the 3D model: how the result was found
+        lines.append(f"  method: {summary['method']}; {summary['reason']}")
+    lines += ['',
+              f"  period                  {summary['periodS'] * 1e3:10.4f} ms ({summary['frequencyHz']:.3f} Hz)",
+              f"  max normal force        {summary['maxNormalForce'] / 1e3:10.3f} kN "
+              f"({a['forceFactor']:.3f} x the static {summary['staticNormalForce'] / 1e3:.3f} kN)",
+              f"  max |phi2''|            {a['maxWheelAcceleration']:10.2f} rad/s^2"]
+    if 'maxWormSpeed' in a:
+        lines.append(f"  worm speed              {a['minWormSpeed']:10.3f} to {a['maxWormSpeed']:.3f} rad/s")
+    else:
+        lines.append(f"  min worm speed          {a['minWormSpeed']:10.3f} rad/s")
+    if orbit:
+        multipliers = ', '.join(f'{m:.4g}' for m in summary['multipliers'][:4])
+        lines.append(f"  Floquet multipliers     {multipliers} (largest |mu|; trivial one off by "
+                     f"{summary['trivialMultiplierError']:.2g}): {'stable' if summary['stable'] else 'unstable'} orbit")
+    else:
+        lines.append('  Floquet multipliers     none (no periodic orbit: values of the settled long simulation)')
     if any(k in a for k, _ in _BEARING_LOADS):
-        lines.append('  bearing loads over the orbit (largest |F|): ' + ', '.join(
+        lines.append(f"  bearing loads over the {'orbit' if orbit else 'last 0.5 s'} (largest |F|): " + ', '.join(
             f"{text} {a[k] / 1e3:.3f} kN" for k, text in _BEARING_LOADS if k in a))
     return lines
