@@ -52,7 +52,8 @@ from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Un
 from .. import __version__
 from ..setups.config import DEFAULT_PRESET, LoadConfig, ResolveParameters, ResolveParametersWithSources
 from ..setups.wholedrive import Drive
-from ..params.plausibility import ImplausibleValueWarning
+from ..params.plausibility import CheckWormRotation, ImplausibleValueWarning
+from ..analysis.stepsize import RecommendedStepSize
 from ..model.drive import ElasticDrive
 from ..setups.presets import PRESETS
 from ..params.parameters import MissingParameterError
@@ -352,9 +353,6 @@ def WarnUnresolvedRotation(drive: Drive, where: str) -> None:
     where : str
         The command, the prefix of the warning.
     """
-    # lazy: the step rule loads the linearization (start-up of exudyn-worm --help)
-    from ..analysis.stepsize import RecommendedStepSize
-    from ..params.plausibility import CheckWormRotation
     parameters = dict(drive.parameters)
     with BadInput():
         CheckWormRotation(parameters, RecommendedStepSize(parameters), f"{where} (at the drive's recommended step)")
