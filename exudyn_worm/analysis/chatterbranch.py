@@ -43,7 +43,7 @@ from .smoothbranch import ChatterBranchError, SmoothHopfBranch
 _SERIES_PREFIXES = tuple(p for table in PARAMETERS.arrayTables.values() for p in table.values())
 
 __all__ = ['CONTINUABLE', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch', 'REST_FORCE_FACTOR',
-           'BEARING_LOAD_KEYS']
+           'BEARING_LOAD_KEYS', 'NEAR_ONE']
 
 #: parameters that can be continued (flat parameter keys, SI units); ``muStatic`` and ``stribeckVelocity`` exist
 #: with the Stribeck friction law
@@ -52,6 +52,10 @@ CONTINUABLE = ('J1', 'J2', 'kT', 'dT', 'DT', 'DTV', 'kV', 'dV', 'DV', 'mu', 'muS
 #: the largest bearing loads in N that :func:`~exudyn_worm.analysis.chatter.OrbitAmplitude` measures on an orbit of
 #: the 3D model, as each branch point's ``info`` and ``ToDict()['points'][i]['amplitude']`` hold them
 BEARING_LOAD_KEYS = ('maxWormAxialLoad', 'maxWormRadialLoad', 'maxWheelAxialLoad', 'maxWheelRadialLoad')
+#: on the 3D model with elastic bearings, a largest nontrivial Floquet multiplier this close to 1 is within the
+#: uncertainty of the finite-difference monodromy (0.987-0.994 from two starts of the same orbit, reel-3d.toml,
+#: docs/chatter-amplitude.md): a message says so
+NEAR_ONE = 0.01
 #: an orbit whose largest normal force is below this multiple of the static force stays in contact all the time:
 #: it is an orbit of the linearized drive, so the branch has reached its Hopf point (the linear boundary)
 REST_FORCE_FACTOR = 1.9
@@ -306,6 +310,15 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         halves.append(branch)
         result.messages += messages
     result.points = [p for p in list(reversed(halves[0].points)) + halves[1].points[1:] if low <= p.value <= high]
+    if _ElasticBearings(model):
+        near = [p.value for p in result.points
+                if abs(max((abs(complex(m)) for m in p.orbit.nontrivialMultipliers), default=0.) - 1.) < NEAR_ONE]
+        if near:
+            result.messages.append(
+                f"3D model: {len(near)} of {len(result.points)} orbits have their largest nontrivial Floquet multiplier "
+                f"within {NEAR_ONE:g} of 1 (the wheel's barely damped tilt mode; the map is non-smooth at the level of "
+                f"the bearings' kHz modes, so such multipliers are uncertain by about 0.01): their stability is not "
+                f"decided by the multipliers")
     if not roots and unstable:
         result.messages.append(f"the drive is linearly unstable for every {name} in [{low:g}, {high:g}]: the range "
                                f"crosses no linear boundary, so the branch has no Hopf point in it")
