@@ -198,8 +198,10 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     :func:`~exudyn_worm.analysis.lowering.BuildRigidBodyLoweringModel`) with elastic bearings the first orbit is
     found as without continuation (:func:`~exudyn_worm.analysis.chatter.SteadyChatterSummary`): shooting from a time
     simulation settled on its Poincare section (:func:`~exudyn_worm.analysis.settling.SettleOnSection`, about 14 s
-    simulated for ``examples/drives/reel-3d.toml``); the continuation then follows it from that orbit, and each
-    point carries the largest bearing loads.
+    simulated for ``examples/drives/reel-3d.toml``), at the parameter set's own value of ``name`` where that lies in
+    the range and the drive is linearly unstable there (else in the middle of the widest unstable interval, as on
+    the one-angle model); the continuation then follows it from that orbit, and each point carries the largest
+    bearing loads.
 
     Parameters
     ----------
@@ -273,7 +275,13 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     # start in the middle of the widest linearly unstable interval
     edges = [low] + roots + [high]
     unstable = [(a, b) for a, b in zip(edges[:-1], edges[1:]) if Growth(0.5 * (a + b)) > 0]
-    if unstable:
+    own = base.get(name)
+    if unstable and rigidBody and own is not None and low <= own <= high and Growth(own) > 0:
+        # the 3D model: at the drive's own value, where the first orbit is the one without continuation (shooting
+        # from the settled start converges there; in the middle of reel-3d.toml's unstable interval of
+        # wheelRadialStiffness in [5e8, 2e9], 1.112e9 N/m, it stalled at a residual of 0.016)
+        start, kick = float(own), 0.01
+    elif unstable:
         a, b = max(unstable, key=lambda ab: ab[1] - ab[0])
         start, kick = 0.5 * (a + b), 0.01
     else:
