@@ -1,7 +1,7 @@
 """The orbit functions on the 3D model (worm and wheel as rigid bodies): on ideal revolute joints its steady chatter is
 the one-angle model's; the flow sets the C++ mesh law's auxiliary coordinates from the bodies'; ``chatter`` without
 ``--vary`` reports the steady chatter at the lowering operating point, also of a drive with elastic shaft bearings
-(shooting from a run settled on the Poincare section), and refuses ``--vary`` for such a drive in one line."""
+(shooting from a run settled on the Poincare section); ``--vary`` on such a drive is tests/test_chatter_vary_3d.py."""
 import json
 
 import numpy as np
@@ -123,12 +123,6 @@ def test_chatter_reports_the_steady_chatter_of_a_drive_with_shaft_bearings(capsy
     assert '3D model' in out and 'method: shooting' in out and 'Poincare section' in out and 'stable orbit' in out
     assert 'bearing loads over the orbit' in out and 'worm axial' in out and 'wheel radial' in out
     assert f"{amplitude['maxWheelRadialLoad'] / 1e3:.3f} kN" in out
-
-
-def test_chatter_vary_refuses_a_drive_with_shaft_bearings_in_one_line_with_the_reason(capsys):
-    status, out, err = _Run(capsys, 'chatter', '--config', DRIVE_3D, '--vary', 'J1=0.05:0.3')
-    assert status == 2 and len(err.strip().splitlines()) == 1 and not out and 'Traceback' not in err
-    assert 'shaft bearings' in err and '3D model' in err and 'damping ratio' in err and 'without --vary' in err
 
 
 def test_chatter_on_a_bearing_drive_with_a_bad_option_prints_one_line(capsys):

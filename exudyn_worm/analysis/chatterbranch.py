@@ -25,8 +25,10 @@ from typing import Callable, Dict, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .chatter import MONODROMY_PERTURBATION, FindSteadyChatter, OrbitAmplitude
-from .lowering import BuildLoweringModel, StateScale, UpdateLoweringModel, _LoweringFlow
+from .chatter import MONODROMY_PERTURBATION, FindSteadyChatter, OrbitAmplitude, _ElasticBearings, _SettledStart
+from .lowering import (BuildLoweringModel, BuildRigidBodyLoweringModel, LoweringModel, StateScale,
+                       UpdateLoweringModel, _LoweringFlow)
+from .settling import SettleOnSection
 from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import PeriodicOrbit, ShootingError
 from .._checks import CheckPositive
@@ -40,12 +42,20 @@ from .smoothbranch import ChatterBranchError, SmoothHopfBranch
 # prefixes of the chain keys (``J4, k4, d4``, ``JL1, kL1, dL1``, ...)
 _SERIES_PREFIXES = tuple(p for table in PARAMETERS.arrayTables.values() for p in table.values())
 
-__all__ = ['CONTINUABLE', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch', 'REST_FORCE_FACTOR']
+__all__ = ['CONTINUABLE', 'ChatterBranch', 'LinearBoundaries', 'AnalyzeChatterBranch', 'REST_FORCE_FACTOR',
+           'BEARING_LOAD_KEYS', 'NEAR_ONE']
 
 #: parameters that can be continued (flat parameter keys, SI units); ``muStatic`` and ``stribeckVelocity`` exist
 #: with the Stribeck friction law
 CONTINUABLE = ('J1', 'J2', 'kT', 'dT', 'DT', 'DTV', 'kV', 'dV', 'DV', 'mu', 'muStatic', 'stribeckVelocity',
                'backlash', 'motorSpeed', 'loadMass', 'leverArm')
+#: the largest bearing loads in N that :func:`~exudyn_worm.analysis.chatter.OrbitAmplitude` measures on an orbit of
+#: the 3D model, as each branch point's ``info`` and ``ToDict()['points'][i]['amplitude']`` hold them
+BEARING_LOAD_KEYS = ('maxWormAxialLoad', 'maxWormRadialLoad', 'maxWheelAxialLoad', 'maxWheelRadialLoad')
+#: on the 3D model with elastic bearings, a largest nontrivial Floquet multiplier this close to 1 is within the
+#: uncertainty of the finite-difference monodromy (0.987-0.994 from two starts of the same orbit, reel-3d.toml,
+#: docs/chatter-amplitude.md): a message says so
+NEAR_ONE = 0.01
 #: an orbit whose largest normal force is below this multiple of the static force stays in contact all the time:
 #: it is an orbit of the linearized drive, so the branch has reached its Hopf point (the linear boundary)
 REST_FORCE_FACTOR = 1.9
@@ -63,7 +73,8 @@ class ChatterBranch:
         The range.
     points : list of BranchPoint
         Orbits along the branch, ordered along the arclength; ``info`` holds ``forceFactor``,
-        ``maxWheelAcceleration`` (rad/s^2), ``minWormSpeed`` (rad/s).
+        ``maxWheelAcceleration`` (rad/s^2), ``minWormSpeed`` (rad/s), and on the 3D model the largest bearing loads
+        in N (:data:`BEARING_LOAD_KEYS`).
     linearBoundaries : list of float
         Parameter values in the range where the linearized drive (S = -1) changes stability.
     hopf : list of dict
@@ -77,6 +88,11 @@ class ChatterBranch:
         in chatter as a fraction of the motor speed (``wormSpeedFraction``) and in rad/s (``wormSpeed``).
     messages : list of str
         Why each end of the branch stopped, and anything the user should know.
+    model : str
+        ``'one-angle'`` or ``'3D'`` (worm and wheel as rigid bodies on their shafts' bearings).
+    settling : dict or None
+        On the 3D model with elastic bearings: how the first orbit's start was settled
+        (:func:`~exudyn_worm.analysis.settling.SettleOnSection`: ``value``, ``duration`` and ``change``), else None.
     """
     parameter: str
     bounds: Tuple[float, float]
@@ -87,28 +103,40 @@ class ChatterBranch:
     coexistence: List[Tuple[float, float]] = field(default_factory=list)
     disturbances: List[Dict] = field(default_factory=list)
     messages: List[str] = field(default_factory=list)
+    model: str = 'one-angle'
+    settling: Optional[Dict] = None
 
     def ToDict(self) -> Dict:
         """JSON-ready dictionary: ``{"parameter", "hopf": {"value", "type"}, "folds", "points": [...], ...}``
-        (``hopf`` is the first Hopf point or None; ``hopfPoints`` lists all)."""
-        return {'parameter': self.parameter, 'range': list(self.bounds),
+        (``hopf`` is the first Hopf point or None; ``hopfPoints`` lists all). On the 3D model also ``model`` ('3D'),
+        ``settling`` and, per point, the largest bearing loads in N in ``amplitude`` (:data:`BEARING_LOAD_KEYS`)."""
+        out = {'parameter': self.parameter, 'range': list(self.bounds),
                 'hopf': ({'value': self.hopf[0]['value'], 'type': self.hopf[0]['type']} if self.hopf else None),
                 'hopfPoints': [dict(h) for h in self.hopf], 'linearBoundaries': list(self.linearBoundaries),
                 'folds': list(self.folds), 'coexistence': [list(c) for c in self.coexistence],
                 'disturbances': [dict(d) for d in self.disturbances],
                 'points': [{'value': float(p.value),
                             'amplitude': {'forceFactor': p.info.get('forceFactor'),
-                                          'maxWheelAcceleration': p.info.get('maxWheelAcceleration')},
+                                          'maxWheelAcceleration': p.info.get('maxWheelAcceleration'),
+                                          **{k: float(p.info[k]) for k in BEARING_LOAD_KEYS if k in p.info}},
                             'frequencyHz': float(p.orbit.frequencyHz), 'stable': bool(p.stable),
                             'multipliers': [abs(complex(m)) for m in p.orbit.nontrivialMultipliers],
                             'trivialMultiplierError': p.orbit.trivialMultiplierError}
                            for p in self.points],
                 'messages': list(self.messages)}
+        if self.model != 'one-angle':
+            out.update(model=self.model, settling=None if self.settling is None else dict(self.settling))
+        return out
 
     def plot(self, fileName: Optional[str] = None, **kwargs):
         """Draw the branch (:func:`exudyn_worm.plotting.plot_orbits.PlotChatterBranch`)."""
         from ..plotting.plot_orbits import PlotChatterBranch
         return PlotChatterBranch(self, fileName=fileName, **kwargs)
+
+
+def _BuildModel(parameters: Mapping[str, float], rigidBody: bool) -> LoweringModel:
+    """The lowering model of ``parameters``: the 3D model (``rigidBody``) or the one-angle model."""
+    return BuildRigidBodyLoweringModel(parameters) if rigidBody else BuildLoweringModel(parameters)
 
 
 def _MaxRealPart(parameters) -> float:
@@ -146,9 +174,14 @@ def LinearBoundaries(parameters: Mapping[str, float], name: str, low: float, hig
     return roots, Growth
 
 
-def _ComponentKeys(parameters: Mapping[str, float]) -> List[str]:
+def _ComponentKeys(parameters: Mapping[str, float], rigidBody: bool = False) -> List[str]:
     """The keys of the parameter set's drive-side and load-side chain stages and axial bearing (``J4, k4, d4, ...,
-    JL1, kL1, dL1, ..., kA, dA, mA``) that can be continued too (each value rebuilds the lowering model)."""
+    JL1, kL1, dL1, ..., kA, dA, mA``) that can be continued too (each value rebuilds the lowering model); on the 3D
+    model (``rigidBody``) the shafts' bearing keys and the bodies' masses the set gives (``wormRadialStiffness``,
+    ..., ``wheelBearingSpan``, ``wormMass``, ``wheelMass``)."""
+    if rigidBody:
+        return [k for k in PARAMETERS.KeysOf('wormBearing') + PARAMETERS.KeysOf('wheelBearing')
+                + ('wormMass', 'wheelMass', 'kA', 'dA', 'mA') if k in parameters]
     keys = [k for k in parameters if (PARAMETERS.SeriesIndex(k) or ('',))[0] in _SERIES_PREFIXES]
     if float(parameters.get('kA', 0.)) > 0:
         keys += [k for k in ('kA', 'dA', 'mA') if k in parameters]
@@ -157,8 +190,18 @@ def _ComponentKeys(parameters: Mapping[str, float]) -> List[str]:
 
 def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float, high: float,
                          maxPoints: int = 60, settleTime: float = 1.0, onPoint: Optional[Callable] = None,
-                         restarts: int = 3, stepLength: float = 0.5, processes: int = 2) -> ChatterBranch:
+                         restarts: int = 3, stepLength: float = 0.5, processes: int = 2,
+                         rigidBody: bool = False) -> ChatterBranch:
     """Branch of steady chatter of the lowering phase in parameter ``name`` over ``[low, high]``.
+
+    On the 3D model (``rigidBody``: worm and wheel as rigid bodies on their shafts' bearings,
+    :func:`~exudyn_worm.analysis.lowering.BuildRigidBodyLoweringModel`) with elastic bearings the first orbit is
+    found as without continuation (:func:`~exudyn_worm.analysis.chatter.SteadyChatterSummary`): shooting from a time
+    simulation settled on its Poincare section (:func:`~exudyn_worm.analysis.settling.SettleOnSection`, about 14 s
+    simulated for ``examples/drives/reel-3d.toml``), at the parameter set's own value of ``name`` where that lies in
+    the range and the drive is linearly unstable there (else in the middle of the widest unstable interval, as on
+    the one-angle model); the continuation then follows it from that orbit, and each point carries the largest
+    bearing loads.
 
     Parameters
     ----------
@@ -166,13 +209,16 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         Flat parameter set with the reel changer's keys (e.g. ``GetPreset('reel-P1')``).
     name : str
         The parameter, one of :data:`CONTINUABLE`, or a key of the parameter set's drive-side or load-side chain
-        (``J4, k4, d4, ...``, ``JL1, kL1, dL1, ...``) or axial bearing (``kA, dA, mA``).
+        (``J4, k4, d4, ...``, ``JL1, kL1, dL1, ...``) or axial bearing (``kA, dA, mA``); on the 3D model a key of
+        the shafts' bearings or the bodies' masses that the set gives (``wormRadialStiffness``, ...,
+        ``wheelBearingSpan``, ``wormMass``, ``wheelMass``).
     low, high : float
         Range of the parameter in its SI unit, ``low < high``.
     maxPoints : int
         Largest number of orbits per direction.
     settleTime : float
-        Time simulation in s before the first shooting.
+        Time simulation in s before the first shooting (the 3D model with elastic bearings settles on its Poincare
+        section instead, as long as it needs).
     onPoint : callable, optional
         Called with each new :class:`~exudyn_worm.analysis.continuation.BranchPoint`.
     restarts : int
@@ -186,6 +232,9 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         Worker processes: with 2 (default) the two directions of the branch from the first orbit are computed at
         the same time in two processes (Linux, fork; each builds its own model), with 1 one after the other. The
         results are the same; ``onPoint`` is then called once a direction is done.
+    rigidBody : bool
+        The 3D model (True) or the one-angle model (False, default), as
+        :func:`~exudyn_worm.analysis.chatter.SteadyChatterSummary` takes it.
 
     Returns
     -------
@@ -200,10 +249,13 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         found; ``.branch`` keeps what was computed.
     """
     w = 'AnalyzeChatterBranch'
-    if name not in CONTINUABLE and name not in _ComponentKeys(parameters):
-        extra = ', '.join(_ComponentKeys(parameters))
+    rigidBody = bool(rigidBody)
+    components = _ComponentKeys(parameters, rigidBody)
+    if name not in CONTINUABLE and name not in components:
+        extra = ', '.join(components)
+        what = "shaft bearings and bodies' masses" if rigidBody else "chains and axial bearing"
         raise ValueError(f"{w}: parameter {name!r} cannot be continued; choose one of {', '.join(CONTINUABLE)}"
-                         + (f" or a key of this drive's chains and axial bearing ({extra})" if extra else ''))
+                         + (f" or a key of this drive's {what} ({extra})" if extra else ''))
     low, high = float(low), float(high)
     if not (math.isfinite(low) and math.isfinite(high) and low < high):
         raise ValueError(f"{w}: the range of {name} must be two finite numbers low < high, got {low:g}:{high:g}")
@@ -211,9 +263,9 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     if isinstance(processes, bool) or not isinstance(processes, int) or processes < 1:
         raise ValueError(f"{w}: 'processes' must be an integer >= 1, got {processes!r}")
     base = dict(parameters)
-    BuildLoweringModel({**base, name: low})           # checks the parameter set and the low end early
+    _BuildModel({**base, name: low}, rigidBody)         # checks the parameter set and the low end early
     roots, Growth = LinearBoundaries(base, name, low, high)
-    result = ChatterBranch(name, (low, high), linearBoundaries=roots)
+    result = ChatterBranch(name, (low, high), linearBoundaries=roots, model='3D' if rigidBody else 'one-angle')
     # a friction law that falls with the sliding speed can limit the chatter while the mesh stays in contact: the
     # branch then leaves a linear boundary with zero amplitude (a smooth Hopf point), which the continuation below
     # (from an orbit that loses contact, stopped where the orbit stays in contact) cannot follow
@@ -223,15 +275,21 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     # start in the middle of the widest linearly unstable interval
     edges = [low] + roots + [high]
     unstable = [(a, b) for a, b in zip(edges[:-1], edges[1:]) if Growth(0.5 * (a + b)) > 0]
-    if unstable:
+    own = base.get(name)
+    if unstable and rigidBody and own is not None and low <= own <= high and Growth(own) > 0:
+        # the 3D model: at the drive's own value, where the first orbit is the one without continuation (shooting
+        # from the settled start converges there; in the middle of reel-3d.toml's unstable interval of
+        # wheelRadialStiffness in [5e8, 2e9], 1.112e9 N/m, it stalled at a residual of 0.016)
+        start, kick = float(own), 0.01
+    elif unstable:
         a, b = max(unstable, key=lambda ab: ab[1] - ab[0])
         start, kick = 0.5 * (a + b), 0.01
     else:
         # linearly stable everywhere: chatter can still coexist with rest; look for it after a large kick
         start, kick = 0.5 * (low + high), COEXISTENCE_KICK
-    model = BuildLoweringModel({**base, name: start})
+    model = _BuildModel({**base, name: start}, rigidBody)
     try:
-        orbit = FindSteadyChatter({**base, name: start}, settleTime=settleTime, model=model, kick=kick)
+        orbit = _FirstOrbit({**base, name: start}, model, settleTime, kick, result)
     except ShootingError as err:
         if not unstable:
             raise ChatterBranchError(f"{w}: the drive is linearly stable for every {name} in [{low:g}, {high:g}] "
@@ -254,12 +312,21 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     seed = PeriodicOrbit(state=orbit.state, period=orbit.period, monodromy=orbit.monodromy, velocity=orbit.velocity,
                          residual=orbit.residual, iterations=orbit.iterations, converged=orbit.converged)
     jobs = [(base, name, low, high, seed, start, scale, scaleP, direction, maxPoints, settleTime, restarts,
-             stepLength, orbit.info['flow'].steps) for direction in (-1, 1)]
+             stepLength, orbit.info['flow'].steps, rigidBody) for direction in (-1, 1)]
     halves = []
     for branch, messages in _RunDirections(jobs, processes, onPoint, result.messages):
         halves.append(branch)
         result.messages += messages
     result.points = [p for p in list(reversed(halves[0].points)) + halves[1].points[1:] if low <= p.value <= high]
+    if _ElasticBearings(model):
+        near = [p.value for p in result.points
+                if abs(max((abs(complex(m)) for m in p.orbit.nontrivialMultipliers), default=0.) - 1.) < NEAR_ONE]
+        if near:
+            result.messages.append(
+                f"3D model: {len(near)} of {len(result.points)} orbits have their largest nontrivial Floquet multiplier "
+                f"within {NEAR_ONE:g} of 1 (the wheel's barely damped tilt mode; the map is non-smooth at the level of "
+                f"the bearings' kHz modes, so such multipliers are uncertain by about 0.01): their stability is not "
+                f"decided by the multipliers")
     if not roots and unstable:
         result.messages.append(f"the drive is linearly unstable for every {name} in [{low:g}, {high:g}]: the range "
                                f"crosses no linear boundary, so the branch has no Hopf point in it")
@@ -304,12 +371,35 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
               and Growth(p.value) < 0]
     if inside:
         result.coexistence.append((float(min(inside)), float(max(inside))))
-    for lo, hi in result.coexistence:
+    if rigidBody and result.coexistence:
+        result.messages.append("the smallest disturbance that starts chatter is computed on the one-angle model "
+                               "only: not given for the 3D model")
+    for lo, hi in ([] if rigidBody else result.coexistence):
         middle = 0.5 * (lo + hi)
         kick = SmallestDisturbance({**base, name: middle})
         result.disturbances.append({'value': middle, 'wormSpeedFraction': kick,
                                     'wormSpeed': kick * float(base['motorSpeed'])})
     return result
+
+
+def _FirstOrbit(parameters: Dict, model: LoweringModel, settleTime: float, kick: float,
+                result: ChatterBranch) -> PeriodicOrbit:
+    """The branch's first orbit: :func:`~exudyn_worm.analysis.chatter.FindSteadyChatter` after ``settleTime``; on the
+    3D model with elastic bearings from a run settled on the Poincare section
+    (:func:`~exudyn_worm.analysis.settling.SettleOnSection`, noted in ``result.settling`` and ``messages``)."""
+    if not _ElasticBearings(model):
+        return FindSteadyChatter(parameters, settleTime=settleTime, model=model, kick=kick)
+    w = 'AnalyzeChatterBranch'
+    settled = SettleOnSection(model, kick=kick)
+    start = _SettledStart(model, w, 'the lowering phase', settled)
+    value = parameters[result.parameter]
+    result.settling = {'value': float(value), 'duration': float(settled['duration']),
+                       'change': float(settled['change']), 'settled': bool(settled['settled'])}
+    orbit = FindSteadyChatter(parameters, model=model, start=start)
+    result.messages.append(f"3D model: the first orbit ({result.parameter} = {value:.6g}) by shooting from a "
+                           f"{settled['duration']:g} s time simulation settled on the Poincare section (its section "
+                           f"point moved by {settled['change']:.2g} of the state scale over the last 2 s)")
+    return orbit
 
 
 def _SpeedDependentFriction(parameters: Mapping[str, float]) -> bool:
@@ -351,11 +441,12 @@ def _SmoothBranches(base: Dict, name: str, low: float, high: float, roots: List[
 
 def _FollowDirection(base: Dict, name: str, low: float, high: float, start: PeriodicOrbit, value: float,
                      scale: np.ndarray, scaleP: float, direction: int, maxPoints: int, settleTime: float,
-                     restarts: int, stepLength: float, steps: int, onPoint: Optional[Callable] = None
-                     ) -> Tuple[Branch, List[str]]:
+                     restarts: int, stepLength: float, steps: int, rigidBody: bool = False,
+                     onPoint: Optional[Callable] = None) -> Tuple[Branch, List[str]]:
     """One direction of the branch from ``start`` at ``value``: continuation, and restarts from a time simulation
-    where the corrector is stuck. Builds its own model, so that it can run in a worker process."""
-    model = BuildLoweringModel({**base, name: value})
+    where the corrector is stuck (on the 3D model: shooting from the last orbit, whose slow tilt modes a short
+    simulation would not settle). Builds its own model, so that it can run in a worker process."""
+    model = _BuildModel({**base, name: value}, rigidBody)
     current = {'model': model, 'flow': _LoweringFlow(model, steps)}
     messages = []
 
@@ -397,13 +488,18 @@ def _FollowDirection(base: Dict, name: str, low: float, high: float, start: Peri
             break
         m, _ = ModelAt(again)
         try:
-            orbit = FindSteadyChatter({**base, name: again}, settleTime=settleTime, model=m,
-                                      initialState=last.orbit.state)
+            if rigidBody:
+                orbit = FindSteadyChatter({**base, name: again}, model=m,
+                                          start=(last.orbit.state, last.orbit.period))
+            else:
+                orbit = FindSteadyChatter({**base, name: again}, settleTime=settleTime, model=m,
+                                          initialState=last.orbit.state)
         except ShootingError:
             messages.append(f"towards {side} {name}: no steady chatter found again at {name} = {again:.6g}")
             break
         current['flow'] = orbit.info['flow']
-        messages.append(f"towards {side} {name}: restarted from a time simulation at {name} = {again:.6g}")
+        messages.append(f"towards {side} {name}: restarted from "
+                        + ("the last orbit" if rigidBody else "a time simulation") + f" at {name} = {again:.6g}")
         orbit.info.clear()
         more = ContinueOrbits(FlowAt, orbit, again, (low, high), scale, scaleP, name, direction=direction,
                               maxPoints=maxPoints - len(branch.points), **settings)

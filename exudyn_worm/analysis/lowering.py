@@ -342,7 +342,8 @@ IN_PLACE_KEYS = ('J1', 'J2', 'kT', 'DT', 'dT', 'DTV')
 
 def UpdateLoweringModel(model: LoweringModel, parameters: Mapping[str, float]) -> LoweringModel:
     """The lowering model for ``parameters``: ``model`` changed in place if only :data:`IN_PLACE_KEYS` differ
-    (inertias, shaft stiffness and damping), else a new model.
+    (inertias, shaft stiffness and damping), else a new model; the 3D model (``model.rigidBody``) is built anew
+    (:func:`BuildRigidBodyLoweringModel`, about 0.02 s) for any change.
 
     Parameters
     ----------
@@ -357,6 +358,8 @@ def UpdateLoweringModel(model: LoweringModel, parameters: Mapping[str, float]) -
     changed = {k for k in set(parameters) | set(model.parameters) if parameters.get(k) != model.parameters.get(k)}
     if not changed:
         return model
+    if model.rigidBody is not None:
+        return BuildRigidBodyLoweringModel(parameters, model.contactOptions)
     if not changed <= set(IN_PLACE_KEYS):
         return BuildLoweringModel(parameters, model.contactOptions)
     drive = ElasticDriveFromParameters(parameters)

@@ -49,7 +49,8 @@ def ParseVary(text: str) -> Tuple[str, float, float]:
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--vary', metavar='NAME=LOW:HIGH', default=None,
                         help='the parameter to continue and its range in SI units or with units, e.g. J1=0.05:0.3 '
-                             'or motorSpeed=80rpm:89rpm (the output is in SI units); without it: the steady chatter '
+                             'or motorSpeed=80rpm:89rpm (the output is in SI units; a drive with shaft bearings: '
+                             'also their keys, e.g. wheelRadialStiffness=0.9e9:1.1e9); without it: the steady chatter '
                              'at the drive\'s own lowering operating point, one orbit')
     parser.add_argument('--plot', metavar='FILE', default=None,
                         help='draw the branch (stable solid, unstable dashed, linear boundary dotted) into FILE')
@@ -65,12 +66,6 @@ def _Run(args: argparse.Namespace) -> int:
     name, low, high = ParseVary(args.vary) if args.vary is not None else (None, None, None)
     with BadInput():      # any drive: the periodic orbits of its lowering phase
         drive = WholeDriveFromArgs(args)
-        if drive.isRigidBody and name is not None:
-            raise UsageError("chatter --vary: continuation is not available for a drive with shaft bearings "
-                             "([wormBearing], [wheelBearing]: the 3D model): each of its orbits is found only after a "
-                             "15-20 s time simulation has settled the wheel's tilt modes near 31 Hz (damping ratio "
-                             "7e-5, measured on reel-3d.toml); run 'exudyn-worm chatter' without --vary for the steady "
-                             "chatter at the lowering point, or remove the bearing tables for the one-angle branch")
         parameters = LoweringPhaseParameters(dict(drive.parameters))
     if name is None:
         return _RunSteady(args, drive, parameters)
@@ -81,7 +76,8 @@ def _Run(args: argparse.Namespace) -> int:
         raise UsageError(f"--max-points must be >= 1, got {args.max_points}")
     try:
         with StdoutToStderr(args.json), BadInput():
-            branch = AnalyzeChatterBranch(parameters, name, low, high, maxPoints=args.max_points)
+            branch = AnalyzeChatterBranch(parameters, name, low, high, maxPoints=args.max_points,
+                                          rigidBody=drive.isRigidBody)
     except UsageError as err:
         partial = getattr(err.__cause__, 'branch', None)
         if partial is not None and partial.points:                 # keep the points computed so far
@@ -96,8 +92,9 @@ def _Run(args: argparse.Namespace) -> int:
     if args.json:
         PrintJson(branch.ToDict())
         return 0
+    model = ', 3D model' if drive.isRigidBody else ''
     print('\n'.join(FormatBranch(branch, f"exudyn-worm chatter: {SourceText(args)}, {name} in [{low:g}, {high:g}], "
-                                         f"lowering phase (constant load torque)")))
+                                         f"lowering phase (constant load torque){model}")))
     return 0
 
 

@@ -14,7 +14,8 @@ __all__ = ['PlotChatterBranch']
 
 
 def PlotChatterBranch(branch: 'ChatterBranch', fileName: Optional[str] = None, ax=None):
-    """Draw the normal-force factor and the largest ``|phi2''|`` of a branch over its parameter.
+    """Draw the normal-force factor and the largest ``|phi2''|`` of a branch over its parameter, and for a branch
+    of the 3D model the largest bearing loads in a third row.
 
     Stable orbits are solid lines, unstable ones dashed; Hopf points are marked, the linear boundaries are
     dotted vertical lines, folds are marked with x, coexistence ranges are shaded.
@@ -25,20 +26,27 @@ def PlotChatterBranch(branch: 'ChatterBranch', fileName: Optional[str] = None, a
         From :func:`~exudyn_worm.analysis.chatterbranch.AnalyzeChatterBranch`.
     fileName : str, optional
         Save the figure there (format from the suffix).
-    ax : sequence of two matplotlib.axes.Axes, optional
-        Axes for the force factor and the wheel acceleration (default: a new figure with two rows).
+    ax : sequence of matplotlib.axes.Axes, optional
+        Axes for the force factor and the wheel acceleration, and a third for the bearing loads where the branch's
+        points carry them (default: a new figure with two rows, or three).
 
     Returns
     -------
     list of matplotlib.axes.Axes
     """
     from matplotlib.figure import Figure
+    loads = [(k, text) for k, text in (('maxWormAxialLoad', 'worm axial'), ('maxWormRadialLoad', 'worm radial'),
+                                       ('maxWheelAxialLoad', 'wheel axial'), ('maxWheelRadialLoad', 'wheel radial'))
+             if any(k in p.info for p in branch.points)]
+    rows = 3 if loads else 2
     if ax is None:
-        fig = Figure(figsize=(7., 6.), layout='constrained')
-        axes = list(fig.subplots(2, 1, sharex=True))
+        fig = Figure(figsize=(7., 6. if rows == 2 else 8.5), layout='constrained')
+        axes = list(fig.subplots(rows, 1, sharex=True))
     else:
         axes = list(ax)
         fig = axes[0].figure
+        if len(axes) < rows:
+            raise ValueError(f"PlotChatterBranch: 'ax' must hold {rows} axes for this branch, got {len(axes)}")
     values = np.array([p.value for p in branch.points])
     stable = np.array([p.stable for p in branch.points])
     for a, key, label in ((axes[0], 'forceFactor', 'largest normal force / static'),
@@ -62,7 +70,16 @@ def PlotChatterBranch(branch: 'ChatterBranch', fileName: Optional[str] = None, a
     axes[0].plot([], [], ':', color='0.3', label='linear boundary')
     axes[0].plot([], [], 'o', color='k', label='Hopf point')
     axes[0].legend(loc='best', fontsize='small')
-    axes[1].set_xlabel(branch.parameter)
+    if loads:
+        for (key, text), color in zip(loads, ('#1f4e79', '#5dade2', '#c0392b', '#f5b041')):
+            axes[2].plot(values, [p.info.get(key, np.nan) / 1e3 for p in branch.points], '.-', color=color,
+                         label=text)
+        for v in branch.linearBoundaries:
+            axes[2].axvline(v, linestyle=':', color='0.3')
+        axes[2].set_ylabel('largest bearing load (kN)')
+        axes[2].grid(True, alpha=0.3)
+        axes[2].legend(loc='best', fontsize='small')
+    axes[rows - 1].set_xlabel(branch.parameter)
     axes[0].set_title(f'steady chatter of the lowering phase over {branch.parameter}')
     if fileName is not None:
         plot.SaveFigure(fig, fileName)
