@@ -138,9 +138,3 @@ def test_ideal_joint_loads_are_the_statics_of_the_mesh_force():
     assert loads['wheelRadialLoad'][0] == pytest.approx(np.hypot(forces['wheelTangential'][0],
                                                                  forces['wheelRadial'][0]), rel=1e-6)
     assert abs(forces['wormAxial'][0]) > 1e4
-
-
-def test_chatter_vary_refuses_the_3d_model(capsys):
-    status, out, err = _Run(capsys, 'chatter', '--config', DRIVE_3D, '--vary', 'J1=0.05:0.3')
-    assert status == 2 and len(err.strip().splitlines()) == 1
-    assert 'shaft bearings' in err and '3D model' in err

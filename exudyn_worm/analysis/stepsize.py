@@ -115,10 +115,10 @@ HARD_CYCLES = _CyclesForPeriodError(0.05)
 #: not follow chatter across a load reversal (measured at most 0.43 %); the other windows:
 #: :data:`TRANSIENT_PEAK_ACCURACY` (table in docs/simulation.md, benchmarks/step_convergence.py)
 PEAK_ACCURACY = 0.01
-#: the bound of ``max |phi2''|`` in the other windows: the lift after the lowering chatter of P1, P6, P7 (+0.66 %,
-#: -8.1 %, +3.0 %), whose peak is the transient just after the load reverses, with an amplitude set by the phase of
+#: the bound of ``max |phi2''|`` in the other windows: the lift after the lowering chatter of P1, P6, P7 (+2.4 %,
+#: -8.1 %, +2.2 %), whose peak is the transient just after the load reverses, with an amplitude set by the phase of
 #: the chatter at the reversal, which a fixed step resolves only to the period error accumulated over the chatter (at
-#: half the step -8.7 %, -4.2 %, +0.17 %: halving does not bound it); and every window of figure19 and load-shaft,
+#: half the step -8.5 %, -4.2 %, +0.16 %: halving does not bound it); and every window of figure19 and load-shaft,
 #: whose lightly damped modes ring after each load reversal (load-shaft -4.3 %, without chatter)
 TRANSIENT_PEAK_ACCURACY = 0.10
 
@@ -209,8 +209,9 @@ def RecommendedStepSize(parameters: Mapping[str, float]) -> float:
 
     Parameters
     ----------
-    parameters : mapping
-        The drive and load (as for :func:`LinearizedFrequencies`).
+    parameters : mapping or Drive
+        The drive and load (as for :func:`LinearizedFrequencies`), or a resolved
+        :class:`~exudyn_worm.setups.wholedrive.Drive` (its linear analysis is then the one it already holds).
 
     Returns
     -------

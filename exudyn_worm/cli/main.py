@@ -353,9 +353,9 @@ def WarnUnresolvedRotation(drive: Drive, where: str) -> None:
     where : str
         The command, the prefix of the warning.
     """
-    parameters = dict(drive.parameters)
-    with BadInput():
-        CheckWormRotation(parameters, RecommendedStepSize(parameters), f"{where} (at the drive's recommended step)")
+    with BadInput():       # the drive itself: its linear analysis is the command's own, not computed again
+        CheckWormRotation(dict(drive.parameters), RecommendedStepSize(drive),
+                          f"{where} (at the drive's recommended step)")
 
 
 def DriveFromArgs(args: argparse.Namespace) -> Tuple[Dict[str, float], ElasticDrive]:
