@@ -13,8 +13,9 @@ the others answer "what would the solve cost if this part cost nothing"):
     the mesh's symbolic user function replaced by one that returns zeros (the call path of Exudyn's
     ``ObjectGenericODE2`` user function stays, the law's arithmetic is gone).
 ``zeroLawNoLoadNoPostNewton``
-    the same, also without the load's user function and the post-Newton function: the floor of a model whose mesh
-    is one symbolic ``ObjectGenericODE2`` user function that does no work.
+    the same, also without the load's user function (a spring-damper from ground, ``CreateRotorTorque``) and the
+    post-Newton function: the floor of a model whose mesh is one symbolic ``ObjectGenericODE2`` user function that
+    does no work.
 ``noUserFunctions``
     no user function at all: the mesh a constant stiffness matrix ``kV a a^T`` (``a`` the normal
     displacement per worm and wheel angle), no load, no post-Newton function: Exudyn's solver with the nodes, the
@@ -84,7 +85,7 @@ def SolveVariant(variant: str):
     if variant in ('zeroLaw', 'zeroLawNoLoadNoPostNewton'):
         _ZeroLaw(mbs, mesh, keep)
     if variant in ('zeroLawNoLoadNoPostNewton', 'noUserFunctions'):
-        mbs.SetObjectParameter(mbs.GetObjectNumber('reelLoad'), 'forceUserFunction', 0)
+        mbs.SetObjectParameter(mbs.GetObjectNumber('reelLoad'), 'springForceUserFunction', 0)
     if variant == 'noUserFunctions':
         drive = ElasticDriveFromParameters(p)
         g = drive.gear

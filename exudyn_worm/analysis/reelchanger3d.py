@@ -25,7 +25,7 @@ from .._checks import CheckPositive
 from ..items.bearings import WHEEL_MASS, WORM_MASS, ShaftBearings, CreateShaftBearings, StoredBearingLoads
 from ..items.drivetrain import CreatePrescribedRotation, CreateRotor
 from ..items.equilibrium import SteadyInitialState
-from ..items._userfunctions import SetGenericForceLaw
+from ..items._userfunctions import AddCoordinateForce
 from ..items.rigidmesh import CreateRigidBodyWormGear, MeshForceComponents, RigidBodyWormGearConnector
 from ..model.contact import ContactOptions, MeshContact, MeshState
 from ..model.friction import MATH_OPS
@@ -212,7 +212,7 @@ def _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBe
     """The system of :func:`BuildRigidBodyReelChanger` from the initial state ``init`` (phi0, omega0, phi1, omega1,
     phi2, omega2, xA, vA), the motor ``profile`` and the ``load`` (None: none)."""
     import exudyn as exu
-    from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, ObjectGenericODE2
+    from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate
     from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixZ
 
     w = 'BuildRigidBodyReelChanger'
@@ -246,11 +246,10 @@ def _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBe
     mbs.AddObject(CoordinateSpringDamper(markerNumbers=[motor['markerNumber'], wormAngle], stiffness=drive.kT,
                                          damping=drive.dT, name='driveShaft'))
     if load is not None:                       # the load torque on the wheel's turn about z (its last Rxyz angle)
-        zeros = np.zeros((6, 6))
-        oLoad = mbs.AddObject(ObjectGenericODE2(nodeNumbers=[wheel['nodeNumber']], massMatrix=zeros,
-                                                stiffnessMatrix=zeros, dampingMatrix=zeros, name='reelLoad'))
-        SetGenericForceLaw(mbs, oLoad, 6, lambda t, q, q_t, ops: [0.] * TURN + [load.Torque(q[TURN], q_t[TURN], t, ops)],
-                           useSymbolic, where=w)
+        wheelAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=wheel['nodeNumber'], coordinate=TURN))
+        AddCoordinateForce(mbs, wheel['nodeNumber'], wheelAngle,
+                           lambda t, phi, omega, ops: load.Torque(phi, omega, t, ops), name='reelLoad',
+                           useSymbolic=useSymbolic, where=w, signature='load.Torque(phi, omega, t, ops)')
     connector = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=gear, wormAxis=[0., 0., 1.], wheelAxis=[0., 0., 1.],
                                         name='wormGear', contactOptions=contactOptions, useSymbolic=useSymbolic)
     return RigidBodyReelChanger(SC, mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init),

@@ -10,7 +10,7 @@ from __future__ import annotations
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 from .._checks import CheckBool, CheckName, CheckNonNegative, CheckPositive, CheckReal, CheckSystem
-from ._userfunctions import AddGenericForce, CheckOffsetLaw, CheckPlainOffsetLaw, SetOffsetFunction
+from ._userfunctions import AddCoordinateForce, CheckOffsetLaw, CheckPlainOffsetLaw, SetOffsetFunction
 from ..model.profiles import ConstantSpeed
 
 __all__ = ['CreateRotor', 'CreateShaft', 'CreateLoadSideChain', 'CreatePrescribedRotation', 'CreateRotorTorque']
@@ -246,8 +246,9 @@ def CreateRotorTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True)
 
     Use it for the reel changer's load (:class:`~exudyn_worm.model.profiles.GravityLeverTorque`), a motor
     characteristic (:class:`~exudyn_worm.model.profiles.LinearMotorCharacteristic`), bearing friction
-    (:class:`~exudyn_worm.model.profiles.CoulombViscousFriction`) or your own law. Implemented as a one-node
-    ``ObjectGenericODE2`` so the torque may depend on angle, speed and time.
+    (:class:`~exudyn_worm.model.profiles.CoulombViscousFriction`) or your own law. Implemented as an
+    ``ObjectConnectorCoordinateSpringDamper`` from ground with a user-function force (the torque may depend on
+    angle, speed and time; cheaper in Exudyn than a one-node ``ObjectGenericODE2``, with the same forces).
 
     Parameters
     ----------
@@ -288,10 +289,12 @@ def CreateRotorTorque(mbs, rotor, law, name: str = '', useSymbolic: bool = True)
     if not callable(torque):
         raise TypeError(f"{w}: 'law' must have Torque(phi, omega, t, ops) or be a callable (phi, omega, t, ops), "
                         f"got {type(law).__name__}")
-    node = mbs.GetMarker(_Marker(mbs, rotor, w, 'rotor'))['nodeNumber']
+    marker = _Marker(mbs, rotor, w, 'rotor')
+    node = mbs.GetMarker(marker)['nodeNumber']
     CheckName(w, 'name', name)
     CheckBool(w, 'useSymbolic', useSymbolic)
-    o, _ = AddGenericForce(mbs, [node], lambda t, q, q_t, ops: [torque(q[0], q_t[0], t, ops)],
-                           name=name, useSymbolic=useSymbolic, where=w,
-                           signature='law.Torque(phi, omega, t, ops)' if torque is not law else 'law(phi, omega, t, ops)')
+    o, _ = AddCoordinateForce(mbs, node, marker, lambda t, phi, omega, ops: torque(phi, omega, t, ops),
+                              name=name, useSymbolic=useSymbolic, where=w,
+                              signature='law.Torque(phi, omega, t, ops)' if torque is not law
+                              else 'law(phi, omega, t, ops)')
     return {'objectNumber': o}
