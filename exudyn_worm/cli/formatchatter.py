@@ -27,10 +27,12 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
     # the 3D model's points carry the largest bearing loads: one more column each, in kN
     loads = [(k, text) for k, text in _BEARING_LOADS if any(k in p.info for p in branch.points)]
     head = ''.join(f" {text + ' kN':>15}" for _, text in loads)
-    lines = [title, '', f"  {branch.parameter:>12} {'Fn/Fstatic':>11} {'|phi2dd| rad/s2':>16} {'f Hz':>8}{head}  orbit"]
+    width = max(12, len(branch.parameter))      # a long name (wheelRadialStiffness) widens the first column
+    lines = [title, '', f"  {branch.parameter:>{width}} {'Fn/Fstatic':>11} {'|phi2dd| rad/s2':>16} {'f Hz':>8}{head}"
+                        f"  orbit"]
     for p in branch.points:
         row = ''.join(f" {p.info.get(k, float('nan')) / 1e3:15.3f}" for k, _ in loads)
-        lines.append(f"  {p.value:12.6g} {p.info.get('forceFactor', float('nan')):11.3f} "
+        lines.append(f"  {p.value:{width}.6g} {p.info.get('forceFactor', float('nan')):11.3f} "
                      f"{p.info.get('maxWheelAcceleration', float('nan')):16.1f} {p.orbit.frequencyHz:8.2f}{row}  "
                      f"{'stable' if p.stable else 'unstable'}")
     if loads:
