@@ -56,7 +56,7 @@ def OrbitAmplitude(model: LoweringModel, flow: ExudynFlow, state: Sequence[float
         ``forceFactor`` (largest normal force over the static normal force), ``maxWheelAcceleration`` (largest
         ``|phi2''|`` in rad/s^2), ``minWormSpeed`` (rad/s); for the 3D model (``model.rigidBody``) also the largest
         bearing loads in N over the orbit, ``maxWormAxialLoad``, ``maxWormRadialLoad``, ``maxWheelAxialLoad``,
-        ``maxWheelRadialLoad`` (:func:`~exudyn_worm.analysis.reelchanger3d.StoredShaftLoads`).
+        ``maxWheelRadialLoad`` (:func:`~exudyn_worm.analysis.reelchanger3d.ShaftLoadPeaks`).
     """
     flow.Solve(state, period, storeSensors=True)
     s = _StoredStates(model)
@@ -66,9 +66,8 @@ def OrbitAmplitude(model: LoweringModel, flow: ExudynFlow, state: Sequence[float
            'minWormSpeed': float(np.min(s['omega1']))}
     if model.rigidBody is not None:            # the 3D model: the shafts' bearing loads over the orbit
         # lazy: the 3D model's module is loaded only for drives with shaft bearings
-        from .reelchanger3d import StoredShaftLoads
-        loads = StoredShaftLoads(model.rigidBody)
-        out.update({'max' + k[0].upper() + k[1:]: float(np.max(np.abs(v))) for k, v in loads.items() if k != 'time'})
+        from .reelchanger3d import ShaftLoadPeaks
+        out.update(ShaftLoadPeaks(model.rigidBody))
     return out
 
 

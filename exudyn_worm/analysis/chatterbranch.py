@@ -32,6 +32,7 @@ from .settling import SettleOnSection
 from .continuation import Branch, BranchPoint, ContinueOrbits
 from .orbits import PeriodicOrbit, ShootingError
 from .._checks import CheckPositive
+from ..items.bearings import BEARING_LOADS
 from .drivestability import DriveStability
 from .._workers import CancelPool, WorkerInit
 from ..params.parameters import PARAMETERS
@@ -51,7 +52,7 @@ CONTINUABLE = ('J1', 'J2', 'kT', 'dT', 'DT', 'DTV', 'kV', 'dV', 'DV', 'mu', 'muS
                'backlash', 'motorSpeed', 'loadMass', 'leverArm')
 #: the largest bearing loads in N that :func:`~exudyn_worm.analysis.chatter.OrbitAmplitude` measures on an orbit of
 #: the 3D model, as each branch point's ``info`` and ``ToDict()['points'][i]['amplitude']`` hold them
-BEARING_LOAD_KEYS = ('maxWormAxialLoad', 'maxWormRadialLoad', 'maxWheelAxialLoad', 'maxWheelRadialLoad')
+BEARING_LOAD_KEYS = tuple(key for key, _ in BEARING_LOADS)
 #: on the 3D model with elastic bearings, a largest nontrivial Floquet multiplier this close to 1 is within the
 #: uncertainty of the finite-difference monodromy (0.987-0.994 from two starts of the same orbit, reel-3d.toml,
 #: docs/chatter-amplitude.md): a message says so

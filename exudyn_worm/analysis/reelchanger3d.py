@@ -37,7 +37,7 @@ from ..setups.presets import (AxialBearingFromParameters, ElasticDriveFromParame
 from .linearization import LinearizationStart
 
 __all__ = ['RigidBodyReelChanger', 'BuildRigidBodyReelChanger', 'BuildRigidBodyLinearizationModel', 'AddSeriesSensors',
-           'StoredSeries', 'StoredShaftLoads', 'StoredMeshState', 'MeshForceSeries', 'MESH_FORCE_SERIES']
+           'StoredSeries', 'StoredShaftLoads', 'ShaftLoadPeaks', 'StoredMeshState', 'MeshForceSeries', 'MESH_FORCE_SERIES']
 
 
 
@@ -380,6 +380,26 @@ def StoredShaftLoads(model: RigidBodyReelChanger) -> Dict[str, np.ndarray]:
                      if 'axialSpring' in items['sensors'] else translations[along])
         out[body + 'AxialLoad'], out[body + 'RadialLoad'] = np.asarray(axial, float), np.asarray(radial, float)
     return out
+
+
+def ShaftLoadPeaks(model: RigidBodyReelChanger, since: Optional[float] = None) -> Dict[str, float]:
+    """The largest magnitudes in N of :func:`StoredShaftLoads` over the stored steps (from ``since`` s on, if given),
+    by the keys of :data:`~exudyn_worm.items.bearings.BEARING_LOADS` (``maxWormAxialLoad``, ...).
+
+    Parameters
+    ----------
+    model : RigidBodyReelChanger
+        The model, after a solve.
+    since : float, optional
+        Only the steps at or after this time in s.
+
+    Returns
+    -------
+    dict of float
+    """
+    loads = StoredShaftLoads(model)
+    keep = slice(None) if since is None else loads['time'] >= since
+    return {'max' + k[0].upper() + k[1:]: float(np.max(np.abs(v[keep]))) for k, v in loads.items() if k != 'time'}
 
 
 def StoredSeries(model: RigidBodyReelChanger) -> Dict[str, np.ndarray]:

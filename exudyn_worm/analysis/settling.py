@@ -61,11 +61,8 @@ def _TailVibration(model: LoweringModel, window: float) -> Dict[str, float]:
            'minWormSpeed': float(np.min(s['omega1'][last])), 'maxWormSpeed': float(np.max(s['omega1'][last]))}
     if model.rigidBody is not None:
         # lazy: the 3D model's module is loaded only for drives with shaft bearings
-        from .reelchanger3d import StoredShaftLoads
-        loads = StoredShaftLoads(model.rigidBody)
-        keep = loads['time'] >= loads['time'][-1] - window
-        out.update({'max' + k[0].upper() + k[1:]: float(np.max(np.abs(v[keep])))
-                    for k, v in loads.items() if k != 'time'})
+        from .reelchanger3d import ShaftLoadPeaks
+        out.update(ShaftLoadPeaks(model.rigidBody, since=t[-1] - window))
     return out
 
 

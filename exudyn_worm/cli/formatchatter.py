@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from typing import List
 
+from ..items.bearings import BEARING_LOADS
 
 __all__ = ['FormatBranch', 'FormatSteadyChatter']
 
@@ -25,7 +26,7 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
     list of str
     """
     # the 3D model's points carry the largest bearing loads: one more column each, in kN
-    loads = [(k, text) for k, text in _BEARING_LOADS if any(k in p.info for p in branch.points)]
+    loads = [(k, text) for k, text in BEARING_LOADS if any(k in p.info for p in branch.points)]
     head = ''.join(f" {text + ' kN':>15}" for _, text in loads)
     width = max(12, len(branch.parameter))      # a long name (wheelRadialStiffness) widens the first column
     lines = [title, '', f"  {branch.parameter:>{width}} {'Fn/Fstatic':>11} {'|phi2dd| rad/s2':>16} {'f Hz':>8}{head}"
@@ -55,9 +56,6 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
     return lines
 
 
-#: the bearing loads of the 3D model's orbit, by their key in the summary's ``amplitude``
-_BEARING_LOADS = (('maxWormAxialLoad', 'worm axial'), ('maxWormRadialLoad', 'worm radial'),
-                  ('maxWheelAxialLoad', 'wheel axial'), ('maxWheelRadialLoad', 'wheel radial'))
 
 
 def FormatSteadyChatter(summary: dict, title: str) -> List[str]:
@@ -98,7 +96,7 @@ def FormatSteadyChatter(summary: dict, title: str) -> List[str]:
                      f"{summary['trivialMultiplierError']:.2g}): {'stable' if summary['stable'] else 'unstable'} orbit")
     else:
         lines.append('  Floquet multipliers     none (no periodic orbit: values of the settled long simulation)')
-    if any(k in a for k, _ in _BEARING_LOADS):
+    if any(k in a for k, _ in BEARING_LOADS):
         lines.append(f"  bearing loads over the {'orbit' if orbit else 'last 0.5 s'} (largest |F|): " + ', '.join(
-            f"{text} {a[k] / 1e3:.3f} kN" for k, text in _BEARING_LOADS if k in a))
+            f"{text} {a[k] / 1e3:.3f} kN" for k, text in BEARING_LOADS if k in a))
     return lines

@@ -17,7 +17,13 @@ import numpy as np
 
 from .._checks import CheckName, CheckNonNegative, CheckPositive, CheckSystem
 
-__all__ = ['ShaftBearings', 'ShaftSupports', 'WORM_MASS', 'WHEEL_MASS', 'CreateShaftBearings', 'StoredBearingLoads']
+__all__ = ['ShaftBearings', 'ShaftSupports', 'WORM_MASS', 'WHEEL_MASS', 'CreateShaftBearings', 'StoredBearingLoads',
+           'BEARING_LOADS']
+
+#: the largest loads of the shafts' supports that the 3D analyses report (orbits, settled runs, branch points), by
+#: their key and a label: the key of each is ``'max'`` and the shaft's ``...AxialLoad`` / ``...RadialLoad`` series
+BEARING_LOADS = (('maxWormAxialLoad', 'worm axial'), ('maxWormRadialLoad', 'worm radial'),
+                 ('maxWheelAxialLoad', 'wheel axial'), ('maxWheelRadialLoad', 'wheel radial'))
 
 
 @dataclass(frozen=True)

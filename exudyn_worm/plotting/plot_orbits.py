@@ -9,6 +9,7 @@ from typing import Optional
 import numpy as np
 
 from . import plot
+from ..items.bearings import BEARING_LOADS
 
 __all__ = ['PlotChatterBranch']
 
@@ -35,9 +36,7 @@ def PlotChatterBranch(branch: 'ChatterBranch', fileName: Optional[str] = None, a
     list of matplotlib.axes.Axes
     """
     from matplotlib.figure import Figure
-    loads = [(k, text) for k, text in (('maxWormAxialLoad', 'worm axial'), ('maxWormRadialLoad', 'worm radial'),
-                                       ('maxWheelAxialLoad', 'wheel axial'), ('maxWheelRadialLoad', 'wheel radial'))
-             if any(k in p.info for p in branch.points)]
+    loads = [(k, text) for k, text in BEARING_LOADS if any(k in p.info for p in branch.points)]
     rows = 3 if loads else 2
     if ax is None:
         fig = Figure(figsize=(7., 6. if rows == 2 else 8.5), layout='constrained')
