@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import signal
 from typing import Iterator
 
 from .._workers import Terminated, TerminationRequested
@@ -63,6 +64,35 @@ class IncompleteSolveError(SolverDivergedError):
     """
 
 
+#: set when Ctrl-C arrives during a solve (:func:`_NoticeInterrupt`): raised inside a Python user function, the
+#: ``KeyboardInterrupt`` makes Exudyn stop the solve quietly, and the early end is then Ctrl-C, not a truncated run
+_interrupted = [False]
+
+
+@contextlib.contextmanager
+def _NoticeInterrupt() -> Iterator[None]:
+    """Within the block, SIGINT is recorded before the handler in force acts on it (restored on leaving). Outside
+    the main thread, or with SIGINT ignored or at its default action, the block runs unchanged."""
+    _interrupted[0] = False
+    previous = signal.getsignal(signal.SIGINT)
+    if not callable(previous):                  # ignored (a study's worker) or the default action: nothing to see
+        yield
+        return
+
+    def Noticing(signum, frame):
+        _interrupted[0] = True
+        return previous(signum, frame)
+    try:
+        signal.signal(signal.SIGINT, Noticing)
+    except ValueError:                          # not the main thread
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
 def _CheckEndReached(solver, endTime: float, stepSize: float, until=None, where: str = 'SolveDynamicInChunks') -> None:
     """Raise :class:`IncompleteSolveError` if ``solver`` stopped before ``until`` (s; default the run's ``endTime``,
     a chunk's end in a chunked run) by more than a thousandth of the step ``stepSize`` (s; the solver's clock sums
@@ -71,6 +101,8 @@ def _CheckEndReached(solver, endTime: float, stepSize: float, until=None, where:
     if not reached >= (endTime if until is None else until) - 1e-3 * stepSize:
         if TerminationRequested():       # SIGTERM in a user function: Exudyn stopped the solve and kept quiet
             raise Terminated()
+        if _interrupted[0]:              # Ctrl-C in a user function: the same
+            raise KeyboardInterrupt()
         raise IncompleteSolveError(f"{where}: the run ended at t = {reached:.6g} s, before its end time "
                                    f"{endTime:g} s (step size {stepSize:g} s), without a solver failure: a user "
                                    f"function or a stop request ended it early; its result would be truncated",
@@ -201,7 +233,14 @@ def SolveDynamicInChunks(mbs, simulationSettings, solverType=None, progress=None
         raise ValueError(f"{w}: 'chunkSteps' must be an integer >= 1, got {chunkSteps!r}")
     if not mbs.systemIsConsistent:
         mbs.Assemble()
-    ss = simulationSettings
+    with _NoticeInterrupt():
+        return _Solve(mbs, simulationSettings, solverType, progress, desc, chunkSteps)
+
+
+def _Solve(mbs, ss, solverType, progress, desc: str, chunkSteps: int):
+    """The solve of :func:`SolveDynamicInChunks` (arguments checked)."""
+    import exudyn as exu
+    DST = exu.DynamicSolverType
     if solverType not in (DST.GeneralizedAlpha, DST.TrapezoidalIndex2):
         return _SolveInOnePiece(mbs, ss, solverType)
     ti, ga = ss.timeIntegration, ss.timeIntegration.generalizedAlpha
