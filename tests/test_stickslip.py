@@ -1,6 +1,7 @@
 """The stick/slip schedule's decisions (exudyn_worm.model.stickslip), on made-up worm motions, without Exudyn:
 when a mesh is looked at, when it switches, where a reversal is placed, what a restart forgets."""
 import math
+from dataclasses import replace
 
 import pytest
 
@@ -50,9 +51,7 @@ def Run(motion, schedule, t0, t1):
     switches = []
     for k in range(1, int(round((t1 - t0) / H)) + 1):
         t = t0 + k * H
-        decision = StickSlipStep(schedule, t, motion.At(t))
-        schedule = decision.schedule
-        if decision.switched:
+        if StickSlipStep(schedule, t, motion.At(t)) is not None:     # updates the schedule in place
             switches.append(t)
     return schedule, switches
 
@@ -103,10 +102,10 @@ def test_a_decelerating_worm_is_looked_at_before_it_could_stop_and_sticks_at_the
 def test_a_late_first_look_places_no_reversal():
     """A worm found turned back at the first look after more than REVERSAL_WINDOW: no interpolation."""
     motion = Motion(lambda t: -1., lambda t: 0., lambda t: -t)
-    schedule = StartSchedule(FrictionState(0., 1., 0.))._replace(lastCheck=None)
-    decision = StickSlipStep(schedule, 10 * REVERSAL_WINDOW, motion.At(10 * REVERSAL_WINDOW))
-    assert decision.switched and motion.switchAsked == [(10 * REVERSAL_WINDOW, None)]
-    assert decision.jump == 1.
+    schedule = StartSchedule(FrictionState(0., 1., 0.))
+    jump = StickSlipStep(schedule, 10 * REVERSAL_WINDOW, motion.At(10 * REVERSAL_WINDOW))
+    assert motion.switchAsked == [(10 * REVERSAL_WINDOW, None)]
+    assert jump == 1. and schedule.state.stuck == 1.
 
 
 def test_stuck_flanks_are_looked_at_every_step_until_they_break_away():
@@ -127,13 +126,15 @@ def test_a_repeated_step_is_looked_at_and_an_earlier_time_starts_a_new_solve():
     assert not IsDue(schedule, t + H)             # sliding, the next look is later
     assert IsDue(schedule, t)                     # the same step again (the solver repeats it after a switch)
     assert IsDue(schedule, 0.5 * t)               # an earlier time: a new solve
-    restarted = StickSlipStep(schedule, 0.01, motion.At(0.01)).schedule
+    restarted = replace(schedule)
+    assert StickSlipStep(restarted, 0.01, motion.At(0.01)) is None
     assert restarted.startTime == 0.01 and restarted.maxRate == 100.     # what the old solve learnt is forgotten
     assert restarted.nextCheck == 0.01            # a new solve's first look: after the next step again
 
 
 def test_carrying_a_schedule_moves_the_anchor_with_the_shift():
-    schedule = StartSchedule(FrictionState(1., -1., 2e-4))._replace(maxRate=7., startTime=0.5, lastTime=0.9)
+    schedule = replace(StartSchedule(FrictionState(1., -1., 2e-4)), maxRate=7., startTime=0.5, lastTime=0.9)
     carried = CarrySchedule(schedule, -0.03)
     assert carried.state == FrictionState(1., -1., 2e-4 - 0.03)
-    assert carried._replace(state=schedule.state) == schedule
+    assert replace(carried, state=schedule.state) == schedule
+    assert schedule.state.anchor == 2e-4                      # the schedule carried is left as it was

@@ -23,7 +23,7 @@ adds the worm's axial degree of freedom (mass ``mA`` on a spring-damper ``kA, dA
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Dict, List, Optional, Sequence
 
 import numpy as np
@@ -123,7 +123,8 @@ class _StickSlip(MeshReading):
 
     def __init__(self, gear: WormGear, options: ContactOptions, nodes, references, initial: FrictionState,
                  symbolic: bool):
-        self.gear, self.options = gear, options
+        self.gear = gear
+        self.options = options
         self.nodes, self.references = list(nodes), list(references)
         self.variables = self._probe = None
         if symbolic:
@@ -132,8 +133,19 @@ class _StickSlip(MeshReading):
         self.history = [(-np.inf, initial)]     # (time from which a state holds, state)
         self.switches = 0
         self._indices = self._data = None
-        self._v = self._inputs = None           # Exudyn's state, read once per call
+        # views of Exudyn's current coordinates and velocities (no copy: read in place after each step, taken
+        # anew at the first step of each solve, see _View); the law's inputs, read once per call
+        self._q = self._v = self._inputs = None
         self.clock = None                       # the system's _PostNewtonClock (set by _AddStickSlip)
+
+    @property
+    def options(self) -> ContactOptions:
+        """The contact options of the law (setting them also sets whether the mesh has a stick state)."""
+        return self._options
+
+    @options.setter
+    def options(self, options: ContactOptions) -> None:
+        self._options, self._sticking = options, options.hasStickState
 
     def _Record(self, initial: FrictionState) -> None:
         """Named symbolic state variables, and (friction force, normal force) recorded in C++ for the checks."""
@@ -160,13 +172,15 @@ class _StickSlip(MeshReading):
 
     @state.setter
     def state(self, state: FrictionState) -> None:
-        self._Apply(self.schedule._replace(state=state))
+        self._Apply(replace(self.schedule, state=state))
 
     def _Apply(self, schedule: StickSlipSchedule, t: Optional[float] = None, restart: bool = False) -> None:
         """Put ``schedule`` in force: its state into the law's symbolic variables, and into the history of the
         switches (a switch at time ``t``; ``restart``: the history starts anew with it)."""
         state = schedule.state
         self.schedule = schedule
+        if restart:
+            self._q = None                      # a new solve: the views are taken again at its first step
         if self.variables is not None:
             for name in ('stuck', 'direction', 'anchor'):
                 getattr(self.variables, name).SetValue(float(getattr(state, name)))
@@ -231,12 +245,12 @@ class _StickSlip(MeshReading):
         indices, references = self._indices, self.references
         if len(indices) == 2:                       # worm and wheel (the common case): no loop
             i, k = indices
-            return [float(q[i]) + references[0], float(q[k]) + references[1]], [float(v[i]), float(v[k])]
+            return [q.item(i) + references[0], q.item(k) + references[1]], [v.item(i), v.item(k)]
         return ([float(q[i]) + ref for i, ref in zip(indices, references)], [float(v[i]) for i in indices])
 
     def _WormSpeed(self, data, v) -> float:
         """The worm speed in rad/s that the friction law reads, from the whole-system ODE2 velocities ``v``."""
-        return float(v[self._indices[0]])
+        return v.item(self._indices[0])
 
     def _WormAcceleration(self, data) -> float:
         """The worm's angular acceleration in rad/s^2 (for the check schedule)."""
@@ -246,20 +260,31 @@ class _StickSlip(MeshReading):
         """(friction force, normal force) in N of the law recorded in C++ at inputs ``x``, ``w``; None without it."""
         if self._probe is None:
             return None
-        self._probe[0].SetVector(list(x) + list(w))
-        return self._probe[1].Evaluate()
+        self._probe[0].SetVector(x + w)
+        return self._probe[1].Evaluate().tolist()
+
+    def _View(self, mbs) -> None:
+        """Take the node indices and views of Exudyn's current ODE2 coordinates and velocities (``copy=False``:
+        reading them costs no call into Exudyn). Exudyn keeps these vectors in place while the system's size
+        stays the same; a solve that starts anew (at an earlier time, or after :meth:`Restart` or :meth:`Carry`)
+        takes them again, and so does a step after the system has grown (its number of ODE2 coordinates is
+        compared at every step, one cheap call)."""
+        import exudyn
+        data = self._data = mbs.systemData
+        self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
+        current = exudyn.ConfigurationType.Current
+        self._q = data.GetODE2Coordinates(current, False)
+        self._v = data.GetODE2Coordinates_t(current, False)
+        self._ode2Size = data.ODE2Size          # bound once: the size is compared at every step
+        self._size = self._ode2Size()
 
     # the MeshReading of the policy, on the system's state after the step (read once per call)
     def _Inputs(self):
         if self._inputs is None:
-            if self._v is None:
-                self._v = self._data.GetODE2Coordinates_t()
-            self._inputs = self._LawInputs(self._data.GetODE2Coordinates(), self._v)
+            self._inputs = self._LawInputs(self._q, self._v)
         return self._inputs
 
     def WormSpeed(self) -> float:
-        if self._v is None:
-            self._v = self._data.GetODE2Coordinates_t()
         return self._WormSpeed(self._data, self._v)
 
     def WormAcceleration(self) -> float:
@@ -271,32 +296,30 @@ class _StickSlip(MeshReading):
 
     def Switch(self, state, reversalCoordinate):
         x, w = self._Inputs()
-        axial = (x[2], w[2]) if len(x) == 3 else (None, None)
-        return StickSlipUpdate(self.gear, self.options, state, x[0], x[1], w[0], w[1], *axial,
-                               forces=self._Forces(x, w), reversalCoordinate=reversalCoordinate)
+        axial, axialSpeed = (x[2], w[2]) if len(x) == 3 else (None, None)
+        return StickSlipUpdate(self.gear, self._options, state, x[0], x[1], w[0], w[1], axial, axialSpeed,
+                               self._Forces(x, w), reversalCoordinate)
 
     def NextCheck(self) -> float:
         """Earliest time in s at which this mesh must be looked at again (-inf: after every step)."""
-        if not self.options.hasStickState:
+        if not self._sticking:
             return np.inf
         return NextCheck(self.schedule)
 
     def PostNewton(self, mbs, t: float) -> float:
         """Switch the state after a converged step; return the jump of the friction force in N (0: no switch)."""
-        if not self.options.hasStickState:
+        if not self._sticking:
             return 0.
-        if self._indices is None or (self.schedule.lastTime is not None and t < self.schedule.lastTime):
-            self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]     # a new solve: look the indices up
-        if self._data is None:
-            self._data = mbs.systemData            # fetched once: about 10 us per access during a solve
-        self._v = self._inputs = None
-        decision = StickSlipStep(self.schedule, t, self)
-        if not decision.switched:
-            self.schedule = decision.schedule
+        lastTime = self.schedule.lastTime
+        if self._q is None or lastTime is None or t < lastTime or self._ode2Size() != self._size:
+            self._View(mbs)                         # a new solve, or a system grown since: take the views again
+        self._inputs = None
+        jump = StickSlipStep(self.schedule, t, self)
+        if jump is None:
             return 0.
-        self._Apply(decision.schedule, t)
+        self._Apply(self.schedule, t)
         mbs.solverSignalJacobianUpdate = True       # the tangential stiffness changed: modified Newton renews it
-        return decision.jump
+        return jump
 
 
 def _AddStickSlip(mbs, item) -> None:

@@ -23,13 +23,14 @@ recorded law reads it.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, replace
 from typing import NamedTuple, Optional, Tuple
 
 from .contact import FrictionState, SlidingCoordinate
 from .gear import WormGear
 
 __all__ = ['CHECK_FRACTION', 'CHECK_INTERVAL', 'REVERSAL_WINDOW', 'CheckPoint', 'StickSlipSchedule', 'MeshReading',
-           'StickSlipDecision', 'StartFrictionState', 'StartSchedule', 'CarrySchedule', 'IsDue', 'NextCheck',
+           'StartFrictionState', 'StartSchedule', 'CarrySchedule', 'IsDue', 'NextCheck',
            'StickSlipStep']
 
 #: fraction of the time to stop (``|omega1| / |alpha1|``) after which a sliding worm is checked again
@@ -59,9 +60,11 @@ class CheckPoint(NamedTuple):
     slidingCoordinate: Optional[float] = None
 
 
-class StickSlipSchedule(NamedTuple):
-    """Named state of one mesh's stick/slip schedule (immutable: an update returns a new one; a named tuple, as it
-    is renewed after every step a mesh is looked at).
+@dataclass(slots=True)
+class StickSlipSchedule:
+    """Named state of one mesh's stick/slip schedule. :func:`StickSlipStep` updates it in place after every step
+    (it runs after each converged step of a solve, so it allocates nothing when nothing switches); copy it with
+    :func:`dataclasses.replace`.
 
     Attributes
     ----------
@@ -119,24 +122,6 @@ class MeshReading:
         raise NotImplementedError
 
 
-class StickSlipDecision(NamedTuple):
-    """The outcome of :func:`StickSlipStep`.
-
-    Attributes
-    ----------
-    schedule : StickSlipSchedule
-        The schedule after the step (its ``state`` is the new state if the mesh switched).
-    switched : bool
-        True if the state changed at this step.
-    jump : float
-        Jump of the friction force in N that the switch causes (0 without a switch): the discontinuous error,
-        compared with Exudyn's ``timeIntegration.discontinuous.iterationTolerance``.
-    """
-    schedule: StickSlipSchedule
-    switched: bool = False
-    jump: float = 0.
-
-
 def StartFrictionState(gear: WormGear, phi1: float, phi2: float, omega1: float) -> FrictionState:
     """The state a solve starts in: sliding in the direction of the worm speed ``omega1`` (rad/s), stuck (without
     force: the anchor at the present sliding coordinate) if the worm is at rest.
@@ -192,8 +177,7 @@ def CarrySchedule(schedule: StickSlipSchedule, shift: float) -> StickSlipSchedul
     StickSlipSchedule
     """
     state = schedule.state
-    return StickSlipSchedule(FrictionState(state.stuck, state.direction, state.anchor + shift), schedule.nextCheck,
-                             schedule.lastCheck, schedule.maxRate, schedule.startTime, schedule.lastTime)
+    return replace(schedule, state=FrictionState(state.stuck, state.direction, state.anchor + shift))
 
 
 def IsDue(schedule: StickSlipSchedule, t: float) -> bool:
@@ -244,14 +228,15 @@ def _ReversalCoordinate(last: Optional[CheckPoint], t: float, omega1: float, s: 
     return last.slidingCoordinate + (s - last.slidingCoordinate) * last.wormSpeed / (last.wormSpeed - omega1)
 
 
-def StickSlipStep(schedule: StickSlipSchedule, t: float, reading: MeshReading) -> StickSlipDecision:
+def StickSlipStep(schedule: StickSlipSchedule, t: float, reading: MeshReading) -> Optional[float]:
     """One update of the schedule after a converged step that ended at ``t``: look at the mesh if it is due,
-    switch its state by the contact law's rule, and plan the next check.
+    switch its state by the contact law's rule, and plan the next check. ``schedule`` is updated in place.
 
     Parameters
     ----------
     schedule : StickSlipSchedule
-        The schedule before the step was looked at.
+        The schedule before the step was looked at; after the call, the schedule after it (its ``state`` is the
+        new state if the mesh switched).
     t : float
         Time in s at the end of the step.
     reading : MeshReading
@@ -259,34 +244,42 @@ def StickSlipStep(schedule: StickSlipSchedule, t: float, reading: MeshReading) -
 
     Returns
     -------
-    StickSlipDecision
-        The new schedule, whether the state switched and the jump of the friction force.
+    float or None
+        None if the state did not switch; else the jump of the friction force in N that the switch causes: the
+        discontinuous error, compared with Exudyn's ``timeIntegration.discontinuous.iterationTolerance``.
     """
     lastTime = schedule.lastTime
-    if lastTime is not None and t < lastTime:               # a new solve from an earlier time: forget the schedule
-        schedule = StickSlipSchedule(schedule.state)
-    startTime = t if schedule.startTime is None else schedule.startTime
+    if lastTime is None:                                      # the first step looked at
+        schedule.startTime = t
+    elif t < lastTime:                                        # a new solve from an earlier time: forget the schedule
+        schedule.nextCheck, schedule.lastCheck, schedule.maxRate, schedule.startTime = -math.inf, None, 0., t
+    schedule.lastTime = t
     state = schedule.state
-    sliding = state.stuck < 0.5
-    if not IsDue(schedule, t):
-        return StickSlipDecision(StickSlipSchedule(state, schedule.nextCheck, schedule.lastCheck, schedule.maxRate,
-                                                   startTime, t))
-    omega1 = reading.WormSpeed()
-    if sliding and omega1 * state.direction >= 0.:            # still sliding the same way: plan the next check
-        last = schedule.lastCheck
-        if last is not None and t > last.time:                # mean deceleration since the last check
-            rate = abs(omega1 - last.wormSpeed) / (t - last.time)
-        else:
-            rate = abs(reading.WormAcceleration())
-        rate = max(rate, schedule.maxRate)
-        interval = _Interval(startTime, t, omega1, rate)
-        s = reading.SlidingCoordinate() if interval < REVERSAL_WINDOW else None   # a reversal may come: keep s
-        return StickSlipDecision(StickSlipSchedule(state, t + interval, CheckPoint(t, omega1, s), rate, startTime, t))
-    reversal = _ReversalCoordinate(schedule.lastCheck, t, omega1, reading.SlidingCoordinate()) if sliding else None
-    new, jump = reading.Switch(state, reversal)
-    if new is None and not sliding:                           # the flanks hold: looked at after every step
-        return StickSlipDecision(StickSlipSchedule(state, schedule.nextCheck, schedule.lastCheck, schedule.maxRate,
-                                                   startTime, t))
+    if state.stuck >= 0.5:                                    # stuck flanks may break away at any step
+        new, jump = reading.Switch(state, None)
+        if new is None:                                       # the flanks hold
+            return None
+    else:
+        if t < schedule.nextCheck and t != lastTime:          # sliding, not due (a repeated step always is)
+            return None
+        omega1 = reading.WormSpeed()
+        if omega1 * state.direction >= 0.:                    # still sliding the same way: plan the next check
+            last = schedule.lastCheck
+            if last is not None and t > last.time:            # mean deceleration since the last check
+                rate = abs(omega1 - last.wormSpeed) / (t - last.time)
+            else:
+                rate = abs(reading.WormAcceleration())
+            if rate < schedule.maxRate:
+                rate = schedule.maxRate
+            interval = _Interval(schedule.startTime, t, omega1, rate)
+            s = reading.SlidingCoordinate() if interval < REVERSAL_WINDOW else None   # a reversal may come: keep s
+            schedule.nextCheck, schedule.lastCheck, schedule.maxRate = t + interval, CheckPoint(t, omega1, s), rate
+            return None
+        reversal = _ReversalCoordinate(schedule.lastCheck, t, omega1, reading.SlidingCoordinate())
+        new, jump = reading.Switch(state, reversal)
     # after a reversal has been looked at, or a switch, the mesh is looked at after the next step again
-    after = StickSlipSchedule(state if new is None else new, t, None, schedule.maxRate, startTime, t)
-    return StickSlipDecision(after) if new is None else StickSlipDecision(after, True, jump)
+    schedule.nextCheck, schedule.lastCheck = t, None
+    if new is None:
+        return None
+    schedule.state = new
+    return jump
