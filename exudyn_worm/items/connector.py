@@ -161,7 +161,7 @@ class _StickSlip(MeshReading):
             axial = {} if n == 2 else {'axialDisplacement': x[2], 'axialSpeed': x[5]}
             mesh = MeshContact(self.gear, x[0], x[1], x[n], x[n + 1], self.options, SymbolicOps(),
                                frictionState=self.variables, **axial)
-            self._probe = (x, esym.Vector([mesh.frictionForce, mesh.normalForce]))
+            self._probe = (x, mesh.frictionForce, mesh.normalForce)      # two scalars: each evaluates to a float
         finally:
             esym.SetRecording(recording)
 
@@ -258,10 +258,11 @@ class _StickSlip(MeshReading):
 
     def _Forces(self, x, w):
         """(friction force, normal force) in N of the law recorded in C++ at inputs ``x``, ``w``; None without it."""
-        if self._probe is None:
+        probe = self._probe
+        if probe is None:
             return None
-        self._probe[0].SetVector(x + w)
-        return self._probe[1].Evaluate().tolist()
+        probe[0].SetVector(x + w)
+        return probe[1].Evaluate(), probe[2].Evaluate()
 
     def _View(self, mbs) -> None:
         """Take the node indices and views of Exudyn's current ODE2 coordinates and velocities (``copy=False``:
@@ -295,7 +296,8 @@ class _StickSlip(MeshReading):
         return SlidingCoordinate(self.gear, x[0], x[1])
 
     def Switch(self, state, reversalCoordinate):
-        x, w = self._Inputs()
+        inputs = self._inputs
+        x, w = inputs if inputs is not None else self._Inputs()
         axial, axialSpeed = (x[2], w[2]) if len(x) == 3 else (None, None)
         return StickSlipUpdate(self.gear, self._options, state, x[0], x[1], w[0], w[1], axial, axialSpeed,
                                self._Forces(x, w), reversalCoordinate)
