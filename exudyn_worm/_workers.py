@@ -16,6 +16,9 @@ import ctypes.util
 import os
 import signal
 import sys
+import threading
+import weakref
+from concurrent.futures import InvalidStateError
 from typing import Iterable, Iterator, Optional
 
 __all__ = ['Terminated', 'TerminationRequested', 'SigtermAsInterrupt', 'InterruptStatus', 'WorkerInit', 'CancelPool',
@@ -141,6 +144,9 @@ def CancelPool(executor, futures: Iterable) -> None:
     futures : iterable of concurrent.futures.Future
         Its jobs.
     """
+    manager = getattr(executor, '_executor_manager_thread', None)              # ProcessPoolExecutor only
+    if manager is not None:
+        _QuietAboutCancelledJobs(manager)
     for future in futures:
         future.cancel()
     processes = list((getattr(executor, '_processes', None) or {}).values())   # ProcessPoolExecutor only
@@ -151,3 +157,27 @@ def CancelPool(executor, futures: Iterable) -> None:
     for process in processes:
         with contextlib.suppress(OSError, ValueError, AttributeError, AssertionError):
             process.join(timeout=5.)
+
+
+#: pool manager threads whose complaint about a cancelled job is not printed (see _QuietAboutCancelledJobs)
+_QUIET_THREADS: 'weakref.WeakSet[threading.Thread]' = weakref.WeakSet()
+
+
+def _QuietAboutCancelledJobs(thread: threading.Thread) -> None:
+    """Let ``thread``, a ``ProcessPoolExecutor``'s manager thread, fail silently on a job :func:`CancelPool`
+    cancelled. When the terminated workers break the pool, the thread marks every job it still holds as failed;
+    for a job cancelled just before, Python 3.11 raises ``InvalidStateError`` in that thread and prints its
+    traceback below our one line (1 of about 10 SIGTERMs of a sweep). Other exceptions, and those of other threads,
+    are printed as before."""
+    _QUIET_THREADS.add(thread)
+    if getattr(threading.excepthook, '_exudynWorm', False):
+        return
+    previous = threading.excepthook
+
+    def ExceptHook(args):
+        if args.thread in _QUIET_THREADS and args.exc_type is not None and issubclass(args.exc_type, InvalidStateError):
+            return
+        previous(args)
+
+    ExceptHook._exudynWorm = True
+    threading.excepthook = ExceptHook

@@ -304,3 +304,35 @@ def test_sigint_during_python_m_validation(folder):
     status, out, err = _Interrupt(process, 2.)
     _AssertInterrupted(status, out, err)
     assert out == '' and not report.exists() and _Leftovers(folder) == []
+
+
+def test_a_cancelled_pool_prints_no_complaint_of_its_manager_thread(monkeypatch):
+    """The pool's manager thread may fail on a job just cancelled when the terminated workers break the pool
+    (Python 3.11 raises InvalidStateError there, and its traceback followed the one line of a SIGTERM): CancelPool
+    keeps that thread quiet about it; other errors of it, and other threads, are reported as before."""
+    import threading
+    from concurrent.futures import InvalidStateError
+    from exudyn_worm._workers import _QUIET_THREADS, _QuietAboutCancelledJobs, CancelPool
+
+    reported = []
+    monkeypatch.setattr(threading, 'excepthook', lambda args: reported.append(args.exc_type))   # what prints them
+
+    def Run(error, quiet):
+        def Raise():
+            raise error
+        thread = threading.Thread(target=Raise)
+        if quiet:
+            _QuietAboutCancelledJobs(thread)
+        thread.start()
+        thread.join()
+
+    executor = ProcessPoolExecutor(max_workers=1)
+    futures = [executor.submit(time.sleep, 0.01)]
+    manager = executor._executor_manager_thread
+    CancelPool(executor, futures)
+    assert manager in _QUIET_THREADS
+    Run(InvalidStateError('CANCELLED: <Future>'), quiet=True)
+    assert reported == []
+    Run(ValueError('another error'), quiet=True)
+    Run(InvalidStateError('CANCELLED: <Future>'), quiet=False)
+    assert reported == [ValueError, InvalidStateError]

@@ -177,16 +177,24 @@ def test_contact_options_friction_model_errors():
     assert not ContactOptions(fixedS=1).hasStickState
 
 
-def test_linearization_options_and_back_keep_the_switching():
-    """Holding S for a linearization (fixed S, no stick state) and restoring the options: the mesh is checked
-    again after the next step, so a worm started at lowering speed still stops and holds."""
+def _Lowering():
+    """(mbs, worm, mesh): the reel-P1 worm and wheel on the sticking mesh, started at the lowering speed, the
+    hanging load on the wheel, no motor."""
     drive = ElasticDriveFromParameters(P1)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
+    mbs.variables['container'] = SC                          # keep the container alive with the system
     worm = CreateRotor(mbs, drive.J1, initialSpeed=-49.5)
     wheel = CreateRotor(mbs, drive.J2, initialSpeed=-49.5 / drive.gear.ratio)
     mesh = CreateWormGear(mbs, [worm, wheel], gear=drive.gear)
     CreateRotorTorque(mbs, wheel, GravityLeverTorque(mass=P1['loadMass'], leverArm=P1['leverArm']))
+    return mbs, worm, mesh
+
+
+def test_linearization_options_and_back_keep_the_switching():
+    """Holding S for a linearization (fixed S, no stick state) and restoring the options: the mesh is checked
+    again after the next step, so a worm started at lowering speed still stops and holds."""
+    mbs, worm, mesh = _Lowering()
     mesh.AddSensors(mbs)
     mesh.SetContactOptions(mbs, ContactOptions(fixedS=-1))
     mbs.Assemble()
@@ -202,3 +210,21 @@ def test_linearization_options_and_back_keep_the_switching():
         exu.config.printToConsole = printing
     assert mesh.stickSlip.state.stuck == 1.
     assert abs(mesh.StoredStates(mbs)['omega1'][-1]) < 1e-3        # stopped (the mesh still rings a little)
+
+
+def test_a_system_grown_between_solves_is_read_anew():
+    """The stick/slip state reads Exudyn's coordinates in place (views, no copies); a solve that continues in time
+    after the system was assembled again with many more coordinates reads the new vectors, not the freed ones."""
+    mbs, worm, mesh = _Lowering()
+    mbs.Assemble()
+    ss, solverType = SolverSettings(0.05, STEP)
+    mbs.SolveDynamic(ss, solverType=solverType)
+    for k in range(500):                                     # Exudyn reallocates its state vectors
+        CreateRotor(mbs, 1., name=f'extra{k}')
+    mbs.Assemble()
+    ss, solverType = SolverSettings(0.1, STEP)
+    ss.timeIntegration.startTime = 0.05                      # continued in time: no earlier step to notice
+    mbs.SolveDynamic(ss, solverType=solverType)
+    i = mbs.GetNodeODE2Index(worm['nodeNumber'])
+    assert mbs.systemData.ODE2Size() == 502
+    assert mesh.stickSlip.WormSpeed() == mbs.systemData.GetODE2Coordinates_t()[i]
