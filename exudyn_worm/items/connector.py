@@ -204,7 +204,7 @@ class _StickSlip(MeshReading):
             The start state.
         """
         self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
-        x, w = self._LawInputs(coordinates, velocities)
+        x, w = self._LawInputs(*_Floats(coordinates, velocities))
         self._Apply(StartSchedule(StartFrictionState(self.gear, x[0], x[1], w[0])), restart=True)
         self.switches = 0
         if self.clock is not None:
@@ -223,7 +223,7 @@ class _StickSlip(MeshReading):
             The shifted state.
         """
         self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
-        old, new = (self._LawInputs(q, q)[0] for q in (fromCoordinates, toCoordinates))
+        old, new = (self._LawInputs(*_Floats(q, q))[0] for q in (fromCoordinates, toCoordinates))
         shift = SlidingCoordinate(self.gear, new[0], new[1]) - SlidingCoordinate(self.gear, old[0], old[1])
         self._Apply(CarrySchedule(self.schedule, shift), restart=True)
         return self.state
@@ -241,16 +241,17 @@ class _StickSlip(MeshReading):
 
     def _LawInputs(self, q, v):
         """The law's coordinates (with the node references) and speeds from whole-system ODE2 vectors ``q``, ``v``
-        (a mesh of another kind, e.g. between rigid bodies, overrides this and the three methods below)."""
+        whose entries are floats (memoryviews or lists; a mesh of another kind, e.g. between rigid bodies, overrides
+        this and the three methods below)."""
         indices, references = self._indices, self.references
         if len(indices) == 2:                       # worm and wheel (the common case): no loop
             i, k = indices
-            return [q.item(i) + references[0], q.item(k) + references[1]], [v.item(i), v.item(k)]
-        return ([float(q[i]) + ref for i, ref in zip(indices, references)], [float(v[i]) for i in indices])
+            return [q[i] + references[0], q[k] + references[1]], [v[i], v[k]]
+        return [q[i] + ref for i, ref in zip(indices, references)], [v[i] for i in indices]
 
     def _WormSpeed(self, data, v) -> float:
         """The worm speed in rad/s that the friction law reads, from the whole-system ODE2 velocities ``v``."""
-        return v.item(self._indices[0])
+        return v[self._indices[0]]
 
     def _WormAcceleration(self, data) -> float:
         """The worm's angular acceleration in rad/s^2 (for the check schedule)."""
@@ -266,16 +267,16 @@ class _StickSlip(MeshReading):
 
     def _View(self, mbs) -> None:
         """Take the node indices and views of Exudyn's current ODE2 coordinates and velocities (``copy=False``:
-        reading them costs no call into Exudyn). Exudyn keeps these vectors in place while the system's size
-        stays the same; a solve that starts anew (at an earlier time, or after :meth:`Restart` or :meth:`Carry`)
-        takes them again, and so does a step after the system has grown (its number of ODE2 coordinates is
-        compared at every step, one cheap call)."""
+        reading them costs no call into Exudyn; as memoryviews, an entry is a float at a quarter of the cost of a
+        numpy entry). Exudyn keeps these vectors in place while the system's size stays the same; a solve that
+        starts anew (at an earlier time, or after :meth:`Restart` or :meth:`Carry`) takes them again, and so does
+        a step after the system has grown (its number of ODE2 coordinates is compared at every step)."""
         import exudyn
         data = self._data = mbs.systemData
         self._indices = [mbs.GetNodeODE2Index(n) for n in self.nodes]
         current = exudyn.ConfigurationType.Current
-        self._q = data.GetODE2Coordinates(current, False)
-        self._v = data.GetODE2Coordinates_t(current, False)
+        self._q = memoryview(data.GetODE2Coordinates(current, False))
+        self._v = memoryview(data.GetODE2Coordinates_t(current, False))
         self._ode2Size = data.ODE2Size          # bound once: the size is compared at every step
         self._size = self._ode2Size()
 
@@ -322,6 +323,11 @@ class _StickSlip(MeshReading):
         self._Apply(self.schedule, t)
         mbs.solverSignalJacobianUpdate = True       # the tangential stiffness changed: modified Newton renews it
         return jump
+
+
+def _Floats(q, v):
+    """Whole-system ODE2 vectors (arrays or sequences) as lists of floats, for ``_StickSlip._LawInputs``."""
+    return np.asarray(q, dtype=float).tolist(), np.asarray(v, dtype=float).tolist()
 
 
 def _AddStickSlip(mbs, item) -> None:
