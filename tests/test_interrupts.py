@@ -8,15 +8,16 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import InvalidStateError, ProcessPoolExecutor
 from pathlib import Path
 
 import pytest
 
 from exudyn_worm.cli.main import Main
 from exudyn_worm._files import WriteAtomically
-from exudyn_worm._workers import INTERRUPTED_STATUS
+from exudyn_worm._workers import _QUIET_THREADS, _QuietAboutCancelledJobs, CancelPool, INTERRUPTED_STATUS
 from exudyn_worm.items.solve import Interruptible, IsInterrupt
 import exudyn_worm.plotting.plot as plot
 import exudyn_worm.analysis.reelchanger as reelchanger
@@ -310,10 +311,6 @@ def test_a_cancelled_pool_prints_no_complaint_of_its_manager_thread(monkeypatch)
     """The pool's manager thread may fail on a job just cancelled when the terminated workers break the pool
     (Python 3.11 raises InvalidStateError there, and its traceback followed the one line of a SIGTERM): CancelPool
     keeps that thread quiet about it; other errors of it, and other threads, are reported as before."""
-    import threading
-    from concurrent.futures import InvalidStateError
-    from exudyn_worm._workers import _QUIET_THREADS, _QuietAboutCancelledJobs, CancelPool
-
     reported = []
     monkeypatch.setattr(threading, 'excepthook', lambda args: reported.append(args.exc_type))   # what prints them
 
