@@ -253,15 +253,17 @@ def StickSlipStep(schedule: StickSlipSchedule, t: float, reading: MeshReading) -
         schedule.startTime = t
     elif t < lastTime:                                        # a new solve from an earlier time: forget the schedule
         schedule.nextCheck, schedule.lastCheck, schedule.maxRate, schedule.startTime = -math.inf, None, 0., t
-    schedule.lastTime = t
     state = schedule.state
-    if state.stuck >= 0.5:                                    # stuck flanks may break away at any step
+    stuck = state.stuck >= 0.5
+    if not stuck and not IsDue(schedule, t):                  # sliding and not due (asked before the time is kept)
+        schedule.lastTime = t
+        return None
+    schedule.lastTime = t
+    if stuck:                                                 # stuck flanks may break away at any step
         new, jump = reading.Switch(state, None)
         if new is None:                                       # the flanks hold
             return None
     else:
-        if t < schedule.nextCheck and t != lastTime:          # sliding, not due (a repeated step always is)
-            return None
         omega1 = reading.WormSpeed()
         if omega1 * state.direction >= 0.:                    # still sliding the same way: plan the next check
             last = schedule.lastCheck
