@@ -167,8 +167,8 @@ def _QuietAboutCancelledJobs(thread: threading.Thread) -> None:
     """Let ``thread``, a ``ProcessPoolExecutor``'s manager thread, fail silently on a job :func:`CancelPool`
     cancelled. When the terminated workers break the pool, the thread marks every job it still holds as failed;
     for a job cancelled just before, Python 3.11 raises ``InvalidStateError`` in that thread and prints its
-    traceback below our one line (1 of about 10 SIGTERMs of a sweep). Other exceptions, and those of other threads,
-    are printed as before."""
+    traceback below our one line (seen once in the SIGTERM test of ``sweep`` in CI). Other exceptions, and those
+    of other threads, are printed as before."""
     _QUIET_THREADS.add(thread)
     if getattr(threading.excepthook, '_exudynWorm', False):
         return

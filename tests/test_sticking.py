@@ -183,7 +183,6 @@ def _Lowering():
     drive = ElasticDriveFromParameters(P1)
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()
-    mbs.variables['container'] = SC                          # keep the container alive with the system
     worm = CreateRotor(mbs, drive.J1, initialSpeed=-49.5)
     wheel = CreateRotor(mbs, drive.J2, initialSpeed=-49.5 / drive.gear.ratio)
     mesh = CreateWormGear(mbs, [worm, wheel], gear=drive.gear)
