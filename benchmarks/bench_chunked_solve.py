@@ -24,9 +24,11 @@ def Solve(preset: str, mode: str):
     from exudyn_worm.setups.build import BuildReelChanger
     from exudyn_worm.items.solve import SolveDynamicInChunks
     from exudyn_worm.analysis.stepsize import RecommendedStepSize
+    from exudyn_worm.setups.wholedrive import ResolveDrive
     p = GetPreset(preset)
-    endTime, h = RotationPeriod(p), RecommendedStepSize(p)
-    model = BuildReelChanger(p)
+    drive = ResolveDrive(parameters=p)
+    endTime, h = RotationPeriod(drive), RecommendedStepSize(drive)
+    model = BuildReelChanger(exu.SystemContainer().AddSystem(), drive)
     mbs = model.mbs
     mbs.Assemble()
     ss, solverType = SolverSettings(endTime, h, where='bench')

@@ -54,6 +54,7 @@ from scipy_reference import SolveReelChangerScipy    # noqa: E402
 from compiled_reference import CompiledReelChanger   # noqa: E402
 from torque_driven import SimulateTorqueDriven       # noqa: E402
 from exudyn_worm.model.contact import ContactOptions       # noqa: E402
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 __all__ = ['SCIPY_SETTINGS', 'REFERENCE_SETTINGS', 'TARGETS', 'EnvironmentInfo', 'RunBenchmark',
            'ScanTolerances', 'ProfileExudyn', 'FormatReport', 'Main']
@@ -138,7 +139,7 @@ def _RelDiff(x: float, ref: float) -> float:
 def _Peaks2(result, parameters) -> Dict[str, float]:
     """Peaks judged by the targets: max |phi2''| and max |Fn| in the lowering window, max |Fn| in the first
     lifting window (|phi2''| is about 0.004 rad/s^2 there, quasi-static: its relative error means nothing)."""
-    lift, lower = DefaultWindows(parameters)[:2]
+    lift, lower = DefaultWindows(ResolveDrive(parameters=parameters))[:2]
     m = result.WindowMetrics([lower, lift])
     return {'maxAbsAlpha2': m[0]['maxAbsWheelAcceleration'], 'maxNormalForce': m[0]['maxNormalForce'],
             'liftMaxNormalForce': m[1]['maxNormalForce'], 'dominantFrequencyHz': m[0]['dominantFrequencyHz']}
@@ -182,19 +183,19 @@ def RunBenchmark(repeat: int = 5, repeatP7: int = 3, scipySettings: Optional[Dic
     p1, p7 = GetPreset('reel-P1'), GetPreset('reel-P7')
     log('  compiling the C models ...')
     c1, c7 = CompiledReelChanger(p1), CompiledReelChanger(p7)
-    h1, h7 = RecommendedStepSize(p1), RecommendedStepSize(p7)
+    h1, h7 = RecommendedStepSize(ResolveDrive(parameters=p1)), RecommendedStepSize(ResolveDrive(parameters=p7))
     regularized = ContactOptions(frictionModel='regularized')
     runs = {
-        'exudynSymbolic': lambda: SimulateReelChanger(p1),
-        'exudynRegularized': lambda: SimulateReelChanger(p1, contactOptions=regularized),
-        'exudynPython': lambda: SimulateReelChanger(p1, useSymbolic=False),
+        'exudynSymbolic': lambda: SimulateReelChanger(ResolveDrive(parameters=p1)),
+        'exudynRegularized': lambda: SimulateReelChanger(ResolveDrive(parameters=p1), contactOptions=regularized),
+        'exudynPython': lambda: SimulateReelChanger(ResolveDrive(parameters=p1), useSymbolic=False),
         'scipy': lambda: SolveReelChangerScipy(p1, **settings),
         'compiledDopri5': lambda: c1.Solve(**COMPILED_DOPRI5),
         'compiledGA': lambda: c1.SolveGeneralizedAlpha(h1, spectralRadius=COMPILED_GA_SPECTRAL_RADIUS),
     }
     runsP7 = {
-        'p7': lambda: SimulateReelChanger(p7),
-        'p7Regularized': lambda: SimulateReelChanger(p7, contactOptions=regularized),
+        'p7': lambda: SimulateReelChanger(ResolveDrive(parameters=p7)),
+        'p7Regularized': lambda: SimulateReelChanger(ResolveDrive(parameters=p7), contactOptions=regularized),
         'p7CompiledGA': lambda: c7.SolveGeneralizedAlpha(h7, spectralRadius=COMPILED_GA_SPECTRAL_RADIUS),
     }
     timings: Dict[str, List[Dict]] = {k: [] for k in list(runs) + list(runsP7)}
@@ -216,7 +217,7 @@ def RunBenchmark(repeat: int = 5, repeatP7: int = 3, scipySettings: Optional[Dic
                 log(f'  {name} (compiled DOPRI5, rtol {REFERENCE_SETTINGS["rtol"]:g}): {refs[name]["solve"]:.3f} s')
             # the compiled model has the regularized friction: the sticking model's P7 (the worm stops in the
             # chatter) is judged against itself at a sixteenth of the step (docs/friction-sticking.md)
-            refs['p7StickingReference'] = _Timed(lambda: SimulateReelChanger(p7, stepSize=h7 / STICKING_REFERENCE_DIVISOR,
+            refs['p7StickingReference'] = _Timed(lambda: SimulateReelChanger(ResolveDrive(parameters=p7), stepSize=h7 / STICKING_REFERENCE_DIVISOR,
                                                                              maxSteps=10 ** 7))
             log(f"  p7StickingReference (Exudyn, step / {STICKING_REFERENCE_DIVISOR}): "
                 f"{refs['p7StickingReference']['solve']:.3f} s")
@@ -262,7 +263,7 @@ def RunBenchmark(repeat: int = 5, repeatP7: int = 3, scipySettings: Optional[Dic
     ratios.update(oursOverCompiledP1Cpu=a['cpuSecondsBest'] / max(cpuP1, 1e-9),
                   oursOverCompiledP7Cpu=p7r['cpuSecondsBest'] / max(res['p7CompiledGA']['cpuSecondsBest'], 1e-9))
     T = TARGETS
-    nominal = int(round(RotationPeriod(p7) / h7))
+    nominal = int(round(RotationPeriod(ResolveDrive(parameters=p7)) / h7))
     halved = p7r['solver']['steps'] - nominal
 
     def Verdict(target, measured, met, unit=''):
@@ -301,7 +302,7 @@ def RunBenchmark(repeat: int = 5, repeatP7: int = 3, scipySettings: Optional[Dic
                          ('compiledMultipleP7', ratios['oursOverCompiledP7Cpu'], lambda x: x <= T['compiledMultiple'])):
         targets[key]['measuredCpu'] = cpu
         targets[key]['metCpu'] = ok(cpu)
-    return {'environment': EnvironmentInfo(), 'endTime': RotationPeriod(p1), 'repeat': repeat, 'repeatP7': repeatP7,
+    return {'environment': EnvironmentInfo(), 'endTime': RotationPeriod(ResolveDrive(parameters=p1)), 'repeat': repeat, 'repeatP7': repeatP7,
             'stepSizes': {'p1': h1, 'p7': h7, 'p7NominalSteps': nominal},
             'scipySettings': settings, 'referenceSettings': REFERENCE_SETTINGS if reference else None,
             'runs': res, 'ratios': ratios, 'startup': startup, 'targets': targets}
@@ -325,7 +326,7 @@ class _MotorAngleByUserFunction:
 def _Levers(p, h):
     """(label, run) of every lever of ``--levers`` for parameter set ``p`` with our default step ``h``."""
     rho = lambda r: {**_N10, 'timeIntegration.generalizedAlpha.spectralRadius': r}
-    Sim = lambda **kw: (lambda: SimulateReelChanger(p, **kw))
+    Sim = lambda **kw: (lambda: SimulateReelChanger(ResolveDrive(parameters=p), **kw))
     return [
         ('earlier settings: h 5e-4, rho 0.9, Newton 25 it. rtol 1e-8', Sim(stepSize=5e-4, solverOptions=OLD_SETTINGS)),
         ('Newton 10 it., rtol 1e-6 (h 5e-4, rho 0.9)', Sim(stepSize=5e-4, solverOptions=rho(0.9))),
@@ -356,7 +357,7 @@ def RunLevers(references: Dict[str, Dict], repeat: int = 2, log: Callable[[str],
     rows = []
     for name in ('reel-P1', 'reel-P7'):
         p = GetPreset(name)
-        h = RecommendedStepSize(p)
+        h = RecommendedStepSize(ResolveDrive(parameters=p))
         with _QuietExudyn():
             for label, run in _Levers(p, h):
                 ts = [_Timed(run) for _ in range(repeat if name == 'reel-P1' else 1)]
@@ -398,7 +399,7 @@ def ScanTolerances(exudynPeaks: Dict[str, float], reference: Dict[str, float], m
     tighter rtol of the same method pass (the peak errors do not fall monotonically with rtol).
     """
     p1 = GetPreset('reel-P1')
-    window = DefaultWindows(p1)[1]
+    window = DefaultWindows(ResolveDrive(parameters=p1))[1]
     level = TARGETS['p1PeakError']                  # equal accuracy: the accuracy target ours must meet too
     rows = []
     for method in methods:
@@ -435,17 +436,17 @@ def ProfileExudyn(presetName: str) -> Dict:
     returned ``sameAsSimulate`` says whether the lowering-window peak equals that of SimulateReelChanger.
     """
     p = GetPreset(presetName)
-    endTime = RotationPeriod(p)
-    model = BuildReelChanger(p)
+    endTime = RotationPeriod(ResolveDrive(parameters=p))
+    model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p))
     mbs = model.mbs
     mbs.Assemble()
-    ss, solverType = SolverSettings(endTime, RecommendedStepSize(p), where='ProfileExudyn')
+    ss, solverType = SolverSettings(endTime, RecommendedStepSize(ResolveDrive(parameters=p)), where='ProfileExudyn')
     ss.show.computationTime = True                    # fills solver.timer (and prints the CPU-time table)
     with _QuietExudyn():
         t0 = time.perf_counter()
         mbs.SolveDynamic(ss, solverType=solverType)
         seconds = time.perf_counter() - t0
-        check = SimulateReelChanger(p)
+        check = SimulateReelChanger(ResolveDrive(parameters=p))
     solver = mbs.sys['dynamicSolver']
     it, timer = solver.it, solver.timer
     names = ('factorization', 'newtonIncrement', 'integrationFormula', 'ODE2RHS', 'ODE1RHS', 'AERHS',
@@ -454,7 +455,7 @@ def ProfileExudyn(presetName: str) -> Dict:
     timers = {n: float(getattr(timer, n)) for n in names if hasattr(timer, n)}
     total = float(getattr(timer, 'total', 0.)) or sum(timers.values())
     a2 = mbs.GetSensorStoredData(model.sensors['alpha2'])
-    w0, w1 = DefaultWindows(p)[1]
+    w0, w1 = DefaultWindows(ResolveDrive(parameters=p))[1]
     m = (a2[:, 0] >= w0) & (a2[:, 0] <= w1)
     peak = float(np.max(np.abs(a2[m, 1])))
     return {'preset': presetName, 'solveSecondsWithTimers': seconds,

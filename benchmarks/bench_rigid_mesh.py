@@ -26,6 +26,7 @@ from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.stepsize import RecommendedStepSize
 from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 __all__ = ['RunOnce', 'Main']
 
@@ -36,7 +37,7 @@ def RunOnce(build, parameters, endTime: float, **kwargs):
     if build is BuildRigidBodyReelChanger:
         model.connector.AddSensors(model.mbs)
     model.mbs.Assemble()
-    ss, solverType = SolverSettings(endTime, RecommendedStepSize(parameters))
+    ss, solverType = SolverSettings(endTime, RecommendedStepSize(ResolveDrive(parameters=parameters)))
     wall, cpu = time.perf_counter(), time.process_time()
     model.mbs.SolveDynamic(ss, solverType=solverType)
     wall, cpu = time.perf_counter() - wall, time.process_time() - cpu

@@ -35,6 +35,7 @@ import exudyn as exu                                 # noqa: E402
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset   # noqa: E402
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger, SolverSettings   # noqa: E402
 from exudyn_worm.analysis.study import RunPoint     # noqa: E402
+from exudyn_worm.setups.wholedrive import ResolveDrive
 from scipy_reference import SolveReelChangerScipy    # noqa: E402
 
 __all__ = ['SCIPY_SETTINGS', 'TARGETS', 'PRESETS', 'SpeedRatios', 'SweepCost', 'MeshScaling', 'Main']
@@ -57,7 +58,7 @@ def SpeedRatios(repeat: int) -> Dict:
         p = GetPreset(name)
         ours, oursCpu, scipy, scipyCpu = [], [], [], []
         for _ in range(repeat):
-            r = SimulateReelChanger(p, progress=False)
+            r = SimulateReelChanger(ResolveDrive(parameters=p), progress=False)
             ours.append(r.solveSeconds)
             oursCpu.append(r.info['solveCpuSeconds'])
             s = SolveReelChangerScipy(p, **SCIPY_SETTINGS)
@@ -110,7 +111,7 @@ def _Meshes(n: int, endTime: float = 0.5) -> float:
         CreateWormGear(mbs, [worm, wheel], gear=drive.gear, name=f'mesh{k}')
         CreateRotorTorque(mbs, wheel, GravityLeverTorque(mass=p['loadMass'], leverArm=p['leverArm']))
     mbs.Assemble()
-    ss, solverType = SolverSettings(endTime, RecommendedStepSize(p), where='bench_speed')
+    ss, solverType = SolverSettings(endTime, RecommendedStepSize(ResolveDrive(parameters=p)), where='bench_speed')
     t0 = time.perf_counter()
     SolveDynamicInChunks(mbs, ss, solverType, progress=False)
     return time.perf_counter() - t0

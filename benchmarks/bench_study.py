@@ -35,6 +35,7 @@ from typing import Dict
 
 sys.dont_write_bytecode = True
 
+import exudyn as exu
 import numpy as np                                                  # noqa: E402
 
 from exudyn_worm.setups.config import ResolveParameters                   # noqa: E402
@@ -43,6 +44,7 @@ from exudyn_worm.model.stability import AnalyzeStability                  # noqa
 from exudyn_worm.analysis.study import RunStudy  # noqa: E402
 from exudyn_worm.analysis.studygrid import ParseVariation, Study
 from exudyn_worm.analysis.studypoint import VibrationSeconds
+from exudyn_worm.setups.wholedrive import ResolveDrive  # noqa: E402
 
 __all__ = ['SpeedUp', 'Overhead', 'MapWallTime', 'Main']
 
@@ -98,15 +100,15 @@ def Overhead(repeat: int = 5) -> Dict:
     stages = {k: [] for k in ('buildPython', 'buildSymbolic', 'assemble', 'solve', 'postProcess', 'writeRow')}
     for _ in range(repeat):
         t0 = time.perf_counter()
-        BuildReelChanger(p, useSymbolic=False)
+        BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p), useSymbolic=False)
         stages['buildPython'].append(time.perf_counter() - t0)
         t0 = time.perf_counter()
-        model = BuildReelChanger(p, useSymbolic=True)
+        model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p), useSymbolic=True)
         stages['buildSymbolic'].append(time.perf_counter() - t0)
         t0 = time.perf_counter()
         mbs = model.mbs
         mbs.Assemble()
-        endTime, step = RotationPeriod(p), 5e-4
+        endTime, step = RotationPeriod(ResolveDrive(parameters=p)), 5e-4
         ss = exu.SimulationSettings()
         ss.solution.file.write = False
         ss.solution.sensors.writePeriod = step
@@ -129,11 +131,11 @@ def Overhead(repeat: int = 5) -> Dict:
         stages['postProcess'].append(time.perf_counter() - t0)
     # window metrics, vibration durations and the analytical verdict on a finished result
     from exudyn_worm.analysis.reelchanger import SimulateReelChanger
-    result = SimulateReelChanger(p)
+    result = SimulateReelChanger(ResolveDrive(parameters=p))
     metrics = []
     for _ in range(repeat):
         t0 = time.perf_counter()
-        windows = DefaultWindows(p)
+        windows = DefaultWindows(ResolveDrive(parameters=p))
         result.WindowMetrics(windows)
         [VibrationSeconds(result, a, b) for a, b in windows]
         AnalyzeStability(ElasticDriveFromParameters(p))

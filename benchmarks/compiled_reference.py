@@ -29,6 +29,7 @@ import numpy as np
 from exudyn_worm.model.contact import ContactOptions, MeshContact
 from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod
 from exudyn_worm.items.results import SimulationResult
+from exudyn_worm.setups.wholedrive import ResolveDrive
 from scipy_reference import ReelChangerOde, ResultFromStates
 
 #: the reference models have no stick state: they use the regularized friction law (docs/friction-sticking.md);
@@ -338,7 +339,7 @@ class CompiledReelChanger:
         SimulationResult
             ``solveSeconds`` is the compiled solve alone; ``info`` holds steps and rejected steps.
         """
-        endTime = RotationPeriod(self.parameters) if endTime is None else float(endTime)
+        endTime = RotationPeriod(ResolveDrive(parameters=self.parameters)) if endTime is None else float(endTime)
         _, y0, drive, _, motor = ReelChangerOde(self.parameters, self.contactOptions)
         n = int(math.floor(endTime / outputStep + 1e-9)) + 1
         out = np.zeros((n, 4))
@@ -380,7 +381,7 @@ def _SolveGeneralizedAlpha(self, stepSize: float, endTime: Optional[float] = Non
     SimulationResult
         ``info`` holds the steps and the number of steps repeated as two halves (Newton not converged).
     """
-    endTime = RotationPeriod(self.parameters) if endTime is None else float(endTime)
+    endTime = RotationPeriod(ResolveDrive(parameters=self.parameters)) if endTime is None else float(endTime)
     _, y0, drive, _, motor = ReelChangerOde(self.parameters, self.contactOptions)
     nSteps = int(round(endTime / stepSize))
     out, alpha = np.zeros((nSteps + 1, 4)), np.zeros((nSteps + 1, 2))

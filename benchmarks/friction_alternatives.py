@@ -25,6 +25,7 @@ import time as _time
 from pathlib import Path
 from typing import Dict
 
+import exudyn as exu
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -41,6 +42,7 @@ from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings  # n
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult                            # noqa: E402
 from exudyn_worm.analysis.stepsize import RecommendedStepSize                        # noqa: E402
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 #: bristle mass (kg-equivalent of the z equation) and damper: relaxation time 1e-5 s, below every step used
 LUGRE_MASS, LUGRE_DAMPER = 1e-5, 1.
@@ -114,7 +116,7 @@ def SimulateReel(parameters, model: str, stepSize: float = None) -> SimulationRe
     """The reel changer (motor through the shaft torque) with the mesh of ``model``."""
     import exudyn as exu
     drive = ElasticDriveFromParameters(parameters)
-    h = RecommendedStepSize(parameters) if stepSize is None else stepSize
+    h = RecommendedStepSize(ResolveDrive(parameters=parameters)) if stepSize is None else stepSize
     motor = ConstantSpeed(parameters['motorSpeed'])
     load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
     init = SteadyInitialState(drive, load, parameters['motorSpeed'], ContactOptions(frictionModel='regularized'))
@@ -136,7 +138,7 @@ def SimulateReel(parameters, model: str, stepSize: float = None) -> SimulationRe
     sensors = {k: (r['nodeNumber'], o) for k, r, o in (('phi1', worm, OVT.Coordinates), ('omega1', worm, OVT.Coordinates_t),
                                                         ('phi2', wheel, OVT.Coordinates), ('omega2', wheel, OVT.Coordinates_t),
                                                         ('alpha2', wheel, OVT.Coordinates_tt))}
-    T = RotationPeriod(parameters)
+    T = RotationPeriod(ResolveDrive(parameters=parameters))
     data, cpu, steps = _Solve(mbs, T, h, sensors)
     series = {k: v[:, 1] for k, v in data.items()}
     mesh = MeshContact(g, series['phi1'], series['phi2'], series['omega1'], series['omega2'],

@@ -46,6 +46,7 @@ from exudyn_worm.analysis.reelchanger import DefaultSimulatedTime, SolverSetting
 from exudyn_worm.analysis.stepsize import RecommendedStepSize                        # noqa: E402
 from exudyn_worm.setups.build import BuildReelChanger                                # noqa: E402
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset         # noqa: E402
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 __all__ = ['VARIANTS', 'SolveVariant', 'Main']
 
@@ -77,7 +78,7 @@ def SolveVariant(variant: str):
     if variant not in VARIANTS:
         raise ValueError(f"p1_floor: variant must be one of {', '.join(VARIANTS)}, got {variant!r}")
     p = GetPreset('reel-P1')
-    model = BuildReelChanger(p)
+    model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p))
     mbs, keep = model.mbs, []
     mesh = model.connector.objectNumber
     if variant in ('noPostNewton', 'zeroLawNoLoadNoPostNewton', 'noUserFunctions'):
@@ -93,7 +94,7 @@ def SolveVariant(variant: str):
         mbs.SetObjectParameter(mesh, 'forceUserFunction', 0)
         mbs.SetObjectParameter(mesh, 'stiffnessMatrix', g.kV * np.outer(a, a))
     mbs.Assemble()
-    ss, solverType = SolverSettings(DefaultSimulatedTime(p), RecommendedStepSize(p))
+    ss, solverType = SolverSettings(DefaultSimulatedTime(ResolveDrive(parameters=p)), RecommendedStepSize(ResolveDrive(parameters=p)))
     printing = exu.config.printToConsole
     exu.config.printToConsole = False
     try:

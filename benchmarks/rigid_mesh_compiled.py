@@ -29,6 +29,7 @@ import math
 import sys
 import time
 
+import exudyn as exu
 import numpy as np
 
 from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings, _SolverCounters
@@ -41,6 +42,7 @@ from exudyn_worm.model.contact import ContactOptions
 from exudyn_worm.model.profiles import ConstantSpeed
 from exudyn_worm.setups.duty import LoadFromParameters
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 __all__ = ['BuildCompiledRigidBodyReelChanger', 'Main']
 
@@ -114,7 +116,7 @@ def BuildCompiledRigidBodyReelChanger(parameters, coordinateJoints: bool = True,
 
 def _Solve(mbs, parameters, endTime):
     """CPU seconds of the solve and the solver's counters."""
-    ss, solverType = SolverSettings(endTime, RecommendedStepSize(parameters))
+    ss, solverType = SolverSettings(endTime, RecommendedStepSize(ResolveDrive(parameters=parameters)))
     cpu = time.process_time()
     mbs.SolveDynamic(ss, solverType=solverType)
     return time.process_time() - cpu, _SolverCounters(mbs)
@@ -128,7 +130,7 @@ def Main(argv=None) -> int:
     args = parser.parse_args(argv)
     exu.config.printToConsole = False
     p1 = GetPreset('reel-P1')
-    reference = BuildReelChanger(p1)
+    reference = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p1))
     reference.mbs.Assemble()
     wall, counters = _Solve(reference.mbs, p1, args.end_time)
     mesh = reference.connector.StoredMeshState(reference.mbs)

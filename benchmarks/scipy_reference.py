@@ -33,6 +33,7 @@ from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque
 from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 #: the reference models have no stick state: they use the regularized friction law (docs/friction-sticking.md);
 #: where the worm never stops (P1) it gives the same results as the package's default sticking law
@@ -116,7 +117,7 @@ def SolveReelChangerScipy(parameters: Mapping[str, float], endTime: Optional[flo
     RuntimeError
         If ``solve_ivp`` fails.
     """
-    endTime = RotationPeriod(parameters) if endTime is None else float(endTime)
+    endTime = RotationPeriod(ResolveDrive(parameters=parameters)) if endTime is None else float(endTime)
     rhs, y0, drive, load, motor = ReelChangerOde(parameters, contactOptions)
     n = int(round(endTime / outputStep))
     tEval = np.linspace(0., n * outputStep, n + 1)

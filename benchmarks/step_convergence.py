@@ -34,10 +34,12 @@ def WindowPeaks(preset: str, divisor: int = 1) -> dict:
     from exudyn_worm import SimulateReelChanger
     from exudyn_worm.analysis.reelchanger import DefaultWindows
     from exudyn_worm.analysis.stepsize import RecommendedStepSize
+    from exudyn_worm.setups.wholedrive import ResolveDrive
     p = _Parameters(preset)
-    h = RecommendedStepSize(p) / divisor
-    result = SimulateReelChanger(p, stepSize=h, progress=False)
-    metrics = result.WindowMetrics(DefaultWindows(p))
+    drive = ResolveDrive(parameters=p)
+    h = RecommendedStepSize(drive) / divisor
+    result = SimulateReelChanger(drive, stepSize=h, progress=False)
+    metrics = result.WindowMetrics(DefaultWindows(drive))
     return {'stepSize': h, 'solveSeconds': result.solveSeconds, 'chatter': [m['chatter'] for m in metrics],
             'windows': [[m[k] for k in PEAKS] for m in metrics]}
 
@@ -50,10 +52,11 @@ def Converge(preset: str, tolerance: float = 5e-4, maxHalvings: int = 6) -> list
     """Runs of ``preset`` at the default step and halved steps until the peaks change by less than ``tolerance``."""
     from exudyn_worm.analysis.reelchanger import MAX_STEPS, DefaultSimulatedTime
     from exudyn_worm.analysis.stepsize import RecommendedStepSize
-    p = _Parameters(preset)
+    from exudyn_worm.setups.wholedrive import ResolveDrive
+    drive = ResolveDrive(parameters=_Parameters(preset))
     runs = [WindowPeaks(preset)]
     for k in range(1, maxHalvings + 1):
-        if DefaultSimulatedTime(p) * 2 ** k / RecommendedStepSize(p) > MAX_STEPS:
+        if DefaultSimulatedTime(drive) * 2 ** k / RecommendedStepSize(drive) > MAX_STEPS:
             break                       # the run-size limit of SimulateReelChanger: not converged
         runs.append(WindowPeaks(preset, 2 ** k))
         if _Change(runs[-2], runs[-1]) < tolerance:

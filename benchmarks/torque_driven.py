@@ -13,6 +13,7 @@ from __future__ import annotations
 import time as _time
 from typing import Any, Mapping, Optional
 
+import exudyn as exu
 from exudyn_worm.items.connector import CreateWormGear
 from exudyn_worm.model.contact import ContactOptions
 from exudyn_worm.model.friction import MATH_OPS
@@ -22,6 +23,7 @@ from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque
 from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 __all__ = ['SimulateTorqueDriven']
 
@@ -58,7 +60,7 @@ def SimulateTorqueDriven(parameters: Mapping[str, float], stepSize: float, endTi
     load = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm'])
     motor = ConstantSpeed(motorSpeed)
     init = SteadyInitialState(drive, load, motorSpeed, contactOptions)
-    endTime = RotationPeriod(parameters) if endTime is None else float(endTime)
+    endTime = RotationPeriod(ResolveDrive(parameters=parameters)) if endTime is None else float(endTime)
 
     SC = exu.SystemContainer()
     mbs = SC.AddSystem()

@@ -51,6 +51,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
+import exudyn as exu
 import numpy as np
 from scipy.optimize import brentq
 from scipy.signal import find_peaks
@@ -63,6 +64,7 @@ from exudyn_worm.setups.presets import DriveSideChain
 from exudyn_worm.analysis.reelchanger import RotationPeriod
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 __all__ = ['PRESET', 'J4', 'D4', 'MODE_HZ', 'STEP_SIZE', 'LOWERING', 'ZOOM', 'DriveSideParameters',
            'StiffnessForThirdMode', 'DriveSideModel', 'BuildDriveSideInertia', 'LinearAnalysis', 'MaxRealPart',
@@ -109,7 +111,7 @@ def MaxRealPart(parameters: Mapping[str, float], S: int = -1) -> float:
     S : int
         Contact state held, +1 or -1.
     """
-    model = ew.BuildReelChanger(parameters)
+    model = ew.BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=parameters))
     return AnalyzeLinearStability(model.mbs, contactStates=[(S,)]).State(S).maxRealPart
 
 
@@ -130,7 +132,7 @@ def StiffnessForThirdMode(J4: float = J4, targetHz: float = MODE_HZ, D4: float =
     """
     def Third(k4):
         p = DriveSideParameters(J4, k4, D4, preset)
-        return AnalyzeLinearStability(ew.BuildReelChanger(p).mbs, contactStates=[(1,)]).State(1).frequenciesHz[2]
+        return AnalyzeLinearStability(ew.BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p)).mbs, contactStates=[(1,)]).State(1).frequenciesHz[2]
 
     guess = J4 * (2 * math.pi * targetHz)**2          # inertia4 between two springs, worm held
     return brentq(lambda k: Third(k) - targetHz, 0.2 * guess, 3 * guess, xtol=1e-3)
@@ -255,7 +257,7 @@ def SimulateDriveSideInertia(parameters: Mapping[str, float], stepSize: float = 
     model = BuildDriveSideInertia(parameters)
     mbs = model.mbs
     mbs.Assemble()
-    endTime = RotationPeriod(parameters) if endTime is None else endTime
+    endTime = RotationPeriod(ResolveDrive(parameters=parameters)) if endTime is None else endTime
     steps = int(round(endTime / stepSize))
     ss = exu.SimulationSettings()
     ss.solution.file.write = False                  # Exudyn writes ./solution/ by default

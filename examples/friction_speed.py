@@ -31,12 +31,14 @@ import math
 from pathlib import Path
 from typing import Dict, Sequence
 
+import exudyn as exu
 import numpy as np
 
 import exudyn_worm as ew
 from exudyn_worm.model.friction import NUMPY_OPS, AgmaFriction, ConstantFriction, StribeckFriction
 from exudyn_worm.analysis.reelchanger import RotationPeriod, SimulateReelChanger
 from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 #: reel-P3 with the Stribeck law of docs/friction.md: mu(v0) = 0.132 at 472.5 rpm
 PARAMETERS = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,
@@ -81,8 +83,8 @@ def SpeedChart(rpm: Sequence[float] = tuple(np.geomspace(20., 2000., 60))):
     """
     speeds = np.asarray(rpm, dtype=float) * RPM
     constant = {k: v for k, v in PARAMETERS.items() if k not in ('frictionLaw', 'muStatic', 'stribeckVelocity')}
-    return {'stribeck': SpeedStabilityChart(PARAMETERS, speeds),
-            'constant': SpeedStabilityChart({**constant, 'mu': 0.132}, speeds)}
+    return {'stribeck': SpeedStabilityChart(ResolveDrive(parameters=PARAMETERS), speeds),
+            'constant': SpeedStabilityChart(ResolveDrive(parameters={**constant, 'mu': 0.132}), speeds)}
 
 
 def ChatterAmplitudes(rpm: Sequence[float] = SIMULATED_RPM) -> Dict[str, np.ndarray]:
@@ -102,8 +104,8 @@ def ChatterAmplitudes(rpm: Sequence[float] = SIMULATED_RPM) -> Dict[str, np.ndar
     amplitude, chatter = [], []
     for n in rpm:
         p = ew.ApplyOverrides(PARAMETERS, {'motorSpeed': n * RPM})
-        T = RotationPeriod(p)
-        result = SimulateReelChanger(p, endTime=0.75 * T, stepSize=min(5e-4, ew.RecommendedStepSize(p)),
+        T = RotationPeriod(ResolveDrive(parameters=p))
+        result = SimulateReelChanger(ResolveDrive(parameters=p), endTime=0.75 * T, stepSize=min(5e-4, ew.RecommendedStepSize(ResolveDrive(parameters=p))),
                                      progress=False)
         window, = result.WindowMetrics([(0.25 * T, 0.75 * T)])
         amplitude.append(window['maxAbsWheelAcceleration'])

@@ -36,6 +36,7 @@ from typing import Dict, Iterable, List, Mapping, Optional, Sequence
 from exudyn_worm.setups.presets import REEL_KEYS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SimulateReelChanger
 from exudyn_worm.items.results import SimulationResult
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 __all__ = ['PAPER_FIGURES', 'BACKLASH_STUDY', 'RPM', 'CaseParameters', 'RunPaperCases', 'Summary',
            'FormatSummary', 'WriteFigures', 'main']
@@ -164,7 +165,7 @@ def CaseParameters(preset: str = 'reel-P1', backlash: float = 0., motorSpeed: Op
                                 'rotations': max(rotations, cases.get(label, {}).get('rotations', 1.))}
     for case in cases.values():                    # validate now: bad input fails before any simulation
         params = {k: v for k, v in case.items() if k != 'rotations'}     # not a model parameter
-        RotationPeriod(params)
+        RotationPeriod(ResolveDrive(parameters=params))
         ElasticDriveFromParameters(params)
         if params['loadMass'] < 0 or not math.isfinite(params['loadMass']):
             raise ValueError(f"{w}: 'loadMass' must be >= 0 kg, got {params['loadMass']:g} kg")
@@ -210,13 +211,14 @@ def RunPaperCases(preset: str = 'reel-P1', backlash: float = 0., motorSpeed: Opt
     for label, case in cases.items():
         bar.set_postfix_str(label)
         params = {k: v for k, v in case.items() if k != 'rotations'}
-        period = RotationPeriod(params)
+        drive = ResolveDrive(parameters=params)        # the case's drive, resolved once
+        period = RotationPeriod(drive)
         if period / 4 < MIN_STEPS_PER_PHASE * stepSize:
             fastest = params['motorSpeed'] * period / (4 * MIN_STEPS_PER_PHASE * stepSize) / RPM
             raise ValueError(f"--speed: at {params['motorSpeed'] / RPM:g} rpm a quarter rotation (one lift or "
                              f"lowering phase) takes {period / 4:.3g} s, fewer than {MIN_STEPS_PER_PHASE} steps of "
                              f"{stepSize:g} s; at most {fastest:.4g} rpm")
-        result = SimulateReelChanger(params, endTime=case['rotations'] * period if endTime is None else endTime,
+        result = SimulateReelChanger(drive, endTime=case['rotations'] * period if endTime is None else endTime,
                                      stepSize=stepSize, progress=False)
         bar.update(1)
         edges = (0., period / 4, 3 * period / 4, 5 * period / 4)
@@ -285,7 +287,7 @@ def WriteFigures(results: Mapping[str, SimulationResult], outDir, figures: Optio
         caption = f'Fig. {number}: {_CAPTIONS[number]}'
         if number == 8:                   # what the figure spans: a rotation, or the --end-time given
             result = results[main]
-            period = RotationPeriod(result.info['parameters'])
+            period = RotationPeriod(ResolveDrive(parameters=result.info['parameters']))
             caption += (' (one full rotation)' if abs(result.endTime - period) < 1e-6 * period
                         else f' ({result.endTime / period:.3g} rotations, {result.endTime:g} s)')
         if group in ('mainBacklash', 'P7Backlash'):
@@ -302,7 +304,7 @@ def WriteFigures(results: Mapping[str, SimulationResult], outDir, figures: Optio
             result = results[label]
             tZoom = _ZOOM.get(number)
             if tZoom is not None:         # the same phase of the rotation at another speed (0.1 s wide)
-                start = tZoom[0] * RotationPeriod(result.info['parameters']) / _PAPER_PERIOD
+                start = tZoom[0] * RotationPeriod(ResolveDrive(parameters=result.info['parameters'])) / _PAPER_PERIOD
                 tZoom = (start, start + tZoom[1] - tZoom[0])
             if tZoom is not None and tZoom[0] >= result.endTime:
                 tZoom = None if kind != 'zoom' else (max(0., result.endTime - 0.1), result.endTime)

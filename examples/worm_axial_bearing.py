@@ -46,6 +46,7 @@ from exudyn_worm._checks import CheckOutputFolder
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStability
 from exudyn_worm.setups.presets import AxialBearingFromParameters
 from exudyn_worm.analysis.reelchanger import DefaultWindows
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 __all__ = ['AXIAL_MASS', 'AXIAL_DAMPING', 'STIFFNESSES', 'AxialParameters', 'AxialLinearStability',
            'MaxRealPart', 'BoundaryStiffness', 'EquivalentMeshStiffness', 'EquivalentTwoMassMaxRealPart',
@@ -178,8 +179,8 @@ def SimulationCheck(preset: str, kA: float) -> Dict[str, Any]:
         The bearing's axial stiffness in N/m.
     """
     p = AxialParameters(preset, kA)
-    result = ew.SimulateReelChanger(p)
-    lowering = result.WindowMetrics(DefaultWindows(p))[1]
+    result = ew.SimulateReelChanger(ResolveDrive(parameters=p))
+    lowering = result.WindowMetrics(DefaultWindows(ResolveDrive(parameters=p)))[1]
     return {'preset': preset, 'kA': kA, 'linearStable': MaxRealPart(preset, kA) < 0, **lowering}
 
 

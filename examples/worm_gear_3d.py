@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from typing import Dict, List, Mapping, Optional, Sequence
 
+import exudyn as exu
 import numpy as np
 
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability
@@ -31,6 +32,7 @@ from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.stepsize import RecommendedStepSize
 from exudyn_worm.items.bearings import ShaftBearings, StoredBearingLoads
 from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 #: the bearings of the example (module docstring)
 WORM_BEARINGS = ShaftBearings(radialStiffness=5e8, axialStiffness=5e8, span=0.12)
@@ -64,7 +66,7 @@ def BearingLoadSeries(parameters: Optional[Mapping[str, float]] = None, endTime:
                                       wormMass=WORM_MASS)
     model.connector.AddSensors(model.mbs)
     model.mbs.Assemble()
-    ss, solverType = SolverSettings(endTime, RecommendedStepSize(parameters))
+    ss, solverType = SolverSettings(endTime, RecommendedStepSize(ResolveDrive(parameters=parameters)))
     model.mbs.SolveDynamic(ss, solverType=solverType)
     mesh = model.connector.StoredMeshState(model.mbs)
     out = {'normalForce': np.asarray(mesh.normalForce, dtype=float)}
@@ -141,7 +143,7 @@ def AxialStiffnessScan(stiffnesses: Sequence[float] = (2e9, 1e9, 7e8, 5e8),
                                           wormBearings=ShaftBearings(radialStiffness=1e11, axialStiffness=kA, span=0.12))
         model.mbs.Assemble()
         rigid = AnalyzeLinearStability(model.mbs).State(-1)
-        oneAngle = AnalyzeLinearStability(BuildReelChanger({**parameters, 'kA': kA, 'dA': 0., 'mA': WORM_MASS}).mbs)
+        oneAngle = AnalyzeLinearStability(BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters={**parameters, 'kA': kA, 'dA': 0., 'mA': WORM_MASS})).mbs)
         rows.append({'axialStiffness': kA, 'rigidBodies': _DriveModeRate(rigid),
                      'oneAngle': _DriveModeRate(oneAngle.State(-1))})
     return rows

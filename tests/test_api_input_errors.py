@@ -17,6 +17,7 @@ from exudyn_worm.analysis.linearization import AnalyzeLinearStability
 from exudyn_worm.model.friction import AgmaFriction
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.setups.presets import GearFromParameters
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 P1 = ew.GetPreset('reel-P1')
 
@@ -31,7 +32,7 @@ def _Two(mbs):
 
 
 def _Linearized():
-    return AnalyzeLinearStability(ew.BuildReelChanger(P1).mbs, contactStates=[(1,), (-1,)])
+    return AnalyzeLinearStability(ew.BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=P1)).mbs, contactStates=[(1,), (-1,)])
 
 
 def _Chart():
@@ -108,30 +109,33 @@ CASES = {
                                     "WormGearConnector: no stored sensor data: solve the system first"),
     # "not iterable" / "missing loadMass..." / "dictionary update sequence element"
     'simulate None': (lambda: ew.SimulateReelChanger(None), TypeError,
-                      "SimulateReelChanger: 'parameters' must be a mapping of parameter names to values (SI), "
-                      "e.g. GetPreset('reel-P1'), got NoneType None"),
+                      "SimulateReelChanger: 'drive' must be a Drive (exudyn_worm.ResolveDrive), got NoneType; a preset "
+                      "or a drive file becomes one with exudyn_worm.ResolveDrive(preset=..., config=...)"),
+    'simulate a flat set': (lambda: ew.SimulateReelChanger(P1), TypeError,
+                            "SimulateReelChanger: 'drive' must be a Drive (exudyn_worm.ResolveDrive), got dict; a flat "
+                            "parameter set becomes one with exudyn_worm.ResolveDrive(parameters=...)"),
     'simulate a preset name': (lambda: ew.SimulateReelChanger('reel-P1'), TypeError,
-                               "SimulateReelChanger: 'parameters' must be a mapping of parameter names to values "
-                               "(SI); for the preset 'reel-P1' pass GetPreset('reel-P1'), got str"),
+                               "SimulateReelChanger: 'drive' must be a Drive (exudyn_worm.ResolveDrive), got str; a "
+                               "preset or a drive file becomes one with exudyn_worm.ResolveDrive(preset=..., config=...)"),
     'simulate an ElasticDrive': (lambda: ew.SimulateReelChanger(ew.DriveFromParameters(P1)), TypeError,
-                                 "SimulateReelChanger: 'parameters' must be a mapping of parameter names to values "
-                                 "(SI), e.g. GetPreset('reel-P1'), got ElasticDrive"),
-    'build a preset name': (lambda: ew.BuildReelChanger('reel-P1'), TypeError,
-                            "BuildReelChanger: 'parameters' must be a mapping"),
+                                 "SimulateReelChanger: 'drive' must be a Drive (exudyn_worm.ResolveDrive), got "
+                                 "ElasticDrive; the two-mass core alone is analysed with AnalyzeStability"),
+    'build a preset name': (lambda: ew.BuildReelChanger(exu.SystemContainer().AddSystem(), 'reel-P1'), TypeError,
+                            "BuildReelChanger: 'drive' must be a Drive"),
     'design check a preset name': (lambda: DesignCheck('reel-P1'), TypeError,
-                                   "DesignCheck: 'parameters' must be a mapping of parameter names to values (SI); "
-                                   "for the preset 'reel-P1' pass GetPreset('reel-P1'), got str"),
+                                   "DesignCheck: 'drive' must be a Drive (exudyn_worm.ResolveDrive), got str; a preset "
+                                   "or a drive file becomes one with exudyn_worm.ResolveDrive(preset=..., config=...)"),
     'drive from a preset name': (lambda: ew.DriveFromParameters('reel-P1'), TypeError,
                                  "DriveFromParameters: 'parameters' must be a mapping"),
     # "'NoneType' object has no attribute 'dampingCanPull'"
-    'simulate contactOptions None': (lambda: ew.SimulateReelChanger(P1, contactOptions=None), TypeError,
+    'simulate contactOptions None': (lambda: ew.SimulateReelChanger(ResolveDrive(parameters=P1), contactOptions=None), TypeError,
                                      "SimulateReelChanger: 'contactOptions' must be a ContactOptions "
                                      "(e.g. ContactOptions(frictionSpeed=0.05)), got NoneType None"),
     # "'int' object has no attribute 'AngleAndSpeed'"
-    'simulate profile 5': (lambda: ew.SimulateReelChanger(P1, profile=5), TypeError,
+    'simulate profile 5': (lambda: ew.SimulateReelChanger(ResolveDrive(parameters=P1), profile=5), TypeError,
                            "SimulateReelChanger: 'profile' must be None (constant motor speed) or have "
                            "AngleAndSpeed(t, ops) (e.g. ConstantSpeed, StartStopProfile), got int 5"),
-    'build profile 5': (lambda: ew.BuildReelChanger(P1, profile=5), TypeError, "BuildReelChanger: 'profile' must be"),
+    'build profile 5': (lambda: ew.BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=P1), profile=5), TypeError, "BuildReelChanger: 'profile' must be"),
     # "'list' object has no attribute 'items'"
     'chart points unknown preset': (lambda: _Chart().plot(points=['P9']), ValueError,
                                     "PlotStabilityChart: 'points': unknown preset 'P9'; expected preset names: chart, "
@@ -211,7 +215,7 @@ def test_bad_input_gets_a_clear_message(name):
 @pytest.mark.messages
 def test_analyze_linear_stability_takes_a_model_with_mbs():
     """A ReelChangerModel instead of model.mbs raised AttributeError; it is accepted now, with the same result."""
-    model = ew.BuildReelChanger(P1)
+    model = ew.BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=P1))
     a = AnalyzeLinearStability(model, contactStates=[(-1,)])
     b = AnalyzeLinearStability(model.mbs, contactStates=[(-1,)])
     np.testing.assert_allclose(a.State(-1).eigenvalues, b.State(-1).eigenvalues)

@@ -2,6 +2,7 @@
 import math
 import os
 
+import exudyn as exu
 import numpy as np
 import pytest
 
@@ -13,6 +14,7 @@ from exudyn_worm.setups.presets import (PARAMETER_UNITS, ApplyOverrides, AxialBe
                                  DriveSideChain, GetPreset)
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 from exudyn_worm.setups.build import BuildReelChanger
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 P1 = GetPreset('reel-P1')
 
@@ -59,10 +61,10 @@ def test_contact_law_without_axial_arguments_is_unchanged():
 def test_default_off_keeps_every_result_bit_identical(tmp_path, monkeypatch):
     """Absent keys and kA = 0 build the same two-mass system and give bit-identical P1 series (chatter run)."""
     monkeypatch.chdir(tmp_path)
-    model = BuildReelChanger(P1)
+    model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=P1))
     assert model.axialBearing is None and model.chain == () and model.connector.axialNodeNumber is None
-    base = SimulateReelChanger(P1)
-    off = SimulateReelChanger(ApplyOverrides(P1, {'kA': 0., 'dA': 1e4, 'mA': 5.}))
+    base = SimulateReelChanger(ResolveDrive(parameters=P1))
+    off = SimulateReelChanger(ResolveDrive(parameters=ApplyOverrides(P1, {'kA': 0., 'dA': 1e4, 'mA': 5.})))
     assert np.max(np.abs(base.series['alpha2'])) > 50          # P1 chatters: a meaningful comparison
     assert sorted(off.series) == sorted(base.series)
     for key, values in base.series.items():
@@ -75,7 +77,7 @@ def test_stiff_axial_bearing_converges_to_the_rigid_worm():
     peaks = {}
     for kA in (None, 1e10, 1e11):
         p = P1 if kA is None else ApplyOverrides(P1, {'kA': kA, 'dA': 0., 'mA': 5.})
-        peaks[kA] = np.max(np.abs(SimulateReelChanger(p).series['alpha2']))
+        peaks[kA] = np.max(np.abs(SimulateReelChanger(ResolveDrive(parameters=p)).series['alpha2']))
     error10, error11 = (abs(peaks[k] / peaks[None] - 1) for k in (1e10, 1e11))
     assert error11 < 0.01 and error11 < error10 / 3
 
@@ -84,7 +86,7 @@ def test_stiff_axial_bearing_converges_to_the_rigid_worm():
 @pytest.mark.parametrize('useSymbolic', [True, False])
 def test_axial_bearing_and_chain_start_in_equilibrium(useSymbolic):
     p = ApplyOverrides(P1, {'kA': 5e8, 'dA': 1e4, 'mA': 5., 'J4': 0.05, 'k4': 2e4, 'd4': 1., 'J5': 0.02, 'k5': 1e5})
-    r = SimulateReelChanger(p, endTime=0.2, useSymbolic=useSymbolic)
+    r = SimulateReelChanger(ResolveDrive(parameters=p), endTime=0.2, useSymbolic=useSymbolic)
     assert np.max(np.abs(r.series['alpha2'])) < 0.01
     assert np.max(np.abs(r.series['alpha1'])) < 1. and np.max(np.abs(r.series['alpha4'])) < 1.
     # kA xA carries the mesh's axial force (lifting at t = 0: the load pushes the worm to -xA)
@@ -96,7 +98,7 @@ def test_axial_bearing_and_chain_start_in_equilibrium(useSymbolic):
 @pytest.mark.physics
 def test_symbolic_and_python_agree_with_axial_bearing():
     p = ApplyOverrides(P1, {'kA': 1e9, 'dA': 1e4, 'mA': 5., 'backlash': 0.25e-3})
-    fast, slow = (SimulateReelChanger(p, endTime=2.6, useSymbolic=s) for s in (True, False))
+    fast, slow = (SimulateReelChanger(ResolveDrive(parameters=p), endTime=2.6, useSymbolic=s) for s in (True, False))
     scale = np.max(np.abs(fast.series['alpha2']))
     assert scale > 10
     np.testing.assert_allclose(slow.series['alpha2'], fast.series['alpha2'], rtol=0, atol=1e-6 * scale)

@@ -9,6 +9,7 @@ import pytest
 
 from exudyn_worm.setups.presets import GetPreset
 from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, SimulateReelChanger
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 
@@ -27,7 +28,7 @@ def reference():
 @pytest.fixture(scope='module')
 def runs(reference):
     p1 = GetPreset('reel-P1')
-    ours = SimulateReelChanger(p1, endTime=END_TIME, stepSize=DEFAULT_STEP_SIZE)    # 5e-4 s: scipy's output grid
+    ours = SimulateReelChanger(ResolveDrive(parameters=p1), endTime=END_TIME, stepSize=DEFAULT_STEP_SIZE)    # 5e-4 s: scipy's output grid
     # tight tolerances: this run stands for the exact solution of eqs. (1)-(2)
     scipy = reference.SolveReelChangerScipy(p1, endTime=END_TIME, method='LSODA', rtol=1e-8, atol=1e-11)
     return ours, scipy

@@ -9,7 +9,7 @@ import pytest
 
 import exudyn_worm.analysis.chatter as chatter
 from exudyn_worm.analysis.chatter import FindSteadyChatter, SteadyChatterSummary
-from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm.analysis.drivestability import AnalyzeDrive
 from exudyn_worm.analysis.lowering import BuildRigidBodyLoweringModel, LoweringPhaseParameters
 from exudyn_worm.analysis.orbits import PeriodicOrbit, ShootingError
 from exudyn_worm.cli.formatchatter import FormatSteadyChatter
@@ -85,7 +85,7 @@ def test_lowering_point_of_the_bearing_drive_has_a_barely_damped_tilt_mode_besid
     # the measured reason why the 3D model settles slowly (docs/chatter-amplitude.md, "The 3D model"): at the lowering
     # point of reel-3d.toml a mode at 30.97 Hz has Re = -0.014 1/s (damping ratio 7e-5, decay time 70 s), and the
     # unstable (chatter) mode is at 31.8 Hz beside it, not the one-angle model's 40 Hz
-    state = DriveStability(ResolveDrive(config=DRIVE_3D)).State(-1)
+    state = AnalyzeDrive(ResolveDrive(config=DRIVE_3D)).State(-1)
     ev = np.asarray(state.eigenvalues)
     ev = ev[ev.imag > 0]
     f, zeta = np.abs(ev) / (2 * np.pi), -ev.real / np.abs(ev)

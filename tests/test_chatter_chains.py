@@ -18,10 +18,11 @@ from exudyn_worm.analysis.chatter import (BuildLoweringModel, FindSteadyChatter,
 from exudyn_worm.analysis.lowering import EquilibriumState
 from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude
 from exudyn_worm.cli.main import Main
-from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm.analysis.drivestability import AnalyzeDrive
 from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries, SmallestDisturbance
 from exudyn_worm.items.drivetrain import CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
 from exudyn_worm.model.profiles import ConstantSpeed, ConstantTorque
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
@@ -194,7 +195,7 @@ def test_own_system_at_rest_is_reported():
     # J1 = 0.3 kg m^2: the chain drive is linearly stable (its own linearization decides, as DriveStability for a
     # parameter set); the kick dies out and the message says so
     p = {**CHAIN, 'J1': 0.3}
-    assert DriveStability(p).State(-1).stable
+    assert AnalyzeDrive(ResolveDrive(parameters=p)).State(-1).stable
     SC, mbs, connector = _HandBuiltThreeMass(p)
     assert _LinearlyStable(LoweringModelOfSystem(mbs, connector))
     SC, mbs, connector = _HandBuiltThreeMass(p)

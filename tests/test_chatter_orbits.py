@@ -22,8 +22,9 @@ from exudyn_worm.analysis.disturbance import ChattersAfterDisturbance
 from exudyn_worm.cli.main import Main
 from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
-from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm.analysis.drivestability import AnalyzeDrive
 from exudyn_worm.analysis.orbits import FloquetMultipliers, Monodromy
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
@@ -183,7 +184,7 @@ def test_backlash_rest_and_chatter_coexist():
     # large worm-speed kick ends in chatter; the orbit found by shooting is that chatter (long run within 2 %),
     # and a small kick dies out
     p = {**P1, 'J1': 0.25, 'backlash': 5e-4}
-    assert DriveStability(p).State(-1).stable
+    assert AnalyzeDrive(ResolveDrive(parameters=p)).State(-1).stable
     orbit = FindSteadyChatter(p, kick=0.5)
     assert orbit.stable and orbit.info['forceFactor'] > 4.
     chatter = LongSimulationAmplitude(p, duration=4.0, stepSize=2e-4, kick=0.3)

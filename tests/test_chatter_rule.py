@@ -9,6 +9,7 @@ from exudyn_worm import GetPreset, SimulateReelChanger
 from exudyn_worm.items.results import (CHATTER_AMPLITUDE, CHATTER_MIN_MESH_TORQUE, CHATTER_SUSTAIN,
                                        SimulationResult)
 from exudyn_worm.analysis.reelchanger import DefaultPhases
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 _T = np.linspace(0., 1., 20001)
 #: frequency in Hz of the test tones: 100 periods in each quarter of the window [0, 1] s
@@ -85,7 +86,7 @@ def test_unloaded_reel_changer_does_not_chatter():
     """loadMass = 0: the mesh carries only round-off (|phi2''| about 1e-9 rad/s^2), which a relative rule alone
     would call chatter in both windows."""
     p = dict(GetPreset('reel-P1'), loadMass=0.)
-    result = SimulateReelChanger(p, endTime=4., progress=False)
+    result = SimulateReelChanger(ResolveDrive(parameters=p), endTime=4., progress=False)
     metrics = result.WindowMetrics([(0., 2.), (2., 4.)])
     assert max(m['maxAbsWheelAcceleration'] for m in metrics) < 1e-6
     assert [m['chatter'] for m in metrics] == [False, False]
@@ -107,8 +108,8 @@ def test_worm_side_stick_slip_of_a_hoist_is_chatter():
     """The worm vibrates against its soft shaft and turns back while lifting and lowering; the wheel barely
     moves, so its inertia torque stays far below a tenth of the mesh torque (the wheel's measure misses it),
     while the mesh's sliding measure exceeds 1 (the worm turns back). Standing still under load, no chatter."""
-    result = SimulateReelChanger(HOIST, progress=False)
-    phases = DefaultPhases(HOIST, result.endTime)
+    result = SimulateReelChanger(ResolveDrive(parameters=HOIST), progress=False)
+    phases = DefaultPhases(ResolveDrive(parameters=HOIST), result.endTime)
     assert [ph for _, _, ph in phases] == ['lift', 'idle', 'lower', 'idle']
     for t0, t1, phase in phases:
         late = (result.time >= 0.5 * (t0 + t1)) & (result.time <= t1)

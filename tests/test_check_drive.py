@@ -179,8 +179,8 @@ def test_two_mass_plot_draws_the_chart_at_the_deciding_operating_point(tmp_path)
     point (lifting only: a constant load torque at a constant speed); the drive's own point has the verdict of
     AnalyzeDrive, and a point the chart calls stable is stable for AnalyzeDrive too."""
     drive = ResolveDrive(config=_LumpedAgma(tmp_path)).Replace(
-        {'frictionLaw': 'stribeck', 'mu': 0.07, 'muStatic': 0.12, 'stribeckVelocity': 0.3,
-         'motorType': 'constantSpeed', 'motorSpeed': 100 * 2 * math.pi / 60})
+        frictionLaw='stribeck', mu=0.07, muStatic=0.12, stribeckVelocity=0.3, motorType='constantSpeed',
+        motorSpeed=100 * 2 * math.pi / 60)
     assert drive.isTwoMass
     result = DesignCheck(drive)
     charts = LocalCharts(result.drive)

@@ -281,7 +281,7 @@ def test_exudyn_method_uses_linearization(capsys, monkeypatch):
         print('noise from the solver')              # must not reach stdout with --json
         return AnalyzeStability(drive, operatingPoint)
 
-    monkeypatch.setattr(linearization, 'AnalyzeStabilityExudyn', Fake)
+    monkeypatch.setattr(linearization, 'ExudynStabilityAnalysis', Fake)
     rc, out, err = Run(capsys, 'stability', '--method', 'exudyn', '--json')
     assert rc == 0 and [op.S for op in calls] == [1, -1]          # one linearization per operating point
     assert json.loads(out) == {**RunJson(capsys), 'method': 'exudyn', 'model': 'linearized'}

@@ -10,6 +10,7 @@ from exudyn_worm.cli.main import Main
 from exudyn_worm.cli.simulate import ParseWindows
 from exudyn_worm.analysis.reelchanger import DefaultWindows, RotationPeriod
 from exudyn_worm.items.solve import SolverDivergedError
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 WINDOW_KEYS = {'t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
                'fractionSNegative', 'minWormSpeed', 'chatter'}
@@ -128,18 +129,18 @@ def test_end_time_below_one_rotation_and_default_windows(capsys):
 
 def test_default_windows_follow_the_end_time():
     p = GetPreset('reel-P1')
-    T = RotationPeriod(p)
-    assert DefaultWindows(p) == [(0., T / 4), (T / 4, 3 * T / 4), (3 * T / 4, T)]
-    w = DefaultWindows(p, 1.5 * T)
+    T = RotationPeriod(ResolveDrive(parameters=p))
+    assert DefaultWindows(ResolveDrive(parameters=p)) == [(0., T / 4), (T / 4, 3 * T / 4), (3 * T / 4, T)]
+    w = DefaultWindows(ResolveDrive(parameters=p), 1.5 * T)
     assert w[3:] == [(T, 1.25 * T), (1.25 * T, 1.5 * T)] and len(w) == 5
-    assert DefaultWindows(p, 0.3 * T) == [(0., T / 4), (T / 4, 0.3 * T)]
-    assert DefaultWindows(p, T / 4 + 1e-4, minLength=1e-3) == [(0., T / 4)]
+    assert DefaultWindows(ResolveDrive(parameters=p), 0.3 * T) == [(0., T / 4), (T / 4, 0.3 * T)]
+    assert DefaultWindows(ResolveDrive(parameters=p), T / 4 + 1e-4, minLength=1e-3) == [(0., T / 4)]
 
 
 def test_run_size_limit_api():
     with pytest.raises(ValueError, match=r"SimulateReelChanger: endTime 10 s at stepSize 0.0005 s needs 2e\+04 "
                                          r"solver steps, more than the limit maxSteps = 1000"):
-        SimulateReelChanger(GetPreset('reel-P1'), endTime=10., stepSize=5e-4, maxSteps=1000)
+        SimulateReelChanger(ResolveDrive(parameters=GetPreset('reel-P1')), endTime=10., stepSize=5e-4, maxSteps=1000)
 
 
 def test_simulate_states_its_source(capsys, tmp_path):

@@ -15,6 +15,7 @@ from exudyn_worm.analysis.studyfiles import ReadResults
 from exudyn_worm.analysis.reelchanger import DefaultPhases
 from exudyn_worm.analysis.studypoint import DecidingWindow
 from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 SHORT = ['--windows', '0:0.5,0.5:1', '--end-time', '1', '--quiet']
 
@@ -164,8 +165,8 @@ def test_default_metric_belongs_to_the_deciding_phase():
     """The default --metric window is the first of the phase that decides the linear verdict: the reel changer at
     P1 chatters while lowering (section 3.2), its window 1; the hoist's lifting point decides (its file), a lifting
     window."""
-    assert DecidingWindow(GetPreset('reel-P1')) == 1
+    assert DecidingWindow(ResolveDrive(parameters=GetPreset('reel-P1'))) == 1
     hoist = ResolveParameters(config=Path(__file__).resolve().parents[1] / 'examples' / 'drives' / 'hoist.toml')
-    i = DecidingWindow(hoist)
-    phases = DefaultPhases(hoist, None, minLength=1e-3)
+    i = DecidingWindow(ResolveDrive(parameters=hoist))
+    phases = DefaultPhases(ResolveDrive(parameters=hoist), None, minLength=1e-3)
     assert phases[i][2] == 'lift' and all(ph != 'lift' for _, _, ph in phases[:i])

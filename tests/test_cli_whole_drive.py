@@ -10,7 +10,8 @@ import pytest
 from exudyn_worm.cli import main as cli
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
+from exudyn_worm.analysis.linearization import LinearStabilityOfDrive
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 ROOT = Path(__file__).resolve().parents[1]
 FIGURE19 = ROOT / 'examples' / 'drives' / 'figure19.toml'
@@ -27,7 +28,7 @@ def test_chain_uses_the_linearized_whole_drive(tmp_path):
     data = json.loads(run.stdout)
     assert data['method'] == 'exudyn' and data['components'] == ['a drive-side chain (J4, ...)']
     assert 'inertia4' in data['coordinates']
-    expected = LinearStabilityFromParameters(ResolveParameters(config=FIGURE19))       # at rest, constant mu
+    expected = LinearStabilityOfDrive(ResolveDrive(parameters=ResolveParameters(config=FIGURE19)))       # at rest, constant mu
     assert data['stable'] is expected.stable is False
     byS = {tuple(s['S']): s for s in data['states']}
     # at the lowering operating point (moving at the motor speed): with constant mu the same eigenvalues as at rest,

@@ -9,10 +9,11 @@ from exudyn.itemInterface import NodePoint
 from exudyn_worm import AnalyzeStability
 from exudyn_worm.items.connector import CreateWormGear
 from exudyn_worm.items.drivetrain import CreateRotor, CreateShaft
-from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn, ExudynEigenvalues
+from exudyn_worm.analysis.linearization import ExudynStabilityAnalysis, ExudynEigenvalues
 from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 from exudyn_worm.setups.build import BuildReelChanger
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 
@@ -26,7 +27,7 @@ def test_linearized_exudyn_model_reproduces_analytical_eigenvalues(name):
         p = ApplyOverrides(p, {'J1': 1e-4, 'kT': 0.5, 'DT': 0.028})
     drive = ElasticDriveFromParameters(p)
     analytical = AnalyzeStability(drive)
-    exudyn = AnalyzeStabilityExudyn(drive)
+    exudyn = ExudynStabilityAnalysis(drive)
     for S in (1, -1):
         a, e = analytical.contact[S].eigenvalues, exudyn.contact[S].eigenvalues
         np.testing.assert_allclose(e, a, rtol=1e-6, atol=0)
@@ -46,8 +47,8 @@ def test_linearization_with_backlash_and_python_user_function():
 def test_symbolic_and_python_user_functions_give_identical_results(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     p = ApplyOverrides(GetPreset('reel-P1'), {'backlash': 0.25e-3})
-    fast = SimulateReelChanger(p, endTime=2.6)
-    slow = SimulateReelChanger(p, endTime=2.6, useSymbolic=False)
+    fast = SimulateReelChanger(ResolveDrive(parameters=p), endTime=2.6)
+    slow = SimulateReelChanger(ResolveDrive(parameters=p), endTime=2.6, useSymbolic=False)
     scale = np.max(np.abs(fast.series['alpha2']))
     assert scale > 10                                     # chatter has started: a meaningful comparison
     np.testing.assert_allclose(slow.series['alpha2'], fast.series['alpha2'], rtol=0, atol=1e-6 * scale)
@@ -83,7 +84,7 @@ def test_connector_rejects_bad_input():
 @pytest.mark.physics
 def test_full_model_linearizes_with_exudyn():
     """mbs.ComputeLinearizedSystem works on a system containing the connector and the load."""
-    model = BuildReelChanger(GetPreset('reel-P1'))
+    model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=GetPreset('reel-P1')))
     model.mbs.Assemble()
     M, K, D = model.mbs.ComputeLinearizedSystem()
     assert np.all(np.isfinite(K)) and np.any(K != 0)
@@ -91,6 +92,6 @@ def test_full_model_linearizes_with_exudyn():
 
 @pytest.mark.physics
 def test_starts_in_static_equilibrium():
-    r = SimulateReelChanger(GetPreset('reel-P1'), endTime=0.5)
+    r = SimulateReelChanger(ResolveDrive(parameters=GetPreset('reel-P1')), endTime=0.5)
     assert np.max(np.abs(r.series['alpha2'])) < 0.01          # rad/s^2: no start-up transient
     assert np.max(np.abs(r.series['alpha1'])) < 1.

@@ -14,6 +14,7 @@ from exudyn_worm.analysis.designconfirm import ConfirmBySimulation
 from exudyn_worm.analysis.designrules import DEFAULT_MARGIN
 from exudyn_worm.analysis.stabilityhint import NearestStableValue, StabilizingChanges
 from exudyn_worm.analysis.designscan import DesignParameters
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 
 def _Stable(p):
@@ -34,7 +35,7 @@ def _StableWithMargin(parameters, changes, margin, samples=41):
 
 @pytest.fixture(scope='module')
 def p1Check():
-    return DesignCheck(GetPreset('reel-P1'))
+    return DesignCheck(ResolveDrive(parameters=GetPreset('reel-P1')))
 
 
 @pytest.mark.physics
@@ -69,7 +70,7 @@ def test_each_recommendation_is_stable_with_the_margin_and_the_smallest(p1Check)
 def test_paper_points_p2_to_p5_lie_beyond_the_boundaries(p1Check):
     # section 3.2.4: P2 (J1 x3), P3 (J1 /3), P4 (kT x2), P5 (kT /5) are stable; each lies at or beyond our
     # margin-0 boundary in its direction (this is a consistency check, not a tuning target)
-    nearest = {(s.key, d): v for s in StabilizingChanges(GetPreset('reel-P1'))
+    nearest = {(s.key, d): v for s in StabilizingChanges(ResolveDrive(parameters=GetPreset('reel-P1')))
                for d, v in ((-1, s.below), (1, s.above))}
     assert 0.033 < nearest['J1', -1] < 0.1 < nearest['J1', 1] < 0.3
     assert 1400. < nearest['kT', -1] < 7000. < nearest['kT', 1] < 14000.
@@ -77,7 +78,7 @@ def test_paper_points_p2_to_p5_lie_beyond_the_boundaries(p1Check):
 
 @pytest.mark.physics
 def test_stable_preset_needs_no_change():
-    r = DesignCheck(GetPreset('reel-P2'))
+    r = DesignCheck(ResolveDrive(parameters=GetPreset('reel-P2')))
     assert r.stable and r.stableWithMargin and r.recommendations == [] and r.marginShortBy == []
     assert r.bestPair is None and r.maxRealPart < 0
     assert r.ToDict()['recommendations'] == []
@@ -85,8 +86,8 @@ def test_stable_preset_needs_no_change():
 
 def test_margin_rule_is_the_same_everywhere(p1Check):
     p1 = GetPreset('reel-P1')
-    wide = DesignCheck(p1, margin=0.2)
-    zero = DesignCheck(p1, margin=0.)
+    wide = DesignCheck(ResolveDrive(parameters=p1), margin=0.2)
+    zero = DesignCheck(ResolveDrive(parameters=p1), margin=0.)
     for a, b, c in zip(p1Check.recommendations, wide.recommendations, zero.recommendations):
         assert a.parameter == b.parameter == c.parameter
         sign = math.copysign(1., math.log10(a.factor))
@@ -94,7 +95,7 @@ def test_margin_rule_is_the_same_everywhere(p1Check):
         assert math.log10(b.factor) - math.log10(a.factor) == pytest.approx(0.1 * sign, abs=1e-8)
         assert math.log10(a.factor) - math.log10(c.factor) == pytest.approx(0.1 * sign, abs=1e-8)
     # margin 0 = the nearest stable values of the stability hint (one scan behind both)
-    for s in StabilizingChanges(p1):
+    for s in StabilizingChanges(ResolveDrive(parameters=p1)):
         byDirection = {x.factor > 1: x.newValue for x in zero.recommendations if x.parameter == s.key}
         assert byDirection[False] == pytest.approx(s.below, rel=1e-9)
         assert byDirection[True] == pytest.approx(s.above, rel=1e-9)
@@ -105,7 +106,7 @@ def test_stable_drive_within_the_margin_is_moved_away_from_the_boundary(p1Check)
     up = next(x for x in p1Check.recommendations if x.parameter == 'J1' and x.factor > 1)
     boundary = up.newValue / 10 ** DEFAULT_MARGIN
     near = ApplyOverrides(p1, {'J1': boundary * 1.05})          # stable, 0.02 decades beyond the boundary
-    r = DesignCheck(near)
+    r = DesignCheck(ResolveDrive(parameters=near))
     assert r.stable and not r.stableWithMargin and 'J1' in r.marginShortBy
     again = next(x for x in r.recommendations if x.parameter == 'J1' and x.factor > 1)
     assert again.newValue == pytest.approx(up.newValue, rel=1e-8)    # the same target as from P1
@@ -114,7 +115,7 @@ def test_stable_drive_within_the_margin_is_moved_away_from_the_boundary(p1Check)
 
 def test_no_single_parameter_gives_the_best_pair():
     p1 = GetPreset('reel-P1')
-    r = DesignCheck(p1, span=1.5)
+    r = DesignCheck(ResolveDrive(parameters=p1), span=1.5)
     assert r.recommendations == [] and not r.singleParameterSuffices
     pair = r.bestPair
     assert pair is not None and pair.maxRealPartAfter < 0
@@ -150,13 +151,13 @@ def test_chart_point_and_distance_to_the_boundary(p1Check):
 
 def test_damping_held_as_given():
     p1 = GetPreset('reel-P1')
-    assert DesignParameters(p1) == ['J1', 'J2', 'kT', 'DT', 'DV']
+    assert DesignParameters(ResolveDrive(parameters=p1)) == ['J1', 'J2', 'kT', 'DT', 'DV']
     drive = ElasticDriveFromParameters(p1)
     constants = ApplyOverrides(p1, {'dT': drive.dT, 'dV': drive.gear.dV})
-    assert DesignParameters(constants) == ['J1', 'J2', 'kT', 'dT', 'dV']
-    assert DesignParameters(GetPreset('reel-P6')) == ['J1', 'J2', 'kT', 'DTV', 'DV']
-    measures = DesignCheck(p1)
-    held = DesignCheck(constants)
+    assert DesignParameters(ResolveDrive(parameters=constants)) == ['J1', 'J2', 'kT', 'dT', 'dV']
+    assert DesignParameters(ResolveDrive(parameters=GetPreset('reel-P6'))) == ['J1', 'J2', 'kT', 'DTV', 'DV']
+    measures = DesignCheck(ResolveDrive(parameters=p1))
+    held = DesignCheck(ResolveDrive(parameters=constants))
     for r, heldKey, heldValue in ((measures, 'DT', 0.014), (held, 'dT', drive.dT)):
         up = next(x for x in r.recommendations if x.parameter == 'J1' and x.factor > 1)
         after = ElasticDriveFromParameters(ApplyOverrides(r.parameters, up.changes))
@@ -180,23 +181,23 @@ def test_to_dict_is_json_ready(p1Check):
 def test_bad_arguments():
     p1 = GetPreset('reel-P1')
     with pytest.raises(ValueError, match="DesignCheck: 'margin' must be in \\[0, 1\\] decades, got -0.1"):
-        DesignCheck(p1, margin=-0.1)
+        DesignCheck(ResolveDrive(parameters=p1), margin=-0.1)
     with pytest.raises(ValueError, match="DesignCheck: 'span' must be in \\(1, 10000\\]"):
-        DesignCheck(p1, span=1.)
+        DesignCheck(ResolveDrive(parameters=p1), span=1.)
     with pytest.raises(TypeError, match="DesignCheck: 'margin' must be a real number"):
-        DesignCheck(p1, margin='0.1')
+        DesignCheck(ResolveDrive(parameters=p1), margin='0.1')
     with pytest.raises(ValueError, match="ChatterWhileLowering: the reel-changer simulation needs loadMass, leverArm, motorSpeed; missing"):
-        ConfirmBySimulation(DesignCheck(GetPreset('chart') | {'J1': 0.01, 'kT': 10., 'DT': 0.01}))
+        ConfirmBySimulation(DesignCheck(ResolveDrive(parameters=GetPreset('chart') | {'J1': 0.01, 'kT': 10., 'DT': 0.01})))
 
 
 def test_nearest_stable_value():
     p1 = GetPreset('reel-P1')
-    assert NearestStableValue(p1, 'J1', +1, span=1.5) is None
-    assert NearestStableValue(GetPreset('reel-P2'), 'J1', +1) == 0.3        # already stable
+    assert NearestStableValue(ResolveDrive(parameters=p1), 'J1', +1, span=1.5) is None
+    assert NearestStableValue(ResolveDrive(parameters=GetPreset('reel-P2')), 'J1', +1) == 0.3        # already stable
     with pytest.raises(ValueError, match="'direction' must be -1 or \\+1"):
-        NearestStableValue(p1, 'J1', 0)
+        NearestStableValue(ResolveDrive(parameters=p1), 'J1', 0)
     with pytest.raises(ValueError, match="'span' must be > 1"):
-        NearestStableValue(p1, 'J1', 1, span=0.5)
+        NearestStableValue(ResolveDrive(parameters=p1), 'J1', 1, span=0.5)
 
 
 @pytest.mark.physics

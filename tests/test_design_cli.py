@@ -10,6 +10,7 @@ from exudyn_worm.analysis import design
 from exudyn_worm.cli.main import Main
 from exudyn_worm.analysis.design import DesignCheck, LocalCharts
 from exudyn_worm.plotting.plot_design import PlotDesignCheck, _Dense
+from exudyn_worm.setups.wholedrive import ResolveDrive
 from paper_model import BoundaryDecades, HurwitzStable
 
 
@@ -180,8 +181,8 @@ def test_heavy_damping_recommendations_get_a_remark(capsys):
 def test_check_plot_reads_well():
     """Readable: D_V / D_TV in mathtext, no label box over the boundary, the shading in the legend, and
     the legend off the chart."""
-    result = DesignCheck(GetPreset('reel-P1'))
-    fig = PlotDesignCheck(result, LocalCharts(result.parameters), title='reel-P1')
+    result = DesignCheck(ResolveDrive(parameters=GetPreset('reel-P1')))
+    fig = PlotDesignCheck(result, LocalCharts(result.drive), title='reel-P1')
     ax = fig.axes[0]
     legend = ax.get_legend()
     texts = [t.get_text() for t in legend.get_texts()]

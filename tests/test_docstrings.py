@@ -113,7 +113,7 @@ UNHINTED = {
         'exudyn_worm.model.contact.MeshContact': ['phi1', 'phi2', 'omega1', 'omega2', 'ops', 'axialDisplacement',
                                             'axialSpeed', 'radialApproach', 'radialSpeed'],
         'exudyn_worm.model.contact.NormalForceFlanks': ['normalForce', '->'],
-        'exudyn_worm.setups.build.BuildReelChanger': ['profile'],
+        'exudyn_worm.setups.build.BuildReelChanger': ['mbs', 'profile'],
         'exudyn_worm.analysis.reelchanger.SimulateReelChanger': ['profile'],
     },
     _ARRAY: {

@@ -112,12 +112,12 @@ def test_stiff_bearings_give_the_verdict_of_the_one_angle_drive():
     own modes (above 900 Hz) out."""
     stiff = {f'{b}{k}': 1e13 for b in ('worm', 'wheel') for k in ('RadialStiffness', 'AxialStiffness')}
     stiff.update(wormMass=5., wheelMass=30., wormBearingSpan=0.5, wheelBearingSpan=0.5)
-    rigid, reference = AnalyzeDrive({**GetPreset('reel-P1'), **stiff}), AnalyzeDrive(GetPreset('reel-P1'))
+    rigid, reference = AnalyzeDrive(ResolveDrive(parameters={**GetPreset('reel-P1'), **stiff})), AnalyzeDrive(ResolveDrive(parameters=GetPreset('reel-P1')))
     assert rigid.drive.isRigidBody and rigid.model == 'linearized' and rigid.stable == reference.stable
     assert rigid.maxRealPart == pytest.approx(reference.maxRealPart, rel=1e-3)
     assert rigid.frequencyHz == pytest.approx(reference.frequencyHz, rel=1e-3)
     elastic = dict(ResolveDrive(config=DRIVE_3D).parameters)
-    assert RecommendedStepSize(elastic) > 0.5 * RecommendedStepSize(GetPreset('reel-P1'))
+    assert RecommendedStepSize(ResolveDrive(parameters=elastic)) > 0.5 * RecommendedStepSize(ResolveDrive(parameters=GetPreset('reel-P1')))
 
 
 def test_ideal_joint_loads_are_the_statics_of_the_mesh_force():

@@ -13,7 +13,9 @@ import pytest
 import exudyn_worm as ew
 from exudyn_worm.analysis import drivestability
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups import wholedrive
+from exudyn_worm.analysis.design import DesignCheck
+from exudyn_worm.analysis.stabilityhint import StabilizingChanges
+from exudyn_worm.setups import config, presets, wholedrive
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.setups.operatingpoints import DutyOperatingPoints, SteadyPhases
 from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
@@ -51,7 +53,7 @@ def test_drive_is_immutable_typed_and_knows_its_sources():
         drive.parameters['J1'] = 1.                      # read-only
     with pytest.raises(Exception):
         drive.elastic = None                             # frozen
-    changed = drive.Replace({'J1': 2e-3})
+    changed = drive.Replace(J1=2e-3)
     assert changed.parameters['J1'] == 2e-3 and changed.sources['J1'] == 'changed' and drive.parameters['J1'] == 1.5e-3
     preset = ResolveDrive('reel-P1')
     assert preset.isTwoMass and preset.components == () and preset.sources['J1'] == 'preset reel-P1'
@@ -70,7 +72,7 @@ def test_two_mass_builder_refuses_what_it_would_drop():
 def test_readme_short_form_and_cli_give_one_verdict_with_a_chain(capsys):
     p = {**GetPreset('reel-P1'), 'J4': 0.5, 'k4': 2e3}
     api = ew.AnalyzeDrive(ew.ResolveDrive('reel-P1', sets=['J4=0.5', 'k4=2e3']))
-    assert ew.AnalyzeDrive(p).stable is api.stable
+    assert ew.AnalyzeDrive(ResolveDrive(parameters=p)).stable is api.stable
     assert Main(['stability', '--preset', 'reel-P1', '--set', 'J4=0.5', '--set', 'k4=2e3', '--json']) == 0
     data = json.loads(capsys.readouterr().out)
     assert data['stable'] is api.stable and data['model'] == 'linearized'
@@ -197,7 +199,7 @@ def test_agma_hoist_is_dangerous_with_and_without_its_load_side_chain():
         if lumped:        # without the chain: the drum's inertia on the wheel
             params = {k: v for k, v in params.items() if k not in ('JL1', 'kL1')}
             params['J2'] += 6.2
-        analysis = ew.AnalyzeDrive(params)
+        analysis = ew.AnalyzeDrive(ResolveDrive(parameters=params))
         assert analysis.dangerous
         for point in analysis.operatingPoints:
             verdict = point.selfLocking
@@ -236,7 +238,7 @@ def test_a_command_resolves_its_drive_once_and_analyses_each_point_once(capsys, 
         return build(cls, parameters, *args, **kwargs)
 
     def CountedPoint(drive, point, model):
-        analysed.append((id(drive), point.Label(), model))
+        analysed.append((id(drive), repr(point), model))
         return atPoint(drive, point, model)
 
     def CountedResolve(*args, **kwargs):
@@ -249,6 +251,55 @@ def test_a_command_resolves_its_drive_once_and_analyses_each_point_once(capsys, 
     data = json.loads(capsys.readouterr().out)
     assert len(resolved) == 1 and sum(1 for p in built if p.get('kT') == 2100 and 'JL1' in p) == 1
     assert len(analysed) == len(set(analysed)) and len(data['operatingPoints']) == 2
+
+
+@pytest.mark.parametrize('argv', [
+    ['stability'], ['check'], ['simulate', '--end-time', '0.02'],
+    ['chart', '--resolution', '20'],
+], ids=lambda a: a[0])
+def test_each_command_reads_its_drive_file_once_and_builds_its_drive_once(argv, capsys, monkeypatch, tmp_path):
+    """One boundary: the drive file is parsed once per command and the user's drive built once (a drive the
+    command derives from it, as the load side's lumped drive, is another drive)."""
+    parsed, built = [], []
+    loads, build = config.tomllib.loads, wholedrive.Drive.FromParameters.__func__
+
+    def CountedLoads(text, *args, **kwargs):
+        parsed.append(len(text))
+        return loads(text, *args, **kwargs)
+
+    def CountedBuild(cls, parameters, sources=None, *args, **kwargs):
+        if 'changed' not in (sources or {}).values():       # a trial of the design check is another drive
+            built.append(dict(parameters))
+        return build(cls, parameters, sources, *args, **kwargs)
+    monkeypatch.setattr(config.tomllib, 'loads', CountedLoads)
+    monkeypatch.setattr(wholedrive.Drive, 'FromParameters', classmethod(CountedBuild))
+    path = tmp_path / 'p1.toml'
+    path.write_text('preset = "reel-P1"\n[parameters]\nkT = 7001.0\n')
+    assert Main([*argv, '--config', str(path), '--json']) == 0, capsys.readouterr().err
+    capsys.readouterr()
+    assert len(parsed) == 1
+    assert sum(1 for p in built if p.get('kT') == 7001.) <= 1
+
+
+def test_trial_drives_of_the_hint_and_the_design_check_do_not_go_through_the_resolver(monkeypatch):
+    """The hint scan and the design check make their trial drives with Drive.Replace: no trial is a flat set
+    resolved again (ApplyOverrides, the resolver of presets, files and --set), and a trial that changes an inertia,
+    the shaft stiffness or a damping keeps the drive's gear."""
+    calls = []
+    for module, name in ((presets, 'ApplyOverrides'), (config, 'ResolveParametersWithSources'),
+                         (wholedrive, 'ResolveParametersWithSources')):
+        original = getattr(module, name)
+        monkeypatch.setattr(module, name, lambda *a, _o=original, _n=name, **k: calls.append(_n) or _o(*a, **k))
+    drive = ResolveDrive('reel-P1')
+    calls.clear()
+    StabilizingChanges(drive)
+    DesignCheck(drive)
+    assert calls == []
+    changed = drive.Replace(J1=0.3, DT=0.02)
+    assert changed.gear is drive.gear and changed.elastic.J1 == 0.3 and changed.sources['J1'] == 'changed'
+    assert changed.elastic.dT == pytest.approx(2 * 0.02 * math.sqrt(drive.elastic.kT * 0.3), rel=1e-12)   # eq. (22)
+    with pytest.raises(ValueError, match=r"'J1' must be > 0 kg\*m\^2, got -1 kg\*m\^2"):
+        drive.Replace(J1=-1.)
 
 
 # --- the periodic-orbit analysis follows the drive's own lowering phase -------------------------------------------

@@ -13,9 +13,10 @@ from exudyn_worm.analysis.reelchanger import (DefaultPhases, DefaultSimulatedTim
                                               SimulateReelChanger)
 from exudyn_worm.setups.duty import LoadFromParameters, MotorFromParameters, SteadyMotorSpeed
 from exudyn_worm.cli.main import Main
-from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm.analysis.drivestability import AnalyzeDrive
 from exudyn_worm.setups.presets import ExtraComponents
 from exudyn_worm.analysis.designconfirm import ChatterWhileLowering
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 
 def test_speed_table_angle_is_the_integral_of_its_speed():
@@ -50,8 +51,8 @@ def test_torque_table_interpolates_and_holds_its_ends():
 
 def test_reel_changer_phases_are_its_lift_lower_lift_quarters():
     p = ResolveParameters('reel-P1')
-    T = RotationPeriod(p)
-    phases = DefaultPhases(p, 1.5 * T)
+    T = RotationPeriod(ResolveDrive(parameters=p))
+    phases = DefaultPhases(ResolveDrive(parameters=p), 1.5 * T)
     assert [ph for _, _, ph in phases] == ['lift', 'lower', 'lift', 'lift', 'lower']
     np.testing.assert_allclose([t for a, b, _ in phases for t in (a, b)],
                                np.array([0, .25, .25, .75, .75, 1, 1, 1.25, 1.25, 1.5]) * T, rtol=1e-12)
@@ -62,14 +63,14 @@ def test_duty_phases_follow_the_load_power():
     driving torque becomes a lifted one; the rigid kinematics put the switch where the speed passes zero."""
     p = ResolveParameters('reel-P1', sets=['loadType=constant', 'loadTorque=1500', 'motorType=speedTable',
                                            'motorSpeedOverTime=[[0, 0], [0.5, 50], [1.5, 50], [2, -50]]'])
-    assert DefaultSimulatedTime(p) == 2.
-    (t0, t1, a), (t2, t3, b) = DefaultPhases(p)
+    assert DefaultSimulatedTime(ResolveDrive(parameters=p)) == 2.
+    (t0, t1, a), (t2, t3, b) = DefaultPhases(ResolveDrive(parameters=p))
     assert (a, b) == ('lower', 'lift') and t0 == 0. and t3 == 2.
     assert t1 == t2 == pytest.approx(1.75, abs=1e-9)
     q = ResolveParameters('reel-P1', sets=['loadType=timeTable', 'loadTorqueOverTime=[[0, -1e3], [1, -1e3], [1.5, 1e3]]'])
-    (_, s1, a), (s2, _, b) = DefaultPhases(q, 3.)
+    (_, s1, a), (s2, _, b) = DefaultPhases(ResolveDrive(parameters=q), 3.)
     assert (a, b) == ('lift', 'lower') and s1 == s2 == pytest.approx(1.25, abs=1e-9)
-    assert DefaultPhases(ResolveParameters('reel-P1', sets=['loadType=none']), 2.) == [(0., 2., 'idle')]
+    assert DefaultPhases(ResolveDrive(parameters=ResolveParameters('reel-P1', sets=['loadType=none'])), 2.) == [(0., 2., 'idle')]
 
 
 def test_drive_file_gives_the_duty(tmp_path):
@@ -126,7 +127,7 @@ def test_simulation_with_each_duty_records_its_laws():
                  ['loadType=timeTable', 'loadTorqueOverTime=[[0, -2000], [0.1, 0]]'],
                  ['loadType=none']):
         p = ResolveParameters('reel-P2', sets=sets)
-        result = SimulateReelChanger(p, endTime=0.1)
+        result = SimulateReelChanger(ResolveDrive(parameters=p), endTime=0.1)
         assert np.all(np.isfinite(result.series['phi2'])), sets
         assert result.info['loadType'] == p['loadType']
 
@@ -140,7 +141,7 @@ def test_sweep_of_another_duty_takes_its_phases_as_windows(capsys, tmp_path, mon
     power at 0.15 s), as simulate does, and judges the lowering in the phase where the load drives."""
     monkeypatch.chdir(tmp_path)
     p = ResolveParameters('reel-P2', sets=RAMPED_LOAD)
-    phases = DefaultPhases(p)
+    phases = DefaultPhases(ResolveDrive(parameters=p))
     assert [ph for _, _, ph in phases] == ['lift', 'lower'] and phases[0][1] == pytest.approx(0.15, rel=1e-6)
     args = ['sweep', '--preset', 'reel-P2', '--quiet', '--json', '--workers', '1', '--no-check-step',
             '--vary', 'J1=0.1,0.2', *[a for s in RAMPED_LOAD for a in ('--set', s)]]
@@ -171,13 +172,13 @@ def test_idle_window_is_a_standstill_under_load_or_no_load():
     hoist = ['loadType=constant', 'loadTorque=-1500', 'motorType=speedTable',
              'motorSpeedOverTime=[[0, 0], [0.1, 50], [0.5, 50], [0.6, 0], [1, 0], [1.1, -50], [1.5, -50], [1.6, 0]]']
     p = ResolveParameters('reel-P1', sets=hoist)
-    phases = DefaultPhases(p, 1.6)
+    phases = DefaultPhases(ResolveDrive(parameters=p), 1.6)
     assert [ph for _, _, ph in phases] == ['lift', 'idle', 'lower']
-    assert [PhaseLabel(p, ph, (t0, t1)) for t0, t1, ph in phases] == ['lifting', 'standstill under load', 'lowering']
+    assert [PhaseLabel(ResolveDrive(parameters=p), ph, (t0, t1)) for t0, t1, ph in phases] == ['lifting', 'standstill under load', 'lowering']
     unloaded = ResolveParameters('reel-P1', sets=['loadType=none', 'motorType=speedTable',
                                                    'motorSpeedOverTime=[[0, 0], [0.1, 50]]'])
-    assert PhaseLabel(unloaded, 'idle', (0., 1.)) == 'no load'
-    assert PhaseLabel(p, 'idle') == 'idle'                       # without its window it cannot tell
+    assert PhaseLabel(ResolveDrive(parameters=unloaded), 'idle', (0., 1.)) == 'no load'
+    assert PhaseLabel(ResolveDrive(parameters=p), 'idle') == 'idle'                       # without its window it cannot tell
 
 
 CHARACTERISTIC = ['motorType=characteristic', 'stallTorque=300', 'noLoadSpeed=500 rpm', 'motorInertia=0.05']
@@ -188,7 +189,7 @@ def test_motor_characteristic_starts_where_its_line_carries_the_load():
     equilibrium; the run starts there without a jump and the speed follows the lever's load."""
     p = ResolveParameters('reel-P2', sets=CHARACTERISTIC)
     speed = SteadyMotorSpeed(p)
-    result = SimulateReelChanger(p, endTime=0.2)
+    result = SimulateReelChanger(ResolveDrive(parameters=p), endTime=0.2)
     torque = 300. * (1 - speed / p['noLoadSpeed'])
     shaft = result.series['driveTorque'][0]
     assert torque == pytest.approx(-shaft, rel=1e-6)            # the shaft pulls the worm with the motor's torque
@@ -203,7 +204,7 @@ def test_motor_characteristic_in_the_linear_analysis():
     drive's free rotation (a real eigenvalue -slope / (J0 + J1 + ...) reflected), one rigid-body angle remains."""
     p = ResolveParameters('reel-P2', sets=CHARACTERISTIC)
     assert ExtraComponents(p) == ['a motor on its characteristic (motorType characteristic)']
-    state = DriveStability(p).State(1)
+    state = AnalyzeDrive(ResolveDrive(parameters=p)).State(1)
     assert state.rigidBodyModes == 1
     assert len(state.frequenciesHz) == 2 and any(m.eigenvalue.imag == 0 and m.eigenvalue.real < 0 for m in state.modes)
 
@@ -213,9 +214,9 @@ def test_check_simulate_judges_the_lowering_phases_of_a_duty():
     lifts has no lowering to chatter in."""
     lifting = ResolveParameters('reel-P7', sets=['loadType=constant', 'loadTorque=-2000', 'motorType=speedTable',
                                                  'motorSpeedOverTime=[[0, 49.5], [1, 49.5]]'])
-    assert ChatterWhileLowering(lifting) is False
+    assert ChatterWhileLowering(ResolveDrive(parameters=lifting)) is False
     lowering = {**lifting, 'loadTorque': 2000.}
-    assert ChatterWhileLowering(lowering) is True          # P7 chatters while lowering (the paper's Figure 14)
+    assert ChatterWhileLowering(ResolveDrive(parameters=lowering)) is True          # P7 chatters while lowering (the paper's Figure 14)
 
 
 @pytest.mark.parametrize('preset', ['reel-P1', 'reel-P2', 'reel-P7'])
@@ -228,6 +229,6 @@ def test_check_of_a_characteristic_motor_is_the_whole_drives(capsys, tmp_path, m
     out, err = capsys.readouterr()
     assert status == 0, err
     data = json.loads(out)
-    assert data['stable'] is DriveStability(p).stable and data['model'] == 'linearized'
+    assert data['stable'] is AnalyzeDrive(ResolveDrive(parameters=p)).stable and data['model'] == 'linearized'
     assert 'a motor on its characteristic (motorType characteristic)' in data['components']
     assert list(tmp_path.iterdir()) == []

@@ -1,10 +1,12 @@
 """examples/drive_side_inertia.py (Figures 19-20, section 3.2.5): its linear frequencies, stability verdicts and
 simulated frequencies, and the agreement of its hand-built model with BuildReelChanger."""
+import exudyn as exu
 import numpy as np
 import pytest
 
 import exudyn_worm as ew
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 
@@ -34,7 +36,7 @@ def test_third_natural_frequency_is_116_hz(run, example):
 @pytest.mark.physics
 def test_hand_built_model_equals_build_reel_changer(run, example):
     p = run['parameters']
-    built = AnalyzeLinearStability(ew.BuildReelChanger(p).mbs)
+    built = AnalyzeLinearStability(ew.BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p)).mbs)
     for S in (1, -1):
         np.testing.assert_allclose(run['linear'].State(S).eigenvalues, built.State(S).eigenvalues, rtol=1e-9)
     assert run['linear'].coordinates == ['motor', 'inertia4', 'worm', 'wheel']

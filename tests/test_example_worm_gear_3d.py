@@ -1,9 +1,11 @@
 """examples/worm_gear_3d.py: the rigid-body reel changer in elastic bearings, its numbers checked."""
+import exudyn as exu
 import numpy as np
 import pytest
 
 from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 
@@ -35,7 +37,7 @@ def test_bearing_loads_start_from_the_static_mesh_force(example):
     bearings the worm's axial load peaked 32 % above it)."""
     series = example.BearingLoadSeries(endTime=0.05)
     loads = example.BearingLoads(series=series)
-    reference = BuildReelChanger(GetPreset('reel-P1'))
+    reference = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=GetPreset('reel-P1')))
     static = abs(float(reference.connector.InitialMeshState(reference.mbs).normalForce))
     assert loads['initialNormalForce'] == pytest.approx(static, rel=1e-5)
     for key in ('wormAxial', 'wormRadial', 'wheelAxial', 'wheelRadial'):

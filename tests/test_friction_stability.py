@@ -1,5 +1,6 @@
 """Linear stability with speed-dependent friction: eq. (16) extended in place, the Exudyn
 linearization and a finite-difference Jacobian of the nonlinear contact law agree; self-locking verdicts."""
+import dataclasses
 import math
 
 import numpy as np
@@ -8,16 +9,15 @@ import pytest
 from exudyn_worm.model.contact import ContactOptions, MeshContact
 from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.model.friction import StribeckFriction, TableFriction
-from exudyn_worm.analysis.linearization import AnalyzeStabilityExudyn, LinearStabilityFromParameters
+from exudyn_worm.analysis.linearization import ExudynStabilityAnalysis, LinearStabilityOfDrive
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.selflocking import GREY_ZONE, Rating, SelfLocking
 from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoefficients, EigenvaluesFromPolynomial,
                                          EigenvaluesFromStateMatrix, FirstCriterionLimit, LinearMatrices,
                                          OperatingPoint, OperatingPointAt, OperatingPointFromParameters,
                                          PolynomialCoefficients)
+from exudyn_worm.setups.wholedrive import ResolveDrive
 import exudyn_worm.analysis.reelchanger as rc
-import exudyn_worm.setups.build as build
-import exudyn_worm.setups.build as build
 import exudyn_worm.setups.wholedrive as wholedrive
 
 P3 = GetPreset('reel-P3')
@@ -108,7 +108,7 @@ def test_exudyn_linearization_agrees_with_extended_equation_16(useSymbolic):
     on the curved mu(v) is about 4e-8 N*m*s/rad on D11 here."""
     drive = Stribeck()
     op = OperatingPointFromParameters(P3, drive.gear)
-    analytical, exudyn = AnalyzeStability(drive, op), AnalyzeStabilityExudyn(drive, useSymbolic, op)
+    analytical, exudyn = AnalyzeStability(drive, op), ExudynStabilityAnalysis(drive, useSymbolic, op)
     assert exudyn.operatingPoint == op
     for S in (1, -1):
         a, e = analytical.contact[S], exudyn.contact[S]
@@ -178,13 +178,10 @@ def test_operating_point_rejects_bad_input():
 
 def _LoweringOscillation(monkeypatch, law):
     """J2 max|phi2''| (N*m) per half second of the reel-P3 simulation, the connector using ``law``."""
-    original = build.ElasticDriveFromParameters
-
-    def WithLaw(parameters, *args):          # the parameter keys of the law are plumbed elsewhere: attach it here
-        drive = original(parameters, *args)
-        return drive if law is None else Stribeck(drive, law)
-    monkeypatch.setattr(build, 'ElasticDriveFromParameters', WithLaw)   # the drive the builder gives the connector
-    result = rc.SimulateReelChanger(P3)
+    drive = ResolveDrive(parameters=P3)
+    if law is not None:                     # the law given as an object: the drive's core carries it to the connector
+        drive = dataclasses.replace(drive, elastic=Stribeck(drive.elastic, law), _cache={})
+    result = rc.SimulateReelChanger(drive)
     t, alpha2 = result.time, result.series['alpha2']
     return np.array([P3['J2'] * np.max(np.abs(alpha2[(t >= a) & (t < a + 0.5)])) for a in np.arange(0., 8., 0.5)])
 
@@ -205,7 +202,7 @@ def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
     operating point: for the two-mass drive it equals the extended eq. (16)."""
     original = wholedrive.ElasticDriveFromParameters
     monkeypatch.setattr(wholedrive, 'ElasticDriveFromParameters', lambda p, where='': Stribeck(original(p)))
-    linear = LinearStabilityFromParameters(P3)
+    linear = LinearStabilityOfDrive(ResolveDrive(parameters=P3))
     drive = Stribeck()
     op = OperatingPointFromParameters(P3, drive.gear)
     assert linear.operatingPoint == op and linear.ToDict()['operatingPoint'] == op.ToDict()

@@ -6,8 +6,9 @@ import pytest
 
 import exudyn as exu
 import exudyn_worm as ew
-from exudyn_worm.analysis.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStabilityFromParameters
+from exudyn_worm.analysis.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStabilityOfDrive
 from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 
@@ -40,7 +41,7 @@ def test_reel_changer_model_with_load_and_its_options_restored(tmp_path, monkeyp
     dependence adds a stiffness of about 1e-6 relative, hence the looser tolerance here."""
     monkeypatch.chdir(tmp_path)
     p = GetPreset('reel-P1')
-    model = ew.BuildReelChanger(p)
+    model = ew.BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p))
     options = model.connector.options
     linear = AnalyzeLinearStability(model.mbs)
     analytical = ew.AnalyzeStability(model.drive)
@@ -54,7 +55,7 @@ def test_reel_changer_model_with_load_and_its_options_restored(tmp_path, monkeyp
     ss.solution.file.write = False
     ss.timeIntegration.endTime, ss.timeIntegration.numberOfSteps, ss.timeIntegration.verboseMode = 2.6, 5200, 0
     results = []
-    for m in (model, ew.BuildReelChanger(p)):
+    for m in (model, ew.BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p))):
         m.mbs.Assemble()
         m.mbs.SolveDynamic(ss)
         results.append(m.connector.StoredStates(m.mbs)['alpha2'])
@@ -101,7 +102,7 @@ def test_every_combination_of_contact_states_for_two_meshes():
 @pytest.mark.physics
 def test_drive_side_inertia_adds_a_mode_with_its_participants():
     p = ApplyOverrides(GetPreset('reel-P1'), {'J4': 0.05, 'k4': 2e4, 'd4': 1.})
-    linear = AnalyzeLinearStability(ew.BuildReelChanger(p).mbs)
+    linear = AnalyzeLinearStability(ew.BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p)).mbs)
     assert linear.coordinates == ['motor', 'worm', 'wheel', 'inertia4']
     for state in linear.states.values():
         assert len(state.frequenciesHz) == 3 and state.rigidBodyModes == 0
@@ -133,10 +134,10 @@ def test_linear_analysis_rejects_bad_input():
 @pytest.mark.physics
 def test_linear_stability_from_parameters_with_chain_and_axial_bearing():
     p = GetPreset('reel-P1')
-    plain = LinearStabilityFromParameters(p)
+    plain = LinearStabilityOfDrive(ResolveDrive(parameters=p))
     analytical = ew.AnalyzeStability(ElasticDriveFromParameters(p))
     np.testing.assert_allclose(plain.State(-1).eigenvalues, analytical.contact[-1].eigenvalues, rtol=1e-6)
-    full = LinearStabilityFromParameters(ApplyOverrides(p, {'J4': 0.05, 'k4': 2e4, 'd4': 1., 'J5': 0.02, 'k5': 1e5,
-                                                            'kA': 5e8, 'mA': 5.}))
+    full = LinearStabilityOfDrive(ResolveDrive(parameters=ApplyOverrides(p, {'J4': 0.05, 'k4': 2e4, 'd4': 1., 'J5': 0.02, 'k5': 1e5,
+                                                            'kA': 5e8, 'mA': 5.})))
     assert full.coordinates == ['motor', 'worm', 'wheel', 'inertia4', 'inertia5', 'wormAxial']
     assert all(len(s.frequenciesHz) == 5 for s in full.states.values())

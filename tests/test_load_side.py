@@ -16,7 +16,7 @@ from exudyn.itemInterface import (CoordinateSpringDamper, MarkerNodeCoordinate, 
 
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.analysis.linearization import AnalyzeLinearStability
-from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm.analysis.drivestability import AnalyzeDrive
 from exudyn_worm import ContactOptions, CreateWormGear, WormGear
 from exudyn_worm.analysis.design import DesignCheck
 from exudyn_worm.setups.presets import (ElasticDriveFromParameters, ExtraComponents, GetPreset, LoadSideChain,
@@ -30,6 +30,7 @@ from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 from exudyn_worm.items.results import SeriesUnit
 from exudyn_worm.analysis.study import RunPoint
 from exudyn_worm.analysis.loadside import DiagnoseLoadSide
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 ROOT = Path(__file__).resolve().parents[1]
 LOAD_SHAFT = ROOT / 'examples' / 'drives' / 'load-shaft.toml'
@@ -88,7 +89,7 @@ def test_drive_file_gives_the_three_mass_drive(fileParameters):
 
 def test_drive_file_equals_the_drive_built_by_hand_in_exudyn(fileParameters):
     """Required: same verdict and same eigenvalues (to 1e-6) as the hand-built Exudyn model."""
-    fromFile = DriveStability(fileParameters)
+    fromFile = AnalyzeDrive(ResolveDrive(parameters=fileParameters))
     byHand = _HandBuiltEigenvalues(J2, (JL1, KL1))
     assert fromFile.stable == byHand.stable
     for S in (1, -1):
@@ -102,8 +103,8 @@ def test_lumping_the_load_into_j2_turns_the_verdict(fileParameters):
     about 200 Hz in the wheel's mode. Both verdicts from hand-built Exudyn models and from the package."""
     lumped = LumpedLoadSide(fileParameters)
     assert lumped['J2'] == pytest.approx(J2 + JL1) and 'JL1' not in lumped and 'kL1' not in lumped
-    assert _HandBuiltEigenvalues(J2 + JL1, None).stable and DriveStability(lumped).stable
-    assert DesignCheck(lumped).stableWithMargin
+    assert _HandBuiltEigenvalues(J2 + JL1, None).stable and AnalyzeDrive(ResolveDrive(parameters=lumped)).stable
+    assert DesignCheck(ResolveDrive(parameters=lumped)).stableWithMargin
     chained = _HandBuiltEigenvalues(J2, (JL1, KL1))
     assert not chained.stable and chained.State(1).stable
     growing = max(chained.State(-1).modes, key=lambda m: m.eigenvalue.real)
@@ -175,7 +176,7 @@ def test_equilibrium_every_load_shaft_carries_the_load_torque():
 
 
 def test_simulation_starts_in_equilibrium_and_reports_the_load_inertia(fileParameters):
-    result = SimulateReelChanger(fileParameters, endTime=0.02)
+    result = SimulateReelChanger(ResolveDrive(parameters=fileParameters), endTime=0.02)
     for key in ('phiL1', 'omegaL1', 'alphaL1'):
         assert key in result.series
     assert SeriesUnit('alphaL1') == 'rad/s^2' and SeriesUnit('phiL1') == 'rad'
@@ -191,7 +192,7 @@ def test_cli_stability_and_sweep_treat_the_whole_drive(tmp_path, fileParameters)
     data = json.loads(run.stdout)
     assert data['components'] == ['a load-side chain (JL1, ...)'] and 'loadInertia1' in data['coordinates']
     assert data['stable'] is False
-    expected = DriveStability(fileParameters).State(-1)
+    expected = AnalyzeDrive(ResolveDrive(parameters=fileParameters)).State(-1)
     byS = {tuple(s['S']): s for s in data['states']}
     assert byS[(-1,)]['maxRealPart'] == pytest.approx(expected.maxRealPart, rel=1e-9)
     assert list(tmp_path.iterdir()) == []
@@ -207,7 +208,7 @@ def test_sweep_point_takes_the_verdict_of_the_whole_drive(fileParameters, kL1, s
 
 
 def test_diagnosis_names_the_soft_load_shaft_as_the_cause(fileParameters):
-    d = DiagnoseLoadSide(fileParameters)
+    d = DiagnoseLoadSide(ResolveDrive(parameters=fileParameters))
     assert d.stages[0].frequencyHz == pytest.approx(math.sqrt(KL1 / JL1) / (2 * math.pi), rel=1e-12)
     assert d.lumpedStable and not d.wholeStable and not d.lumpingSafe and d.cause == 1
     assert d.growingMode['S'] == -1 and d.growingMode['energyShare']['wheel'] > 0.9
@@ -218,7 +219,7 @@ def test_diagnosis_names_the_soft_load_shaft_as_the_cause(fileParameters):
 def test_second_stage_named_when_it_is_the_soft_one(fileParameters):
     """A stiff first stage and a soft second: the second stage carries the blame."""
     p = {**fileParameters, 'JL1': 0.01, 'kL1': 1e8, 'JL2': JL1, 'kL2': KL1}
-    d = DiagnoseLoadSide(p)
+    d = DiagnoseLoadSide(ResolveDrive(parameters=p))
     assert not d.wholeStable and d.cause == 2
     assert d.stages[0].inertiaBeyond == pytest.approx(0.01 + JL1) and d.stages[1].inertiaBeyond == JL1
 
@@ -227,7 +228,7 @@ def test_second_stage_named_when_it_is_the_soft_one(fileParameters):
 def test_lumping_judged_safe_gives_the_lumped_verdict(fileParameters, kL1):
     """Where the criterion calls lumping safe, the whole drive's verdict is the lumped one (the criterion
     includes that check; the stage frequency alone must pass too)."""
-    d = DiagnoseLoadSide({**fileParameters, 'kL1': kL1})
+    d = DiagnoseLoadSide(ResolveDrive(parameters={**fileParameters, 'kL1': kL1}))
     assert d.lumpingSafe and d.cause is None
     assert all(s.frequencyHz >= d.limitFactor * max(d.wheelModesHz) for s in d.stages)
     assert d.lumpedStable == d.wholeStable
@@ -237,15 +238,15 @@ def test_lumping_judged_safe_gives_the_lumped_verdict(fileParameters, kL1):
 def test_design_check_analyses_the_whole_drive_with_its_chain(fileParameters):
     """The design check no longer lumps the chain into J2 (nor refuses a soft one): its verdict is the whole drive's,
     and the chain's own parameters are design parameters."""
-    result = DesignCheck(fileParameters)
-    assert result.stable is DriveStability(fileParameters).stable is False and result.recommendations
+    result = DesignCheck(ResolveDrive(parameters=fileParameters))
+    assert result.stable is AnalyzeDrive(ResolveDrive(parameters=fileParameters)).stable is False and result.recommendations
     assert {'JL1', 'kL1'} <= set(result.scans)
     stiff = {**fileParameters, 'kL1': 2e6}
-    result = DesignCheck(stiff)
+    result = DesignCheck(ResolveDrive(parameters=stiff))
     assert result.parameters['J2'] == J2 and result.parameters['JL1'] == JL1
-    assert result.stable is DriveStability(stiff).stable
+    assert result.stable is AnalyzeDrive(ResolveDrive(parameters=stiff)).stable
     with pytest.raises(ValueError, match='DiagnoseLoadSide: the parameter set has no load-side chain'):
-        DiagnoseLoadSide({k: v for k, v in fileParameters.items() if k not in ('JL1', 'kL1', 'dL1')})
+        DiagnoseLoadSide(ResolveDrive(parameters={k: v for k, v in fileParameters.items() if k not in ('JL1', 'kL1', 'dL1')}))
 
 
 @pytest.mark.slow

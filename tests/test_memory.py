@@ -8,11 +8,13 @@ import os
 import subprocess
 import sys
 
+import exudyn as exu
 import pytest
 
 from exudyn_worm.analysis.reelchanger import BuildReelChanger
 from exudyn_worm.items._userfunctions import _KEEP_ALIVE
 from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 from conftest import ROOT
 
@@ -31,7 +33,7 @@ def _InFreshProcess(call: str):
 
 def test_recordings_do_not_hold_the_system():
     # the cycle system -> user function -> recording -> MainSystem -> container -> system is what keeps a system
-    model = BuildReelChanger(GetPreset('reel-P1'))
+    model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=GetPreset('reel-P1')))
     recordings = model.mbs.variables[_KEEP_ALIVE]
     assert recordings                    # the symbolic laws of the mesh and the motor
     for _, fnDict in recordings:

@@ -8,6 +8,7 @@ import numpy as np
 import exudyn_worm as ew
 from exudyn_worm.model.contact import MeshState, NormalForceFlanks
 from exudyn_worm.items.solve import SolveDynamicInChunks
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 
 def test_every_field_documented_with_a_unit_or_sign():
@@ -26,7 +27,7 @@ def test_flanks_are_magnitudes():
 
 
 def test_result_and_stored_state_carry_time_and_flanks():
-    result = ew.SimulateReelChanger(ew.GetPreset('reel-P1'), endTime=0.2, stepSize=5e-4, progress=False)
+    result = ew.SimulateReelChanger(ResolveDrive(parameters=ew.GetPreset('reel-P1')), endTime=0.2, stepSize=5e-4, progress=False)
     first, second = result.normalForceFlanks
     assert np.all(first >= 0) and np.all(second >= 0)
     np.testing.assert_array_equal(first - second, result.normalForce)

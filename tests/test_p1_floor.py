@@ -5,6 +5,7 @@ import pytest
 
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 
@@ -17,7 +18,7 @@ def floor():
 def test_default_variant_is_the_simulated_model_and_post_newton_changes_no_step(floor):
     _, default = floor.SolveVariant('default')
     _, without = floor.SolveVariant('noPostNewton')
-    simulated = SimulateReelChanger(GetPreset('reel-P1'), progress=False).info['solver']
+    simulated = SimulateReelChanger(ResolveDrive(parameters=GetPreset('reel-P1')), progress=False).info['solver']
     assert default['newtonIterations'] == simulated['newtonIterations']
     assert default['jacobians'] == simulated['jacobians']
     assert without == default

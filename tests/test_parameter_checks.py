@@ -10,6 +10,7 @@ from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.analysis.design import DesignCheck
 from exudyn_worm.setups.presets import CheckParameterKeys, GearFromParameters, PRESETS
 from exudyn_worm.analysis.studygrid import Study
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 
 @pytest.mark.messages
@@ -74,12 +75,8 @@ _KNOWN = ("expected one of: alphaN gamma mu rho r1 r2 a u mx z1 z2 q kV dV DV ba
           "stribeckVelocity frictionTable J1 J2 kT")
 
 
-def _Design(p):
-    return DesignCheck(p)
-
-
-def _Simulate(p):
-    return SimulateReelChanger(p, endTime=0.01)
+def _Resolve(p):
+    return ResolveDrive(parameters=p)
 
 
 def _Study(p):
@@ -88,13 +85,14 @@ def _Study(p):
 
 @pytest.mark.messages
 @pytest.mark.parametrize('call, where', [
-    (DriveFromParameters, 'DriveFromParameters'), (_Design, 'DesignCheck'), (_Simulate, 'SimulateReelChanger'),
+    (DriveFromParameters, 'DriveFromParameters'), (_Resolve, 'ResolveDrive'),
     (_Study, "Study: 'base'"),
 ])
 @pytest.mark.parametrize('key, suggestion', [('Kt', " (did you mean 'kT'?)"), ('kt', " (did you mean 'kT'?)"),
                                              ('J_1', " (did you mean 'J1'?)"), ('rotations', '')])
 def test_unknown_keys_are_refused_with_a_suggestion(call, where, key, suggestion):
-    """{**P1, 'kt': 1.} ran SimulateReelChanger, DesignCheck and Study with the typo ignored."""
+    """{**P1, 'kt': 1.} ran SimulateReelChanger, DesignCheck and Study with the typo ignored; a flat set is now
+    resolved (and refused) once, by ResolveDrive, before any analysis takes it."""
     with pytest.raises(ValueError) as info:
         call({**P1, key: 1.})
     assert str(info.value).startswith(f"{where}: unknown parameter {key!r}{suggestion}; {_KNOWN}")
@@ -153,6 +151,6 @@ def test_every_example_and_preset_set_passes_the_key_check():
         CheckParameterKeys(GetPreset(name))
     for path in sorted((Path(__file__).resolve().parents[1] / 'examples' / 'drives').glob('*.toml')):
         CheckParameterKeys(ResolveParameters(config=path))
-    result = DesignCheck(P1)
+    result = DesignCheck(ResolveDrive(parameters=P1))
     for r in result.recommendations:
         CheckParameterKeys(ApplyOverrides(P1, r.changes))

@@ -12,6 +12,7 @@ from exudyn_worm.analysis.stepsize import RecommendedStepSize
 from exudyn_worm.params.plausibility import (MAX_WORM_SPEED_RATIO, MIN_STEPS_PER_ROTATION, CheckWormRotation,
                                              CheckWormSpeed, ImplausibleValueWarning, UnresolvedRotationWarning)
 from exudyn_worm.setups.presets import PRESETS, ElasticDriveFromParameters, GearFromParameters, GetPreset
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 deg = math.radians
 GEAR = dict(alphaN=deg(20), gamma=deg(5.3228), r1=0.01805, r2=0.10595, kV=2e8, dV=21470., mu=0.132)
@@ -107,7 +108,7 @@ def test_preset_speeds_are_plausible(name):
     p = GetPreset(name)
     with warnings.catch_warnings():
         warnings.simplefilter('error')
-        CheckWormRotation(p, RecommendedStepSize(p))
+        CheckWormRotation(p, RecommendedStepSize(ResolveDrive(parameters=p)))
         CheckWormSpeed([0., p['motorSpeed'], -2. * p['motorSpeed']], [p['motorSpeed']], p)   # chatter: a few times
 
 

@@ -8,11 +8,12 @@ import pytest
 import exudyn_worm as ew
 from exudyn_worm.plotting.plot import DENSE_SWITCHES_PER_INCH, MEAN_WINDOW, PlotSimulation, TorqueSignNote, _RunningMean
 from exudyn_worm.items.results import SimulationResult
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 
 @pytest.fixture(scope='module')
 def result():
-    return ew.SimulateReelChanger(ew.GetPreset('reel-P1'), endTime=3., stepSize=5e-4, progress=False)
+    return ew.SimulateReelChanger(ResolveDrive(parameters=ew.GetPreset('reel-P1')), endTime=3., stepSize=5e-4, progress=False)
 
 
 def test_drive_torque_and_S_in_separate_panels(result):

@@ -75,10 +75,10 @@ def test_the_rule_catches_a_computation(tmp_path, monkeypatch):
     monkeypatch.setattr(sys.modules[__name__], 'PLOT_DIR', tmp_path)
     (tmp_path / 'plot_old.py').write_text(textwrap.dedent('''
         def AnalyticalMap():
-            from ..analysis.drivestability import DriveStability
+            from ..analysis.drivestability import AnalyzeDrive
             from ..setups.presets import ApplyOverrides
     '''))
-    with pytest.raises(AssertionError, match='function analysis.drivestability.DriveStability'):
+    with pytest.raises(AssertionError, match='function analysis.drivestability.AnalyzeDrive'):
         test_plot_module_imports_no_computation('plot_old')
 
 

@@ -8,13 +8,14 @@ from exudyn_worm import ApplyOverrides, GetPreset, SimulateReelChanger
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.items.results import SeriesUnit
 from exudyn_worm.analysis.studygrid import ParseVariation, Study
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 
 @pytest.fixture(scope='module')
 def wholeDrive():
     """P1 with a drive-side inertia and an axial bearing: series phi4.. and xA.., axialForce."""
     p = ApplyOverrides(GetPreset('reel-P1'), {'J4': 0.05, 'k4': 2e4, 'kA': 5e8, 'mA': 5.})
-    return SimulateReelChanger(p, endTime=0.05, progress=False)
+    return SimulateReelChanger(ResolveDrive(parameters=p), endTime=0.05, progress=False)
 
 
 def test_csv_header_has_a_unit_for_every_series(wholeDrive, tmp_path):

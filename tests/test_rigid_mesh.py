@@ -2,6 +2,7 @@
 bearing statics and bad input."""
 import math
 
+import exudyn as exu
 import numpy as np
 import pytest
 from exudyn.itemInterface import (CoordinateSpringDamper, MarkerBodyRigid, MarkerNodeCoordinate, NodePointGround,
@@ -20,6 +21,7 @@ from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
 from exudyn_worm.items._rigidnodes import RIGID_NODES
 from exudyn_worm.items.connector import CreateWormGear
 from exudyn_worm.items.drivetrain import CreateRotor
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 exu = pytest.importorskip('exudyn')
 P1 = GetPreset('reel-P1')
@@ -143,10 +145,11 @@ def test_axial_worm_shift_and_approach_enter_the_mesh_as_in_the_contact_law():
 
 def _ReelRuns(parameters, endTime, solverOptions=None, **kwargs):
     """The reel changer with the one-angle connector and with rigid bodies on ideal joints, same settings."""
-    h = RecommendedStepSize(parameters)
+    h = RecommendedStepSize(ResolveDrive(parameters=parameters))
     out = []
     for build in (BuildReelChanger, BuildRigidBodyReelChanger):
-        model = build(parameters, **kwargs)
+        model = (BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=parameters), **kwargs)
+                 if build is BuildReelChanger else build(parameters, **kwargs))
         if build is BuildRigidBodyReelChanger:
             model.connector.AddSensors(model.mbs)
         model.mbs.Assemble()

@@ -9,6 +9,7 @@ from exudyn_worm.analysis.linearization import AnalyzeLinearStability
 from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
 from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear
 from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 
@@ -36,7 +37,7 @@ def test_compiled_law_gives_the_python_law_and_the_one_angle_connector(bench, co
     the C++ law equals the plain-Python law's and the one-angle connector's within 1e-8 of its peak."""
     compiled = _NormalForce(*bench.BuildCompiledRigidBodyReelChanger(P1, coordinateJoints)[1:])
     python = _NormalForce(*bench.BuildCompiledRigidBodyReelChanger(P1, coordinateJoints, useSymbolic=False)[1:])
-    reference = BuildReelChanger(P1)
+    reference = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=P1))
     reference.mbs.Assemble()
     oneAngle = _NormalForce(reference.mbs, reference.connector)
     peak = np.max(np.abs(oneAngle))
@@ -64,7 +65,7 @@ def test_compiled_law_refuses_nodes_it_cannot_take():
 def test_compiled_law_gives_the_two_mass_eigenvalues(bench):
     """AnalyzeLinearStability holds S in the C++ law too: on ideal joints the eigenvalues of P1 are the two-mass
     drive's (1e-6; Exudyn differentiates the law numerically)."""
-    reference = BuildReelChanger(P1)
+    reference = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=P1))
     reference.mbs.Assemble()
     expected = AnalyzeLinearStability(reference.mbs)
     got = AnalyzeLinearStability(bench.BuildCompiledRigidBodyReelChanger(P1)[1])

@@ -1,5 +1,6 @@
 """Linear stability of the reel changer with worm and wheel as rigid bodies: AnalyzeLinearStability finds the
 meshes between rigid bodies; ideal joints give the two-mass eigenvalues, elastic bearings add modes."""
+import exudyn as exu
 import numpy as np
 import pytest
 
@@ -8,6 +9,7 @@ from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.items.bearings import ShaftBearings
 from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 pytest.importorskip('exudyn')
 P1 = GetPreset('reel-P1')
@@ -23,7 +25,7 @@ def test_ideal_joints_give_the_eigenvalues_of_the_one_angle_model(extra):
     """P1 (and P1 with the worm's axial bearing) on ideal revolute joints: the eigenvalues of the 2-DOF (3-DOF)
     model for S = +1 and -1 within 1e-6 relative (Exudyn differentiates the user functions numerically)."""
     parameters = {**P1, **extra}
-    reference = AnalyzeLinearStability(BuildReelChanger(parameters).mbs)
+    reference = AnalyzeLinearStability(BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=parameters)).mbs)
     model = BuildRigidBodyReelChanger(parameters)
     model.mbs.Assemble()
     analysis = AnalyzeLinearStability(model.mbs)

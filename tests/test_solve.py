@@ -10,11 +10,12 @@ from exudyn_worm.analysis.reelchanger import SolverSettings
 from exudyn_worm.setups.build import BuildReelChanger
 from exudyn_worm.items.solve import SolveDynamicInChunks, SolverDivergedError
 from exudyn_worm.items.solve import IncompleteSolveError
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 
 def _Plain(parameters, endTime, stepSize):
     """The reference: one mbs.SolveDynamic call with SimulateReelChanger's settings."""
-    model = BuildReelChanger(parameters)
+    model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=parameters))
     mbs = model.mbs
     mbs.Assemble()
     ss, solverType = SolverSettings(endTime, stepSize)
@@ -33,7 +34,7 @@ def test_chunks_agree_with_one_solve(preset, capsys):
     with one solve to the Newton tolerance (relativeTolerance 1e-6 of SOLVER_SETTINGS) until the chatter
     amplifies it; the peaks the window metrics use agree to 0.1 %."""
     p = GetPreset(preset)
-    result = SimulateReelChanger(p, endTime=3., stepSize=5e-4, progress=True)     # 6000 steps: three chunks
+    result = SimulateReelChanger(ResolveDrive(parameters=p), endTime=3., stepSize=5e-4, progress=True)     # 6000 steps: three chunks
     assert 's simulated' in capsys.readouterr().err
     plain = _Plain(p, 3., 5e-4)
     assert np.all(np.diff(result.time) > 1e-9)                                   # one sample per time
@@ -50,7 +51,7 @@ def test_chunks_agree_with_one_solve(preset, capsys):
 
 def test_without_a_bar_exactly_one_solve(capsys):
     p = GetPreset('reel-P1')
-    result = SimulateReelChanger(p, endTime=2.5, stepSize=5e-4, progress=False)
+    result = SimulateReelChanger(ResolveDrive(parameters=p), endTime=2.5, stepSize=5e-4, progress=False)
     plain = _Plain(p, 2.5, 5e-4)
     assert capsys.readouterr().err == ''
     for key in ('phi1', 'omega2', 'alpha2'):
@@ -71,7 +72,7 @@ def test_failure_reports_the_time_reached():
                'timeIntegration.newton.absoluteTolerance': 1e-30}
     with pytest.raises(SolverDivergedError, match=r'SimulateReelChanger: the Exudyn solver failed at t = 0.0005 s of '
                                                   r'0.05 s \(step size 0.0005 s\).*likely cause') as info:
-        SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, stepSize=5e-4, solverOptions=options,
+        SimulateReelChanger(ResolveDrive(parameters=GetPreset('reel-P1')), endTime=0.05, stepSize=5e-4, solverOptions=options,
                             progress=False)
     assert info.value.timeReached == pytest.approx(5e-4) and info.value.endTime == pytest.approx(0.05)
 
@@ -94,7 +95,7 @@ def test_explicit_solver_refused_with_a_prescribed_motor():
     after 0.5 s instead of 24.7 rad) and the run returned normally."""
     with pytest.raises(ValueError, match=r"explicit solver .*RK44 ignores constraints, and this system has "
                                          r"motorDrive \(ConnectorCoordinate\)"):
-        SimulateReelChanger(GetPreset('reel-P1'), endTime=0.05, stepSize=5e-4, solverOptions={'solverType': 'RK44'},
+        SimulateReelChanger(ResolveDrive(parameters=GetPreset('reel-P1')), endTime=0.05, stepSize=5e-4, solverOptions={'solverType': 'RK44'},
                             progress=False)
 
 
@@ -104,7 +105,7 @@ def test_chunked_solve_switches_timers_as_solve_system_does(computationTime, cap
     exactly when SolveSystem switches them off (show.computationTime False)."""
     timers = []
     for progress in (True, False):
-        model = BuildReelChanger(GetPreset('reel-P1'))
+        model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=GetPreset('reel-P1')))
         ss, solverType = SolverSettings(0.02, 5e-4)
         ss.show.computationTime = computationTime
         printing, exu.config.printToConsole = exu.config.printToConsole, False
@@ -121,7 +122,7 @@ def test_chunked_solve_switches_timers_as_solve_system_does(computationTime, cap
 def test_a_sample_every_step(endTime):
     """The recommended step does not divide the end time: the solver's step is endTime / numberOfSteps, and a
     sensor period equal to the requested step skipped samples by round-off (0, 2h, 3h, ...)."""
-    result = SimulateReelChanger(GetPreset('reel-P1'), endTime=endTime, progress=False)
+    result = SimulateReelChanger(ResolveDrive(parameters=GetPreset('reel-P1')), endTime=endTime, progress=False)
     h = endTime / round(endTime / result.info['stepSize'])
     assert result.time[1] == pytest.approx(h, rel=1e-6)
     assert np.max(np.diff(result.time)) < 1.001 * h
@@ -132,7 +133,7 @@ def test_a_sample_every_step(endTime):
 def test_a_run_stopped_before_its_end_time_raises(progress, capsys):
     """A pre-step user function that stops the solver at 0.02 s: Exudyn returns normally with a truncated run;
     SolveDynamicInChunks refuses it (without and with a bar, i.e. one solve or chunks), naming both times."""
-    model = BuildReelChanger(GetPreset('reel-P1'))
+    model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=GetPreset('reel-P1')))
     mbs = model.mbs
     mbs.SetPreStepUserFunction(lambda mbs, t: t < 0.02)
     mbs.Assemble()
@@ -145,7 +146,7 @@ def test_a_run_stopped_before_its_end_time_raises(progress, capsys):
 
 
 def test_a_run_that_reaches_its_end_time_is_accepted():
-    model = BuildReelChanger(GetPreset('reel-P1'))
+    model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=GetPreset('reel-P1')))
     mbs = model.mbs
     mbs.SetPreStepUserFunction(lambda mbs, t: True)
     mbs.Assemble()

@@ -10,12 +10,13 @@ import pytest
 
 from exudyn_worm.analysis.design import DesignCheck
 from exudyn_worm.analysis.designscan import SPEED_KEY
-from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm.analysis.drivestability import AnalyzeDrive
 from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
 from exudyn_worm.analysis.drivestability import AnalyzeDrive
 from exudyn_worm.analysis.speedchart import RPM, SpeedChart, SpeedCurve, SpeedStabilityChart
 from exudyn_worm.model.stability import AnalyzeStability, OperatingPointAt
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 #: reel-P3 with the steep Stribeck law of docs/friction.md (mu(v0) = 0.132 at 472.5 rpm)
 P3 = {**GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2, 'stribeckVelocity': 0.9}
@@ -23,7 +24,7 @@ SPEEDS = np.geomspace(20, 2000, 25) * RPM
 
 
 def test_constant_mu_does_not_depend_on_speed():
-    chart = SpeedStabilityChart(GetPreset('reel-P3'), SPEEDS)
+    chart = SpeedStabilityChart(ResolveDrive(parameters=GetPreset('reel-P3')), SPEEDS)
     atRest = AnalyzeStability(ElasticDriveFromParameters(GetPreset('reel-P3')))
     # the reel changer's duty lifts and lowers at m g l: one curve per direction, each its contact state at rest
     assert [(c.phase, c.S) for c in chart.curves] == [('lifting', 1), ('lowering', -1)]
@@ -35,7 +36,7 @@ def test_constant_mu_does_not_depend_on_speed():
 
 
 def test_each_speed_is_the_extended_eq16_at_its_operating_point():
-    chart = SpeedStabilityChart(P3, SPEEDS)
+    chart = SpeedStabilityChart(ResolveDrive(parameters=P3), SPEEDS)
     drive = ElasticDriveFromParameters(P3)
     torque = P3['loadMass'] * STANDARD_GRAVITY * P3['leverArm']
     for i in (0, 12, 24):
@@ -50,7 +51,7 @@ def test_each_speed_is_the_extended_eq16_at_its_operating_point():
 
 
 def test_the_chattering_speed_range_of_reel_p3():
-    chart = SpeedStabilityChart(P3, SPEEDS)
+    chart = SpeedStabilityChart(ResolveDrive(parameters=P3), SPEEDS)
     # docs/friction.md: stable at 50 rpm and at >= 700 rpm, unstable at 100 to 472.5 rpm
     assert not chart.unstable[0] and not chart.unstable[-1]
     (low, high), = chart.unstableRanges
@@ -58,7 +59,7 @@ def test_the_chattering_speed_range_of_reel_p3():
     b = chart.Boundaries()
     assert len(b) == 2 and 50 < b[0] / RPM < 100 and 472.5 < b[1] / RPM < 700
     for boundary in b:            # the interpolated boundary: the sign changes across it
-        near = SpeedStabilityChart(P3, [boundary * 0.97, boundary * 1.03]).maxRealPart
+        near = SpeedStabilityChart(ResolveDrive(parameters=P3), [boundary * 0.97, boundary * 1.03]).maxRealPart
         assert near[0] * near[1] < 0
     d = chart.ToDict()
     assert d['unstableRangesRpm'][0][0] == pytest.approx(low / RPM) and len(d['maxRealPart']) == 25
@@ -80,22 +81,22 @@ def test_unstable_ranges_of_separate_runs():
 @pytest.mark.parametrize('speeds, match', [([], 'non-empty'), ([10., -1.], r"'motorSpeeds\[1\]' must be > 0 rad/s")])
 def test_bad_speeds(speeds, match):
     with pytest.raises(ValueError, match=match):
-        SpeedStabilityChart(P3, speeds)
+        SpeedStabilityChart(ResolveDrive(parameters=P3), speeds)
 
 
 def test_needs_the_load():
     p = {k: v for k, v in P3.items() if k != 'loadMass'}
     with pytest.raises(ValueError, match="the load .* needs loadMass, leverArm; missing loadMass"):
-        SpeedStabilityChart(p, SPEEDS)
+        SpeedStabilityChart(ResolveDrive(parameters=p), SPEEDS)
     p = {k: v for k, v in P3.items() if k not in ('loadMass', 'leverArm')}
     with pytest.raises(ValueError, match=r"the drive has no load torque.*give \[load\]"):
-        SpeedStabilityChart(p, SPEEDS)
+        SpeedStabilityChart(ResolveDrive(parameters=p), SPEEDS)
 
 
 def test_at_the_drives_own_speed_a_curve_is_its_verdict():
     """Evaluated at the duty's own speed, each curve is the analysis of `stability` at that operating point."""
-    analysis = AnalyzeDrive(P3)
-    chart = SpeedStabilityChart(P3, [P3['motorSpeed']])
+    analysis = AnalyzeDrive(ResolveDrive(parameters=P3))
+    chart = SpeedStabilityChart(ResolveDrive(parameters=P3), [P3['motorSpeed']])
     assert [p.phase for p in chart.ownPoints] == ['lifting', 'lowering']
     for p in analysis.operatingPoints:
         assert chart.Curve(p.S).maxRealPart[0] == pytest.approx(p.maxRealPart, rel=1e-12)
@@ -104,31 +105,31 @@ def test_at_the_drives_own_speed_a_curve_is_its_verdict():
 
 def test_a_drive_without_motor_takes_its_load_at_every_speed():
     p = {k: v for k, v in P3.items() if k != 'motorSpeed'}
-    chart = SpeedStabilityChart(p, SPEEDS[:3])
-    with_motor = SpeedStabilityChart(P3, SPEEDS[:3])
+    chart = SpeedStabilityChart(ResolveDrive(parameters=p), SPEEDS[:3])
+    with_motor = SpeedStabilityChart(ResolveDrive(parameters=P3), SPEEDS[:3])
     assert chart.ownPoints == () and chart.stable is None
     for a, b in zip(chart.curves, with_motor.curves):
         np.testing.assert_allclose(a.maxRealPart, b.maxRealPart, rtol=1e-12)
 
 
 def test_the_study_verdict_is_taken_at_the_operating_point():
-    assert DriveStability(GetPreset('reel-P3')).stable
-    assert not DriveStability(P3).State(-1).stable                   # 472.5 rpm lies in the chattering range
-    assert DriveStability(ApplyOverrides(P3, {'motorSpeed': 2000 * RPM})).stable
+    assert AnalyzeDrive(ResolveDrive(parameters=GetPreset('reel-P3'))).stable
+    assert not AnalyzeDrive(ResolveDrive(parameters=P3)).State(-1).stable                   # 472.5 rpm lies in the chattering range
+    assert AnalyzeDrive(ResolveDrive(parameters=ApplyOverrides(P3, {'motorSpeed': 2000 * RPM}))).stable
 
 
 def test_design_check_recommends_a_speed_change_that_is_stable_with_margin():
-    result = DesignCheck(P3)
+    result = DesignCheck(ResolveDrive(parameters=P3))
     assert not result.stable
     speeds = [r for r in result.recommendations if r.parameter == SPEED_KEY]
     assert {r.factor > 1 for r in speeds} == {True, False}            # faster and slower both help
     for r in speeds:
-        chart = SpeedStabilityChart(P3, r.newValue * 10. ** np.linspace(-result.margin, result.margin, 21))
+        chart = SpeedStabilityChart(ResolveDrive(parameters=P3), r.newValue * 10. ** np.linspace(-result.margin, result.margin, 21))
         assert not chart.unstable.any()
         assert r.maxRealPartAfter < 0
     # and the drive scans use mu at the operating point: with the nominal constant mu P3 is stable
-    assert DesignCheck(GetPreset('reel-P3')).stable
-    assert SPEED_KEY not in DesignCheck(GetPreset('reel-P3')).scans
+    assert DesignCheck(ResolveDrive(parameters=GetPreset('reel-P3'))).stable
+    assert SPEED_KEY not in DesignCheck(ResolveDrive(parameters=GetPreset('reel-P3'))).scans
 
 
 def _Cli(*args):

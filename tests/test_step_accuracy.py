@@ -8,6 +8,7 @@ from exudyn_worm.analysis.reelchanger import DefaultWindows
 from exudyn_worm.analysis.stepsize import PEAK_ACCURACY, TRANSIENT_PEAK_ACCURACY, RecommendedStepSize
 from exudyn_worm.params.drives import ConfigPath
 from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 #: the reference step of each drive, as a divisor of its recommended step: the halving after it changes no window
 #: peak by more than 0.05 % (measured with benchmarks/step_convergence.py); the lift after the lowering chatter of
@@ -20,9 +21,9 @@ REFERENCE_DIVISOR = {'reel-P1': 32, 'reel-P2': 4, 'reel-P3': 4, 'reel-P4': 8, 'r
 @pytest.mark.parametrize('drive', sorted(REFERENCE_DIVISOR))
 def test_window_peaks_at_the_default_step_are_within_the_stated_bound(drive):
     p = ResolveParameters(drive) if drive.startswith('reel-') else ResolveParameters(config=ConfigPath(drive))
-    windows = DefaultWindows(p)
-    metrics = SimulateReelChanger(p, progress=False).WindowMetrics(windows)
-    reference = SimulateReelChanger(p, stepSize=RecommendedStepSize(p) / REFERENCE_DIVISOR[drive],
+    windows = DefaultWindows(ResolveDrive(parameters=p))
+    metrics = SimulateReelChanger(ResolveDrive(parameters=p), progress=False).WindowMetrics(windows)
+    reference = SimulateReelChanger(ResolveDrive(parameters=p), stepSize=RecommendedStepSize(ResolveDrive(parameters=p)) / REFERENCE_DIVISOR[drive],
                                     progress=False).WindowMetrics(windows)
     for i, (m, r) in enumerate(zip(metrics, reference)):
         # the wheel's transient after a load reversal in chatter, and every window of the drive files (ringing modes)

@@ -17,6 +17,7 @@ from exudyn_worm.analysis.studygrid import Variation
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 from exudyn_worm.analysis.stepsize import VERDICT_FACTOR, CloseVerdicts
 from exudyn_worm.cli.sweep import FormatStudy
+from exudyn_worm.setups.wholedrive import ResolveDrive
 from paper_model import Eigenvalues
 
 # a user's drive: J1 = 0.0247 kg*m^2, kT = 1508 N*m/rad on P1's gear and load
@@ -39,7 +40,7 @@ def _FlipWithStep(monkeypatch, threshold):
 def test_simulate_and_sweep_use_the_same_step():
     """Both take the drive's RecommendedStepSize; for that drive (6.4e-4 s) the sweep used to take 5e-4 s."""
     p = ResolveParameters('reel-P1', sets=USER_SETS)
-    h = RecommendedStepSize(p)
+    h = RecommendedStepSize(ResolveDrive(parameters=p))
     assert h > 5e-4                       # the old sweep rule min(5e-4, recommended) would differ here
     row = RunPoint({'run': 0, 'parameters': p, 'varied': {}, 'windows': [(0., 0.5)], 'endTime': 0.5,
                     'stepSize': None, 'checkStep': False})
@@ -51,7 +52,7 @@ def test_simulate_default_step_is_the_recommended_one(capsys, tmp_path, monkeypa
     status, out, err = _Run(capsys, 'simulate', '--quiet', '--json', '--no-check-step', *SHORT,
                             *[a for s in USER_SETS for a in ('--set', s)])
     assert status == 0, err
-    assert json.loads(out)['stepSize'] == RecommendedStepSize(ResolveParameters('reel-P1', sets=USER_SETS))
+    assert json.loads(out)['stepSize'] == RecommendedStepSize(ResolveDrive(parameters=ResolveParameters('reel-P1', sets=USER_SETS)))
 
 
 def _PaperMargins(p):
@@ -71,18 +72,18 @@ def test_linear_margin_is_the_least_damped_rightmost_mode():
     above."""
     p = GetPreset('reel-P1')
     margins = _PaperMargins(p)
-    m = LinearMargin(p)
+    m = LinearMargin(ResolveDrive(parameters=p))
     assert m['contactState'] == 1 and margins[+1] < margins[-1]
     assert m['margin'] == pytest.approx(margins[+1], rel=1e-9)
-    assert m['margin'] < SMALL_MARGIN and StepCheckByDefault(p)
+    assert m['margin'] < SMALL_MARGIN and StepCheckByDefault(ResolveDrive(parameters=p))
     damped = ApplyOverrides(GetPreset('reel-P2'), {'DV': 0.1, 'DT': 0.1})
-    assert LinearMargin(damped)['margin'] > SMALL_MARGIN and not StepCheckByDefault(damped)
+    assert LinearMargin(ResolveDrive(parameters=damped))['margin'] > SMALL_MARGIN and not StepCheckByDefault(ResolveDrive(parameters=damped))
 
 
 def test_a_verdict_that_flips_with_the_step_is_unresolved_in_simulate(capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     p = GetPreset('reel-P1')
-    h = RecommendedStepSize(p)
+    h = RecommendedStepSize(ResolveDrive(parameters=p))
     _FlipWithStep(monkeypatch, 0.75 * h)            # chatter at h, none at h/2
     status, out, err = _Run(capsys, 'simulate', '--quiet', '--json', '--check-step', *SHORT)
     assert status == 0, err
@@ -119,7 +120,7 @@ def test_step_check_follows_the_margin_by_default(capsys, tmp_path, monkeypatch)
 
 def test_explicit_step_check_beyond_the_step_limit_is_refused(capsys, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    h = RecommendedStepSize(GetPreset('reel-P1'))
+    h = RecommendedStepSize(ResolveDrive(parameters=GetPreset('reel-P1')))
     limit = str(int(1. / h) + 10)                   # the run fits, the run at half the step does not
     status, out, err = _Run(capsys, 'simulate', '--quiet', '--check-step', *SHORT, '--max-steps', limit)
     assert status == 2 and err.count('\n') == 1 and 'half the step (--check-step)' in err and 'Traceback' not in err
@@ -131,7 +132,7 @@ def test_explicit_step_check_beyond_the_step_limit_is_refused(capsys, tmp_path, 
 
 def test_a_verdict_that_flips_with_the_step_is_unresolved_in_sweep(monkeypatch):
     p = GetPreset('reel-P1')
-    _FlipWithStep(monkeypatch, 0.75 * RecommendedStepSize(p))
+    _FlipWithStep(monkeypatch, 0.75 * RecommendedStepSize(ResolveDrive(parameters=p)))
     study = Study(p, [Variation('J1', (0.2,))], windows=[(0., 0.5), (0.5, 1.)], endTime=1., checkStep=True)
     row = RunPoint(study.Task(0))
     assert row['status'] == 'ok', row['error']
@@ -145,7 +146,7 @@ def test_a_verdict_that_flips_with_the_step_is_unresolved_in_sweep(monkeypatch):
 
 def test_unresolved_survives_the_csv_and_stays_out_of_the_agreement(tmp_path, monkeypatch):
     p = GetPreset('reel-P1')
-    _FlipWithStep(monkeypatch, 0.75 * RecommendedStepSize(p))
+    _FlipWithStep(monkeypatch, 0.75 * RecommendedStepSize(ResolveDrive(parameters=p)))
     study = Study(p, [Variation('J1', (0.2,))], windows=[(3.8, 4.0), (4.0, 4.2)], endTime=4.2, checkStep=True)
     out = tmp_path / 'runs.csv'
     result = RunStudy(study, out, workers=1, quiet=True)
@@ -166,7 +167,7 @@ def test_the_chatter_ratio_decides_as_the_chatter_rule():
     """ChatterRatio >= 1 exactly where Chatter says yes (reel-P7: lift, lowering chatter, chattering lift), and
     CloseVerdicts picks the windows within VERDICT_FACTOR of the threshold."""
     p = GetPreset('reel-P7')
-    result = SimulateReelChanger(p, endTime=4.4, progress=False)
+    result = SimulateReelChanger(ResolveDrive(parameters=p), endTime=4.4, progress=False)
     windows = [(0., 1.8), (2.2, 3.8), (3.8, 4.4)]
     ratios = [result.ChatterRatio(t0, t1) for t0, t1 in windows]
     assert [r >= 1. for r in ratios] == [result.Chatter(t0, t1) for t0, t1 in windows]

@@ -9,12 +9,13 @@ import pytest
 
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
-from exudyn_worm.analysis.drivestability import DriveStability
+from exudyn_worm.analysis.linearization import LinearStabilityOfDrive
+from exudyn_worm.analysis.drivestability import AnalyzeDrive
 from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 from exudyn_worm.analysis.stepsize import (HARD_CYCLES, RECOMMENDED_CYCLES, SOFT_CYCLES, CheckStepSize, CoarseStepWarning,
                                   LinearizedFrequencies, PeriodError, RecommendedStepSize, StepSizeLimits)
+from exudyn_worm.setups.wholedrive import ResolveDrive
 from paper_model import AxialBearingEigenvalues, ChainEigenvalues, Eigenvalues
 
 
@@ -33,10 +34,10 @@ def test_frequencies_of_p1_are_those_of_the_linear_model():
     eq. (16) gives 50.4 and 40.5 Hz (a known difference, validation/REPORT.md)."""
     p1 = GetPreset('reel-P1')
     maxHz, chatterHz = _Frequencies([Eigenvalues(p1, S) for S in (+1, -1)])
-    f = LinearizedFrequencies(p1)
+    f = LinearizedFrequencies(ResolveDrive(parameters=p1))
     assert f['maxHz'] == pytest.approx(maxHz, rel=1e-9)          # S = +1, second mode
     assert f['chatterHz'] == pytest.approx(chatterHz, rel=1e-9)  # the growing mode of S = -1
-    assert LinearizedFrequencies(GetPreset('reel-P2'))['chatterHz'] is None
+    assert LinearizedFrequencies(ResolveDrive(parameters=GetPreset('reel-P2')))['chatterHz'] is None
 
 
 def _TrapezoidalPeriodError(cycles):
@@ -66,11 +67,11 @@ def test_period_error_is_the_trapezoidal_one():
 def test_recommended_step_follows_the_stiffest_mode():
     p1, p3 = GetPreset('reel-P1'), GetPreset('reel-P3')       # P3: J1 / 3 raises f_max from 50 to 81 Hz
     maxHz, _ = _Frequencies([Eigenvalues(p1, S) for S in (+1, -1)])
-    assert RecommendedStepSize(p1) == pytest.approx(RECOMMENDED_CYCLES / maxHz, rel=1e-9)
-    assert RecommendedStepSize(p3) < RecommendedStepSize(p1)
+    assert RecommendedStepSize(ResolveDrive(parameters=p1)) == pytest.approx(RECOMMENDED_CYCLES / maxHz, rel=1e-9)
+    assert RecommendedStepSize(ResolveDrive(parameters=p3)) < RecommendedStepSize(ResolveDrive(parameters=p1))
     stiff = ApplyOverrides(p1, {'kV': 4 * p1['kV'], 'kT': 4 * p1['kT']})
-    assert RecommendedStepSize(stiff) < RecommendedStepSize(p1)
-    limits = StepSizeLimits(p1)
+    assert RecommendedStepSize(ResolveDrive(parameters=stiff)) < RecommendedStepSize(ResolveDrive(parameters=p1))
+    limits = StepSizeLimits(ResolveDrive(parameters=p1))
     assert limits['recommended'] < limits['soft'] < limits['hard']
 
 
@@ -78,23 +79,23 @@ def test_recommended_step_follows_the_stiffest_mode():
 @pytest.mark.parametrize('stepSize', [0.05, 0.01, 3e-3])
 def test_coarse_step_that_lowers_the_frequency_is_refused(stepSize):
     with pytest.raises(ValueError, match=r"CheckStepSize: 'stepSize' must be <= 0.0025 s .* got "):
-        CheckStepSize(GetPreset('reel-P1'), stepSize)
+        CheckStepSize(ResolveDrive(parameters=GetPreset('reel-P1')), stepSize)
 
 
 @pytest.mark.messages
 def test_soft_limit_warns_and_default_step_is_quiet():
     with pytest.warns(CoarseStepWarning, match='50.4 Hz'):
-        assert CheckStepSize(GetPreset('reel-P1'), 2e-3) == 2e-3
+        assert CheckStepSize(ResolveDrive(parameters=GetPreset('reel-P1')), 2e-3) == 2e-3
     with warnings.catch_warnings():
         warnings.simplefilter('error')
         for name in ('reel-P1', 'reel-P3', 'reel-P7'):
-            CheckStepSize(GetPreset(name), 5e-4)
+            CheckStepSize(ResolveDrive(parameters=GetPreset(name)), 5e-4)
 
 
 @pytest.mark.messages
 def test_simulate_refuses_before_computing():
     with pytest.raises(ValueError, match="SimulateReelChanger: 'stepSize' must be <="):
-        SimulateReelChanger(GetPreset('reel-P1'), stepSize=0.01)
+        SimulateReelChanger(ResolveDrive(parameters=GetPreset('reel-P1')), stepSize=0.01)
 
 
 @pytest.mark.messages
@@ -122,8 +123,8 @@ def test_a_drive_beyond_two_masses_gets_the_frequencies_of_its_whole_drive():
     """Figure 19's drive: the 116 Hz mode of inertia4 and the 36.96 Hz chatter mode that `stability` reports,
     not the two-mass model's 50.4 Hz and 40.5 Hz."""
     p = ResolveParameters(config=FIGURE19)
-    f = LinearizedFrequencies(p)
-    points = DriveStability(p).operatingPoints              # the whole drive at its duty's operating points
+    f = LinearizedFrequencies(ResolveDrive(parameters=p))
+    points = AnalyzeDrive(ResolveDrive(parameters=p)).operatingPoints              # the whole drive at its duty's operating points
     # the mass, damping and stiffness matrices of motor --k4-- J4 --kT-- J1 --mesh (14)-- J2 written out in
     # tests/paper_model.py; Exudyn's numerical linearization agrees to about 1e-10
     maxHz, chatterHz = _Frequencies([ChainEigenvalues(p, [(p['J4'], p['k4'], p['d4'])], S) for S in (+1, -1)])
@@ -131,17 +132,17 @@ def test_a_drive_beyond_two_masses_gets_the_frequencies_of_its_whole_drive():
     growing = [m.frequencyHz for op in points for m in op.state.modes if m.eigenvalue.real > 0]
     assert f['chatterHz'] == pytest.approx(max(growing), rel=1e-12)
     assert f['chatterHz'] == pytest.approx(chatterHz, rel=1e-8)
-    assert RecommendedStepSize(p) == pytest.approx(RECOMMENDED_CYCLES / maxHz, rel=1e-8)
-    assert RecommendedStepSize(p) < 0.5 * RecommendedStepSize(GetPreset('reel-P1'))
+    assert RecommendedStepSize(ResolveDrive(parameters=p)) == pytest.approx(RECOMMENDED_CYCLES / maxHz, rel=1e-8)
+    assert RecommendedStepSize(ResolveDrive(parameters=p)) < 0.5 * RecommendedStepSize(ResolveDrive(parameters=GetPreset('reel-P1')))
     with pytest.raises(ValueError, match=r"'stepSize' must be <= 0.00108 s .* got 0.0015 s: the drive's highest "
                                          r"natural frequency is 116.0 Hz \(chatter mode 37.0 Hz\)"):
-        CheckStepSize(p, 0.0015)
+        CheckStepSize(ResolveDrive(parameters=p), 0.0015)
 
 
 @pytest.mark.physics
 def test_axial_bearing_enters_the_modes_but_its_own_mode_is_left_out():
     p = ApplyOverrides(GetPreset('reel-P1'), {'kA': 1e9, 'mA': 5.})
-    f = LinearizedFrequencies(p)
+    f = LinearizedFrequencies(ResolveDrive(parameters=p))
     # the 3-DOF matrices [phi1, phi2, xA] written out in tests/paper_model.py; the bearing's own mode (about
     # 2440 Hz) is not resolved by the step, so it is left out of both frequencies
     lam = np.concatenate([AxialBearingEigenvalues(p, S) for S in (+1, -1)])
@@ -151,7 +152,7 @@ def test_axial_bearing_enters_the_modes_but_its_own_mode_is_left_out():
     assert f['maxHz'] == pytest.approx(maxHz, rel=1e-8)
     rigid, _ = _Frequencies([Eigenvalues(p, S) for S in (+1, -1)])
     assert f['maxHz'] < rigid                                         # kV in series with kA: below the rigid drive
-    axial = [m.frequencyHz for s in LinearStabilityFromParameters(p).states.values() for m in s.modes
+    axial = [m.frequencyHz for s in LinearStabilityOfDrive(ResolveDrive(parameters=p)).states.values() for m in s.modes
              if m.energyShare['wormAxial'] > 0.5]
     assert axial and min(axial) > 2000.                               # the bearing's own stiff mode, not resolved
 

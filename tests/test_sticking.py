@@ -7,6 +7,7 @@ law (0.0095 rad in 18 s, measured with the regularized law) is a steady sinking,
 """
 import math
 
+import exudyn as exu
 import numpy as np
 import pytest
 
@@ -21,6 +22,7 @@ from exudyn_worm.model.friction import StribeckFriction
 from exudyn_worm.setups.presets import ElasticDriveFromParameters
 from exudyn_worm.model.profiles import GravityLeverTorque
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger, SolverSettings
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 P1 = GetPreset('reel-P1')
 SETTLE, HOLD = 5., 18.         # s: settling of the mesh oscillation, then the hold time
@@ -142,8 +144,8 @@ def test_plain_python_connector_holds_too():
 @pytest.mark.parametrize('name', ['reel-P1'])
 def test_reel_changer_unchanged_where_the_worm_never_stops(name):
     p = GetPreset(name)
-    a = SimulateReelChanger(p, contactOptions=ContactOptions(frictionModel='regularized'))
-    b = SimulateReelChanger(p)
+    a = SimulateReelChanger(ResolveDrive(parameters=p), contactOptions=ContactOptions(frictionModel='regularized'))
+    b = SimulateReelChanger(ResolveDrive(parameters=p))
     window = (2., 6.)
     ma, mb = a.WindowMetrics([window])[0], b.WindowMetrics([window])[0]
     assert np.min(np.abs(b.series['omega1'])) > 1.           # the worm never stops

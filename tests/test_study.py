@@ -15,13 +15,14 @@ from hypothesis import given, strategies as st
 
 from exudyn_worm.analysis import studymap
 from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.linearization import LinearStabilityFromParameters
+from exudyn_worm.analysis.linearization import LinearStabilityOfDrive
 from exudyn_worm.setups.presets import ElasticDriveFromParameters
 from exudyn_worm.model.stability import AnalyzeStability
 from exudyn_worm.analysis.study import RunStudy
 from exudyn_worm.analysis.studyfiles import ReadResults, StudyResult, StudySidecarPath
 from exudyn_worm.analysis.studygrid import ParseShard, ParseVariation, ShardIndices, Study, StudyPoints, Variation
 from exudyn_worm.analysis.studypoint import HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, RunPoint
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 # short runs: 1 s of the reel changer (lifting), two windows
 SHORT = dict(windows=[(0., 0.5), (0.5, 1.)], endTime=1.)
@@ -271,7 +272,7 @@ def test_verdict_of_a_drive_beyond_two_masses_is_that_of_stability(base, varied)
     twoMassDiffers = False
     for i, row in enumerate(rows):
         p = study.Parameters(i)
-        whole = LinearStabilityFromParameters(p)
+        whole = LinearStabilityOfDrive(ResolveDrive(parameters=p))
         assert row['status'] == 'ok', row['error']
         assert row['analyticStable'] is whole.stable
         assert row['analyticStableLowering'] is whole.State(-1).stable
@@ -288,13 +289,13 @@ def test_chatter_map_of_a_drive_beyond_two_masses_uses_the_whole_drive():
     drive's (the two-mass model says the opposite at both J1 here)."""
     pytest.importorskip('matplotlib')
     bearing = ResolveParameters('reel-P1', sets=['kA=5e8', 'mA=5'])
-    growth = studymap.AnalyticalMap(bearing, 'J1', [0.1, 0.2], 'kT', [7000.])
+    growth = studymap.AnalyticalMap(ResolveDrive(parameters=bearing), 'J1', [0.1, 0.2], 'kT', [7000.])
     assert growth.shape == (1, 2) and growth[0, 0] < 0 < growth[0, 1]       # as `stability`: J1 = 0.1 stable
-    twoMass = studymap.AnalyticalMap(ResolveParameters('reel-P1'), 'J1', [0.1, 0.2], 'kT', [7000.])
+    twoMass = studymap.AnalyticalMap(ResolveDrive(parameters=ResolveParameters('reel-P1')), 'J1', [0.1, 0.2], 'kT', [7000.])
     assert twoMass[0, 0] > 0 > twoMass[0, 1]
     grid = np.geomspace(0.05, 0.4, 5), np.geomspace(3000., 20000., 5)
-    assert studymap._Chart(ResolveParameters('reel-P1'), 'J1', grid[0], 'kT', grid[1], 50) is not None
-    assert studymap._Chart(bearing, 'J1', grid[0], 'kT', grid[1], 50) is None
+    assert studymap._Chart(ResolveDrive('reel-P1'), 'J1', grid[0], 'kT', grid[1], 50) is not None
+    assert studymap._Chart(ResolveDrive(parameters=bearing), 'J1', grid[0], 'kT', grid[1], 50) is None
     study = Study(bearing, [ParseVariation('J1=0.1,0.2'), ParseVariation('kT=7000,8000')])
     rows = [{'run': i, 'status': 'ok', 'loweringChatter': p['J1'] > 0.15, 'analyticStableLowering': p['J1'] < 0.15,
              **p} for i, p in enumerate(study.points)]

@@ -5,6 +5,7 @@ import pytest
 
 from exudyn_worm.setups.presets import GetPreset
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 
@@ -13,7 +14,7 @@ from conftest import LoadScript
 def runs():
     torqueDriven = LoadScript('benchmarks/torque_driven.py', 'torque_driven')
     p1 = GetPreset('reel-P1')
-    return (SimulateReelChanger(p1, stepSize=5e-4, endTime=3.),
+    return (SimulateReelChanger(ResolveDrive(parameters=p1), stepSize=5e-4, endTime=3.),
             torqueDriven.SimulateTorqueDriven(p1, 5e-4, endTime=3.))
 
 

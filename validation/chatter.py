@@ -42,6 +42,7 @@ from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBound
 from exudyn_worm.analysis.smoothbranch import SMOOTH_OFFSETS, SMOOTH_SEED, SmoothHopfBranch
 from exudyn_worm.analysis.orbits import ShootingError
 from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 __all__ = ['TOLERANCE', 'FOLD_DISTANCE', 'RunChatterStudies', 'WriteCsv', 'WriteReport', 'Main']
 
@@ -200,7 +201,7 @@ def RunChatterStudies(checks: int = 8, only: Optional[str] = None) -> List[Dict]
     if Wanted('reel-P3, Stribeck friction'):
         friction = {**ew.GetPreset('reel-P3'), **_FRICTION}
         study = _FrictionBranch('reel-P3, Stribeck friction', friction, checks)
-        chart = SpeedStabilityChart(friction, np.linspace(60., 700., 321) * RPM).Curve(-1)     # lowering
+        chart = SpeedStabilityChart(ResolveDrive(parameters=friction), np.linspace(60., 700., 321) * RPM).Curve(-1)     # lowering
         study['unstableRanges'] = [(a / RPM, b / RPM) for a, b in chart.unstableRanges]
         studies.append(study)
     return studies

@@ -181,6 +181,7 @@ def RunDrive(index: int, parameters: Mapping) -> List[Dict]:
     from exudyn_worm.analysis.reelchanger import SimulateReelChanger
     from exudyn_worm.analysis.stepsize import RecommendedStepSize
     from exudyn_worm.setups.presets import ElasticDriveFromParameters
+    from exudyn_worm.setups.wholedrive import ResolveDrive
     start = time.perf_counter()
     p = dict(parameters)
     gear = ElasticDriveFromParameters(p).gear
@@ -200,12 +201,13 @@ def RunDrive(index: int, parameters: Mapping) -> List[Dict]:
         row['growthOverPhase'] = row['maxRealPart'] * (t1 - t0)
         row['resolvable'] = abs(row['growthOverPhase']) >= RESOLVABLE
     try:
-        stepSize = RecommendedStepSize(p)
+        drive = ResolveDrive(parameters=p)
+        stepSize = RecommendedStepSize(drive)
         endTime = DutyWindows(p)['end']
         if endTime / stepSize > _MAX_STEPS:
             raise ValueError(f"needs {endTime / stepSize:.3g} steps at the recommended {stepSize:.3g} s, above the "
                              f"corpus' budget of {_MAX_STEPS}")
-        result = SimulateReelChanger(p, endTime=endTime, stepSize=stepSize, progress=False, maxSteps=_MAX_STEPS)
+        result = SimulateReelChanger(drive, endTime=endTime, stepSize=stepSize, progress=False, maxSteps=_MAX_STEPS)
         if not all(np.all(np.isfinite(result.series[k])) for k in ('omega1', 'omega2', 'normalForce')):
             raise FloatingPointError('diverged: non-finite state')
         for row in rows:

@@ -41,6 +41,7 @@ from exudyn_worm.analysis.reelchanger import RotationPeriod
 from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
 from exudyn_worm.analysis.studygrid import ParseVariation, Study
 from exudyn_worm.analysis.studypoint import RunPoint
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 __all__ = ['PRESETS', 'LAWS', 'SPEEDS', 'LawParameters', 'AnalyticalBoundaries', 'RunSpeedStudy', 'Summary',
            'WriteReport', 'Main']
@@ -94,7 +95,7 @@ def AnalyticalBoundaries(parameters: Mapping[str, Any], low: float = 10 * RPM, h
     -------
     list of float
     """
-    return SpeedStabilityChart(parameters, np.geomspace(low, high, 400)).Curve(-1).Boundaries()
+    return SpeedStabilityChart(ResolveDrive(parameters=parameters), np.geomspace(low, high, 400)).Curve(-1).Boundaries()
 
 
 def RunSpeedStudy(preset: str) -> List[Dict]:
@@ -112,12 +113,12 @@ def RunSpeedStudy(preset: str) -> List[Dict]:
     parameters = LawParameters(preset)
     study = Study(parameters, [ParseVariation(SPEEDS)], source=f'{preset} with a Stribeck law')
     speeds = [p['motorSpeed'] for p in study.points]
-    chart = SpeedStabilityChart(parameters, speeds).Curve(-1)           # lowering, as the simulated phase
+    chart = SpeedStabilityChart(ResolveDrive(parameters=parameters), speeds).Curve(-1)           # lowering, as the simulated phase
     boundaries = AnalyticalBoundaries(parameters)
     rows = []
     for run, speed in enumerate(speeds):
         task = study.Task(run)
-        task['endTime'] = 0.75 * RotationPeriod(task['parameters'])     # to the end of the lowering phase
+        task['endTime'] = 0.75 * RotationPeriod(ResolveDrive(parameters=task['parameters']))     # to the end of the lowering phase
         row = RunPoint(task)
         analyticUnstable = bool(chart.maxRealPart[run] > 0)
         chatter = row['loweringChatter']

@@ -17,6 +17,7 @@ from exudyn_worm.model.contact import ContactOptions
 from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
 from exudyn_worm.model.stability import AnalyzeStability
+from exudyn_worm.setups.wholedrive import ResolveDrive
 
 from .paper.eigenvalue_forensics import WheelCircumferenceFactor
 from .runner import READINGS, Fmt
@@ -49,12 +50,12 @@ def Simulate(preset: str, overrides: Tuple = (), stepSize: float = DEFAULT_STEP_
     p = ApplyOverrides(GetPreset(preset), dict(overrides))
     if paperMesh:
         p = PaperMeshConvention(p)
-    return SimulateReelChanger(p, stepSize=stepSize, contactOptions=ContactOptions(frictionSpeed=frictionSpeed,
+    return SimulateReelChanger(ResolveDrive(parameters=p), stepSize=stepSize, contactOptions=ContactOptions(frictionSpeed=frictionSpeed,
                                                                                    frictionModel=frictionModel))
 
 
 def _Metrics(preset, overrides=(), **kw):
-    windows = DefaultWindows(ApplyOverrides(GetPreset(preset), dict(overrides)))
+    windows = DefaultWindows(ResolveDrive(parameters=ApplyOverrides(GetPreset(preset), dict(overrides))))
     return Simulate(preset, tuple(overrides), **kw).WindowMetrics(windows)
 
 

@@ -20,7 +20,8 @@ from .orbits import FindPeriodicOrbit, PeriodicOrbit, ShootingError
 from .._checks import CheckPositive
 from ..items.connector import WormGearConnector
 from .linearization import AnalyzeLinearStability
-from .drivestability import DriveStability
+from ..setups.wholedrive import Drive
+from .drivestability import AnalyzeDrive
 from .exudynflow import STEPS_PER_PERIOD, ExudynFlow, _Configuration
 from .lowering import (BuildLoweringModel, BuildRigidBodyLoweringModel, LoweringModel, LoweringModelOfSystem,
                        SettleLowering, StateScale,
@@ -122,11 +123,11 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
 
 
 def _LinearlyStable(model: LoweringModel) -> bool:
-    """The linear verdict at the model's steady state: :func:`~exudyn_worm.analysis.drivestability.DriveStability` (S = -1,
+    """The linear verdict at the model's steady state: :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive` (S = -1,
     lowering) for a parameter set; for a user's system its own linearization in the contact state of its steady
     state (False if it cannot be linearized there, so that a drive is never called at rest on that ground)."""
     if model.parameters:
-        return bool(DriveStability(model.parameters).State(-1).stable)
+        return bool(AnalyzeDrive(Drive.FromParameters(model.parameters)).State(-1).stable)
     S = int(np.sign(float(_MeshAt(model.connector, model.steady).S))) or -1
     mbs, C = model.mbs, _Configuration()
     mbs.systemData.SetODE2Coordinates(model.initialCoordinates.tolist(), configuration=C.Initial)

@@ -7,7 +7,7 @@ range of the mesh (its largest normal force below twice the static force: the or
 it is one of the neutral orbits of the linearized drive, i.e. the branch has reached its Hopf point) or leaves
 the range, and reports per point the amplitude (normal-force factor, largest ``|phi2''|``), the frequency and the
 Floquet stability; for the branch the Hopf points beside the linear boundaries (roots of the largest real part
-of the S = -1 eigenvalues, :func:`~exudyn_worm.analysis.drivestability.DriveStability`), their type, the folds and the
+of the S = -1 eigenvalues, :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`), their type, the folds and the
 ranges in which rest and stable chatter coexist. The smooth branch from a linear boundary (speed-dependent friction)
 is :mod:`exudyn_worm.analysis.smoothbranch`, the smallest disturbance that starts chatter
 :mod:`exudyn_worm.analysis.disturbance`.
@@ -29,11 +29,12 @@ from .chatter import MONODROMY_PERTURBATION, FindSteadyChatter, OrbitAmplitude, 
 from .lowering import (BuildLoweringModel, BuildRigidBodyLoweringModel, LoweringModel, StateScale,
                        UpdateLoweringModel, _LoweringFlow)
 from .settling import SettleOnSection
-from .continuation import Branch, BranchPoint, ContinueOrbits
+from .continuation import Branch, BranchPoint, ContinueOrbits, StopKind
 from .orbits import PeriodicOrbit, ShootingError
 from .._checks import CheckPositive
 from ..items.bearings import BEARING_LOADS
-from .drivestability import DriveStability
+from ..setups.wholedrive import Drive
+from .drivestability import AnalyzeDrive
 from .._workers import CancelPool, WorkerInit
 from ..params.parameters import PARAMETERS
 from ..setups.presets import ElasticDriveFromParameters
@@ -141,7 +142,7 @@ def _BuildModel(parameters: Mapping[str, float], rigidBody: bool) -> LoweringMod
 
 
 def _MaxRealPart(parameters) -> float:
-    return float(DriveStability(parameters).State(-1).maxRealPart)
+    return float(AnalyzeDrive(Drive.FromParameters(parameters)).State(-1).maxRealPart)
 
 
 def LinearBoundaries(parameters: Mapping[str, float], name: str, low: float, high: float, samples: int = 41
@@ -480,7 +481,7 @@ def _FollowDirection(base: Dict, name: str, low: float, high: float, start: Peri
     messages += [f"towards {side} {name}: {r}" for r in branch.stopReason]
     for _ in range(restarts):
         last = branch.points[-1]
-        if not branch.stopReason[-1].startswith('the corrector did not converge') or len(branch.points) > maxPoints:
+        if branch.stopKinds[-1] is not StopKind.CORRECTOR_FAILED or len(branch.points) > maxPoints:
             break
         # the corrector is stuck at a kink of the map (e.g. the orbit starts to touch the other flank): start
         # again from a time simulation a little further on (from the last orbit), and continue from there
@@ -506,7 +507,7 @@ def _FollowDirection(base: Dict, name: str, low: float, high: float, start: Peri
                               maxPoints=maxPoints - len(branch.points), **settings)
         branch.points += more.points
         branch.folds += more.folds
-        branch.stopReason = more.stopReason
+        branch.stopReason, branch.stopKinds = more.stopReason, more.stopKinds
         messages += [f"towards {side} {name}: {r}" for r in more.stopReason]
     return branch, messages
 

@@ -17,6 +17,7 @@ The flow at parameter ``p`` comes from ``flowAt(p)``, which may change the model
 """
 from __future__ import annotations
 
+import enum
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
@@ -25,7 +26,22 @@ import numpy as np
 from .orbits import (SLOW_CONVERGENCE, BroydenUpdate, FlowVelocity, Monodromy, PeriodicOrbit,
                      ShootingJacobian)
 
-__all__ = ['BranchPoint', 'Branch', 'ContinueOrbits']
+__all__ = ['StopKind', 'BranchPoint', 'Branch', 'ContinueOrbits']
+
+
+class StopKind(enum.Enum):
+    """Why a run of the continuation stopped (:attr:`Branch.stopKinds`; the words are in :attr:`Branch.stopReason`).
+
+    Attributes
+    ----------
+    CORRECTOR_FAILED, RANGE_END, STOPPED, MAX_POINTS : StopKind
+        The corrector did not converge at the smallest step length; the branch left the range; the caller's
+        ``stop`` function ended it; the point limit was reached.
+    """
+    CORRECTOR_FAILED = 'corrector failed'
+    RANGE_END = 'end of range'
+    STOPPED = 'stopped'
+    MAX_POINTS = 'point limit'
 
 
 @dataclass
@@ -66,12 +82,28 @@ class Branch:
     folds : list of float
         Parameter values of the folds (turning points) found.
     stopReason : list of str
-        Why each run of the continuation stopped.
+        Why each run of the continuation stopped, in words.
+    stopKinds : list of StopKind
+        The same as kinds, one per entry of ``stopReason`` (what code decides on).
     """
     parameter: str
     points: List[BranchPoint]
     folds: List[float] = field(default_factory=list)
     stopReason: List[str] = field(default_factory=list)
+    stopKinds: List[StopKind] = field(default_factory=list)
+
+    def Stopped(self, kind: StopKind, reason: str) -> None:
+        """Record why a run stopped.
+
+        Parameters
+        ----------
+        kind : StopKind
+            The kind of stop.
+        reason : str
+            The words for the user.
+        """
+        self.stopKinds.append(kind)
+        self.stopReason.append(reason)
 
 
 #: a corrector that converged in at most this many Broyden steps from the previous orbit's Jacobian, without
@@ -254,8 +286,8 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
         if not ok:
             h *= 0.5
             if h < minStepLength:
-                branch.stopReason.append(f"the corrector did not converge at step length {h:.2g}"
-                                         + (f" ({cache['error']})" if 'error' in cache else ''))
+                branch.Stopped(StopKind.CORRECTOR_FAILED, f"the corrector did not converge at step length {h:.2g}"
+                               + (f" ({cache['error']})" if 'error' in cache else ''))
                 break
             continue
         x, T, p = Unscale(yNew)
@@ -282,14 +314,14 @@ def ContinueOrbits(flowAt: Callable[[float], Callable], start: PeriodicOrbit, va
             onPoint(point)
         y, tangent, reference, first = yNew, newTangent, (x.copy(), velocity.copy()), False
         if not low < p < high:
-            branch.stopReason.append(f"reached the end of the range at {parameter} = {p:.6g}")
+            branch.Stopped(StopKind.RANGE_END, f"reached the end of the range at {parameter} = {p:.6g}")
             break
         reason = stop(point) if stop else None
         if reason:
-            branch.stopReason.append(reason)
+            branch.Stopped(StopKind.STOPPED, reason)
             break
         if iterations <= 2 or (renewals == 0 and iterations <= EASY_BROYDEN_STEPS):
             h = min(maxStepLength, 1.5 * h)
     else:
-        branch.stopReason.append(f"reached {maxPoints} points")
+        branch.Stopped(StopKind.MAX_POINTS, f"reached {maxPoints} points")
     return branch

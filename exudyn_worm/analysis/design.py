@@ -33,17 +33,17 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from itertools import combinations
-from typing import Callable, Dict, List, Mapping, Optional, Tuple, Union
+from typing import Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 
 from .._checks import CheckRange, JsonNumber
 from ..model.stability import CONTACT_STATES
-from ..setups.wholedrive import Drive
+from ..setups.wholedrive import CheckDrive, Drive
 from .charts import ChartCoordinates
 from .designchart import LocalCharts, _ChartDistance
 from .designrules import DEFAULT_MARGIN, DEFAULT_SPAN, MarginRule, PairRecommendation, Recommendation
-from .designscan import (SPEED_KEY, WHOLE_DRIVE_TOLERANCE, AsCheckedDrive, AxisScan, DesignKeys, Scanner,
+from .designscan import (SPEED_KEY, WHOLE_DRIVE_TOLERANCE, AxisScan, DesignKeys, Scanner,
                          _ScaledDrives, _SymmetricGrid)
 from .drivestability import AnalyzeDrive, DriveAnalysis
 
@@ -233,7 +233,7 @@ def _BestPair(scanner: Scanner, keys, margin, span) -> Optional[PairRecommendati
     L = math.log10(span)
     t = _SymmetricGrid(L + margin, _PAIR_STEP)
     half = int(round(margin / (t[1] - t[0])))
-    scaled = _ScaledDrives(scanner.parameters, keys, scanner.conditions)
+    scaled = _ScaledDrives(scanner.drive, keys, scanner.conditions)
     candidates = []
     for a, b in combinations(keys, 2):
         stable = scaled.Stable({a: t[:, None], b: t[None, :]})
@@ -253,7 +253,7 @@ def _BestPair(scanner: Scanner, keys, margin, span) -> Optional[PairRecommendati
     return None
 
 
-def DesignCheck(drive: Union[Drive, Mapping[str, float]], margin: float = DEFAULT_MARGIN,
+def DesignCheck(drive: Drive, margin: float = DEFAULT_MARGIN,
                 span: float = DEFAULT_SPAN, progress: Optional[Callable[[], None]] = None) -> DesignCheckResult:
     """Check a drive for chatter and recommend the smallest changes that make it stable with a margin.
 
@@ -264,9 +264,9 @@ def DesignCheck(drive: Union[Drive, Mapping[str, float]], margin: float = DEFAUL
 
     Parameters
     ----------
-    drive : Drive or mapping
-        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`) or a flat parameter set (e.g.
-        ``GetPreset('reel-P1')``); any drive: chains on both sides, axial bearing, motor on its characteristic.
+    drive : Drive
+        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`, e.g. ``ResolveDrive('reel-P1')``); any
+        drive: chains on both sides, axial bearing, motor on its characteristic.
     margin : float, optional
         Margin in decades of a parameter factor, in [0, 1] (default 0.1: factor 1.26).
     span : float, optional
@@ -289,7 +289,7 @@ def DesignCheck(drive: Union[Drive, Mapping[str, float]], margin: float = DEFAUL
     w = 'DesignCheck'
     margin = CheckRange(w, 'margin', margin, low=0., high=1., unit='decades')
     span = CheckRange(w, 'span', span, low=1., high=1e4, lowOpen=True)
-    drive = AsCheckedDrive(drive, w)
+    CheckDrive(w, drive)
     analysis = AnalyzeDrive(drive)
     analysis.stable
     scanner = Scanner(drive)

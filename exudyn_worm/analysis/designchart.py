@@ -6,15 +6,14 @@ describe a whole drive (chains, axial bearing, motor on its characteristic): it 
 from __future__ import annotations
 
 import math
-from typing import Dict, Mapping, Optional, Tuple, Union
+from typing import Dict, Optional, Tuple
 
 import numpy as np
 
 from .._checks import CheckRange
 from ..model.stability import CONTACT_STATES
-from ..setups.wholedrive import Drive
+from ..setups.wholedrive import CheckDrive, Drive
 from .charts import ChartCoordinates, ComputeStabilityChart
-from .designscan import AsCheckedDrive
 from .drivestability import AnalyzeDrive, DriveAnalysis
 
 __all__ = ['LocalCharts', 'ChartGrid']
@@ -35,7 +34,7 @@ def _DecidingPerState(analysis: DriveAnalysis) -> Dict[int, object]:
     return dict(sorted(out.items()))
 
 
-def LocalCharts(drive: Union[Drive, Mapping[str, float]], decades: float = _CHART_DECADES,
+def LocalCharts(drive: Drive, decades: float = _CHART_DECADES,
                 step: float = _CHART_STEP):
     """The two-mass drive's stability charts (:func:`~exudyn_worm.analysis.charts.ComputeStabilityChart`) on a log
     grid of +-``decades`` around its chart point, at its D_V and D_TV, one per contact state of its duty, each at the
@@ -44,8 +43,8 @@ def LocalCharts(drive: Union[Drive, Mapping[str, float]], decades: float = _CHAR
 
     Parameters
     ----------
-    drive : Drive or mapping
-        The two-mass drive or its flat parameter set.
+    drive : Drive
+        The two-mass drive.
     decades : float, optional
         Half-width of the grid in decades of x and y, > 0.
     step : float, optional
@@ -63,7 +62,7 @@ def LocalCharts(drive: Union[Drive, Mapping[str, float]], decades: float = _CHAR
     """
     CheckRange('LocalCharts', 'decades', decades, low=0., lowOpen=True)
     CheckRange('LocalCharts', 'step', step, low=0., high=decades, lowOpen=True)
-    drive = AsCheckedDrive(drive, 'LocalCharts')
+    CheckDrive('LocalCharts', drive)
     if not drive.isTwoMass:
         raise ValueError(f"LocalCharts: the stability chart (eqs. (15)-(19)) describes the two-mass drive of Figure 2; "
                          f"this drive has {drive.ComponentsText()}")
@@ -76,13 +75,13 @@ def LocalCharts(drive: Union[Drive, Mapping[str, float]], decades: float = _CHAR
             for S, op in _DecidingPerState(AnalyzeDrive(drive)).items()}
 
 
-def ChartGrid(drive: Union[Drive, Mapping[str, float]], decades: float = _CHART_DECADES, step: float = _CHART_STEP):
+def ChartGrid(drive: Drive, decades: float = _CHART_DECADES, step: float = _CHART_STEP):
     """Stability (every chart of :func:`LocalCharts`) on the grid around the drive's chart point.
 
     Parameters
     ----------
-    drive : Drive or mapping
-        The two-mass drive or its flat parameter set.
+    drive : Drive
+        The two-mass drive.
     decades : float, optional
         Half-width of the grid in decades of x and y, > 0.
     step : float, optional

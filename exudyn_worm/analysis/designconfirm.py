@@ -4,10 +4,10 @@ recommended drive, with the chatter rule of ``exudyn-worm simulate`` on the lowe
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import Mapping, Optional
+from typing import Optional
 
 from ..setups.build import CheckReelChangerKeys
-from ..setups.presets import ApplyOverrides
+from ..setups.wholedrive import Drive
 from . import reelchanger
 from .design import DesignCheckResult
 from .reelchanger import DefaultPhases
@@ -15,7 +15,7 @@ from .reelchanger import DefaultPhases
 __all__ = ['ChatterWhileLowering', 'ConfirmBySimulation']
 
 
-def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[float] = None) -> bool:
+def ChatterWhileLowering(drive: Drive, stepSize: Optional[float] = None) -> bool:
     """Time-domain verdict: does the reel changer chatter while lowering the load?
 
     One rotation with :func:`~exudyn_worm.analysis.reelchanger.SimulateReelChanger`; the verdict is
@@ -25,8 +25,8 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed`` (or another duty's).
+    drive : Drive
+        The drive with the reel-changer keys ``loadMass``, ``leverArm``, ``motorSpeed`` (or another duty's).
     stepSize : float, optional
         Time step in s. Default: the simulation's default, the drive's own
         :func:`~exudyn_worm.analysis.stepsize.RecommendedStepSize` (a recommended drive can have a higher natural
@@ -39,13 +39,13 @@ def ChatterWhileLowering(parameters: Mapping[str, float], stepSize: Optional[flo
     Raises
     ------
     ValueError
-        For a parameter set without the reel-changer keys, or a ``stepSize`` the simulation refuses.
+        For a drive without the reel-changer keys, or a ``stepSize`` the simulation refuses.
     """
-    CheckReelChangerKeys(parameters, 'ChatterWhileLowering')
-    lowering = [(t0, t1) for t0, t1, phase in DefaultPhases(parameters) if phase == 'lower']   # the load drives
+    CheckReelChangerKeys(drive, 'ChatterWhileLowering')
+    lowering = [(t0, t1) for t0, t1, phase in DefaultPhases(drive) if phase == 'lower']   # the load drives
     if not lowering:
         return False
-    result = reelchanger.SimulateReelChanger(parameters, stepSize=stepSize)          # the default time the phases cover
+    result = reelchanger.SimulateReelChanger(drive, stepSize=stepSize)          # the default time the phases cover
     return any(result.Chatter(t0, t1) for t0, t1 in lowering)
 
 
@@ -56,7 +56,7 @@ def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = N
     Parameters
     ----------
     result : DesignCheckResult
-        From :func:`~exudyn_worm.analysis.design.DesignCheck`; its parameter set must hold ``loadMass``, ``leverArm``, ``motorSpeed``.
+        From :func:`~exudyn_worm.analysis.design.DesignCheck`; its drive must hold ``loadMass``, ``leverArm``, ``motorSpeed``.
     stepSize : float, optional
         Time step in s (default: see :func:`ChatterWhileLowering`).
     progress : callable, optional
@@ -69,10 +69,10 @@ def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = N
     """
     if not isinstance(result, DesignCheckResult):
         raise TypeError(f"ConfirmBySimulation: 'result' must be a DesignCheckResult, got {type(result).__name__}")
-    p = result.parameters
+    drive = result.drive
 
     def Verdict(changes):
-        chatter = ChatterWhileLowering(ApplyOverrides(p, changes), stepSize)
+        chatter = ChatterWhileLowering(drive.Replace(**changes), stepSize)
         if progress is not None:
             progress()
         return chatter

@@ -23,19 +23,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
 from .._checks import CheckRange
 from ..model.stability import CONTACT_STATES, CharacteristicCoefficients, HurwitzStable, PolynomialCoefficients
 from ..setups.operatingpoints import DutyOperatingPoints
-from ..setups.presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, ElasticDriveFromParameters
-from ..setups.wholedrive import Drive
+from ..setups.presets import PARAMETER_UNITS
+from ..setups.wholedrive import CheckDrive, Drive
 from .charts import ChartCoordinates
 from .drivestability import AnalyzeDrive, DriveAnalysis
 
-__all__ = ['SCAN_STEP', 'WHOLE_DRIVE_STEP', 'WHOLE_DRIVE_TOLERANCE', 'SPEED_KEY', 'AsCheckedDrive', 'Conditions',
+__all__ = ['SCAN_STEP', 'WHOLE_DRIVE_STEP', 'WHOLE_DRIVE_TOLERANCE', 'SPEED_KEY', 'Conditions',
            'DesignParameters', 'DesignKeys', 'AxisScan', 'ScanParameter', 'ScanMotorSpeed', 'Scanner']
 
 #: grid step of the two-mass drive's 1-D scans in decades (boundaries are then refined by bisection)
@@ -54,27 +54,6 @@ _SHAFT_DAMPING_FORMS = ('dT', 'DT', 'DTV')      # precedence as in ElasticDriveF
 _MESH_DAMPING_FORMS = ('dV', 'DV')
 _QUANTITIES = ('J1', 'J2', 'kT', 'dT', 'dV')    # the two-mass drive's quantities a design parameter acts on
 _AXIAL_DESIGN_KEYS = ('kA', 'dA')
-
-
-def AsCheckedDrive(drive: Union[Drive, Mapping], where: str) -> Drive:
-    """``drive`` itself, or the checked :class:`~exudyn_worm.setups.wholedrive.Drive` of a flat parameter set
-    (its keys checked first, so that a message names ``where``).
-
-    Parameters
-    ----------
-    drive : Drive or mapping
-        A drive or a flat parameter set.
-    where : str
-        The caller, named in messages.
-
-    Returns
-    -------
-    Drive
-    """
-    if isinstance(drive, Drive):
-        return drive
-    CheckParameterKeys(drive, where)
-    return Drive.FromParameters(drive)
 
 
 def Conditions(drive: Drive) -> Tuple[Tuple[int, object], ...]:
@@ -96,34 +75,34 @@ def Conditions(drive: Drive) -> Tuple[Tuple[int, object], ...]:
     return tuple((S, None) for S in CONTACT_STATES)
 
 
-def DesignParameters(drive: Union[Drive, Mapping[str, float]]) -> List[str]:
+def DesignParameters(drive: Drive) -> List[str]:
     """The design parameters of a drive: J1, J2, kT and the damping keys in the form it holds them, then the
     drive-side chain (J4, k4, d4, ...), the load-side chain (JL1, kL1, dL1, ...) and the axial bearing (kA, dA)
     where the drive has them.
 
     Parameters
     ----------
-    drive : Drive or mapping
-        The drive or a flat parameter set (see :func:`~exudyn_worm.setups.presets.DriveFromParameters`).
+    drive : Drive
+        The drive.
 
     Returns
     -------
     list of str
         ``['J1', 'J2', 'kT', <dT|DT|DTV>, <dV|DV>, ...]`` (a key only if present).
     """
-    parameters = drive.parameters if isinstance(drive, Drive) else drive
+    CheckDrive('DesignParameters', drive)
+    parameters = drive.parameters
     keys = ['J1', 'J2', 'kT']
     for forms in (_SHAFT_DAMPING_FORMS, _MESH_DAMPING_FORMS):
         key = next((k for k in forms if k in parameters), None)
         if key is not None:
             keys.append(key)
-    if isinstance(drive, Drive):
-        for i in range(len(drive.driveSideChain)):
-            keys += [k for k in (f'J{4 + i}', f'k{4 + i}', f'd{4 + i}') if k in parameters]
-        for i in range(len(drive.loadSideChain)):
-            keys += [k for k in (f'JL{1 + i}', f'kL{1 + i}', f'dL{1 + i}') if k in parameters]
-        if drive.axialBearing is not None:
-            keys += [k for k in _AXIAL_DESIGN_KEYS if k in parameters]
+    for i in range(len(drive.driveSideChain)):
+        keys += [k for k in (f'J{4 + i}', f'k{4 + i}', f'd{4 + i}') if k in parameters]
+    for i in range(len(drive.loadSideChain)):
+        keys += [k for k in (f'JL{1 + i}', f'kL{1 + i}', f'dL{1 + i}') if k in parameters]
+    if drive.axialBearing is not None:
+        keys += [k for k in _AXIAL_DESIGN_KEYS if k in parameters]
     return keys
 
 
@@ -240,27 +219,23 @@ def _Intervals(key: str, value: float, t: np.ndarray, stable: Sequence[bool], st
     return AxisScan(key, float(value), tuple((float(a), float(b)) for a, b in intervals), float(t[-1]))
 
 
-def _Scaled(parameters: Mapping[str, float], changes: Mapping[str, float]) -> Dict[str, float]:
-    """Parameters with ``key`` multiplied by 10**logFactor for each item of ``changes``."""
-    return ApplyOverrides(parameters, {k: parameters[k] * 10. ** t for k, t in changes.items()})
-
-
 class _ScaledDrives:
     """Stability of many two-mass drives at once: the drive with design parameters multiplied by 10**t.
 
     J1, J2, kT, dT and dV are monomials of the parameters (eqs. (22)-(24)); their exponents are probed once
-    per design parameter with :func:`ElasticDriveFromParameters` (and checked at a second factor), so the model's
-    formulas stay in :mod:`presets`, :mod:`drive` and :mod:`stability`.
+    per design parameter with :meth:`~exudyn_worm.setups.wholedrive.Drive.Replace` (and checked at a second
+    factor), so the model's formulas stay in :mod:`presets`, :mod:`drive` and :mod:`stability`.
     """
 
-    def __init__(self, parameters: Mapping[str, float], keys: Sequence[str], conditions):
-        self.drive = ElasticDriveFromParameters(parameters)
+    def __init__(self, whole: Drive, keys: Sequence[str], conditions):
+        self.drive = whole.elastic
         self.conditions = conditions        # J1, J2, kT, dT, dV do not move the operating points
         self.q0 = self._Quantities(self.drive)
         self.exponents = {}
         probe = 0.05       # decades: a small factor, so a drive at the edge of the allowed ranges is not refused
         for key in keys:
-            up, down = (self._Quantities(ElasticDriveFromParameters(_Scaled(parameters, {key: s}))) for s in (probe, -probe))
+            up, down = (self._Quantities(whole.Replace(**{key: whole.parameters[key] * 10. ** s}).elastic)
+                        for s in (probe, -probe))
             with np.errstate(divide='ignore', invalid='ignore'):
                 e = np.where(self.q0 > 0, np.log10(up / self.q0) / probe, 0.)
             if not np.allclose(down, self.q0 * 10. ** (-e * probe), rtol=1e-9, atol=0.):
@@ -317,7 +292,7 @@ class Scanner:
         changes : mapping
             Log factors (decades) by key.
         """
-        changed = self.drive.Replace({k: self.parameters[k] * 10. ** t for k, t in changes.items()})
+        changed = self.drive.Replace(**{k: self.parameters[k] * 10. ** t for k, t in changes.items()})
         if SPEED_KEY not in changes:   # inertias, stiffnesses and dampings do not move the operating points
             changed.Cached('dutyOperatingPoints', lambda: DutyOperatingPoints(self.drive))
         return changed
@@ -344,10 +319,9 @@ class Scanner:
         if not self.twoMass:
             return bool(self.Analysis(changes).stable)
         # Routh-Hurwitz on (16) is the verdict of AnalyzeStability(...) without the polynomial roots (10x faster)
-        scaled = _Scaled(self.parameters, changes)
-        conditions = self.conditions if SPEED_KEY not in changes else Conditions(Drive.FromParameters(scaled))
-        drive = ElasticDriveFromParameters(scaled)
-        return all(HurwitzStable(CharacteristicCoefficients(drive, S, op)) for S, op in conditions)
+        changed = self.Changed(changes)
+        conditions = self.conditions if SPEED_KEY not in changes else Conditions(changed)
+        return all(HurwitzStable(CharacteristicCoefficients(changed.elastic, S, op)) for S, op in conditions)
 
     def After(self, changes: Mapping[str, float]) -> Tuple[float, Dict[str, float]]:
         """(largest real part in 1/s at the deciding operating point, chart point of the two-mass core) of the
@@ -383,7 +357,7 @@ class Scanner:
         CheckRange(w, 'step', step, low=0., high=limit, lowOpen=True)
         t = _SymmetricGrid(limit, step)
         if self.twoMass and key != SPEED_KEY:
-            stable = _ScaledDrives(self.parameters, (key,), self.conditions).Stable({key: t})
+            stable = _ScaledDrives(self.drive, (key,), self.conditions).Stable({key: t})
         else:
             stable = [self.StableAt({key: ti}) for ti in t]
         tolerance = _REFINE_TOLERANCE if self.twoMass else WHOLE_DRIVE_TOLERANCE
@@ -407,14 +381,14 @@ class Scanner:
         return all(self.StableAt({key: t + d}) for d in np.linspace(-margin, margin, _CONFIRM_POINTS))
 
 
-def ScanParameter(drive: Union[Drive, Mapping[str, float]], key: str, limit: float,
+def ScanParameter(drive: Drive, key: str, limit: float,
                   step: Optional[float] = None) -> AxisScan:
     """Scan the stability of the drive with ``key`` multiplied by 10**t for ``|t| <= limit``.
 
     Parameters
     ----------
-    drive : Drive or mapping
-        The drive or a flat parameter set.
+    drive : Drive
+        The drive.
     key : str
         A design parameter present in the drive with a value > 0.
     limit : float
@@ -427,10 +401,10 @@ def ScanParameter(drive: Union[Drive, Mapping[str, float]], key: str, limit: flo
     -------
     AxisScan
     """
-    return Scanner(AsCheckedDrive(drive, 'ScanParameter')).Scan(key, limit, step)
+    return Scanner(CheckDrive('ScanParameter', drive)).Scan(key, limit, step)
 
 
-def ScanMotorSpeed(drive: Union[Drive, Mapping[str, float]], limit: float, step: Optional[float] = None) -> AxisScan:
+def ScanMotorSpeed(drive: Drive, limit: float, step: Optional[float] = None) -> AxisScan:
     """Scan the stability of the drive with ``motorSpeed`` multiplied by 10**t for ``|t| <= limit``.
 
     With a speed-dependent friction law the operating points (mu(v0), its slope, the normal force) move with the
@@ -438,8 +412,8 @@ def ScanMotorSpeed(drive: Union[Drive, Mapping[str, float]], limit: float, step:
 
     Parameters
     ----------
-    drive : Drive or mapping
-        The drive or a flat parameter set, with ``motorSpeed`` and a load.
+    drive : Drive
+        The drive, with ``motorSpeed`` and a load.
     limit : float
         Scanned range in decades, > 0.
     step : float, optional
@@ -449,6 +423,6 @@ def ScanMotorSpeed(drive: Union[Drive, Mapping[str, float]], limit: float, step:
     -------
     AxisScan
     """
-    drive = AsCheckedDrive(drive, 'ScanMotorSpeed')
+    drive = CheckDrive('ScanMotorSpeed', drive)
     CheckRange('ScanMotorSpeed', SPEED_KEY, drive.parameters.get(SPEED_KEY, 0.), low=0., lowOpen=True, unit='rad/s')
     return Scanner(drive).Scan(SPEED_KEY, limit, step)

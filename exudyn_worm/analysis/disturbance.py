@@ -14,7 +14,8 @@ from .chatter import FindSteadyChatter
 from .lowering import BuildLoweringModel, SettleLowering, _MeshAt
 from .orbits import ShootingError
 from .._checks import JsonNumber
-from .drivestability import DriveStability
+from ..setups.wholedrive import Drive
+from .drivestability import AnalyzeDrive
 
 __all__ = ['COEXISTENCE_KICK', 'SmallestDisturbance', 'DisturbanceVerdict', 'ChattersAfterDisturbance']
 #: worm-speed kick (fraction of the motor speed) tried when the drive is linearly stable on the whole range
@@ -121,7 +122,7 @@ def ChattersAfterDisturbance(parameters: Mapping[str, float]) -> DisturbanceVerd
     -------
     DisturbanceVerdict
     """
-    stable = bool(DriveStability(parameters).State(-1).stable)
+    stable = bool(AnalyzeDrive(Drive.FromParameters(parameters)).State(-1).stable)
     nan = math.nan
     try:
         orbit = FindSteadyChatter(parameters, kick=COEXISTENCE_KICK if stable else 0.01)

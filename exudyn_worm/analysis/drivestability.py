@@ -17,9 +17,10 @@ constant-mu model; the result says so). Each analysis is computed once per drive
 """
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import dataclass
-from typing import Any, Dict, Mapping, Optional, Tuple, Union
+from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -27,14 +28,27 @@ from .._checks import JsonNumber
 from ..model.selflocking import SelfLocking
 from ..model.stability import CONTACT_STATES, AnalyzeStability, OperatingPoint
 from ..setups.operatingpoints import DutyOperatingPoints, DutyPoint
-from ..setups.wholedrive import AsDrive, Drive
+from ..setups.wholedrive import CheckDrive, Drive
 from . import linearization
 
-__all__ = ['OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'AnalyzeAtOperatingPoint', 'StateGrowth',
-           'DriveStability', 'ANALYTICAL', 'LINEARIZED']
+__all__ = ['StabilityModel', 'OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'StateGrowth']
 
-#: the model names of :attr:`DriveAnalysis.model`
-ANALYTICAL, LINEARIZED = 'analytical', 'linearized'
+
+class StabilityModel(str, enum.Enum):
+    """The model of a drive's linear verdict (:attr:`DriveAnalysis.model`).
+
+    Attributes
+    ----------
+    ANALYTICAL : StabilityModel
+        Eqs. (15)-(19) of the two-mass drive of Figure 2 (value ``'analytical'``).
+    LINEARIZED : StabilityModel
+        The Exudyn model of the whole drive, linearized (value ``'linearized'``).
+    """
+    ANALYTICAL = 'analytical'
+    LINEARIZED = 'linearized'
+
+
+ANALYTICAL, LINEARIZED = StabilityModel.ANALYTICAL, StabilityModel.LINEARIZED
 
 
 def StateGrowth(state: Any) -> Tuple[float, float]:
@@ -44,7 +58,7 @@ def StateGrowth(state: Any) -> Tuple[float, float]:
     Parameters
     ----------
     state : object
-        ``analysis.State(S)`` of :func:`AnalyzeAtOperatingPoint` (``maxRealPart``, ``eigenvalues``).
+        ``OperatingPointStability.state`` or ``analysis.State(S)`` (``maxRealPart``, ``eigenvalues``).
 
     Returns
     -------
@@ -129,14 +143,14 @@ class DriveAnalysis:
     ----------
     drive : Drive
         The drive analysed.
-    model : str
-        ``'analytical'`` (eqs. (15)-(19), the two-mass drive) or ``'linearized'`` (the Exudyn model of the whole
+    model : StabilityModel
+        ``ANALYTICAL`` (eqs. (15)-(19), the two-mass drive) or ``LINEARIZED`` (the Exudyn model of the whole
         drive).
     operatingPoints : tuple of OperatingPointStability
         One per operating point of the duty (empty: the drive has no steady phase; see :attr:`atRest`).
     """
     drive: Drive
-    model: str
+    model: StabilityModel
     operatingPoints: Tuple[OperatingPointStability, ...]
 
     @property
@@ -218,7 +232,7 @@ class DriveAnalysis:
         """JSON-ready: ``stable``, ``model``, ``components``, ``maxRealPart``, ``frequencyHz``, ``operatingPoints``,
         ``deciding``, ``decidingText``, ``dangerous``, ``selfLockingAtOperatingPoints``."""
         deciding = self.deciding
-        return {'stable': self.stable, 'model': self.model, 'components': [c.text for c in self.drive.components],
+        return {'stable': self.stable, 'model': self.model.value, 'components': [c.text for c in self.drive.components],
                 'maxRealPart': JsonNumber(self.maxRealPart), 'frequencyHz': JsonNumber(self.frequencyHz),
                 'operatingPoints': [p.ToDict() for p in self.operatingPoints],
                 'deciding': None if deciding is None else {'phase': deciding.phase,
@@ -228,46 +242,25 @@ class DriveAnalysis:
                 'selfLockingAtOperatingPoints': {k: v.ToDict() for k, v in self.selfLockingVerdicts.items()}}
 
 
-def _AtRest(drive: Drive, model: str = ANALYTICAL):
+def _AtRest(drive: Drive, model: StabilityModel = ANALYTICAL):
     def Compute():
         if drive.isTwoMass:
             return AnalyzeStability(drive.elastic) if model == ANALYTICAL else \
-                linearization.AnalyzeStabilityExudyn(drive.elastic)
+                linearization.ExudynStabilityAnalysis(drive.elastic)
         SC, mbs = _WholeDriveModel(drive, None)
         return linearization.AnalyzeLinearStability(mbs)
-    return drive.Cached(f'stabilityAtRest.{model}', Compute)
+    return drive.Cached(f'stabilityAtRest.{model.value}', Compute)
 
 
-def _AtPoint(drive: Drive, point: DutyPoint, model: str):
-    return AnalyzeAtOperatingPoint(drive, point.operatingPoint, model)
-
-
-def AnalyzeAtOperatingPoint(drive: Drive, operatingPoint: OperatingPoint, model: Optional[str] = None) -> Any:
-    """The linear analysis of ``drive`` at one operating point, with the model :func:`AnalyzeDrive` takes for it
-    (for a point the duty does not hold, e.g. another motor speed of a chart over speed).
-
-    Parameters
-    ----------
-    drive : Drive
-        The drive.
-    operatingPoint : OperatingPoint
-        Sliding speed, mu, slope, static normal force and contact state S
-        (:func:`~exudyn_worm.model.stability.OperatingPointAt`).
-    model : str, optional
-        ``'analytical'`` or ``'linearized'``; None (default): as :func:`AnalyzeDrive` chooses.
-
-    Returns
-    -------
-    StabilityAnalysis or LinearStability
-        ``State(operatingPoint.S)`` gives ``stable``, ``maxRealPart`` and ``eigenvalues``.
-    """
+def _AtPoint(drive: Drive, operatingPoint: OperatingPoint, model: StabilityModel) -> Any:
+    """The linear analysis of ``drive`` at one operating point with ``model``: a
+    :class:`~exudyn_worm.model.stability.StabilityAnalysis` (two-mass drive, both contact states) or a
+    :class:`~exudyn_worm.analysis.linearization.LinearStability` (whole drive, the point's contact state)."""
     op = operatingPoint
-    if model is None:
-        model = ANALYTICAL if drive.isTwoMass else LINEARIZED
     if model == ANALYTICAL:
         return AnalyzeStability(drive.elastic, op)
     if drive.isTwoMass:             # the same result type as the analytical model, from Exudyn's eigenvalues
-        return linearization.AnalyzeStabilityExudyn(drive.elastic, operatingPoint=op)
+        return linearization.ExudynStabilityAnalysis(drive.elastic, operatingPoint=op)
     SC, mbs = _WholeDriveModel(drive, op.S, op)
     return linearization.AnalyzeLinearStability(mbs, contactStates=[(op.S,)])
 
@@ -283,16 +276,22 @@ def _WholeDriveModel(drive: Drive, S: Optional[int], operatingPoint: Optional[Op
                                                  drive.loadSideChain, drive.freeMotor, operatingPoint=operatingPoint)
 
 
-def AnalyzeDrive(drive: Union[Drive, Mapping[str, Any]], model: Optional[str] = None) -> DriveAnalysis:
-    """Linear stability of a drive at the operating points of its own duty: the one entry point of every command.
+def AnalyzeDrive(drive: Drive, model: Optional[Union[StabilityModel, str]] = None,
+                 operatingPoints: Optional[Sequence[DutyPoint]] = None) -> DriveAnalysis:
+    """Linear stability of a drive at the operating points of its own duty (or at given ones): the one entry point
+    of every command.
 
     Parameters
     ----------
-    drive : Drive or mapping
-        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`) or a flat parameter set.
-    model : str, optional
-        ``'analytical'`` (eqs. (15)-(19); only for the two-mass drive) or ``'linearized'`` (the Exudyn model of
-        the whole drive); None (default): analytical for the two-mass drive, linearized for any other.
+    drive : Drive
+        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`).
+    model : StabilityModel or str, optional
+        ``ANALYTICAL`` (eqs. (15)-(19); only for the two-mass drive) or ``LINEARIZED`` (the Exudyn model of the
+        whole drive), or their values ``'analytical'``, ``'linearized'``; None (default): analytical for the
+        two-mass drive, linearized for any other.
+    operatingPoints : sequence of DutyPoint, optional
+        Analyse at these points instead of the duty's own (e.g. other motor speeds, as the chart over speed does;
+        :class:`~exudyn_worm.setups.operatingpoints.DutyPoint`).
 
     Returns
     -------
@@ -302,7 +301,8 @@ def AnalyzeDrive(drive: Union[Drive, Mapping[str, Any]], model: Optional[str] = 
     Raises
     ------
     ValueError, TypeError
-        For a bad drive (see :class:`~exudyn_worm.setups.wholedrive.Drive`) or a motor that cannot carry its load.
+        For a bad drive (see :class:`~exudyn_worm.setups.wholedrive.Drive`), a drive that is not a
+        :class:`~exudyn_worm.setups.wholedrive.Drive`, or a motor that cannot carry its load.
 
     Examples
     --------
@@ -311,34 +311,32 @@ def AnalyzeDrive(drive: Union[Drive, Mapping[str, Any]], model: Optional[str] = 
     >>> [(p.phase, p.stable) for p in analysis.operatingPoints], analysis.stable
     ([('lifting', True), ('lowering', False)], False)
     """
-    drive = AsDrive(drive, 'AnalyzeDrive')
+    w = 'AnalyzeDrive'
+    CheckDrive(w, drive)
     if model is None:
         model = ANALYTICAL if drive.isTwoMass else LINEARIZED
-    elif model not in (ANALYTICAL, LINEARIZED):
-        raise ValueError(f"AnalyzeDrive: 'model' must be None, {ANALYTICAL!r} or {LINEARIZED!r}, got {model!r}")
-    elif model == ANALYTICAL and not drive.isTwoMass:
-        raise ValueError(f"AnalyzeDrive: the analytical model (eqs. (15)-(19)) describes the two-mass drive of "
-                         f"Figure 2; this drive has {drive.ComponentsText()}: use model {LINEARIZED!r} (the default)")
+    else:
+        try:
+            model = StabilityModel(model)
+        except ValueError:
+            raise ValueError(f"{w}: 'model' must be None, {ANALYTICAL.value!r} or {LINEARIZED.value!r}, "
+                             f"got {model!r}") from None
+    if model == ANALYTICAL and not drive.isTwoMass:
+        raise ValueError(f"{w}: the analytical model (eqs. (15)-(19)) describes the two-mass drive of "
+                         f"Figure 2; this drive has {drive.ComponentsText()}: use model {LINEARIZED.value!r} "
+                         f"(the default)")
+    if operatingPoints is not None:
+        points = tuple(operatingPoints)
+        for i, p in enumerate(points):
+            if not isinstance(p, DutyPoint):
+                raise TypeError(f"{w}: 'operatingPoints[{i}]' must be a DutyPoint, got {type(p).__name__}")
+        return DriveAnalysis(drive=drive, model=model, operatingPoints=tuple(
+            OperatingPointStability(p, _AtPoint(drive, p.operatingPoint, model), drive.gear) for p in points))
 
     def Compute():
-        points = tuple(OperatingPointStability(p, drive.Cached(f'stabilityAt{i}.{model}',
-                                                               lambda p=p: _AtPoint(drive, p, model)), drive.gear)
+        points = tuple(OperatingPointStability(p, drive.Cached(f'stabilityAt{i}.{model.value}',
+                                                               lambda p=p: _AtPoint(drive, p.operatingPoint, model)),
+                                               drive.gear)
                        for i, p in enumerate(DutyOperatingPoints(drive)))
         return DriveAnalysis(drive=drive, model=model, operatingPoints=points)
-    return drive.Cached(f'driveAnalysis.{model}', Compute)
-
-
-def DriveStability(parameters: Union[Drive, Mapping[str, Any]]) -> DriveAnalysis:
-    """:func:`AnalyzeDrive` of a flat parameter set (or a drive): the verdict every command gives.
-
-    Parameters
-    ----------
-    parameters : mapping or Drive
-        Flat parameter set (see :mod:`exudyn_worm.setups.presets`) or a :class:`~exudyn_worm.setups.wholedrive.Drive`.
-
-    Returns
-    -------
-    DriveAnalysis
-        With ``stable`` (the worst operating point) and ``State(S)`` (``stable``, ``maxRealPart``, ``eigenvalues``).
-    """
-    return AnalyzeDrive(parameters)
+    return drive.Cached(f'driveAnalysis.{model.value}', Compute)

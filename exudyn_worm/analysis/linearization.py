@@ -15,7 +15,7 @@ own, start every rotor from :func:`~exudyn_worm.items.equilibrium.SteadyInitialS
 ``dampingCanPull`` the mesh law is linear on either flank, so the result does not depend on how deep the
 pre-deflection is.
 
-For the 2-DOF drive of Figure 2, :func:`AnalyzeStabilityExudyn` builds the model and returns the same type
+For the 2-DOF drive of Figure 2, :func:`ExudynStabilityAnalysis` builds the model and returns the same type
 as :func:`exudyn_worm.model.stability.AnalyzeStability`; the two agree to 1e-6 (tests/test_linearization.py).
 """
 from __future__ import annotations
@@ -23,7 +23,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field, replace
-from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -38,11 +38,11 @@ from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, Cr
 from ..model.profiles import ConstantSpeed
 from ..model.stability import (CONTACT_STATES, SortEigenvalues, AnalyzeStability, ContactStability,
                         OperatingPoint, OperatingPointFromParameters, StabilityAnalysis)
-from ..setups.wholedrive import Drive
+from ..setups.wholedrive import CheckDrive, Drive
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
-           'BuildLinearizationModel', 'LinearizationStart', 'LinearStabilityFromParameters', 'ExudynEigenvalues',
-           'AnalyzeStabilityExudyn']
+           'BuildLinearizationModel', 'LinearizationStart', 'LinearStabilityOfDrive', 'ExudynEigenvalues',
+           'ExudynStabilityAnalysis']
 
 #: normal pre-deflection in m beyond half the backlash at which the 2-DOF model is linearized (any value > 0
 #: gives the same result: with S held the law is linear in the deflection)
@@ -182,7 +182,7 @@ class LinearStability:
         ``{S tuple: ContactStateLinearization}``.
     operatingPoint : OperatingPoint or None
         The steady state the system was linearized about when its friction depends on speed
-        (:func:`LinearStabilityFromParameters`); None: as built (the initial state).
+        (:func:`LinearStabilityOfDrive`); None: as built (the initial state).
     """
     meshes: List[str]
     coordinates: List[str]
@@ -344,10 +344,12 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
 
     Examples
     --------
+    >>> import exudyn as exu
     >>> import exudyn_worm as ew
     >>> from exudyn_worm.analysis.linearization import AnalyzeLinearStability
-    >>> model = ew.BuildReelChanger(ew.GetPreset('reel-P1'))
-    >>> analysis = AnalyzeLinearStability(model.mbs)
+    >>> mbs = exu.SystemContainer().AddSystem()
+    >>> model = ew.BuildReelChanger(mbs, ew.ResolveDrive('reel-P1'))
+    >>> analysis = AnalyzeLinearStability(mbs)
     >>> [round(f, 1) for f in analysis.State(-1).frequenciesHz], analysis.State(-1).stable
     ([40.3, 40.5], False)
     """
@@ -493,14 +495,14 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
     return SC, mbs
 
 
-def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: bool = True) -> LinearStability:
-    """:func:`AnalyzeLinearStability` of the drive a flat parameter set describes, including the drive-side
-    chain (``J4, k4, d4, ...``) and the worm's axial bearing (``kA, dA, mA``) when given; no load.
+def LinearStabilityOfDrive(whole: Drive, useSymbolic: bool = True) -> LinearStability:
+    """:func:`AnalyzeLinearStability` of the one-angle Exudyn model of a drive, with its modes: the drive-side and
+    load-side chains, the worm's axial bearing and a free motor where the drive has them; no load.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set (see :mod:`exudyn_worm.setups.presets`).
+    whole : Drive
+        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`).
     useSymbolic : bool
         Symbolic (C++) or Python user function for the connector.
 
@@ -512,9 +514,9 @@ def LinearStabilityFromParameters(parameters: Mapping[str, float], useSymbolic: 
         steady lowering (:func:`~exudyn_worm.model.stability.OperatingPointFromParameters`); a speed-dependent friction
         law is then linearized there (one model per contact state, :func:`BuildLinearizationModel`).
     """
-    whole = Drive.FromParameters(parameters)          # checked once: chains, bearing, the motor's keys
+    CheckDrive('LinearStabilityOfDrive', whole, 'whole')
     drive = whole.elastic
-    operatingPoint = OperatingPointFromParameters(parameters, drive.gear)
+    operatingPoint = OperatingPointFromParameters(whole.parameters, drive.gear)
     parts = (useSymbolic, whole.axialBearing, whole.driveSideChain, whole.loadSideChain, whole.freeMotor)
     if operatingPoint is None or not drive.gear.speedDependentFriction:
         SC, mbs = BuildLinearizationModel(drive, None, *parts)
@@ -545,7 +547,7 @@ def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> 
     return AnalyzeLinearStability(mbs, contactStates=[(S,)]).State(S).eigenvalues
 
 
-def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True,
+def ExudynStabilityAnalysis(drive: ElasticDrive, useSymbolic: bool = True,
                            operatingPoint: Optional[OperatingPoint] = None) -> StabilityAnalysis:
     """Same result type as :func:`~exudyn_worm.model.stability.AnalyzeStability`, from the Exudyn linearization.
 
@@ -565,7 +567,7 @@ def AnalyzeStabilityExudyn(drive: ElasticDrive, useSymbolic: bool = True,
         b-coefficients are those of prod(lambda - lambda_i) over the Exudyn eigenvalues.
     """
     if not isinstance(drive, ElasticDrive):
-        raise TypeError(f"AnalyzeStabilityExudyn: 'drive' must be an ElasticDrive, got {type(drive).__name__}")
+        raise TypeError(f"ExudynStabilityAnalysis: 'drive' must be an ElasticDrive, got {type(drive).__name__}")
     if operatingPoint is not None:
         contact = {}
         for S in CONTACT_STATES:

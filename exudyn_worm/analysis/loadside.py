@@ -13,7 +13,7 @@ frequency is at least ``1 / sqrt(1 - 10^-delta)`` times the highest frequency at
 of the lumped drive in which the wheel has at least :data:`WHEEL_SHARE` of the kinetic energy), with the design
 check's margin delta (default 0.1 decades: factor 2.2), *and* the lumped and the whole drive give the same
 verdict. This is a derivation from the single-stage impedance, not a published rule; the whole drive's
-linearization (:func:`~exudyn_worm.analysis.drivestability.DriveStability`) is always the reference.
+linearization (:func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`) is always the reference.
 
 When lumping is not safe, the stage named as the cause is the first one from the wheel whose frequency is below
 that limit at the frequency that matters: the whole drive's growing mode if it has one, else the highest wheel
@@ -25,12 +25,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Dict, List, Mapping, Optional, Tuple, Union
+from typing import Dict, List, Optional, Tuple
 from .._checks import CheckRange
-from .linearization import LinearStabilityFromParameters
-from .drivestability import DriveStability
-from ..setups.wholedrive import Drive
-from ..setups.presets import LoadSideChain, LumpedLoadSide
+from .linearization import LinearStabilityOfDrive
+from .drivestability import AnalyzeDrive
+from ..setups.wholedrive import CheckDrive, Drive
+from ..setups.presets import LumpedLoadSide
 
 __all__ = ['WHEEL_SHARE', 'LoadSideStage', 'LoadSideDiagnosis', 'DiagnoseLoadSide', 'LoadSideNotLumpable']
 
@@ -189,14 +189,13 @@ class LoadSideNotLumpable(ValueError):
         self.diagnosis = diagnosis
 
 
-def DiagnoseLoadSide(parameters: Union[Mapping[str, float], Drive], margin: float = 0.1) -> LoadSideDiagnosis:
-    """May the load-side chain of ``parameters`` be lumped into J2? The criterion is in the module docstring.
+def DiagnoseLoadSide(drive: Drive, margin: float = 0.1) -> LoadSideDiagnosis:
+    """May the load-side chain of ``drive`` be lumped into J2? The criterion is in the module docstring.
 
     Parameters
     ----------
-    parameters : mapping or Drive
-        Flat parameter set with a load-side chain (``JL1``, ``kL1``, ...), or the drive (whose verdict is then
-        taken from its own, cached analysis).
+    drive : Drive
+        The drive, with a load-side chain (``JL1``, ``kL1``, ...); its verdict is its own, cached analysis.
     margin : float, optional
         Margin in decades, in [0, 1] (default 0.1, the design check's).
 
@@ -211,18 +210,17 @@ def DiagnoseLoadSide(parameters: Union[Mapping[str, float], Drive], margin: floa
     """
     w = 'DiagnoseLoadSide'
     margin = CheckRange(w, 'margin', margin, low=0., high=1., unit='decades')
-    drive = parameters if isinstance(parameters, Drive) else None
-    parameters = dict(parameters.parameters) if drive is not None else parameters
-    chain = LoadSideChain(parameters)
+    CheckDrive(w, drive)
+    chain = drive.loadSideChain
     if not chain:
-        raise ValueError(f"{w}: the parameter set has no load-side chain (JL1, kL1, ...)")
+        raise ValueError(f"{w}: the drive has no load-side chain (JL1, kL1, ...)")
     stages = [LoadSideStage(i, J, sum(j for j, _, _ in chain[i - 1:]), k) for i, (J, k, _) in enumerate(chain, 1)]
-    lumpedParameters = LumpedLoadSide(parameters)
-    lumped = LinearStabilityFromParameters(lumpedParameters)          # its modes: which ones move the wheel
-    lumpedStable = DriveStability(lumpedParameters).stable           # its verdict: at the duty's operating points
+    lumpedDrive = Drive.FromParameters(LumpedLoadSide(drive.parameters), drive.sources, drive.name)
+    lumped = LinearStabilityOfDrive(lumpedDrive)          # its modes: which ones move the wheel
+    lumpedStable = AnalyzeDrive(lumpedDrive).stable           # its verdict: at the duty's operating points
     wheelModes = tuple(sorted({m.frequencyHz for s in lumped.states.values() for m in s.modes
                                if m.energyShare.get('wheel', 0.) >= WHEEL_SHARE and m.eigenvalue.imag != 0}))
-    whole = DriveStability(parameters if drive is None else drive)
+    whole = AnalyzeDrive(drive)
     growing = None
     if not whole.stable:
         states = [p.state for p in whole.operatingPoints] or list(whole.atRest.states.values())

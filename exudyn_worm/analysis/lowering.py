@@ -22,8 +22,8 @@ from ..model.profiles import STANDARD_GRAVITY, ConstantSpeed, ConstantTorque, Gr
 from .._checks import CheckPositive, CheckSystem
 from ..items.connector import CONNECTORS_KEY, WormGearConnector
 from ..items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
-from .drivestability import DriveStability
-from ..setups.wholedrive import Component
+from .drivestability import AnalyzeDrive
+from ..setups.wholedrive import Component, Drive
 from ..setups.duty import IsReelChangerDuty
 from ..setups.presets import (DUTY_KEYS, REEL_KEYS, AxialBearingFromParameters, ElasticDriveFromParameters,
                               DriveSideChain, LoadSideChain)
@@ -140,7 +140,7 @@ def LoweringPhaseParameters(parameters: Mapping[str, float]) -> Dict[str, float]
                          f"supported); leave those keys out")
     if IsReelChangerDuty(parameters) and all(k in parameters for k in REEL_KEYS):
         return dict(parameters)
-    analysis = DriveStability(parameters)
+    analysis = AnalyzeDrive(Drive.FromParameters(parameters))
     lowering = [p for p in analysis.operatingPoints if p.S == -1]
     if not lowering:
         raise ValueError(f"{w}: the drive's duty has no lowering phase at a steady speed (no phase in which the load "
@@ -185,8 +185,9 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
         For a bad parameter set, or one with a component the lowering model does not have (a motor on its
         characteristic: the lowering phase holds the motor at constant speed).
     """
+    import exudyn as exu
     w = 'BuildLoweringModel'
-    CheckReelChangerKeys(parameters, w)
+    CheckReelChangerKeys(Drive.FromParameters(parameters), w)
     if parameters.get('motorType') == 'characteristic':
         raise ValueError(f"{w}: the periodic-orbit analysis holds the motor at constant speed 'motorSpeed' (the "
                          f"lowering phase of the linear analysis); this parameter set has "
@@ -197,8 +198,9 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     loadTorque = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm']).maximum
     # the time simulation's builder, with the lowering phase as its duty: one assembly of the chains
-    reel = BuildReelChanger({**parameters, 'loadType': 'constant', 'loadTorque': loadTorque}, contactOptions,
-                            useSymbolic, startFromEquilibrium=True, profile=ConstantSpeed(motorSpeed))
+    lowering = Drive.FromParameters({**parameters, 'loadType': 'constant', 'loadTorque': loadTorque})
+    reel = BuildReelChanger(exu.SystemContainer().AddSystem(), lowering, contactOptions, useSymbolic,
+                            startFromEquilibrium=True, profile=ConstantSpeed(motorSpeed))
     mbs = reel.mbs
     mbs.Assemble()                                  # coordinate indices and sizes exist from here on
     steady = _SteadyState(drive, parameters, loadTorque, motorSpeed, contactOptions)
@@ -253,7 +255,7 @@ def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
     # lazy: the 3D model is built only for drives with shaft bearings
     from .reelchanger3d import AddSeriesSensors, BuildRigidBodyReelChanger
     w = 'BuildRigidBodyLoweringModel'
-    CheckReelChangerKeys(parameters, w)
+    CheckReelChangerKeys(Drive.FromParameters(parameters), w)
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')

@@ -25,16 +25,15 @@ from ..model.contact import ContactOptions
 from ..model.friction import MATH_OPS
 from ..model.drive import ElasticDrive
 from ..params.plausibility import CheckWormRotation, CheckWormSpeed
-from ..setups.presets import ShaftSupportsFromParameters
 from ..model.stability import CharacteristicCoefficients, EigenvaluesFromPolynomial
 from ..setups.build import BuildReelChanger, CheckModelOptions, CheckReelChangerKeys
-from ..setups.duty import DefaultEndTime, DutyPhases, IsReelChangerDuty, LoadFromParameters, MotorMotion
-from ..setups.presets import ElasticDriveFromParameters
+from ..setups.duty import DefaultEndTime, DutyPhases, IsReelChangerDuty, MotorMotion
+from ..setups.wholedrive import CheckDrive, Drive
 from .stepsize import CheckStepSize, RecommendedStepSize
 
 __all__ = ['SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
            'DefaultPhases', 'DefaultSimulatedTime', 'WindowPhases', 'PhaseLabel',
-           'CheckRunSize', 'SolverSettings', 'DEFAULT_STEP_SIZE',
+           'CheckRunSize', 'RunSizeError', 'SolverSettings', 'DEFAULT_STEP_SIZE',
            'SOLVER_SETTINGS', 'MAX_STEPS']
 
 #: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change
@@ -69,6 +68,10 @@ def _Duration(seconds: float) -> str:
         if seconds >= size:
             return f"{seconds / size:.2g} {unit}"
     return f"{seconds:.2g} s"
+
+
+class RunSizeError(ValueError):
+    """A run refused before it starts because it needs more solver steps than its limit (:func:`CheckRunSize`)."""
 
 
 def CheckRunSize(endTime: float, stepSize: float, maxSteps: int = MAX_STEPS, where: str = 'SimulateReelChanger',
@@ -109,29 +112,29 @@ def CheckRunSize(endTime: float, stepSize: float, maxSteps: int = MAX_STEPS, whe
     ratio = endTime / stepSize
     if not ratio <= maxSteps:           # also catches an overflow to inf
         fast, slow = (ratio * s for s in _SECONDS_PER_STEP)
-        raise ValueError(f"{where}: {nEnd} {endTime:g} s at {nStep} {stepSize:g} s needs {ratio:.3g} solver steps, "
+        raise RunSizeError(f"{where}: {nEnd} {endTime:g} s at {nStep} {stepSize:g} s needs {ratio:.3g} solver steps, "
                          f"more than the limit {nMax} = {maxSteps:g}; it would take about {_Duration(fast)} to "
                          f"{_Duration(slow)} and store about {ratio * _BYTES_PER_STEP / 1e9:.2g} GB of results. "
                          f"Raise {nMax} to run it anyway")
     return max(1, int(round(ratio)))
 
 
-def RotationPeriod(parameters: Mapping[str, float]) -> float:
+def RotationPeriod(drive: Drive) -> float:
     """Duration in s of one full wheel rotation: 2 pi u / motorSpeed.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set including ``motorSpeed`` in rad/s.
+    drive : Drive
+        The drive, with ``motorSpeed`` in rad/s.
     """
-    drive = ElasticDriveFromParameters(parameters)
+    parameters = CheckDrive('RotationPeriod', drive).parameters
     if 'motorSpeed' not in parameters:
-        CheckReelChangerKeys(parameters, 'RotationPeriod')
+        CheckReelChangerKeys(drive, 'RotationPeriod')
     speed = CheckPositive('RotationPeriod', 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     return 2 * math.pi * drive.gear.ratio / speed
 
 
-def DefaultPhases(parameters: Mapping[str, float], endTime: Optional[float] = None,
+def DefaultPhases(drive: Drive, endTime: Optional[float] = None,
                   minLength: float = 0.) -> List[Tuple[float, float, str]]:
     """The phases of the duty up to ``endTime`` as ``(t0, t1, phase)``, phase ``'lift'``, ``'lower'`` or ``'idle'``.
 
@@ -142,8 +145,8 @@ def DefaultPhases(parameters: Mapping[str, float], endTime: Optional[float] = No
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set including the duty's keys (``motorSpeed`` in rad/s for the reel changer).
+    drive : Drive
+        The drive with its duty (``motorSpeed`` in rad/s for the reel changer).
     endTime : float, optional
         Simulated time in s (default: :func:`DefaultSimulatedTime`, one rotation T for the reel changer).
     minLength : float
@@ -155,12 +158,12 @@ def DefaultPhases(parameters: Mapping[str, float], endTime: Optional[float] = No
     list of (float, float, str)
         Phases in time order.
     """
-    if not IsReelChangerDuty(parameters):
-        CheckReelChangerKeys(parameters, 'DefaultPhases')
-        endTime = DefaultSimulatedTime(parameters) if endTime is None else \
+    if not IsReelChangerDuty(CheckDrive('DefaultPhases', drive).parameters):
+        CheckReelChangerKeys(drive, 'DefaultPhases')
+        endTime = DefaultSimulatedTime(drive) if endTime is None else \
             CheckPositive('DefaultPhases', 'endTime', endTime, 's')
-        return DutyPhases(parameters, ElasticDriveFromParameters(parameters).gear.ratio, endTime, minLength)
-    T = RotationPeriod(parameters)
+        return DutyPhases(drive.parameters, drive.gear.ratio, endTime, minLength)
+    T = RotationPeriod(drive)
     endTime = T if endTime is None else CheckPositive('DefaultWindows', 'endTime', endTime, 's')
     windows = []
     for k in range(int(math.ceil(endTime / T - 1e-12))):
@@ -171,7 +174,7 @@ def DefaultPhases(parameters: Mapping[str, float], endTime: Optional[float] = No
     return windows
 
 
-def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = None,
+def DefaultWindows(drive: Drive, endTime: Optional[float] = None,
                    minLength: float = 0.) -> List[Tuple[float, float]]:
     """The evaluation windows of ``simulate`` and ``sweep``: the phases of :func:`DefaultPhases` without their labels;
     for the reel changer lift / lower / lift of every rotation: [kT, kT + T/4], [kT + T/4, kT + 3T/4],
@@ -179,8 +182,8 @@ def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = N
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set including ``motorSpeed`` in rad/s (or another duty's keys).
+    drive : Drive
+        The drive with its duty (``motorSpeed`` in rad/s for the reel changer).
     endTime : float, optional
         Simulated time in s (default: one rotation T; another duty: :func:`DefaultSimulatedTime`).
     minLength : float
@@ -191,18 +194,18 @@ def DefaultWindows(parameters: Mapping[str, float], endTime: Optional[float] = N
     list of (float, float)
         Windows in s, in time order.
     """
-    return [(t0, t1) for t0, t1, _ in DefaultPhases(parameters, endTime, minLength)]
+    return [(t0, t1) for t0, t1, _ in DefaultPhases(drive, endTime, minLength)]
 
 
-def WindowPhases(parameters: Mapping[str, float], windows: Sequence[Tuple[float, float]],
+def WindowPhases(drive: Drive, windows: Sequence[Tuple[float, float]],
                  endTime: Optional[float] = None) -> List[str]:
     """The duty's phase in each window: ``'lift'``, ``'lower'`` (the load drives the gear) or ``'idle'``, or the
     phases a window spans joined by ``'+'`` (e.g. ``'lift+lower'``).
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set (the duty's keys, :func:`DefaultPhases`).
+    drive : Drive
+        The drive with its duty (:func:`DefaultPhases`).
     windows : sequence of (float, float)
         Windows in s.
     endTime : float, optional
@@ -215,8 +218,8 @@ def WindowPhases(parameters: Mapping[str, float], windows: Sequence[Tuple[float,
     """
     windows = [(float(t0), float(t1)) for t0, t1 in windows]
     if endTime is None:
-        endTime = max([DefaultSimulatedTime(parameters)] + [t1 for _, t1 in windows])
-    phases = DefaultPhases(parameters, max([endTime] + [t1 for _, t1 in windows]))
+        endTime = max([DefaultSimulatedTime(drive)] + [t1 for _, t1 in windows])
+    phases = DefaultPhases(drive, max([endTime] + [t1 for _, t1 in windows]))
     labels = []
     for t0, t1 in windows:
         tol = 1e-9 * max(t1 - t0, 1e-300)
@@ -225,54 +228,54 @@ def WindowPhases(parameters: Mapping[str, float], windows: Sequence[Tuple[float,
     return labels
 
 
-def PhaseLabel(parameters: Mapping[str, float], phase: str, window: Optional[Tuple[float, float]] = None) -> str:
+def PhaseLabel(drive: Drive, phase: str, window: Optional[Tuple[float, float]] = None) -> str:
     """The words for a phase of :func:`WindowPhases` in a table: ``lift`` / ``lower`` for the reel changer; for
     another duty ``lifting`` / ``lowering`` (the load opposes the motion / drives the gear) and, for ``idle``,
     ``standstill under load`` where the motor stands while a load torque acts, ``no load`` where none acts.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive
+        The drive.
     phase : str
         A label of :func:`WindowPhases`.
     window : (float, float), optional
         The window in s (its middle tells a standstill under load from no load; without it ``idle`` reads ``idle``).
     """
-    if IsReelChangerDuty(parameters):
+    if IsReelChangerDuty(CheckDrive('PhaseLabel', drive).parameters):
         return phase
     words = {'lift': 'lifting', 'lower': 'lowering', 'idle': 'idle'}
     if window is not None:
-        words['idle'] = _IdleWords(parameters, 0.5 * (float(window[0]) + float(window[1])))
+        words['idle'] = _IdleWords(drive, 0.5 * (float(window[0]) + float(window[1])))
     return '+'.join(words.get(part, part) for part in phase.split('+'))
 
 
-def _IdleWords(parameters: Mapping[str, float], t: float) -> str:
+def _IdleWords(drive: Drive, t: float) -> str:
     """``standstill under load`` or ``no load`` at time t of the rigid kinematics (a phase without load power)."""
-    load = LoadFromParameters(parameters, 'PhaseLabel')
+    load = drive.load
     if load is None:
         return 'no load'
-    ratio = ElasticDriveFromParameters(parameters).gear.ratio
-    angle, speed = MotorMotion(parameters, 'PhaseLabel').AngleAndSpeed(t, MATH_OPS)
+    ratio = drive.gear.ratio
+    angle, speed = MotorMotion(drive.parameters, 'PhaseLabel').AngleAndSpeed(t, MATH_OPS)
     torque = load.Torque(angle / ratio, speed / ratio, t, MATH_OPS)
     if abs(torque) <= 1e-9 * max(load.maximum, 1e-300):
         return 'no load'
     return 'standstill under load' if speed == 0. else 'idle'
 
 
-def DefaultSimulatedTime(parameters: Mapping[str, float]) -> float:
+def DefaultSimulatedTime(drive: Drive) -> float:
     """Simulated time in s when none is given: one wheel rotation for the reel changer (:func:`RotationPeriod`),
     else the end of the duty's tables and ramps (:func:`~exudyn_worm.setups.duty.DefaultEndTime`).
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive
+        The drive.
     """
-    if IsReelChangerDuty(parameters):
-        return RotationPeriod(parameters)
-    CheckReelChangerKeys(parameters, 'DefaultSimulatedTime')
-    return DefaultEndTime(parameters, ElasticDriveFromParameters(parameters).gear.ratio)
+    if IsReelChangerDuty(CheckDrive('DefaultSimulatedTime', drive).parameters):
+        return RotationPeriod(drive)
+    CheckReelChangerKeys(drive, 'DefaultSimulatedTime')
+    return DefaultEndTime(drive.parameters, drive.gear.ratio)
 
 
 def _SolverCounters(mbs) -> Dict[str, Any]:
@@ -356,7 +359,7 @@ def _LikelyCause(drive: ElasticDrive, stepSize: float) -> str:
             f"then try a smaller step size")
 
 
-def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float] = None,
+def SimulateReelChanger(drive: Drive, endTime: Optional[float] = None,
                         stepSize: Optional[float] = None, contactOptions: ContactOptions = ContactOptions(),
                         useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
                         solverOptions: Optional[Mapping[str, Any]] = None, maxSteps: int = MAX_STEPS,
@@ -365,8 +368,8 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set (e.g. ``GetPreset('reel-P1')``).
+    drive : Drive
+        The drive with its duty (e.g. ``ResolveDrive('reel-P1')``).
     endTime : float, optional
         Simulated time in s (default: one full rotation, 8 s for the paper's speed; another duty:
         :func:`DefaultSimulatedTime`).
@@ -405,21 +408,22 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     ValueError
         For bad arguments or parameters, or a run above ``maxSteps``.
     TypeError
-        If ``parameters`` is not a mapping (a preset name: use ``GetPreset(name)``), ``contactOptions`` is not a
+        If ``drive`` is not a :class:`~exudyn_worm.setups.wholedrive.Drive`, ``contactOptions`` is not a
         :class:`~exudyn_worm.model.contact.ContactOptions` or ``profile`` has no ``AngleAndSpeed``.
     SolverDivergedError
         If the solver fails; the message gives the simulated time reached and the likely cause.
     """
     import exudyn as exu
     w = 'SimulateReelChanger'
-    CheckReelChangerKeys(parameters, w)
+    CheckReelChangerKeys(drive, w)
+    parameters = drive.parameters
     CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
-    endTime = DefaultSimulatedTime(parameters) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
-    stepSize = RecommendedStepSize(parameters) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
+    endTime = DefaultSimulatedTime(drive) if endTime is None else CheckPositive(w, 'endTime', endTime, 's')
+    stepSize = RecommendedStepSize(drive) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
     steps = CheckRunSize(endTime, stepSize, maxSteps, w)
-    CheckStepSize(parameters, stepSize, w)          # refuses a step that cannot resolve the drive's modes
+    CheckStepSize(drive, stepSize, w)          # refuses a step that cannot resolve the drive's modes
     CheckWormRotation(parameters, stepSize, w)      # warns: a worm rotation in fewer than a few steps
-    rigid = ShaftSupportsFromParameters(parameters, w) is not None     # the 3D model (docs/mesh-3d.md)
+    rigid = drive.isRigidBody                       # the 3D model (docs/mesh-3d.md)
     if rigid:
         # lazy: the 3D model's module builds on this one's helpers
         from . import reelchanger3d
@@ -427,7 +431,8 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
                                                         startFromEquilibrium=startFromEquilibrium)
         reelchanger3d.AddSeriesSensors(model)
     else:
-        model = BuildReelChanger(parameters, contactOptions, useSymbolic, startFromEquilibrium, profile)
+        model = BuildReelChanger(exu.SystemContainer().AddSystem(), drive, contactOptions, useSymbolic,
+                                 startFromEquilibrium, profile)
     mbs = model.mbs
     mbs.Assemble()
     ss, solverType = SolverSettings(endTime, stepSize, solverOptions, w)
@@ -461,28 +466,28 @@ def SimulateReelChanger(parameters: Mapping[str, float], endTime: Optional[float
     else:
         mesh = model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'],
                                         series.get('xA'), series.get('vA'), time)
-    drive = model.drive
+    core = model.drive
     motorSide = '4' if not rigid and model.chain else '0'   # the drive shaft (spring-Damper1) ends at inertia4 or the motor
     series.update(deltaPhi=mesh.deltaPhi, deltaS=mesh.deltaS, normalForce=mesh.normalForce, S=mesh.S, sf=mesh.sf,
                   wormTorque=mesh.wormTorque, wheelTorque=mesh.wheelTorque,
                   # eq. (6): torque in the drive shaft; eq. (7): tangential force at the wheel
-                  driveTorque=drive.kT * (series['phi1'] - series['phi' + motorSide])
-                  + drive.dT * (series['omega1'] - series['omega' + motorSide]),
-                  tangentialForce=mesh.wheelTorque / drive.gear.r2)
+                  driveTorque=core.kT * (series['phi1'] - series['phi' + motorSide])
+                  + core.dT * (series['omega1'] - series['omega' + motorSide]),
+                  tangentialForce=mesh.wheelTorque / core.gear.r2)
     if model.axialBearing is not None:
         series['axialForce'] = mesh.axialForce
     if rigid:
         series.update(reelchanger3d.MeshForceSeries(model, mesh))
     CheckWormSpeed(series['omega1'], series.get('omega0', ()), parameters, w)   # warns: the load drives the worm
-    return SimulationResult(time=time, series=series, J2=drive.J2, r2=drive.gear.r2, solveSeconds=solveSeconds,
+    return SimulationResult(time=time, series=series, J2=core.J2, r2=core.gear.r2, solveSeconds=solveSeconds,
                             steps=steps, info={'stepSize': stepSize,
                                                'maxLoadTorque': model.load.maximum if model.load is not None else 0.,
                                                'loadType': parameters.get('loadType', 'lever'),
                                                'frictionSpeed': contactOptions.frictionSpeed,
                                                # sliding speed per worm speed (the chatter rule's sliding floor)
-                                               'slidingRadius': drive.gear.r1 / math.cos(drive.gear.gamma),
+                                               'slidingRadius': core.gear.r1 / math.cos(core.gear.gamma),
                                                'frictionModel': contactOptions.frictionModel,
                                                'useSymbolic': useSymbolic, 'solver': _SolverCounters(mbs),
                                                'solveCpuSeconds': solveCpuSeconds,
                                                # the duty's lift / lower / idle phases, shaded by the plots
-                                               'phases': DefaultPhases(parameters, float(time[-1]))})
+                                               'phases': DefaultPhases(drive, float(time[-1]))})

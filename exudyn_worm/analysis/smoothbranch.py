@@ -6,6 +6,7 @@ simulation; :class:`ChatterBranchError` is the error of both branch analyses (th
 """
 from __future__ import annotations
 
+import enum
 import math
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple
@@ -24,6 +25,20 @@ __all__ = ['ChatterBranchError', 'SmoothBranch', 'SmoothHopfBranch', 'SMOOTH_OFF
 #: square root of the distance, so they are dense near it (reel-P3 with a Stribeck law, docs/chatter-amplitude.md)
 SMOOTH_OFFSETS = (0.001, 0.002, 0.004, 0.006, 0.008, 0.011, 0.014, 0.017, 0.020, 0.023, 0.026, 0.029, 0.032,
                   0.035, 0.038, 0.041, 0.044, 0.047, 0.050)
+
+
+class _Direction(enum.Enum):
+    """Which way a smooth branch is followed from its seed (the value is the text of the messages)."""
+    TOWARDS = 'towards the boundary'
+    AWAY = 'away from the boundary'
+
+
+class _End(enum.Enum):
+    """Why one direction of a smooth branch ended."""
+    OFFSETS = 'offsets'          # every offset looked at
+    MAX_POINTS = 'maxPoints'     # the point limit
+    FAILURES = 'failures'        # two points in a row without an orbit
+    REVERSAL = 'reversal'        # the worm turns back within the orbit
 
 
 #: beyond the last of :data:`SMOOTH_OFFSETS` the smooth branch goes on in steps of this fraction of the boundary
@@ -198,13 +213,13 @@ def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float
     kept = ('forceFactor', 'maxWheelAcceleration', 'minWormSpeed')    # the orbits keep no model or flow
     start.info = {k: start.info[k] for k in kept}
     orbits = {seed: start}
-    directions = (('towards the boundary', sorted((f for f in offsets if f < seed), reverse=True)),
-                  ('away from the boundary', sorted(f for f in offsets if f > seed)))
+    directions = ((_Direction.TOWARDS, sorted((f for f in offsets if f < seed), reverse=True)),
+                  (_Direction.AWAY, sorted(f for f in offsets if f > seed)))
     for direction, todo in directions:
-        last, misses, end = start, 0, {'direction': direction, 'reason': 'offsets', 'value': Value(seed)}
+        last, misses, end = start, 0, {'direction': direction, 'reason': _End.OFFSETS, 'value': Value(seed)}
         for f in todo:
             if len(orbits) >= maxPoints:
-                end = {'direction': direction, 'reason': 'maxPoints', 'value': end['value']}
+                end = {'direction': direction, 'reason': _End.MAX_POINTS, 'value': end['value']}
                 break
             v = Value(f)
             try:
@@ -214,12 +229,12 @@ def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float
                 result.failed.append((v, str(err).split(';')[0]))
                 misses += 1
                 if misses == 2:
-                    end = {'direction': direction, 'reason': 'failures', 'value': v}
+                    end = {'direction': direction, 'reason': _End.FAILURES, 'value': v}
                     break
                 continue
             misses = 0
             if orbit.info['minWormSpeed'] <= 0.:
-                end = {'direction': direction, 'reason': 'reversal', 'value': v,
+                end = {'direction': direction, 'reason': _End.REVERSAL, 'value': v,
                        'minWormSpeed': float(orbit.info['minWormSpeed'])}
                 break
             orbit.info = {k: orbit.info[k] for k in kept}
@@ -229,17 +244,17 @@ def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float
                 onPoint(BranchPoint(v, orbit, {**orbit.info, 'offset': f}))
         else:
             if misses:                      # the last value tried found no orbit
-                end = {'direction': direction, 'reason': 'failures', 'value': v}
+                end = {'direction': direction, 'reason': _End.FAILURES, 'value': v}
         result.ends.append(end)
     near = sorted(orbits)
     result.points = [BranchPoint(Value(f), orbits[f], {**orbits[f].info, 'offset': f}) for f in near]
     for e in result.ends:
-        if e['reason'] == 'reversal':
+        if e['reason'] is _End.REVERSAL:
             result.messages.append(f"the branch ends at {name} = {e['value']:.6g}: the worm turns back within the orbit "
                                    f"(smallest worm speed {e['minWormSpeed']:.3f} rad/s); from there on it sticks in "
                                    f"every period and the steady chatter is not periodic with the chatter period, "
                                    f"so no orbit is followed beyond")
-        elif e['reason'] == 'failures' and e['direction'].startswith('away') and len(orbits) >= 2:
+        elif e['reason'] is _End.FAILURES and e['direction'] is _Direction.AWAY and len(orbits) >= 2:
             # the smallest worm speed of the last two orbits, extrapolated to zero: where the worm would turn back
             (fa, oa), (fb, ob) = [(f, orbits[f]) for f in sorted(orbits)[-2:]]
             sa, sb = oa.info['minWormSpeed'], ob.info['minWormSpeed']
@@ -249,12 +264,12 @@ def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float
                 f"{name} = {e['value']:.6g}); the last orbit's smallest worm speed is {sb:.3g} rad/s"
                 + (f", which extrapolates to zero (the worm turns back within the orbit and sticks) at about "
                    f"{name} = {turn:.6g}" if math.isfinite(turn) else ''))
-        elif e['reason'] == 'failures':
-            result.messages.append(f"{e['direction']}: two points in a row found no orbit, the branch ends at {name} = "
+        elif e['reason'] is _End.FAILURES:
+            result.messages.append(f"{e['direction'].value}: two points in a row found no orbit, the branch ends at {name} = "
                                    f"{e['value']:.6g}")
-        elif e['reason'] == 'maxPoints':
-            result.messages.append(f"{e['direction']}: stopped after {maxPoints} orbits at {name} = {e['value']:.6g}")
-        elif e['direction'].startswith('away'):
+        elif e['reason'] is _End.MAX_POINTS:
+            result.messages.append(f"{e['direction'].value}: stopped after {maxPoints} orbits at {name} = {e['value']:.6g}")
+        elif e['direction'] is _Direction.AWAY:
             result.messages.append(f"the branch reaches {name} = {e['value']:.6g}, the end of the range looked at, "
                                    f"with the worm still sliding forward")
     if len(near) >= 2:

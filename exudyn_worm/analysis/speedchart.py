@@ -21,15 +21,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 from .._checks import CheckPositive
 from ..model.stability import OperatingPointAt
 from ..params.parameters import MissingParameterError
-from ..setups.operatingpoints import PHASE_NAMES, DutyOperatingPoints
-from ..setups.wholedrive import AsDrive, Drive
-from .drivestability import ANALYTICAL, LINEARIZED, AnalyzeAtOperatingPoint, AnalyzeDrive, StateGrowth
+from ..setups.operatingpoints import PHASE_NAMES, DutyOperatingPoints, DutyPoint
+from ..setups.wholedrive import CheckDrive, Drive
+from .drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, StateGrowth
 
 __all__ = ['RPM', 'SpeedCurve', 'SpeedChart', 'SpeedStabilityChart']
 
@@ -228,7 +228,7 @@ def _LoadsOfTheDuty(drive: Drive, speed: float, where: str) -> Tuple[Tuple[Any, 
         own = AnalyzeDrive(drive).operatingPoints
         points = [p.point for p in own]
     else:                           # no motor: the load of a constant-speed duty at the chart's speed
-        points = list(DutyOperatingPoints(drive.Replace({'motorSpeed': speed})))
+        points = list(DutyOperatingPoints(drive.Replace(motorSpeed=speed)))
     if not points:
         raise ValueError(f"{where}: the drive's duty has no steady phase with a load torque (the motor never runs "
                          f"at a constant speed other than 0), so there is no load to take over speed")
@@ -240,14 +240,14 @@ def _LoadsOfTheDuty(drive: Drive, speed: float, where: str) -> Tuple[Tuple[Any, 
     return own, loads
 
 
-def SpeedStabilityChart(drive: Union[Drive, Mapping[str, Any]], motorSpeeds: Sequence[float],
+def SpeedStabilityChart(drive: Drive, motorSpeeds: Sequence[float],
                         progress: Optional[Callable[[int], Any]] = None) -> SpeedChart:
     """Largest real part over motor speed of each direction of the drive's duty, at the load torque of its duty.
 
     Parameters
     ----------
-    drive : Drive or mapping
-        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`) or a flat parameter set, with a load
+    drive : Drive
+        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`), with a load
         (any load type) and usually a friction law (with constant mu the result does not depend on speed). A
         drive without a motor is taken at the load of a constant-speed duty.
     motorSpeeds : sequence of float
@@ -268,7 +268,7 @@ def SpeedStabilityChart(drive: Union[Drive, Mapping[str, Any]], motorSpeeds: Seq
     if isinstance(motorSpeeds, (str, bytes)) or not hasattr(motorSpeeds, '__len__') or len(motorSpeeds) == 0:
         raise ValueError(f"{w}: 'motorSpeeds' must be a non-empty sequence of speeds in rad/s, got {motorSpeeds!r}")
     speeds = np.sort(np.array([CheckPositive(w, f'motorSpeeds[{i}]', s, 'rad/s') for i, s in enumerate(motorSpeeds)]))
-    drive = AsDrive(drive, w)
+    CheckDrive(w, drive)
     own, loads = _LoadsOfTheDuty(drive, float(speeds[0]), w)
     model = ANALYTICAL if drive.isTwoMass else LINEARIZED
     gear = drive.gear
@@ -277,7 +277,8 @@ def SpeedStabilityChart(drive: Union[Drive, Mapping[str, Any]], motorSpeeds: Seq
         rows = []
         for speed in speeds:
             op = OperatingPointAt(gear, float(speed), torque, S)
-            rows.append((*StateGrowth(AnalyzeAtOperatingPoint(drive, op, model).State(S)), op.normalForce))
+            point = DutyPoint(PHASE_NAMES[S], S * float(speed), S * torque, None, 'speed chart', op)
+            rows.append((*StateGrowth(AnalyzeDrive(drive, model, [point]).operatingPoints[0].state), op.normalForce))
             if progress is not None:
                 progress(1)
         re, f, fn = (np.array(c) for c in zip(*rows))

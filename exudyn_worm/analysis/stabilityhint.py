@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, List, Mapping, Optional, Union
+from typing import Dict, List, Optional
 
 from .._checks import CheckRange
 from ..setups.presets import PARAMETER_UNITS
-from ..setups.wholedrive import Drive
+from ..setups.wholedrive import CheckDrive, Drive
 from .designrules import DEFAULT_SPAN
-from .designscan import AsCheckedDrive, Scanner
+from .designscan import Scanner
 
 __all__ = ['StableRange', 'NearestStableValue', 'StabilizingChanges']
 
@@ -55,7 +55,7 @@ class StableRange:
 _HINT_KEYS = {'J1': 'J1/J2', 'kT': 'kT/(kV r1^2)'}
 
 
-def NearestStableValue(parameters: Union[Drive, Mapping[str, float]], key: str, direction: int,
+def NearestStableValue(drive: Drive, key: str, direction: int,
                        span: float = DEFAULT_SPAN) -> Optional[float]:
     """Nearest value of ``key`` below (``direction = -1``) or above (+1) the given one at which the drive is
     stable (S = +1 and -1), other parameters as given; the given value if it is stable; None if there is
@@ -63,8 +63,8 @@ def NearestStableValue(parameters: Union[Drive, Mapping[str, float]], key: str, 
 
     Parameters
     ----------
-    parameters : Drive or mapping
-        The drive or its flat parameter set.
+    drive : Drive
+        The drive.
     key : str
         Parameter to vary.
     direction : int
@@ -79,18 +79,18 @@ def NearestStableValue(parameters: Union[Drive, Mapping[str, float]], key: str, 
     if direction not in (-1, 1):
         raise ValueError(f"NearestStableValue: 'direction' must be -1 or +1, got {direction!r}")
     CheckRange('NearestStableValue', 'span', span, low=1., lowOpen=True)
-    drive = AsCheckedDrive(parameters, 'NearestStableValue')
+    CheckDrive('NearestStableValue', drive)
     t = Scanner(drive).Scan(key, math.log10(span)).Move(direction, 0., span)
     return None if t is None else drive.parameters[key] * 10. ** t
 
 
-def StabilizingChanges(parameters: Union[Drive, Mapping[str, float]], span: float = DEFAULT_SPAN) -> List[StableRange]:
+def StabilizingChanges(drive: Drive, span: float = DEFAULT_SPAN) -> List[StableRange]:
     """For J1 and kT separately: the nearest values that make the drive stable.
 
     Parameters
     ----------
-    parameters : Drive or mapping
-        The drive or its flat parameter set (see :func:`~exudyn_worm.setups.presets.DriveFromParameters`).
+    drive : Drive
+        The drive.
     span : float
         Search from 1/span to span times the given value, > 1.
 
@@ -99,7 +99,7 @@ def StabilizingChanges(parameters: Union[Drive, Mapping[str, float]], span: floa
     list of StableRange
     """
     CheckRange('StabilizingChanges', 'span', span, low=1., lowOpen=True)
-    drive = AsCheckedDrive(parameters, 'StabilizingChanges')
+    CheckDrive('StabilizingChanges', drive)
     parameters, core, scanner = drive.parameters, drive.elastic, Scanner(drive)
     scales = {'J1': 1. / core.J2, 'kT': 1. / (core.gear.kV * core.gear.r1**2)}
     out = []

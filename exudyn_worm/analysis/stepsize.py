@@ -9,7 +9,7 @@ of 40.5 Hz for P1 at h = 0.01 s) or steps over the vibration and reports no chat
 an answer that looks right. The rule below is written in terms of that period error of the highest
 natural frequency of the linearized drive (eqs. (1)-(2) with S = +1 and S = -1, :func:`StateMatrix`; for a
 drive with a drive-side chain or a worm axial bearing, the linearized whole drive of
-:func:`~exudyn_worm.analysis.drivestability.DriveStability`, as ``exudyn-worm stability`` reports it: the 116 Hz mode of
+:func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`, as ``exudyn-worm stability`` reports it: the 116 Hz mode of
 inertia4 in examples/drives/figure19.toml); it covers the chatter frequency, which is one of these modes:
 
 ==============  =====================  ==================================================
@@ -68,9 +68,9 @@ from typing import Any, List, Mapping, Sequence
 import numpy as np
 
 from .._checks import CheckPositive
-from .drivestability import DriveStability
+from .drivestability import AnalyzeDrive
 from ..model.stability import CONTACT_STATES, StabilityAnalysis, StateMatrix
-from ..setups.presets import ElasticDriveFromParameters
+from ..setups.wholedrive import CheckDrive, Drive
 
 __all__ = ['RECOMMENDED_CYCLES', 'SOFT_CYCLES', 'HARD_CYCLES', 'PEAK_ACCURACY', 'TRANSIENT_PEAK_ACCURACY',
            'SMALL_MARGIN', 'UNRESOLVED', 'PeriodError',
@@ -152,13 +152,13 @@ def _WholeDriveEigenvalues(analysis, S: int) -> np.ndarray:
                     dtype=complex)
 
 
-def _Eigenvalues(parameters: Mapping[str, float]) -> dict:
-    """Eigenvalues per contact state S of the drive :func:`~exudyn_worm.analysis.drivestability.DriveStability` analyses:
+def _Eigenvalues(drive: Drive) -> dict:
+    """Eigenvalues per contact state S of the drive :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive` analyses:
     eqs. (1)-(2) for the two-mass drive, else the linearized whole drive without the worm's axial mode, at the
     duty's operating points (at rest only for a duty without a steady phase: a speed-dependent friction law
     linearized at zero sliding speed has a slope there that no run sees, e.g. AGMA's: a spurious real
     eigenvalue of about 1e11 1/s that would ask for a step of 1e-11 s)."""
-    analysis = DriveStability(parameters)
+    analysis = AnalyzeDrive(CheckDrive('stepsize', drive))
     # once per drive (the step, its check and the linear margin of one run ask for the same set)
     return analysis.drive.Cached('stepSize.eigenvalues', lambda: _ComputeEigenvalues(analysis))
 
@@ -176,17 +176,17 @@ def _ComputeEigenvalues(analysis) -> dict:
     return out
 
 
-def LinearizedFrequencies(parameters: Mapping[str, float]) -> dict:
+def LinearizedFrequencies(drive: Drive) -> dict:
     """Natural frequencies of the linearized drive (S = +1 and S = -1).
 
-    The drive is the one :func:`~exudyn_worm.analysis.drivestability.DriveStability` analyses: for the two-mass drive of
+    The drive is the one :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive` analyses: for the two-mass drive of
     Figure 2 the state matrix of eqs. (1)-(2); for a drive with a drive-side chain or a worm axial bearing the
     linearized whole drive (Exudyn), without the worm's axial mode (see the module text).
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set (see :mod:`exudyn_worm.setups.presets`).
+    drive : Drive
+        The drive.
 
     Returns
     -------
@@ -195,7 +195,7 @@ def LinearizedFrequencies(parameters: Mapping[str, float]) -> dict:
         ``chatterHz``: the highest damped frequency of a growing mode (None if the drive is stable).
     """
     fMax, fChatter = 0., None
-    for lam in _Eigenvalues(parameters).values():
+    for lam in _Eigenvalues(drive).values():
         fMax = max(fMax, float(np.max(np.abs(lam))) / (2 * math.pi))
         growing = lam[lam.real > 0]
         if growing.size:
@@ -204,48 +204,47 @@ def LinearizedFrequencies(parameters: Mapping[str, float]) -> dict:
     return {'maxHz': fMax, 'chatterHz': fChatter}
 
 
-def RecommendedStepSize(parameters: Mapping[str, float]) -> float:
+def RecommendedStepSize(drive: Drive) -> float:
     """Time step in s for the drive: ``RECOMMENDED_CYCLES / f_max`` (0.5 % period error of its highest mode).
 
     Parameters
     ----------
-    parameters : mapping or Drive
-        The drive and load (as for :func:`LinearizedFrequencies`), or a resolved
-        :class:`~exudyn_worm.setups.wholedrive.Drive` (its linear analysis is then the one it already holds).
+    drive : Drive
+        The drive and its load (as for :func:`LinearizedFrequencies`).
 
     Returns
     -------
     float
         Step size in s (7.8e-4 s for the paper's P1, 5.1e-4 s for P7).
     """
-    return RECOMMENDED_CYCLES / LinearizedFrequencies(parameters)['maxHz']
+    return RECOMMENDED_CYCLES / LinearizedFrequencies(drive)['maxHz']
 
 
-def StepSizeLimits(parameters: Mapping[str, float]) -> dict:
+def StepSizeLimits(drive: Drive) -> dict:
     """The recommended step and the soft and hard limits of :func:`CheckStepSize`, in s.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive
+        The drive.
 
     Returns
     -------
     dict
         ``recommended``, ``soft``, ``hard`` (s) and ``maxHz``, ``chatterHz`` of :func:`LinearizedFrequencies`.
     """
-    f = LinearizedFrequencies(parameters)
+    f = LinearizedFrequencies(drive)
     return {'recommended': RECOMMENDED_CYCLES / f['maxHz'], 'soft': SOFT_CYCLES / f['maxHz'],
             'hard': HARD_CYCLES / f['maxHz'], **f}
 
 
-def CheckStepSize(parameters: Mapping[str, float], stepSize: float, where: str = 'CheckStepSize') -> float:
+def CheckStepSize(drive: Drive, stepSize: float, where: str = 'CheckStepSize') -> float:
     """Refuse a step that cannot resolve the drive's highest natural frequency; warn for a coarse one.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive
+        The drive.
     stepSize : float
         Time step in s, > 0.
     where : str
@@ -268,7 +267,7 @@ def CheckStepSize(parameters: Mapping[str, float], stepSize: float, where: str =
         If ``stepSize`` exceeds the soft limit ``SOFT_CYCLES / f_max`` (period error above 2 %).
     """
     stepSize = CheckPositive(where, 'stepSize', stepSize, 's')
-    lim = StepSizeLimits(parameters)
+    lim = StepSizeLimits(drive)
     text = (f"the drive's highest natural frequency is {lim['maxHz']:.1f} Hz"
             + (f" (chatter mode {lim['chatterHz']:.1f} Hz)" if lim['chatterHz'] else '')
             + f"; at stepSize = {stepSize:g} s its period comes out about "
@@ -283,7 +282,7 @@ def CheckStepSize(parameters: Mapping[str, float], stepSize: float, where: str =
     return stepSize
 
 
-def FrictionTimeConstant(parameters: Mapping[str, float], frictionSpeed: float, normalForce: float) -> float:
+def FrictionTimeConstant(drive: Drive, frictionSpeed: float, normalForce: float) -> float:
     """Time constant J1/d in s of the worm on the regularized friction law at normal force ``normalForce``.
 
     ``d = |dc2/dS| normalForce / frictionSpeed`` is the damping of the regularized law
@@ -291,19 +290,19 @@ def FrictionTimeConstant(parameters: Mapping[str, float], frictionSpeed: float, 
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive
+        The drive.
     frictionSpeed : float
         Regularization speed in rad/s, > 0.
     normalForce : float
         Normal force in N, > 0.
     """
-    drive = ElasticDriveFromParameters(parameters)
-    g = drive.gear
+    core = CheckDrive('FrictionTimeConstant', drive).elastic
+    g = core.gear
     frictionSpeed = CheckPositive('FrictionTimeConstant', 'frictionSpeed', frictionSpeed, 'rad/s')
     normalForce = CheckPositive('FrictionTimeConstant', 'normalForce', normalForce, 'N')
     dc2dS = g.r1 * math.cos(g.alphaN) / math.cos(g.rho) * g.rho * math.cos(g.gamma)   # d/dS r1 k sin(gamma + rho S) at S = 0
-    return drive.J1 * frictionSpeed / (dc2dS * normalForce)
+    return core.J1 * frictionSpeed / (dc2dS * normalForce)
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -319,7 +318,7 @@ SMALL_MARGIN = 0.02
 UNRESOLVED = 'unresolved'
 
 
-def LinearMargin(parameters: Mapping[str, float]) -> dict:
+def LinearMargin(drive: Drive) -> dict:
     """The linear margin of the drive: how fast its least stable mode grows or decays per radian of its cycle.
 
     For each contact state S = +1 (the motor drives) and S = -1 (the load drives) the rightmost eigenvalue lambda
@@ -328,8 +327,8 @@ def LinearMargin(parameters: Mapping[str, float]) -> dict:
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive
+        The drive.
 
     Returns
     -------
@@ -338,7 +337,7 @@ def LinearMargin(parameters: Mapping[str, float]) -> dict:
         of that eigenvalue, ``small`` (``margin < SMALL_MARGIN``).
     """
     best = None
-    for S, lam in _Eigenvalues(parameters).items():
+    for S, lam in _Eigenvalues(drive).items():
         lam = lam[np.abs(lam) > 1e-9 * max(float(np.max(np.abs(lam), initial=0.)), 1e-300)]   # no rigid-body modes
         if not lam.size:
             continue
@@ -353,17 +352,17 @@ def LinearMargin(parameters: Mapping[str, float]) -> dict:
     return best
 
 
-def StepCheckByDefault(parameters: Mapping[str, float]) -> bool:
+def StepCheckByDefault(drive: Drive) -> bool:
     """Whether ``simulate`` and ``sweep`` may check their verdicts at half the step when not told: the linear margin
     (:func:`LinearMargin`) is below :data:`SMALL_MARGIN`. They then run at half the step only if a window's own
     verdict is close (:func:`CloseVerdicts`).
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive
+        The drive.
     """
-    return LinearMargin(parameters)['small']
+    return LinearMargin(drive)['small']
 
 
 def CompareHalfStep(metrics: Sequence[Mapping], halfStepMetrics: Sequence[Mapping]) -> List[dict]:

@@ -16,6 +16,7 @@ from ..setups.presets import PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys
 from ..items.results import CheckWindows
 from .._checks import CheckPositive
 from ..setups.duty import IsReelChangerDuty
+from ..setups.wholedrive import Drive
 from .reelchanger import DefaultWindows
 
 __all__ = ['MAX_RUNS', 'MAX_VALUES', 'BYTES_PER_RUN', 'Variation', 'ParseVariation', 'StudyPoints', 'StudyGrid', 'Study',
@@ -305,7 +306,7 @@ class Study:
                 raise ValueError(f"Study: {err}; every run would fail (varied: {', '.join(self.keys) or 'none'})"
                                  ) from None
         if self.windows is None and not IsReelChangerDuty(first):   # the phases of the first point's duty
-            self.windows = DefaultWindows(first, self.endTime, minLength=1e-3)
+            self.windows = DefaultWindows(Drive.FromParameters(first), self.endTime, minLength=1e-3)
 
     @property
     def keys(self) -> List[str]:

@@ -9,15 +9,14 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, List, Mapping, Optional, Tuple
+from typing import TYPE_CHECKING, List, Optional, Tuple
 
 import numpy as np
 
 from .._spacing import IsLogSpaced
 from .charts import ChartCoordinates, ComputeStabilityChart
-from .drivestability import DriveAnalysis, DriveStability
-from ..setups.presets import ApplyOverrides
-from ..setups.wholedrive import AsDrive
+from .drivestability import AnalyzeDrive, DriveAnalysis
+from ..setups.wholedrive import Drive
 
 if TYPE_CHECKING:
     from .studyfiles import StudyResult
@@ -36,7 +35,7 @@ def LoweringGrowth(analysis: DriveAnalysis) -> float:
     Parameters
     ----------
     analysis : DriveAnalysis
-        From :func:`~exudyn_worm.analysis.drivestability.DriveStability`.
+        From :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`.
 
     Returns
     -------
@@ -47,17 +46,17 @@ def LoweringGrowth(analysis: DriveAnalysis) -> float:
     return float(analysis.State(-1).maxRealPart)
 
 
-def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -> np.ndarray:
+def AnalyticalMap(drive: Drive, x: str, xValues, y: str, yValues) -> np.ndarray:
     """Largest real part (1/s) of the linear model at the duty's lowering operating points (S = -1,
-    :func:`LoweringGrowth`) over a grid of two parameters, the others as in ``base``: > 0 means chatter predicted
-    while lowering. The model is that of :func:`~exudyn_worm.analysis.drivestability.DriveStability` at each point
+    :func:`LoweringGrowth`) over a grid of two parameters, the others as in ``drive``: > 0 means chatter predicted
+    while lowering. The model is that of :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive` at each point
     (mu(v) and its slope at the operating point): eqs. (15)-(16) for the two-mass drive, the linearized whole
     drive (about 30 ms a point) for any other (chains, axial bearing, motor on its characteristic).
 
     Parameters
     ----------
-    base : mapping
-        Flat parameter set.
+    drive : Drive
+        The drive whose two parameters are varied (each point a :meth:`~exudyn_worm.setups.wholedrive.Drive.Replace`).
     x, y : str
         Parameter keys.
     xValues, yValues : array_like
@@ -70,19 +69,18 @@ def AnalyticalMap(base: Mapping[str, float], x: str, xValues, y: str, yValues) -
     """
     out = np.empty((len(yValues), len(xValues)))
     for (i, yv), (j, xv) in itertools.product(enumerate(yValues), enumerate(xValues)):
-        out[i, j] = LoweringGrowth(DriveStability(ApplyOverrides(base, {x: float(xv), y: float(yv)})))
+        out[i, j] = LoweringGrowth(AnalyzeDrive(drive.Replace(**{x: float(xv), y: float(yv)})))
     return out
 
 
-def _Chart(base, x, xValues, y, yValues, resolution):
+def _Chart(whole: Drive, x, xValues, y, yValues, resolution):
     """The stability chart (:func:`~exudyn_worm.analysis.charts.ComputeStabilityChart`) over a J1-kT map, in the map's
     coordinates: ``(xGrid, yGrid, unstable, [(xLine, yLine), ...])``; None unless the map's keys are J1 and kT,
     the damping is given as measures (D_T or D_TV, D_V), which is what a chart holds fixed, and the drive is the
     two-mass drive the chart describes (no component beyond Figure 2) with a constant mu (with mu(v) the verdict
     at the operating point is not the chart's, which is at constant mu)."""
-    if {x, y} != {'J1', 'kT'} or 'dT' in base or 'dV' in base:
+    if {x, y} != {'J1', 'kT'} or 'dT' in whole.parameters or 'dV' in whole.parameters:
         return None
-    whole = AsDrive(base, 'ComputeChatterMap')
     if not whole.isTwoMass or whole.gear.speedDependentFriction:
         return None
     drive = whole.elastic
@@ -189,13 +187,13 @@ def ComputeChatterMap(result: 'StudyResult', x: str, y: str, resolution: int = 6
 
     gx, gy = grid(xs, logX), grid(ys, logY)
     limits = dict(xLimits=(float(gx[0]), float(gx[-1])), yLimits=(float(gy[0]), float(gy[-1])), logX=logX, logY=logY)
-    base = result.study.base
+    base = Drive.FromParameters(result.study.base)     # the study's base set (as its files keep it), one drive
     chart = _Chart(base, x, gx, y, gy, max(resolution, 300))
     if chart is not None:                   # J1 and kT at fixed damping measures: the stability chart itself
         cx, cy, unstable, lines = chart
         return ChatterMap(x=x, y=y, xGrid=cx, yGrid=cy, unstable=unstable, growth=None, lines=lines,
                           source='stability chart', **limits)
-    wholeDrive = not AsDrive(base, 'ComputeChatterMap').isTwoMass
+    wholeDrive = not base.isTwoMass
     if wholeDrive:                          # one Exudyn linearization a point (about 30 ms): a coarser grid
         count = min(resolution, WHOLE_DRIVE_RESOLUTION)
         gx, gy = grid(xs, logX, count), grid(ys, logY, count)

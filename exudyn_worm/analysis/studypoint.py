@@ -14,7 +14,8 @@ from ..items.results import CHATTER_TORQUE_FRACTION
 from ..items.solve import IsInterrupt
 from ..params.plausibility import ImplausibleValueWarning
 from ..setups.duty import IsReelChangerDuty
-from .drivestability import DriveAnalysis, DriveStability
+from ..setups.wholedrive import Drive
+from .drivestability import AnalyzeDrive, DriveAnalysis
 from .reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedTime
 from .stepsize import UNRESOLVED, CloseVerdicts, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
 from . import reelchanger
@@ -61,7 +62,7 @@ def LoweringVerdict(analysis: DriveAnalysis) -> Optional[bool]:
     Parameters
     ----------
     analysis : DriveAnalysis
-        From :func:`~exudyn_worm.analysis.drivestability.DriveStability`.
+        From :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`.
 
     Returns
     -------
@@ -72,9 +73,9 @@ def LoweringVerdict(analysis: DriveAnalysis) -> Optional[bool]:
     return bool(analysis.State(-1).stable)
 
 
-def _WindowPhases(parameters: Mapping, windows, endTime: float) -> List[Tuple[float, float, str]]:
+def _WindowPhases(drive: Drive, windows, endTime: float) -> List[Tuple[float, float, str]]:
     """Given windows with the phase of the duty at their middle (``'idle'`` outside every phase)."""
-    duty = DefaultPhases(parameters, endTime)
+    duty = DefaultPhases(drive, endTime)
     return [(t0, t1, next((ph for a, b, ph in duty if a <= 0.5 * (t0 + t1) <= b), 'idle')) for t0, t1 in windows]
 
 
@@ -82,15 +83,15 @@ def _WindowPhases(parameters: Mapping, windows, endTime: float) -> List[Tuple[fl
 _WINDOW_PHASE = {'lifting': 'lift', 'lowering': 'lower'}
 
 
-def DecidingWindow(parameters: Mapping, windows: Optional[Sequence[Tuple[float, float]]] = None,
+def DecidingWindow(drive: Drive, windows: Optional[Sequence[Tuple[float, float]]] = None,
                    endTime: Optional[float] = None) -> Optional[int]:
     """The index of the first evaluation window in the phase that decides the drive's linear verdict (lifting or
     lowering: the operating point with the largest real part), with the windows a study run takes.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set of one run.
+    drive : Drive
+        The drive of one run.
     windows : sequence of (float, float), optional
         Given windows in s; None: the duty's phases (as :func:`RunPoint`).
     endTime : float, optional
@@ -101,14 +102,14 @@ def DecidingWindow(parameters: Mapping, windows: Optional[Sequence[Tuple[float, 
     int or None
         None if the duty has no operating point or no window in its deciding phase.
     """
-    deciding = DriveStability(parameters).deciding
+    deciding = AnalyzeDrive(drive).deciding
     if deciding is None:
         return None
-    period = DefaultSimulatedTime(parameters)
+    period = DefaultSimulatedTime(drive)
     if windows is None:
-        phases = DefaultPhases(parameters, None if endTime is None else min(endTime, period), minLength=1e-3)
+        phases = DefaultPhases(drive, None if endTime is None else min(endTime, period), minLength=1e-3)
     else:
-        phases = _WindowPhases(parameters, windows, endTime if endTime is not None else
+        phases = _WindowPhases(drive, windows, endTime if endTime is not None else
                                max(period, max(t1 for _, t1 in windows)))
     return next((i for i, (_, _, ph) in enumerate(phases) if ph == _WINDOW_PHASE[deciding.phase]), None)
 
@@ -143,30 +144,31 @@ def RunPoint(task: Mapping) -> Dict:
            'stepChecked': None}
     row.update(task['varied'])
     try:
-        analysis = DriveStability(p)            # at the duty's operating points: two-mass or the whole drive
+        drive = Drive.FromParameters(p)         # the run's drive, resolved once in its worker
+        analysis = AnalyzeDrive(drive)          # at the duty's operating points: two-mass or the whole drive
         row['analyticStable'] = analysis.stable
         row['analyticStableLowering'] = LoweringVerdict(analysis)
-        period = DefaultSimulatedTime(p)      # one rotation of the reel changer; another duty: its tables' end
+        period = DefaultSimulatedTime(drive)      # one rotation of the reel changer; another duty: its tables' end
         if task['windows'] is not None:
             windows, phases = task['windows'], None
         else:        # the first rotation's lift / lower / lift (or the duty's phases), clipped to a shorter end time
-            phases = DefaultPhases(p, None if task['endTime'] is None else min(task['endTime'], period),
+            phases = DefaultPhases(drive, None if task['endTime'] is None else min(task['endTime'], period),
                                    minLength=1e-3)
             windows = [(t0, t1) for t0, t1, _ in phases]
         endTime = task['endTime'] if task['endTime'] is not None else max(period, max(t1 for _, t1 in windows))
-        stepSize = task['stepSize'] or RecommendedStepSize(p)       # the rule of simulate
+        stepSize = task['stepSize'] or RecommendedStepSize(drive)       # the rule of simulate
         row['stepSize'] = stepSize
         maxSteps = MAX_STEPS if task.get('maxSteps') is None else task['maxSteps']
         check = task.get('checkStep')
         byDefault = check is None
         if byDefault:          # by the linear margin, unless the run at half the step would exceed the limit
-            check = StepCheckByDefault(p) and 2 * endTime / stepSize <= maxSteps
+            check = StepCheckByDefault(drive) and 2 * endTime / stepSize <= maxSteps
 
         def Simulate(h):       # no bar per run: the study draws one bar for all runs
             with warnings.catch_warnings():
                 if h != stepSize:      # the run at half the step repeats what the run at the step said
                     warnings.simplefilter('ignore', ImplausibleValueWarning)
-                result = reelchanger.SimulateReelChanger(p, endTime=endTime, stepSize=h, progress=False,
+                result = reelchanger.SimulateReelChanger(drive, endTime=endTime, stepSize=h, progress=False,
                                                          maxSteps=maxSteps)
             if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
                 raise FloatingPointError('diverged: non-finite state in the solution'
@@ -192,7 +194,7 @@ def RunPoint(task: Mapping) -> Dict:
             for name in HALF_STEP_METRICS if check else ():
                 row[f'w{i}.halfStep.{name}'] = m['halfStep'][name]
         if phases is None and not IsReelChangerDuty(p):     # given windows: lowering where the duty lowers
-            phases = _WindowPhases(p, windows, endTime)
+            phases = _WindowPhases(drive, windows, endTime)
         lowering = ([i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1] if phases is None
                     else [i for i, (_, _, phase) in enumerate(phases) if phase == 'lower'])   # the load drives
         verdict = metrics[lowering[0]]['chatter'] if lowering else None

@@ -107,25 +107,15 @@ def _RunSpeed(args: argparse.Namespace) -> int:
     return 0
 
 
-def _ChartDrive(args: argparse.Namespace, parameters: Dict[str, float], gear):
-    """(the drive of the chart's parameter set, its label on the chart or None).
+def _ChartDrive(args: argparse.Namespace, parameters: Dict[str, float]):
+    """(the user's own drive, its label on the chart), or (None, None) for the gear of a chart alone.
 
     A complete drive (J1, kT and the shaft damping given: a drive file, a preset, ``--set``) is the user's own
-    drive, marked at its chart coordinates. The gear of a chart alone (no J1 or kT, which the chart sweeps) is
-    completed at a placeholder point only to know its parts (chains, bearing) for the note; it is not marked.
+    drive, marked at its chart coordinates. The gear of a chart alone (no J1 or kT, which the chart sweeps) is no
+    drive: nothing is marked, and nothing is made up to build one.
     """
-    # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..setups.wholedrive import Drive
-    filled = {}
-    if 'J1' not in parameters:
-        filled['J1'] = parameters['J2']
-    if 'kT' not in parameters:
-        filled['kT'] = gear.kV * gear.r1 ** 2
-    if not any(k in parameters for k in ('dT', 'DT', 'DTV')):
-        filled['DT'] = 0.
-    if filled:
-        with BadInput():
-            return Drive.FromParameters({**parameters, **filled}, name=SourceText(args)), None
+    if 'J1' not in parameters or 'kT' not in parameters or not any(k in parameters for k in ('dT', 'DT', 'DTV')):
+        return None, None
     info = SourceInfo(args)
     label = (Path(info['config']).stem if info['config'] else (info['preset'] or 'drive').replace('reel-', ''))
     if info['overrides']:
@@ -162,7 +152,7 @@ def _Run(args: argparse.Namespace) -> int:
         return _RunSpeed(args)
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.charts import MAX_CHART_POINTS, ChartCoordinates, ComputeStabilityChart, PresetChartPoints
-    from ..setups.presets import GearFromParameters
+    from ..setups.presets import ExtraComponents, GearFromParameters
     from ..params.parameters import MissingParameterError
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
@@ -175,7 +165,7 @@ def _Run(args: argparse.Namespace) -> int:
         J2 = parameters['J2']
         DV = args.DV if args.DV is not None else _MeshDampingMeasure(parameters, gear)
         points = PresetChartPoints([_PresetName(n) for n in args.points])
-        drive, label = _ChartDrive(args, parameters, gear)
+        drive, label = _ChartDrive(args, parameters)
         if label is not None:             # the user's own drive, at its chart coordinates
             points = {**{k: v for k, v in points.items() if k != label}, label: ChartCoordinates(drive.elastic)}
         # every argument is checked before the first chart is computed
@@ -185,9 +175,10 @@ def _Run(args: argparse.Namespace) -> int:
             ComputeStabilityChart(gear, J2, DV, DTV, resolution=2, S=args.S)
         if not 2 <= args.resolution <= 20000 or args.resolution ** 2 > MAX_CHART_POINTS:
             ComputeStabilityChart(gear, J2, DV, args.DTV[0], resolution=args.resolution)
-    if drive.components:
+    components = drive.ComponentsText() if drive is not None else ' and '.join(ExtraComponents(parameters))
+    if components:
         print(f"exudyn-worm chart: note: the chart is the two-mass drive of Figure 2 with this gear and J2; "
-              f"{drive.ComponentsText()} of the parameter set is not in it", file=sys.stderr)
+              f"{components} of the parameter set is not in it", file=sys.stderr)
     charts = []
     with ProgressBar(total=len(args.DTV), desc='charts', unit='chart', quiet=True if args.quiet else None) as bar:
         for DTV in args.DTV:

@@ -50,14 +50,13 @@ def _Run(args: argparse.Namespace) -> int:
     from ..progress import ProgressBar
     plotPath = CheckFigurePath(args.plot, '--plot', args.overwrite) if args.plot is not None else None
     drive = WholeDriveFromArgs(args)              # resolved once: every analysis below takes this drive
-    parameters = dict(drive.parameters)
     if not args.simulate:                         # a run checks the speed against its own step
         WarnUnresolvedRotation(drive, 'check')
     if args.simulate:
         # lazy: start-up (exudyn-worm --help imports every command module)
         from ..setups.build import CheckReelChangerKeys
         with BadInput():
-            CheckReelChangerKeys(parameters, 'check --simulate')
+            CheckReelChangerKeys(drive, 'check --simulate')
     elif args.step_size is not None:
         raise UsageError(f"--step-size {args.step_size:g} only applies with --simulate")
     quiet = True if getattr(args, 'quiet', False) else None
@@ -75,8 +74,8 @@ def _Run(args: argparse.Namespace) -> int:
         # lazy: start-up (exudyn-worm --help imports every command module)
         from ..analysis.loadside import DiagnoseLoadSide
         with StdoutToStderr(args.json), BadInput():
-            loadSide = DiagnoseLoadSide(parameters, args.margin)
-    disturbance = _DisturbanceVerdict(args, parameters, result)
+            loadSide = DiagnoseLoadSide(drive, args.margin)
+    disturbance = _DisturbanceVerdict(args, drive, result)
     if plotPath is not None:
         # lazy: start-up (exudyn-worm --help imports every command module)
         from ..plotting.plot import SaveFigure
@@ -104,7 +103,7 @@ def _Run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
+def _DisturbanceVerdict(args: argparse.Namespace, drive, result):
     """:func:`~exudyn_worm.analysis.disturbance.ChattersAfterDisturbance` of the drive, or None where it is not asked
     for: ``--no-disturbance``; by default only for a drive with backlash that is linearly stable while lowering
     (S = -1) and has the reel changer's keys. ``--disturbance`` asks for it for any drive (missing keys: exit 2)."""
@@ -114,12 +113,13 @@ def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
         # lazy: start-up (exudyn-worm --help imports every command module)
         from ..setups.presets import REEL_KEYS
         lowering = result.ContactStates().get(-1)
-        if not (float(parameters.get('backlash', 0.)) > 0. and lowering is not None and lowering.stable
-                and all(k in parameters for k in REEL_KEYS)):
+        if not (drive.gear.backlash > 0. and lowering is not None and lowering.stable
+                and all(k in drive.parameters for k in REEL_KEYS)):
             return None
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.disturbance import ChattersAfterDisturbance
     from ..setups.build import CheckReelChangerKeys
+    parameters = dict(drive.parameters)      # the lowering-phase orbit reads the flat set
     if args.disturbance == 'auto':
         try:
             with StdoutToStderr(args.json):
@@ -127,7 +127,7 @@ def _DisturbanceVerdict(args: argparse.Namespace, parameters, result):
         except ValueError:          # a drive the lowering model refuses (a motor on its characteristic): as before
             return None
     with BadInput():
-        CheckReelChangerKeys(parameters, 'check --disturbance')
+        CheckReelChangerKeys(drive, 'check --disturbance')
         with StdoutToStderr(args.json):
             return ChattersAfterDisturbance(parameters)
 

@@ -307,9 +307,20 @@ def ParametersFromArgs(args: argparse.Namespace) -> Dict[str, float]:
     resolved = getattr(args, '_resolved', None)
     if resolved is None:                   # resolved once per command: the file is read once
         with BadInput():
-            resolved = ResolveParametersWithSources(preset=args.preset, config=args.config, sets=args.set)
+            resolved = ResolveParametersWithSources(preset=args.preset, config=_DriveFile(args), sets=args.set)
         args._resolved = resolved
     return dict(resolved[0])
+
+
+def _DriveFile(args: argparse.Namespace):
+    """The drive file of ``--config`` as :func:`~exudyn_worm.setups.config.LoadConfig` reads it, read once per
+    command (None without ``--config``)."""
+    if not args.config:
+        return None
+    if getattr(args, '_driveFile', None) is None:
+        with BadInput():
+            args._driveFile = LoadConfig(args.config)
+    return args._driveFile
 
 
 def WholeDriveFromArgs(args: argparse.Namespace) -> Drive:
@@ -443,8 +454,7 @@ def SourceInfo(args: argparse.Namespace) -> Dict:
     else:
         preset, wholeDrive = None, False
         if args.config:
-            with BadInput():
-                config = LoadConfig(args.config)
+            config = _DriveFile(args)
             preset, wholeDrive = config['preset'], config['wholeDrive']
         if preset:
             source = 'config'

@@ -2,15 +2,19 @@
 from __future__ import annotations
 
 import argparse
+import enum
 import math
 import sys
 import warnings
 from pathlib import Path
-from typing import List, Tuple
+from typing import TYPE_CHECKING, List, Tuple
 
 from .main import (AddOverwriteOption, BadInput, CheckOutputPath, PositiveFloat, PositiveInt, PrintJson,
                    SourceInfo, SourceText, StdoutToStderr, Subcommand, UsageError, WholeDriveFromArgs)
 from .._files import WriteAtomically
+
+if TYPE_CHECKING:
+    from ..setups.wholedrive import Drive
 
 __all__ = ['COMMAND', 'ParseWindows']
 
@@ -51,18 +55,27 @@ _BEARING_HEADER = ('peak bearing loads [kN] (3D model; radial: vector sum of a s
                                                              'wheel radial'))
 
 
+class _StepCheckReason(str, enum.Enum):
+    """Why the verdicts were or were not checked at half the step (``stepCheck.reason`` of ``--json``)."""
+    OPTION = 'option'                   # --check-step / --no-check-step
+    DEFAULT = 'default'                 # the linear margin decided
+    MAX_STEPS = 'maxSteps'              # the run at half the step would exceed --max-steps
+    CLEAR_VERDICTS = 'clearVerdicts'    # small margin, but no window's verdict is close
+
+
 def _StepCheckLine(check: dict) -> str:
     """One line saying whether and why the verdicts were checked at half the step."""
     margin = f"linear margin |Re lambda|/|lambda| = {check['margin']:.3g}"
     if check['checked']:
-        why = ('--check-step' if check['reason'] == 'option'
+        why = ('--check-step' if check['reason'] is _StepCheckReason.OPTION
                else f"{margin} < {check['smallMargin']:g}, near the stability boundary, and the verdict of window(s) "
                     f"{', '.join(str(i + 1) for i in check.get('closeWindows', []))} within a factor "
                     f"{check['verdictFactor']:g} of the chatter threshold")
         return (f"step check: verdicts compared with a run at half the step ({check['halfStepSize']:g} s; {why}); "
                 f"'unresolved' where they differ")
-    why = {'option': '--no-check-step', 'maxSteps': 'the run at half the step would exceed --max-steps',
-           'clearVerdicts': f"{margin} < {check['smallMargin']:g}, but every window's verdict is clear: its chatter "
+    why = {_StepCheckReason.OPTION: '--no-check-step',
+           _StepCheckReason.MAX_STEPS: 'the run at half the step would exceed --max-steps',
+           _StepCheckReason.CLEAR_VERDICTS: f"{margin} < {check['smallMargin']:g}, but every window's verdict is clear: its chatter "
                             f"measure is not within a factor {check['verdictFactor']:g} of the threshold"}.get(
         check['reason'], f"{margin} >= {check['smallMargin']:g}")
     return f"step check: off ({why}); --check-step compares with a run at half the step"
@@ -128,17 +141,17 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                         help='evaluate the connector in Python instead of C++ (debugging; same results, slower)')
 
 
-def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: float, maxSteps: int) -> dict:
+def _StepCheck(args: argparse.Namespace, drive: Drive, endTime: float, stepSize: float, maxSteps: int) -> dict:
     """Whether the verdicts are checked at half the step, and why (--check-step, or the linear margin)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.reelchanger import CheckRunSize
     from ..analysis.stepsize import SMALL_MARGIN, VERDICT_FACTOR, LinearMargin
     with BadInput():
-        margin = LinearMargin(parameters)
+        margin = LinearMargin(drive)
     check = {'checked': margin['small'] if args.check_step is None else args.check_step,
              'halfStepSize': 0.5 * stepSize, 'margin': margin['margin'], 'smallMargin': SMALL_MARGIN,
              'verdictFactor': VERDICT_FACTOR,
-             'reason': 'option' if args.check_step is not None else 'default'}
+             'reason': _StepCheckReason.OPTION if args.check_step is not None else _StepCheckReason.DEFAULT}
     if check['checked']:
         try:
             CheckRunSize(endTime, 0.5 * stepSize, maxSteps, 'simulate',
@@ -146,11 +159,11 @@ def _StepCheck(args: argparse.Namespace, parameters, endTime: float, stepSize: f
         except ValueError as err:
             if args.check_step:
                 raise UsageError(str(err)) from None
-            check['checked'], check['reason'] = False, 'maxSteps'      # said in the output (_StepCheckLine)
+            check['checked'], check['reason'] = False, _StepCheckReason.MAX_STEPS      # said in the output (_StepCheckLine)
     return check
 
 
-def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, int, List[Tuple[float, float]]]:
+def _RunSettings(args: argparse.Namespace, drive: Drive) -> Tuple[float, float, int, List[Tuple[float, float]]]:
     """End time, step size, step limit and windows of a run, checked before anything is computed."""
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.reelchanger import MAX_STEPS, CheckRunSize, DefaultSimulatedTime, DefaultWindows
@@ -158,26 +171,26 @@ def _RunSettings(args: argparse.Namespace, parameters) -> Tuple[float, float, in
     from ..analysis.stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
     from ..params.plausibility import CheckWormRotation
     with BadInput():
-        CheckReelChangerKeys(parameters, 'simulate')
-        stepSize = args.step_size if args.step_size is not None else RecommendedStepSize(parameters)
+        CheckReelChangerKeys(drive, 'simulate')
+        stepSize = args.step_size if args.step_size is not None else RecommendedStepSize(drive)
     maxSteps = args.max_steps if args.max_steps is not None else MAX_STEPS
     with BadInput(), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter('always', CoarseStepWarning)
         if args.step_size is not None:
-            CheckStepSize(parameters, args.step_size, 'simulate --step-size')
+            CheckStepSize(drive, args.step_size, 'simulate --step-size')
     for warning in caught:
         print(f"exudyn-worm: warning: {warning.message}", file=sys.stderr)
-    CheckWormRotation(parameters, stepSize, 'simulate')   # a step refused above stands alone; a run shorter than
+    CheckWormRotation(drive.parameters, stepSize, 'simulate')   # a step refused above stands alone; a run shorter than
     with BadInput():                                       # one step is refused below, after this warning says why
         userWindows = ParseWindows(args.windows) if args.windows is not None else None
         endTime = args.end_time
         if endTime is None:
-            endTime = max([DefaultSimulatedTime(parameters)] + [t1 for _, t1 in userWindows or []])
+            endTime = max([DefaultSimulatedTime(drive)] + [t1 for _, t1 in userWindows or []])
         CheckRunSize(endTime, stepSize, maxSteps, 'simulate',
                      ('--end-time', '--step-size' if args.step_size is not None else 'the recommended step size',
                       '--max-steps'))
         if userWindows is None:
-            return endTime, stepSize, maxSteps, DefaultWindows(parameters, endTime, minLength=2 * stepSize)
+            return endTime, stepSize, maxSteps, DefaultWindows(drive, endTime, minLength=2 * stepSize)
     for t0, t1 in userWindows:
         if t1 > endTime * (1 + 1e-12):
             raise UsageError(f"--windows: the window {t0:g}:{t1:g} ends after --end-time = {endTime:g} s")
@@ -197,13 +210,12 @@ def _Write(what: str, path, write):
 
 def _Run(args: argparse.Namespace) -> int:
     drive = WholeDriveFromArgs(args)
-    parameters = dict(drive.parameters)
     csv = CheckOutputPath(args.csv, '--csv', overwrite=args.overwrite) if args.csv is not None else None
     plots = (CheckOutputPath(args.plot, '--plot', 'folder', overwrite=args.overwrite,
                              contents=[f'{kind}.png' for kind in _Figures(drive.isRigidBody)])
              if args.plot is not None else None)
-    endTime, stepSize, maxSteps, windows = _RunSettings(args, parameters)
-    stepCheck = _StepCheck(args, parameters, endTime, stepSize, maxSteps)
+    endTime, stepSize, maxSteps, windows = _RunSettings(args, drive)
+    stepCheck = _StepCheck(args, drive, endTime, stepSize, maxSteps)
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.reelchanger import PhaseLabel, SimulateReelChanger, WindowPhases
     from ..items.solve import SolverDivergedError
@@ -217,7 +229,7 @@ def _Run(args: argparse.Namespace) -> int:
                 warnings.simplefilter('ignore', UnresolvedRotationWarning)
                 if h != stepSize:          # the run at half the step repeats what the run at the step said
                     warnings.simplefilter('ignore', ImplausibleValueWarning)
-                return SimulateReelChanger(parameters, endTime=endTime, stepSize=h, maxSteps=maxSteps,
+                return SimulateReelChanger(drive, endTime=endTime, stepSize=h, maxSteps=maxSteps,
                                            useSymbolic=not args.python_user_functions,
                                            progress=False if args.quiet else None)
         except SolverDivergedError as err:
@@ -226,13 +238,13 @@ def _Run(args: argparse.Namespace) -> int:
 
     result = Simulate(stepSize)
     metrics = result.WindowMetrics(windows)
-    if stepCheck['checked'] and stepCheck['reason'] == 'default':      # ... and only where a verdict is close
+    if stepCheck['checked'] and stepCheck['reason'] is _StepCheckReason.DEFAULT:      # ... and only where a verdict is close
         stepCheck['closeWindows'] = CloseVerdicts(result, windows)
         if not stepCheck['closeWindows']:
-            stepCheck['checked'], stepCheck['reason'] = False, 'clearVerdicts'
+            stepCheck['checked'], stepCheck['reason'] = False, _StepCheckReason.CLEAR_VERDICTS
     if stepCheck['checked']:
         metrics = CompareHalfStep(metrics, Simulate(0.5 * stepSize).WindowMetrics(windows))
-    phases = WindowPhases(parameters, windows, endTime)
+    phases = WindowPhases(drive, windows, endTime)
     for m, phase in zip(metrics, phases):
         m['phase'] = phase
     source = SourceText(args)
@@ -251,7 +263,7 @@ def _Run(args: argparse.Namespace) -> int:
                 verdict += (f" (h: {'YES' if not m['halfStep']['chatter'] else 'no'}, "
                             f"h/2: {'YES' if m['halfStep']['chatter'] else 'no'}; max|phi2''| at h/2 "
                             f"{m['halfStep']['maxAbsWheelAcceleration']:.1f})")
-            print(f"{m['t0']:>5.2f} - {m['t1']:<5.2f} {PhaseLabel(parameters, m['phase'], (m['t0'], m['t1'])):<22}"
+            print(f"{m['t0']:>5.2f} - {m['t1']:<5.2f} {PhaseLabel(drive, m['phase'], (m['t0'], m['t1'])):<22}"
                   f"{m['maxAbsWheelAcceleration']:>20.1f} {m['maxNormalForce'] / 1e3:>10.1f} "
                   f"{m['dominantFrequencyHz']:>7.1f} {100 * m['fractionSNegative']:>6.0f} {m['minWormSpeed']:>16.2f}  "
                   f"{verdict}")

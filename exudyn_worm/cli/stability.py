@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 import argparse
-from typing import Dict, Union
+from typing import Dict
 
 from .main import (BadInput, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WarnUnresolvedRotation,
                    WholeDriveFromArgs)
@@ -12,7 +12,7 @@ from ..analysis.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, Driv
 from ..model.geometry import DescribeGeometry, GeometryForm
 from ..setups.wholedrive import Drive
 
-__all__ = ['COMMAND', 'StabilityHint', 'StabilityHintData']
+__all__ = ['COMMAND', 'StabilityHintData']
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
@@ -93,15 +93,15 @@ def _Run(args: argparse.Namespace) -> int:
     return 0
 
 
-def StabilityHintData(parameters: Union[Drive, Dict[str, float]], span: float = 100.) -> Dict:
+def StabilityHintData(drive: Drive, span: float = 100.) -> Dict:
     """The design hint of an unstable drive as data: the nearest stable J1 and kT
     (:func:`~exudyn_worm.analysis.stabilityhint.StabilizingChanges`), other parameters as given; the table's hint line
     and the ``--json`` key ``hint`` both come from here.
 
     Parameters
     ----------
-    parameters : Drive or dict
-        The drive (:class:`~exudyn_worm.setups.wholedrive.Drive`) or its flat parameter dictionary.
+    drive : Drive
+        The drive (:class:`~exudyn_worm.setups.wholedrive.Drive`).
     span : float, optional
         Search range factor, > 1.
 
@@ -112,7 +112,7 @@ def StabilityHintData(parameters: Union[Drive, Dict[str, float]], span: float = 
         ``given``, ``below``, ``above`` (None where there is none within the span), ``unit``, ``ratioName``,
         ``ratioBelow``, ``ratioAbove``.
     """
-    ranges = StabilizingChanges(parameters, span)
+    ranges = StabilizingChanges(drive, span)
     parts = []
     for r in ranges:
         options = [f"{r.key} {op} {value:.3g} {r.unit} ({r.ratioName} {op} {value * r.ratioScale:.3g})"
@@ -123,24 +123,6 @@ def StabilityHintData(parameters: Union[Drive, Dict[str, float]], span: float = 
             + '; or for '.join(parts) + ' (nearest stable values found by a scan; '
             'exudyn-worm check recommends changes with a margin)')
     return {'text': text, 'span': span, 'nearestStable': [r.ToDict() for r in ranges]}
-
-
-def StabilityHint(parameters: Dict[str, float], span: float = 100.) -> str:
-    """One-line design hint for an unstable drive (the ``text`` of :func:`StabilityHintData`).
-
-    Parameters
-    ----------
-    parameters : dict
-        Flat parameter dictionary (see :func:`~exudyn_worm.setups.presets.DriveFromParameters`).
-    span : float, optional
-        Search range factor, > 1.
-
-    Returns
-    -------
-    str
-        One line starting with ``Hint:``.
-    """
-    return StabilityHintData(parameters, span)['text']
 
 
 COMMAND = Subcommand('stability', 'linear stability (chatter) analysis of a parameter set', _AddArguments, _Run)

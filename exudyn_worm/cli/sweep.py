@@ -61,7 +61,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _Study(args: argparse.Namespace):
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..setups.build import CheckReelChangerKeys
+    from ..setups.duty import CheckSimulationKeys
     from ..analysis.studygrid import ParseVariation, Study
     from .simulate import ParseWindows
     parameters = ParametersFromArgs(args)
@@ -75,7 +75,7 @@ def _Study(args: argparse.Namespace):
         both = [v.key for v in variations if v.key in fixed]
         if both:
             raise ValueError(f"'{both[0]}' is both set (--set) and varied (--vary); give it only once")
-        CheckReelChangerKeys({**parameters, **{v.key: v.values[0] for v in variations}}, 'sweep')
+        CheckSimulationKeys({**parameters, **{v.key: v.values[0] for v in variations}}, 'sweep')
         windows = ParseWindows(args.windows) if args.windows else None
         for name in ('end_time', 'step_size'):
             value = getattr(args, name)
@@ -109,8 +109,9 @@ def _DefaultMetric(study) -> str:
     linear verdict (window 1, the lowering, if no window belongs to it)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.studypoint import DecidingWindow
+    from ..setups.wholedrive import ResolveDrive
     with BadInput():
-        window = DecidingWindow(study.Parameters(0), study.windows, study.endTime)
+        window = DecidingWindow(ResolveDrive(parameters=study.Parameters(0)), study.windows, study.endTime)
     return f"w{1 if window is None else window}.{_DEFAULT_METRIC}"
 
 
@@ -119,6 +120,7 @@ def _Run(args: argparse.Namespace) -> int:
     from ..analysis.study import RunStudy
     from ..analysis.studygrid import CheckStudySize, ParseShard
     from ..analysis.studyfiles import StudySidecarPath
+    from ..analysis.reelchanger import RunSizeError
     study = _Study(args)
     with BadInput():              # a grid too large for one call is refused before anything is built or written
         CheckStudySize(study, ParseShard(args.shard), args.max_runs, 'sweep', ('--max-runs', '--shard'))
@@ -160,7 +162,7 @@ def _Run(args: argparse.Namespace) -> int:
         print(f"exudyn-worm: warning: {failed} of {len(result.rows)} runs failed; their reason is in the "
               f"'error' column{' of ' + repr(str(args.output)) if args.output else ' (--json or --output)'}"
               + ('; runs longer than the step limit are refused: raise it with --max-steps N'
-                 if any('more than the limit maxSteps' in (r['error'] or '') for r in result.rows) else ''),
+                 if any((r['error'] or '').startswith(RunSizeError.__name__ + ':') for r in result.rows) else ''),
               file=sys.stderr)
     return 1 if failed else 0                            # as documented: 1 when any run failed
 

@@ -1,4 +1,4 @@
-"""The drive of a parameter set, built in a new Exudyn system: :func:`BuildReelChanger`.
+"""The one-angle model of a drive, added to an Exudyn system: :func:`BuildReelChanger`.
 
 Motor (prescribed rotation phi0, or a free motor on its torque-speed characteristic) -- elastic shaft kT, dT --
 worm J1 -- worm-gear mesh -- wheel J2 -- the duty's load (for the paper's reel changer of section 3.2 the lever
@@ -12,7 +12,7 @@ steady state (:func:`~exudyn_worm.items.equilibrium.SteadyInitialState`). Solvin
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Dict, Mapping, Optional, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 from .._checks import CheckBool, CheckPositive
 from ..items.connector import CreateWormAxialBearing, CreateWormGear, WormGearConnector
@@ -22,24 +22,23 @@ from ..model.contact import ContactOptions
 from ..model.friction import MATH_OPS
 from ..model.drive import ElasticDrive
 from ..model.profiles import ConstantSpeed, ConstantTorque
-from .duty import CheckDutyKeys, IsReelChangerDuty, LoadFromParameters, MotorFromParameters, MotorType, SteadyMotorSpeed
-from .presets import (REEL_KEYS, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain, ElasticDriveFromParameters, LoadSideChain)
-from ..params.parameters import MissingParameterError
+from .duty import CheckSimulationKeys, SteadyMotorSpeed
+from .wholedrive import CheckDrive, Drive
 
 __all__ = ['ReelChangerModel', 'BuildReelChanger', 'CheckReelChangerKeys', 'CheckModelOptions']
 
 _MOTOR_INERTIA = 1e-3   # kg*m^2; the motor node is prescribed, its inertia does not matter
 
 
-def CheckReelChangerKeys(parameters: Mapping[str, float], where: str) -> None:
-    """Refuse a parameter set without the reel changer's own keys (``REEL_KEYS``: loadMass, leverArm,
-    motorSpeed), e.g. the ``chart`` preset, naming the missing ones and how to give them; for another duty
-    (``loadType``, ``motorType``: :mod:`exudyn_worm.setups.duty`) the keys that duty needs.
+def CheckReelChangerKeys(drive: Drive, where: str) -> None:
+    """Refuse a drive without a duty to simulate: without the reel changer's own keys (``REEL_KEYS``: loadMass,
+    leverArm, motorSpeed), e.g. the ``chart`` preset, naming the missing ones and how to give them; for another
+    duty (``loadType``, ``motorType``: :mod:`exudyn_worm.setups.duty`) the keys that duty needs.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive
+        The drive.
     where : str
         Who needs them (function or command), first in the message.
 
@@ -47,19 +46,10 @@ def CheckReelChangerKeys(parameters: Mapping[str, float], where: str) -> None:
     ------
     MissingParameterError
         A ValueError naming the missing keys, if a key is missing.
-    ValueError, TypeError
-        If ``parameters`` is not a mapping or has an unknown key or two forms of one quantity
-        (:func:`~exudyn_worm.setups.presets.CheckParameterKeys`).
+    TypeError
+        If ``drive`` is not a :class:`~exudyn_worm.setups.wholedrive.Drive`.
     """
-    CheckParameterKeys(parameters, where)
-    if not IsReelChangerDuty(parameters):         # another duty (loadType / motorType): its own keys
-        CheckDutyKeys(parameters, where)
-        return
-    missing = [k for k in REEL_KEYS if k not in parameters]
-    if missing:
-        raise MissingParameterError(f"{where}: the reel-changer simulation needs {', '.join(REEL_KEYS)}; missing "
-                                    f"{', '.join(missing)} (use a reel-P* preset or give them with --set KEY=VALUE "
-                                    f"or in the config file)", missing)
+    CheckSimulationKeys(CheckDrive(where, drive).parameters, where)
 
 
 def CheckModelOptions(where: str, contactOptions: ContactOptions, profile: Any, useSymbolic: bool,
@@ -100,9 +90,9 @@ class ReelChangerModel:
     Attributes
     ----------
     systemContainer : exudyn.SystemContainer
-        The container of ``mbs`` (kept alive with it).
+        The container of ``mbs`` (``mbs.GetSystemContainer()``).
     mbs : exudyn.MainSystem
-        The system, assembled.
+        The system the items were added to (not assembled).
     drive : ElasticDrive
         The two-mass drive of eqs. (1)-(2).
     load : GravityLeverTorque
@@ -135,18 +125,23 @@ class ReelChangerModel:
     loadChain: Tuple[Tuple[float, float, float], ...] = ()
 
 
-def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
+def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = ContactOptions(),
                      useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None) -> ReelChangerModel:
-    """Build the reel changer of section 3.2 in a new Exudyn system.
+    """Add the one-angle model of a drive to ``mbs``: motor, drive shaft, worm, mesh, wheel, the chains, the
+    worm's axial bearing and the duty's load, each rotor with its angle (the reel changer of section 3.2 and any
+    other duty).
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set (see :mod:`exudyn_worm.setups.presets`), including ``loadMass`` (kg), ``leverArm`` (m)
-        and ``motorSpeed`` (rad/s), or another duty (``loadType``, ``motorType``: :mod:`exudyn_worm.setups.duty`; the
-        load acts where the lever would); optional drive-side chain ``J4, k4, d4, J5, ...`` (rotors ``inertia4``,
-        ... and shafts ``springDamper4``, ...), load-side chain ``JL1, kL1, dL1, ...`` (rotors ``loadInertia1``,
-        ... and shafts ``loadShaft1``, ...; the load acts on the last one) and axial bearing ``kA, dA, mA``.
+    mbs : exudyn.MainSystem
+        The system to add the items to (``SC.AddSystem()``); it is not assembled here.
+    drive : Drive
+        The drive (:func:`~exudyn_worm.setups.wholedrive.ResolveDrive`) with a duty: ``loadMass`` (kg),
+        ``leverArm`` (m) and ``motorSpeed`` (rad/s) of the reel changer, or another duty (``loadType``,
+        ``motorType``: :mod:`exudyn_worm.setups.duty`; the load acts where the lever would). Its drive-side chain
+        gives the rotors ``inertia4``, ... and shafts ``springDamper4``, ..., its load-side chain the rotors
+        ``loadInertia1``, ... and shafts ``loadShaft1``, ... (the load acts on the last one), its axial bearing the
+        node ``wormAxial``.
     contactOptions : ContactOptions
         Options of the worm-gear contact law.
     useSymbolic : bool
@@ -156,43 +151,51 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
         all rotors start at rest with zero angles.
     profile : optional
         Motor motion: an object with ``AngleAndSpeed(t, ops)`` such as :class:`ConstantSpeed` or
-        :class:`~exudyn_worm.model.profiles.StartStopProfile` (default: the duty's motor,
-        :func:`~exudyn_worm.setups.duty.MotorFromParameters`: :class:`ConstantSpeed` at ``motorSpeed`` for the reel changer).
+        :class:`~exudyn_worm.model.profiles.StartStopProfile` (default: the drive's motor, ``drive.motor``:
+        :class:`ConstantSpeed` at ``motorSpeed`` for the reel changer).
 
     Returns
     -------
     ReelChangerModel
+        What was added: rotors, connector, sensors, the axial bearing.
 
     Raises
     ------
     ValueError, TypeError
-        For a bad parameter set (:func:`~exudyn_worm.setups.presets.DriveFromParameters`, :func:`CheckReelChangerKeys`),
-        ``contactOptions`` that is not a :class:`~exudyn_worm.model.contact.ContactOptions`, or a ``profile`` without
-        ``AngleAndSpeed``.
+        For a drive without a duty (:func:`CheckReelChangerKeys`), ``contactOptions`` that is not a
+        :class:`~exudyn_worm.model.contact.ContactOptions`, or a ``profile`` without ``AngleAndSpeed``.
+
+    Examples
+    --------
+    >>> import exudyn as exu
+    >>> from exudyn_worm.setups.wholedrive import ResolveDrive
+    >>> mbs = exu.SystemContainer().AddSystem()
+    >>> model = BuildReelChanger(mbs, ResolveDrive('reel-P1'))
+    >>> sorted(model.rotors)
+    ['motor', 'wheel', 'worm']
     """
     import exudyn as exu
     from exudyn.itemInterface import SensorNode
 
     w = 'BuildReelChanger'
-    CheckParameterKeys(parameters, w)
     CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
-    drive = ElasticDriveFromParameters(parameters)
-    CheckReelChangerKeys(parameters, w)
-    if MotorType(parameters) in ('constantSpeed', 'startStop'):
-        CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
-    load = LoadFromParameters(parameters, w)            # the duty: lever (reel changer), constant, table or None
+    CheckReelChangerKeys(drive, w)
+    whole, drive = drive, drive.elastic
+    if whole.motorType in ('constantSpeed', 'startStop'):
+        CheckPositive(w, 'motorSpeed', whole.parameters['motorSpeed'], 'rad/s')
+    load = whole.load                                   # the duty: lever (reel changer), constant, table or None
     characteristic = None                               # a free motor on its torque-speed line, else prescribed
-    if MotorType(parameters) == 'characteristic':
+    if whole.hasMotorCharacteristic:
         if profile is not None:
-            raise ValueError(f"{w}: 'profile' prescribes the motor, but the parameter set drives it by its "
+            raise ValueError(f"{w}: 'profile' prescribes the motor, but the drive drives it by its "
                              f"characteristic (motorType = characteristic); give one of them")
-        characteristic = MotorFromParameters(parameters, w)
-        profile = ConstantSpeed(SteadyMotorSpeed(parameters, w))          # its start: the steady speed
-    profile = profile if profile is not None else MotorFromParameters(parameters, w)
+        characteristic = whole.motor
+        profile = ConstantSpeed(SteadyMotorSpeed(whole.parameters, w))          # its start: the steady speed
+    profile = profile if profile is not None else whole.motor
     motorSpeed = float(profile.AngleAndSpeed(0., MATH_OPS)[1])         # the motor's speed at t = 0
-    chain = tuple(DriveSideChain(parameters))
-    loadChain = tuple(LoadSideChain(parameters))
-    bearing = AxialBearingFromParameters(parameters)
+    chain = whole.driveSideChain
+    loadChain = whole.loadSideChain
+    bearing = whole.axialBearing
 
     if startFromEquilibrium:
         init = SteadyInitialState(drive, load or ConstantTorque(0.), motorSpeed, contactOptions, bearing, chain,
@@ -201,9 +204,7 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
     else:
         init, init0 = {}, (0., 0.)
 
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    motor = CreateRotor(mbs, _MOTOR_INERTIA if characteristic is None else parameters['motorInertia'],
+    motor = CreateRotor(mbs, _MOTOR_INERTIA if characteristic is None else whole.freeMotor[0],
                         initialAngle=init0[0], initialSpeed=init0[1], name='motor')
     worm = CreateRotor(mbs, drive.J1, initialAngle=init.get('phi1', 0.), initialSpeed=init.get('omega1', 0.),
                        name='worm')
@@ -244,4 +245,5 @@ def BuildReelChanger(parameters: Mapping[str, float], contactOptions: ContactOpt
         for prefix, ovt in quantities:
             sensors[prefix + index] = mbs.AddSensor(SensorNode(nodeNumber=rotor['nodeNumber'], outputVariableType=ovt,
                                                                storeInternal=True, writeToFile=False))
-    return ReelChangerModel(SC, mbs, drive, load, motorSpeed, connector, rotors, sensors, axial, chain, loadChain)
+    return ReelChangerModel(mbs.GetSystemContainer(), mbs, drive, load, motorSpeed, connector, rotors, sensors, axial,
+                            chain, loadChain)

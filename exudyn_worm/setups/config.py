@@ -46,7 +46,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-__all__ = ['DEFAULT_PRESET', 'CONFIG_KEYS', 'ParseQuantity', 'ParseSetOption', 'LoadConfig', 'ResolveParametersWithSources',
+__all__ = ['DEFAULT_PRESET', 'CONFIG_KEYS', 'ParseQuantity', 'ParseSetOption', 'LoadConfig', 'LoadedConfig', 'ResolveParametersWithSources',
            'ResolveParameters']
 
 #: preset used when neither an explicit preset nor a config file names one
@@ -185,6 +185,11 @@ def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None, folde
     return {'preset': preset, 'parameters': parameters, 'wholeDrive': wholeDrive, 'locations': locations}
 
 
+class LoadedConfig(dict):
+    """A drive file as :func:`LoadConfig` read it (``preset``, ``parameters``, ``wholeDrive``, ``locations``): what
+    :func:`ResolveParametersWithSources` takes instead of the path, so that a command reads its file once."""
+
+
 def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
     """Read a TOML config file.
 
@@ -224,7 +229,7 @@ def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
         raise ValueError(f"{where}: not valid TOML: {err}") from None
     except UnicodeDecodeError as err:
         raise ValueError(f"{where}: not valid TOML (not UTF-8 text: {err.reason})") from None
-    return _ConfigFromData(data, where, text, os.path.dirname(os.path.abspath(path)))
+    return LoadedConfig(_ConfigFromData(data, where, text, os.path.dirname(os.path.abspath(path))))
 
 
 def ResolveParameters(preset: Optional[str] = None,
@@ -274,8 +279,8 @@ def ResolveParametersWithSources(preset: Optional[str] = None,
     ----------
     preset : str, optional
         As for :func:`ResolveParameters`.
-    config : str, path-like or dict, optional
-        As for :func:`ResolveParameters`.
+    config : str, path-like, dict or LoadedConfig, optional
+        As for :func:`ResolveParameters`, or a file :func:`LoadConfig` has read already.
     sets : iterable of str or (str, float)
         As for :func:`ResolveParameters`.
 
@@ -287,6 +292,8 @@ def ResolveParametersWithSources(preset: Optional[str] = None,
     """
     if config is None:
         cfg = {'preset': None, 'parameters': {}, 'wholeDrive': False, 'locations': {}}
+    elif isinstance(config, LoadedConfig):                 # read already (by the command that resolves it)
+        cfg = config
     elif isinstance(config, Mapping):
         cfg = _ConfigFromData(config, 'ResolveParameters: config')
     elif isinstance(config, (str, os.PathLike)):

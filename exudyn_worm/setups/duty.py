@@ -35,7 +35,7 @@ from typing import Any, List, Mapping, Optional, Tuple
 
 import numpy as np
 
-from .presets import AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain
+from .presets import REEL_KEYS, AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain
 from ..params.parameters import MissingParameterError
 from ..model.profiles import (ConstantSpeed, ConstantTorque, GravityLeverTorque, LinearMotorCharacteristic, SpeedTable,
                        StartStopProfile, TorqueTable)
@@ -44,6 +44,7 @@ from ..items.equilibrium import SteadyInitialState
 
 __all__ = ['LOAD_TYPES', 'MOTOR_TYPES', 'LoadType', 'MotorType', 'DutyKeys', 'CheckDutyKeys', 'LoadFromParameters',
            'MotorFromParameters', 'MotorMotion', 'SteadyMotorSpeed', 'IsReelChangerDuty', 'DefaultEndTime',
+           'CheckSimulationKeys',
            'DutyPhases']
 
 #: the keys each load type needs
@@ -126,6 +127,33 @@ def IsReelChangerDuty(parameters: Mapping) -> bool:
         Flat parameter set.
     """
     return LoadType(parameters) == 'lever' and MotorType(parameters) == 'constantSpeed'
+
+
+def CheckSimulationKeys(parameters: Mapping, where: str) -> None:
+    """Refuse a parameter set without a duty to simulate: the reel changer's own keys (``REEL_KEYS``: loadMass,
+    leverArm, motorSpeed), e.g. missing in the ``chart`` preset, named with how to give them; for another duty
+    (``loadType``, ``motorType``) the keys that duty needs (:func:`CheckDutyKeys`).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (at the boundary, before it is resolved into a drive).
+    where : str
+        Who needs them (function or command), first in the message.
+
+    Raises
+    ------
+    MissingParameterError
+        A ValueError naming the missing keys.
+    """
+    if not IsReelChangerDuty(parameters):         # another duty (loadType / motorType): its own keys
+        CheckDutyKeys(parameters, where)
+        return
+    missing = [k for k in REEL_KEYS if k not in parameters]
+    if missing:
+        raise MissingParameterError(f"{where}: the reel-changer simulation needs {', '.join(REEL_KEYS)}; missing "
+                                    f"{', '.join(missing)} (use a reel-P* preset or give them with --set KEY=VALUE "
+                                    f"or in the config file)", missing)
 
 
 def _Table(parameters: Mapping, key: str, where: str):

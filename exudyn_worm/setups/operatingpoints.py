@@ -79,8 +79,8 @@ class DutyPoint:
     loadTorque : float
         Load torque in N*m (signed, on the wheel or the last load-side inertia): the largest magnitude in this
         direction of power flow within the phase.
-    window : (float, float)
-        The steady phase in s.
+    window : (float, float) or None
+        The steady phase in s; None for a point that is not of the duty's time line (a chart's speed).
     source : str
         Which part of the duty (``'constant speed'``, ``'speed table'``, ``'start/stop plateau'``,
         ``'characteristic'``).
@@ -90,7 +90,7 @@ class DutyPoint:
     phase: str
     motorSpeed: float
     loadTorque: float
-    window: Tuple[float, float]
+    window: Optional[Tuple[float, float]]
     source: str
     operatingPoint: OperatingPoint
 
@@ -101,6 +101,8 @@ class DutyPoint:
 
     def Label(self) -> str:
         """E.g. ``'lowering at -100 rpm (speed table, 1.8-2.8 s)'``."""
+        if self.window is None:
+            return f"{self.phase} at {self.motorSpeed * _RPM:.4g} rpm ({self.source})"
         return (f"{self.phase} at {self.motorSpeed * _RPM:.4g} rpm ({self.source}, "
                 f"{self.window[0]:.4g}-{self.window[1]:.4g} s)")
 
@@ -109,7 +111,7 @@ class DutyPoint:
         op = self.operatingPoint
         return {'phase': self.phase, 'motorSpeed': self.motorSpeed, 'loadTorque': self.loadTorque,
                 'slidingSpeed': op.slidingSpeed, 'mu': op.mu, 'dmuDv': op.dmuDv, 'normalForce': op.normalForce,
-                'S': op.S, 'window': list(self.window), 'source': self.source}
+                'S': op.S, 'window': None if self.window is None else list(self.window), 'source': self.source}
 
 
 def _OneRotation(drive: Drive, speed: float) -> float:

@@ -56,7 +56,8 @@ __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', '
            'ExtraComponents',
            'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
            'FrictionLawFromParameters',
-           'DriveFromParameters', 'ElasticDriveFromParameters', 'ParameterKey', 'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
+           'DriveFromParameters', 'ElasticDriveFromParameters', 'ElasticDriveWithGear', 'GEAR_FREE_KEYS', 'GearFreeKeys',
+           'ParameterKey', 'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
            'AxialBearingFromParameters', 'ShaftSupportsFromParameters', 'SHAFT_KEYS', 'MAX_RATE', 'MIN_RATE_SPREAD']
 
 #: keys of the elastic drive (Figure 2): the drive-file tables [gear], [worm], [wheel], [driveShaft]
@@ -560,7 +561,50 @@ def _BuildElasticDrive(parameters: Mapping[str, float], where: str) -> ElasticDr
     p = dict(parameters)
     CheckParameters(p)                   # a value out of range (z1 = 1.5) is named before the keys it leaves missing
     _Require(p, ('alphaN',) + MissingGeometryKeys(p) + ('kV', 'J1', 'J2', 'kT'), where)
-    gear = GearFromParameters(p, where=where)
+    return ElasticDriveWithGear(GearFromParameters(p, where=where), p, where)
+
+
+#: the keys of the two-mass core that never change its gear: a drive changed only in these keeps its gear
+#: (:meth:`~exudyn_worm.setups.wholedrive.Drive.Replace`); J2 only while the mesh damping is given as dV (with DV,
+#: dV = 2 DV sqrt(kV r2^2 J2) / r2^2 of eq. (23) depends on it)
+GEAR_FREE_KEYS = ('J1', 'kT', 'dT', 'DT', 'DTV')
+
+
+def GearFreeKeys(parameters: Mapping[str, float]) -> Tuple[str, ...]:
+    """The keys of ``parameters`` whose change leaves the gear as it is (:data:`GEAR_FREE_KEYS`, and J2 unless the
+    mesh damping is the measure DV).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set (SI).
+
+    Returns
+    -------
+    tuple of str
+    """
+    return GEAR_FREE_KEYS + (() if 'DV' in parameters else ('J2',))
+
+
+def ElasticDriveWithGear(gear: WormGear, parameters: Mapping[str, float], where: str = 'ElasticDriveWithGear'
+                         ) -> ElasticDrive:
+    """The two-mass core of a parameter set whose gear is built already: J1, J2, kT and the shaft damping in its
+    form (``dT``, ``DT`` or ``DTV`` with eqs. (22)-(24)), checked for scale.
+
+    Parameters
+    ----------
+    gear : WormGear
+        The drive's gear (:func:`GearFromParameters`).
+    parameters : mapping
+        Flat parameter set (SI) with J1, J2, kT and one form of the shaft damping.
+    where : str, optional
+        Prefix of error messages.
+
+    Returns
+    -------
+    ElasticDrive
+    """
+    p = parameters
     if 'dT' in p:
         dT = p['dT']
     else:

@@ -20,11 +20,10 @@ Checks made when the drive is built (so that no command meets them later):
 """
 from __future__ import annotations
 
-import collections
 import enum
 import os
 import types
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Dict, Iterable, Mapping, Optional, Tuple, Union
 
 from ..items.bearings import ShaftSupports
@@ -34,11 +33,12 @@ from ..model.drive import ElasticDrive
 from ..model.gear import WormGear
 from .config import ResolveParametersWithSources
 from .duty import LOAD_TYPES, MOTOR_TYPES, LoadType, MotorType, _LoadLaw, _MotorLaw
-from .presets import (ParameterKey, ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
-                      ElasticDriveFromParameters, LoadSideChain, ShaftSupportsFromParameters)
-from ..params.parameters import MissingParameterError
+from .presets import (AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
+                      ElasticDriveFromParameters, ElasticDriveWithGear, GearFreeKeys, LoadSideChain,
+                      ShaftSupportsFromParameters)
+from ..params.parameters import PARAMETERS, MissingParameterError
 
-__all__ = ['Component', 'Drive', 'ResolveDrive', 'AsDrive']
+__all__ = ['Component', 'Drive', 'ResolveDrive', 'CheckDrive']
 
 
 class Component(str, enum.Enum):
@@ -168,21 +168,55 @@ class Drive:
                     name=name)
         return drive
 
-    def Replace(self, changes: Mapping[str, Any]) -> 'Drive':
-        """A new drive with ``changes`` applied (one form of a quantity replaces another, as
-        :func:`~exudyn_worm.setups.presets.ApplyOverrides`), checked like the original.
+    def Replace(self, **changes: Any) -> 'Drive':
+        """A new drive with some values changed, checked where it changed.
+
+        Each new value is checked against the parameter registry (kind, range, unit); one form of a quantity
+        replaces the others (``DT=...`` drops ``dT``, as :func:`~exudyn_worm.setups.presets.ApplyOverrides`).
+        Inertias, the shaft stiffness and the dampings that leave the gear as it is
+        (:func:`~exudyn_worm.setups.presets.GearFreeKeys`) keep the gear, the chains, the bearings, the duty and
+        its operating points (they do not depend on them); any other change builds the drive anew, with all its
+        checks. This is how variations make their drives (the design check's trials, scans, studies).
 
         Parameters
         ----------
-        changes : mapping
-            New values by parameter key (SI).
+        **changes : float or str
+            New values by parameter key (SI), e.g. ``drive.Replace(J1=0.3, DV=0.056)``.
 
         Returns
         -------
         Drive
+
+        Raises
+        ------
+        ValueError, TypeError
+            For an unknown key or a value out of range; for a changed drive that fails its checks.
+
+        Examples
+        --------
+        >>> drive = ResolveDrive('reel-P1')
+        >>> drive.Replace(J1=0.3).elastic.J1, drive.Replace(J1=0.3).gear is drive.gear
+        (0.3, True)
         """
-        p = ApplyOverrides(self.parameters, changes)
+        where = f'{self.name}: Replace' if self.name != 'drive' else 'Drive.Replace'
+        for key, value in changes.items():
+            PARAMETERS.Check(key, value, where)
+        p = dict(self.parameters)
+        for key, value in changes.items():
+            for alt in PARAMETERS.Alternatives(key):
+                p.pop(alt, None)
+            p[key] = value
         sources = {**{k: v for k, v in self.sources.items() if k in p}, **{k: 'changed' for k in changes}}
+        if not changes:
+            return self
+        if set(changes) <= set(GearFreeKeys(p)) and set(changes) <= set(GearFreeKeys(self.parameters)):
+            # the gear, the chains, the bearings and the duty stay; the operating points do not depend on them
+            elastic = ElasticDriveWithGear(self.gear, p, where)
+            drive = replace(self, parameters=types.MappingProxyType(p), sources=types.MappingProxyType(sources),
+                            elastic=elastic, _cache={})
+            if 'dutyOperatingPoints' in self._cache:
+                drive._cache['dutyOperatingPoints'] = self._cache['dutyOperatingPoints']
+            return drive
         return Drive.FromParameters(p, sources, self.name)
 
     @property
@@ -319,6 +353,7 @@ def ResolveDrive(preset: Optional[str] = None, config: Union[None, str, Mapping]
     if parameters is not None:
         if preset is not None or config is not None:
             raise ValueError("ResolveDrive: give either 'parameters' or 'preset'/'config', not both")
+        CheckParameterKeys(parameters, 'ResolveDrive')        # a message that names the function the user called
         sets = list(sets)
         if not sets:
             return Drive.FromParameters(parameters, name='drive')
@@ -332,38 +367,34 @@ def ResolveDrive(preset: Optional[str] = None, config: Union[None, str, Mapping]
     return Drive.FromParameters(p, sources, name=name)
 
 
-def AsDrive(drive: Union[Drive, Mapping[str, Any]], where: str = 'AsDrive') -> Drive:
-    """``drive`` itself, or the :class:`Drive` of a flat parameter set (for functions that take either).
+def CheckDrive(where: str, drive: Any, name: str = 'drive') -> Drive:
+    """``drive`` if it is a :class:`Drive`; else a TypeError that says how to make one.
+
+    Below the boundary every function takes the resolved drive, never a flat parameter set: a set becomes a drive
+    once, with :func:`ResolveDrive` (``ResolveDrive(parameters=...)``).
 
     Parameters
     ----------
-    drive : Drive or mapping
-        A drive or a flat parameter set.
-    where : str, optional
-        Caller named in messages.
+    where : str
+        The caller, named in the message.
+    drive : object
+        What the caller received.
+    name : str, optional
+        The argument's name in the message.
 
     Returns
     -------
     Drive
+
+    Raises
+    ------
+    TypeError
+        If ``drive`` is not a :class:`Drive`.
     """
     if isinstance(drive, Drive):
         return drive
-    if isinstance(drive, ElasticDrive):
-        raise TypeError(f"{where}: 'drive' must be a Drive (exudyn_worm.ResolveDrive) or a flat parameter set, got "
-                        f"an ElasticDrive (the two-mass core only); for it use AnalyzeStability")
-    key = ParameterKey(drive)
-    if key is None:
-        return Drive.FromParameters(drive)
-    if key not in _RECENT:         # the same set passed again (a command's steps): the same drive, analysed once
-        _RECENT[key] = Drive.FromParameters(drive)
-        while len(_RECENT) > _RECENT_SIZE:
-            _RECENT.popitem(last=False)
-    _RECENT.move_to_end(key)
-    return _RECENT[key]
-
-
-#: the drives of the flat parameter sets AsDrive saw last, by content (a Drive is immutable, so it can be shared)
-_RECENT: 'collections.OrderedDict' = collections.OrderedDict()
-_RECENT_SIZE = 32
-
-
+    hint = ("; a flat parameter set becomes one with exudyn_worm.ResolveDrive(parameters=...)"
+            if isinstance(drive, Mapping) else
+            "; the two-mass core alone is analysed with AnalyzeStability" if isinstance(drive, ElasticDrive) else
+            "; a preset or a drive file becomes one with exudyn_worm.ResolveDrive(preset=..., config=...)")
+    raise TypeError(f"{where}: '{name}' must be a Drive (exudyn_worm.ResolveDrive), got {type(drive).__name__}{hint}")
