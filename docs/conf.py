@@ -24,6 +24,7 @@ import ast
 import importlib
 import os
 import pkgutil
+import re
 import subprocess
 import sys
 import time
@@ -349,6 +350,39 @@ def _ReexportedReference(app, env, node, contnode):
                                              node, contnode)
 
 
+#: an asterisk between a unit's letters or digits and a letter (``N*m*s/rad``, ``kg*m^2``): Markdown reads a pair of
+#: them as emphasis (``N<em>m</em>s/rad``)
+_UNIT_ASTERISK = re.compile(r'(?<=[A-Za-z0-9^)\]])\*(?=[A-Za-z])')
+_FENCE = re.compile(r'\s*(`{3,}|~{3,})')
+
+
+def EscapeUnitAsterisks(text: str) -> str:
+    """Markdown ``text`` with the asterisks inside units escaped (``N\\*m\\*s/rad``), outside code blocks and spans.
+
+    The reports the site includes from the repository (``validation/REPORT.md``, ...) are written by their own
+    commands and not edited by hand; their units are written as the code writes them (``N*m*s``).
+    """
+    out, fence = [], None
+    for line in text.split('\n'):
+        opening = _FENCE.match(line)
+        if fence is None and opening:
+            fence = opening.group(1)
+        elif fence is not None:
+            if line.strip() == fence or (line.strip().startswith(fence[0] * len(fence)) and not line.strip().strip(fence[0])):
+                fence = None
+        else:
+            parts = re.split(r'(`+[^`]*`+)', line)
+            line = ''.join(part if i % 2 else _UNIT_ASTERISK.sub(r'\\*', part) for i, part in enumerate(parts))
+        out.append(line)
+    return '\n'.join(out)
+
+
+def _EscapeIncluded(app, relativePath, parentDocname, content):
+    """``include-read``: the units of an included report (Markdown) are no emphasis."""
+    if str(relativePath).endswith('.md'):
+        content[0] = EscapeUnitAsterisks(content[0])
+
+
 def _CheckBuiltSite(app, exception):
     if exception is None and app.builder.format == 'html' and app.builder.name in ('html', 'dirhtml'):
         for problem in sitecheck.CheckSite(app.outdir):
@@ -360,6 +394,7 @@ def setup(app):
     app.connect('env-get-outdated', _AlwaysOutdated)
     app.connect('env-before-read-docs', _StartGallery)
     app.connect('source-read', _Generate)
+    app.connect('include-read', _EscapeIncluded)
     app.connect('missing-reference', _ReexportedReference)
     app.connect('build-finished', _CheckBuiltSite, priority=900)    # after MathJax is copied (priority 500)
     return {'parallel_read_safe': False}

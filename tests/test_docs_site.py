@@ -196,6 +196,41 @@ def test_sitecheck_finds_each_kind_of_problem(tmp_path):
     assert sitecheck.main([str(site)]) == 1
 
 
+def test_sitecheck_finds_a_code_fence_that_swallowed_text(tmp_path):
+    """A closing fence with text after it (```` ``` In --json the ````) leaves the block open: the paragraph and the
+    next example become one code block with a literal fence line in it."""
+    swallowed = ('<div class="highlight-bash"><div class="highlight"><pre><span></span>exudyn-worm chart\n'
+                 '<span class="err">```</span> In --json the\nranges are\n\n'
+                 '<span class="err">```</span>python\nfrom exudyn_worm import x\n</pre></div></div>')
+    sound = ('<div class="highlight"><pre>exudyn-worm chart\n</pre></div><p>In <code>--json</code> the ranges, '
+             'and a fence quoted inside a line: <code>```python</code></p><pre>s = "```" if x else y\n</pre>')
+    site = _Site(tmp_path, {'index.html': sound, 'charts.html': swallowed})
+    assert sitecheck.CheckSite(site) == [
+        "charts.html: a code block holds a Markdown code fence line '``` In --json the': text after a closing "
+        "fence keeps the block open",
+        "charts.html: a code block holds a Markdown code fence line '```python': text after a closing fence keeps "
+        "the block open"]
+
+
+def test_sitecheck_finds_unit_asterisks_read_as_emphasis(tmp_path):
+    """``N*m*s/rad`` in Markdown shows as "Nms/rad" with an italic m; ``kg*m^2 ... N*m`` italicizes the text
+    between the two units."""
+    site = _Site(tmp_path, {
+        'index.html': '<p>A setting\n<em>passes</em> if both; <em>stable with margin</em>, (<em>S</em> = -1); '
+                      'N·m·s/rad, N*m*s/rad, <code>N*m</code></p><pre>a <em>b</em>c</pre>'
+                      '<dt><em class="sig-param">mbs</em></dt>',
+        'parameters.html': '<td><p>N<em>m</em>s/rad</p></td>',
+        'presets.html': '<p>J2 = 33 kg<em>m^2, kT = 7000 N</em>m/rad</p><p>dV = 1250 N<em>s/m), D_V = 0.028 '
+                        '(set (25), dV = 625 N</em>s/m</p>'})
+    assert sitecheck.CheckSite(site) == [
+        "parameters.html: emphasis inside a word, 'N<em>m</em>s/rad': asterisks of a unit (N*m*s) read as Markdown "
+        "emphasis; escape them (N\\*m\\*s) or write N·m·s",
+        "presets.html: emphasis inside a word, 'J2 = 33 kg<em>m^2, kT = 7000 N</em>m/rad': asterisks of a unit "
+        "(N*m*s) read as Markdown emphasis; escape them (N\\*m\\*s) or write N·m·s",
+        "presets.html: emphasis inside a word, 'dV = 1250 N<em>s/m), D_V = 0.028 (set (25), dV = 625 N</em>s/m': "
+        "asterisks of a unit (N*m*s) read as Markdown emphasis; escape them (N\\*m\\*s) or write N·m·s"]
+
+
 def test_sitecheck_refuses_a_folder_that_is_no_site(tmp_path, capsys):
     with pytest.raises(ValueError, match="'siteDir' must be a built HTML site"):
         sitecheck.CheckSite(tmp_path)
