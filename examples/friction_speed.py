@@ -202,13 +202,18 @@ def _Plot(out: Path) -> None:
     for name, mu in FrictionCurves(v).items():
         ax.plot(v, mu, label=name)
     ax.set_xlabel('sliding speed v [m/s]')
-    ax.set_ylabel('friction coefficient mu')
+    ax.set_ylabel(r'friction coefficient $\mu$')
     ax.legend()
     fig.savefig(out / 'mu_of_v.png', dpi=120)
     charts = SpeedChart()
     ax = charts['stribeck'].plot()
     ax.plot(charts['constant'].motorSpeeds / RPM, charts['constant'].Curve(-1).maxRealPart, color='0.5',
-            label='constant mu, lowering')
+            label=fr"largest real part, lowering, constant $\mu$ = {charts['constant'].mu[0]:.3g}")
+    for legend in list(ax.figure.legends):        # the legend below the axes, with the line just drawn
+        legend.remove()
+    lines = [line for a in ax.figure.axes for line in a.get_lines() if not line.get_label().startswith('_')]
+    ax.figure.legend(lines, [line.get_label() for line in lines], loc='outside lower center', ncols=2, fontsize=8,
+                     frameon=False)
     ax.figure.savefig(out / 'max_real_part_over_speed.png', dpi=120)
     sim = ChatterAmplitudes()
     fig, ax = plt.subplots(figsize=(7, 4), layout='constrained')
