@@ -198,12 +198,12 @@ def _Plot(out: Path) -> None:
     import matplotlib.pyplot as plt
     out.mkdir(parents=True, exist_ok=True)
     v = np.linspace(0., 3., 400)
-    fig, ax = plt.subplots(figsize=(7, 4), layout='constrained')
+    fig, ax = plt.subplots(figsize=(8.5, 4), layout='constrained')
     for name, mu in FrictionCurves(v).items():
         ax.plot(v, mu, label=name)
     ax.set_xlabel('sliding speed v [m/s]')
     ax.set_ylabel(r'friction coefficient $\mu$')
-    ax.legend()
+    ax.legend(loc='upper left', bbox_to_anchor=(1.01, 1.), frameon=False)
     fig.savefig(out / 'mu_of_v.png', dpi=120)
     charts = SpeedChart()
     ax = charts['stribeck'].plot()
@@ -222,7 +222,7 @@ def _Plot(out: Path) -> None:
     ax.set_xlabel('motor speed [rpm]')
     ax.set_ylabel("lowering: J2 max |phi2''| [rad/s^2]")
     fig.savefig(out / 'chatter_amplitude_over_speed.png', dpi=120)
-    fig, ax = plt.subplots(figsize=(7, 4), layout='constrained')
+    fig, ax = plt.subplots(figsize=(8.5, 4), layout='constrained')
     for law in ('constant', 'agma'):
         r = RunAway(law)
         ax.plot(r['time'], r['omega1'] / RPM, label=f'{law}')
@@ -231,7 +231,7 @@ def _Plot(out: Path) -> None:
     hold = HoldAtRest('agma')
     ax.plot(hold['time'], hold['omega1'] / RPM, label='agma, from rest (holds)')
     ax.set_title('reel at the horizontal, lowering, motor gone', loc='left', fontsize=10)
-    ax.legend()
+    ax.legend(loc='upper left', bbox_to_anchor=(1.01, 1.), frameon=False)
     fig.savefig(out / 'run_away.png', dpi=120)
     for n, a, c in zip(sim['rpm'], sim['amplitude'], sim['chatter']):
         print(f"{n:7.1f} rpm: lowering J2 max|phi2''| = {a:.4g} rad/s^2{' (chatter)' if c else ''}")

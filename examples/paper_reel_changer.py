@@ -20,7 +20,7 @@ paper's zero backlash of the single-case figures (the backlash studies keep 0.25
 Every case runs one full rotation (8 s) except P7 (Figures 13-17), which runs 1.25 rotations (10 s)
 to show the whole second lifting phase, 6-10 s, that the paper discusses; ``--end-time`` sets all.
 
-Run ``python examples/paper_reel_changer.py`` (all figures, about 5 s) or e.g.
+Run ``python examples/paper_reel_changer.py`` (all figures) or e.g.
 ``python examples/paper_reel_changer.py --figures 8,9 --backlash 0.25 --out /tmp/reel``.
 The computation (:func:`RunPaperCases`, :func:`Summary`) is importable and checked by
 ``tests/test_example_reel_changer.py``; only :func:`main` writes files.

@@ -20,7 +20,7 @@ chart's colour (crossed hatches where regions overlap); a point closer than ZOOM
 chart on which it is stable (P3 and P5 next to D_TV = 25 in Figure 4; :func:`PointsToZoom`) is shown again in a
 zoomed inset whose title gives its verdict on every chart and its distance to that boundary.
 
-Run ``python examples/stability_charts.py --out DIR`` (about 4 s). The computation (:func:`ComputeFigures`,
+Run ``python examples/stability_charts.py --out DIR``. The computation (:func:`ComputeFigures`,
 :func:`Summary`) is importable and checked by ``tests/test_example_stability_charts.py``; only
 :func:`main` writes files.
 """

@@ -209,9 +209,9 @@ S_SIGN_NOTE = _S_NOTE = (r"$|S| = |\sigma s_f| < 1$ only while the flanks stick 
 def FrictionStateDrawn(result: 'SimulationResult', mask: Optional[np.ndarray] = None) -> np.ndarray:
     """The friction state s_f as drawn: one value per output time (the solver's steps), within [-1, 1].
 
-    While the flanks stick, s_f is the sticking force over mu |F_n|. The switch from sticking to sliding is
-    decided after a converged step, so in the one step before it the sticking force may exceed the friction
-    limit and the recorded value |s_f| exceed 1; the flanks slide from the next step, at s_f = +-1, which is
+    While the flanks stick, s_f is the sticking force over ``mu * abs(F_n)``. The switch from sticking to sliding
+    is decided after a converged step, so in the one step before it the sticking force may exceed the friction
+    limit and the recorded ``abs(s_f)`` exceed 1; the flanks slide from the next step, at s_f = +-1, which is
     what the figure shows. The value holds over its step (drawn as steps, not joined by slopes).
 
     Parameters
