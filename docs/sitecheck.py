@@ -1,4 +1,4 @@
-"""Checks of the built documentation site: every local link and anchor resolves, nothing is fetched from the network.
+r"""Checks of the built documentation site: every local link and anchor resolves, nothing is fetched from the network.
 
 Run on a built site (``docs/conf.py`` runs it at the end of every HTML build, so ``sphinx-build -W`` fails on a
 problem)::
@@ -17,7 +17,11 @@ It reads every ``*.html`` file below the folder and reports
   closing fence followed by text on its line does not close the block, so the text and the next example are
   shown as one code block with a literal fence line;
 - emphasis inside a word (``N<em>m</em>s/rad``): the asterisks of a unit (``N*m*s/rad``) read as Markdown
-  emphasis, so the reader sees "Nms/rad".
+  emphasis, so the reader sees "Nms/rad";
+- an equation with ``\tag`` inside the ``split`` environment that Sphinx wraps around a display equation with a
+  line break (``\\``): MathJax shows an error instead of the equation (write such an equation as an amsmath
+  block, ``\begin{equation*} \begin{aligned} ... \end{aligned} \tag{1} \end{equation*}``, which Sphinx does not
+  number again).
 
 Links to other sites (``<a href="https://...">``) are not followed: the check is about the site's own pages.
 Exit status 0 when there is no problem, 1 otherwise (one line per problem on stdout), 2 for a folder that is no
@@ -61,6 +65,8 @@ class PageLinks:
     wordEmphasis : list of str
         Emphasis (``<em>`` without a class) that begins or ends inside a word, shown as ``N<em>m</em>s/rad``
         with a few characters around it (the asterisks of a unit read as Markdown emphasis).
+    taggedSplits : list of str
+        The tags (``\tag{1}``) of display equations that have them inside a ``split`` environment.
     """
 
     def __init__(self) -> None:
@@ -70,6 +76,7 @@ class PageLinks:
         self.hasMath = False
         self.fenceLines: List[str] = []
         self.wordEmphasis: List[str] = []
+        self.taggedSplits: List[str] = []
 
 
 _FENCE_LINE = re.compile(r'^\s*(```|~~~)')
@@ -85,6 +92,7 @@ class _Parser(HTMLParser):
         super().__init__(convert_charrefs=True)
         self.page = page
         self.preDepth = 0
+        self.mathDepth = 0              # inside <div class="math">: the equation's TeX as MathJax gets it
         self.preText: List[str] = []
         self.before = ''               # the last characters of text outside code blocks
         self.emphasis: Optional[List[str]] = None     # text of the plain <em> being read
@@ -92,6 +100,8 @@ class _Parser(HTMLParser):
         self.afterEm: Optional[Tuple[str, str]] = None   # (text before, emphasized text) waiting for what follows
 
     def handle_data(self, data):
+        if self.mathDepth and '\\begin{split}' in data:
+            self.page.taggedSplits += re.findall(r'\\tag\{[^}]*\}', data.split('\\begin{split}', 1)[1])
         if self.preDepth:
             self.preText.append(data)
             return
@@ -110,6 +120,8 @@ class _Parser(HTMLParser):
             self.page.wordEmphasis.append(' '.join(part.strip() for part in shown))
 
     def handle_endtag(self, tag):
+        if tag == 'div' and self.mathDepth:
+            self.mathDepth -= 1
         if tag == 'pre' and self.preDepth:
             self.preDepth -= 1
             if not self.preDepth:
@@ -136,6 +148,10 @@ class _Parser(HTMLParser):
             self.page.anchors.add(a['name'])
         if 'math' in a.get('class', '').split():
             self.page.hasMath = True
+            if tag == 'div':
+                self.mathDepth += 1
+        elif tag == 'div' and self.mathDepth:
+            self.mathDepth += 1
         if tag == 'a' and 'href' in a:
             self.page.links.append((tag, a['href']))
         elif tag == 'link' and 'href' in a:
@@ -194,7 +210,8 @@ def CheckSite(siteDir) -> List[str]:
     -------
     list of str
         ``'<page>: ...'`` per broken local link or anchor, remote asset, page with equations but no math
-        renderer from the site, code fence line inside a code block and emphasis inside a word; sorted.
+        renderer from the site, code fence line inside a code block, emphasis inside a word and tagged equation
+        inside a ``split`` environment; sorted.
 
     Raises
     ------
@@ -226,6 +243,10 @@ def CheckSite(siteDir) -> List[str]:
         allStylesheets.update(stylesheets)
         problems.update(f'{where}: a code block holds a Markdown code fence line {line!r}: text after a closing '
                         f'fence keeps the block open' for line in page.fenceLines)
+        problems.update(f'{where}: equation {tag} is inside the split environment Sphinx wraps around a display '
+                        f'equation with a line break: MathJax shows an error; write it as an amsmath block '
+                        f'(\\begin{{equation*}} \\begin{{aligned}} ... \\end{{aligned}} \\tag{{..}} '
+                        f'\\end{{equation*}})' for tag in page.taggedSplits)
         problems.update(f'{where}: emphasis inside a word, {shown!r}: asterisks of a unit (N*m*s) read as Markdown '
                         f'emphasis; escape them (N\\*m\\*s) or write N·m·s' for shown in page.wordEmphasis)
         if page.hasMath and not renderers:

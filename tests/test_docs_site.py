@@ -231,11 +231,57 @@ def test_sitecheck_finds_unit_asterisks_read_as_emphasis(tmp_path):
         "asterisks of a unit (N*m*s) read as Markdown emphasis; escape them (N\\*m\\*s) or write N·m·s"]
 
 
+def test_sitecheck_finds_a_tag_inside_the_split_sphinx_adds(tmp_path):
+    """Sphinx wraps a display equation with a line break in ``split``, where MathJax refuses ``\\tag`` ("\\tag not
+    allowed in split environment", as MathJax 3 printed for eq. (16)); an amsmath block keeps its tag."""
+    site = _Site(tmp_path, {
+        'index.html': f'{_MATHJAX}<div class="math notranslate nohighlight">\\[\\begin{{equation*}}\\begin{{aligned}}'
+                      'a \\\\ b\\end{aligned}\\tag{1}\\end{equation*}\\]</div>'
+                      '<div class="math">\\[x \\tag{3}\\]</div>',
+        'model.html': f'{_MATHJAX}<div class="math notranslate nohighlight">\\[\\begin{{split}}\\begin{{aligned}}'
+                      'b_1 &= x\\\\ b_2 &= y\\end{aligned} \\tag{16}\\end{split}\\]</div>'},
+        files={'_static/mathjax/tex-chtml.js': 'x'})
+    assert sitecheck.CheckSite(site) == [
+        'model.html: equation \\tag{16} is inside the split environment Sphinx wraps around a display equation with '
+        'a line break: MathJax shows an error; write it as an amsmath block (\\begin{equation*} \\begin{aligned} ... '
+        '\\end{aligned} \\tag{..} \\end{equation*})']
+
+
 def test_sitecheck_refuses_a_folder_that_is_no_site(tmp_path, capsys):
     with pytest.raises(ValueError, match="'siteDir' must be a built HTML site"):
         sitecheck.CheckSite(tmp_path)
     assert sitecheck.main([str(tmp_path)]) == 2
     assert 'sitecheck.py: error:' in capsys.readouterr().err
+
+
+# ---- what docs/conf.py does to the pages (needs the docs extra) -------------------------------------------------
+
+def _Conf():
+    spec = importlib.util.spec_from_file_location('docs_conf', DOCS / 'conf.py')
+    conf = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(conf)
+    return conf
+
+
+@pytest.mark.skipif(importlib.util.find_spec('sphinx') is None, reason="needs the docs extra: pip install -e '.[docs]'")
+def test_included_reports_keep_the_asterisks_of_their_units():
+    """The reports the site includes write units as the code does (N*m*s); escaped, they are no emphasis."""
+    escape = _Conf().EscapeUnitAsterisks
+    text = ('dT = 0.741 N*m*s, J1 = 0.1 kg*m^2 and kT = 7000 N*m/rad; *stable* and **bold**, `N*m` in code\n'
+            '```text\nN*m*s\n```\nafter the block N*s/m')
+    assert escape(text) == ('dT = 0.741 N\\*m\\*s, J1 = 0.1 kg\\*m^2 and kT = 7000 N\\*m/rad; *stable* and **bold**, '
+                            '`N*m` in code\n```text\nN*m*s\n```\nafter the block N\\*s/m')
+
+
+@pytest.mark.skipif(importlib.util.find_spec('sphinx') is None, reason="needs the docs extra: pip install -e '.[docs]'")
+def test_command_output_shows_the_selected_lines_and_marks_the_rest():
+    conf = _Conf()
+    text = 'head\n  a 1\n  b 2\n  c 3\nVerdict: x\nHint: y\n'
+    assert conf.SelectLines(text, r'^head|b 2|^Verdict') == 'head\n  ...\n  b 2\n  ...\nVerdict: x'
+    assert conf.SelectLines(text, None) == text.rstrip()
+    assert conf.CommandLine('exudyn-worm simulate --preset reel-P1')[1:] == ['-m', 'exudyn_worm', 'simulate',
+                                                                           '--preset', 'reel-P1']
+    assert conf.CommandLine('python -m pytest -m "not slow"')[1:] == ['-m', 'pytest', '-m', 'not slow']
 
 
 # ---- the built site (needs the docs extra) ---------------------------------------------------------------------

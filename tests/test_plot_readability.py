@@ -158,17 +158,20 @@ def _Legends(fig):
 
 
 def _LegendsOverData(fig):
-    """(legend title or first label, axes label) of every legend or explanation box that overlaps an axes."""
+    """(legend title or first label, axes label) of every legend or explanation box that overlaps an axes (or the
+    figure's title)."""
     fig.draw_without_rendering()
     renderer = fig._get_renderer()
     hits = []
+    frames = [(ax.get_ylabel(), ax.get_window_extent(renderer)) for ax in fig.axes]
+    if fig._suptitle is not None:
+        frames.append(('figure title', fig._suptitle.get_window_extent(renderer)))
     for legend in _Legends(fig):
         box = legend.get_window_extent(renderer)
-        for ax in fig.axes:
-            frame = ax.get_window_extent(renderer)
+        for name, frame in frames:
             overlap = min(box.x1, frame.x1) - max(box.x0, frame.x0), min(box.y1, frame.y1) - max(box.y0, frame.y0)
             if overlap[0] > 0.5 and overlap[1] > 0.5:
-                hits.append((legend.get_title().get_text() or legend.get_texts()[0].get_text(), ax.get_ylabel()))
+                hits.append((legend.get_title().get_text() or legend.get_texts()[0].get_text(), name))
     return hits
 
 

@@ -287,8 +287,8 @@ def _DrawNormalForce(ax, result, mask, legend=True):
     ax.plot(t, -f2, color=_C_FLANK2, lw=_LINE_WIDTH, label=r'flank 2 ($\Delta s < 0$), drawn downward')
     ax.axhline(0., color='0.4', lw=0.6)
     ax.set_ylabel('$F_n$ [kN] (flank 1 up, flank 2 down)')
-    if legend:                                 # outside the axes, over no data
-        _FigureLegend(ax.figure, [ax], loc='outside upper center')
+    if legend:                                 # in the title, over no data
+        _SetTitle(ax, 'Normal force: flank 1 (blue) up, flank 2 (red) down', fontsize=10)
 
 
 def _FigureLegend(fig, axes, loc='outside lower center', **kwargs):
@@ -565,7 +565,8 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
         fig, axes = _NewFigure(2, 2, figsize=figsize or (12., 7.), sharex=True)
         for ax, k in zip(axes.flat, ('acceleration', 'speed', 'normalForce', 'driveTorque')):
             _Draw(k, ax, result, mask, interval, phases, twin=False)
-            _SetTitle(ax, _DEFAULT_TITLES[k].split(' and ')[0], fontsize=10)
+            if k != 'normalForce':             # its title names the flanks' colours
+                _SetTitle(ax, _DEFAULT_TITLES[k].split(' and ')[0], fontsize=10)
         for ax in axes[0]:
             ax.set_xlabel('')
         fig.suptitle(title)
