@@ -10,7 +10,9 @@ tests/test_example_friction_speed.py), drawn only when the file is run::
    472.5 rpm, v0 = 0.897 m/s) and the AGMA 6034 curve.
 2. :func:`SpeedChart`: the largest real part of the lowering state against motor speed, eq. (16) extended by the
    friction slope at each operating point (:func:`exudyn_worm.analysis.speedchart.SpeedStabilityChart`). With constant mu
-   it does not depend on speed; with the Stribeck law reel-P3 chatters between about 84 and 630 rpm.
+   it does not depend on speed; with the Stribeck law reel-P3 chatters while lowering between the boundaries near
+   85 and 610 rpm (``exudyn-worm chart --speed``, docs/charts.md); the example prints the unstable speeds of its own
+   grid, which lie inside them.
 3. :func:`ChatterAmplitudes`: the simulated chatter amplitude against speed: J2 max abs(phi2'') in the lowering
    phase of the reel-changer simulation (one run per speed, ending with the lowering phase).
 4. :func:`RunAway`, the dangerous case "statically but not dynamically self-locking": reel-P1's gear
