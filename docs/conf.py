@@ -22,8 +22,10 @@ from __future__ import annotations
 
 import ast
 import importlib
+import importlib.util
 import os
 import pkgutil
+import re
 import subprocess
 import sys
 import time
@@ -202,10 +204,11 @@ class _Gallery:
     def __init__(self) -> None:
         self.futures = {}
         self.folder = None
+        self.workers = 1
 
     def Start(self, folder: Path) -> None:
         self.folder = folder
-        workers = max(1, min(len(ExampleScripts()), os.cpu_count() or 1))
+        workers = self.workers = max(1, min(len(ExampleScripts()), os.cpu_count() or 1))
         pool = ThreadPoolExecutor(max_workers=workers)
         self.futures = {path.stem: pool.submit(_RunExample, path, folder / path.stem) for path in ExampleScripts()}
         pool.shutdown(wait=False)
@@ -224,16 +227,49 @@ def _RunExample(script: Path, outDir: Path) -> dict:
     env = {**os.environ, 'MPLBACKEND': 'Agg', 'PYTHONPATH': os.pathsep.join(
         [str(ROOT)] + ([os.environ['PYTHONPATH']] if os.environ.get('PYTHONPATH') else []))}
     start = time.perf_counter()
-    try:
-        run = subprocess.run([sys.executable, str(script), '--out', str(outDir)], cwd=work, env=env,
-                             capture_output=True, text=True, timeout=EXAMPLE_TIMEOUT, stdin=subprocess.DEVNULL)
-        status, stdout, stderr = run.returncode, run.stdout, run.stderr
-    except subprocess.TimeoutExpired as error:
-        status, stdout, stderr = None, error.stdout or '', f'did not finish within {EXAMPLE_TIMEOUT} s'
+    status, stdout, stderr, cpu = _RunTimed([sys.executable, str(script), '--out', str(outDir)], work, env,
+                                            EXAMPLE_TIMEOUT)
     seconds = time.perf_counter() - start
     figures = sorted(outDir.glob('*.png')) if outDir.is_dir() else []
     return {'status': status, 'stdout': stdout.replace(str(outDir), 'DIR'), 'stderr': stderr,
-            'seconds': seconds, 'figures': figures}
+            'seconds': seconds, 'cpuSeconds': cpu, 'figures': figures}
+
+
+def _RunTimed(command: list, cwd: Path, env: dict, timeout: float):
+    """Run ``command``; (exit status or None on timeout, stdout, stderr, processor seconds or None).
+
+    The processor time (user + system, of the process and the processes it waited for) is what the example costs
+    whatever else the machine runs: the wall time of a build that runs examples side by side on a shared machine
+    is several times that.
+    """
+    import tempfile
+    import threading
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        process = subprocess.Popen(command, cwd=cwd, env=env, stdout=out, stderr=err, stdin=subprocess.DEVNULL)
+        killed = threading.Event()
+
+        def Kill():
+            killed.set()
+            process.kill()
+        timer = threading.Timer(timeout, Kill)
+        timer.start()
+        try:
+            if hasattr(os, 'wait4'):
+                _, waitStatus, usage = os.wait4(process.pid, 0)
+                process.returncode = os.waitstatus_to_exitcode(waitStatus)
+                cpu = usage.ru_utime + usage.ru_stime
+            else:                                       # no wait4 (Windows): no processor time
+                process.wait()
+                cpu = None
+        finally:
+            timer.cancel()
+        timedOut = killed.is_set()
+        out.seek(0)
+        err.seek(0)
+        stdout, stderr = (f.read().decode('utf-8', errors='replace') for f in (out, err))
+    if timedOut:
+        return None, stdout, f'did not finish within {timeout:g} s', cpu
+    return process.returncode, stdout, stderr, cpu
 
 
 _GALLERY = _Gallery()
@@ -254,7 +290,10 @@ def GalleryPage(srcdir: Path) -> str:
            'Every script of `examples/` in the source checkout, run when this site was built exactly as you would run it,',
            '`python examples/NAME.py --out DIR`, with the figures it wrote into `DIR` and what it printed. Each',
            'example is also checked by its test in `tests/` (`tests/test_example_NAME.py`); `--help` lists its',
-           'options. The drive files of `examples/drives/` are described in [Whole-drive files](drive-files.md).', '']
+           'options. The drive files of `examples/drives/` are described in [Whole-drive files](drive-files.md).',
+           "A caption's numbers are read from what its example printed (shown below its figures, from this build)",
+           'and from its figures when the caption was written; the time beside each example is measured at this',
+           'build.', '']
     index = []
     sections = []
     for path in ExampleScripts():
@@ -276,7 +315,7 @@ def GalleryPage(srcdir: Path) -> str:
             logger.warning(f'gallery: {GALLERY_CAPTIONS.name} [{name}] has a caption for {stale}, which '
                            f'examples/{path.name} did not draw')
         part = [f'(example-{name})=', f'## {title}', '', f'`examples/{path.name}`: '
-                f'`python examples/{path.name} --out DIR` ({run["seconds"]:.0f} s when this site was built).', '',
+                f'`python examples/{path.name} --out DIR`, {_RunTime(run)}.', '',
                 '```{eval-rst}', body.strip(), '```', '']
         for figureName, figurePath in drawn.items():
             if figureName in own:
@@ -289,11 +328,108 @@ def GalleryPage(srcdir: Path) -> str:
     return '\n'.join(out + index + [''] + sections)
 
 
+def _RunTime(run: dict) -> str:
+    """What the example cost when this site was built: its processor time, and the wall time beside the build."""
+    if run.get('cpuSeconds') is None:
+        return f'{run["seconds"]:.0f} s when this site was built'
+    return (f'{run["cpuSeconds"]:.1f} s of processor time when this site was built ({run["seconds"]:.0f} s on the '
+            f'clock, with {_GALLERY.workers} examples running at once beside the build)')
+
+
 def _FirstLineAfterDocstring(path: Path) -> int:
     module = ast.parse(path.read_text(encoding='utf-8'))
     first = module.body[0]
     isDocstring = isinstance(first, ast.Expr) and isinstance(getattr(first, 'value', None), ast.Constant)
     return first.end_lineno + 1 if isDocstring else 1
+
+
+# ---- command output ----------------------------------------------------------------------------------------------
+
+#: seconds one command of a ``command-output`` block may run
+COMMAND_TIMEOUT = 300
+
+
+def CommandLine(text: str) -> list:
+    """The argument list that runs ``text`` as a reader would: ``exudyn-worm ...`` is ``python -m exudyn_worm ...``
+    and ``python`` this interpreter, both with the package of this checkout."""
+    import shlex
+    words = shlex.split(text)
+    if words and words[0] == 'exudyn-worm':
+        return [sys.executable, '-m', 'exudyn_worm'] + words[1:]
+    if words and words[0] == 'python':
+        return [sys.executable] + words[1:]
+    return words
+
+
+def SelectLines(text: str, pattern: 'str | None') -> str:
+    """The lines of ``text`` that match ``pattern`` (a regular expression; all lines if None), each run of lines
+    left out shown as one ``  ...``."""
+    if not pattern:
+        return text.rstrip()
+    keep, skipped = [], False
+    for line in text.rstrip().splitlines():
+        if re.search(pattern, line):
+            keep.append(line)
+            skipped = False
+        elif not skipped and keep:
+            keep.append('  ...')
+            skipped = True
+        elif not keep:
+            skipped = True
+    if keep and keep[-1] == '  ...':
+        keep.pop()
+    return '\n'.join(keep)
+
+
+def _CommandOutputDirective():
+    """The ``command-output`` directive: runs its command when the page is read and shows what it printed.
+
+    ````
+    ```{command-output} exudyn-worm simulate --preset reel-P1
+    :lines: window|lift|lower
+    ```
+    ````
+
+    ``:lines:`` keeps the lines that match a regular expression (each run of the others becomes ``  ...``);
+    ``:needs: MODULE`` shows a note instead of running the command when MODULE cannot be imported. The command runs
+    in a scratch folder (nothing lands in the checkout), with ``:in-checkout:`` in the checkout (a command that
+    writes nothing there, such as ``pytest --collect-only -p no:cacheprovider``); a failed command, or no line
+    matching, is a build warning.
+    A number on a page shown this way comes from the command beside it, run when the site was built.
+    """
+    import tempfile
+    from docutils import nodes
+    from docutils.parsers.rst import Directive, directives
+
+    class CommandOutput(Directive):
+        required_arguments = 1
+        final_argument_whitespace = True
+        option_spec = {'lines': directives.unchanged, 'needs': directives.unchanged, 'in-checkout': directives.flag}
+        has_content = False
+
+        def run(self):
+            command = self.arguments[0].strip()
+            where = f'{self.state.document.current_source}:{self.lineno}'
+            needs = self.options.get('needs')
+            if needs and importlib.util.find_spec(needs) is None:
+                text = f'({needs} is not installed where this site was built: run `{command}` yourself)'
+                return [nodes.literal_block(text, text, language='text')]
+            env = {**os.environ, 'MPLBACKEND': 'Agg', 'PYTHONPATH': os.pathsep.join(
+                [str(ROOT)] + ([os.environ['PYTHONPATH']] if os.environ.get('PYTHONPATH') else []))}
+            with tempfile.TemporaryDirectory() as scratch:
+                if 'in-checkout' in self.options:          # e.g. pytest, which finds the tests from there
+                    env['PYTHONDONTWRITEBYTECODE'] = '1'
+                cwd = ROOT if 'in-checkout' in self.options else Path(scratch)
+                status, stdout, stderr, _ = _RunTimed(CommandLine(command), cwd, env, COMMAND_TIMEOUT)
+            if status != 0:
+                logger.warning(f'{where}: `{command}` failed (exit status {status}): '
+                               f'{stderr.strip().splitlines()[-1:] or ""}')
+            text = SelectLines(stdout.replace('\r\n', '\n'), self.options.get('lines'))
+            if not text.strip():
+                logger.warning(f'{where}: `{command}` printed no line that matches {self.options.get("lines")!r}')
+            return [nodes.literal_block(text, text, language='text')]
+
+    return CommandOutput
 
 
 # ---- Sphinx hooks ----------------------------------------------------------------------------------------------
@@ -349,6 +485,39 @@ def _ReexportedReference(app, env, node, contnode):
                                              node, contnode)
 
 
+#: an asterisk between a unit's letters or digits and a letter (``N*m*s/rad``, ``kg*m^2``): Markdown reads a pair of
+#: them as emphasis (``N<em>m</em>s/rad``)
+_UNIT_ASTERISK = re.compile(r'(?<=[A-Za-z0-9^)\]])\*(?=[A-Za-z])')
+_FENCE = re.compile(r'\s*(`{3,}|~{3,})')
+
+
+def EscapeUnitAsterisks(text: str) -> str:
+    """Markdown ``text`` with the asterisks inside units escaped (``N\\*m\\*s/rad``), outside code blocks and spans.
+
+    The reports the site includes from the repository (``validation/REPORT.md``, ...) are written by their own
+    commands and not edited by hand; their units are written as the code writes them (``N*m*s``).
+    """
+    out, fence = [], None
+    for line in text.split('\n'):
+        opening = _FENCE.match(line)
+        if fence is None and opening:
+            fence = opening.group(1)
+        elif fence is not None:
+            if line.strip() == fence or (line.strip().startswith(fence[0] * len(fence)) and not line.strip().strip(fence[0])):
+                fence = None
+        else:
+            parts = re.split(r'(`+[^`]*`+)', line)
+            line = ''.join(part if i % 2 else _UNIT_ASTERISK.sub(r'\\*', part) for i, part in enumerate(parts))
+        out.append(line)
+    return '\n'.join(out)
+
+
+def _EscapeIncluded(app, relativePath, parentDocname, content):
+    """``include-read``: the units of an included report (Markdown) are no emphasis."""
+    if str(relativePath).endswith('.md'):
+        content[0] = EscapeUnitAsterisks(content[0])
+
+
 def _CheckBuiltSite(app, exception):
     if exception is None and app.builder.format == 'html' and app.builder.name in ('html', 'dirhtml'):
         for problem in sitecheck.CheckSite(app.outdir):
@@ -360,6 +529,8 @@ def setup(app):
     app.connect('env-get-outdated', _AlwaysOutdated)
     app.connect('env-before-read-docs', _StartGallery)
     app.connect('source-read', _Generate)
+    app.connect('include-read', _EscapeIncluded)
+    app.add_directive('command-output', _CommandOutputDirective())
     app.connect('missing-reference', _ReexportedReference)
     app.connect('build-finished', _CheckBuiltSite, priority=900)    # after MathJax is copied (priority 500)
     return {'parallel_read_safe': False}

@@ -1,4 +1,4 @@
-"""Checks of the built documentation site: every local link and anchor resolves, nothing is fetched from the network.
+r"""Checks of the built documentation site: every local link and anchor resolves, nothing is fetched from the network.
 
 Run on a built site (``docs/conf.py`` runs it at the end of every HTML build, so ``sphinx-build -W`` fails on a
 problem)::
@@ -12,7 +12,16 @@ It reads every ``*.html`` file below the folder and reports
 - a remote asset: a script, style sheet, image or font loaded from another host (``http:``, ``https:`` or ``//``),
   by a page or by one of its style sheets (``url(...)``, ``@import``), which a reader behind a firewall or offline
   does not get;
-- a page with equations (an element of class ``math``) that loads no math renderer shipped with the site.
+- a page with equations (an element of class ``math``) that loads no math renderer shipped with the site;
+- a code block (``<pre>``) with a line that starts with a Markdown code fence (three backticks or tildes): a
+  closing fence followed by text on its line does not close the block, so the text and the next example are
+  shown as one code block with a literal fence line;
+- emphasis inside a word (``N<em>m</em>s/rad``): the asterisks of a unit (``N*m*s/rad``) read as Markdown
+  emphasis, so the reader sees "Nms/rad";
+- an equation with ``\tag`` inside the ``split`` environment that Sphinx wraps around a display equation with a
+  line break (``\\``): MathJax shows an error instead of the equation (write such an equation as an amsmath
+  block, ``\begin{equation*} \begin{aligned} ... \end{aligned} \tag{1} \end{equation*}``, which Sphinx does not
+  number again).
 
 Links to other sites (``<a href="https://...">``) are not followed: the check is about the site's own pages.
 Exit status 0 when there is no problem, 1 otherwise (one line per problem on stdout), 2 for a folder that is no
@@ -51,6 +60,13 @@ class PageLinks:
         preloads and icons among the ``<link>`` elements.
     hasMath : bool
         The page has an element of class ``math`` (an equation for MathJax or KaTeX).
+    fenceLines : list of str
+        Lines of its code blocks (``<pre>``) that start with a Markdown code fence (a fence that swallowed text).
+    wordEmphasis : list of str
+        Emphasis (``<em>`` without a class) that begins or ends inside a word, shown as ``N<em>m</em>s/rad``
+        with a few characters around it (the asterisks of a unit read as Markdown emphasis).
+    taggedSplits : list of str
+        The tags (``\tag{1}``) of display equations that have them inside a ``split`` environment.
     """
 
     def __init__(self) -> None:
@@ -58,21 +74,84 @@ class PageLinks:
         self.links: List[Tuple[str, str]] = []
         self.assets: List[Tuple[str, str]] = []
         self.hasMath = False
+        self.fenceLines: List[str] = []
+        self.wordEmphasis: List[str] = []
+        self.taggedSplits: List[str] = []
+
+
+_FENCE_LINE = re.compile(r'^\s*(```|~~~)')
+#: characters a unit's asterisk stands between: ``N*m``, ``kg*m^2``, ``1/(m*s)``
+_WORD_BEFORE, _WORD_AFTER = re.compile(r'[A-Za-z0-9^)\]]\Z'), re.compile(r'^[A-Za-z0-9/^]')
+
+_BLOCKS = {'p', 'div', 'td', 'th', 'tr', 'li', 'dt', 'dd', 'br', 'pre', 'table', 'section', 'blockquote',
+           'h1', 'h2', 'h3', 'h4', 'h5', 'h6', 'figcaption'}
 
 
 class _Parser(HTMLParser):
     def __init__(self, page: PageLinks) -> None:
         super().__init__(convert_charrefs=True)
         self.page = page
+        self.preDepth = 0
+        self.mathDepth = 0              # inside <div class="math">: the equation's TeX as MathJax gets it
+        self.preText: List[str] = []
+        self.before = ''               # the last characters of text outside code blocks
+        self.emphasis: Optional[List[str]] = None     # text of the plain <em> being read
+        self.emBefore = ''
+        self.afterEm: Optional[Tuple[str, str]] = None   # (text before, emphasized text) waiting for what follows
+
+    def handle_data(self, data):
+        if self.mathDepth and '\\begin{split}' in data:
+            self.page.taggedSplits += re.findall(r'\\tag\{[^}]*\}', data.split('\\begin{split}', 1)[1])
+        if self.preDepth:
+            self.preText.append(data)
+            return
+        if self.afterEm is not None and data:
+            self._CheckEmphasis(*self.afterEm, data)
+            self.afterEm = None
+        if self.emphasis is not None:
+            self.emphasis.append(data)
+        self.before = (self.before + data)[-24:]
+
+    def _CheckEmphasis(self, before: str, text: str, after: str) -> None:
+        opensInWord = bool(_WORD_BEFORE.search(before)) and bool(_WORD_AFTER.search(text))
+        closesInWord = bool(re.search(r'[A-Za-z0-9^]\Z', text)) and bool(_WORD_AFTER.search(after))
+        if text and (opensInWord or closesInWord):
+            shown = f'{before[-12:]}<em>{text}</em>{after[:8]}'.split('\n')
+            self.page.wordEmphasis.append(' '.join(part.strip() for part in shown))
+
+    def handle_endtag(self, tag):
+        if tag == 'div' and self.mathDepth:
+            self.mathDepth -= 1
+        if tag == 'pre' and self.preDepth:
+            self.preDepth -= 1
+            if not self.preDepth:
+                self.page.fenceLines += [line.strip() for line in ''.join(self.preText).splitlines()
+                                         if _FENCE_LINE.match(line)]
+                self.preText = []
+        elif tag == 'em' and self.emphasis is not None and not self.preDepth:
+            self.afterEm = (self.emBefore, ''.join(self.emphasis))
+            self.emphasis = None
 
     def handle_starttag(self, tag, attrs):
         a = {k: (v or '') for k, v in attrs}
+        if tag in _BLOCKS:                           # a new block: no word goes on from the text before
+            self.before = ''
+        if tag == 'pre':
+            self.preDepth += 1
+        elif self.afterEm is not None:             # a tag after </em>: no word goes on
+            self.afterEm = None
+        if tag == 'em' and not self.preDepth and not a.get('class'):
+            self.emphasis, self.emBefore = [], self.before
         if a.get('id'):
             self.page.anchors.add(a['id'])
         if tag == 'a' and a.get('name'):
             self.page.anchors.add(a['name'])
         if 'math' in a.get('class', '').split():
             self.page.hasMath = True
+            if tag == 'div':
+                self.mathDepth += 1
+        elif tag == 'div' and self.mathDepth:
+            self.mathDepth += 1
         if tag == 'a' and 'href' in a:
             self.page.links.append((tag, a['href']))
         elif tag == 'link' and 'href' in a:
@@ -85,7 +164,10 @@ class _Parser(HTMLParser):
                     else [a[name]]
                 self.page.assets += [(tag, url) for url in urls]
 
-    handle_startendtag = handle_starttag
+    def handle_startendtag(self, tag, attrs):
+        self.handle_starttag(tag, attrs)
+        if tag == 'pre':                            # <pre/> holds nothing
+            self.handle_endtag(tag)
 
 
 def ReadPage(path: Path) -> PageLinks:
@@ -127,8 +209,9 @@ def CheckSite(siteDir) -> List[str]:
     Returns
     -------
     list of str
-        ``'<page>: ...'`` per broken local link or anchor, remote asset, and page with equations but no math
-        renderer from the site; sorted.
+        ``'<page>: ...'`` per broken local link or anchor, remote asset, page with equations but no math
+        renderer from the site, code fence line inside a code block, emphasis inside a word and tagged equation
+        inside a ``split`` environment; sorted.
 
     Raises
     ------
@@ -158,6 +241,14 @@ def CheckSite(siteDir) -> List[str]:
                 elif kind == 'asset' and target is not None and target.suffix == '.css':
                     stylesheets.append(target)
         allStylesheets.update(stylesheets)
+        problems.update(f'{where}: a code block holds a Markdown code fence line {line!r}: text after a closing '
+                        f'fence keeps the block open' for line in page.fenceLines)
+        problems.update(f'{where}: equation {tag} is inside the split environment Sphinx wraps around a display '
+                        f'equation with a line break: MathJax shows an error; write it as an amsmath block '
+                        f'(\\begin{{equation*}} \\begin{{aligned}} ... \\end{{aligned}} \\tag{{..}} '
+                        f'\\end{{equation*}})' for tag in page.taggedSplits)
+        problems.update(f'{where}: emphasis inside a word, {shown!r}: asterisks of a unit (N*m*s) read as Markdown '
+                        f'emphasis; escape them (N\\*m\\*s) or write N·m·s' for shown in page.wordEmphasis)
         if page.hasMath and not renderers:
             problems.add(f'{where}: has equations but loads no math renderer shipped with the site '
                          f'(one of {", ".join(MATH_RENDERERS)})')

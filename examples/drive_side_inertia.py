@@ -39,8 +39,8 @@ What it shows (numbers from :func:`RunExample`, checked by tests/test_example_dr
   slower (36.8 Hz, the growing S = -1 mode; 40.5 Hz without inertia4), so the harmonic lies below the mode,
   not above it as in the paper.
 
-Run ``python examples/drive_side_inertia.py --out DIR`` (about 4 s): prints the numbers and writes
-fig19_linear_scan.png, fig20_accelerations.png and fig20_spectrum.png into DIR.
+Run ``python examples/drive_side_inertia.py --out DIR``: prints the numbers and writes fig19_linear_scan.png,
+fig20_accelerations.png and fig20_spectrum.png into DIR.
 """
 from __future__ import annotations
 
@@ -419,20 +419,20 @@ def _WriteFigures(run: Dict[str, Any], outDir: Path) -> List[Path]:
     import matplotlib.pyplot as plt
     from exudyn_worm.plotting.plot import S_SIGN_LABEL, S_SIGN_NOTE
     paths = []
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = plt.subplots(figsize=(8.5, 4), layout='constrained')
     for scan in run['scans']:
         ax.semilogx(scan['J4'], scan['maxRealPart'], marker='.', label=f"k4 = {scan['k4'] / 1e3:.3g} kN·m/rad")
     ax.axhline(0, color='k', lw=0.8)
     ax.axvline(run['parameters']['J4'], color='gray', ls='--', lw=0.8, label='chosen J4')
     ax.set(xlabel='J4 (inertia4) [kg·m²]', ylabel='largest real part, S = -1 [1/s]',
            title='Figure 19 drive: P1 with inertia4 (stable below 0)')
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc='upper left', bbox_to_anchor=(1.01, 1.), frameon=False)          # beside the axes, over no data
     paths.append(outDir / 'fig19_linear_scan.png')
-    fig.tight_layout(), fig.savefig(paths[-1], dpi=120), plt.close(fig)
+    fig.savefig(paths[-1], dpi=120), plt.close(fig)
 
     r = run['result']
     m = (r.time >= ZOOM[0]) & (r.time <= ZOOM[1])
-    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(7, 6))
+    fig, axes = plt.subplots(3, 1, sharex=True, figsize=(8.5, 6), layout='constrained')
     for ax, key, label in ((axes[0], 'alpha1', r'$\ddot\varphi_1$ (worm) [rad/s²]'),
                            (axes[1], 'alpha4', r'$\ddot\varphi_4$ (inertia4) [rad/s²]')):
         ax.plot(r.time[m], r.series[key][m], lw=1.)
@@ -440,16 +440,16 @@ def _WriteFigures(run: Dict[str, Any], outDir: Path) -> List[Path]:
     # the paper's S = +-1: the sign of the regularized S, as in Figures 9, 14 and 16
     axes[2].plot(r.time[m], np.sign(r.series['S'][m]), color='tab:red', lw=1.2, drawstyle='steps-post')
     axes[2].set(ylabel=S_SIGN_LABEL, yticks=[-1, 0, 1], ylim=(-1.4, 1.4), xlabel='time [s]')
-    axes[2].text(0., -0.45, S_SIGN_NOTE, transform=axes[2].transAxes, fontsize=7, color='0.3', va='top')
+    axes[2].set_title(S_SIGN_NOTE, loc='left', fontsize=7, color='0.3')
     for ax in axes:
         ax.grid(True, color='0.85', lw=0.5)
     axes[0].set_title(f"Figure 20: worm, inertia4 and S while lowering (P1, J4 = {run['parameters']['J4']:g} kg·m², "
                       f"k4 = {run['parameters']['k4'] / 1e3:.3g} kN·m/rad)", fontsize=10)
     paths.append(outDir / 'fig20_accelerations.png')
-    fig.tight_layout(), fig.savefig(paths[-1], dpi=120), plt.close(fig)
+    fig.savefig(paths[-1], dpi=120), plt.close(fig)
 
     s = run['summary']
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = plt.subplots(figsize=(8.5, 4), layout='constrained')
     for key, label in (('alpha1', 'worm'), ('alpha4', 'inertia4')):
         f, a = Spectrum(r.time, r.series[key], *LOWERING)
         keep = f <= 200
@@ -458,9 +458,9 @@ def _WriteFigures(run: Dict[str, Any], outDir: Path) -> List[Path]:
     ax.axvline(s['thirdHarmonicHz'], color='r', ls=':', lw=0.8, label=f"3 x chatter {s['thirdHarmonicHz']:.1f} Hz")
     ax.set(xlabel='frequency [Hz]', ylabel='amplitude [rad/s²]',
            title=f'spectra while lowering ({LOWERING[0]:g}-{LOWERING[1]:g} s)')
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc='upper left', bbox_to_anchor=(1.01, 1.), frameon=False)
     paths.append(outDir / 'fig20_spectrum.png')
-    fig.tight_layout(), fig.savefig(paths[-1], dpi=120), plt.close(fig)
+    fig.savefig(paths[-1], dpi=120), plt.close(fig)
     return paths
 
 

@@ -10,7 +10,9 @@ tests/test_example_friction_speed.py), drawn only when the file is run::
    472.5 rpm, v0 = 0.897 m/s) and the AGMA 6034 curve.
 2. :func:`SpeedChart`: the largest real part of the lowering state against motor speed, eq. (16) extended by the
    friction slope at each operating point (:func:`exudyn_worm.analysis.speedchart.SpeedStabilityChart`). With constant mu
-   it does not depend on speed; with the Stribeck law reel-P3 chatters between about 84 and 630 rpm.
+   it does not depend on speed; with the Stribeck law reel-P3 chatters while lowering between the boundaries near
+   85 and 610 rpm (``exudyn-worm chart --speed``, docs/charts.md); the example prints the unstable speeds of its own
+   grid, which lie inside them.
 3. :func:`ChatterAmplitudes`: the simulated chatter amplitude against speed: J2 max abs(phi2'') in the lowering
    phase of the reel-changer simulation (one run per speed, ending with the lowering phase).
 4. :func:`RunAway`, the dangerous case "statically but not dynamically self-locking": reel-P1's gear
@@ -200,17 +202,22 @@ def _Plot(out: Path) -> None:
     import matplotlib.pyplot as plt
     out.mkdir(parents=True, exist_ok=True)
     v = np.linspace(0., 3., 400)
-    fig, ax = plt.subplots(figsize=(7, 4), layout='constrained')
+    fig, ax = plt.subplots(figsize=(8.5, 4), layout='constrained')
     for name, mu in FrictionCurves(v).items():
         ax.plot(v, mu, label=name)
     ax.set_xlabel('sliding speed v [m/s]')
-    ax.set_ylabel('friction coefficient mu')
-    ax.legend()
+    ax.set_ylabel(r'friction coefficient $\mu$')
+    ax.legend(loc='upper left', bbox_to_anchor=(1.01, 1.), frameon=False)
     fig.savefig(out / 'mu_of_v.png', dpi=120)
     charts = SpeedChart()
     ax = charts['stribeck'].plot()
     ax.plot(charts['constant'].motorSpeeds / RPM, charts['constant'].Curve(-1).maxRealPart, color='0.5',
-            label='constant mu, lowering')
+            label=fr"largest real part, lowering, constant $\mu$ = {charts['constant'].mu[0]:.3g}")
+    for legend in list(ax.figure.legends):        # the legend below the axes, with the line just drawn
+        legend.remove()
+    lines = [line for a in ax.figure.axes for line in a.get_lines() if not line.get_label().startswith('_')]
+    ax.figure.legend(lines, [line.get_label() for line in lines], loc='outside lower center', ncols=2, fontsize=8,
+                     frameon=False)
     ax.figure.savefig(out / 'max_real_part_over_speed.png', dpi=120)
     sim = ChatterAmplitudes()
     fig, ax = plt.subplots(figsize=(7, 4), layout='constrained')
@@ -219,7 +226,7 @@ def _Plot(out: Path) -> None:
     ax.set_xlabel('motor speed [rpm]')
     ax.set_ylabel("lowering: J2 max |phi2''| [rad/s^2]")
     fig.savefig(out / 'chatter_amplitude_over_speed.png', dpi=120)
-    fig, ax = plt.subplots(figsize=(7, 4), layout='constrained')
+    fig, ax = plt.subplots(figsize=(8.5, 4), layout='constrained')
     for law in ('constant', 'agma'):
         r = RunAway(law)
         ax.plot(r['time'], r['omega1'] / RPM, label=f'{law}')
@@ -228,7 +235,7 @@ def _Plot(out: Path) -> None:
     hold = HoldAtRest('agma')
     ax.plot(hold['time'], hold['omega1'] / RPM, label='agma, from rest (holds)')
     ax.set_title('reel at the horizontal, lowering, motor gone', loc='left', fontsize=10)
-    ax.legend()
+    ax.legend(loc='upper left', bbox_to_anchor=(1.01, 1.), frameon=False)
     fig.savefig(out / 'run_away.png', dpi=120)
     for n, a, c in zip(sim['rpm'], sim['amplitude'], sim['chatter']):
         print(f"{n:7.1f} rpm: lowering J2 max|phi2''| = {a:.4g} rad/s^2{' (chatter)' if c else ''}")

@@ -20,7 +20,7 @@ paper's zero backlash of the single-case figures (the backlash studies keep 0.25
 Every case runs one full rotation (8 s) except P7 (Figures 13-17), which runs 1.25 rotations (10 s)
 to show the whole second lifting phase, 6-10 s, that the paper discusses; ``--end-time`` sets all.
 
-Run ``python examples/paper_reel_changer.py`` (all figures, about 5 s) or e.g.
+Run ``python examples/paper_reel_changer.py`` (all figures) or e.g.
 ``python examples/paper_reel_changer.py --figures 8,9 --backlash 0.25 --out /tmp/reel``.
 The computation (:func:`RunPaperCases`, :func:`Summary`) is importable and checked by
 ``tests/test_example_reel_changer.py``; only :func:`main` writes files.
@@ -37,9 +37,10 @@ from exudyn_worm.setups.presets import REEL_KEYS, ApplyOverrides, ElasticDriveFr
 from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SimulateReelChanger
 from exudyn_worm.items.results import SimulationResult
 from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.params.parameters import PARAMETERS
 
 __all__ = ['PAPER_FIGURES', 'BACKLASH_STUDY', 'RPM', 'CaseParameters', 'RunPaperCases', 'Summary',
-           'FormatSummary', 'WriteFigures', 'main']
+           'FormatSummary', 'WriteFigures', 'DifferenceFromP1', 'main']
 
 #: rad/s per rpm
 RPM = 2 * math.pi / 60
@@ -263,6 +264,43 @@ def FormatSummary(rows: Sequence[Mapping]) -> str:
     return '\n'.join(lines)
 
 
+#: keys the subtitle gives as the run's conditions, not as a difference from P1
+_CONDITION_KEYS = ('backlash', 'motorSpeed', 'loadMass')
+
+
+def DifferenceFromP1(params: Mapping[str, float]) -> str:
+    """What a case's parameter set changes of P1 (set (28)), e.g. ``'J1 = 0.01 kg·m² (P1: 0.1), kT = 700 N·m/rad
+    (P1: 7000)'``; empty for P1 itself. The operating conditions (backlash, speed, reel mass) are left out: the
+    subtitles give them.
+
+    Parameters
+    ----------
+    params : mapping
+        The case's flat parameter set (SI units).
+
+    Returns
+    -------
+    str
+    """
+    reference = GetPreset('reel-P1')
+    parts = []
+    for key in params:
+        if key in _CONDITION_KEYS or key == 'rotations' or reference.get(key) == params[key]:
+            continue
+        unit = PARAMETERS.Get(key).unit.replace('*', '·').replace('^2', '²') if key in PARAMETERS else ''
+        value = f'{key} = {params[key]:g}' + (f' {unit}' if unit else '')
+        parts.append(value + (f' (P1: {reference[key]:g})' if key in reference else ''))
+    parts += [f'no {key} (P1: {reference[key]:g})' for key in reference
+              if key not in params and key not in _CONDITION_KEYS]
+    return ', '.join(parts)
+
+
+def _CaseLine(label: str, params: Mapping[str, float]) -> str:
+    """The subtitle's case: ``'P7 = P1 with J1 = 0.01 kg·m² (P1: 0.1), ...'``, or the label for P1."""
+    differences = DifferenceFromP1(params)
+    return f'{label} = P1 with {differences}' if differences else f"{label}: the paper's set (28)"
+
+
 def _Conditions(params: Mapping[str, float]) -> str:
     return (f"$\\delta$ = {params.get('backlash', 0.) * 1e3:g} mm, $n_0$ = {params['motorSpeed'] / RPM:.4g} rpm, "
             f"$m_2$ = {params['loadMass']:g} kg")
@@ -296,8 +334,8 @@ def WriteFigures(results: Mapping[str, SimulationResult], outDir, figures: Optio
                       results[_BacklashLabel(short, b)] for b in BACKLASH_STUDY}
             params = next(iter(subset.values())).info['parameters']
             fig = PlotComparison(subset, quantity=kind,
-                                 title=f'{caption}\n{short}: $n_0$ = {params["motorSpeed"] / RPM:.4g} rpm, '
-                                       f'$m_2$ = {params["loadMass"]:g} kg')
+                                 title=f'{caption}\n{_CaseLine(short, params)}\n$n_0$ = '
+                                       f'{params["motorSpeed"] / RPM:.4g} rpm, $m_2$ = {params["loadMass"]:g} kg')
             name = f'fig{number:02d}_{short}_backlash_{kind}.png'
         else:
             label = main if group == 'main' else group
@@ -309,7 +347,8 @@ def WriteFigures(results: Mapping[str, SimulationResult], outDir, figures: Optio
             if tZoom is not None and tZoom[0] >= result.endTime:
                 tZoom = None if kind != 'zoom' else (max(0., result.endTime - 0.1), result.endTime)
             fig = PlotSimulation(result, kind=kind, tZoom=tZoom,
-                                 title=f"{caption}\n{label}: {_Conditions(result.info['parameters'])}")
+                                 title=f"{caption}\n{_CaseLine(label, result.info['parameters'])}\n"
+                                       f"{_Conditions(result.info['parameters'])}")
             suffix = {14: '_lowering', 15: '_lowering', 16: '_lifting'}.get(number, '')
             name = f'fig{number:02d}_{label}_{kind}{suffix}.png'
         written.append(SaveFigure(fig, outDir / name))

@@ -4,7 +4,8 @@
 figure      content                                                              file
 ==========  ===================================================================  ==============================
 3           first criterion (20) with dT = 0: J1/J2 limit against the pitch      fig03_first_criterion.png
-            angle gamma, friction angles rho = 4 ... 10 deg (u = 63, set (25))
+            angle gamma, friction angles rho = 4 ... 10 deg (u = 63, set (25)),
+            from gamma = atan(1/u) = 0.91 deg (a smaller one: worm above wheel)
 4           second criterion (17), (19), S = -1, D_V = 0.014, D_TV = 1, 5, 25    fig04_chart_DV0.014.png
 5           the same for D_V = 0.056                                             fig05_chart_DV0.056.png
 ==========  ===================================================================  ==============================
@@ -19,7 +20,7 @@ chart's colour (crossed hatches where regions overlap); a point closer than ZOOM
 chart on which it is stable (P3 and P5 next to D_TV = 25 in Figure 4; :func:`PointsToZoom`) is shown again in a
 zoomed inset whose title gives its verdict on every chart and its distance to that boundary.
 
-Run ``python examples/stability_charts.py --out DIR`` (about 4 s). The computation (:func:`ComputeFigures`,
+Run ``python examples/stability_charts.py --out DIR``. The computation (:func:`ComputeFigures`,
 :func:`Summary`) is importable and checked by ``tests/test_example_stability_charts.py``; only
 :func:`main` writes files.
 """
@@ -41,7 +42,7 @@ from exudyn_worm.plotting.plot_charts import ZOOM_DECADES, PointsToZoom
 from exudyn_worm.setups.presets import GearFromParameters, GetPreset
 
 __all__ = ['CHART_PRESET', 'FIGURE_DV', 'DTV_VALUES', 'POINT_PRESETS', 'FIGURE3_RHO_DEG', 'ZOOM_DECADES',
-           'ComputeFigures', 'Summary', 'FormatSummary', 'DrawFigures', 'WriteFigures', 'PointsToZoom', 'main']
+           'Figure3PitchAngles', 'ComputeFigures', 'Summary', 'FormatSummary', 'DrawFigures', 'WriteFigures', 'PointsToZoom', 'main']
 
 #: the gear of parameter set (25)
 CHART_PRESET = 'chart'
@@ -55,6 +56,29 @@ POINT_PRESETS = tuple(f'reel-P{k}' for k in range(1, 8))
 FIGURE3_RHO_DEG = (4., 6., 8., 10.)
 #: default grid points per axis of Figures 4 and 5
 RESOLUTION = 600
+
+
+def Figure3PitchAngles(ratio: float, points: int = 400) -> np.ndarray:
+    """The pitch angles of Figure 3 in rad: from the smallest at which the worm is no larger than the wheel, up to
+    10 deg.
+
+    Figure 3 keeps the ratio u of set (25); a gear of ratio u has r2/r1 = u tan(gamma) (eq. (3)), so below
+    gamma = atan(1/u) (0.91 deg for u = 63) its worm would be larger than its wheel, which no worm gear is (the
+    gear check warns about each such gear).
+
+    Parameters
+    ----------
+    ratio : float
+        The transmission ratio u, > 1.
+    points : int
+        Number of angles.
+
+    Returns
+    -------
+    ndarray
+        Evenly spaced pitch angles in rad.
+    """
+    return np.linspace(math.atan(1. / ratio), math.radians(10.), points)
 
 
 def ComputeFigures(resolution: int = RESOLUTION) -> Dict:
@@ -73,7 +97,7 @@ def ComputeFigures(resolution: int = RESOLUTION) -> Dict:
     """
     parameters = GetPreset(CHART_PRESET)
     gear = GearFromParameters(parameters, meshDamping=False)
-    out: Dict = {3: FirstCriterionChart(gear, np.radians(np.linspace(0.1, 10., 400)), np.radians(FIGURE3_RHO_DEG))}
+    out: Dict = {3: FirstCriterionChart(gear, Figure3PitchAngles(gear.ratio), np.radians(FIGURE3_RHO_DEG))}
     for figure, DV in FIGURE_DV.items():
         out[figure] = [ComputeStabilityChart(gear, parameters['J2'], DV, DTV, resolution=resolution)
                        for DTV in DTV_VALUES]

@@ -155,17 +155,17 @@ def _WriteFigure(outDir: str, series: Dict[str, np.ndarray]) -> str:
     import matplotlib
     matplotlib.use('Agg')
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, 1, sharex=True, figsize=(8, 6))
+    fig, axes = plt.subplots(2, 1, sharex=True, figsize=(9.5, 6), layout='constrained')
     t = series['time']
     axes[0].plot(t, np.abs(series['normalForce']) / 1e3, color='k', lw=0.6, label='mesh normal force')
-    axes[0].set_ylabel('force [kN]'), axes[0].legend(loc='upper left')
+    axes[0].set_ylabel('force [kN]'), axes[0].legend(fontsize=9, loc='upper left', bbox_to_anchor=(1.01, 1.), frameon=False)
     for key, label in (('wormAxial', 'worm axial bearing'), ('wormRadial', 'worm radial bearings'),
                        ('wheelAxial', 'wheel axial bearing'), ('wheelRadial', 'wheel radial bearings')):
         axes[1].plot(t, series[key] / 1e3, lw=0.6, label=label)
-    axes[1].set_xlabel('time [s]'), axes[1].set_ylabel('bearing load [kN]'), axes[1].legend(loc='upper left')
+    axes[1].set_xlabel('time [s]'), axes[1].set_ylabel('bearing load [kN]'), axes[1].legend(fontsize=9, loc='upper left', bbox_to_anchor=(1.01, 1.), frameon=False)
     axes[0].set_title('P1 with worm and wheel in elastic bearings: what the chatter puts into the bearings')
     path = os.path.join(outDir, 'bearing_loads_P1.png')
-    fig.tight_layout(), fig.savefig(path, dpi=120), plt.close(fig)
+    fig.savefig(path, dpi=120), plt.close(fig)
     return path
 
 

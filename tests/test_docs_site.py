@@ -196,11 +196,92 @@ def test_sitecheck_finds_each_kind_of_problem(tmp_path):
     assert sitecheck.main([str(site)]) == 1
 
 
+def test_sitecheck_finds_a_code_fence_that_swallowed_text(tmp_path):
+    """A closing fence with text after it (```` ``` In --json the ````) leaves the block open: the paragraph and the
+    next example become one code block with a literal fence line in it."""
+    swallowed = ('<div class="highlight-bash"><div class="highlight"><pre><span></span>exudyn-worm chart\n'
+                 '<span class="err">```</span> In --json the\nranges are\n\n'
+                 '<span class="err">```</span>python\nfrom exudyn_worm import x\n</pre></div></div>')
+    sound = ('<div class="highlight"><pre>exudyn-worm chart\n</pre></div><p>In <code>--json</code> the ranges, '
+             'and a fence quoted inside a line: <code>```python</code></p><pre>s = "```" if x else y\n</pre>')
+    site = _Site(tmp_path, {'index.html': sound, 'charts.html': swallowed})
+    assert sitecheck.CheckSite(site) == [
+        "charts.html: a code block holds a Markdown code fence line '``` In --json the': text after a closing "
+        "fence keeps the block open",
+        "charts.html: a code block holds a Markdown code fence line '```python': text after a closing fence keeps "
+        "the block open"]
+
+
+def test_sitecheck_finds_unit_asterisks_read_as_emphasis(tmp_path):
+    """``N*m*s/rad`` in Markdown shows as "Nms/rad" with an italic m; ``kg*m^2 ... N*m`` italicizes the text
+    between the two units."""
+    site = _Site(tmp_path, {
+        'index.html': '<p>A setting\n<em>passes</em> if both; <em>stable with margin</em>, (<em>S</em> = -1); '
+                      'N·m·s/rad, N*m*s/rad, <code>N*m</code></p><pre>a <em>b</em>c</pre>'
+                      '<dt><em class="sig-param">mbs</em></dt>',
+        'parameters.html': '<td><p>N<em>m</em>s/rad</p></td>',
+        'presets.html': '<p>J2 = 33 kg<em>m^2, kT = 7000 N</em>m/rad</p><p>dV = 1250 N<em>s/m), D_V = 0.028 '
+                        '(set (25), dV = 625 N</em>s/m</p>'})
+    assert sitecheck.CheckSite(site) == [
+        "parameters.html: emphasis inside a word, 'N<em>m</em>s/rad': asterisks of a unit (N*m*s) read as Markdown "
+        "emphasis; escape them (N\\*m\\*s) or write N·m·s",
+        "presets.html: emphasis inside a word, 'J2 = 33 kg<em>m^2, kT = 7000 N</em>m/rad': asterisks of a unit "
+        "(N*m*s) read as Markdown emphasis; escape them (N\\*m\\*s) or write N·m·s",
+        "presets.html: emphasis inside a word, 'dV = 1250 N<em>s/m), D_V = 0.028 (set (25), dV = 625 N</em>s/m': "
+        "asterisks of a unit (N*m*s) read as Markdown emphasis; escape them (N\\*m\\*s) or write N·m·s"]
+
+
+def test_sitecheck_finds_a_tag_inside_the_split_sphinx_adds(tmp_path):
+    """Sphinx wraps a display equation with a line break in ``split``, where MathJax refuses ``\\tag`` ("\\tag not
+    allowed in split environment", as MathJax 3 printed for eq. (16)); an amsmath block keeps its tag."""
+    site = _Site(tmp_path, {
+        'index.html': f'{_MATHJAX}<div class="math notranslate nohighlight">\\[\\begin{{equation*}}\\begin{{aligned}}'
+                      'a \\\\ b\\end{aligned}\\tag{1}\\end{equation*}\\]</div>'
+                      '<div class="math">\\[x \\tag{3}\\]</div>',
+        'model.html': f'{_MATHJAX}<div class="math notranslate nohighlight">\\[\\begin{{split}}\\begin{{aligned}}'
+                      'b_1 &= x\\\\ b_2 &= y\\end{aligned} \\tag{16}\\end{split}\\]</div>'},
+        files={'_static/mathjax/tex-chtml.js': 'x'})
+    assert sitecheck.CheckSite(site) == [
+        'model.html: equation \\tag{16} is inside the split environment Sphinx wraps around a display equation with '
+        'a line break: MathJax shows an error; write it as an amsmath block (\\begin{equation*} \\begin{aligned} ... '
+        '\\end{aligned} \\tag{..} \\end{equation*})']
+
+
 def test_sitecheck_refuses_a_folder_that_is_no_site(tmp_path, capsys):
     with pytest.raises(ValueError, match="'siteDir' must be a built HTML site"):
         sitecheck.CheckSite(tmp_path)
     assert sitecheck.main([str(tmp_path)]) == 2
     assert 'sitecheck.py: error:' in capsys.readouterr().err
+
+
+# ---- what docs/conf.py does to the pages (needs the docs extra) -------------------------------------------------
+
+def _Conf():
+    spec = importlib.util.spec_from_file_location('docs_conf', DOCS / 'conf.py')
+    conf = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(conf)
+    return conf
+
+
+@pytest.mark.skipif(importlib.util.find_spec('sphinx') is None, reason="needs the docs extra: pip install -e '.[docs]'")
+def test_included_reports_keep_the_asterisks_of_their_units():
+    """The reports the site includes write units as the code does (N*m*s); escaped, they are no emphasis."""
+    escape = _Conf().EscapeUnitAsterisks
+    text = ('dT = 0.741 N*m*s, J1 = 0.1 kg*m^2 and kT = 7000 N*m/rad; *stable* and **bold**, `N*m` in code\n'
+            '```text\nN*m*s\n```\nafter the block N*s/m')
+    assert escape(text) == ('dT = 0.741 N\\*m\\*s, J1 = 0.1 kg\\*m^2 and kT = 7000 N\\*m/rad; *stable* and **bold**, '
+                            '`N*m` in code\n```text\nN*m*s\n```\nafter the block N\\*s/m')
+
+
+@pytest.mark.skipif(importlib.util.find_spec('sphinx') is None, reason="needs the docs extra: pip install -e '.[docs]'")
+def test_command_output_shows_the_selected_lines_and_marks_the_rest():
+    conf = _Conf()
+    text = 'head\n  a 1\n  b 2\n  c 3\nVerdict: x\nHint: y\n'
+    assert conf.SelectLines(text, r'^head|b 2|^Verdict') == 'head\n  ...\n  b 2\n  ...\nVerdict: x'
+    assert conf.SelectLines(text, None) == text.rstrip()
+    assert conf.CommandLine('exudyn-worm simulate --preset reel-P1')[1:] == ['-m', 'exudyn_worm', 'simulate',
+                                                                           '--preset', 'reel-P1']
+    assert conf.CommandLine('python -m pytest -m "not slow"')[1:] == ['-m', 'pytest', '-m', 'not slow']
 
 
 # ---- the built site (needs the docs extra) ---------------------------------------------------------------------

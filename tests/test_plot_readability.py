@@ -1,14 +1,19 @@
 """Figures a reader can read: S drawn as the paper's +-1 in its own panel over a whole run, one panel per flank
 with the mean the chatter exceeds, titles naming the run."""
+import dataclasses
 import sys
 
 import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.plotting.plot import DENSE_SWITCHES_PER_INCH, MEAN_WINDOW, PlotSimulation, TorqueSignNote, _RunningMean
+from exudyn_worm.plotting.plot import (DENSE_SWITCHES_PER_INCH, MEAN_WINDOW, S_SIGN_NOTE, FrictionStateDrawn,
+                                       MergePhases, PhaseMeans, PlotSimulation, TorqueSignNote, _RunningMean)
+from exudyn_worm.plotting.plot_charts import PlotSpeedChart
 from exudyn_worm.items.results import SimulationResult
 from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
+from exudyn_worm.setups.presets import GetPreset
 
 
 @pytest.fixture(scope='module')
@@ -106,7 +111,7 @@ def test_zoom_starting_just_after_a_round_time_keeps_its_first_tick():
 def test_drive_torque_says_what_its_sign_means(omegaSign):
     result = _Record(omegaSign=omegaSign)
     fig = PlotSimulation(result, kind='driveTorque')
-    legend = next(ax.get_legend() for ax in fig.axes if ax.get_legend() and ax.get_legend().get_gid() == 'torque sign')
+    legend = next(legend for legend in fig.legends if legend.get_gid() == 'torque sign')     # below the axes
     text = '\n'.join(t.get_text() for t in legend.get_texts())
     assert 'eq. 6' in text
     drives = '$M_{an}$ < 0 = the motor drives' if omegaSign > 0 else '$M_{an}$ > 0 = the motor drives'
@@ -145,3 +150,111 @@ def test_dense_contact_sign_is_drawn_as_share_of_time_and_zoom():
 def test_sparse_contact_sign_keeps_its_step_line():
     fig = PlotSimulation(_Record(seconds=2., chatterHz=5.), kind='driveTorque')
     assert len(fig.axes) == 2 and fig.axes[1].lines[0].get_drawstyle() == 'steps-post'
+
+
+# --- boxes and legends over no data, one entry per line, means per direction, one band per window, states ----------
+
+def _Legends(fig):
+    return list(fig.legends) + [ax.get_legend() for ax in fig.axes if ax.get_legend() is not None]
+
+
+def _LegendsOverData(fig):
+    """(legend title or first label, axes label) of every legend or explanation box that overlaps an axes (or the
+    figure's title)."""
+    fig.draw_without_rendering()
+    renderer = fig._get_renderer()
+    hits = []
+    frames = [(ax.get_ylabel(), ax.get_window_extent(renderer)) for ax in fig.axes]
+    if fig._suptitle is not None:
+        frames.append(('figure title', fig._suptitle.get_window_extent(renderer)))
+    for legend in _Legends(fig):
+        box = legend.get_window_extent(renderer)
+        for name, frame in frames:
+            overlap = min(box.x1, frame.x1) - max(box.x0, frame.x0), min(box.y1, frame.y1) - max(box.y0, frame.y0)
+            if overlap[0] > 0.5 and overlap[1] > 0.5:
+                hits.append((legend.get_title().get_text() or legend.get_texts()[0].get_text(), name))
+    return hits
+
+
+@pytest.mark.parametrize('kind', ['driveTorque', 'normalForce', 'overview', 'speed', 'zoom'])
+def test_no_legend_or_explanation_box_lies_over_the_data(kind):
+    fig = PlotSimulation(_Record(), kind=kind, tZoom=(0.9, 1.4) if kind == 'zoom' else None)
+    assert _LegendsOverData(fig) == []
+    for legend in _Legends(fig):                      # one entry per line
+        labels = [t.get_text() for t in legend.get_texts()]
+        assert len(labels) == len(set(labels)), labels
+
+
+def test_the_legend_of_the_flanks_names_each_line_once():
+    fig = PlotSimulation(_Record(), kind='normalForce')
+    (legend,) = _Legends(fig)
+    assert sorted(t.get_text() for t in legend.get_texts()) == sorted(
+        [r'flank 1 ($\Delta s > 0$, worm drives)', r'flank 2 ($\Delta s < 0$)', f'mean over {MEAN_WINDOW:g} s'])
+
+
+def _BothWays():
+    """Lifting forward for 1 s (the motor drives: M_an = -50 N m), then lifting backward for 1 s (the motor turns the
+    other way and still drives: M_an = +30 N m), then lowering backward (M_an = +10 N m)."""
+    t = np.linspace(0., 3., 3001)
+    omega = np.where(t < 1., 50., -50.)
+    torque = np.where(t < 1., -50., np.where(t < 2., 30., 10.))
+    series = {'omega1': omega, 'driveTorque': torque, 'S': np.ones_like(t), 'alpha2': 0 * t}
+    phases = [(0., 1., 'lift'), (1., 2., 'lift'), (2., 3., 'lower')]
+    return SimulationResult(time=t, series=series, J2=33., r2=0.106, info={'phases': phases}), phases
+
+
+def test_phase_means_are_taken_per_direction():
+    """A forward and a backward lift have drive torques of opposite sign: averaged together they would give a
+    mean (-50 + 30) / 2 = -10 N m that neither lift has."""
+    result, phases = _BothWays()
+    means = {(kind, d): round(m, 6) for kind, d, m in PhaseMeans(result, phases)}
+    assert means == {('lift', 1): -50., ('lift', -1): 30., ('lower', -1): 10.}
+    note = TorqueSignNote(result, phases=phases)
+    assert 'lifting forward: mean -50 N·m' in note and 'lifting backward: mean +30 N·m' in note
+    assert 'lowering backward: mean +10 N·m (self-locking' in note       # turning backward, M_an > 0: the motor drives
+    assert 'worm turning forward' in note and 'worm turning backward' in note
+    one = TorqueSignNote(_Record(), phases=_Record().info['phases'])   # one direction: no direction named
+    assert 'lifting: mean' in one and 'forward:' not in one.split('\n', 2)[2]
+
+
+def test_adjoining_phases_of_one_kind_are_one_window():
+    """The lift at the end of a rotation and the lift at the start of the next (6-8 s and 8-10 s of P7) are one."""
+    phases = [(0., 2., 'lift'), (2., 6., 'lower'), (6., 8., 'lift'), (8., 10., 'lift')]
+    assert MergePhases(phases) == [(0., 2., 'lift'), (2., 6., 'lower'), (6., 10., 'lift')]
+    assert MergePhases([(0., 1., 'lift'), (1.5, 2., 'lift')]) == [(0., 1., 'lift'), (1.5, 2., 'lift')]
+    record = _Record(seconds=2.)
+    split = [(0., 0.5, 'lift'), (0.5, 1., 'lift'), (1., 2., 'lower')]
+    fig = PlotSimulation(record, kind='acceleration', phases=split)
+    ax = fig.axes[0]
+    assert len([p for p in ax.patches if p.get_x() is not None]) == 2
+    assert sorted(t.get_text() for t in ax.texts if t.get_gid() == 'phase label') == ['lift', 'lower']
+
+
+def test_friction_state_is_drawn_within_its_range_one_value_per_step():
+    """While stuck, s_f is the sticking force over mu |F_n|, which may pass 1 in the step before the flanks slide."""
+    record = _Record(seconds=1.)
+    sf = np.where(np.arange(record.time.size) % 50 == 0, 1.12, 0.3)
+    record.series['sf'] = sf
+    drawn = FrictionStateDrawn(record)
+    assert drawn.min() >= -1. and drawn.max() <= 1. and drawn.max() == 1.
+    fig = PlotSimulation(record, kind='speed')
+    line = next(l for l in fig.axes[1].lines if l.get_gid() == 'sf')
+    assert line.get_drawstyle() == 'steps-post' and line.get_ydata().size == record.time.size
+    assert np.abs(line.get_ydata()).max() <= 1.
+    assert 'time step of 1 ms' in fig.axes[1].get_title(loc='left')
+
+
+def test_notes_use_the_users_words():
+    assert 'frictionSpeed' not in S_SIGN_NOTE and 'N*m' not in TorqueSignNote(_Record(), phases=_Record().info['phases'])
+
+
+def test_speed_chart_names_each_kind_of_point_once_beside_the_axes():
+    p3 = {**GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2, 'stribeckVelocity': 0.9}
+    chart = SpeedStabilityChart(ResolveDrive(parameters=p3), np.geomspace(50, 1500, 8) * RPM)
+    twice = dataclasses.replace(chart, ownPoints=chart.ownPoints * 2)       # e.g. a duty that lifts twice
+    fig = PlotSpeedChart(twice).figure
+    (legend,) = _Legends(fig)
+    labels = [t.get_text() for t in legend.get_texts()]
+    assert len(labels) == len(set(labels)) == 2 + 2 + 1             # two curves, two kinds of star, mu(v0)
+    assert not any('N*m' in label for label in labels)
+    assert _LegendsOverData(fig) == []

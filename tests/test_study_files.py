@@ -118,6 +118,23 @@ def test_a_resume_drops_only_the_unreadable_lines_and_names_them(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ['runs.csv', 'runs.study.json']
 
 
+def test_the_results_file_lists_its_runs_in_run_order(tmp_path):
+    """Rows are appended as the runs finish (a stopped study keeps every finished run); on finishing, the file is
+    rewritten in run order: here run 1, lost and run again on resuming, was appended behind runs 2 and 3."""
+    out = tmp_path / 'runs.csv'
+    study = _Study()
+    RunStudy(study, out, workers=1, quiet=True)
+    lines = out.read_text().splitlines(keepends=True)
+    out.write_text(''.join(lines[:2] + lines[3:]))          # run 1 lost
+    seen = []
+    again = RunStudy(study, out, workers=1, quiet=True, onRow=seen.append)
+    assert [r['run'] for r in seen] == [1]
+    kept = out.read_text().splitlines(keepends=True)
+    assert [line.split(',')[0] for line in kept] == ['run', '0', '1', '2', '3']
+    assert kept[:2] + kept[3:] == lines[:2] + lines[3:]       # the other lines as they were written
+    assert [r['run'] for r in again.rows] == [r['run'] for r in ReadResults(out).rows] == [0, 1, 2, 3]
+
+
 def test_a_cut_off_last_line_is_named_too(tmp_path):
     out = tmp_path / 'runs.csv'
     study = _Study(2)

@@ -44,8 +44,8 @@ from typing import Callable, Dict, Optional, Tuple, Union
 from .._files import OutputLock
 from .._workers import CancelPool, SigtermAsInterrupt, WorkerInit
 from ..progress import ProgressBar
-from .studyfiles import (StudyResult, StudySidecarPath, _CheckOutput, _CheckOutputPath, _Columns, _CsvText, _Versions,
-                         _WriteSidecar)
+from .studyfiles import (StudyResult, StudySidecarPath, _CheckOutput, _CheckOutputPath, _Columns, _CsvText, _SortByRun,
+                         _Versions, _WriteSidecar)
 from .studygrid import CheckStudySize, ParseShard, ShardIndices, Study
 from .studypoint import RunPoint
 
@@ -215,6 +215,7 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
     finally:
         if csvFile is not None:
             csvFile.close()
+            _SortByRun(output)                     # written as the runs finished: in run order on finishing
         if record:
             _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started, versions,
                           counts={'runs': len(indices), 'done': len(rows), 'failed': failed},

@@ -17,7 +17,7 @@ from typing import Dict, List, Mapping, Optional, Tuple, Union
 
 import numpy as np
 
-from .._files import WriteTextAtomically
+from .._files import WriteAtomically, WriteTextAtomically
 from ..setups.presets import PARAMETER_UNITS
 from .studymap import ComputeChatterMap
 from .studygrid import Study, Variation, _Identity
@@ -107,6 +107,30 @@ def _ReadCsv(path: Path, repair: bool = False) -> Tuple[List[str], List[Dict]]:
     if repair and dropped:
         WriteTextAtomically(path, ''.join(keep))
     return header, [rows[k] for k in sorted(rows)]
+
+
+def _SortByRun(path: Path) -> None:
+    """Rewrite a results file (atomically) with its rows in run order: they are appended as the runs finish, in the
+    order of completion, so that a stopped study keeps every finished run. The lines are kept as written; a file
+    with a line cut off is left as it is (resuming it repairs it first)."""
+    with path.open(newline='', encoding='utf-8', errors='replace') as f:
+        lines = f.read().splitlines(keepends=True)
+    if len(lines) < 3 or not all(line.endswith('\n') for line in lines):
+        return
+    column = next(csv.reader(lines[:1])).index('run')
+
+    def Run(line: str) -> float:
+        try:
+            return int(next(csv.reader([line]))[column])
+        except (ValueError, IndexError, StopIteration):
+            return float('inf')                     # an unreadable line stays behind the readable ones
+
+    body = sorted(lines[1:], key=Run)
+    if body != lines[1:]:
+        def Write(tmp: Path) -> None:
+            with open(tmp, 'w', newline='', encoding='utf-8') as f:
+                f.write(lines[0] + ''.join(body))
+        WriteAtomically(path, Write)
 
 
 class StudyFileWarning(UserWarning):

@@ -192,6 +192,11 @@ class _Units(dict):
         return self[key] if key in self else default
 
 
+def _MarkdownUnit(unit: str) -> str:
+    """A unit in a Markdown table cell: '–' for none, its asterisks escaped (``N*m*s/rad`` is no emphasis)."""
+    return unit.replace('*', '\\*') if unit else '–'
+
+
 class ParameterRegistry:
     """The parameters of a flat parameter set, each declared once; see the module docstring.
 
@@ -659,7 +664,7 @@ class ParameterRegistry:
                 text += f" (key of the {forms} of the {p.quantity}; give one form: {self.FormsText(p.key)})"
             elif others:
                 text += f" (or give {' or '.join(f'`{k}`' for k in others)}: one form of the {p.quantity})"
-            lines.append(f"| {key} | {p.unit or '–'} | {p.rangeText} | {where} | {text} |")
+            lines.append(f"| {key} | {_MarkdownUnit(p.unit)} | {p.rangeText} | {where} | {text} |")
         return '\n'.join(lines) + '\n'
 
     def DriveFileMarkdownTable(self) -> str:
@@ -679,7 +684,7 @@ class ParameterRegistry:
             others = [f'`{o.fileKey}`' for o in map(self.Get, self.Alternatives(p.key)) if o.table]
             text = p.description + (f" (one form of the {p.quantity}, see below)" if p.forms else
                                     f" (or {' or '.join(others)})" if others else '')
-            lines.append(f"| {table} | `{p.fileKey}` | {key} | {text} | {p.unit or '–'} |".replace('|  |', '| |'))
+            lines.append(f"| {table} | `{p.fileKey}` | {key} | {text} | {_MarkdownUnit(p.unit)} |".replace('|  |', '| |'))
         return '\n'.join(lines) + '\n'
 
     def _Tables(self) -> Dict[str, None]:

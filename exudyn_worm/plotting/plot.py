@@ -32,7 +32,8 @@ import numpy as np
 from ..items.results import SERIES_UNITS
 
 __all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'MEAN_WINDOW', 'S_SIGN_LABEL', 'S_SIGN_NOTE',
-           'DENSE_SWITCHES_PER_INCH', 'PlotSimulation', 'PlotComparison', 'SaveFigure', 'TorqueSignNote']
+           'DENSE_SWITCHES_PER_INCH', 'PlotSimulation', 'PlotComparison', 'SaveFigure', 'TorqueSignNote',
+           'PhaseMeans', 'MergePhases', 'FrictionStateDrawn']
 
 #: the kinds :func:`PlotSimulation` draws
 PLOT_KINDS = ('overview', 'acceleration', 'zoom', 'speed', 'normalForce', 'driveTorque', 'bearingLoads')
@@ -127,7 +128,35 @@ def _Interval(where: str, result, tZoom) -> Tuple[np.ndarray, Tuple[float, float
 def _Phases(result) -> list:
     """The lift / lower phases the simulation recorded (``result.info['phases']``, from the duty:
     :func:`~exudyn_worm.analysis.reelchanger.DefaultPhases`); idle phases are not shaded."""
-    return [(a, b, kind) for a, b, kind in getattr(result, 'info', {}).get('phases', ()) if kind in _PHASE_COLORS]
+    return MergePhases([(a, b, kind) for a, b, kind in getattr(result, 'info', {}).get('phases', ())
+                        if kind in _PHASE_COLORS])
+
+
+def MergePhases(phases: Sequence) -> list:
+    """Phases with each run of adjoining phases of the same kind joined into one window.
+
+    The reel changer's duty lists the lift at the end of a rotation and the lift at the start of the next one
+    as two phases (6-8 s and 8-10 s at 472.5 rpm); the motor lifts without a break from 6 to 10 s, so a figure
+    shades one window.
+
+    Parameters
+    ----------
+    phases : sequence of (float, float, str)
+        ``(t0, t1, kind)`` in time order, times in s.
+
+    Returns
+    -------
+    list of (float, float, str)
+        The windows, in time order.
+    """
+    merged = []
+    for a, b, kind in phases:
+        a, b = float(a), float(b)
+        if merged and merged[-1][2] == kind and abs(a - merged[-1][1]) <= 1e-9 * max(1., abs(b)):
+            merged[-1] = (merged[-1][0], b, kind)
+        else:
+            merged.append((a, b, kind))
+    return merged
 
 
 def _ShadePhases(ax, phases, interval, labels: bool = True):
@@ -173,8 +202,32 @@ def _Decorate(ax, interval):
 #: label of the contact state as drawn: the paper's S = +-1 (eq. (8)) is the sign of the regularized S
 S_SIGN_LABEL = _S_LABEL = r'contact state sign$(S)$'
 #: the note under every figure that draws sign(S) (for your own figures of ``result.series['S']`` too)
-S_SIGN_NOTE = _S_NOTE = (r"$|S| = |\sigma s_f| < 1$ while the flanks stick (or, regularized, $|\dot\varphi_1|$ < frictionSpeed); "
-                         r"drawn: its sign, the paper's $S = \pm 1$")
+S_SIGN_NOTE = _S_NOTE = (r"$|S| = |\sigma s_f| < 1$ only while the flanks stick (regularized friction: while the worm "
+                         r"nearly stands); drawn: its sign, the paper's $S = \pm 1$")
+
+
+def FrictionStateDrawn(result: 'SimulationResult', mask: Optional[np.ndarray] = None) -> np.ndarray:
+    """The friction state s_f as drawn: one value per output time (the solver's steps), within [-1, 1].
+
+    While the flanks stick, s_f is the sticking force over ``mu * abs(F_n)``. The switch from sticking to sliding
+    is decided after a converged step, so in the one step before it the sticking force may exceed the friction
+    limit and the recorded ``abs(s_f)`` exceed 1; the flanks slide from the next step, at s_f = +-1, which is
+    what the figure shows. The value holds over its step (drawn as steps, not joined by slopes).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        With the series ``sf``.
+    mask : array of bool, optional
+        Output times to use (default: all).
+
+    Returns
+    -------
+    ndarray
+        s_f at the output times, clipped to [-1, 1].
+    """
+    sf = np.asarray(result.series['sf'], dtype=float)
+    return np.clip(sf if mask is None else sf[np.asarray(mask, bool)], -1., 1.)
 
 
 def _ContactSign(result, mask):
@@ -224,7 +277,6 @@ def _DrawFlank(ax, result, mask, flank: int):
     ax.plot(t, _RunningMean(t, f, MEAN_WINDOW), color='black', lw=1.2, ls='--',
             label=f'mean over {MEAN_WINDOW:g} s')
     ax.set_ylabel(f'flank {flank} $F_n$ [kN]')
-    ax.legend(loc='upper left', bbox_to_anchor=(0., 0.9), fontsize=8, framealpha=0.9)
 
 
 def _DrawNormalForce(ax, result, mask, legend=True):
@@ -235,8 +287,18 @@ def _DrawNormalForce(ax, result, mask, legend=True):
     ax.plot(t, -f2, color=_C_FLANK2, lw=_LINE_WIDTH, label=r'flank 2 ($\Delta s < 0$), drawn downward')
     ax.axhline(0., color='0.4', lw=0.6)
     ax.set_ylabel('$F_n$ [kN] (flank 1 up, flank 2 down)')
-    if legend:                                 # below the phase names at the top
-        ax.legend(loc='upper left', bbox_to_anchor=(0., 0.92), fontsize=8, framealpha=0.9)
+    if legend:                                 # in the title, over no data
+        _SetTitle(ax, 'Normal force: flank 1 (blue) up, flank 2 (red) down', fontsize=10)
+
+
+def _FigureLegend(fig, axes, loc='outside lower center', **kwargs):
+    """One legend for ``axes`` outside them (constrained layout makes room), one entry per label."""
+    handles = {}
+    for ax in axes:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            handles.setdefault(label, handle)
+    return fig.legend(list(handles.values()), list(handles), loc=loc, ncols=min(len(handles), 3),
+                      fontsize=kwargs.pop('fontsize', 8.5), frameon=False, **kwargs)
 
 
 def _Draw(kind, ax, result, mask, interval, phases, twin: bool = True):
@@ -261,7 +323,7 @@ def _Draw(kind, ax, result, mask, interval, phases, twin: bool = True):
         ax.set_yticks([-1, 0, 1])
         ax.set_ylabel('sign$(S)$ [–]')
     elif kind == 'sf':
-        ax.plot(t, np.asarray(result.series['sf'])[mask], color=_C_SECOND, lw=0.9)
+        ax.plot(t, FrictionStateDrawn(result, mask), color=_C_SECOND, lw=0.9, drawstyle='steps-post', gid='sf')
         ax.set_ylim(-1.3, 1.3)
         ax.set_yticks([-1, 0, 1])
         ax.set_ylabel('$s_f$ [–]')
@@ -281,13 +343,51 @@ def _Draw(kind, ax, result, mask, interval, phases, twin: bool = True):
     ax.set_xlabel('time $t$ [s]')
 
 
+def PhaseMeans(result: 'SimulationResult', phases: Sequence, mask: Optional[np.ndarray] = None,
+               name: str = 'driveTorque') -> list:
+    """The mean of a series over each kind of phase and direction of the worm, in order of first appearance.
+
+    A lift with the worm turning forward and one with it turning backward have drive torques of opposite sign:
+    their common mean says nothing, so they are averaged apart. The direction of a phase is the sign of the mean
+    worm speed phi1' in it (forward without ``omega1``).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        With the series ``name`` (and ``omega1`` for the direction).
+    phases : sequence of (float, float, str)
+        ``(t0, t1, kind)``, kind ``'lift'`` or ``'lower'``, times in s.
+    mask : array of bool, optional
+        Output times to use (default: all).
+    name : str
+        The series averaged (default ``'driveTorque'``).
+
+    Returns
+    -------
+    list of (str, int, float)
+        ``(kind, direction, mean)``: direction +1 forward, -1 backward; the mean in the series' SI unit.
+    """
+    t = np.asarray(result.time)
+    mask = np.ones(t.shape, bool) if mask is None else np.asarray(mask, bool)
+    values = np.asarray(result.series[name])
+    omega = np.asarray(result.series['omega1']) if 'omega1' in result.series else None
+    parts = {}
+    for a, b, kind in phases:               # [a, b): a boundary sample belongs to the phase it starts
+        inside = mask & (t >= a) & ((t < b) | (b >= t[-1]))
+        if inside.any():
+            direction = 1 if omega is None or float(np.mean(omega[inside])) >= 0. else -1
+            parts.setdefault((kind, direction), []).append(values[inside])
+    return [(kind, direction, float(np.mean(np.concatenate(v)))) for (kind, direction), v in parts.items()]
+
+
 def TorqueSignNote(result: 'SimulationResult', mask: Optional[np.ndarray] = None, phases: Sequence = ()) -> str:
     """What the sign of the drive-shaft torque M_an (eq. (6)) means in ``result``, one line per statement.
 
     M_an = kT (phi1 - phi0) + dT (phi1' - phi0') is positive when the worm runs ahead of the motor. With the
     worm turning forward (mean phi1' > 0), M_an < 0 means the shaft pulls the worm along: the motor drives
-    the gear; M_an > 0 means the worm drives the motor. With ``phases`` (lift / lower intervals), the mean
-    torque of each phase follows, and a remark where the motor drives while the load is lowered
+    the gear; M_an > 0 means the worm drives the motor; turning backward, the other way round. With ``phases``
+    (lift / lower intervals), the mean torque of each phase and direction follows (:func:`PhaseMeans`: a forward
+    and a backward lift are averaged apart), and a remark where the motor drives while the load is lowered
     (self-locking).
 
     Parameters
@@ -305,35 +405,35 @@ def TorqueSignNote(result: 'SimulationResult', mask: Optional[np.ndarray] = None
     """
     t = np.asarray(result.time)
     mask = np.ones(t.shape, bool) if mask is None else np.asarray(mask, bool)
-    M = np.asarray(result.series['driveTorque'])
     lines = [r'$M_{an} = k_T(\varphi_1-\varphi_0) + d_T(\dot\varphi_1-\dot\varphi_0)$ (eq. 6)']
     if 'omega1' not in result.series:
         lines.append(r'$M_{an} < 0$: the worm lags behind the motor')
         return '\n'.join(lines)
-    forward = float(np.mean(np.asarray(result.series['omega1'])[mask])) >= 0.
-    drives = '<' if forward else '>'
-    lines.append(fr'worm turning {"forward" if forward else "backward"}: $M_{{an}}$ {drives} 0 = the motor drives '
-                 fr'the worm, $M_{{an}}$ {">" if forward else "<"} 0 = the worm drives the motor')
-    means = {}
-    for a, b, kind in phases:
-        inside = mask & (t >= a) & (t <= b)
-        if inside.any():
-            means.setdefault(kind, []).append(M[inside])
+    means = PhaseMeans(result, phases, mask)
+    directions = sorted({d for _, d, _ in means}, reverse=True) or \
+        [1 if float(np.mean(np.asarray(result.series['omega1'])[mask])) >= 0. else -1]
+    for d in directions:
+        lines.append(fr'worm turning {"forward" if d > 0 else "backward"}: $M_{{an}}$ {"<" if d > 0 else ">"} 0 = the '
+                     fr'motor drives the worm, $M_{{an}}$ {">" if d > 0 else "<"} 0 = the worm drives the motor')
     if means:
-        means = {k: float(np.mean(np.concatenate(v))) for k, v in means.items()}
-        lines.append(', '.join(f"{'lifting' if k == 'lift' else 'lowering'}: mean {v:+.3g} N·m"
-                               for k, v in sorted(means.items())))
-        if 'lower' in means and (means['lower'] < 0) == forward:
-            lines[-1] += ' (self-locking: the motor drives while lowering too)'
+        both = len(directions) > 1
+        texts = []
+        for kind, d, value in sorted(means, key=lambda m: (m[0], -m[1])):
+            phase = 'lifting' if kind == 'lift' else 'lowering'
+            texts.append(f"{phase}{(' forward' if d > 0 else ' backward') if both else ''}: mean {value:+.3g} N·m"
+                         + (' (self-locking: the motor drives while lowering too)'
+                            if kind == 'lower' and (value < 0) == (d > 0) else ''))
+        lines.append(', '.join(texts))
     return '\n'.join(lines)
 
 
 def _ExplainTorqueSign(ax, result, mask, phases):
-    """The meaning of the torque's sign as a legend without handles, where it covers the least data."""
+    """The meaning of the torque's sign as a legend without handles, below the figure's axes (over no data)."""
     from matplotlib.lines import Line2D
     note = TorqueSignNote(result, mask, phases)
-    legend = ax.legend([Line2D([], [], ls='none')], [note], loc='best', fontsize=7.5, handlelength=0,
-                       handletextpad=0, framealpha=0.9, title='sign of $M_{an}$', title_fontsize=8)
+    legend = ax.figure.legend([Line2D([], [], ls='none')], [note], loc='outside lower center', fontsize=7.5,
+                              handlelength=0, handletextpad=0, frameon=False, title='sign of $M_{an}$',
+                              title_fontsize=8)
     legend.set_gid('torque sign')
 
 
@@ -456,6 +556,7 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
         bad = [k for _, _, k in phases if k not in _PHASE_COLORS]
         if bad:
             raise ValueError(f"{w}: phase names must be 'lift' or 'lower', got {bad[0]!r}")
+        phases = MergePhases(phases)
     title = _DEFAULT_TITLES[kind] if title is None else str(title)
     if subtitle:
         title = f'{title}\n{subtitle}'
@@ -464,7 +565,8 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
         fig, axes = _NewFigure(2, 2, figsize=figsize or (12., 7.), sharex=True)
         for ax, k in zip(axes.flat, ('acceleration', 'speed', 'normalForce', 'driveTorque')):
             _Draw(k, ax, result, mask, interval, phases, twin=False)
-            _SetTitle(ax, _DEFAULT_TITLES[k].split(' and ')[0], fontsize=10)
+            if k != 'normalForce':             # its title names the flanks' colours
+                _SetTitle(ax, _DEFAULT_TITLES[k].split(' and ')[0], fontsize=10)
         for ax in axes[0]:
             ax.set_xlabel('')
         fig.suptitle(title)
@@ -481,7 +583,7 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
                         lw=_LINE_WIDTH, label=f'{direction.lower()} bearing' if direction == 'Axial'
                         else 'radial bearings (vector sum)')
             ax.set_ylabel(f'{body} bearing load [kN]')
-            ax.legend(loc='upper right', fontsize=8)
+            ax.legend(loc='upper left', bbox_to_anchor=(1.01, 1.), fontsize=8, frameon=False)
             _Decorate(ax, interval)
         axes[0, 0].set_xlabel('')
         axes[1, 0].set_xlabel('time $t$ [s]')
@@ -492,7 +594,9 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
         _Draw('speed', axes[0, 0], result, mask, interval, phases)
         _Draw('sf', axes[1, 0], result, mask, interval, phases)
         axes[0, 0].set_xlabel('')
-        axes[1, 0].set_title(r'friction state $s_f$ (±1 sliding, |$s_f$| < 1 sticking)', loc='left', fontsize=9)
+        step = float(np.median(np.diff(np.asarray(result.time)[mask]))) if mask.sum() > 1 else 0.
+        axes[1, 0].set_title(fr'friction state $s_f$ (±1 sliding, |$s_f$| < 1 sticking; one value per time step '
+                             fr'of {1e3 * step:.3g} ms)', loc='left', fontsize=9)
         _SetTitle(axes[0, 0], title, fontsize=11)
         return fig
     if kind == 'normalForce':              # one panel per flank: the dense second flank stays legible
@@ -502,6 +606,7 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
                 _ShadePhases(ax, phases, interval, labels=(flank == 1))
             _DrawFlank(ax, result, mask, flank)
             _Decorate(ax, interval)
+        _FigureLegend(fig, axes[:, 0])
         axes[1, 0].set_xlabel('time $t$ [s]')
         _SetTitle(axes[0, 0], title, fontsize=11)
         return fig
@@ -586,8 +691,7 @@ def PlotComparison(results: Mapping[str, Any], quantity: str = 'normalForce',
             _DrawNormalForce(ax, result, mask, legend=False)
             ax.set_ylabel('$F_n$ [kN]')
             if i == 0:
-                fig.legend(*ax.get_legend_handles_labels(), loc='outside lower center', ncols=2, fontsize=9,
-                           frameon=False)
+                _FigureLegend(fig, [ax], fontsize=9)
         else:
             _DrawSeries(ax, result, series, mask)
             ax.set_ylabel(_Label(series) if n == 1 else f"[{_Label(series).rsplit('[', 1)[-1]}")

@@ -430,21 +430,25 @@ def PlotSpeedChart(chart: 'SpeedChart', ax=None, title: Optional[str] = None, lo
     """
     if not isinstance(chart, SpeedChart):
         raise TypeError(f"PlotSpeedChart: 'chart' must be a SpeedChart (SpeedStabilityChart), got {type(chart).__name__}")
-    ax = _Axes(ax, figsize=(7.5, 4.5))
+    ownFigure = ax is None
+    ax = _Axes(ax, figsize=(7.5, 4.9))
     rpm = chart.motorSpeeds / RPM
     ax.axhline(0., color='0.4', lw=0.8)
     colors = {+1: _COLORS[2], -1: _COLORS[0]}
     for c in chart.curves:
         color = colors[c.S]
         ax.plot(rpm, c.maxRealPart, color=color, lw=1.8, marker='.',
-                label=f'largest real part, {c.phase} (S = {c.S:+d}), {c.loadTorque:.4g} N*m')
+                label=f'largest real part, {c.phase} (S = {c.S:+d}), load {c.loadTorque:.4g} N·m')
         for a, b in c.unstableRanges:
             ax.axvspan(a / RPM, b / RPM, color=color, alpha=0.12, lw=0)
         for b in c.Boundaries():
             ax.axvline(b / RPM, color=color, ls='--', lw=0.8)
+    labelled = set()
     for p in chart.ownPoints:                   # the drive's own operating points (as exudyn-worm stability)
+        label = f"own operating point, {p.phase}: {'stable' if p.stable else 'UNSTABLE'}"
         ax.plot(abs(p.point.motorSpeed) / RPM, p.maxRealPart, '*', ms=12, mec='black', mew=0.6, color=colors[p.S],
-                label=f"own operating point, {p.phase}: {'stable' if p.stable else 'UNSTABLE'}")
+                label='_' + label if label in labelled else label)       # one legend entry per kind of star
+        labelled.add(label)
     if log:
         ax.set_xscale('log')
     ax.set_xlabel('motor speed [rpm]')
@@ -453,6 +457,10 @@ def PlotSpeedChart(chart: 'SpeedChart', ax=None, title: Optional[str] = None, lo
     twin.plot(rpm, chart.mu, color=_COLORS[1], lw=1.2, ls=':', label=r'$\mu(v_0)$')
     twin.set_ylabel(r'friction coefficient $\mu(v_0)$', color=_COLORS[1])
     lines = [l for l in ax.get_lines()[1:] if not l.get_label().startswith('_')] + twin.get_lines()
-    ax.legend(lines, [l.get_label() for l in lines], loc='best', fontsize=8)
+    labels = [l.get_label() for l in lines]
+    if ownFigure:                               # below the axes, over no data (constrained layout makes room)
+        ax.figure.legend(lines, labels, loc='outside lower center', ncols=2, fontsize=8, frameon=False)
+    else:                                       # the caller's axes: where it covers the least
+        ax.legend(lines, labels, loc='best', fontsize=8)
     ax.set_title(title or f'stability over motor speed, {chart.frictionLaw} friction law', loc='left', fontsize=10)
     return ax
