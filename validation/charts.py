@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
-from typing import Dict, List, Tuple
+from typing import Callable, Dict, List, Sequence, Tuple
 
 import numpy as np
 
@@ -19,7 +19,7 @@ from exudyn_worm.setups.presets import GearFromParameters, GetPreset
 from .runner import Check, Fmt, ValidationContext
 
 __all__ = ['X_RANGE', 'Y_RANGE', 'RESOLUTION', 'DTV_VALUES', 'Chart', 'DisplayedDomain', 'Area', 'XExtent', 'SmallXYExtent',
-           'ChartChecks']
+           'StatementValues', 'ChartChecks']
 
 #: chart domain of the section 2.3 rows (validation/README.md)
 X_RANGE = (1e-4, 1e2)
@@ -137,6 +137,71 @@ def _Increasing(values: List[float]) -> bool:
     return all(a < b for a, b in zip(values, values[1:]))
 
 
+def _Upper(chart) -> float:
+    return math.nan if chart.unstableXRange is None else chart.unstableXRange[1]
+
+
+def StatementValues(c14: Dict[float, object], c56: Dict[float, object], cSp: Sequence[object],
+                    bound: Dict[float, object], area: Callable = Area, xExtent: Callable = XExtent,
+                    smallExtent: Callable = SmallXYExtent, fmt: str = '.3f',
+                    extentUnit: str = ' decades', yLabel: str = 'mean log10 y-extent') -> Dict[str, Tuple[float, str]]:
+    """The values of the eleven section 2.3 statements from a set of charts and one reading's measures.
+
+    The one place where the statements are turned into numbers: the wide-domain rows (``chart_<key>``) and the
+    paper-domain rows of both axis readings (``chart_paper_<reading>_<key>``, :mod:`validation.charts_paper`)
+    call it with their charts and measures.
+
+    Parameters
+    ----------
+    c14 : dict
+        ``{D_TV: chart}`` at D_V = 0.014 for every value of :data:`DTV_VALUES`.
+    c56 : dict
+        ``{D_TV: chart}`` at D_V = 0.056 for D_TV = 1, 5, 25.
+    cSp : sequence
+        The S = +1 charts at D_V = 0.014 (D_TV = 1, 5, 25).
+    bound : dict
+        ``{D_TV: chart}`` at D_V = 0.014 whose upper unstable x end is the bound (D_TV = 1, 5, 25).
+    area, xExtent, smallExtent : callable, optional
+        The reading's measures: ``chart -> float`` for the unstable area, the extent along x and the mean J1/J2
+        extent for x < 0.10 (default: the log10 measures of this module).
+    fmt : str, optional
+        Format of the areas and extents in the details.
+    extentUnit : str, optional
+        Unit of the x extents in the details.
+    yLabel : str, optional
+        Name of the J1/J2 extent measure in the details.
+
+    Returns
+    -------
+    dict
+        ``{key: (value, detail)}`` with the keys of the rows without their ``chart_`` prefix, in row order.
+    """
+    area14 = {d: area(c) for d, c in c14.items()}
+    area56 = {d: area(c) for d, c in c56.items()}
+    areas = ', '.join(f'D_TV = {d:g}: {a:{fmt}}' for d, a in area14.items())
+    small = {d: smallExtent(c14[d]) for d in (1., 5., 25.)}
+    x5, x5_56 = xExtent(c14[5.]), xExtent(c56[5.])
+    ratioFmt = '.4f' if fmt == '.3f' else '.4g'
+    return {
+        'bound_DTV25': (_Upper(bound[25.]), ''),
+        'bound_DTV5': (_Upper(bound[5.]), ''),
+        'bound_DTV1': (_Upper(bound[1.]), ''),
+        'DTV1_smallest': (float(all(area14[1.] < a for d, a in area14.items() if d != 1.)), f'areas {areas}'),
+        'broadens_smaller_DTV': (float(_Increasing([area14[1.], area14[0.5], area14[0.2]])), f'areas {areas}'),
+        'broadens_bigger_DTV': (float(_Increasing([area14[1.], area14[5.], area14[25.]])), f'areas {areas}'),
+        'small_x_broadens': (float(_Increasing([small[1.], small[5.], small[25.]])),
+                             f'{yLabel} for x < 0.10: ' + ', '.join(f'D_TV = {d:g}: {e:{fmt}}'
+                                                                         for d, e in small.items())),
+        'DV056_smaller': (float(all(area56[d] < area14[d] for d in area56)),
+                          'areas at D_V = 0.056 / 0.014: ' + ', '.join(f'D_TV = {d:g}: {area56[d]:{fmt}} / '
+                                                                       f'{area14[d]:{fmt}}' for d in area56)),
+        'DV056_DTV25_vanishes': (area56[25.] / area14[25.] if area14[25.] > 0 else math.nan,
+                                 f'areas {area56[25.]:{ratioFmt}} / {area14[25.]:{ratioFmt}}'),
+        'DV056_DTV5_shorter': (x5 / x5_56 if x5_56 > 0 else math.inf, f'x-extents {x5:{fmt}} / {x5_56:{fmt}}{extentUnit}'),
+        'no_unstable_Sp': (float(sum(np.count_nonzero(c.unstable) for c in cSp)), ''),
+    }
+
+
 def ChartChecks(ctx: ValidationContext) -> List[Check]:
     """Group ``charts``: the statements of section 2.3 about Figures 4 (D_V = 0.014) and 5 (D_V = 0.056)."""
     from exudyn_worm.progress import ProgressBar
@@ -150,28 +215,9 @@ def ChartChecks(ctx: ValidationContext) -> List[Check]:
     c56 = {d: Chart(0.056, d) for d in (1., 5., 25.)}
     area14 = {d: Area(c) for d, c in c14.items()}
     area56 = {d: Area(c) for d, c in c56.items()}
-    upper = lambda c: math.nan if c.unstableXRange is None else c.unstableXRange[1]
-    checks = []
-
-    def add(rowId, value, detail=''):
-        checks.append(ctx.Compare(rowId, value, detail=detail, uses=()))
-    add('chart_bound_DTV25', upper(c14[25.]))
-    add('chart_bound_DTV5', upper(c14[5.]))
-    add('chart_bound_DTV1', upper(c14[1.]))
-    areas = ', '.join(f'D_TV = {d:g}: {a:.3f}' for d, a in area14.items())
-    add('chart_DTV1_smallest', float(all(area14[1.] < a for d, a in area14.items() if d != 1.)), f'areas {areas}')
-    add('chart_broadens_smaller_DTV', float(_Increasing([area14[1.], area14[0.5], area14[0.2]])), f'areas {areas}')
-    add('chart_broadens_bigger_DTV', float(_Increasing([area14[1.], area14[5.], area14[25.]])), f'areas {areas}')
+    values = StatementValues(c14, c56, [Chart(0.014, d, +1) for d in (1., 5., 25.)], c14)
+    checks = [ctx.Compare('chart_' + key, value, detail=detail, uses=()) for key, (value, detail) in values.items()]
     small = {d: SmallXYExtent(c14[d]) for d in (1., 5., 25.)}
-    add('chart_small_x_broadens', float(_Increasing([small[1.], small[5.], small[25.]])),
-        'mean log10 y-extent for x < 0.10: ' + ', '.join(f'D_TV = {d:g}: {e:.3f}' for d, e in small.items()))
-    add('chart_DV056_smaller', float(all(area56[d] < area14[d] for d in area56)),
-        'areas at D_V = 0.056 / 0.014: ' + ', '.join(f'D_TV = {d:g}: {area56[d]:.3f} / {area14[d]:.3f}' for d in area56))
-    add('chart_DV056_DTV25_vanishes', area56[25.] / area14[25.] if area14[25.] > 0 else math.nan,
-        f'areas {area56[25.]:.4f} / {area14[25.]:.4f}')
-    add('chart_DV056_DTV5_shorter', XExtent(c14[5.]) / XExtent(c56[5.]) if XExtent(c56[5.]) > 0 else math.inf,
-        f'x-extents {XExtent(c14[5.]):.3f} / {XExtent(c56[5.]):.3f} decades')
-    add('chart_no_unstable_Sp', float(sum(np.count_nonzero(Chart(0.014, d, +1).unstable) for d in (1., 5., 25.))))
     _Section(ctx, checks, c14, c56, area14, area56, small)
     return checks
 
