@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
-from typing import Callable, Dict, List, Sequence, Tuple
+from typing import TYPE_CHECKING, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -18,8 +18,11 @@ from exudyn_worm.setups.presets import GearFromParameters, GetPreset
 
 from .runner import Check, Fmt, ValidationContext
 
+if TYPE_CHECKING:   # a hint only: the chart module is imported when a chart is computed
+    from exudyn_worm.analysis.charts import StabilityChart
+
 __all__ = ['X_RANGE', 'Y_RANGE', 'RESOLUTION', 'DTV_VALUES', 'Chart', 'DisplayedDomain', 'Area', 'XExtent', 'SmallXYExtent',
-           'StatementValues', 'ChartChecks']
+           'Tail', 'TailText', 'StatementValues', 'ChartChecks']
 
 #: chart domain of the section 2.3 rows (validation/README.md)
 X_RANGE = (1e-4, 1e2)
@@ -133,6 +136,66 @@ def SmallXYExtent(chart, xMax: float = SMALL_X) -> float:
     return float(np.mean(extents)) if extents else 0.
 
 
+def Tail(chart: 'StabilityChart', bound: float) -> Optional[Dict[str, object]]:
+    """Where the unstable set ends along x, measured from a stated bound: the width of the tail beyond it.
+
+    Parameters
+    ----------
+    chart : StabilityChart
+        A chart (``unstable[i, j]`` at ``(x[j], y[i])``, with ``unstableXRange``).
+    bound : float
+        The stated bound X of the stiffness ratio, > 0.
+
+    Returns
+    -------
+    dict or None
+        None if nothing is unstable; else ``end`` (the upper end of the unstable x range), ``decades``
+        (log10(end / bound): the tail's width beyond the bound, negative where the set ends before it), ``band``
+        (the J1/J2 range of the unstable points in the last unstable grid column: where the band ends) and
+        ``edges`` (the chart's sides that the band's end touches, among 'right', 'top', 'bottom': there it
+        continues beyond the chart).
+
+    Raises
+    ------
+    ValueError
+        If ``bound`` is not > 0.
+    """
+    if not bound > 0:
+        raise ValueError(f"Tail: 'bound' must be a stiffness ratio > 0, got {bound!r}")
+    rng = chart.unstableXRange
+    if rng is None:
+        return None
+    j = int(np.nonzero(chart.unstable.any(axis=0))[0][-1])
+    rows = np.nonzero(chart.unstable[:, j])[0]
+    return {'end': float(rng[1]), 'decades': math.log10(rng[1] / bound),
+            'band': (float(chart.y[rows[0]]), float(chart.y[rows[-1]])),
+            'edges': [side for side, touches in (('right', j == chart.x.size - 1), ('top', rows[-1] == chart.y.size - 1),
+                                                 ('bottom', rows[0] == 0)) if touches]}
+
+
+def TailText(chart: 'StabilityChart', bound: float) -> str:
+    """:func:`Tail` in words, for a row's detail and the report.
+
+    Parameters
+    ----------
+    chart : StabilityChart
+        A chart.
+    bound : float
+        The stated bound X, > 0.
+
+    Returns
+    -------
+    str
+    """
+    tail = Tail(chart, bound)
+    if tail is None:
+        return 'nothing unstable'
+    (y0, y1), d = tail['band'], tail['decades']
+    where = f'{d:.3f} decades beyond {bound:g}' if d > 0 else f'{-d:.3f} decades before {bound:g}'
+    return (f"the unstable band ends at x = {tail['end']:.4g} ({where}), at J1/J2 {y0:.3g} .. {y1:.3g}"
+            + (f" (at the {' and '.join(tail['edges'])} edge of the chart: it continues beyond)" if tail['edges'] else ''))
+
+
 def _Increasing(values: List[float]) -> bool:
     return all(a < b for a, b in zip(values, values[1:]))
 
@@ -216,7 +279,9 @@ def ChartChecks(ctx: ValidationContext) -> List[Check]:
     area14 = {d: Area(c) for d, c in c14.items()}
     area56 = {d: Area(c) for d, c in c56.items()}
     values = StatementValues(c14, c56, [Chart(0.014, d, +1) for d in (1., 5., 25.)], c14)
-    checks = [ctx.Compare('chart_' + key, value, detail=detail, uses=()) for key, (value, detail) in values.items()]
+    bounds = {'bound_DTV25': (25., 0.22), 'bound_DTV5': (5., 1.), 'bound_DTV1': (1., 3.)}
+    checks = [ctx.Compare('chart_' + key, value, detail='; '.join(filter(None, [detail, TailText(
+        c14[bounds[key][0]], bounds[key][1]) if key in bounds else ''])), uses=()) for key, (value, detail) in values.items()]
     small = {d: SmallXYExtent(c14[d]) for d in (1., 5., 25.)}
     _Section(ctx, checks, c14, c56, area14, area56, small)
     return checks

@@ -25,18 +25,21 @@ grid points on the paper's domain.
 """
 from __future__ import annotations
 
-import math
 from functools import lru_cache
-from typing import Dict, List, Optional, Tuple
+from typing import TYPE_CHECKING, Dict, List
 
 import numpy as np
 
 from .charts import (DTV_VALUES, RESOLUTION, SMALL_X, Area, Chart, DisplayedDomain, SmallXYExtent, StatementValues,
-                     XExtent, _Set25)
+                     TailText, XExtent, Y_RANGE, _Set25)
 from .runner import Check, Fmt, ValidationContext
 
+if TYPE_CHECKING:   # a hint only: the chart module is imported when a chart is computed
+    from exudyn_worm.analysis.charts import StabilityChart
+
 __all__ = ['AXIS_READINGS', 'BOUND_X_END', 'BOUND_KEYS', 'PaperChart', 'BoundChart', 'LinearCellWidths',
-           'LinearArea', 'LinearXExtent', 'SmallXLinearYExtent', 'Tail', 'PaperChartChecks']
+           'LinearArea', 'LinearXExtent', 'SmallXLinearYExtent',
+           'PaperChartChecks']
 
 #: the two readings of the figures' axes: both logarithmic, both linear
 AXIS_READINGS = ('log', 'lin')
@@ -47,7 +50,7 @@ BOUND_KEYS = {'bound_DTV25': 0.22, 'bound_DTV5': 1., 'bound_DTV1': 3.}
 _BOUND_DTV = {'bound_DTV25': 25., 'bound_DTV5': 5., 'bound_DTV1': 1.}
 
 
-def PaperChart(DV: float, DTV: float, S: int = -1):
+def PaperChart(DV: float, DTV: float, S: int = -1) -> 'StabilityChart':
     """The stability chart of set (25) on the domain section 2.3 states (cached; shared with the report's table).
 
     Parameters
@@ -67,7 +70,7 @@ def PaperChart(DV: float, DTV: float, S: int = -1):
 
 
 @lru_cache(maxsize=None)
-def BoundChart(DV: float, DTV: float):
+def BoundChart(DV: float, DTV: float) -> 'StabilityChart':
     """The chart of the bound rows: the stated J1 range, x from the stated kT's lower end to :data:`BOUND_X_END`.
 
     Parameters
@@ -114,7 +117,7 @@ def LinearCellWidths(grid: np.ndarray) -> np.ndarray:
     return np.diff(edges)
 
 
-def LinearArea(chart) -> float:
+def LinearArea(chart: 'StabilityChart') -> float:
     """Unstable area in linear x*y coordinates: the unstable cells' linear width times height, summed.
 
     Parameters
@@ -131,7 +134,7 @@ def LinearArea(chart) -> float:
     return float(np.sum(chart.unstable * wy[:, None] * wx[None, :]))
 
 
-def LinearXExtent(chart) -> float:
+def LinearXExtent(chart: 'StabilityChart') -> float:
     """Extent of the unstable set along x in linear units: x_max - x_min (the bisected ends of the chart).
 
     Parameters
@@ -147,7 +150,7 @@ def LinearXExtent(chart) -> float:
     return 0. if rng is None else rng[1] - rng[0]
 
 
-def SmallXLinearYExtent(chart, xMax: float = SMALL_X) -> float:
+def SmallXLinearYExtent(chart: 'StabilityChart', xMax: float = SMALL_X) -> float:
     """Mean linear J1/J2 extent (y_max - y_min of each column's unstable points, 0 without) over the columns with
     x < ``xMax``, weighted by the columns' linear widths (:func:`LinearCellWidths`).
 
@@ -180,41 +183,6 @@ _MEASURES = {
 }
 
 
-def Tail(chart, bound: float) -> Optional[Tuple[float, float, Tuple[float, float]]]:
-    """The unstable tail beyond a bound: its width in decades, where it ends, and its J1/J2 band at the bound.
-
-    Parameters
-    ----------
-    chart : StabilityChart
-        A chart reaching beyond ``bound``.
-    bound : float
-        The stated bound X of the stiffness ratio.
-
-    Returns
-    -------
-    (float, float, (float, float)) or None
-        ``(log10(x_end / bound), x_end, (y_min, y_max))`` with x_end the upper end of the unstable x range and
-        the J1/J2 range of the unstable grid points with x > bound; None if the unstable set ends at or before
-        ``bound``.
-    """
-    rng = chart.unstableXRange
-    if rng is None or rng[1] <= bound:
-        return None
-    beyond = chart.unstable[:, chart.x > bound]
-    rows = np.nonzero(beyond.any(axis=1))[0]
-    band = (float(chart.y[rows[0]]), float(chart.y[rows[-1]])) if rows.size else (math.nan, math.nan)
-    return math.log10(rng[1] / bound), rng[1], band
-
-
-def _TailText(chart, bound: float) -> str:
-    tail = Tail(chart, bound)
-    if tail is None:
-        return f'the unstable set ends at or before {bound:g}'
-    width, end, (y0, y1) = tail
-    return (f'unstable tail beyond {bound:g}: {width:.3f} decades, the band ends at x = {end:.4g} '
-            f'(J1/J2 {y0:.3g} .. {y1:.3g} beyond {bound:g})')
-
-
 def PaperChartChecks(ctx: ValidationContext) -> List[Check]:
     """Group ``charts-paper``: the section 2.3 statements on the paper's stated domain, under both axis readings.
 
@@ -245,7 +213,7 @@ def PaperChartChecks(ctx: ValidationContext) -> List[Check]:
         values = StatementValues(c14, c56, cSp, bound, **_MEASURES[reading])
         for key, (value, detail) in values.items():
             if key in BOUND_KEYS:
-                detail = '; '.join(filter(None, [detail, _TailText(bound[_BOUND_DTV[key]], BOUND_KEYS[key])]))
+                detail = '; '.join(filter(None, [detail, TailText(bound[_BOUND_DTV[key]], BOUND_KEYS[key])]))
             checks.append(ctx.Compare(f'chart_paper_{reading}_{key}', value, detail=detail, uses=()))
     _Section(ctx, checks, c14, c56, bound)
     return checks
@@ -289,8 +257,19 @@ def _Section(ctx: ValidationContext, checks: List[Check], c14: Dict, c56: Dict, 
             for r in AXIS_READINGS}
     neither = [k for k, p in byKey.items() if not any(p[r].holds for r in AXIS_READINGS)]
     names = lambda keys: ', '.join(f'`{k}`' for k in keys) or 'none'
-    tails = [f'- `{key}` (D_TV = {_BOUND_DTV[key]:g}, "bigger than {BOUND_KEYS[key]:g}"): '
-             + _TailText(bound[_BOUND_DTV[key]], BOUND_KEYS[key]) for key in BOUND_KEYS]
+    why = []
+    for key, pair in byKey.items():
+        for reading in AXIS_READINGS:
+            c = pair[reading]
+            if not c.holds:
+                why.append(f'- `{key}`, {"log" if reading == "log" else "linear"} reading: computed '
+                           f'{Fmt(c.computed, c.row.publishedText)}, accepted {c.IntervalText()}'
+                           + (f' ({c.detail})' if c.detail and not c.knownDifference else '')
+                           + (f'; known difference: {c.knownDifference}' if c.knownDifference else ''))
+    tails = [f'- `{key}` (D_TV = {_BOUND_DTV[key]:g}, "bigger than {BOUND_KEYS[key]:g}"): on the stated J1/J2 range '
+             f'{y0:.3g} .. {y1:.3g}, {TailText(bound[_BOUND_DTV[key]], BOUND_KEYS[key])}; on the project\'s wide domain '
+             f'(J1/J2 {Y_RANGE[0]:g} .. {Y_RANGE[1]:g}), {TailText(Chart(0.014, _BOUND_DTV[key]), BOUND_KEYS[key])}'
+             for key in BOUND_KEYS]
     fixed = {**{(0.014, d): c for d, c in c14.items()}, **{(0.056, d): c for d, c in c56.items()}}
     ctx.AddSection('Stability charts on the paper\'s domain: both axis readings', f"""
 Set (25) with mu = 0.132 on the domain section 2.3 states (J1 from 1e-6 to 1e-3 kg*m^2, kT from 5e-3 to 5 N*m):
@@ -303,9 +282,13 @@ before these results were computed:
 
 Generated from the verdicts: under both readings {len(both)} of {len(byKey)} statements hold ({names(both)});
 only under the log reading: {names(only['log'])}; only under the linear reading: {names(only['lin'])}; under
-neither: {names(neither)}.
+neither: {names(neither)}. Where a statement does not hold, what was measured (the known differences, listed in
+`paper/differences.csv`, are the statements neither reading reproduces):
 
-The bound rows' unstable sets beyond the printed bounds (the stated J1/J2 range):
+{chr(10).join(why) or 'every statement holds under both readings'}
+
+Where the bound rows' unstable sets end, measured from the printed bounds (the tail's width in decades; the
+J1/J2 band in the last unstable grid column):
 
 {chr(10).join(tails)}
 
