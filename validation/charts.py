@@ -321,9 +321,9 @@ rules ({', '.join(f'`{c.id}`' for c in passed) or 'none'}); {'none fails' if not
 ({', '.join(f'D_V = {DV}, D_TV = {d:g}' for DV, d in clipped) or 'none'}): there the region continues beyond the
 chart and the areas and extents are clipped.
 
-For information only (no verdict is taken from it: the rows use the domain above), the same measures on the area
-the paper displays, from the ranges section 2.3 states (J1 from 1e-6 to 1e-3 kg*m^2, kT from 5e-3 to 5 N*m):
-x from {x0:.3g} to {x1:.3g}, y from {y0:.3g} to {y1:.3g}:
+The same measures on the area the paper displays, from the ranges section 2.3 states (J1 from 1e-6 to 1e-3
+kg*m^2, kT from 5e-3 to 5 N*m): x from {x0:.3g} to {x1:.3g}, y from {y0:.3g} to {y1:.3g} (the rows above take no
+verdict from it; the rows `chart_paper_*` do, under log and linear axes, in their own section):
 
 {chr(10).join(_MeasureTable(shown))}
 """)
