@@ -30,14 +30,14 @@ from typing import TYPE_CHECKING, Dict, List
 
 import numpy as np
 
-from .charts import (DTV_VALUES, RESOLUTION, SMALL_X, Area, Chart, DisplayedDomain, SmallXYExtent, StatementValues,
+from .charts import (BOUND_DTV, DTV_VALUES, RESOLUTION, SMALL_X, Area, Chart, DisplayedDomain, SmallXYExtent, StatementValues,
                      TailText, XExtent, Y_RANGE, _Set25)
 from .runner import Check, Fmt, ValidationContext
 
 if TYPE_CHECKING:   # a hint only: the chart module is imported when a chart is computed
     from exudyn_worm.analysis.charts import StabilityChart
 
-__all__ = ['AXIS_READINGS', 'BOUND_X_END', 'BOUND_KEYS', 'PaperChart', 'BoundChart', 'LinearCellWidths',
+__all__ = ['AXIS_READINGS', 'BOUND_X_END', 'PaperChart', 'BoundChart', 'LinearCellWidths',
            'LinearArea', 'LinearXExtent', 'SmallXLinearYExtent',
            'PaperChartChecks']
 
@@ -45,9 +45,6 @@ __all__ = ['AXIS_READINGS', 'BOUND_X_END', 'BOUND_KEYS', 'PaperChart', 'BoundCha
 AXIS_READINGS = ('log', 'lin')
 #: upper end of x for the bound rows (the paper computed the bounds 1 and 3 beyond its displayed area)
 BOUND_X_END = 1e2
-#: the bound statements: row key -> the printed bound X
-BOUND_KEYS = {'bound_DTV25': 0.22, 'bound_DTV5': 1., 'bound_DTV1': 3.}
-_BOUND_DTV = {'bound_DTV25': 25., 'bound_DTV5': 5., 'bound_DTV1': 1.}
 
 
 def PaperChart(DV: float, DTV: float, S: int = -1) -> 'StabilityChart':
@@ -212,9 +209,10 @@ def PaperChartChecks(ctx: ValidationContext) -> List[Check]:
     for reading in AXIS_READINGS:
         values = StatementValues(c14, c56, cSp, bound, **_MEASURES[reading])
         for key, (value, detail) in values.items():
-            if key in BOUND_KEYS:
-                detail = '; '.join(filter(None, [detail, TailText(bound[_BOUND_DTV[key]], BOUND_KEYS[key])]))
-            checks.append(ctx.Compare(f'chart_paper_{reading}_{key}', value, detail=detail, uses=()))
+            rowId = f'chart_paper_{reading}_{key}'
+            if key in BOUND_DTV:
+                detail = '; '.join(filter(None, [detail, TailText(bound[BOUND_DTV[key]], ctx.Row(rowId).published)]))
+            checks.append(ctx.Compare(rowId, value, detail=detail, uses=()))
     _Section(ctx, checks, c14, c56, bound)
     return checks
 
@@ -266,10 +264,14 @@ def _Section(ctx: ValidationContext, checks: List[Check], c14: Dict, c56: Dict, 
                            f'{Fmt(c.computed, c.row.publishedText)}, accepted {c.IntervalText()}'
                            + (f' ({c.detail})' if c.detail and not c.knownDifference else '')
                            + (f'; known difference: {c.knownDifference}' if c.knownDifference else ''))
-    tails = [f'- `{key}` (D_TV = {_BOUND_DTV[key]:g}, "bigger than {BOUND_KEYS[key]:g}"): on the stated J1/J2 range '
-             f'{y0:.3g} .. {y1:.3g}, {TailText(bound[_BOUND_DTV[key]], BOUND_KEYS[key])}; on the project\'s wide domain '
-             f'(J1/J2 {Y_RANGE[0]:g} .. {Y_RANGE[1]:g}), {TailText(Chart(0.014, _BOUND_DTV[key]), BOUND_KEYS[key])}'
-             for key in BOUND_KEYS]
+    printed = {key: byKey[key]['log'].row.published for key in BOUND_DTV}
+    tails = [f'- `{key}` (D_TV = {BOUND_DTV[key]:g}, "bigger than {printed[key]:g}"): on the stated J1/J2 range '
+             f'{y0:.3g} .. {y1:.3g}, {TailText(bound[BOUND_DTV[key]], printed[key])}; on the project\'s wide domain '
+             f'(J1/J2 {Y_RANGE[0]:g} .. {Y_RANGE[1]:g}), {TailText(Chart(0.014, BOUND_DTV[key]), printed[key])}'
+             for key in BOUND_DTV]
+    full = [r for r in AXIS_READINGS if all(p[r].holds for p in byKey.values())]
+    complete = ('neither reading reproduces every statement' if not full else
+                ' and '.join(f'the {"log" if r == "log" else "linear"} reading' for r in full) + ' reproduces every statement')
     fixed = {**{(0.014, d): c for d, c in c14.items()}, **{(0.056, d): c for d, c in c56.items()}}
     ctx.AddSection('Stability charts on the paper\'s domain: both axis readings', f"""
 Set (25) with mu = 0.132 on the domain section 2.3 states (J1 from 1e-6 to 1e-3 kg*m^2, kT from 5e-3 to 5 N*m):
@@ -280,7 +282,8 @@ before these results were computed:
 
 {chr(10).join(table)}
 
-Generated from the verdicts: under both readings {len(both)} of {len(byKey)} statements hold ({names(both)});
+Generated from the verdicts: {'; '.join(f"with {'log' if r == 'log' else 'linear'} axes {sum(p[r].holds for p in byKey.values())} of {len(byKey)} statements hold" for r in AXIS_READINGS)}, so
+{complete}. Under both readings {len(both)} of {len(byKey)} hold ({names(both)});
 only under the log reading: {names(only['log'])}; only under the linear reading: {names(only['lin'])}; under
 neither: {names(neither)}. Where a statement does not hold, what was measured (the known differences, listed in
 `paper/differences.csv`, are the statements neither reading reproduces):
