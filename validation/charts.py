@@ -248,9 +248,7 @@ def StatementValues(c14: Dict[float, object], c56: Dict[float, object], cSp: Seq
     x5, x5_56 = xExtent(c14[5.]), xExtent(c56[5.])
     ratioFmt = '.4f' if fmt == '.3f' else '.4g'
     return {
-        'bound_DTV25': (_Upper(bound[25.]), ''),
-        'bound_DTV5': (_Upper(bound[5.]), ''),
-        'bound_DTV1': (_Upper(bound[1.]), ''),
+        **{key: (_Upper(bound[DTV]), '') for key, DTV in BOUND_DTV.items()},
         'DTV1_smallest': (float(all(area14[1.] < a for d, a in area14.items() if d != 1.)), f'areas {areas}'),
         'broadens_smaller_DTV': (float(_Increasing([area14[1.], area14[0.5], area14[0.2]])), f'areas {areas}'),
         'broadens_bigger_DTV': (float(_Increasing([area14[1.], area14[5.], area14[25.]])), f'areas {areas}'),
