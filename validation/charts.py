@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
-from typing import Dict, List, Tuple
+from typing import TYPE_CHECKING, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -18,8 +18,11 @@ from exudyn_worm.setups.presets import GearFromParameters, GetPreset
 
 from .runner import Check, Fmt, ValidationContext
 
-__all__ = ['X_RANGE', 'Y_RANGE', 'RESOLUTION', 'DTV_VALUES', 'Chart', 'DisplayedDomain', 'Area', 'XExtent', 'SmallXYExtent',
-           'ChartChecks']
+if TYPE_CHECKING:   # a hint only: the chart module is imported when a chart is computed
+    from exudyn_worm.analysis.charts import StabilityChart
+
+__all__ = ['X_RANGE', 'Y_RANGE', 'RESOLUTION', 'DTV_VALUES', 'BOUND_DTV', 'Chart', 'DisplayedDomain', 'Area', 'XExtent', 'SmallXYExtent',
+           'Tail', 'TailText', 'StatementValues', 'ChartChecks']
 
 #: chart domain of the section 2.3 rows (validation/README.md)
 X_RANGE = (1e-4, 1e2)
@@ -27,6 +30,8 @@ Y_RANGE = (1e-6, 1.)
 RESOLUTION = 600
 #: the damping ratios D_TV compared at D_V = 0.014 (Figure 4 has 1, 5, 25; "smaller" means 0.2 and 0.5)
 DTV_VALUES = (0.2, 0.5, 1., 5., 25.)
+#: the bound statements ("no instability for stiffness ratios bigger than X", X in the rows): key -> D_TV
+BOUND_DTV = {'bound_DTV25': 25., 'bound_DTV5': 5., 'bound_DTV1': 1.}
 #: stiffness ratio below which the J1/J2 interval is compared ("small stiffness ratios (< 0.10)")
 SMALL_X = 0.10
 
@@ -133,8 +138,131 @@ def SmallXYExtent(chart, xMax: float = SMALL_X) -> float:
     return float(np.mean(extents)) if extents else 0.
 
 
+def Tail(chart: 'StabilityChart', bound: float) -> Optional[Dict[str, object]]:
+    """Where the unstable set ends along x, measured from a stated bound: the width of the tail beyond it.
+
+    Parameters
+    ----------
+    chart : StabilityChart
+        A chart (``unstable[i, j]`` at ``(x[j], y[i])``, with ``unstableXRange``).
+    bound : float
+        The stated bound X of the stiffness ratio, > 0.
+
+    Returns
+    -------
+    dict or None
+        None if nothing is unstable; else ``end`` (the upper end of the unstable x range), ``decades``
+        (log10(end / bound): the tail's width beyond the bound, negative where the set ends before it), ``band``
+        (the J1/J2 range of the unstable points in the last unstable grid column: where the band ends) and
+        ``edges`` (the chart's sides that the band's end touches, among 'right', 'top', 'bottom': there it
+        continues beyond the chart).
+
+    Raises
+    ------
+    ValueError
+        If ``bound`` is not > 0.
+    """
+    if not bound > 0:
+        raise ValueError(f"Tail: 'bound' must be a stiffness ratio > 0, got {bound!r}")
+    rng = chart.unstableXRange
+    if rng is None:
+        return None
+    j = int(np.nonzero(chart.unstable.any(axis=0))[0][-1])
+    rows = np.nonzero(chart.unstable[:, j])[0]
+    return {'end': float(rng[1]), 'decades': math.log10(rng[1] / bound),
+            'band': (float(chart.y[rows[0]]), float(chart.y[rows[-1]])),
+            'edges': [side for side, touches in (('right', j == chart.x.size - 1), ('top', rows[-1] == chart.y.size - 1),
+                                                 ('bottom', rows[0] == 0)) if touches]}
+
+
+def TailText(chart: 'StabilityChart', bound: float) -> str:
+    """:func:`Tail` in words, for a row's detail and the report.
+
+    Parameters
+    ----------
+    chart : StabilityChart
+        A chart.
+    bound : float
+        The stated bound X, > 0.
+
+    Returns
+    -------
+    str
+    """
+    tail = Tail(chart, bound)
+    if tail is None:
+        return 'nothing unstable'
+    (y0, y1), d = tail['band'], tail['decades']
+    where = f'{d:.3f} decades beyond {bound:g}' if d > 0 else f'{-d:.3f} decades before {bound:g}'
+    return (f"the unstable band ends at x = {tail['end']:.4g} ({where}), at J1/J2 {y0:.3g} .. {y1:.3g}"
+            + (f" (at the {' and '.join(tail['edges'])} edge of the chart: it continues beyond)" if tail['edges'] else ''))
+
+
 def _Increasing(values: List[float]) -> bool:
     return all(a < b for a, b in zip(values, values[1:]))
+
+
+def _Upper(chart) -> float:
+    return math.nan if chart.unstableXRange is None else chart.unstableXRange[1]
+
+
+def StatementValues(c14: Dict[float, object], c56: Dict[float, object], cSp: Sequence[object],
+                    bound: Dict[float, object], area: Callable = Area, xExtent: Callable = XExtent,
+                    smallExtent: Callable = SmallXYExtent, fmt: str = '.3f',
+                    extentUnit: str = ' decades', yLabel: str = 'mean log10 y-extent') -> Dict[str, Tuple[float, str]]:
+    """The values of the eleven section 2.3 statements from a set of charts and one reading's measures.
+
+    The one place where the statements are turned into numbers: the wide-domain rows (``chart_<key>``) and the
+    paper-domain rows of both axis readings (``chart_paper_<reading>_<key>``, :mod:`validation.charts_paper`)
+    call it with their charts and measures.
+
+    Parameters
+    ----------
+    c14 : dict
+        ``{D_TV: chart}`` at D_V = 0.014 for every value of :data:`DTV_VALUES`.
+    c56 : dict
+        ``{D_TV: chart}`` at D_V = 0.056 for D_TV = 1, 5, 25.
+    cSp : sequence
+        The S = +1 charts at D_V = 0.014 (D_TV = 1, 5, 25).
+    bound : dict
+        ``{D_TV: chart}`` at D_V = 0.014 whose upper unstable x end is the bound (D_TV = 1, 5, 25).
+    area, xExtent, smallExtent : callable, optional
+        The reading's measures: ``chart -> float`` for the unstable area, the extent along x and the mean J1/J2
+        extent for x < 0.10 (default: the log10 measures of this module).
+    fmt : str, optional
+        Format of the areas and extents in the details.
+    extentUnit : str, optional
+        Unit of the x extents in the details.
+    yLabel : str, optional
+        Name of the J1/J2 extent measure in the details.
+
+    Returns
+    -------
+    dict
+        ``{key: (value, detail)}`` with the keys of the rows without their ``chart_`` prefix, in row order.
+    """
+    area14 = {d: area(c) for d, c in c14.items()}
+    area56 = {d: area(c) for d, c in c56.items()}
+    areas = ', '.join(f'D_TV = {d:g}: {a:{fmt}}' for d, a in area14.items())
+    small = {d: smallExtent(c14[d]) for d in (1., 5., 25.)}
+    x5, x5_56 = xExtent(c14[5.]), xExtent(c56[5.])
+    ratioFmt = '.4f' if fmt == '.3f' else '.4g'
+    return {
+        **{key: (_Upper(bound[DTV]), '') for key, DTV in BOUND_DTV.items()},
+        'DTV1_smallest': (float(all(area14[1.] < a for d, a in area14.items() if d != 1.)), f'areas {areas}'),
+        'broadens_smaller_DTV': (float(_Increasing([area14[1.], area14[0.5], area14[0.2]])), f'areas {areas}'),
+        'broadens_bigger_DTV': (float(_Increasing([area14[1.], area14[5.], area14[25.]])), f'areas {areas}'),
+        'small_x_broadens': (float(_Increasing([small[1.], small[5.], small[25.]])),
+                             f'{yLabel} for x < 0.10: ' + ', '.join(f'D_TV = {d:g}: {e:{fmt}}'
+                                                                         for d, e in small.items())),
+        'DV056_smaller': (float(all(area56[d] < area14[d] for d in area56)),
+                          'areas at D_V = 0.056 / 0.014: ' + ', '.join(f'D_TV = {d:g}: {area56[d]:{fmt}} / '
+                                                                       f'{area14[d]:{fmt}}' for d in area56)),
+        'DV056_DTV25_vanishes': (area56[25.] / area14[25.] if area14[25.] > 0 else math.nan,
+                                 f'areas {area56[25.]:{ratioFmt}} / {area14[25.]:{ratioFmt}}'),
+        'DV056_DTV5_shorter': (x5 / x5_56 if x5_56 > 0 else math.inf, f'x-extents {x5:{fmt}} / {x5_56:{fmt}}{extentUnit}'),
+        'no_unstable_Sp': (float(sum(np.count_nonzero(c.unstable) for c in cSp)), ''),
+    }
 
 
 def ChartChecks(ctx: ValidationContext) -> List[Check]:
@@ -150,28 +278,11 @@ def ChartChecks(ctx: ValidationContext) -> List[Check]:
     c56 = {d: Chart(0.056, d) for d in (1., 5., 25.)}
     area14 = {d: Area(c) for d, c in c14.items()}
     area56 = {d: Area(c) for d, c in c56.items()}
-    upper = lambda c: math.nan if c.unstableXRange is None else c.unstableXRange[1]
-    checks = []
-
-    def add(rowId, value, detail=''):
-        checks.append(ctx.Compare(rowId, value, detail=detail, uses=()))
-    add('chart_bound_DTV25', upper(c14[25.]))
-    add('chart_bound_DTV5', upper(c14[5.]))
-    add('chart_bound_DTV1', upper(c14[1.]))
-    areas = ', '.join(f'D_TV = {d:g}: {a:.3f}' for d, a in area14.items())
-    add('chart_DTV1_smallest', float(all(area14[1.] < a for d, a in area14.items() if d != 1.)), f'areas {areas}')
-    add('chart_broadens_smaller_DTV', float(_Increasing([area14[1.], area14[0.5], area14[0.2]])), f'areas {areas}')
-    add('chart_broadens_bigger_DTV', float(_Increasing([area14[1.], area14[5.], area14[25.]])), f'areas {areas}')
+    values = StatementValues(c14, c56, [Chart(0.014, d, +1) for d in (1., 5., 25.)], c14)
+    checks = [ctx.Compare('chart_' + key, value, uses=(), detail='; '.join(filter(None, [detail, TailText(
+        c14[BOUND_DTV[key]], ctx.Row('chart_' + key).published) if key in BOUND_DTV else ''])))
+        for key, (value, detail) in values.items()]
     small = {d: SmallXYExtent(c14[d]) for d in (1., 5., 25.)}
-    add('chart_small_x_broadens', float(_Increasing([small[1.], small[5.], small[25.]])),
-        'mean log10 y-extent for x < 0.10: ' + ', '.join(f'D_TV = {d:g}: {e:.3f}' for d, e in small.items()))
-    add('chart_DV056_smaller', float(all(area56[d] < area14[d] for d in area56)),
-        'areas at D_V = 0.056 / 0.014: ' + ', '.join(f'D_TV = {d:g}: {area56[d]:.3f} / {area14[d]:.3f}' for d in area56))
-    add('chart_DV056_DTV25_vanishes', area56[25.] / area14[25.] if area14[25.] > 0 else math.nan,
-        f'areas {area56[25.]:.4f} / {area14[25.]:.4f}')
-    add('chart_DV056_DTV5_shorter', XExtent(c14[5.]) / XExtent(c56[5.]) if XExtent(c56[5.]) > 0 else math.inf,
-        f'x-extents {XExtent(c14[5.]):.3f} / {XExtent(c56[5.]):.3f} decades')
-    add('chart_no_unstable_Sp', float(sum(np.count_nonzero(Chart(0.014, d, +1).unstable) for d in (1., 5., 25.))))
     _Section(ctx, checks, c14, c56, area14, area56, small)
     return checks
 
@@ -210,9 +321,9 @@ rules ({', '.join(f'`{c.id}`' for c in passed) or 'none'}); {'none fails' if not
 ({', '.join(f'D_V = {DV}, D_TV = {d:g}' for DV, d in clipped) or 'none'}): there the region continues beyond the
 chart and the areas and extents are clipped.
 
-For information only (no verdict is taken from it: the rows use the domain above), the same measures on the area
-the paper displays, from the ranges section 2.3 states (J1 from 1e-6 to 1e-3 kg*m^2, kT from 5e-3 to 5 N*m):
-x from {x0:.3g} to {x1:.3g}, y from {y0:.3g} to {y1:.3g}:
+The same measures on the area the paper displays, from the ranges section 2.3 states (J1 from 1e-6 to 1e-3
+kg*m^2, kT from 5e-3 to 5 N*m): x from {x0:.3g} to {x1:.3g}, y from {y0:.3g} to {y1:.3g} (the rows above take no
+verdict from it; the rows `chart_paper_*` do, under log and linear axes, in their own section):
 
 {chr(10).join(_MeasureTable(shown))}
 """)

@@ -30,6 +30,7 @@ RULES = {
     'range': '"N-M times": the closed interval [N, M]',
     'many-times': '"many times": at least 3 times',
     'chart-bound': 'a bound read off a chart: within a factor 10^0.05 of X, or half a unit of its last digit if wider',
+    'chart-bound-linear': 'a bound read off a chart with a linear axis: +- half a unit of the last printed digit of X',
     'comparison': 'a comparison of regions ("smallest", "smaller", "broadens", "shorter"): the strict inequality '
                   'holds (1) or not (0)',
     'none': '"no unstable regions": zero unstable grid points',

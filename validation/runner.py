@@ -153,6 +153,8 @@ def ReadingInterval(rule: str, publishedText: str, propagated: float = 0.) -> Tu
             w = 0.1 * abs(x)
         elif rule == 'ratio':
             w = 0.05 * abs(x)
+        elif rule == 'chart-bound-linear':  # a linear axis is read to the same absolute precision everywhere
+            w = h
         elif rule == 'chart-bound':
             if h >= x * (_CHART_FACTOR - 1):
                 w = h
@@ -384,6 +386,8 @@ CHECK_GROUPS: List[CheckGroup] = [
     CheckGroup('eigenvalues', 'validation.analytical:EigenvalueChecks', title='Published eigenvalues and frequencies (section 3.1)'),
     CheckGroup('forensics', 'validation.analytical:ForensicsChecks', title='Eigenvalue forensics'),
     CheckGroup('charts', 'validation.charts:ChartChecks', title='Stability charts: the statements of section 2.3 (Figures 4 and 5)'),
+    CheckGroup('charts-paper', 'validation.charts_paper:PaperChartChecks',
+               title="Stability charts on the paper's domain (section 2.3: J1 1e-6..1e-3 kg*m^2, kT 5e-3..5 N*m), log and linear axes"),
     CheckGroup('friction', 'validation.friction:FrictionChecks',
                title='Friction over sliding speed: the AGMA 6034 values at the speeds its source gives'),
     CheckGroup('simulation', 'validation.timedomain:SimulationChecks', level=1,
