@@ -64,7 +64,7 @@ BAD_INPUT = [
     (['--set', 'DTV=-1'], "parameter set: 'DTV' must be >= 0, got -1"),
     (['--set', 'kT=1e300'], "out of range"),
     (['--set', 'J1=1e-300'], "out of range"),
-    (['--set', 'backlash=0.5'], "give 0.0005 (on the command line --set 'backlash=0.5 mm')"),
+    (['--set', 'backlash=0.5'], "'backlash' is a length and needs its unit, e.g. \"18.05 mm\""),
     (['--set', 'backlash=2 kg'], 'backlash'),
     (['--step-size', '-1'], "argument --step-size: must be > 0 s, got -1 s"),
     (['--step-size', '-1e-3'], "argument --step-size: must be > 0 s, got -1e-3 s"),

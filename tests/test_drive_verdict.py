@@ -95,7 +95,7 @@ def test_incomplete_duty_is_one_line_for_every_command(capsys, tmp_path, monkeyp
 
 @pytest.mark.messages
 def test_motor_speed_on_a_speed_table_is_refused(capsys):
-    status = Main(['stability', '--config', str(HOIST), '--set', 'motorSpeed=50'])
+    status = Main(['stability', '--config', str(HOIST), '--set', 'motorSpeed=50 rad/s'])
     err = capsys.readouterr().err
     assert status == 2 and err.count('\n') == 1
     assert "'motorSpeed' (--set) is not used by motorType = 'speedTable', whose speed comes from motorSpeedOverTime" \
@@ -152,7 +152,7 @@ def test_start_stop_plateau_and_characteristic_equilibrium():
     plateau = ResolveDrive('reel-P1', sets=['motorType=startStop', 'rampTime=0.5', 'brakeTime=3'])
     (phase,) = SteadyPhases(plateau)
     assert (phase.t0, phase.t1, phase.source) == (0.5, 3., 'start/stop plateau')
-    motor = ['motorType=characteristic', 'stallTorque=400', 'noLoadSpeed=55', 'motorInertia=0.01']
+    motor = ['motorType=characteristic', 'stallTorque=400', 'noLoadSpeed=55 rad/s', 'motorInertia=0.01']
     drive = ResolveDrive('reel-P1', sets=motor)
     gear, p = drive.gear, drive.parameters
     mgl = p['loadMass'] * G * p['leverArm']

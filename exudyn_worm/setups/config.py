@@ -106,8 +106,8 @@ def ParseQuantity(key: str, text: Union[str, float]) -> float:
     return _ParseQuantity(key, text, 'ParseQuantity')
 
 
-def _ParseQuantity(key, text, where: str):
-    return PARAMETERS.Parse(_CheckKey(where, key), text, where)
+def _ParseQuantity(key, text, where: str, fromFile: bool = False):
+    return PARAMETERS.Parse(_CheckKey(where, key), text, where, fromFile)
 
 
 def ParseSetOption(text: str) -> Tuple[str, float]:
@@ -155,9 +155,11 @@ def _RejectAlternatives(values: Mapping[str, float], where: str, locations: Opti
         raise ValueError(f"{where}: both '{key}' and {others} are given, {what}")
 
 
-def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None, folder: Optional[str] = None) -> Dict:
+def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None, folder: Optional[str] = None,
+                    fromFile: bool = True) -> Dict:
     """Check the content of a config (drive) file and parse its values (see :mod:`exudyn_worm.params.drivefile`); a
-    relative file path of a table (``frictionTable``) is taken relative to ``folder``, the file's folder."""
+    relative file path of a table (``frictionTable``) is taken relative to ``folder``, the file's folder. The plain
+    numbers of an angle, an angular speed or a length are refused (``fromFile``, the rule of docs/drive-files.md)."""
     preset, raw = FlattenDriveFile(data, where, text)
     if preset is not None and preset not in PRESETS:
         raise ValueError(f"{where}: unknown preset '{preset}'; expected one of: {', '.join(PRESETS)}")
@@ -166,9 +168,10 @@ def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None, folde
         if key not in PARAMETERS:
             raise ValueError(PARAMETERS.UnknownKeyMessage(location, key))
         if PARAMETERS[key].kind == 'number' and (isinstance(value, bool) or not isinstance(value, (str, Real))):
-            raise ValueError(f"{location}: must be a number (SI) or a string with units, "
-                             f"got {type(value).__name__} {value!r}")
-        parameters[key] = _ParseQuantity(key, value, location)
+            what = 'a string with units' if PARAMETERS.UnitRequired(key) else 'a number (SI) or a string with units'
+            raise ValueError(f"{location}: must be {what}, got {type(value).__name__} {value!r}; '{key}' is "
+                             f"{PARAMETERS.ExpectedText(key)}")
+        parameters[key] = _ParseQuantity(key, value, location, fromFile)
         if PARAMETERS[key].kind == 'table' and isinstance(parameters[key], str) and folder is not None \
                 and not os.path.isabs(os.path.expanduser(parameters[key])):
             parameters[key] = os.path.join(folder, parameters[key])   # a table file beside the drive file
