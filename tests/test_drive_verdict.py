@@ -14,7 +14,7 @@ import exudyn_worm as ew
 from exudyn_worm.analysis import drivestability
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups import wholedrive
-from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.setups.config import ResolveParameters, SourceKind, ValueSource
 from exudyn_worm.setups.operatingpoints import DutyOperatingPoints, SteadyPhases
 from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
 from exudyn_worm.setups.wholedrive import Component, Drive, ResolveDrive
@@ -46,15 +46,16 @@ def test_drive_is_immutable_typed_and_knows_its_sources():
     assert drive.components == (Component.LOAD_SIDE_CHAIN,) and not drive.isTwoMass
     assert drive.loadType == 'constant' and drive.motorType == 'speedTable'
     assert drive.loadSideChain == ((6.2, 8e4, 0.),) and drive.driveSideChain == () and drive.axialBearing is None
-    assert drive.sources['kT'] == '--set' and 'hoist.toml' in drive.sources['J1']
+    assert drive.sources['kT'] == ValueSource(SourceKind.SET, '--set') and 'hoist.toml' in drive.sources['J1'].text
+    assert drive.sources['J1'].kind == SourceKind.FILE
     with pytest.raises(TypeError):
         drive.parameters['J1'] = 1.                      # read-only
     with pytest.raises(Exception):
         drive.elastic = None                             # frozen
     changed = drive.Replace({'J1': 2e-3})
-    assert changed.parameters['J1'] == 2e-3 and changed.sources['J1'] == 'changed' and drive.parameters['J1'] == 1.5e-3
+    assert changed.parameters['J1'] == 2e-3 and changed.sources['J1'].kind == SourceKind.CHANGED and drive.parameters['J1'] == 1.5e-3
     preset = ResolveDrive('reel-P1')
-    assert preset.isTwoMass and preset.components == () and preset.sources['J1'] == 'preset reel-P1'
+    assert preset.isTwoMass and preset.components == () and preset.sources['J1'] == ValueSource.Preset('reel-P1')
 
 
 @pytest.mark.messages
@@ -98,12 +99,12 @@ def test_motor_speed_on_a_speed_table_is_refused(capsys):
     status = Main(['stability', '--config', str(HOIST), '--set', 'motorSpeed=50 rad/s'])
     err = capsys.readouterr().err
     assert status == 2 and err.count('\n') == 1
-    assert "'motorSpeed' (--set) is not used by motorType = 'speedTable', whose speed comes from motorSpeedOverTime" \
-        in err
+    assert "'motorSpeed' (--set) is not used by motorType = 'speedTable' (" in err
+    assert "which takes motorSpeedOverTime; 'motorSpeed' belongs to motorType constantSpeed or startStop" in err
 
 
 def test_a_presets_motor_speed_gives_way_to_another_motor_type():
-    drive = ResolveDrive('reel-P1', sets=['motorType=speedTable', 'motorSpeedOverTime=[[0, 10], [1, 10]]'])
+    drive = ResolveDrive('reel-P1', sets=['motorType=speedTable', 'motorSpeedOverTime=[[0, "10 rad/s"], [1, "10 rad/s"]]'])
     assert 'motorSpeed' not in drive.parameters and drive.motorType == 'speedTable'
 
 

@@ -752,7 +752,7 @@ _UNIT_TEXT = {'': 'a dimensionless number (plain, or e.g. "1.4 %")',
 def _ExpectedText(unit: str) -> str:
     if unit in UNIT_REQUIRED:
         what, _, _, units = UNIT_REQUIRED[unit]
-        return f'{what} with its unit, e.g. {units}'
+        return f'{what} in {unit} (written with its unit, e.g. {units})'
     return _UNIT_TEXT.get(unit, f'in {unit} (plain numbers are SI)')
 
 
