@@ -46,7 +46,7 @@ from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Tuple
 
 from .._checks import CheckAngle, CheckNonNegative, CheckPositive, CheckRange, CheckReal, Suggest
 
-__all__ = ['KINDS', 'RANGES', 'UNIT_REQUIRED', 'Parameter', 'ParameterRegistry', 'PARAMETERS', 'ParametersMarkdown',
+__all__ = ['KINDS', 'RANGES', 'UNIT_REQUIRED', 'ParameterError', 'Parameter', 'ParameterRegistry', 'PARAMETERS', 'ParametersMarkdown',
            'WithGeneratedTables']
 
 
@@ -64,6 +64,39 @@ class MissingParameterError(ValueError):
     def __init__(self, message: str, keys: Iterable[str]):
         super().__init__(message)
         self.keys = tuple(keys)
+
+
+class ParameterError(ValueError):
+    """A value of a parameter set is refused; ``keys`` names the keys it is about (the first one the value at fault),
+    so that a drive can name where they came from (a drive file's line, :meth:`At`).
+
+    Parameters
+    ----------
+    where : str
+        Who refuses it (the function, or the location of the value).
+    detail : str
+        What is wrong: the key, the expected range and unit, the value received.
+    keys : iterable of str
+        The parameter keys the message is about.
+    """
+
+    def __init__(self, where: str, detail: str, keys: Iterable[str]):
+        super().__init__(f"{where}: {detail}")
+        self.where, self.detail, self.keys = where, detail, tuple(keys)
+
+    def At(self, where: str) -> 'ParameterError':
+        """The same error said at ``where`` (a drive file's ``"LoadConfig: 'f.toml', line 7: [gear] key"``).
+
+        Parameters
+        ----------
+        where : str
+            The new prefix.
+
+        Returns
+        -------
+        ParameterError
+        """
+        return ParameterError(where, self.detail, self.keys)
 
 
 #: kinds of value a parameter may take

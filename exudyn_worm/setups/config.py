@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import enum
 import os
+import re
 import sys
 from dataclasses import dataclass
 from numbers import Real
@@ -40,6 +41,7 @@ from typing import Dict, Iterable, Mapping, Optional, Tuple, Union
 
 from ..params.drivefile import (ARRAY_TABLES, COMPONENT_TABLES, DRIVE_FILE_TABLES, DRIVE_SIDE_TABLE, LOAD_SIDE_TABLE,
                         TOP_LEVEL_KEYS, FlattenDriveFile)
+from .._checks import Suggest
 from ..params.parameters import PARAMETERS
 from .duty import LOAD_TYPES, MOTOR_TYPES
 from .presets import _LAW_KEYS, PRESETS, ApplyOverrides, CheckParameters, DriveSideChain, GetPreset, LoadSideChain
@@ -259,7 +261,10 @@ def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None, folde
     numbers of an angle, an angular speed or a length are refused (``fromFile``, the rule of docs/drive-files.md)."""
     preset, raw = FlattenDriveFile(data, where, text)
     if preset is not None and preset not in PRESETS:
-        raise ValueError(f"{where}: unknown preset '{preset}'; expected one of: {', '.join(PRESETS)}")
+        line = next((i for i, row in enumerate((text or '').splitlines(), 1)
+                     if re.match(r'\s*["\']?preset["\']?\s*=', row)), None)
+        raise ValueError(f"{where}{f', line {line}' if line else ''}: preset: unknown preset '{preset}'"
+                         f"{Suggest(preset, PRESETS)}; expected one of: {', '.join(PRESETS)}")
     parameters, locations = {}, {}
     for key, value, location in raw:
         if key not in PARAMETERS:
@@ -398,6 +403,9 @@ def ResolveParametersWithSources(preset: Optional[str] = None,
     if preset is not None and not preset.strip():      # '' is no name: never taken silently for the default
         raise ValueError(f"ResolveParameters: 'preset' must name a preset, got an empty name {preset!r}; expected "
                          f"one of: {', '.join(PRESETS)} (or no preset: the default {DEFAULT_PRESET})")
+    if preset is not None and preset not in PRESETS:
+        raise ValueError(f"ResolveParameters: 'preset': unknown preset {preset!r}{Suggest(preset, PRESETS)}; expected "
+                         f"one of: {', '.join(PRESETS)}")
     name = preset or cfg['preset'] or (None if cfg['wholeDrive'] else DEFAULT_PRESET)
     parameters = ApplyOverrides(GetPreset(name) if name else {}, cfg['parameters'])
     overrides, removed = _Overrides(sets)
@@ -434,11 +442,14 @@ def _Overrides(sets) -> Tuple[Dict[str, object], Tuple[str, ...]]:
             continue
         if isinstance(item, str):
             key, value = ParseSetOption(item)
+            itemWhere = f"ParseSetOption: {item!r}"
         elif isinstance(item, tuple) and len(item) == 2:
-            key, value = _CheckKey(where, item[0]), _ParseQuantity(item[0], item[1], f"{where}: {item!r}")
+            itemWhere = f"{where}: sets item {item!r}"
+            key, value = _CheckKey(itemWhere, item[0]), _ParseQuantity(item[0], item[1], itemWhere)
         else:
             raise TypeError(f"{where}: each of 'sets' must be 'KEY=VALUE' or (key, value), got "
                             f"{type(item).__name__} {item!r}")
+        CheckParameters({key: value}, itemWhere)      # the range, named by the option as the user wrote it
         removed.pop(key, None)
         overrides.pop(key, None)      # a repeated key: the last one wins, in its new position
         overrides[key] = value

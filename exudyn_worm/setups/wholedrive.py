@@ -38,7 +38,7 @@ from .config import (DropReplacedChoiceKeys, ResolveParametersWithSources, Sourc
 from .duty import LOAD_TYPES, MOTOR_TYPES, LoadType, MotorType, _LoadLaw, _MotorLaw
 from .presets import (ParameterKey, ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
                       ElasticDriveFromParameters, LoadSideChain, ShaftSupportsFromParameters)
-from ..params.parameters import MissingParameterError
+from ..params.parameters import MissingParameterError, ParameterError
 
 __all__ = ['Component', 'Drive', 'ResolveDrive', 'AsDrive']
 
@@ -155,9 +155,14 @@ class Drive:
                             f"{type(bad[1]).__name__} {bad[1]!r} for {bad[0]!r}")
         src = {k: (sources or {}).get(k, ValueSource.Api()) for k in parameters}
         p, src = DropReplacedChoiceKeys(parameters, src, where)
-        elastic = ElasticDriveFromParameters(p, where)
-        load, motor = _Duty(p, where)
-        supports = ShaftSupportsFromParameters(p, where)
+        try:
+            elastic = ElasticDriveFromParameters(p, where)
+            load, motor = _Duty(p, where)
+            supports = ShaftSupportsFromParameters(p, where)
+            axialBearing = AxialBearingFromParameters(p, where)
+        except ParameterError as err:      # said where the value came from: its drive file's line, else the drive
+            located = next((src[k] for k in err.keys if k in src and src[k].kind == SourceKind.FILE), None)
+            raise err.At(where if located is None else located.text) from None
         driveSideChain, loadSideChain = tuple(DriveSideChain(p)), tuple(LoadSideChain(p))
         if supports is not None and (driveSideChain or loadSideChain or MotorType(p) == 'characteristic'):
             other = ('a drive-side chain ([[driveSide]])' if driveSideChain else 'a load-side chain ([[loadSide]])'
@@ -166,7 +171,7 @@ class Drive:
                              f"model of worm and wheel as rigid bodies, which has no {other[2:]}; remove one of them")
         drive = cls(parameters=types.MappingProxyType(p), sources=types.MappingProxyType(src), elastic=elastic,
                     driveSideChain=driveSideChain, loadSideChain=loadSideChain,
-                    axialBearing=AxialBearingFromParameters(p), shaftSupports=supports, load=load, motor=motor,
+                    axialBearing=axialBearing, shaftSupports=supports, load=load, motor=motor,
                     name=name)
         return drive
 
