@@ -189,6 +189,30 @@ def test_drive_file_refusals_name_the_file_and_line(tmp_path, base, old, new, pa
 
 
 @pytest.mark.messages
+@pytest.mark.parametrize('text, pattern', [
+    ('driveSide = 5\n', r"line 1: 'driveSide' must be an array of tables \(\[\[driveSide\]\]\), got int 5"),
+    ('[driveSide]\ninertia = 1\n', r"line 1: 'driveSide' must be an array of tables .*, got dict \{'inertia': 1\}"),
+    ('parameters = 5\n', r"line 1: 'parameters' must be a table \(\[parameters\]\), got int 5"),
+    ('gear = "x"\n', r"line 1: 'gear' must be a table \(\[gear\]\), got str 'x'"),
+])
+def test_drive_file_tables_of_the_wrong_type_are_named_at_their_line(tmp_path, text, pattern):
+    path = _Write(tmp_path, text)
+    with pytest.raises(ValueError, match=f"^LoadConfig: '{path}', " + pattern):
+        LoadConfig(path)
+
+
+@pytest.mark.messages
+def test_a_chain_on_the_3d_model_is_named_at_its_line(tmp_path):
+    text = (DRIVES / 'reel-3d.toml').read_text().rstrip('\n') + '\n\n[[driveSide]]\ninertia = "0.05 kg*m^2"\n' \
+        'stiffness = "2000 N*m/rad"\n'
+    line = text.splitlines().index('inertia = "0.05 kg*m^2"') + 1
+    path = _Write(tmp_path, text)
+    with pytest.raises(ValueError, match=f"^LoadConfig: '{path}', line {line}: \\[\\[driveSide\\]\\] number 1 inertia: "
+                                         f"the shafts' bearings .* which has no drive-side chain"):
+        ResolveDrive(config=path)
+
+
+@pytest.mark.messages
 def test_cli_names_the_file_line_of_a_value_checked_with_others(capsys, tmp_path):
     text = HOIST.read_text().replace('staticFrictionCoefficient = 0.12', 'staticFrictionCoefficient = 0.05')
     path = _Write(tmp_path, text)

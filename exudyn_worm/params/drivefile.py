@@ -260,7 +260,8 @@ def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = 
     # the flat [parameters] table of earlier versions: keys are parameter keys (checked by the parser)
     flat = data.get('parameters', {})
     if not isinstance(flat, Mapping):
-        raise ValueError(f"{where}: 'parameters' must be a table ([parameters]), got {type(flat).__name__}")
+        raise ValueError(f"{_Where(where, lines.Find(None, 'parameters'), repr('parameters'))} must be a table "
+                         f"([parameters]), got {type(flat).__name__} {flat!r}")
     for key, value in flat.items():
         values.append((key, value, _Where(where, lines.Find('parameters', key), f'[parameters] {key}')))
 
@@ -270,7 +271,7 @@ def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = 
         content = data[table]
         if not isinstance(content, Mapping):
             raise ValueError(f"{_Where(where, lines.Find(None, table), repr(table))} must be a table "
-                             f"([{table}]), got {type(content).__name__}")
+                             f"([{table}]), got {type(content).__name__} {content!r}")
         for fileKey, value in content.items():
             line = lines.Find(table, fileKey)
             if fileKey not in keys:
@@ -295,7 +296,9 @@ def _StageValues(data: Mapping[str, Any], table: str, keys: Mapping[str, str], w
     """The values of the array of tables ``table`` (one stage of a chain each) as (parameter key, value, location)."""
     stages = data.get(table, [])
     if not isinstance(stages, list) or not all(isinstance(s, Mapping) for s in stages):
-        raise ValueError(f"{where}: '{table}' must be an array of tables ([[{table}]]), got {type(stages).__name__}")
+        line = lines.Find(None, table) or lines.Header(table)
+        raise ValueError(f"{_Where(where, line, repr(table))} must be an array of tables ([[{table}]]), got "
+                         f"{type(stages).__name__} {stages!r}")
     values = []
     for index, stage in enumerate(stages):
         label = f'[[{table}]] number {index + 1}'

@@ -129,7 +129,7 @@ def GetPreset(name: str) -> Dict[str, float]:
         For an unknown name.
     """
     if name not in PRESETS:
-        raise ValueError(f"unknown preset '{name}'; expected one of: {', '.join(PRESETS)}")
+        raise ValueError(f"GetPreset: 'name': unknown preset {name!r}; expected one of: {', '.join(PRESETS)}")
     return dict(PRESETS[name])
 
 

@@ -160,15 +160,17 @@ class Drive:
             load, motor = _Duty(p, where)
             supports = ShaftSupportsFromParameters(p, where)
             axialBearing = AxialBearingFromParameters(p, where)
+            driveSideChain, loadSideChain = tuple(DriveSideChain(p)), tuple(LoadSideChain(p))
+            if supports is not None and (driveSideChain or loadSideChain or MotorType(p) == 'characteristic'):
+                other, key = (('a drive-side chain ([[driveSide]])', 'J4') if driveSideChain else
+                              ('a load-side chain ([[loadSide]])', 'JL1') if loadSideChain else
+                              ('a motor on its characteristic (motorType characteristic)', 'motorType'))
+                raise ParameterError(where, f"the shafts' bearings ([wormBearing], [wheelBearing]) make the drive the "
+                                            f"3D model of worm and wheel as rigid bodies, which has no {other[2:]}; "
+                                            f"remove one of them", (key,))
         except ParameterError as err:      # said where the value came from: its drive file's line, else the drive
             located = next((src[k] for k in err.keys if k in src and src[k].kind == SourceKind.FILE), None)
             raise err.At(where if located is None else located.text) from None
-        driveSideChain, loadSideChain = tuple(DriveSideChain(p)), tuple(LoadSideChain(p))
-        if supports is not None and (driveSideChain or loadSideChain or MotorType(p) == 'characteristic'):
-            other = ('a drive-side chain ([[driveSide]])' if driveSideChain else 'a load-side chain ([[loadSide]])'
-                     if loadSideChain else 'a motor on its characteristic (motorType characteristic)')
-            raise ValueError(f"{where}: the shafts' bearings ([wormBearing], [wheelBearing]) make the drive the 3D "
-                             f"model of worm and wheel as rigid bodies, which has no {other[2:]}; remove one of them")
         drive = cls(parameters=types.MappingProxyType(p), sources=types.MappingProxyType(src), elastic=elastic,
                     driveSideChain=driveSideChain, loadSideChain=loadSideChain,
                     axialBearing=axialBearing, shaftSupports=supports, load=load, motor=motor,
