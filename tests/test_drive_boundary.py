@@ -261,6 +261,19 @@ def test_a_key_given_with_the_choice_that_it_does_not_fit_is_refused():
         ResolveDrive(config=HOIST, sets=['frictionLaw=constant', 'muStatic=0.2'])
 
 
+@pytest.mark.messages
+def test_a_dictionary_key_gives_way_to_a_choice_made_not_to_the_default():
+    base = dict(ResolveDrive('reel-P1').parameters)
+    lifted = ResolveDrive(parameters={**base, 'loadType': 'constant', 'loadTorque': -100.})
+    assert 'loadMass' not in lifted.parameters and lifted.loadType == 'constant'
+    with pytest.raises(ValueError, match=r"^Drive: 'muStatic' is used only with frictionLaw = stribeck, got "
+                                         r"frictionLaw = 'constant' \(the default\)"):
+        ResolveDrive(parameters={**base, 'muStatic': 0.2})
+    with pytest.raises(ValueError, match=r"^Drive: 'loadTorque' \(API\) is not used by loadType = 'lever' \(the "
+                                         r"default\), which takes loadMass, leverArm"):
+        ResolveDrive(parameters={**base, 'loadTorque': -100.})
+
+
 def test_cli_switches_the_law_of_a_file(capsys):
     status, out, err = _Cli(capsys, 'stability', '--config', str(HOIST), '--set', 'frictionLaw=constant', '--json')
     assert status in (0, 1) and err == '', err

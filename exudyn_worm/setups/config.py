@@ -474,9 +474,10 @@ def DropReplacedChoiceKeys(parameters: Mapping[str, object], sources: Mapping[st
 
     A key used only by another value of a choice than the chosen one (``muStatic`` with ``frictionLaw = constant``,
     ``loadMass`` with ``loadType = constant``, ``motorSpeed`` with ``motorType = speedTable``) is dropped if it came
-    from a base set (a preset or a Python dictionary) or from an earlier layer than the choice (a drive file's key
-    when ``--set`` replaced the file's choice). A key given as late as the choice (both in the file, both with
-    ``--set``) or later is kept for the check that refuses it: the user gave both.
+    from a base set (a preset or a Python dictionary) and the choice is given (not the default), or from an earlier
+    layer than the choice (a drive file's key when ``--set`` replaced the file's choice). A key given as late as the
+    choice (both in the file, both with ``--set``) or later, or with the default choice, is refused: the drive would
+    not use it.
 
     Parameters
     ----------
@@ -507,7 +508,9 @@ def DropReplacedChoiceKeys(parameters: Mapping[str, object], sources: Mapping[st
         chosen = src.get(choice)
         for key in [k for k in p if k not in used and any(k in keys for keys in keysOf.values())]:
             given = src.get(key, ValueSource.Api())
-            if given.kind.isBase or (chosen is not None and given.kind < chosen.kind):
+            # a base set's key gives way to a choice that was made (not to the default: there the key more likely
+            # means that the choice was forgotten); any key gives way to a choice made in a later layer
+            if (given.kind.isBase and choice in p) or (chosen is not None and given.kind < chosen.kind):
                 del p[key]
                 src.pop(key, None)
             elif choice != 'frictionLaw':
