@@ -6,8 +6,10 @@ receives). It is derived from the registry :data:`~exudyn_worm.params.parameters
 names its table and file key. The format requires no table or key: what a file leaves out comes from the
 ``preset`` it names; a file with component tables that names no preset inherits nothing, and a value the drive
 needs but the file leaves out is reported missing (a flat ``[parameters]`` table without a preset is applied on
-top of ``reel-P1``, see :mod:`exudyn_worm.setups.config`). Values are plain SI numbers (angles in rad, speeds
-in rad/s) or strings with units (``"18.05 mm"``, ``"8 deg"``, ``"472.5 rpm"``), read by :func:`exudyn_worm.setups.config.ParseQuantity`.
+top of ``reel-P1``, see :mod:`exudyn_worm.setups.config`). Values are strings with units (``"18.05 mm"``,
+``"8 deg"``, ``"472.5 rpm"``) or plain numbers in the key's SI unit, read by
+:func:`exudyn_worm.setups.config.ParseQuantity`; an angle, an angular speed or a length needs its unit (zero excepted,
+docs/drive-files.md, "Values").
 
 Example (the reel changer at P1, parameter set (28))::
 

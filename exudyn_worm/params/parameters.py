@@ -20,7 +20,8 @@ To add a key, declare it in :data:`PARAMETERS` below (or, at run time, ``PARAMET
 Kinds of value (parsed by :meth:`ParameterRegistry.Parse`, checked by :meth:`ParameterRegistry.Check`):
 
 - ``'number'``: a real number in ``unit`` (SI; angles in rad); a string carries its own unit (``"0.5 mm"``,
-  ``"8 deg"``, ``"472.5 rpm"``) and is converted by pint. Ranges: :data:`RANGES`.
+  ``"8 deg"``, ``"472.5 rpm"``) and is converted by pint. Ranges: :data:`RANGES`. In text and drive files a plain
+  number of an angle, an angular speed or a length is refused (zero excepted): :data:`UNIT_REQUIRED`.
 - ``'choice'``: a string, one of ``choices``.
 - ``'table'``: a file path (a string) or rows of numbers, one per row with one value per entry of
   ``columns`` (``(name, unit, range)``); each value parsed like a number in its column's unit, the first

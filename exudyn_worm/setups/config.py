@@ -12,8 +12,10 @@ replaces its alternative forms: ``mu`` drops ``rho``, ``dT`` drops ``DT``/``DTV`
    ``[motor]``, ``[[driveSide]]``, ``[[loadSide]]``, ``[axialBearing]``) and/or the flat ``[parameters]`` table;
 3. ``KEY=VALUE`` overrides (the CLI's ``--set``).
 
-A value is a plain SI number (angles in rad, ``motorSpeed`` in rad/s) or a string with units parsed by
-pint, e.g. ``'0.5 mm'``, ``'8 deg'``, ``'7 kN*m'``, ``'472.5 rpm'``. The target unit of every key is
+A value is a string with units parsed by pint, e.g. ``'0.5 mm'``, ``'8 deg'``, ``'7 kN*m'``, ``'472.5 rpm'``, or
+a plain number in the key's SI unit; in text and drive files an angle, an angular speed or a length needs its unit
+(a plain number other than 0 is refused: :data:`~exudyn_worm.params.parameters.UNIT_REQUIRED`). Python numbers are
+SI. The target unit of every key is
 :data:`~exudyn_worm.setups.presets.PARAMETER_UNITS`; unit, range and kind of every key are declared once in
 :data:`~exudyn_worm.params.parameters.PARAMETERS`, which parses the values.
 
@@ -164,9 +166,10 @@ def ParseQuantity(key: str, text: Union[str, float]) -> float:
     key : str
         A parameter name of :data:`~exudyn_worm.setups.presets.PARAMETER_UNITS`, e.g. ``'kT'``.
     text : str or float
-        A plain number, taken as SI (angles in rad, speeds in rad/s), or a number followed by a unit
-        that pint understands, e.g. ``'0.5 mm'``, ``'8 deg'``, ``'7 kN*m'``, ``'472.5 rpm'``,
-        ``'1.4 %'``. Numbers (int or float, not bool) are accepted as they are.
+        A number followed by a unit that pint understands, e.g. ``'0.5 mm'``, ``'8 deg'``, ``'7 kN*m'``,
+        ``'472.5 rpm'``, ``'1.4 %'``, or a plain number in the key's SI unit; a plain number in text is refused
+        (zero excepted) for an angle, an angular speed or a length (docs/drive-files.md, "Values"). Numbers (int
+        or float, not bool) are SI and accepted as they are.
 
     Returns
     -------
@@ -178,7 +181,8 @@ def ParseQuantity(key: str, text: Union[str, float]) -> float:
     ------
     ValueError
         For an unknown key, malformed text, an unknown unit, a wrong dimension (the message names the
-        key, the expected unit and what was received) or a non-finite value.
+        key, the expected unit and what was received), a plain number in text for an angle, an angular speed
+        or a length, or a non-finite value.
     TypeError
         If ``text`` is neither a string nor a real number.
 
