@@ -349,9 +349,11 @@ def ResolveParameters(preset: Optional[str] = None,
         describes the whole drive), else :data:`DEFAULT_PRESET`.
     config : str, path-like or dict, optional
         A TOML file (read with :func:`LoadConfig`) or a dict of the form :func:`LoadConfig` returns.
-    sets : iterable of str or (str, float)
-        Overrides ``'KEY=VALUE'`` (parsed with :func:`ParseSetOption`) or ``(key, value)`` pairs,
-        applied last, in order (the last value of a repeated key wins).
+    sets : iterable of str or (str, float), or None
+        Overrides ``'KEY=VALUE'`` (parsed with :func:`ParseSetOption`) or ``(key, value)`` pairs (a number is SI),
+        applied last, in order (the last value of a repeated key wins); ``'KEY='`` takes the key back. A choice
+        set here drops the keys of the file or preset that only the replaced choice used
+        (:func:`DropReplacedChoiceKeys`). None: no overrides.
 
     Returns
     -------
@@ -361,8 +363,10 @@ def ResolveParameters(preset: Optional[str] = None,
     Raises
     ------
     ValueError
-        For an unknown or empty preset name, an unknown key, an invalid value, an unreadable config file, or
-        overrides giving two forms of one quantity (e.g. ``dT`` and ``DT``).
+        For an unknown or empty preset name, an unknown key, an invalid value (a plain number of an angle, an
+        angular speed or a length in text or a file among them), an unreadable config file, overrides giving two
+        forms of one quantity (e.g. ``dT`` and ``DT``), or a key of a load or motor type that the chosen one does
+        not use, given as late as the choice.
 
     Examples
     --------
