@@ -28,6 +28,7 @@ _LAZY = {'WormGear': 'model.gear',
          **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'ElasticDriveFromParameters', 'GetPreset', 'PRESETS', 'LoadSideChain'), 'setups.presets'),
          **dict.fromkeys(('AnalyzeLinearStability', 'LinearStability'), 'analysis.linearization'),
          **dict.fromkeys(('Drive', 'ResolveDrive', 'Component'), 'setups.wholedrive'),
+         **dict.fromkeys(('ValueSource', 'SourceKind'), 'setups.config'),
          **dict.fromkeys(('CreateRigidBodyWormGear', 'RigidBodyWormGearConnector'), 'items.rigidmesh'),
          **dict.fromkeys(('CreateShaftBearings', 'ShaftBearings', 'StoredBearingLoads'), 'items.bearings'),
          'BuildRigidBodyReelChanger': 'analysis.reelchanger3d',
@@ -61,7 +62,7 @@ def __dir__():
 __version__ = '0.1.0'
 
 __all__ = ['CreateRigidBodyWormGear', 'RigidBodyWormGearConnector', 'CreateShaftBearings', 'ShaftBearings',
-           'StoredBearingLoads', 'BuildRigidBodyReelChanger', 'Drive', 'ResolveDrive', 'Component', 'DutyOperatingPoints', 'DutyPoint', 'AnalyzeDrive', 'DriveAnalysis',
+           'StoredBearingLoads', 'BuildRigidBodyReelChanger', 'Drive', 'ResolveDrive', 'Component', 'ValueSource', 'SourceKind', 'DutyOperatingPoints', 'DutyPoint', 'AnalyzeDrive', 'DriveAnalysis',
            'OperatingPointStability', 'StabilityModel', 'WormGear', 'ElasticDrive', 'MeshDampingFromMeasure', 'MeshDampingMeasure',
            'TorsionalDampingFromMeasure', 'TorsionalDampingMeasure', 'AnalyzeStability',
            'StabilityAnalysis', 'ContactStability', 'ContactOptions', 'MeshContact', 'MeshState',

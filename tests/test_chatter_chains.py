@@ -172,7 +172,7 @@ def test_cli_chatter_with_a_load_side_chain(capsys):
 
 def test_cli_chatter_names_the_unsupported_component(capsys):
     code = Main(['chatter', '--preset', 'reel-P1', '--set', 'motorType=characteristic', '--set', 'stallTorque=300',
-                 '--set', 'noLoadSpeed=52.36', '--set', 'motorInertia=0.05', '--vary', 'J1=0.09:0.1'])
+                 '--set', 'noLoadSpeed=52.36 rad/s', '--set', 'motorInertia=0.05', '--vary', 'J1=0.09:0.1'])
     err = capsys.readouterr().err
     assert code == 2
     assert 'a motor on its characteristic (motorType characteristic)' in err and 'Traceback' not in err

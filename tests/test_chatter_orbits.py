@@ -141,7 +141,7 @@ def test_branch_refuses_stable_range_and_unknown_parameter():
     (['--vary', 'J1=0.3:0.2'], r"LOW must be below HIGH"),
     # a NaN bound was 'LOW must be below HIGH'
     (['--vary', 'J1=nan:0.3'], r"--vary J1=nan:0.3: LOW: ParseQuantity: 'J1' must be finite, got 'nan'"),
-    (['--vary', 'alphaN=0.2:0.3'], r"parameter 'alphaN' cannot be continued"),
+    (['--vary', 'alphaN=0.2rad:0.3rad'], r"parameter 'alphaN' cannot be continued"),
     (['--vary', 'J1=0.2:0.3'], r"linearly stable for every J1"),
 ])
 def test_cli_bad_input_one_line_exit_2(capsys, argv, message):

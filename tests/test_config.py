@@ -21,7 +21,9 @@ RPM = 2 * math.pi / 60
 @pytest.mark.parametrize('key, text, expected', [
     ('gamma', '8 deg', math.radians(8)),
     ('rho', '8deg', math.radians(8)),
-    ('alphaN', '0.349', 0.349),                       # plain numbers are SI: rad
+    ('alphaN', '0.349 rad', 0.349),
+    ('backlash', '0', 0.),                            # zero needs no unit
+    ('J1', '0.3', 0.3),                               # plain numbers are SI where the SI unit is the printed one
     ('backlash', '0.5 mm', 0.5e-3),
     ('r1', '18.05 mm', 18.05e-3),
     ('kT', '7 kN*m', 7000.),                          # N*m accepted for N*m/rad
@@ -103,7 +105,7 @@ def test_parse_quantity_millimetre(x):
 
 def test_unit_registry_lazy_and_single():
     code = ("import sys; from exudyn_worm.setups.config import ParseQuantity, ResolveParameters; "
-            "ParseQuantity('r1', '0.1'); ResolveParameters(sets=['J1=0.2']); print('pint' in sys.modules)")
+            "ParseQuantity('J1', '0.1'); ResolveParameters(sets=['J1=0.2']); print('pint' in sys.modules)")
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == 'False'
     assert parameters._UnitRegistry() is parameters._UnitRegistry()
@@ -231,7 +233,7 @@ def test_resolve_alternatives_are_replaced(tmp_path):
 @pytest.mark.parametrize('kwargs, error, pattern', [
     (dict(preset='nope'), ValueError, "unknown preset 'nope'"),
     (dict(sets=['foo=1']), ValueError, "unknown parameter 'foo'"),
-    (dict(sets=['mu=0.1', 'rho=0.1']), ValueError, "both 'mu' and 'rho'"),
+    (dict(sets=['mu=0.1', 'rho=0.1 rad']), ValueError, "both 'mu' and 'rho'"),
     (dict(sets=['dT=1', 'DTV=2']), ValueError, "both 'dT' and 'DTV'"),
     (dict(sets='J1=0.2'), TypeError, 'single string'),
     (dict(sets=[3.]), TypeError, "'KEY=VALUE' or \\(key, value\\)"),

@@ -210,7 +210,7 @@ def test_check_plot_reads_well():
 def test_check_states_chatter_after_a_disturbance(capsys):
     # J1 = 0.25 kg m^2 with 0.5 mm backlash: the linear check calls the drive stable with margin, yet rest and
     # chatter coexist (docs/chatter-amplitude.md); by default the check of a drive with backlash says so
-    backlash = ('check', '--preset', 'reel-P1', '--set', 'J1=0.25', '--set', 'backlash=0.0005')
+    backlash = ('check', '--preset', 'reel-P1', '--set', 'J1=0.25', '--set', 'backlash=0.5 mm')
     data = Json(capsys, *backlash)
     assert data['stable'] is True
     d = data['disturbance']

@@ -35,7 +35,7 @@ def test_bearing_tables_make_the_drive_the_3d_model():
     supports = drive.shaftSupports
     assert (supports.wormBearings, supports.wheelBearings) == (WORM, WHEEL)
     assert (supports.wormMass, supports.wheelMass) == (5., 30.)
-    assert drive.sources['wormRadialStiffness'].endswith('[wormBearing] radialStiffness')
+    assert drive.sources['wormRadialStiffness'].text.endswith('[wormBearing] radialStiffness')
 
 
 def _File(tmp_path, text):

@@ -16,7 +16,7 @@ from exudyn_worm.cli.main import Main
 from exudyn_worm.analysis.design import DesignCheck
 from exudyn_worm.analysis.stabilityhint import StabilizingChanges
 from exudyn_worm.setups import config, presets, wholedrive
-from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.setups.config import ResolveParameters, SourceKind, ValueSource
 from exudyn_worm.setups.operatingpoints import DutyOperatingPoints, SteadyPhases
 from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
 from exudyn_worm.setups.wholedrive import Component, Drive, ResolveDrive
@@ -48,15 +48,16 @@ def test_drive_is_immutable_typed_and_knows_its_sources():
     assert drive.components == (Component.LOAD_SIDE_CHAIN,) and not drive.isTwoMass
     assert drive.loadType == 'constant' and drive.motorType == 'speedTable'
     assert drive.loadSideChain == ((6.2, 8e4, 0.),) and drive.driveSideChain == () and drive.axialBearing is None
-    assert drive.sources['kT'] == '--set' and 'hoist.toml' in drive.sources['J1']
+    assert drive.sources['kT'] == ValueSource(SourceKind.SET, '--set') and 'hoist.toml' in drive.sources['J1'].text
+    assert drive.sources['J1'].kind == SourceKind.FILE
     with pytest.raises(TypeError):
         drive.parameters['J1'] = 1.                      # read-only
     with pytest.raises(Exception):
         drive.elastic = None                             # frozen
     changed = drive.Replace(J1=2e-3)
-    assert changed.parameters['J1'] == 2e-3 and changed.sources['J1'] == 'changed' and drive.parameters['J1'] == 1.5e-3
+    assert changed.parameters['J1'] == 2e-3 and changed.sources['J1'].kind == SourceKind.CHANGED and drive.parameters['J1'] == 1.5e-3
     preset = ResolveDrive('reel-P1')
-    assert preset.isTwoMass and preset.components == () and preset.sources['J1'] == 'preset reel-P1'
+    assert preset.isTwoMass and preset.components == () and preset.sources['J1'] == ValueSource.Preset('reel-P1')
 
 
 @pytest.mark.messages
@@ -97,15 +98,15 @@ def test_incomplete_duty_is_one_line_for_every_command(capsys, tmp_path, monkeyp
 
 @pytest.mark.messages
 def test_motor_speed_on_a_speed_table_is_refused(capsys):
-    status = Main(['stability', '--config', str(HOIST), '--set', 'motorSpeed=50'])
+    status = Main(['stability', '--config', str(HOIST), '--set', 'motorSpeed=50 rad/s'])
     err = capsys.readouterr().err
     assert status == 2 and err.count('\n') == 1
-    assert "'motorSpeed' (--set) is not used by motorType = 'speedTable', whose speed comes from motorSpeedOverTime" \
-        in err
+    assert "'motorSpeed' (--set) is not used by motorType = 'speedTable' (" in err
+    assert "which takes motorSpeedOverTime; 'motorSpeed' belongs to motorType constantSpeed or startStop" in err
 
 
 def test_a_presets_motor_speed_gives_way_to_another_motor_type():
-    drive = ResolveDrive('reel-P1', sets=['motorType=speedTable', 'motorSpeedOverTime=[[0, 10], [1, 10]]'])
+    drive = ResolveDrive('reel-P1', sets=['motorType=speedTable', 'motorSpeedOverTime=[[0, "10 rad/s"], [1, "10 rad/s"]]'])
     assert 'motorSpeed' not in drive.parameters and drive.motorType == 'speedTable'
 
 
@@ -154,7 +155,7 @@ def test_start_stop_plateau_and_characteristic_equilibrium():
     plateau = ResolveDrive('reel-P1', sets=['motorType=startStop', 'rampTime=0.5', 'brakeTime=3'])
     (phase,) = SteadyPhases(plateau)
     assert (phase.t0, phase.t1, phase.source) == (0.5, 3., 'start/stop plateau')
-    motor = ['motorType=characteristic', 'stallTorque=400', 'noLoadSpeed=55', 'motorInertia=0.01']
+    motor = ['motorType=characteristic', 'stallTorque=400', 'noLoadSpeed=55 rad/s', 'motorInertia=0.01']
     drive = ResolveDrive('reel-P1', sets=motor)
     gear, p = drive.gear, drive.parameters
     mgl = p['loadMass'] * G * p['leverArm']
@@ -268,7 +269,7 @@ def test_each_command_reads_its_drive_file_once_and_builds_its_drive_once(argv, 
         return loads(text, *args, **kwargs)
 
     def CountedBuild(cls, parameters, sources=None, *args, **kwargs):
-        if 'changed' not in (sources or {}).values():       # a trial of the design check is another drive
+        if not any(v.kind == SourceKind.CHANGED for v in (sources or {}).values()):       # a trial of the design check is another drive
             built.append(dict(parameters))
         return build(cls, parameters, sources, *args, **kwargs)
     monkeypatch.setattr(config.tomllib, 'loads', CountedLoads)
@@ -296,7 +297,7 @@ def test_trial_drives_of_the_hint_and_the_design_check_do_not_go_through_the_res
     DesignCheck(drive)
     assert calls == []
     changed = drive.Replace(J1=0.3, DT=0.02)
-    assert changed.gear is drive.gear and changed.elastic.J1 == 0.3 and changed.sources['J1'] == 'changed'
+    assert changed.gear is drive.gear and changed.elastic.J1 == 0.3 and changed.sources['J1'].kind == SourceKind.CHANGED
     assert changed.elastic.dT == pytest.approx(2 * 0.02 * math.sqrt(drive.elastic.kT * 0.3), rel=1e-12)   # eq. (22)
     with pytest.raises(ValueError, match=r"'J1' must be > 0 kg\*m\^2, got -1 kg\*m\^2"):
         drive.Replace(J1=-1.)

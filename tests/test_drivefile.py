@@ -96,7 +96,7 @@ def test_drive_side_keys_are_numbered_from_four():
     ('worm = 3\n', 1, r"'worm' must be a table"),
     ('description = 3\n', 1, r"'description' must be a string"),
     # ranges (presets.CheckParameters) named by the file's line, table and key
-    ('[gear]\nwormRadius = 0.018\n[worm]\ninertia = -0.1\n', 4,
+    ('[gear]\nwormRadius = "18 mm"\n[worm]\ninertia = -0.1\n', 4,
      r"\[worm\] inertia: 'J1' must be > 0 kg\*m\^2, got -0.1"),
     ('[gear]\nbacklash = "-0.1 mm"\n', 2, r"\[gear\] backlash: 'backlash' must be >= 0 m"),
     ('[[driveSide]]\ninertia = 0.05\nstiffness = -1\n', 3,

@@ -62,7 +62,7 @@ def test_duty_phases_follow_the_load_power():
     """Lowering where the load drives the gear (M omega > 0): with the speed reversed at 1.5 s a constant
     driving torque becomes a lifted one; the rigid kinematics put the switch where the speed passes zero."""
     p = ResolveParameters('reel-P1', sets=['loadType=constant', 'loadTorque=1500', 'motorType=speedTable',
-                                           'motorSpeedOverTime=[[0, 0], [0.5, 50], [1.5, 50], [2, -50]]'])
+                                           'motorSpeedOverTime=[[0, 0], [0.5, "50 rad/s"], [1.5, "50 rad/s"], [2, "-50 rad/s"]]'])
     assert DefaultSimulatedTime(ResolveDrive(parameters=p)) == 2.
     (t0, t1, a), (t2, t3, b) = DefaultPhases(ResolveDrive(parameters=p))
     assert (a, b) == ('lower', 'lift') and t0 == 0. and t3 == 2.
@@ -122,8 +122,8 @@ def test_simulated_lowering_under_a_driving_torque_has_the_worm_braking(capsys, 
 
 def test_simulation_with_each_duty_records_its_laws():
     """Every duty builds with symbolic user functions (recorded laws are checked against Python at build time)."""
-    for sets in (['loadType=angleTable', 'loadTorqueOverAngle=[[0, -2000], [3, 2000]]', 'motorType=speedTable',
-                  'motorSpeedOverTime=[[0, 0], [0.05, 49.5]]'],
+    for sets in (['loadType=angleTable', 'loadTorqueOverAngle=[[0, -2000], ["3 rad", 2000]]', 'motorType=speedTable',
+                  'motorSpeedOverTime=[[0, 0], [0.05, "49.5 rad/s"]]'],
                  ['loadType=timeTable', 'loadTorqueOverTime=[[0, -2000], [0.1, 0]]'],
                  ['loadType=none']):
         p = ResolveParameters('reel-P2', sets=sets)
@@ -170,13 +170,13 @@ def test_simulate_labels_each_window_with_its_phase(capsys, tmp_path, monkeypatc
 def test_idle_window_is_a_standstill_under_load_or_no_load():
     """A hoist that pauses with its load on the drum stands still under load; a duty without load torque has none."""
     hoist = ['loadType=constant', 'loadTorque=-1500', 'motorType=speedTable',
-             'motorSpeedOverTime=[[0, 0], [0.1, 50], [0.5, 50], [0.6, 0], [1, 0], [1.1, -50], [1.5, -50], [1.6, 0]]']
+             'motorSpeedOverTime=[[0, 0], [0.1, "50 rad/s"], [0.5, "50 rad/s"], [0.6, 0], [1, 0], [1.1, "-50 rad/s"], [1.5, "-50 rad/s"], [1.6, 0]]']
     p = ResolveParameters('reel-P1', sets=hoist)
     phases = DefaultPhases(ResolveDrive(parameters=p), 1.6)
     assert [ph for _, _, ph in phases] == ['lift', 'idle', 'lower']
     assert [PhaseLabel(ResolveDrive(parameters=p), ph, (t0, t1)) for t0, t1, ph in phases] == ['lifting', 'standstill under load', 'lowering']
     unloaded = ResolveParameters('reel-P1', sets=['loadType=none', 'motorType=speedTable',
-                                                   'motorSpeedOverTime=[[0, 0], [0.1, 50]]'])
+                                                   'motorSpeedOverTime=[[0, 0], [0.1, "50 rad/s"]]'])
     assert PhaseLabel(ResolveDrive(parameters=unloaded), 'idle', (0., 1.)) == 'no load'
     assert PhaseLabel(ResolveDrive(parameters=p), 'idle') == 'idle'                       # without its window it cannot tell
 
@@ -213,7 +213,7 @@ def test_check_simulate_judges_the_lowering_phases_of_a_duty():
     """check --simulate on another duty: chatter is looked for where the load drives the gear; a duty that only
     lifts has no lowering to chatter in."""
     lifting = ResolveParameters('reel-P7', sets=['loadType=constant', 'loadTorque=-2000', 'motorType=speedTable',
-                                                 'motorSpeedOverTime=[[0, 49.5], [1, 49.5]]'])
+                                                 'motorSpeedOverTime=[[0, "49.5 rad/s"], [1, "49.5 rad/s"]]'])
     assert ChatterWhileLowering(ResolveDrive(parameters=lifting)) is False
     lowering = {**lifting, 'loadTorque': 2000.}
     assert ChatterWhileLowering(ResolveDrive(parameters=lowering)) is True          # P7 chatters while lowering (the paper's Figure 14)

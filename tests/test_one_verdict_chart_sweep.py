@@ -27,7 +27,7 @@ CASES = {
     # axial bearing and a motor on its characteristic (a free rotor: its rigid-body mode is not a growth)
     'reel-P2 bearing, characteristic': (['--preset', 'reel-P2', '--set', 'kA=7e8', '--set', 'mA=5', '--set',
                                          'motorType=characteristic', '--set', 'motorInertia=0.05', '--set',
-                                         'stallTorque=200', '--set', 'noLoadSpeed=52'], 33., None),
+                                         'stallTorque=200', '--set', 'noLoadSpeed=52 rad/s'], 33., None),
 }
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')   # nothing written to the cwd

@@ -85,7 +85,7 @@ def test_cli_refusal_one_line_exit_2(tmp_path, sets, text):
 @pytest.mark.slow
 def test_cli_warns_once_on_stderr(tmp_path):
     """`check` builds the gear many times (the stabilizing changes): each warning is printed once."""
-    run = _Run('check', '--set', 'mu=0.8', '--set', 'r1=0.2', cwd=tmp_path)
+    run = _Run('check', '--set', 'mu=0.8', '--set', 'r1=0.2 m', cwd=tmp_path)
     assert run.returncode == 0, run.stderr
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 2, run.stderr
@@ -153,7 +153,7 @@ def test_cli_warns_of_a_load_that_drives_the_worm(tmp_path):
 
 def test_cli_names_a_rotation_shorter_than_a_step(tmp_path):
     """motorSpeed = 1e6 rad/s: the warning says why before the refusal of a run shorter than one step."""
-    run = _Run('simulate', '--set', 'motorSpeed=1e6', cwd=tmp_path)
+    run = _Run('simulate', '--set', 'motorSpeed=1e6 rad/s', cwd=tmp_path)
     assert run.returncode == 2 and run.stdout == ''
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 2 and 'Traceback' not in run.stderr, run.stderr
@@ -167,7 +167,7 @@ def test_cli_names_a_rotation_shorter_than_a_step(tmp_path):
 def test_linear_commands_warn_of_a_speed_no_run_could_resolve(tmp_path, command):
     """stability and check simulate nothing, yet motorSpeed = 1e6 (rpm typed as rad/s) passed them without a word:
     they warn at the drive's own recommended step, once, and still give their verdict."""
-    run = _Run(command, '--set', 'motorSpeed=1e6', *(['--quiet'] if command == 'check' else []), cwd=tmp_path)
+    run = _Run(command, '--set', 'motorSpeed=1e6 rad/s', *(['--quiet'] if command == 'check' else []), cwd=tmp_path)
     assert run.returncode in (0, 1), run.stderr
     warned = [line for line in run.stderr.splitlines() if 'turns the worm once' in line]
     assert len(warned) == 1, run.stderr

@@ -280,8 +280,9 @@ def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
                             f"{DocPath('drive-files.md')}), or the name of a shipped drive: "
                             f"{', '.join(ShippedDrives()) or 'none found'}")
     group.add_argument('--set', metavar='KEY=VALUE', action='append', default=[], dest='set',
-                       help="override one parameter; VALUE is SI (angles in rad) or has units, "
-                            "e.g. --set 'backlash=0.5 mm' --set 'kT=7 kN*m' (repeatable)")
+                       help="override one parameter; VALUE has units or is SI, but an angle, a speed or a "
+                            "length needs its unit (zero excepted), e.g. --set 'backlash=0.5 mm' --set 'kT=7 kN*m' "
+                            "--set motorSpeed=472.5rpm; KEY= takes a key back (repeatable)")
     parser.add_argument('--json', action='store_true',
                         help='print exactly one JSON object on stdout instead of the table')
 

@@ -29,19 +29,45 @@ gamma_w (u = z2/z1 still holds): give these as ``r1, r2, gamma``, or ``a, u, gam
 """
 from __future__ import annotations
 
+import enum
 import math
 from typing import Dict, Mapping, Tuple
 
 from .._checks import CheckAngle, CheckPositive
 from ..params.parameters import PARAMETERS, MissingParameterError
 
-__all__ = ['GEOMETRY_FORMS', 'GEOMETRY_KEYS', 'GeometryForm', 'RadiiFromCentreDistance', 'RadiiFromDesignation',
+__all__ = ['GEOMETRY_FORMS', 'GEOMETRY_KEYS', 'GeometryFormKind', 'GeometryForm', 'RadiiFromCentreDistance', 'RadiiFromDesignation',
            'DesignationFromRadii', 'GeometryFromParameters', 'MissingGeometryKeys', 'DescribeGeometry',
            'MeshStiffnessFromWheelTorsion']
 
-#: the forms in which a parameter set may give the gear geometry: name -> its keys (all required), as declared in
+
+
+class GeometryFormKind(str, enum.Enum):
+    """The form in which a parameter set gives the gear geometry; the value is its name in messages and JSON.
+
+    Attributes
+    ----------
+    RADII, CENTRE_DISTANCE, DESIGNATION : GeometryFormKind
+        ``r1 r2 gamma``; ``a u gamma``; ``mx z1 z2 q`` (the forms of the registry's ``gear geometry``).
+    """
+    RADII = 'radii'
+    CENTRE_DISTANCE = 'centre distance'
+    DESIGNATION = 'designation'
+
+    def __str__(self) -> str:
+        return self.value
+
+    def __format__(self, spec: str) -> str:
+        return format(self.value, spec)
+
+    def __hash__(self) -> int:          # equal to its name, so also a key of a dictionary by name
+        return hash(self.value)
+
+
+#: the forms in which a parameter set may give the gear geometry: form -> its keys (all required), as declared in
 #: the registry (``radii``: gamma r1 r2, ``centre distance``: gamma a u, ``designation``: mx z1 z2 q)
-GEOMETRY_FORMS: Dict[str, Tuple[str, ...]] = PARAMETERS.Forms('gear geometry')
+GEOMETRY_FORMS: Dict[GeometryFormKind, Tuple[str, ...]] = {GeometryFormKind(form): keys for form, keys
+                                                           in PARAMETERS.Forms('gear geometry').items()}
 #: every key of the gear geometry, in the order of the registry
 GEOMETRY_KEYS: Tuple[str, ...] = tuple(dict.fromkeys(k for keys in GEOMETRY_FORMS.values() for k in keys))
 
@@ -147,7 +173,7 @@ def DesignationFromRadii(r1: float, r2: float, gamma: float, z1: float = 1.) -> 
     return {'a': r1 + r2, 'u': u, 'mx': 2. * r1 / q, 'z1': z1, 'z2': u * z1, 'q': q}
 
 
-def GeometryForm(parameters: Mapping[str, float]) -> str:
+def GeometryForm(parameters: Mapping[str, float]) -> GeometryFormKind:
     """The form in which ``parameters`` give the gear geometry (a key of :data:`GEOMETRY_FORMS`).
 
     ``designation`` if any of ``mx, z1, z2, q`` is given, else ``centre distance`` if ``a`` or ``u`` is,
@@ -160,12 +186,13 @@ def GeometryForm(parameters: Mapping[str, float]) -> str:
 
     Returns
     -------
-    str
+    GeometryFormKind
+        A str enum: its value is the form's name (``'centre distance'``).
     """
-    for form in ('designation', 'centre distance'):
+    for form in (GeometryFormKind.DESIGNATION, GeometryFormKind.CENTRE_DISTANCE):
         if any(k in parameters for k in GEOMETRY_FORMS[form] if k != 'gamma'):
             return form
-    return 'radii'
+    return GeometryFormKind.RADII
 
 
 def MissingGeometryKeys(parameters: Mapping[str, float]) -> Tuple[str, ...]:
@@ -214,9 +241,9 @@ def GeometryFromParameters(parameters: Mapping[str, float], where: str = 'Geomet
             + (f" (given {', '.join(given)}: the {form} form needs {', '.join(GEOMETRY_FORMS[form])})" if given else '')
             + f"; give one of: {PARAMETERS.FormsText('gamma')}; with --set KEY=VALUE or in the config file", missing)
     p = parameters
-    if form == 'designation':
+    if form is GeometryFormKind.DESIGNATION:
         return RadiiFromDesignation(p['mx'], p['z1'], p['z2'], p['q'])
-    if form == 'centre distance':
+    if form is GeometryFormKind.CENTRE_DISTANCE:
         return RadiiFromCentreDistance(p['a'], p['u'], p['gamma']) + (float(p['gamma']),)
     return float(p['r1']), float(p['r2']), float(p['gamma'])
 
@@ -236,7 +263,7 @@ def DescribeGeometry(parameters: Mapping[str, float]) -> str:
         gamma = 3.5 deg, u = r2/(r1 tan(gamma)) = 40 (eq. (3))'``.
     """
     form = GeometryForm(parameters)
-    if form == 'radii':
+    if form is GeometryFormKind.RADII:
         return ''
     r1, r2, gamma = GeometryFromParameters(parameters, 'DescribeGeometry')
     text = {'mx': lambda v: f'{v * 1e3:.6g} mm', 'a': lambda v: f'{v * 1e3:.6g} mm',

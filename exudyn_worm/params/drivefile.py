@@ -6,8 +6,10 @@ receives). It is derived from the registry :data:`~exudyn_worm.params.parameters
 names its table and file key. The format requires no table or key: what a file leaves out comes from the
 ``preset`` it names; a file with component tables that names no preset inherits nothing, and a value the drive
 needs but the file leaves out is reported missing (a flat ``[parameters]`` table without a preset is applied on
-top of ``reel-P1``, see :mod:`exudyn_worm.setups.config`). Values are plain SI numbers (angles in rad, speeds
-in rad/s) or strings with units (``"18.05 mm"``, ``"8 deg"``, ``"472.5 rpm"``), read by :func:`exudyn_worm.setups.config.ParseQuantity`.
+top of ``reel-P1``, see :mod:`exudyn_worm.setups.config`). Values are strings with units (``"18.05 mm"``,
+``"8 deg"``, ``"472.5 rpm"``) or plain numbers in the key's SI unit, read by
+:func:`exudyn_worm.setups.config.ParseQuantity`; an angle, an angular speed or a length needs its unit (zero excepted,
+docs/drive-files.md, "Values").
 
 Example (the reel changer at P1, parameter set (28))::
 
@@ -260,7 +262,8 @@ def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = 
     # the flat [parameters] table of earlier versions: keys are parameter keys (checked by the parser)
     flat = data.get('parameters', {})
     if not isinstance(flat, Mapping):
-        raise ValueError(f"{where}: 'parameters' must be a table ([parameters]), got {type(flat).__name__}")
+        raise ValueError(f"{_Where(where, lines.Find(None, 'parameters'), repr('parameters'))} must be a table "
+                         f"([parameters]), got {type(flat).__name__} {flat!r}")
     for key, value in flat.items():
         values.append((key, value, _Where(where, lines.Find('parameters', key), f'[parameters] {key}')))
 
@@ -270,7 +273,7 @@ def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = 
         content = data[table]
         if not isinstance(content, Mapping):
             raise ValueError(f"{_Where(where, lines.Find(None, table), repr(table))} must be a table "
-                             f"([{table}]), got {type(content).__name__}")
+                             f"([{table}]), got {type(content).__name__} {content!r}")
         for fileKey, value in content.items():
             line = lines.Find(table, fileKey)
             if fileKey not in keys:
@@ -295,7 +298,9 @@ def _StageValues(data: Mapping[str, Any], table: str, keys: Mapping[str, str], w
     """The values of the array of tables ``table`` (one stage of a chain each) as (parameter key, value, location)."""
     stages = data.get(table, [])
     if not isinstance(stages, list) or not all(isinstance(s, Mapping) for s in stages):
-        raise ValueError(f"{where}: '{table}' must be an array of tables ([[{table}]]), got {type(stages).__name__}")
+        line = lines.Find(None, table) or lines.Header(table)
+        raise ValueError(f"{_Where(where, line, repr(table))} must be an array of tables ([[{table}]]), got "
+                         f"{type(stages).__name__} {stages!r}")
     values = []
     for index, stage in enumerate(stages):
         label = f'[[{table}]] number {index + 1}'

@@ -20,7 +20,8 @@ To add a key, declare it in :data:`PARAMETERS` below (or, at run time, ``PARAMET
 Kinds of value (parsed by :meth:`ParameterRegistry.Parse`, checked by :meth:`ParameterRegistry.Check`):
 
 - ``'number'``: a real number in ``unit`` (SI; angles in rad); a string carries its own unit (``"0.5 mm"``,
-  ``"8 deg"``, ``"472.5 rpm"``) and is converted by pint. Ranges: :data:`RANGES`.
+  ``"8 deg"``, ``"472.5 rpm"``) and is converted by pint. Ranges: :data:`RANGES`. In text and drive files a plain
+  number of an angle, an angular speed or a length is refused (zero excepted): :data:`UNIT_REQUIRED`.
 - ``'choice'``: a string, one of ``choices``.
 - ``'table'``: a file path (a string) or rows of numbers, one per row with one value per entry of
   ``columns`` (``(name, unit, range)``); each value parsed like a number in its column's unit, the first
@@ -46,7 +47,7 @@ from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Tuple
 
 from .._checks import CheckAngle, CheckNonNegative, CheckPositive, CheckRange, CheckReal, Suggest
 
-__all__ = ['KINDS', 'RANGES', 'Parameter', 'ParameterRegistry', 'PARAMETERS', 'ParametersMarkdown',
+__all__ = ['KINDS', 'RANGES', 'UNIT_REQUIRED', 'ParameterError', 'Parameter', 'ParameterRegistry', 'PARAMETERS', 'ParametersMarkdown',
            'WithGeneratedTables']
 
 
@@ -66,12 +67,56 @@ class MissingParameterError(ValueError):
         self.keys = tuple(keys)
 
 
+class ParameterError(ValueError):
+    """A value of a parameter set is refused; ``keys`` names the keys it is about (the first one the value at fault),
+    so that a drive can name where they came from (a drive file's line, :meth:`At`).
+
+    Parameters
+    ----------
+    where : str
+        Who refuses it (the function, or the location of the value).
+    detail : str
+        What is wrong: the key, the expected range and unit, the value received.
+    keys : iterable of str
+        The parameter keys the message is about.
+    """
+
+    def __init__(self, where: str, detail: str, keys: Iterable[str]):
+        super().__init__(f"{where}: {detail}")
+        self.where, self.detail, self.keys = where, detail, tuple(keys)
+
+    def At(self, where: str) -> 'ParameterError':
+        """The same error said at ``where`` (a drive file's ``"LoadConfig: 'f.toml', line 7: [gear] key"``).
+
+        Parameters
+        ----------
+        where : str
+            The new prefix.
+
+        Returns
+        -------
+        ParameterError
+        """
+        return ParameterError(where, self.detail, self.keys)
+
+
 #: kinds of value a parameter may take
 KINDS = ('number', 'choice', 'table')
 
 #: ranges of a number -> the text shown in the docs
 RANGES = {'positive': '> 0', 'nonNegative': '>= 0', 'angle': '(0, pi/2)', 'angleFromZero': '[0, pi/2)',
           'count': 'whole number >= 1', 'finite': 'finite'}
+
+#: SI units of the quantities that drive engineers read in another unit, so that a number copied from a data sheet,
+#: a nameplate or a drawing is easily meant in it: a plain number of such a quantity in a drive file, ``--set`` or
+#: ``--vary`` is refused (zero excepted). SI unit -> (the quantity, the other unit, its factor to SI, the units a
+#: value may take). Every other quantity (inertia, stiffness, damping, mass, torque, time, sliding speed) is printed
+#: in its SI unit or a decimal multiple of it, and a plain number there is SI; see docs/drive-files.md, "Values".
+UNIT_REQUIRED: Dict[str, Tuple[str, str, float, str]] = {
+    'rad': ('an angle', 'deg', math.pi / 180., '"20 deg" or "0.349 rad"'),
+    'rad/s': ('an angular speed', 'rpm', math.pi / 30., '"472.5 rpm" (= 1/min), "49.48 rad/s" or "2830 deg/s"'),
+    'm': ('a length', 'mm', 1e-3, '"18.05 mm" or "0.01805 m" (also um, cm)'),
+}
 
 
 @dataclass(frozen=True)
@@ -494,6 +539,39 @@ class ParameterRegistry:
                 f"for a longer {self.SeriesText(group[0].table)}" for group in groups.values()) + ')'
         return text
 
+    def ExpectedText(self, key) -> str:
+        """What a value of ``key`` must be, for messages: ``'a length with its unit, e.g. "18.05 mm" or ...'``.
+
+        Parameters
+        ----------
+        key : str
+            A parameter key.
+
+        Returns
+        -------
+        str
+        """
+        parameter = self[key]
+        if parameter.kind == 'number':
+            return _ExpectedText(parameter.unit)
+        return parameter.rangeText
+
+    def UnitRequired(self, key) -> bool:
+        """True if a plain number of ``key`` (other than 0) is refused in text and drive files: an angle, an angular
+        speed or a length (:data:`UNIT_REQUIRED`).
+
+        Parameters
+        ----------
+        key : str
+            A parameter key.
+
+        Returns
+        -------
+        bool
+        """
+        parameter = self.Get(key)
+        return parameter is not None and parameter.kind == 'number' and parameter.unit in UNIT_REQUIRED
+
     def AxisLabel(self, key: str, display: bool = True, dash: str = '–') -> Tuple[str, float]:
         """Axis label of ``key`` and the factor from SI to the unit shown.
 
@@ -537,8 +615,12 @@ class ParameterRegistry:
         return f'[{table}] {parameter.fileKey}'
 
     # -- values -----------------------------------------------------------------------------------------------
-    def Parse(self, key: str, value: Any, where: str) -> Any:
+    def Parse(self, key: str, value: Any, where: str, fromFile: bool = False) -> Any:
         """Parse a value of ``key`` as a user wrote it (``--set``, a drive file, a ``(key, value)`` pair).
+
+        Text and a drive file's numbers must carry the unit of a quantity in :data:`UNIT_REQUIRED` (an angle, an
+        angular speed, a length): a plain number other than zero is refused there. A Python number (the API,
+        ``fromFile`` False) is SI.
 
         Parameters
         ----------
@@ -549,6 +631,9 @@ class ParameterRegistry:
             string with an inline TOML array (table).
         where : str
             Prefix of error messages.
+        fromFile : bool, optional
+            True for a value read from a drive file: its plain numbers (TOML numbers, also in the rows of a
+            table) follow the rule for text.
 
         Returns
         -------
@@ -566,18 +651,18 @@ class ParameterRegistry:
         if parameter is None:
             raise ValueError(self.UnknownKeyMessage(where, key))
         if parameter.kind == 'number':
-            return _ParseNumber(key, value, parameter.unit, where)
+            return _ParseNumber(key, value, parameter.unit, where, fromFile)
         if parameter.kind == 'choice':
             text = value.strip() if isinstance(value, str) else value
             self.Check(key, text, where)
             return text
         if isinstance(value, str) and value.strip().startswith('['):
-            value = _InlineArray(key, value, where)
+            value, fromFile = _InlineArray(key, value, where), True     # text: its numbers follow the rule for text
         if isinstance(value, str):
             self.Check(key, value.strip(), where)
             return value.strip()
         rows = self._Rows(parameter, key, value, where)
-        parsed = tuple(tuple(_ParseNumber(f'{key}[{i}] {name}', cell, unit, where)
+        parsed = tuple(tuple(_ParseNumber(f'{key}[{i}] {name}', cell, unit, where, fromFile)
                              for cell, (name, unit, _) in zip(row, parameter.columns)) for i, row in enumerate(rows))
         return self.Check(key, parsed, where)
 
@@ -699,14 +784,25 @@ _NUMBER_UNIT = re.compile(r'^\s*([+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?)\
 
 # human form of each target unit for messages
 _UNIT_TEXT = {'': 'a dimensionless number (plain, or e.g. "1.4 %")',
-              'rad': 'an angle in rad (plain numbers are rad; or e.g. "8 deg")',
               'N*m/rad': 'in N*m/rad (N*m is accepted; e.g. "7 kN*m")',
-              'N*m*s/rad': 'in N*m*s/rad (N*m*s is accepted)',
-              'rad/s': 'an angular speed in rad/s (plain numbers are rad/s; or e.g. "472.5 rpm")'}
+              'N*m*s/rad': 'in N*m*s/rad (N*m*s is accepted)'}
 
 
 def _ExpectedText(unit: str) -> str:
+    if unit in UNIT_REQUIRED:
+        what, _, _, units = UNIT_REQUIRED[unit]
+        return f'{what} in {unit} (written with its unit, e.g. {units})'
     return _UNIT_TEXT.get(unit, f'in {unit} (plain numbers are SI)')
+
+
+def _RefusePlain(key: str, value: float, text, target: str, where: str) -> None:
+    """Refuse a plain number (not zero) of a quantity in :data:`UNIT_REQUIRED`, with both readings of it."""
+    if target not in UNIT_REQUIRED or value == 0.:
+        return
+    what, other, factor, units = UNIT_REQUIRED[target]
+    raise ValueError(f"{where}: '{key}' is {what} and needs its unit, e.g. {units}; got the plain number {text!r} "
+                     f"(meant in {other}: {value:g} {other} = {value * factor:.4g} {target}; in {target}: {value:g} {target} = "
+                     f"{value / factor:.4g} {other}); only 0 may be written without a unit")
 
 
 @functools.lru_cache(maxsize=None)
@@ -738,8 +834,9 @@ def _DimensionText(ureg, units, radians) -> str:
     return ' * '.join(parts) or 'dimensionless'
 
 
-def _ParseNumber(key: str, text, target: str, where: str) -> float:
-    """A number (SI) or a string with a unit, converted to ``target``; see :func:`~exudyn_worm.setups.config.ParseQuantity`."""
+def _ParseNumber(key: str, text, target: str, where: str, fromFile: bool = False) -> float:
+    """A number (SI) or a string with a unit, converted to ``target``; see :func:`~exudyn_worm.setups.config.ParseQuantity`.
+    A plain number in text (or, with ``fromFile``, a file's number) of a quantity in :data:`UNIT_REQUIRED` is refused."""
     if isinstance(text, bool) or not isinstance(text, (str, Real)):
         raise TypeError(f"{where}: value of '{key}' must be a number or a string such as '0.5 mm', "
                         f"got {type(text).__name__} {text!r}")
@@ -747,14 +844,17 @@ def _ParseNumber(key: str, text, target: str, where: str) -> float:
         value = float(text)
         if not math.isfinite(value):
             raise ValueError(f"{where}: '{key}' must be finite, got {value}")
+        if fromFile:
+            _RefusePlain(key, value, text, target, where)
         return value
-    try:  # plain SI number: no unit registry needed
+    try:  # plain number: no unit registry needed
         value = float(text)
     except ValueError:
         pass
     else:
         if not math.isfinite(value):
             raise ValueError(f"{where}: '{key}' must be finite, got {text!r}")
+        _RefusePlain(key, value, text.strip(), target, where)
         return value
     match = _NUMBER_UNIT.match(text)
     if match is None:
@@ -980,9 +1080,10 @@ def ParametersMarkdown(registry: Optional[ParameterRegistry] = None) -> str:
             '<!-- generated by exudyn_worm.params.parameters.ParametersMarkdown(); do not edit: declare a parameter in\n'
             '     exudyn_worm/params/parameters.py and run `python -m exudyn_worm.params.parameters docs` -->\n\n'
             'Every key of a parameter set: the name that `--set KEY=VALUE`, the `[parameters]` table of a config '
-            'file and the\nPython API take, its SI unit (angles in rad, speeds in rad/s; a string value carries '
-            'its own unit, e.g.\n`"8 deg"`, `"0.5 mm"`, `"472.5 rpm"`), the allowed range, and where it goes in '
-            'a whole-drive file\n(docs/drive-files.md). Keys marked as one form of a quantity are alternatives: '
+            'file and the\nPython API take, its SI unit (a string value carries its own unit, e.g. `"8 deg"`, '
+            '`"0.5 mm"`, `"472.5 rpm"`;\na plain number is SI, but in text and drive files an angle, an angular '
+            'speed or a length needs its\nunit, zero excepted: [drive files, "Values"](drive-files.md#values)), '
+            'the allowed range, and where it goes in a\nwhole-drive file (docs/drive-files.md). Keys marked as one form of a quantity are alternatives: '
             'a set gives one of them,\nand `ApplyOverrides` (and `--set`) replaces one form by another.\n\n'
             + registry.MarkdownTable())
 

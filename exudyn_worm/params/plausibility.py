@@ -33,7 +33,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from .parameters import PARAMETERS
+from .parameters import PARAMETERS, ParameterError
 
 __all__ = ['ImplausibleValueWarning', 'UnresolvedRotationWarning', 'MAX_PLAUSIBLE_MU', 'MIN_STEPS_PER_ROTATION', 'MAX_WORM_SPEED_RATIO',
            'CheckGearPlausibility', 'CheckWormRotation', 'CheckWormSpeed']
@@ -114,13 +114,15 @@ def CheckGearPlausibility(gear: 'WormGear', where: str = 'WormGear') -> None:
     values = f"r1 = {r1:g} m, r2 = {r2:g} m, gamma = {math.degrees(gamma):.4g} deg"
     if u < 1.:
         slip = _RadiusSlip('r1', r1) if r1 > r2 else _GammaSlip(gamma)
-        raise ValueError(f"{where}: the transmission ratio u = r2/(r1 tan(gamma)) of eq. (3) must be >= 1 (a worm "
-                         f"gear has u = z2/z1), got u = {u:.3g} from {values}{slip}")
+        raise ParameterError(where, f"the transmission ratio u = r2/(r1 tan(gamma)) of eq. (3) must be >= 1 (a worm "
+                             f"gear has u = z2/z1), got u = {u:.3g} from {values}{slip}",
+                             ('r1', 'r2', 'gamma') if r1 > r2 else ('gamma', 'r1', 'r2'))
     if gamma + rho >= 0.5 * math.pi:
         slip = _MuSlip(mu) or _GammaSlip(gamma)
-        raise ValueError(f"{where}: gamma + rho must be < 90 deg (else the worm cannot drive the wheel: efficiency "
-                         f"tan(gamma)/tan(gamma + rho) <= 0), got gamma = {math.degrees(gamma):.4g} deg, rho = "
-                         f"{math.degrees(rho):.4g} deg (mu = {mu:g}){slip}")
+        raise ParameterError(where, f"gamma + rho must be < 90 deg (else the worm cannot drive the wheel: efficiency "
+                             f"tan(gamma)/tan(gamma + rho) <= 0), got gamma = {math.degrees(gamma):.4g} deg, rho = "
+                             f"{math.degrees(rho):.4g} deg (mu = {mu:g}){slip}",
+                             ('mu', 'rho', 'gamma') if _MuSlip(mu) else ('gamma', 'mu', 'rho'))
     if mu > MAX_PLAUSIBLE_MU:
         warnings.warn(f"{where}: flank friction mu = {mu:g} (rho = {math.degrees(rho):.4g} deg) is far above what a "
                       f"lubricated worm gear has (the paper's gears: 0.132; warned above {MAX_PLAUSIBLE_MU:g})"

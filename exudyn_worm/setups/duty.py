@@ -36,7 +36,7 @@ from typing import Any, List, Mapping, Optional, Tuple
 import numpy as np
 
 from .presets import REEL_KEYS, AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain
-from ..params.parameters import MissingParameterError
+from ..params.parameters import MissingParameterError, ParameterError
 from ..model.profiles import (ConstantSpeed, ConstantTorque, GravityLeverTorque, LinearMotorCharacteristic, SpeedTable,
                        StartStopProfile, TorqueTable)
 from ..model.friction import MATH_OPS
@@ -164,10 +164,10 @@ def _Table(parameters: Mapping, key: str, where: str):
     try:
         rows = np.genfromtxt(value, delimiter=',', comments='#', dtype=float, ndmin=2)
     except OSError as err:
-        raise ValueError(f"{where}: '{key}': cannot read the table file '{value}' ({err})") from None
+        raise ParameterError(where, f"'{key}': cannot read the table file '{value}' ({err})", (key,)) from None
     if rows.ndim != 2 or rows.shape[1] != 2 or not np.all(np.isfinite(rows)):
-        raise ValueError(f"{where}: '{key}': the file '{value}' must hold two numeric columns separated by commas "
-                         f"(SI units), got shape {rows.shape}")
+        raise ParameterError(where, f"'{key}': the file '{value}' must hold two numeric columns separated by commas "
+                             f"(SI units), got shape {rows.shape}", (key,))
     return [tuple(r) for r in rows]
 
 
@@ -238,6 +238,10 @@ def _MotorLaw(parameters: Mapping, where: str) -> Any:
     if motor == 'characteristic':
         return LinearMotorCharacteristic(parameters['stallTorque'], parameters['noLoadSpeed'])
     if motor == 'startStop':
+        ramp, brake = parameters['rampTime'], parameters.get('brakeTime')
+        if brake is not None and brake < ramp:       # said here, where the keys' sources can be named
+            raise ParameterError(where, f"'brakeTime' must be >= rampTime = {ramp:g} s (motorType startStop), got "
+                                 f"{brake:g} s", ('brakeTime', 'rampTime'))
         return StartStopProfile(parameters['motorSpeed'], parameters['rampTime'], parameters.get('brakeTime'))
     if motor == 'speedTable':
         return SpeedTable(_Table(parameters, 'motorSpeedOverTime', where))

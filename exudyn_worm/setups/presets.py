@@ -47,7 +47,7 @@ from .._checks import CheckMapping, CheckNonNegative
 from ..model.drive import AxialBearing, ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from ..model.gear import WormGear
 from ..model.geometry import GEOMETRY_FORMS, GEOMETRY_KEYS, GeometryForm, GeometryFromParameters, MissingGeometryKeys
-from ..params.parameters import PARAMETERS, MissingParameterError
+from ..params.parameters import PARAMETERS, MissingParameterError, ParameterError
 from ..items.bearings import WHEEL_MASS, WORM_MASS, ShaftBearings, ShaftSupports
 from ..model.friction import FrictionLaw, ReadFrictionTable
 from ..model.stability import CharacteristicCoefficients
@@ -130,7 +130,7 @@ def GetPreset(name: str) -> Dict[str, float]:
         For an unknown name.
     """
     if name not in PRESETS:
-        raise ValueError(f"unknown preset '{name}'; expected one of: {', '.join(PRESETS)}")
+        raise ValueError(f"GetPreset: 'name': unknown preset {name!r}; expected one of: {', '.join(PRESETS)}")
     return dict(PRESETS[name])
 
 
@@ -246,7 +246,8 @@ def _Require(parameters, keys, what):
                                     f"KEY=VALUE or in the config file", missing)
 
 
-def _FiniteDamping(value: float, name: str, formula: str, inputs: Mapping[str, float]) -> float:
+def _FiniteDamping(value: float, name: str, formula: str, inputs: Mapping[str, float], where: str = 'parameter set'
+                   ) -> float:
     """``value``, a damping derived from its measure, if finite; else a ValueError naming the largest input, its
     unit and range (``J1 = 1e308`` overflows ``dT``: the message blames J1, not the derived dT)."""
     if math.isfinite(value):
@@ -255,9 +256,9 @@ def _FiniteDamping(value: float, name: str, formula: str, inputs: Mapping[str, f
     unit = PARAMETER_UNITS[key]
     others = ', '.join(f"{k} = {v:g}{' ' + PARAMETER_UNITS[k] if PARAMETER_UNITS[k] else ''}"
                        for k, v in inputs.items() if k != key)
-    raise ValueError(f"parameter set: '{key}' = {inputs[key]:g} {unit} is out of range (it must be "
-                     f"{PARAMETERS[key].rangeText} {unit} and of a size a drive can have): the {name} {formula} "
-                     f"overflows with {others}; check the value and its unit")
+    raise ParameterError(where, f"'{key}' = {inputs[key]:g} {unit} is out of range (it must be "
+                         f"{PARAMETERS[key].rangeText} {unit} and of a size a drive can have): the {name} {formula} "
+                         f"overflows with {others}; check the value and its unit", (key, *inputs))
 
 
 def CheckParameters(parameters: Mapping[str, float], where: str = 'parameter set') -> None:
@@ -314,7 +315,7 @@ def _CheckScale(drive: ElasticDrive, where: str) -> None:
             f"{MAX_RATE:g} 1/s)" if not (math.isfinite(rate) and rate <= MAX_RATE) else
             f"its two natural frequencies lie more than 1e12 apart (b4^(1/4) / b2^(1/2) of eq. (16) = {spread:.3g}, "
             f"below {MIN_RATE_SPREAD:g})")
-    raise ValueError(f"{where}: out of range: {what} with {values}; check these values and their units")
+    raise ParameterError(where, f"out of range: {what} with {values}; check these values and their units", ())
 
 
 def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True,
@@ -350,7 +351,8 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
     _Require(p, ('alphaN',) + MissingGeometryKeys(p) + ('kV',), where)
     r1, r2, gamma = GeometryFromParameters(p, where)     # r1 r2 gamma, or a u gamma, or mx z1 z2 q
     if 'mu' not in p and 'rho' not in p:
-        raise ValueError(f"{where}: give the friction as 'mu' or as the friction angle 'rho'")
+        raise MissingParameterError(f"{where}: missing the flank friction: give 'mu' ([gear] frictionCoefficient) or "
+                                    f"the friction angle 'rho' ([gear] frictionAngle)", ('mu',))
     if not meshDamping:
         dV = 0.
     elif 'dV' in p:
@@ -360,7 +362,8 @@ def GearFromParameters(parameters: Mapping[str, float], meshDamping: bool = True
         dV = _FiniteDamping(MeshDampingFromMeasure(p['DV'], p['kV'], r2, p['J2']), 'mesh damping',
                             'dV = 2 DV sqrt(kV r2^2 J2) / r2^2 of eq. (23)', {k: p[k] for k in ('J2', 'kV', 'DV')})
     else:
-        raise ValueError(f"{where}: give the mesh damping as 'dV' (N*s/m) or as the measure 'DV'")
+        raise MissingParameterError(f"{where}: missing the mesh damping: give 'dV' in N*s/m ([gear] meshDamping) or "
+                                    f"the measure 'DV' ([gear] meshDampingMeasure)", ('DV',))
     gear = WormGear(alphaN=p['alphaN'], gamma=gamma, r1=r1, r2=r2, kV=p['kV'], dV=dV,
                     backlash=p.get('backlash', 0.), mu=p.get('mu'), rho=p.get('rho'))
     law = FrictionLawFromParameters(p, gear.mu, where)
@@ -402,9 +405,9 @@ def FrictionLawFromParameters(parameters: Mapping[str, object], mu: float, where
     PARAMETERS.Check('frictionLaw', kind, where)
     for key, laws in _LAW_KEYS.items():
         if key in parameters and kind not in laws:
-            raise ValueError(f"{where}: '{key}' is used only with frictionLaw = {' or '.join(laws)}, got frictionLaw "
-                             f"= {kind!r}{'' if 'frictionLaw' in parameters else ' (the default)'}; set "
-                             f"frictionLaw={laws[0]} or remove '{key}'")
+            raise ParameterError(where, f"'{key}' is used only with frictionLaw = {' or '.join(laws)}, got frictionLaw "
+                                 f"= {kind!r}{'' if 'frictionLaw' in parameters else ' (the default)'}; set "
+                                 f"frictionLaw={laws[0]} or remove '{key}' (on the command line --set {key}=)", (key,))
     missing = [k for k, laws in _LAW_KEYS.items() if kind in laws and k not in parameters]
     if missing:
         raise MissingParameterError(f"{where}: frictionLaw = {kind!r} needs {', '.join(repr(k) for k in missing)}; "
@@ -415,8 +418,8 @@ def FrictionLawFromParameters(parameters: Mapping[str, object], mu: float, where
     if kind == 'stribeck':
         muStatic = parameters['muStatic']
         if muStatic < mu:
-            raise ValueError(f"{where}: 'muStatic' (friction at rest, frictionLaw = stribeck) must be >= the kinetic "
-                             f"'mu' = {mu:g}, got {muStatic:g}")
+            raise ParameterError(where, f"'muStatic' (friction at rest, frictionLaw = stribeck) must be >= the "
+                                 f"kinetic 'mu' = {mu:g}, got {muStatic:g}", ('muStatic', 'mu'))
         return FrictionLaw('stribeck', mu=mu, muStatic=muStatic, stribeckVelocity=parameters['stribeckVelocity'])
     if kind == 'agma':
         return FrictionLaw('agma')
@@ -441,7 +444,7 @@ def _FrictionTable(value, where: str):
             return _TABLES[key]
         return ReadFrictionTable(tuple(tuple(row) for row in value))
     except (ValueError, TypeError) as err:
-        raise ValueError(f"{where}: 'frictionTable': {err}") from None
+        raise ParameterError(where, f"'frictionTable': {err}", ('frictionTable',)) from None
 
 
 def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
@@ -614,8 +617,9 @@ def ElasticDriveWithGear(gear: WormGear, parameters: Mapping[str, float], where:
             DV = p['DV'] if 'DV' in p else gear.dV * gear.r2 / (2 * math.sqrt(gear.kV * p['J2']))
             DT = p['DTV'] * DV
         else:
-            raise ValueError(f"{where}: give the shaft damping as 'dT' (N*m*s/rad), the measure 'DT' "
-                             f"or the ratio 'DTV'")
+            raise MissingParameterError(f"{where}: missing the drive shaft's damping: give 'dT' in N*m*s/rad "
+                                        f"([driveShaft] damping), the measure 'DT' ([driveShaft] dampingMeasure) or the "
+                                        f"ratio 'DTV' ([driveShaft] dampingMeasureRatio)", ('DT',))
         dT = _FiniteDamping(TorsionalDampingFromMeasure(DT, p['kT'], p['J1']), 'shaft damping',
                             'dT = 2 DT sqrt(kT J1) of eq. (22)', {'J1': p['J1'], 'kT': p['kT'], 'DT': DT})
     drive = ElasticDrive(gear=gear, J1=p['J1'], J2=p['J2'], kT=p['kT'], dT=dT)
@@ -766,13 +770,16 @@ def LumpedLoadSide(parameters: Mapping[str, float]) -> Dict[str, float]:
     return out
 
 
-def AxialBearingFromParameters(parameters: Mapping[str, float]) -> Optional['AxialBearing']:
+def AxialBearingFromParameters(parameters: Mapping[str, float], where: str = 'AxialBearingFromParameters'
+                               ) -> Optional['AxialBearing']:
     """The worm's :class:`~exudyn_worm.model.drive.AxialBearing` from ``kA, dA, mA``, or None (absent or kA = 0).
 
     Parameters
     ----------
     parameters : mapping
         Flat parameter dictionary (SI); reads ``kA`` (N/m), ``dA`` (N*s/m, default 0) and ``mA`` (kg).
+    where : str, optional
+        Prefix of error messages.
 
     Returns
     -------
@@ -783,12 +790,13 @@ def AxialBearingFromParameters(parameters: Mapping[str, float]) -> Optional['Axi
     ValueError
         If ``kA`` > 0 without ``mA`` or a value is out of range.
     """
-    w = 'AxialBearingFromParameters'
+    w = where
     kA = CheckNonNegative(w, 'kA', parameters.get('kA', 0.), 'N/m')
     if kA == 0.:
         return None
     if 'mA' not in parameters:
-        raise ValueError(f"{w}: 'kA' = {kA:g} N/m > 0 needs the worm's axially moving mass 'mA' (kg)")
+        raise MissingParameterError(f"{w}: 'kA' = {kA:g} N/m > 0 needs the worm's axially moving mass 'mA' (kg), "
+                                    f"[axialBearing] mass in a drive file; missing mA", ('mA',))
     return AxialBearing(stiffness=kA, damping=parameters.get('dA', 0.), mass=parameters['mA'])
 
 
@@ -845,17 +853,21 @@ def ShaftSupportsFromParameters(parameters: Mapping[str, float], where: str = 'S
     masses = [k for k in ('wormMass', 'wheelMass') if k in parameters]
     if bearings['worm'] is None and bearings['wheel'] is None:
         if masses:
-            raise ValueError(f"{where}: '{masses[0]}' (the {masses[0][:-4]}'s mass, kg) is used only by the 3D model, "
-                             f"which the shafts' bearings select ([wormBearing], [wheelBearing]); add them or remove "
-                             f"'{masses[0]}'")
+            raise ParameterError(where, f"'{masses[0]}' (the {masses[0][:-4]}'s mass, kg) is used only by the 3D "
+                                 f"model, which the shafts' bearings select ([wormBearing], [wheelBearing]), got "
+                                 f"{parameters[masses[0]]:g} kg without them; add them or remove '{masses[0]}'",
+                                 (masses[0],))
         return None
-    axial = AxialBearingFromParameters(parameters)
+    axial = AxialBearingFromParameters(parameters, where)
     if axial is not None and bearings['worm'] is not None:
-        raise ValueError(f"{where}: the worm's axial bearing is given twice, as kA ([axialBearing]) and as "
-                         f"wormAxialStiffness ([wormBearing]); give it once")
+        raise ParameterError(where, f"the worm's axial bearing is given twice, as kA = {parameters['kA']:g} N/m "
+                             f"([axialBearing] stiffness) and as wormAxialStiffness = "
+                             f"{parameters['wormAxialStiffness']:g} N/m ([wormBearing]); give it once",
+                             ('wormAxialStiffness', 'kA'))
     if axial is not None and 'wormMass' in parameters:
-        raise ValueError(f"{where}: the worm's mass is given twice, as mA ([axialBearing] mass) and as wormMass "
-                         f"([worm] mass); give it once")
+        raise ParameterError(where, f"the worm's mass is given twice, as mA = {parameters['mA']:g} kg ([axialBearing] "
+                             f"mass) and as wormMass = {parameters['wormMass']:g} kg ([worm] mass); give it once",
+                             ('wormMass', 'mA'))
     return ShaftSupports(wormBearings=bearings['worm'], wheelBearings=bearings['wheel'],
                          wormMass=axial.mass if axial is not None else parameters.get('wormMass', WORM_MASS),
                          wheelMass=parameters.get('wheelMass', WHEEL_MASS))

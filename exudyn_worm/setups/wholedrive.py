@@ -31,12 +31,14 @@ from ..model.drive import AxialBearing
 from ..params.drives import ConfigPath
 from ..model.drive import ElasticDrive
 from ..model.gear import WormGear
-from .config import ResolveParametersWithSources
+from ..model.geometry import GeometryForm, GeometryFormKind
+from .config import (DropReplacedChoiceKeys, ResolveParametersWithSources, SourceKind, ValueSource, _CheckChain,
+                     _Overrides)
 from .duty import LOAD_TYPES, MOTOR_TYPES, LoadType, MotorType, _LoadLaw, _MotorLaw
-from .presets import (AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
+from .presets import (ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
                       ElasticDriveFromParameters, ElasticDriveWithGear, GearFreeKeys, LoadSideChain,
                       ShaftSupportsFromParameters)
-from ..params.parameters import PARAMETERS, MissingParameterError
+from ..params.parameters import PARAMETERS, MissingParameterError, ParameterError
 
 __all__ = ['Component', 'Drive', 'ResolveDrive', 'CheckDrive']
 
@@ -68,10 +70,6 @@ _COMPONENT_TEXT = {Component.DRIVE_SIDE_CHAIN: 'a drive-side chain (J4, ...)',
                    Component.SHAFT_BEARINGS: 'shaft bearings of worm and wheel as rigid bodies ([wormBearing], '
                                              '[wheelBearing])'}
 
-#: keys of the motor types that do not take 'motorSpeed'
-_NO_MOTOR_SPEED = ('speedTable', 'characteristic')
-
-
 @dataclass(frozen=True, eq=False)
 class Drive:
     """One drive: its resolved parameters, its parts as typed objects, and where each value came from.
@@ -85,7 +83,9 @@ class Drive:
     parameters : mapping
         The flat parameter set (SI, read-only), as :mod:`exudyn_worm.setups.presets` describes it.
     sources : mapping
-        Per key, where its value came from: ``'--set'``, a drive file's location, ``'preset NAME'`` or ``'API'``.
+        Per key, where its value came from, a :class:`~exudyn_worm.setups.config.ValueSource`: its ``kind``
+        (``SourceKind.SET``, ``FILE``, ``PRESET``, ``API``, ``CHANGED``) and its ``text`` for messages and JSON
+        (``'--set'``, a drive file's location, ``'preset NAME'``, ``'API'``, ``'changed'``).
     elastic : ElasticDrive
         The two-mass core of Figure 2 (gear with its friction law, J1, J2, kT, dT).
     driveSideChain : tuple of (float, float, float)
@@ -105,7 +105,7 @@ class Drive:
         What the drive is called in messages (the preset or file it came from).
     """
     parameters: Mapping[str, Any]
-    sources: Mapping[str, str]
+    sources: Mapping[str, ValueSource]
     elastic: ElasticDrive
     driveSideChain: Tuple[Tuple[float, float, float], ...] = ()
     loadSideChain: Tuple[Tuple[float, float, float], ...] = ()
@@ -117,7 +117,7 @@ class Drive:
     _cache: Dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
 
     @classmethod
-    def FromParameters(cls, parameters: Mapping[str, Any], sources: Optional[Mapping[str, str]] = None,
+    def FromParameters(cls, parameters: Mapping[str, Any], sources: Optional[Mapping[str, ValueSource]] = None,
                        name: str = 'drive') -> 'Drive':
         """Build and check the drive of a flat parameter set.
 
@@ -126,7 +126,10 @@ class Drive:
         parameters : mapping
             Flat parameter set (SI), e.g. :func:`~exudyn_worm.setups.config.ResolveParameters` or a preset.
         sources : mapping, optional
-            Where each value came from (default ``'API'`` for every key).
+            Where each value came from, a :class:`~exudyn_worm.setups.config.ValueSource` per key (default
+            ``ValueSource.Api()`` for every key not in it). A key of a choice (friction law, load or motor type)
+            other than the chosen one is dropped if it came from a base set or an earlier layer than the choice
+            (:func:`~exudyn_worm.setups.config.DropReplacedChoiceKeys`), else refused.
         name : str, optional
             What the drive is called in messages.
 
@@ -143,28 +146,34 @@ class Drive:
             return parameters
         where = f'Drive ({name})' if name != 'drive' else 'Drive'
         CheckParameterKeys(parameters, where)
-        p = dict(parameters)
-        src = {k: 'API' for k in p} if sources is None else {k: sources.get(k, 'API') for k in p}
-        if MotorType(p) in _NO_MOTOR_SPEED and 'motorSpeed' in p:
-            if src['motorSpeed'] == 'API' or src['motorSpeed'].startswith('preset '):   # a base set's own motor
-                del p['motorSpeed'], src['motorSpeed']
-            else:
-                raise ValueError(f"{where}: 'motorSpeed' ({src['motorSpeed']}) is not used by motorType = "
-                                 f"{MotorType(p)!r}, whose speed comes from "
-                                 f"{'motorSpeedOverTime' if MotorType(p) == 'speedTable' else 'its characteristic'}; "
-                                 f"remove it or choose motorType constantSpeed or startStop")
-        elastic = ElasticDriveFromParameters(p, where)
-        load, motor = _Duty(p, where)
-        supports = ShaftSupportsFromParameters(p, where)
-        driveSideChain, loadSideChain = tuple(DriveSideChain(p)), tuple(LoadSideChain(p))
-        if supports is not None and (driveSideChain or loadSideChain or MotorType(p) == 'characteristic'):
-            other = ('a drive-side chain ([[driveSide]])' if driveSideChain else 'a load-side chain ([[loadSide]])'
-                     if loadSideChain else 'a motor on its characteristic (motorType characteristic)')
-            raise ValueError(f"{where}: the shafts' bearings ([wormBearing], [wheelBearing]) make the drive the 3D "
-                             f"model of worm and wheel as rigid bodies, which has no {other[2:]}; remove one of them")
+        if sources is not None and not isinstance(sources, Mapping):
+            raise TypeError(f"{where}: 'sources' must be a mapping of parameter keys to ValueSource, got "
+                            f"{type(sources).__name__} {sources!r}")
+        bad = next(((k, v) for k, v in (sources or {}).items() if not isinstance(v, ValueSource)), None)
+        if bad is not None:
+            raise TypeError(f"{where}: 'sources' must map each key to a ValueSource (exudyn_worm.setups.config), got "
+                            f"{type(bad[1]).__name__} {bad[1]!r} for {bad[0]!r}")
+        src = {k: (sources or {}).get(k, ValueSource.Api()) for k in parameters}
+        p, src = DropReplacedChoiceKeys(parameters, src, where)
+        try:
+            elastic = ElasticDriveFromParameters(p, where)
+            load, motor = _Duty(p, where)
+            supports = ShaftSupportsFromParameters(p, where)
+            axialBearing = AxialBearingFromParameters(p, where)
+            driveSideChain, loadSideChain = tuple(DriveSideChain(p)), tuple(LoadSideChain(p))
+            if supports is not None and (driveSideChain or loadSideChain or MotorType(p) == 'characteristic'):
+                other, key = (('a drive-side chain ([[driveSide]])', 'J4') if driveSideChain else
+                              ('a load-side chain ([[loadSide]])', 'JL1') if loadSideChain else
+                              ('a motor on its characteristic (motorType characteristic)', 'motorType'))
+                raise ParameterError(where, f"the shafts' bearings ([wormBearing], [wheelBearing]) make the drive the "
+                                            f"3D model of worm and wheel as rigid bodies, which has no {other[2:]}; "
+                                            f"remove one of them", (key,))
+        except ParameterError as err:      # said where the value came from: its drive file's line, else the drive
+            located = next((src[k] for k in err.keys if k in src and src[k].kind == SourceKind.FILE), None)
+            raise err.At(where if located is None else located.text) from None
         drive = cls(parameters=types.MappingProxyType(p), sources=types.MappingProxyType(src), elastic=elastic,
                     driveSideChain=driveSideChain, loadSideChain=loadSideChain,
-                    axialBearing=AxialBearingFromParameters(p), shaftSupports=supports, load=load, motor=motor,
+                    axialBearing=axialBearing, shaftSupports=supports, load=load, motor=motor,
                     name=name)
         return drive
 
@@ -206,7 +215,7 @@ class Drive:
             for alt in PARAMETERS.Alternatives(key):
                 p.pop(alt, None)
             p[key] = value
-        sources = {**{k: v for k, v in self.sources.items() if k in p}, **{k: 'changed' for k in changes}}
+        sources = {**{k: v for k, v in self.sources.items() if k in p}, **{k: ValueSource.Changed() for k in changes}}
         if not changes:
             return self
         if set(changes) <= set(GearFreeKeys(p)) and set(changes) <= set(GearFreeKeys(self.parameters)):
@@ -223,6 +232,11 @@ class Drive:
     def gear(self) -> WormGear:
         """The worm gear with its friction law."""
         return self.elastic.gear
+
+    @property
+    def geometryForm(self) -> GeometryFormKind:
+        """The form in which the parameters give the gear geometry (radii, centre distance or designation)."""
+        return GeometryForm(self.parameters)
 
     @property
     def loadType(self) -> str:
@@ -295,7 +309,7 @@ class Drive:
         return {'name': self.name, 'components': [c.value for c in self.components], 'loadType': self.loadType,
                 'motorType': self.motorType,
                 'parameters': {k: (v if isinstance(v, (int, float, str)) else str(v)) for k, v in self.parameters.items()},
-                'sources': dict(self.sources)}
+                'sources': {k: v.text for k, v in self.sources.items()}}
 
 
 def _Duty(p: Mapping[str, Any], where: str):
@@ -347,23 +361,27 @@ def ResolveDrive(preset: Optional[str] = None, config: Union[None, str, Mapping]
     Examples
     --------
     >>> drive = ResolveDrive('reel-P6', sets=['DV=0.056'])
-    >>> drive.isTwoMass, drive.parameters['DV'], drive.sources['DV']
+    >>> drive.isTwoMass, drive.parameters['DV'], drive.sources['DV'].text
     (True, 0.056, '--set')
     """
     if parameters is not None:
         if preset is not None or config is not None:
             raise ValueError("ResolveDrive: give either 'parameters' or 'preset'/'config', not both")
+        if not isinstance(parameters, Mapping):
+            raise TypeError(f"ResolveDrive: 'parameters' must be a mapping (a flat parameter set), got "
+                            f"{type(parameters).__name__} {parameters!r}")
         CheckParameterKeys(parameters, 'ResolveDrive')        # a message that names the function the user called
-        sets = list(sets)
-        if not sets:
+        overrides, removed = _Overrides(sets)
+        if not overrides and not removed:
             return Drive.FromParameters(parameters, name='drive')
-        p, sources = ResolveParametersWithSources(config={'parameters': dict(parameters)}, sets=sets)
-        return Drive.FromParameters(p, {k: 'API' if v.startswith('preset ') else v for k, v in sources.items()})
+        p = {k: v for k, v in ApplyOverrides(parameters, overrides).items() if k not in removed}
+        _CheckChain(p, {})
+        return Drive.FromParameters(p, {k: ValueSource.Set() if k in overrides else ValueSource.Api() for k in p})
     if isinstance(config, (str, os.PathLike)):
         config = ConfigPath(config)                       # a shipped drive by its name, as --config takes it
     p, sources = ResolveParametersWithSources(preset, config, sets)
     name = preset or (str(config) if isinstance(config, (str, bytes)) or hasattr(config, '__fspath__') else None) \
-        or next((v[len('preset '):] for v in sources.values() if v.startswith('preset ')), 'drive')
+        or next((v.text[len('preset '):] for v in sources.values() if v.kind == SourceKind.PRESET), 'drive')
     return Drive.FromParameters(p, sources, name=name)
 
 
