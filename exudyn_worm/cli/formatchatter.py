@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from typing import List
 
+from ..analysis.orbits import TRIVIAL_MULTIPLIER_TOLERANCE
 from ..items.bearings import BEARING_LOADS
 
 __all__ = ['FormatBranch', 'FormatSteadyChatter']
@@ -92,8 +93,16 @@ def FormatSteadyChatter(summary: dict, title: str) -> List[str]:
         lines.append(f"  min worm speed          {a['minWormSpeed']:10.3f} rad/s")
     if orbit:
         multipliers = ', '.join(f'{m:.4g}' for m in summary['multipliers'][:4])
-        lines.append(f"  Floquet multipliers     {multipliers} (largest |mu|; trivial one off by "
-                     f"{summary['trivialMultiplierError']:.2g}): {'stable' if summary['stable'] else 'unstable'} orbit")
+        error = summary['trivialMultiplierError']
+        if not summary.get('accurate', True):
+            tail = (f"trivial one off by {error:.2g}, above the tolerance {TRIVIAL_MULTIPLIER_TOLERANCE:g}): INACCURATE "
+                    f"orbit, its stability is not decided (exudyn-worm simulate is the better guide here)")
+        elif not summary.get('stabilityDecided', True):
+            tail = (f"trivial one off by {error:.2g}, no less than the largest's distance from the unit circle): the "
+                    f"orbit's stability is not decided")
+        else:
+            tail = f"trivial one off by {error:.2g}): {'stable' if summary['stable'] else 'unstable'} orbit"
+        lines.append(f"  Floquet multipliers     {multipliers} (largest |mu|; {tail}")
     else:
         lines.append('  Floquet multipliers     none (no periodic orbit: values of the settled long simulation)')
     if any(k in a for k, _ in BEARING_LOADS):

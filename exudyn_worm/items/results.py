@@ -147,6 +147,19 @@ class ChatterVerdict:
         """The window's ``chatter`` metric: True, False or ``'undecided'``."""
         return UNDECIDED if self.state == UNDECIDED else self.chatter
 
+    @classmethod
+    def FromMetrics(cls, metrics: Dict) -> 'ChatterVerdict':
+        """The verdict of a window from its metrics (:meth:`SimulationResult.WindowMetrics`, JSON or a study's row).
+
+        Parameters
+        ----------
+        metrics : dict
+            ``t0``, ``t1``, ``chatterState``, ``chatterAmplitude``, ``envelopeRate`` (None: not measured).
+        """
+        rate = metrics.get('envelopeRate')
+        return cls(state=metrics['chatterState'], measures=(), window=float(metrics['t1']) - float(metrics['t0']),
+                   amplitude=float(metrics['chatterAmplitude']), rate=float('nan') if rate is None else float(rate))
+
     def Describe(self) -> str:
         """The verdict in words, e.g. ``'decaying, rate -2.5 1/s (amplitude 0.6)'``."""
         rate = 'rate not measured' if not np.isfinite(self.rate) else f"rate {self.rate:+.3g} 1/s"
@@ -171,7 +184,7 @@ class ChatterVerdict:
 
 
 def _VerdictMetrics(verdict: ChatterVerdict) -> Dict:
-    """The window metrics of a verdict (SimulationResult.WindowMetrics)."""
+    """The window metrics of a verdict (SimulationResult.WindowMetrics; ChatterVerdict.FromMetrics reads them)."""
     return {'chatter': verdict.value, 'chatterState': verdict.state, 'chatterAmplitude': verdict.amplitude,
             'envelopeRate': JsonNumber(verdict.rate)}
 
