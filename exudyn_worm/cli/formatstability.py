@@ -5,7 +5,7 @@ model's table (the numbers come from :mod:`exudyn_worm.analysis.drivestability` 
 from __future__ import annotations
 
 import math
-from typing import List
+from typing import Any, List
 
 from ..analysis.drivestability import (DIVERGENCE, AnalyzeDrive, DriveAnalysis, GrowthText, StateInstability,
                                        VerdictWord)
@@ -79,7 +79,7 @@ def VerdictLine(analysis: DriveAnalysis) -> str:
     return f"Verdict: {words}{where}{also}"
 
 
-def StateLine(label: str, state) -> str:
+def StateLine(label: str, state: Any) -> str:
     """One contact state's verdict line of the whole drive's mode table (``stability``): ``label: stable, largest
     real part ...``, or for a divergence ``label: DIVERGENT, divergence: a real eigenvalue grows at ...``.
 
