@@ -15,6 +15,7 @@ from .._checks import JsonNumber
 from ..model.contact import NormalForceFlanks
 
 __all__ = ['SimulationResult', 'SeriesUnit', 'SERIES_UNITS', 'BEARING_LOADS', 'CheckWindows', 'ChatterVerdict',
+           'SteadyMotorStretch', 'STEADY_MOTOR_TOLERANCE',
            'CHATTER_AMPLITUDE', 'CHATTER_STEADY_EXPONENT', 'CHATTER_GROWTH_EXPONENT', 'CHATTER_DECAY_EXPONENT',
            'CHATTER_SATURATION', 'CHATTER_MIN_PERIODS', 'CHATTER_STATES', 'UNDECIDED', 'CHATTER_MIN_MESH_TORQUE',
            'CHATTER_TORQUE_FRACTION']
@@ -91,6 +92,39 @@ def _EnvelopeRate(t: np.ndarray, rest: np.ndarray, steady: np.ndarray) -> float:
         return float('nan')
     i, j = np.triu_indices(env.size, 1)          # Theil-Sen: the median of the slopes between all pairs of points
     return float(np.median((np.log(env[j]) - np.log(env[i])) / (centres[j] - centres[i])))
+
+
+#: the motor holds its speed where it stays within this fraction of its largest speed in the window of the median
+STEADY_MOTOR_TOLERANCE = 1e-6
+
+
+def SteadyMotorStretch(result: 'SimulationResult', t0: float, t1: float) -> Tuple[float, float]:
+    """The longest stretch (a, b) of [t0, t1] in which the motor speed stays within :data:`STEADY_MOTOR_TOLERANCE` of
+    its largest magnitude from its median in [t0, t1] ([t0, t1] itself without a motor series or where it holds).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        The run.
+    t0, t1 : float
+        The span in s.
+
+    Returns
+    -------
+    (float, float)
+    """
+    m = result._Window(t0, t1)
+    if 'omega0' not in result.series or np.count_nonzero(m) < 2:
+        return t0, t1
+    t, w = result.time[m], result.series['omega0'][m]
+    scale = float(np.max(np.abs(w)))
+    held = np.abs(w - np.median(w)) <= STEADY_MOTOR_TOLERANCE * scale
+    if held.all() or not held.any():
+        return t0, t1
+    edges = np.diff(np.concatenate(([0], held.astype(int), [0])))
+    starts, ends = np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0]
+    k = int(np.argmax(ends - starts))
+    return float(t[starts[k]]), float(t[ends[k] - 1])
 
 
 def _MeasureState(amplitude: float, rate: float, length: float) -> str:
@@ -172,8 +206,8 @@ class ChatterVerdict:
                    else 'steady at the saturated amplitude')
             return f"{how}, {rate} (amplitude {self.amplitude:.3g})"
         if not np.isfinite(self.rate):
-            why = (f"fewer than {CHATTER_MIN_PERIODS:g} periods of its dominant frequency in the window's second half; "
-                   f"a longer window decides")
+            why = (f"fewer than {CHATTER_MIN_PERIODS:g} periods of its dominant frequency in the window's second half "
+                   f"(where the motor holds its speed); a longer window decides")
         elif self.rate * self.window >= -CHATTER_STEADY_EXPONENT:
             why = (f"steady, {rate}, below the saturated amplitude {CHATTER_SATURATION:g}: a lightly damped free "
                    f"vibration looks the same; a longer window or the linear verdict decides")
@@ -329,9 +363,10 @@ class SimulationResult:
         quadratic or of the motor speed, at least the friction law's regularization speed, divides it); the rate is
         the slope of the logarithm of that relative envelope over time, fitted robustly (Theil-Sen: the median of the
         slopes between all pairs of envelope points, so that a stop at the window's end, a speed ramp to rest, does
-        not read as a decay of the whole window). NaN where fewer than
-        :data:`CHATTER_MIN_PERIODS` periods of the dominant frequency fit in the second half, or where the signal
-        does not move.
+        not read as a decay of the whole window). Only the longest stretch of the second half in which the motor
+        holds its speed is fitted (:func:`SteadyMotorStretch`: a ramp within the window, which starts a transient of
+        the drive, is left out). NaN where fewer than :data:`CHATTER_MIN_PERIODS` periods of the dominant frequency
+        fit in that stretch, or where the signal does not move.
 
         Parameters
         ----------
@@ -343,8 +378,8 @@ class SimulationResult:
         dict
             ``normal`` and ``sliding``: rates in 1/s.
         """
-        return {name: _EnvelopeRate(tm, rest, steady)
-                for name, (tm, rest, steady) in self._Relative(0.5 * (t0 + t1), t1).items()}
+        a, b = SteadyMotorStretch(self, 0.5 * (t0 + t1), t1)
+        return {name: _EnvelopeRate(tm, rest, steady) for name, (tm, rest, steady) in self._Relative(a, b).items()}
 
     def ChatterVerdict(self, t0: float, t1: float) -> 'ChatterVerdict':
         """The chatter verdict of [t0, t1] from the amplitude and the growth or decay rate of the mesh's vibration.
