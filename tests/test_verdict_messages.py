@@ -14,7 +14,10 @@ import exudyn_worm as ew
 import paper_model
 from exudyn_worm.analysis.drivestability import (CHATTER, DIVERGENCE, GrowthText, StateInstability, VerdictWord)
 from exudyn_worm.analysis.orbits import TRIVIAL_MULTIPLIER_TOLERANCE
+from exudyn_worm.analysis import reelchanger
 from exudyn_worm.analysis.reelchanger import PhaseLabel, WindowPhases
+from exudyn_worm.analysis.study import RunPoint, Study
+from exudyn_worm.analysis.studygrid import Variation
 from exudyn_worm.analysis.studypoint import RunLabel
 from exudyn_worm.cli.formatchatter import FormatSteadyChatter
 from exudyn_worm.cli.main import Main
@@ -54,6 +57,7 @@ def test_a_real_growing_eigenvalue_is_a_divergence_a_complex_one_chatter():
 
 
 @pytest.mark.physics
+@pytest.mark.slow
 def test_the_divergent_hoist_against_the_matrices_written_out():
     """The lowering point's largest eigenvalue is real, as in the model of tests/paper_model.py, at its rate."""
     drive = ew.ResolveDrive(config=HOIST, sets=[s for s in DIVERGENT if s != '--set'])
@@ -83,6 +87,7 @@ def test_stability_reports_a_divergence_with_its_rate_and_no_infinite_damping(ca
 
 
 @pytest.mark.messages
+@pytest.mark.slow
 def test_check_and_chart_report_a_divergence(capsys):
     status, out, err = _Run(capsys, 'check', '--config', HOIST, *DIVERGENT, '--quiet')
     assert status == 0 and 'Traceback' not in err
@@ -132,7 +137,7 @@ def test_a_standstill_under_load_is_found_with_a_tolerance():
     pause under the wind torque is a standstill under load, not idle."""
     drive = ew.ResolveDrive(config=TRACKER)
     p = dict(drive.parameters)
-    windows = [(2.4, 3.2)]
+    windows = [(3.0, 3.8)]
     phase = WindowPhases(p, windows, 7.6)[0]
     assert PhaseLabel(p, phase, windows[0]) == 'standstill under load'
 
@@ -166,3 +171,34 @@ def test_chatter_on_a_stable_drive_is_a_result(capsys):
                           'chatter: the lowering phase settles to rest')
     status, out, err = _Run(capsys, 'chatter', '--preset', 'reel-P2', '--json')
     assert status == 0 and json.loads(out)['steadyChatter'] is False
+
+
+@pytest.mark.messages
+def test_a_warning_of_a_study_run_names_the_run(monkeypatch):
+    """The worm-speed warning of one run of a sweep says which run it comes from, not which function."""
+    real = reelchanger.SimulateReelChanger
+
+    def Warning(p, **kw):
+        warnings.warn('simulation: the worm turned at -150 rad/s', ImplausibleValueWarning)
+        return real(p, **kw)
+    monkeypatch.setattr(reelchanger, 'SimulateReelChanger', Warning)
+    s = Study(ew.GetPreset('reel-P1'), [Variation('J1', (0.2,))], windows=[(0., 0.2)], endTime=0.2, checkStep=False)
+    with pytest.warns(ImplausibleValueWarning) as caught:
+        row = RunPoint(s.Task(0))
+    assert row['status'] == 'ok', row['error']
+    assert [str(w.message) for w in caught] == ['run 0 (J1 = 0.2): the worm turned at -150 rad/s']
+
+
+@pytest.mark.messages
+@pytest.mark.slow
+def test_simulate_the_solar_tracker(capsys, tmp_path, monkeypatch):
+    """The tracker's windows hold the table's swing after each start and stop, decaying over seconds: undecided, not
+    chatter; its pause under the wind is a standstill under load; no warning of an overpowering load."""
+    monkeypatch.chdir(tmp_path)
+    status, out, err = _Run(capsys, 'simulate', '--config', TRACKER, '--no-check-step', '--quiet')
+    assert status == 0 and err == '', err
+    rows = out.splitlines()[4:]
+    assert [r[14:36].strip() for r in rows] == ['lifting', 'standstill under load', 'lowering', 'lifting']
+    assert 'YES' not in out and 'undecided: amplitude' in out
+    assert 'decay time' in rows[3] and 'longer than the window 3.6 s' in rows[3]
+    assert list(tmp_path.iterdir()) == []
