@@ -12,7 +12,7 @@ from exudyn_worm.analysis.reelchanger import DefaultWindows, RotationPeriod
 from exudyn_worm.items.solve import SolverDivergedError
 
 WINDOW_KEYS = {'t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
-               'fractionSNegative', 'minWormSpeed', 'chatter'}
+               'fractionSNegative', 'minWormSpeed', 'chatter', 'chatterState', 'chatterAmplitude', 'envelopeRate'}
 
 
 def _Run(capsys, *argv):

@@ -88,8 +88,8 @@ def test_cli_warns_once_on_stderr(tmp_path):
     assert run.returncode == 0, run.stderr
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 2, run.stderr
-    assert lines[0].startswith('exudyn-worm: warning: WormGear: flank friction mu = 0.8')
-    assert lines[1].startswith('exudyn-worm: warning: WormGear: the worm radius r1 = 0.2 m')
+    assert lines[0].startswith('exudyn-worm: warning: the gear: flank friction mu = 0.8')       # no function's name
+    assert lines[1].startswith('exudyn-worm: warning: the gear: the worm radius r1 = 0.2 m')
     assert 'Verdict' in run.stdout
 
 

@@ -3,8 +3,8 @@ simulated chatter verdict of the same phase.
 
 Run from the repository root::
 
-    python -m validation.chatter_corpus            # 200 drives: CHATTER_CORPUS.md and chatter_corpus.csv here
-    python -m validation.chatter_corpus --quick    # 3 drives with short phases (a test of the script; --report/--csv)
+    python -m validation.chatter_corpus            # 240 drives: CHATTER_CORPUS.md and chatter_corpus.csv here
+    python -m validation.chatter_corpus --quick    # 4 drives with short phases (a test of the script; --report/--csv)
 
 Each drive is drawn from a seeded generator (:func:`DrawDrive`): a worm gear by its designation (axial module,
 starts, wheel teeth, diameter quotient), mesh stiffness and damping, worm and wheel inertias, a drive shaft,
@@ -12,9 +12,11 @@ optionally a drive-side chain (J4, k4, d4), a load-side chain (JL1, kL1, dL1) an
 a constant, Stribeck or AGMA friction law, a constant load torque and a speed-table motor that lifts, pauses
 and lowers (the duty of a hoist). The linear verdict of each steady phase comes from the linear analysis at the
 drive's own operating points (:func:`LinearOperatingPoints`, the one place that calls it); the simulated verdict
-is :meth:`~exudyn_worm.items.results.SimulationResult.Chatter` over that phase's plateau, the rule fixed before
+is :meth:`~exudyn_worm.items.results.SimulationResult.ChatterVerdict` over that phase's plateau, the rule fixed before
 this corpus was run (validation/CHATTER_RULE.md). A phase counts where its growth or decay is resolvable within
-it: |largest real part| x plateau length >= :data:`RESOLVABLE`.
+it: |largest real part| x plateau length >= :data:`RESOLVABLE`, and where the simulated window is decided. A second
+group (:func:`DrawLightlyDamped`) has a lightly damped load side, a load reversal and a restart, and each of its
+drives is simulated again with long plateaus to check the short windows' verdicts.
 """
 from __future__ import annotations
 
@@ -28,7 +30,8 @@ from typing import Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
 
-__all__ = ['SEED', 'DRIVES', 'RESOLVABLE', 'TARGET', 'FULL', 'QUICK', 'LINEAR_METHOD', 'DrawDrive', 'DutyWindows',
+__all__ = ['SEED', 'DRIVES', 'RESOLVABLE', 'TARGET', 'FULL', 'QUICK', 'EXTRA_FIRST', 'LINEAR_METHOD', 'DrawDrive',
+           'DrawLightlyDamped', 'DutyWindows',
            'LinearOperatingPoints', 'RunDrive', 'RunCorpus', 'Summarize', 'WriteCsv', 'WriteReport', 'Main']
 
 HERE = Path(__file__).resolve().parent
@@ -470,7 +473,7 @@ def WriteReport(rows: Sequence[Mapping], path: Path, duty: Mapping[str, float], 
              f"an axial bearing {components['axial bearing']}. Duty: constant load torque, speed table "
              f"ramp {duty['ramp']:g} s, lifting plateau {duty['plateau']:g} s, pause {duty['pause']:g} s, lowering "
              f"plateau {duty['plateau']:g} s. Linear verdict at the operating point of each plateau: "
-             f"{LINEAR_METHOD}; simulated verdict: `SimulationResult.Chatter` over the plateau. A phase counts when "
+             f"{LINEAR_METHOD}; simulated verdict: `SimulationResult.ChatterVerdict` over the plateau (chatter, none, decaying or undecided; undecided windows are not counted). A phase counts when "
              f"|largest real part| x plateau >= {RESOLVABLE:g}.",
              '',
              f"**Agreement over the resolvable operating points: {pts['agree']} of {pts['resolvable']} "

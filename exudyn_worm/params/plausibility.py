@@ -99,7 +99,7 @@ def CheckGearPlausibility(gear: 'WormGear', where: str = 'WormGear') -> None:
     gear : WormGear
         A gear whose values passed their own range checks (``r1``, ``r2``, ``gamma``, ``alphaN``, ``mu``, ``rho``).
     where : str
-        Prefix of the messages.
+        Prefix of the errors (a warning starts with ``the gear:``, what a user of the command line knows it by).
 
     Raises
     ------
@@ -124,11 +124,11 @@ def CheckGearPlausibility(gear: 'WormGear', where: str = 'WormGear') -> None:
                          f"tan(gamma)/tan(gamma + rho) <= 0), got gamma = {math.degrees(gamma):.4g} deg, rho = "
                          f"{math.degrees(rho):.4g} deg (mu = {mu:g}){slip}")
     if mu > MAX_PLAUSIBLE_MU:
-        warnings.warn(f"{where}: flank friction mu = {mu:g} (rho = {math.degrees(rho):.4g} deg) is far above what a "
+        warnings.warn(f"the gear: flank friction mu = {mu:g} (rho = {math.degrees(rho):.4g} deg) is far above what a "
                       f"lubricated worm gear has (the paper's gears: 0.132; warned above {MAX_PLAUSIBLE_MU:g})"
                       f"{_MuSlip(mu)}", ImplausibleValueWarning, stacklevel=1)
     if r1 > r2:
-        warnings.warn(f"{where}: the worm radius r1 = {r1:g} m is larger than the wheel radius r2 = {r2:g} m "
+        warnings.warn(f"the gear: the worm radius r1 = {r1:g} m is larger than the wheel radius r2 = {r2:g} m "
                       f"(unusual: diameter quotient q above the wheel teeth z2){_RadiusSlip('r1', r1)}",
                       ImplausibleValueWarning, stacklevel=1)
 
