@@ -20,6 +20,7 @@ from exudyn_worm.analysis.study import RunPoint, Study
 from exudyn_worm.analysis.studygrid import Variation
 from exudyn_worm.analysis.studypoint import RunLabel
 from exudyn_worm.cli.formatchatter import FormatSteadyChatter
+from exudyn_worm._checks import WarningText
 from exudyn_worm.cli.main import Main
 from exudyn_worm.params.plausibility import ImplausibleValueWarning, CheckWormSpeed
 
@@ -180,13 +181,22 @@ def test_a_warning_of_a_study_run_names_the_run(monkeypatch):
 
     def Warning(p, **kw):
         warnings.warn('simulation: the worm turned at -150 rad/s', ImplausibleValueWarning)
+        warnings.warn("SimulateReelChanger: the drive's highest natural frequency is 900 Hz", ImplausibleValueWarning)
         return real(p, **kw)
     monkeypatch.setattr(reelchanger, 'SimulateReelChanger', Warning)
     s = Study(ew.GetPreset('reel-P1'), [Variation('J1', (0.2,))], windows=[(0., 0.2)], endTime=0.2, checkStep=False)
     with pytest.warns(ImplausibleValueWarning) as caught:
         row = RunPoint(s.Task(0))
     assert row['status'] == 'ok', row['error']
-    assert [str(w.message) for w in caught] == ['run 0 (J1 = 0.2): the worm turned at -150 rad/s']
+    assert [str(w.message) for w in caught] == ['run 0 (J1 = 0.2): the worm turned at -150 rad/s',
+                                                "run 0 (J1 = 0.2): the drive's highest natural frequency is 900 Hz"]
+
+
+def test_a_warning_for_the_command_line_has_no_python_name():
+    assert WarningText("SimulateReelChanger: the drive's highest") == "the drive's highest"
+    assert WarningText('SimulationResult.WindowMetrics: the window') == 'the window'
+    assert WarningText('the gear: flank friction mu = 0.6') == 'the gear: flank friction mu = 0.6'
+    assert WarningText("simulate --step-size: the drive's") == "simulate --step-size: the drive's"
 
 
 @pytest.mark.messages

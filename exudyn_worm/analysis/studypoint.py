@@ -10,6 +10,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
+from .._checks import WarningText
 from ..items.results import CHATTER_TORQUE_FRACTION, UNDECIDED
 from ..items.solve import IsInterrupt
 from ..params.plausibility import ImplausibleValueWarning
@@ -188,9 +189,8 @@ def RunPoint(task: Mapping) -> Dict:
                 result = reelchanger.SimulateReelChanger(p, endTime=endTime, stepSize=h, progress=False,
                                                          maxSteps=maxSteps)
             for caughtWarning in caught:       # each warning says which run it comes from
-                warnings.warn(f"{RunLabel(row['run'], task['varied'])}: "
-                              f"{str(caughtWarning.message).removeprefix('simulation: ')}", caughtWarning.category,
-                              stacklevel=1)
+                text = WarningText(caughtWarning.message).removeprefix('simulation: ')
+                warnings.warn(f"{RunLabel(row['run'], task['varied'])}: {text}", caughtWarning.category, stacklevel=1)
             if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
                 raise FloatingPointError('diverged: non-finite state in the solution'
                                          + (' at half the step' if h != stepSize else ''))

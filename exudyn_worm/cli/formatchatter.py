@@ -36,9 +36,13 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
         row = ''.join(f" {p.info.get(k, float('nan')) / 1e3:15.3f}" for k, _ in loads)
         lines.append(f"  {p.value:{width}.6g} {p.info.get('forceFactor', float('nan')):11.3f} "
                      f"{p.info.get('maxWheelAcceleration', float('nan')):16.1f} {p.orbit.frequencyHz:8.2f}{row}  "
-                     f"{'stable' if p.stable else 'unstable'}")
+                     + (f"{'stable' if p.stable else 'unstable'}" if p.orbit.accurate else
+                        f"INACCURATE (trivial multiplier off by {p.orbit.trivialMultiplierError:.2g})"))
     if loads:
         lines.append('  (bearing loads: the largest over each orbit)')
+    if any(not p.orbit.accurate for p in branch.points):
+        lines.append(f"  (INACCURATE: the trivial Floquet multiplier, 1 in exact arithmetic, is off by more than "
+                     f"{TRIVIAL_MULTIPLIER_TOLERANCE:g}: that orbit's stability is not decided)")
     lines.append('')
     for h in branch.hopf:
         lines.append(f"Hopf point at {branch.parameter} = {h['value']:.6g} ({h['type']}); linear boundary "
