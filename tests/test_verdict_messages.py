@@ -19,7 +19,9 @@ from exudyn_worm.analysis.reelchanger import PhaseLabel, WindowPhases
 from exudyn_worm.analysis.study import RunPoint, Study
 from exudyn_worm.analysis.studygrid import Variation
 from exudyn_worm.analysis.studypoint import RunLabel
+from exudyn_worm.analysis.studyfiles import StudyResult
 from exudyn_worm.cli.formatchatter import FormatSteadyChatter
+from exudyn_worm.cli.formatsweep import FormatStudy
 from exudyn_worm._checks import WarningText
 from exudyn_worm.cli.main import Main
 from exudyn_worm.params.plausibility import ImplausibleValueWarning, CheckWormSpeed
@@ -212,3 +214,25 @@ def test_simulate_the_solar_tracker(capsys, tmp_path, monkeypatch):
     assert 'YES' not in out and 'undecided: amplitude' in out
     assert 'decay time' in rows[3] and 'longer than the window 3.6 s' in rows[3]
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.messages
+def test_sweep_agreement_counts_decided_windows_and_says_what_it_left_out():
+    """Four runs: two decided and judged (one agrees), one undecided, one whose lowering points diverge."""
+    study = Study(ew.GetPreset('reel-P1'), [Variation('J1', (1., 2., 3., 4.))])
+
+    def Row(run, chatter, stable, kind=None):
+        row = {'run': run, 'status': 'ok', 'error': '', 'seconds': 1., 'J1': float(run + 1), 'stepChecked': False,
+               'analyticStable': stable, 'analyticStableLowering': stable, 'analyticInstability': kind,
+               'analyticInstabilityLowering': kind, 'loweringChatter': chatter}
+        row.update({f'w{i}.chatter': chatter if i == 1 else False for i in range(study.numberOfWindows)})
+        return row
+    rows = [Row(0, True, False, CHATTER), Row(1, True, True), Row(2, 'undecided', True),
+            Row(3, True, False, DIVERGENCE)]
+    result = StudyResult(study, rows)
+    assert result.agreement == pytest.approx(0.5) and len(result.judged) == 2 and len(result.divergent) == 1
+    table = '\n'.join(FormatStudy(result))
+    assert 'no UND no' in table and 'DIVERGENT' in table
+    assert '50 % of 2 runs with a decided lowering window' in table
+    assert '1 run left out, lowering undecided (UND' in table
+    assert '1 left out whose lowering points diverge' in table
