@@ -125,8 +125,7 @@ def _RunSteady(args: argparse.Namespace, drive, parameters) -> int:
         if args.json:
             PrintJson({'steadyChatter': False, 'reason': reason, 'divergence': divergence})
         else:
-            print(f"exudyn-worm chatter: {SourceText(args)}, lowering phase (constant load torque): no steady "
-                  f"chatter: {reason}")
+            print(f"exudyn-worm chatter: {SourceText(args)}, lowering phase (constant load torque): {reason}")
         return 0
     if args.json:
         PrintJson({**summary, 'divergence': divergence})
