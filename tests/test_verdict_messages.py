@@ -15,6 +15,7 @@ import paper_model
 from exudyn_worm.analysis.drivestability import (CHATTER, DIVERGENCE, GrowthText, StateInstability, VerdictWord)
 from exudyn_worm.analysis.orbits import TRIVIAL_MULTIPLIER_TOLERANCE
 from exudyn_worm.analysis import reelchanger
+from exudyn_worm.analysis.designconfirm import ChatterWhileLowering
 from exudyn_worm.analysis.reelchanger import PhaseLabel, WindowPhases
 from exudyn_worm.analysis.study import RunPoint, Study
 from exudyn_worm.analysis.studygrid import Variation
@@ -236,3 +237,8 @@ def test_sweep_agreement_counts_decided_windows_and_says_what_it_left_out():
     assert '50 % of 2 runs with a decided lowering window' in table
     assert '1 run left out, lowering undecided (UND' in table
     assert '1 left out whose lowering points diverge' in table
+
+
+def test_check_simulate_says_undecided_for_the_tracker():
+    """The tracker's lowering window holds the table's swing, not decided within it: 'undecided', not False."""
+    assert ChatterWhileLowering(dict(ew.ResolveDrive(config=TRACKER).parameters)) == 'undecided'

@@ -25,6 +25,8 @@ def _G(x, digits: int = 4) -> str:
 
 
 def _Simulated(chatter) -> str:
+    if chatter == 'undecided':
+        return 'undecided (a vibration that decays slower than the window; simulate says more)'
     return '' if chatter is None else ('CHATTER' if chatter else 'no chatter')
 
 
