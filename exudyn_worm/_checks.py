@@ -6,6 +6,7 @@ function, the argument, the allowed range with its unit and the value received, 
 """
 import difflib
 import math
+import re
 from collections.abc import Mapping
 from pathlib import Path
 from numbers import Real
@@ -14,7 +15,23 @@ from typing import Optional
 import numpy as np
 
 __all__ = ['JsonNumber', 'CheckReal', 'CheckPositive', 'CheckNonNegative', 'CheckAngle', 'CheckRange', 'CheckArray',
-           'CheckOutputFolder', 'CheckBool', 'CheckMapping', 'CheckName', 'CheckSystem', 'Suggest']
+           'CheckOutputFolder', 'CheckBool', 'CheckMapping', 'CheckName', 'CheckSystem', 'Suggest', 'WarningText']
+
+
+#: a warning's leading Python name (``SimulateReelChanger: ...``): what a Python caller reads, not a command-line user
+_API_PREFIX = re.compile(r'^[A-Z][A-Za-z0-9]*(?:\.[A-Za-z_][A-Za-z0-9_]*)?: ')
+
+
+def WarningText(message: str) -> str:
+    """A warning's text for a user of the command line or of a study: the leading name of the Python function or
+    class that issued it (``SimulateReelChanger: ``) left out; the rest names the drive's quantity.
+
+    Parameters
+    ----------
+    message : str
+        The warning's message.
+    """
+    return _API_PREFIX.sub('', ' '.join(str(message).split()), count=1)
 
 
 def JsonNumber(x) -> Optional[float]:

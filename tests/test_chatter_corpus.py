@@ -7,19 +7,23 @@ import pytest
 from validation.chatter_corpus import FULL, QUICK, RESOLVABLE, DrawDrive, DutyWindows, Main, Summarize
 
 
-def _Row(drive, phase, maxRealPart, chatter, plateau=1.):
+def _Row(drive, phase, maxRealPart, chatter, plateau=1., state=None):
     growth = maxRealPart * plateau
+    state = state or ('chatter' if chatter else 'none')
     return {'drive': drive, 'phase': phase, 'maxRealPart': maxRealPart, 'growthOverPhase': growth,
             'resolvable': abs(growth) >= RESOLVABLE, 'linearStable': maxRealPart < 0, 'simulatedChatter': chatter,
-            'agree': chatter == (maxRealPart >= 0), 'error': ''}
+            'simulatedState': state, 'agree': chatter == (maxRealPart >= 0) if state != 'undecided' else None,
+            'error': ''}
 
 
 def test_agreement_counts_resolvable_points_and_lists_the_others_by_distance():
     rows = [_Row(0, 'lifting', -10., False), _Row(0, 'lowering', 20., True),      # resolvable, agree
             _Row(1, 'lifting', -5., True), _Row(1, 'lowering', -4., False),       # one disagreement
             _Row(2, 'lifting', -1., True), _Row(2, 'lowering', 0.5, False),       # not resolvable (|growth| < 3)
-            dict(_Row(3, 'lifting', -9., False), error='simulation: diverged')]
+            dict(_Row(3, 'lifting', -9., False), error='simulation: diverged'),
+            _Row(4, 'lifting', -8., False, state='undecided')]                   # resolvable, undecided: not counted
     s = Summarize(rows)
+    assert [r['drive'] for r in s['undecided']] == [4]
     assert (s['points']['resolvable'], s['points']['agree']) == (4, 3)
     assert [(r['drive'], r['phase']) for r in s['disagree']] == [(1, 'lifting')]
     assert [r['growthOverPhase'] for r in s['others']] == [0.5, -1.]             # nearest the boundary first
@@ -43,9 +47,12 @@ def test_quick_run_writes_the_report_and_one_row_per_phase(tmp_path, capsys):
     report, table = tmp_path / 'corpus.md', tmp_path / 'corpus.csv'
     assert Main(['--quick', '--quiet', '--report', str(report), '--csv', str(table)]) in (0, 1)
     rows = list(csv.DictReader(table.open()))
-    assert len(rows) == 2 * QUICK['drives'] and {r['phase'] for r in rows} == {'lifting', 'lowering'}
+    # the first group: lifting and lowering; the second: lifting, lowering after the load's reversal, lifting back
+    assert len(rows) == 2 * QUICK['drives'] + 3 * QUICK['extra'] and {r['phase'] for r in rows} == {'lifting', 'lowering'}
+    assert all(r['longState'] for r in rows if int(r['drive']) >= 1000)
     text = report.read_text()
-    assert 'CHATTER_RULE.md' in text and f"{QUICK['drives']} drives" in text
+    assert 'CHATTER_RULE.md' in text and f"{QUICK['drives'] + QUICK['extra']} drives" in text
+    assert 'Short windows against the long simulations' in text
     assert sorted(p.name for p in tmp_path.iterdir()) == ['corpus.csv', 'corpus.md']
 
 

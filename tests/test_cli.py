@@ -18,7 +18,7 @@ import exudyn_worm.analysis.linearization as linearization
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
 # the speed-dependent friction added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)
 TOP_KEYS = {'ratio', 'frictionAngle', 'selfLocking', 'efficiency', 'S', 'fuesgenLimit', 'firstCriterionLimit', 'hint',
-            'stable', 'friction', 'selfLockingVerdict', 'operatingPoint',
+            'stable', 'instability', 'friction', 'selfLockingVerdict', 'operatingPoint',
             'geometry', 'method', 'model', 'components', 'maxRealPart', 'frequencyHz', 'operatingPoints', 'deciding',
             'decidingText', 'dangerous', 'selfLockingAtOperatingPoints'}
 
@@ -341,7 +341,8 @@ def test_drive_at_the_edge_of_the_ranges_gets_an_answer(capsys, command):
     assert Main([command, '--set', 'J1=1e-12']) == 0
     captured = capsys.readouterr()
     assert 'Traceback' not in captured.err and '1e-13' not in captured.out + captured.err
-    assert ('Verdict: UNSTABLE' in captured.out) if command == 'stability' else ('No single parameter' in captured.out)
+    # J1 = 1e-12: eigenvalue 2 of S = -1 is real and positive (the paper's table: 2.7e10 + 0i 1/s): a divergence
+    assert ('Verdict: DIVERGENT' in captured.out) if command == 'stability' else ('No single parameter' in captured.out)
 
 
 def test_wide_table_cells_keep_a_gap(capsys):

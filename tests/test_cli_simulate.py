@@ -13,7 +13,7 @@ from exudyn_worm.items.solve import SolverDivergedError
 from exudyn_worm.setups.wholedrive import ResolveDrive
 
 WINDOW_KEYS = {'t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
-               'fractionSNegative', 'minWormSpeed', 'chatter'}
+               'fractionSNegative', 'minWormSpeed', 'chatter', 'chatterState', 'chatterAmplitude', 'envelopeRate'}
 
 
 def _Run(capsys, *argv):

@@ -150,7 +150,10 @@ def test_default_windows_follow_a_short_end_time(capsys, tmp_path):
     quarter = math.pi / 2 * p1['r2'] / (p1['r1'] * math.tan(p1['gamma'])) / p1['motorSpeed']
     windows = [[(w['t0'], w['t1']) for w in r['windows']] for r in data['runs']]
     assert windows == [[(0., pytest.approx(quarter, rel=1e-12)), (pytest.approx(quarter, rel=1e-12), 4.)]] * 2
-    assert [r['loweringChatter'] for r in data['runs']] == [True, True]          # P1 chatters while lowering
+    # P1 chatters while lowering; with 0.5 mm backlash the chatter settles from its first overshoot within the 2 s
+    # left of the lowering: its envelope falls at 0.39 1/s over 3-4 s, slower than the window (undecided; over the
+    # whole lowering, 2-6 s, it is steady at the saturated amplitude: chatter)
+    assert [r['loweringChatter'] for r in data['runs']] == [True, 'undecided']
 
 
 def test_failed_runs_are_reported_and_any_failed_is_exit_1(capsys):

@@ -89,8 +89,8 @@ def test_cli_warns_once_on_stderr(tmp_path):
     assert run.returncode == 0, run.stderr
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 2, run.stderr
-    assert lines[0].startswith('exudyn-worm: warning: WormGear: flank friction mu = 0.8')
-    assert lines[1].startswith('exudyn-worm: warning: WormGear: the worm radius r1 = 0.2 m')
+    assert lines[0].startswith('exudyn-worm: warning: the gear: flank friction mu = 0.8')       # no function's name
+    assert lines[1].startswith('exudyn-worm: warning: the gear: the worm radius r1 = 0.2 m')
     assert 'Verdict' in run.stdout
 
 
@@ -131,10 +131,10 @@ def test_a_worm_rotation_in_fewer_than_a_few_steps_is_warned():
 
 def test_a_worm_far_faster_than_the_motor_is_warned():
     p = {**GetPreset('reel-P1'), 'loadMass': 1e9}
-    with pytest.warns(ImplausibleValueWarning, match=r"the worm reached -3.4e\+06 rad/s, 6.87e\+04 times the motor's "
-                                                     r"largest speed 49.48 rad/s .*loadMass = 1e\+09 kg, leverArm = "
-                                                     r"1.2 m\); check the load values"):
-        CheckWormSpeed([49.48, -3.4e6], [49.48, 49.48], p, 'SimulateReelChanger')
+    with pytest.warns(ImplausibleValueWarning, match=r"^simulation: the worm turned at -3.4e\+06 rad/s, 6.87e\+04 times "
+                                                     r"the motor's largest speed 49.48 rad/s .*loadMass = 1e\+09 kg, "
+                                                     r"leverArm = 1.2 m\); check the load values"):
+        CheckWormSpeed([49.48, -3.4e6], [49.48, 49.48], p, 'simulation')
     with warnings.catch_warnings():          # ten times the motor's speed is the limit
         warnings.simplefilter('error')
         CheckWormSpeed([MAX_WORM_SPEED_RATIO * 49.48], [49.48], p)
@@ -146,7 +146,8 @@ def test_cli_warns_of_a_load_that_drives_the_worm(tmp_path):
                '--no-check-step', cwd=tmp_path)
     assert run.returncode == 0, run.stderr
     lines = run.stderr.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith('exudyn-worm: warning: SimulateReelChanger: the worm reached '), lines
+    assert len(lines) == 1 and lines[0].startswith('exudyn-worm: warning: simulation: the worm turned at '), lines
+    assert 'SimulateReelChanger' not in run.stderr
     assert 'loadMass = 1e+09 kg' in lines[0] and 'Traceback' not in run.stderr
     assert list(tmp_path.iterdir()) == []
 

@@ -8,7 +8,7 @@ import pytest
 from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
 from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
-from exudyn_worm.items.results import SimulationResult
+from exudyn_worm.items.results import ChatterVerdict, SimulationResult
 from exudyn_worm.analysis.stepsize import (SMALL_MARGIN, UNRESOLVED, CompareHalfStep, LinearMargin, RecommendedStepSize,
                                   StepCheckByDefault)
 from exudyn_worm.analysis.studyfiles import ReadResults
@@ -34,7 +34,8 @@ def _Run(capsys, *argv):
 
 def _FlipWithStep(monkeypatch, threshold):
     """Make the chatter verdict depend on the step alone: chatter iff the run's step exceeds ``threshold``."""
-    monkeypatch.setattr(SimulationResult, 'Chatter', lambda self, t0, t1: self.info['stepSize'] > threshold)
+    monkeypatch.setattr(SimulationResult, 'ChatterVerdict', lambda self, t0, t1: ChatterVerdict(
+        'chatter' if self.info['stepSize'] > threshold else 'none', ('normal',), t1 - t0, 1., 0.))
 
 
 def test_simulate_and_sweep_use_the_same_step():
@@ -164,13 +165,14 @@ def test_compare_half_step_needs_the_same_windows():
 
 
 def test_the_chatter_ratio_decides_as_the_chatter_rule():
-    """ChatterRatio >= 1 exactly where Chatter says yes (reel-P7: lift, lowering chatter, chattering lift), and
-    CloseVerdicts picks the windows within VERDICT_FACTOR of the threshold."""
+    """ChatterRatio >= 1 where the amplitude counts, which it must where Chatter says yes (reel-P7: lift, lowering
+    chatter, chattering lift), and CloseVerdicts picks the windows within VERDICT_FACTOR of the threshold."""
     p = GetPreset('reel-P7')
     result = SimulateReelChanger(ResolveDrive(parameters=p), endTime=4.4, progress=False)
     windows = [(0., 1.8), (2.2, 3.8), (3.8, 4.4)]
     ratios = [result.ChatterRatio(t0, t1) for t0, t1 in windows]
-    assert [r >= 1. for r in ratios] == [result.Chatter(t0, t1) for t0, t1 in windows]
+    assert [r >= 1. for r in ratios] == [result.ChatterVerdict(t0, t1).state != 'none' for t0, t1 in windows]
+    assert all(r >= 1. for r, (t0, t1) in zip(ratios, windows) if result.Chatter(t0, t1))
     assert ratios[0] < 0.1 and ratios[1] > 1.
     assert CloseVerdicts(result, windows) == [i for i, r in enumerate(ratios) if 1 / VERDICT_FACTOR < r < VERDICT_FACTOR]
 

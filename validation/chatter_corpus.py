@@ -3,8 +3,8 @@ simulated chatter verdict of the same phase.
 
 Run from the repository root::
 
-    python -m validation.chatter_corpus            # 200 drives: CHATTER_CORPUS.md and chatter_corpus.csv here
-    python -m validation.chatter_corpus --quick    # 3 drives with short phases (a test of the script; --report/--csv)
+    python -m validation.chatter_corpus            # 240 drives: CHATTER_CORPUS.md and chatter_corpus.csv here
+    python -m validation.chatter_corpus --quick    # 4 drives with short phases (a test of the script; --report/--csv)
 
 Each drive is drawn from a seeded generator (:func:`DrawDrive`): a worm gear by its designation (axial module,
 starts, wheel teeth, diameter quotient), mesh stiffness and damping, worm and wheel inertias, a drive shaft,
@@ -12,9 +12,11 @@ optionally a drive-side chain (J4, k4, d4), a load-side chain (JL1, kL1, dL1) an
 a constant, Stribeck or AGMA friction law, a constant load torque and a speed-table motor that lifts, pauses
 and lowers (the duty of a hoist). The linear verdict of each steady phase comes from the linear analysis at the
 drive's own operating points (:func:`LinearOperatingPoints`, the one place that calls it); the simulated verdict
-is :meth:`~exudyn_worm.items.results.SimulationResult.Chatter` over that phase's plateau, the rule fixed before
+is :meth:`~exudyn_worm.items.results.SimulationResult.ChatterVerdict` over that phase's plateau, the rule fixed before
 this corpus was run (validation/CHATTER_RULE.md). A phase counts where its growth or decay is resolvable within
-it: |largest real part| x plateau length >= :data:`RESOLVABLE`.
+it: |largest real part| x plateau length >= :data:`RESOLVABLE`, and where the simulated window is decided. A second
+group (:func:`DrawLightlyDamped`) has a lightly damped load side, a load reversal and a restart, and each of its
+drives is simulated again with long plateaus to check the short windows' verdicts.
 """
 from __future__ import annotations
 
@@ -28,7 +30,8 @@ from typing import Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
 
-__all__ = ['SEED', 'DRIVES', 'RESOLVABLE', 'TARGET', 'FULL', 'QUICK', 'LINEAR_METHOD', 'DrawDrive', 'DutyWindows',
+__all__ = ['SEED', 'DRIVES', 'RESOLVABLE', 'TARGET', 'FULL', 'QUICK', 'EXTRA_FIRST', 'LINEAR_METHOD', 'DrawDrive',
+           'DrawLightlyDamped', 'DutyWindows',
            'LinearOperatingPoints', 'RunDrive', 'RunCorpus', 'Summarize', 'WriteCsv', 'WriteReport', 'Main']
 
 HERE = Path(__file__).resolve().parent
@@ -40,16 +43,23 @@ DRIVES = 200
 RESOLVABLE = 3.
 #: agreement required over the resolvable phases
 TARGET = 0.95
-#: duty of the full run and of --quick: drives, plateau length, ramp and pause in s
-FULL = {'drives': DRIVES, 'plateau': 1.0, 'ramp': 0.02, 'pause': 0.05}
-QUICK = {'drives': 3, 'plateau': 0.1, 'ramp': 0.01, 'pause': 0.02}
+#: duty of the full run and of --quick: drives, plateau length, ramp and pause in s; ``extra``: drives of the
+#: second group (:func:`DrawLightlyDamped`: lightly damped load side, load reversal, stop and restart), each also
+#: simulated with plateaus of ``long`` s (the long simulation its short verdicts are checked against)
+FULL = {'drives': DRIVES, 'plateau': 1.0, 'ramp': 0.02, 'pause': 0.05, 'extra': 40, 'long': 5.0}
+QUICK = {'drives': 3, 'plateau': 0.1, 'ramp': 0.01, 'pause': 0.02, 'extra': 1, 'long': 0.3}
+#: the second group's drives are numbered from here
+EXTRA_FIRST = 1000
+#: largest number of solver steps of one long run (above it the long check is recorded as skipped)
+_MAX_LONG_STEPS = 1_500_000
 _RPM = 2 * math.pi / 60
 #: largest number of solver steps of one drive's run (a drive needing more is recorded as skipped)
 _MAX_STEPS = 400_000
 CSV_COLUMNS = ('drive', 'phase', 'window', 'friction', 'components', 'mx', 'z1', 'z2', 'q', 'u', 'gammaDeg', 'motorSpeed',
                'loadTorque', 'maxRealPart', 'frequencyHz', 'linearStable', 'growthOverPhase', 'resolvable',
-               'simulatedChatter', 'chatterBy', 'agree', 'normalA3', 'normalA4', 'slidingA3', 'slidingA4',
-               'minWormSpeed', 'dominantFrequencyHz', 'stepSize', 'seconds', 'error')
+               'simulatedChatter', 'simulatedState', 'envelopeRate', 'rateOverPhase', 'chatterBy', 'agree',
+               'normalA3', 'normalA4', 'slidingA3', 'slidingA4', 'minWormSpeed', 'dominantFrequencyHz', 'stepSize',
+               'longState', 'longRate', 'agreeLong', 'seconds', 'error')
 
 
 def _LogUniform(rng, low: float, high: float) -> float:
@@ -106,6 +116,41 @@ def DrawDrive(rng: np.random.Generator, duty: Mapping[str, float] = FULL) -> Dic
     return p
 
 
+def DrawLightlyDamped(rng: np.random.Generator, duty: Mapping[str, float] = FULL, plateau: Optional[float] = None) -> Dict:
+    """One drive of the second group: a lightly damped load side (D <= 2 %), a load that reverses while the motor
+    stands, and a stop and restart: speed table lift / stop (the load reverses) / run on in the same direction (now
+    the load drives: lowering) / stop / run back (lifting against the reversed load).
+
+    Parameters
+    ----------
+    rng : numpy.random.Generator
+        The seeded generator of the second group.
+    duty : mapping
+        ``plateau``, ``ramp``, ``pause`` in s.
+    plateau : float, optional
+        Plateau length in s instead of ``duty['plateau']`` (the long simulation).
+
+    Returns
+    -------
+    dict
+        The parameter set, SI units.
+    """
+    p = DrawDrive(rng, duty)
+    JL1, kL1 = p['J2'] * _LogUniform(rng, 1., 100.), _LogUniform(rng, 1e4, 3e6)
+    D = rng.uniform(0.002, 0.02)
+    p.update(JL1=JL1, kL1=kL1, dL1=2 * D * math.sqrt(kL1 * JL1 * p['J2'] / (JL1 + p['J2'])))
+    torque = p['loadTorque']
+    speed = p['motorSpeedOverTime'][2][1]
+    r, L, P = duty['ramp'], duty['plateau'] if plateau is None else plateau, 2 * duty['pause']
+    times = np.cumsum([0., r, L, r, P, r, L, r, P, r, L, r])
+    speeds = (0., speed, speed, 0., 0., speed, speed, 0., 0., -speed, -speed, 0.)
+    reverse = times[3] + 0.25 * P, times[3] + 0.75 * P
+    p.update(motorSpeedOverTime=[(float(t), v) for t, v in zip(times, speeds)], loadType='timeTable',
+             loadTorqueOverTime=[(0., torque), (float(reverse[0]), torque), (float(reverse[1]), -torque)])
+    del p['loadTorque']
+    return p
+
+
 def _SpeedTable(speed: float, duty: Mapping[str, float]) -> List[tuple]:
     r, L, P = duty['ramp'], duty['plateau'], duty['pause']
     times = np.cumsum([0., r, L, r, P, r, L, r])
@@ -126,7 +171,7 @@ def DutyWindows(parameters: Mapping) -> Dict[str, tuple]:
         ``{'lifting': (t0, t1), 'lowering': (t0, t1), 'end': t}`` in s (``end``: the end of the table).
     """
     t = [row[0] for row in parameters['motorSpeedOverTime']]
-    return {'lifting': (t[1], t[2]), 'lowering': (t[5], t[6]), 'end': t[7]}
+    return {'lifting': (t[1], t[2]), 'lowering': (t[5], t[6]), 'end': t[-1]}
 
 
 #: how :func:`LinearOperatingPoints` gets its verdicts (named in the report)
@@ -162,7 +207,30 @@ def _Components(p: Mapping) -> str:
     return '+'.join(parts) or 'two-mass'
 
 
-def RunDrive(index: int, parameters: Mapping) -> List[Dict]:
+def _Plateaus(parameters: Mapping) -> List[tuple]:
+    """The plateaus (t0, t1) of a speed table: consecutive rows with the same non-zero speed."""
+    rows = parameters['motorSpeedOverTime']
+    return [(a[0], b[0]) for a, b in zip(rows, rows[1:]) if a[1] == b[1] != 0.]
+
+
+def _Simulate(p: Mapping, maxSteps: int):
+    """One run of the whole duty at the recommended step (raises where it needs more than ``maxSteps``)."""
+    from exudyn_worm.analysis.reelchanger import SimulateReelChanger
+    from exudyn_worm.analysis.stepsize import RecommendedStepSize
+    from exudyn_worm.setups.wholedrive import ResolveDrive
+    drive = ResolveDrive(parameters=p)
+    stepSize = RecommendedStepSize(drive)
+    endTime = DutyWindows(p)['end']
+    if endTime / stepSize > maxSteps:
+        raise ValueError(f"needs {endTime / stepSize:.3g} steps at the recommended {stepSize:.3g} s, above the "
+                         f"corpus' budget of {maxSteps}")
+    result = SimulateReelChanger(drive, endTime=endTime, stepSize=stepSize, progress=False, maxSteps=maxSteps)
+    if not all(np.all(np.isfinite(result.series[k])) for k in ('omega1', 'omega2', 'normalForce')):
+        raise FloatingPointError('diverged: non-finite state')
+    return result, stepSize
+
+
+def RunDrive(index: int, parameters: Mapping, longParameters: Optional[Mapping] = None) -> List[Dict]:
     """Linear verdicts and the simulation of one drive: one row per operating point (never raises: a failure is
     recorded in ``error``).
 
@@ -171,15 +239,16 @@ def RunDrive(index: int, parameters: Mapping) -> List[Dict]:
     index : int
         The drive's number in the corpus.
     parameters : mapping
-        The drive (:func:`DrawDrive`).
+        The drive (:func:`DrawDrive` or :func:`DrawLightlyDamped`).
+    longParameters : mapping, optional
+        The same drive with long plateaus: its verdict on the same plateau is recorded (``longState``, ``longRate``)
+        and compared with the short one where both are decided (``agreeLong``).
 
     Returns
     -------
     list of dict
         Rows with the columns :data:`CSV_COLUMNS`.
     """
-    from exudyn_worm.analysis.reelchanger import SimulateReelChanger
-    from exudyn_worm.analysis.stepsize import RecommendedStepSize
     from exudyn_worm.setups.presets import ElasticDriveFromParameters
     from exudyn_worm.setups.wholedrive import ResolveDrive
     start = time.perf_counter()
@@ -188,6 +257,8 @@ def RunDrive(index: int, parameters: Mapping) -> List[Dict]:
     friction = p.get('frictionLaw', 'constant')
     base = {'drive': index, 'friction': friction, 'components': _Components(p), 'mx': p['mx'], 'z1': p['z1'],
             'z2': p['z2'], 'q': p['q'], 'u': gear.ratio, 'gammaDeg': math.degrees(gear.gamma), 'error': ''}
+    if 'loadTorqueOverTime' in p:
+        base['components'] += ', reversal+restart'
     try:
         points = LinearOperatingPoints(p)
     except Exception as err:                    # a failing drive is a result, not the end of the corpus
@@ -201,21 +272,14 @@ def RunDrive(index: int, parameters: Mapping) -> List[Dict]:
         row['growthOverPhase'] = row['maxRealPart'] * (t1 - t0)
         row['resolvable'] = abs(row['growthOverPhase']) >= RESOLVABLE
     try:
-        drive = ResolveDrive(parameters=p)
-        stepSize = RecommendedStepSize(drive)
-        endTime = DutyWindows(p)['end']
-        if endTime / stepSize > _MAX_STEPS:
-            raise ValueError(f"needs {endTime / stepSize:.3g} steps at the recommended {stepSize:.3g} s, above the "
-                             f"corpus' budget of {_MAX_STEPS}")
-        result = SimulateReelChanger(drive, endTime=endTime, stepSize=stepSize, progress=False, maxSteps=_MAX_STEPS)
-        if not all(np.all(np.isfinite(result.series[k])) for k in ('omega1', 'omega2', 'normalForce')):
-            raise FloatingPointError('diverged: non-finite state')
+        result, stepSize = _Simulate(p, _MAX_STEPS)
         for row in rows:
             t0, t1 = row['window']
             a = result.MeshOscillation(t0, t1)
-            by = result.ChatterMeasures(t0, t1)
-            chatter = result.Chatter(t0, t1)
-            row.update(simulatedChatter=chatter, chatterBy='+'.join(by), agree=chatter == (not row['linearStable']),
+            v = result.ChatterVerdict(t0, t1)
+            row.update(simulatedChatter=v.chatter, simulatedState=v.state, envelopeRate=v.rate,
+                       rateOverPhase=v.rate * (t1 - t0), chatterBy='+'.join(v.measures) if v.chatter else '',
+                       agree=(v.chatter == (not row['linearStable'])) if v.decided else None,
                        normalA3=a['normal'][2], normalA4=a['normal'][3], slidingA3=a['sliding'][2],
                        slidingA4=a['sliding'][3], minWormSpeed=result.MinWormSpeed(t0, t1),
                        dominantFrequencyHz=result.DominantFrequency(0.5 * (t0 + t1), t1, 'normalForce'),
@@ -223,6 +287,19 @@ def RunDrive(index: int, parameters: Mapping) -> List[Dict]:
     except Exception as err:                    # a failing run is recorded, the others go on
         for row in rows:
             row['error'] = f"simulation: {' '.join(f'{type(err).__name__}: {err}'.split())}"
+    if longParameters is not None and not any(r.get('error') for r in rows):
+        try:
+            long, _ = _Simulate(longParameters, _MAX_LONG_STEPS)
+            short, longPlateaus = _Plateaus(p), _Plateaus(longParameters)
+            for row in rows:
+                k = min(range(len(short)), key=lambda i: abs(short[i][0] - row['window'][0]))
+                v = long.ChatterVerdict(*longPlateaus[k])
+                row.update(longState=v.state, longRate=v.rate,
+                           agreeLong=(v.chatter == row['simulatedChatter'])
+                           if v.decided and row['simulatedState'] != 'undecided' else None)
+        except Exception as err:                # a long run that fails leaves the short verdicts standing
+            for row in rows:
+                row['longState'] = f"failed: {' '.join(f'{type(err).__name__}: {err}'.split())}"
     seconds = time.perf_counter() - start
     for row in rows:
         row['seconds'] = seconds / len(rows)
@@ -249,10 +326,16 @@ def RunCorpus(duty: Mapping[str, float] = FULL, seed: int = SEED, quiet: Optiona
     from exudyn_worm.progress import ProgressBar
     rng = np.random.default_rng(seed)
     drives = [DrawDrive(rng, duty) for _ in range(int(duty['drives']))]
+    extra = [(DrawLightlyDamped(np.random.default_rng([seed, 1, i]), duty),
+              DrawLightlyDamped(np.random.default_rng([seed, 1, i]), duty, plateau=duty['long']))
+             for i in range(int(duty.get('extra', 0)))]
     rows = []
-    with ProgressBar(total=len(drives), desc='corpus', unit='drive', quiet=quiet) as bar:
+    with ProgressBar(total=len(drives) + len(extra), desc='corpus', unit='drive', quiet=quiet) as bar:
         for i, p in enumerate(drives):
             rows += RunDrive(i, p)
+            bar.update(1)
+        for i, (p, long) in enumerate(extra):
+            rows += RunDrive(EXTRA_FIRST + i, p, long)
             bar.update(1)
     return rows
 
@@ -270,18 +353,22 @@ def Summarize(rows: Sequence[Mapping]) -> Dict:
     dict
         ``points``: ``resolvable``, ``agree`` (counts over the resolvable operating points that ran), ``fraction``;
         ``drives``: the same per drive (its verdict: unstable at any point / chatters in any phase; resolvable when
-        its deciding point is: the one with the largest real part); ``failed`` rows; ``others`` (the rows not
-        counted: unresolvable, sorted by their distance |growthOverPhase| to the boundary).
+        its deciding point is: the one with the largest real part); ``failed`` rows; ``undecided`` (resolvable points
+        whose simulated window is undecided: not counted); ``others`` (the rows not counted: unresolvable, sorted by
+        their distance |growthOverPhase| to the boundary); ``long``: the short verdicts against the long simulations
+        (``compared``, ``agree``, ``disagree`` rows, ``undecided`` rows whose short window is undecided).
     """
     ran = [r for r in rows if not r.get('error')]
-    resolvable = [r for r in ran if r['resolvable']]
+    undecided = [r for r in ran if r['resolvable'] and r['simulatedState'] == 'undecided']
+    resolvable = [r for r in ran if r['resolvable'] and r['simulatedState'] != 'undecided']
     byDrive: Dict[int, List[Mapping]] = {}
     for r in ran:
         byDrive.setdefault(r['drive'], []).append(r)
     drives = []
     for index, rs in sorted(byDrive.items()):
         deciding = max(rs, key=lambda r: r['maxRealPart'])
-        drives.append({'drive': index, 'resolvable': deciding['resolvable'],
+        drives.append({'drive': index, 'resolvable': deciding['resolvable']
+                       and all(r['simulatedState'] != 'undecided' for r in rs),
                        'agree': any(r['simulatedChatter'] for r in rs) == (not all(r['linearStable'] for r in rs))})
     counted = [d for d in drives if d['resolvable']]
 
@@ -295,7 +382,19 @@ def Summarize(rows: Sequence[Mapping]) -> Dict:
                        'agree': agreeDrives, 'fraction': Fraction(agreeDrives, len(counted))},
             'failed': [r for r in rows if r.get('error')],
             'disagree': [r for r in resolvable if not r['agree']],
+            'undecided': undecided,
+            'long': {'compared': [r for r in ran if r.get('agreeLong') is not None],
+                     'disagree': [r for r in ran if r.get('agreeLong') is False],
+                     'undecided': [r for r in ran if r.get('longState') and r['simulatedState'] == 'undecided']},
             'others': sorted((r for r in ran if not r['resolvable']), key=lambda r: abs(r['growthOverPhase']))}
+
+
+def _Count(values) -> Dict[str, int]:
+    out: Dict[str, int] = {}
+    for v in values:
+        key = 'failed' if str(v).startswith('failed') else str(v)
+        out[key] = out.get(key, 0) + 1
+    return out
 
 
 def _Cell(value) -> str:
@@ -329,12 +428,14 @@ def WriteCsv(rows: Sequence[Mapping], path: Path) -> Path:
 def _Line(r: Mapping) -> str:
     return (f"| {r['drive']} | {r['phase']} | {r['friction']} | {r['components']} | {r['u']:.3g} | "
             f"{r['maxRealPart']:.3g} | {r['growthOverPhase']:+.2f} | {r['frequencyHz']:.0f} | "
-            f"{'stable' if r['linearStable'] else 'unstable'} | {'chatter' if r['simulatedChatter'] else 'none'} | "
-            f"{max(r['normalA4'], r['slidingA4']):.3g} | {r['minWormSpeed']:.3g} |")
+            f"{'stable' if r['linearStable'] else 'unstable'} | {r['simulatedState']} | {r['envelopeRate']:.3g} | "
+            f"{max(r['normalA4'], r['slidingA4']):.3g} | {r['minWormSpeed']:.3g} |"
+            + (f" {r.get('longState', '')} |" if r.get('longState') else ' |'))
 
 
 _HEADER = ('| drive | phase | friction | components | u | max Re [1/s] | Re x phase | f [Hz] | linear | simulated | '
-           'largest a4 | min worm speed [rad/s] |\n|---|---|---|---|---|---|---|---|---|---|---|---|')
+           'envelope rate [1/s] | largest a4 | min worm speed [rad/s] | long simulation |\n'
+           '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|')
 
 
 def WriteReport(rows: Sequence[Mapping], path: Path, duty: Mapping[str, float], seed: int, csvPath: Path,
@@ -375,7 +476,7 @@ def WriteReport(rows: Sequence[Mapping], path: Path, duty: Mapping[str, float], 
              f"an axial bearing {components['axial bearing']}. Duty: constant load torque, speed table "
              f"ramp {duty['ramp']:g} s, lifting plateau {duty['plateau']:g} s, pause {duty['pause']:g} s, lowering "
              f"plateau {duty['plateau']:g} s. Linear verdict at the operating point of each plateau: "
-             f"{LINEAR_METHOD}; simulated verdict: `SimulationResult.Chatter` over the plateau. A phase counts when "
+             f"{LINEAR_METHOD}; simulated verdict: `SimulationResult.ChatterVerdict` over the plateau (chatter, none, decaying or undecided; undecided windows are not counted). A phase counts when "
              f"|largest real part| x plateau >= {RESOLVABLE:g}.",
              '',
              f"**Agreement over the resolvable operating points: {pts['agree']} of {pts['resolvable']} "
@@ -394,15 +495,30 @@ def WriteReport(rows: Sequence[Mapping], path: Path, duty: Mapping[str, float], 
     groups = [('lifting', lambda r: r['phase'] == 'lifting'), ('lowering', lambda r: r['phase'] == 'lowering')]
     groups += [(f'friction {law}', lambda r, law=law: r['friction'] == law) for law in ('constant', 'stribeck', 'agma')]
     groups += [(f'with {c}', lambda r, c=c: c in r['components']) for c in ('drive chain', 'load chain', 'axial bearing')]
-    groups += [('two-mass', lambda r: r['components'] == 'two-mass'), ('all', lambda r: True)]
+    groups += [('two-mass', lambda r: r['components'] == 'two-mass'),
+               ('lightly damped, reversal, restart', lambda r: 'reversal' in r['components']), ('all', lambda r: True)]
     for name, member in groups:
-        rs = [r for r in resolvable if member(r)]
+        rs = [r for r in resolvable if member(r) and r['simulatedState'] != 'undecided']
         chatter = [r for r in rs if r['simulatedChatter']]
         normal, sliding = (sum(name in r['chatterBy'].split('+') for r in chatter) for name in ('normal', 'sliding'))
         lines.append(f"| {name} | {len(rs)} | {sum(bool(r['agree']) for r in rs)} | "
                      f"{sum(not r['linearStable'] for r in rs)} | {len(chatter)} ({normal} / {sliding}) |")
     lines += ['', '## Resolvable points where the verdicts differ', '']
     lines += [_HEADER] + [_Line(r) for r in s['disagree']] if s['disagree'] else ['None.']
+    lines += ['', '## Resolvable points whose simulated window is undecided (not counted)', '',
+              'The window holds a vibration of at least a quarter of the steady value that decays slower than the window, '
+              'or a steady one below saturation (CHATTER_RULE.md).', '']
+    lines += [_HEADER] + [_Line(r) for r in s['undecided']] if s['undecided'] else ['None.']
+    lg = s['long']
+    lines += ['', f"## Short windows against the long simulations (second group, plateaus of {duty.get('long', 0):g} s)",
+              '', f"Decided in both: {len(lg['compared'])}, the verdicts agree in "
+              f"{len(lg['compared']) - len(lg['disagree'])}; short windows undecided: {len(lg['undecided'])} "
+              f"(their long verdicts: "
+              + (', '.join(f"{k} {v}" for k, v in sorted(_Count(r['longState'] for r in lg['undecided']).items()))
+                 or 'none') + ').', '', 'Disagreements:', '']
+    lines += [_HEADER] + [_Line(r) for r in lg['disagree']] if lg['disagree'] else ['None.']
+    lines += ['', 'Short windows undecided, with the long verdict:', '']
+    lines += [_HEADER] + [_Line(r) for r in lg['undecided']] if lg['undecided'] else ['None.']
     lines += ['', '## Points not counted (growth or decay not resolvable within the phase), nearest the boundary first',
               '', "Distance to the boundary: `Re x phase` (the growth exponent over the plateau; 0 on the boundary).",
               '']

@@ -163,6 +163,9 @@ def MapAnalysis(result: StudyResult) -> Dict:
     disagreements = []
     for r in rows:
         stable, chatter = r['analyticStableLowering'], r['loweringChatter']
+        if chatter not in (True, False):        # 'undecided' or 'unresolved': no verdict to compare
+            counts['undecided'] = counts.get('undecided', 0) + 1
+            continue
         counts[f"{'stable' if stable else 'unstable'}, {'chatter' if chatter else 'no chatter'}"] += 1
         if chatter != stable:
             continue
@@ -290,7 +293,7 @@ def BacklashAnalysis(result: StudyResult) -> Dict:
             'accelerationEarly': col('w1.maxAbsWheelAcceleration'),
             'accelerationLowering': col('w2.maxAbsWheelAcceleration'),
             'liftingVibration': col('w3.vibrationSeconds'),
-            'liftingChatter': np.array([bool(r['w3.chatter']) for r in rows]),
+            'liftingChatter': np.array([r['w3.chatter'] is True for r in rows]),     # undecided: no
             'failed': len(result.failed)}
 
 

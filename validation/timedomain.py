@@ -132,7 +132,7 @@ def _Robustness(preset):
 
 
 def _ChatterCount(preset, overrides=(), m=False):
-    return float(sum(w['chatter'] for w in _Metrics(preset, overrides, paperMesh=m)))
+    return float(sum(w['chatter'] is True for w in _Metrics(preset, overrides, paperMesh=m)))   # undecided: no
 
 
 def _Lower(preset, key, scale=1.):
@@ -141,9 +141,9 @@ def _Lower(preset, key, scale=1.):
 
 #: row id of validation/paper/reference.csv (group simulation) -> function(paperMesh) computing our value
 TIME_DOMAIN_CHECKS: Dict[str, Callable[[bool], float]] = {
-    'P1_chatter_lowering': lambda m: float(_Lowering('reel-P1', paperMesh=m)['chatter']),
-    'P1_chatter_lifting': lambda m: float(_Metrics('reel-P1', paperMesh=m)[0]['chatter']
-                                          or _Metrics('reel-P1', paperMesh=m)[2]['chatter']),
+    'P1_chatter_lowering': lambda m: float(_Lowering('reel-P1', paperMesh=m)['chatter'] is True),
+    'P1_chatter_lifting': lambda m: float(_Metrics('reel-P1', paperMesh=m)[0]['chatter'] is True
+                                          or _Metrics('reel-P1', paperMesh=m)[2]['chatter'] is True),
     'P1_chatter_frequency_band': lambda m: float(33. <= _Lowering('reel-P1', paperMesh=m)['dominantFrequencyHz'] <= 52.),
     'P1_chatter_frequency': _Lower('reel-P1', 'dominantFrequencyHz'),
     'P1_chatter_frequency_vs_linear': _ChatterFrequencyVsLinear,
@@ -157,7 +157,7 @@ TIME_DOMAIN_CHECKS: Dict[str, Callable[[bool], float]] = {
     'P7_max_acceleration': _Lower('reel-P7', 'maxAbsWheelAcceleration'),
     'P7_to_P1_ratio': lambda m: (_Lowering('reel-P7', paperMesh=m)['maxAbsWheelAcceleration']
                                  / _Lowering('reel-P1', paperMesh=m)['maxAbsWheelAcceleration']),
-    'P7_chatter_lifting': lambda m: float(_Metrics('reel-P7', paperMesh=m)[2]['chatter']),
+    'P7_chatter_lifting': lambda m: float(_Metrics('reel-P7', paperMesh=m)[2]['chatter'] is True),
     'P7_worm_speed_zero': lambda m: float(_Lowering('reel-P7', paperMesh=m)['minWormSpeed'] <= 0.),
     'P7_S_sign_changes': _SignChangesPerPeriod,
     'P7_S_negative_lifting': _ShareSNegativeLifting,
@@ -166,7 +166,7 @@ TIME_DOMAIN_CHECKS: Dict[str, Callable[[bool], float]] = {
     'P7_backlash_independence': lambda m: max(_PeakNormalForces('reel-P7', m)) / min(_PeakNormalForces('reel-P7', m)),
     'P7_speed_doubling': _Ratio('reel-P7', 'maxAbsWheelAcceleration', (('motorSpeed', 945. * _RPM),)),
     'P2_P5_chatter_windows': lambda m: sum(_ChatterCount(p, m=m) for p in ('reel-P2', 'reel-P3', 'reel-P4', 'reel-P5')),
-    'P6_chatter_lowering': lambda m: float(_Lowering('reel-P6', paperMesh=m)['chatter']),
+    'P6_chatter_lowering': lambda m: float(_Lowering('reel-P6', paperMesh=m)['chatter'] is True),
     'P6_DV0.056_chatter_windows': lambda m: _ChatterCount('reel-P6', (('DV', 0.056),), m),
     'P1_numerical_robustness': _Robustness('reel-P1'),
     'P7_numerical_robustness': _Robustness('reel-P7'),

@@ -16,7 +16,7 @@ from typing import Any, Dict, Mapping, Optional, Sequence
 import numpy as np
 
 from ..model.contact import ContactOptions
-from .orbits import FindPeriodicOrbit, PeriodicOrbit, ShootingError
+from .orbits import FindPeriodicOrbit, NoSteadyChatter, PeriodicOrbit, ShootingError
 from .._checks import CheckPositive
 from ..items.connector import WormGearConnector
 from .linearization import AnalyzeLinearStability
@@ -165,7 +165,7 @@ def _FindChatter(model: LoweringModel, where: str, what: str, settleTime: float,
         inContact = float(np.max(np.abs(tail.normalForce))) < 2. * model.staticNormalForce
         # rest: no swing left, or a linearly stable drive whose swing shrinks while the mesh stays in contact
         if not swing > 1e-4 * model.motorSpeed or (inContact and swing < 0.95 * first and _LinearlyStable(model)):
-            raise ShootingError(f"{w}: {what} settles to rest (after {settleTime:g} s the worm speed swing "
+            raise NoSteadyChatter(f"{w}: {what} settles to rest (after {settleTime:g} s the worm speed swing "
                                 f"still shrinks, {first:.3g} -> {swing:.3g} rad/s in 0.3 s, the mesh stays in contact): "
                                 f"no steady chatter at these parameters (a larger disturbance may still start one "
                                 f"where rest and chatter coexist)")
@@ -199,7 +199,7 @@ def _SettledStart(model: LoweringModel, where: str, what: str, settled: Optional
     """(state, period) on the Poincare section of a settled long run (:func:`~exudyn_worm.analysis.settling.SettleOnSection`)."""
     settled = SettleOnSection(model) if settled is None else settled
     if not np.isfinite(settled['period']):
-        raise ShootingError(f"{where}: {what} does not oscillate after {settled['duration']:g} s: no steady chatter "
+        raise NoSteadyChatter(f"{where}: {what} does not oscillate after {settled['duration']:g} s: no steady chatter "
                             f"at these parameters")
     return settled['state'], settled['period']
 
@@ -317,7 +317,8 @@ def _OrbitSummary(model: LoweringModel, orbit: PeriodicOrbit, name: str) -> Dict
     multipliers = sorted((abs(complex(m)) for m in orbit.nontrivialMultipliers), reverse=True)
     return {'model': name, 'periodS': float(orbit.period),
             'frequencyHz': float(orbit.frequencyHz), 'stable': bool(orbit.stable), 'multipliers': multipliers,
-            'trivialMultiplierError': float(orbit.trivialMultiplierError),
+            'trivialMultiplierError': float(orbit.trivialMultiplierError), 'accurate': orbit.accurate,
+            'stabilityDecided': orbit.stabilityDecided,
             'staticNormalForce': float(model.staticNormalForce),
             'maxNormalForce': float(amplitude['forceFactor'] * model.staticNormalForce), 'amplitude': amplitude,
             'motorSpeed': float(model.motorSpeed), 'loadTorque': float(model.loadTorque)}
@@ -343,7 +344,8 @@ def _SteadyChatterSummary3D(parameters: Mapping[str, float], stepsPerPeriod: int
         vibration = settled['vibration']
         return {'model': '3D', 'method': 'long simulation', 'periodS': float(settled['period']),
                 'frequencyHz': float(1. / settled['period']), 'stable': None, 'multipliers': [],
-                'trivialMultiplierError': None, 'staticNormalForce': float(model.staticNormalForce),
+                'trivialMultiplierError': None, 'accurate': None, 'stabilityDecided': False,
+                'staticNormalForce': float(model.staticNormalForce),
                 'maxNormalForce': float(vibration['forceFactor'] * model.staticNormalForce), 'amplitude': vibration,
                 'motorSpeed': float(model.motorSpeed), 'loadTorque': float(model.loadTorque),
                 'settledS': float(settled['duration']), 'sectionChange': float(settled['change']),

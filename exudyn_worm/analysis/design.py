@@ -33,7 +33,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from itertools import combinations
-from typing import Callable, Dict, List, Optional, Tuple
+from typing import Callable, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -84,8 +84,9 @@ class DesignCheckResult:
         Where no single parameter suffices: the smallest change of two (two-mass drive only).
     notes : list of str
         Parameters that could not be varied (value 0) and similar remarks.
-    simulatedChatter : bool or None
-        Chatter while lowering of the given drive in the simulation (None if not simulated).
+    simulatedChatter : bool, str or None
+        Chatter while lowering of the given drive in the simulation (True, False or 'undecided'; None if not
+        simulated).
     evaluations : int
         Linear analyses of changed drives (``AnalyzeDrive``) the check made: a whole drive's scan points and
         confirmations and every recommended drive (the two-mass drive's Hurwitz scans are not counted).
@@ -102,7 +103,7 @@ class DesignCheckResult:
     recommendations: List[Recommendation]
     bestPair: Optional[PairRecommendation] = None
     notes: List[str] = field(default_factory=list)
-    simulatedChatter: Optional[bool] = None
+    simulatedChatter: Optional[Union[bool, str]] = None
     evaluations: int = 0
 
     @property

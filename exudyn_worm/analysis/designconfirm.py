@@ -4,8 +4,9 @@ recommended drive, with the chatter rule of ``exudyn-worm simulate`` on the lowe
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import Optional
+from typing import Optional, Union
 
+from ..items.results import UNDECIDED
 from ..setups.build import CheckReelChangerKeys
 from ..setups.wholedrive import Drive
 from . import reelchanger
@@ -15,11 +16,11 @@ from .reelchanger import DefaultPhases
 __all__ = ['ChatterWhileLowering', 'ConfirmBySimulation']
 
 
-def ChatterWhileLowering(drive: Drive, stepSize: Optional[float] = None) -> bool:
+def ChatterWhileLowering(drive: Drive, stepSize: Optional[float] = None) -> Union[bool, str]:
     """Time-domain verdict: does the reel changer chatter while lowering the load?
 
     One rotation with :func:`~exudyn_worm.analysis.reelchanger.SimulateReelChanger`; the verdict is
-    :meth:`~exudyn_worm.items.results.SimulationResult.Chatter` on the lowering window of
+    :meth:`~exudyn_worm.items.results.SimulationResult.ChatterVerdict` on the lowering window of
     :func:`~exudyn_worm.analysis.reelchanger.DefaultWindows` (the rule of ``exudyn-worm simulate``); for another duty
     (:mod:`exudyn_worm.setups.duty`) on each of its lowering phases (False if it has none).
 
@@ -34,7 +35,9 @@ def ChatterWhileLowering(drive: Drive, stepSize: Optional[float] = None) -> bool
 
     Returns
     -------
-    bool
+    bool or str
+        True where a lowering window chatters, ``'undecided'`` where none does but one is undecided (a vibration
+        that decays slower than the window), else False.
 
     Raises
     ------
@@ -46,7 +49,10 @@ def ChatterWhileLowering(drive: Drive, stepSize: Optional[float] = None) -> bool
     if not lowering:
         return False
     result = reelchanger.SimulateReelChanger(drive, stepSize=stepSize)          # the default time the phases cover
-    return any(result.Chatter(t0, t1) for t0, t1 in lowering)
+    verdicts = [result.ChatterVerdict(t0, t1) for t0, t1 in lowering]
+    if any(v.chatter for v in verdicts):
+        return True
+    return UNDECIDED if any(not v.decided for v in verdicts) else False
 
 
 def ConfirmBySimulation(result: DesignCheckResult, stepSize: Optional[float] = None,

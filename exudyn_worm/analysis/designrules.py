@@ -15,7 +15,7 @@ drive: all of them). The search that applies the rule is :func:`~exudyn_worm.ana
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Dict, Optional, Tuple
+from typing import Dict, Optional, Tuple, Union
 
 from .._checks import JsonNumber
 from ..setups.presets import PARAMETER_UNITS
@@ -47,7 +47,7 @@ class Recommendation:
         stable).
     chartPointAfter : dict
         The chart point of the changed drive's two-mass core (:func:`~exudyn_worm.analysis.charts.ChartCoordinates`).
-    simulatedChatter : bool or None
+    simulatedChatter : bool, str or None
         Chatter while lowering in the reel-changer simulation (:func:`~exudyn_worm.analysis.designconfirm.ConfirmBySimulation`), None if
         not simulated.
     """
@@ -56,7 +56,7 @@ class Recommendation:
     newValue: float
     maxRealPartAfter: float
     chartPointAfter: Dict[str, float]
-    simulatedChatter: Optional[bool] = None
+    simulatedChatter: Optional[Union[bool, str]] = None
 
     @property
     def unit(self) -> str:
@@ -92,7 +92,7 @@ class PairRecommendation:
         Largest real part of the eigenvalues of the changed drive in 1/s at its deciding operating point.
     chartPointAfter : dict
         The changed drive's chart point.
-    simulatedChatter : bool or None
+    simulatedChatter : bool, str or None
         Chatter while lowering in the simulation, None if not simulated.
     """
     parameters: Tuple[str, str]
@@ -100,7 +100,7 @@ class PairRecommendation:
     newValues: Tuple[float, float]
     maxRealPartAfter: float
     chartPointAfter: Dict[str, float]
-    simulatedChatter: Optional[bool] = None
+    simulatedChatter: Optional[Union[bool, str]] = None
 
     @property
     def changes(self) -> Dict[str, float]:

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Dict, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -31,7 +31,8 @@ from ..setups.operatingpoints import DutyOperatingPoints, DutyPoint
 from ..setups.wholedrive import CheckDrive, Drive
 from . import linearization
 
-__all__ = ['StabilityModel', 'OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'StateGrowth']
+__all__ = ['StabilityModel', 'OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'StateGrowth',
+           'StateInstability', 'GrowthText', 'VerdictWord', 'DIVERGENCE', 'CHATTER', 'REAL_EIGENVALUE_TOLERANCE']
 
 
 class StabilityModel(str, enum.Enum):
@@ -49,6 +50,72 @@ class StabilityModel(str, enum.Enum):
 
 
 ANALYTICAL, LINEARIZED = StabilityModel.ANALYTICAL, StabilityModel.LINEARIZED
+
+
+#: the kinds of a growing eigenvalue: a real one (divergence: the drive runs away or creeps from the operating point,
+#: no vibration) and a complex one (a growing vibration: chatter)
+DIVERGENCE, CHATTER = 'divergence', 'chatter'
+#: a growing eigenvalue is real where abs(Im) <= this times abs(lambda) (numpy returns exactly 0 for a real eigenvalue
+#: of a real matrix; this only absorbs round-off)
+REAL_EIGENVALUE_TOLERANCE = 1e-9
+
+
+def _Deciding(state: Any) -> complex:
+    """The eigenvalue of the state's largest real part (its rigid-body modes left out, as StateGrowth)."""
+    re = float(state.maxRealPart)
+    lam = np.asarray(state.eigenvalues)
+    return complex(lam[int(np.argmin(np.abs(lam.real - re)))])
+
+
+def StateInstability(state: Any) -> Optional[str]:
+    """How one contact state's analysis is unstable: None (stable), :data:`DIVERGENCE` (the eigenvalue with the
+    largest real part is real: the drive runs away or creeps) or :data:`CHATTER` (it is complex: a growing vibration).
+
+    Parameters
+    ----------
+    state : object
+        ``OperatingPointStability.state`` or ``analysis.State(S)`` (``stable``, ``maxRealPart``, ``eigenvalues``).
+
+    Returns
+    -------
+    str or None
+    """
+    if bool(state.stable):
+        return None
+    lam = _Deciding(state)
+    return DIVERGENCE if abs(lam.imag) <= REAL_EIGENVALUE_TOLERANCE * abs(lam) else CHATTER
+
+
+def GrowthText(maxRealPart: float, frequencyHz: float, instability: Optional[str]) -> str:
+    """The deciding eigenvalue in words: ``largest real part -0.25 1/s at 2.4 Hz``, or for a divergence
+    ``a real eigenvalue grows at 603 1/s (divergence: the drive runs away or creeps ...; no vibration)``.
+
+    Parameters
+    ----------
+    maxRealPart : float
+        Largest real part in 1/s.
+    frequencyHz : float
+        Frequency of that eigenvalue in Hz.
+    instability : str or None
+        :func:`StateInstability`.
+    """
+    if instability == DIVERGENCE:
+        return (f"a real eigenvalue grows at {maxRealPart:.4g} 1/s (divergence: the drive runs away or creeps from "
+                f"the operating point; no vibration)")
+    return f"largest real part {maxRealPart:.4g} 1/s at {frequencyHz:.4g} Hz"
+
+
+def VerdictWord(stable: bool, instability: Optional[str] = None) -> str:
+    """``stable``, ``UNSTABLE`` (a growing vibration) or ``DIVERGENT`` (a real eigenvalue grows).
+
+    Parameters
+    ----------
+    stable : bool
+        The verdict.
+    instability : str or None
+        :func:`StateInstability`.
+    """
+    return 'stable' if stable else 'DIVERGENT' if instability == DIVERGENCE else 'UNSTABLE'
 
 
 def StateGrowth(state: Any) -> Tuple[float, float]:
@@ -124,15 +191,26 @@ class OperatingPointStability:
         return bool(self.state.stable)
 
     @property
+    def instability(self) -> Optional[str]:
+        """None (stable), :data:`DIVERGENCE` or :data:`CHATTER` (:func:`StateInstability`)."""
+        return StateInstability(self.state)
+
+    @property
+    def growthText(self) -> str:
+        """The deciding eigenvalue in words (:func:`GrowthText`)."""
+        return GrowthText(self.maxRealPart, self.frequencyHz, self.instability)
+
+    @property
     def selfLocking(self):
         """Static and dynamic self-locking at this point's sliding speed
         (:class:`~exudyn_worm.model.selflocking.SelfLockingVerdict`)."""
         return SelfLocking(self.gear, self.point.operatingPoint.slidingSpeed)
 
     def ToDict(self) -> Dict:
-        """JSON-ready: the point (:meth:`DutyPoint.ToDict`) with ``maxRealPart``, ``frequencyHz``, ``stable``."""
+        """JSON-ready: the point (:meth:`DutyPoint.ToDict`) with ``maxRealPart``, ``frequencyHz``, ``stable``,
+        ``instability``."""
         return {**self.point.ToDict(), 'maxRealPart': JsonNumber(self.maxRealPart),
-                'frequencyHz': JsonNumber(self.frequencyHz), 'stable': self.stable}
+                'frequencyHz': JsonNumber(self.frequencyHz), 'stable': self.stable, 'instability': self.instability}
 
 
 @dataclass(frozen=True)
@@ -188,6 +266,22 @@ class DriveAnalysis:
         S = max(CONTACT_STATES, key=lambda s: float(self.atRest.State(s).maxRealPart))
         return StateGrowth(self.atRest.State(S))[1]
 
+    @property
+    def instability(self) -> Optional[str]:
+        """How the drive is unstable: None (stable), :data:`DIVERGENCE` or :data:`CHATTER`, by the deciding point's
+        eigenvalue (at rest: the contact state with the largest real part)."""
+        if self.operatingPoints:
+            return self.deciding.instability
+        if self.stable:
+            return None
+        S = max(CONTACT_STATES, key=lambda s: float(self.atRest.State(s).maxRealPart))
+        return StateInstability(self.atRest.State(S))
+
+    @property
+    def growthText(self) -> str:
+        """The deciding eigenvalue in words (:func:`GrowthText`)."""
+        return GrowthText(self.maxRealPart, self.frequencyHz, self.instability)
+
     def State(self, S: int):
         """The result for contact state ``S``: the operating point in that state with the largest real part, or,
         if the duty has none in it, the analysis at rest (for callers that follow one contact state, as the
@@ -210,9 +304,36 @@ class DriveAnalysis:
             return (f"no steady phase in the drive's duty: analysed at rest in both contact states "
                     f"(constant mu = {self.drive.gear.mu:g})")
         p = self.deciding
-        words = 'stable' if p.stable else 'UNSTABLE'
-        return (f"deciding: {p.point.Label()}: {words}, largest real part {p.maxRealPart:.4g} 1/s at "
-                f"{p.frequencyHz:.4g} Hz")
+        return f"deciding: {p.point.Label()}: {VerdictWord(p.stable, p.instability)}, {p.growthText}"
+
+    def CauseText(self) -> str:
+        """What decides the verdict at the deciding point, in words: the friction slope where the point's verdict
+        with mu held at mu(v0) (dmu/dv = 0) differs; else the drive's components where the two-mass drive at the same
+        point (eqs. (15)-(19) with the slope) has another verdict; else '' (the two-mass drive with constant mu
+        already has this verdict).
+
+        Returns
+        -------
+        str
+        """
+        p = self.deciding
+        if p is None:
+            return ''
+        op = p.point.operatingPoint
+        word = VerdictWord(p.stable, p.instability)
+        if op.dmuDv != 0.:
+            flat = _AtPoint(self.drive, replace(op, dmuDv=0.), self.model).State(p.S)
+            if bool(flat.stable) != p.stable:
+                return (f"the speed-dependent friction decides: its slope dmu/dv = {op.dmuDv:.4g} s/m at "
+                        f"v0 = {op.slidingSpeed:.4g} m/s makes the {p.phase} point {word}; with mu held at "
+                        f"mu(v0) = {op.mu:.4g} it would be {VerdictWord(bool(flat.stable), StateInstability(flat))}")
+        if self.drive.components:
+            two = AnalyzeStability(self.drive.elastic, op).State(p.S)
+            if bool(two.stable) != p.stable:
+                return (f"what the two-mass drive lacks decides ({' and '.join(c.text for c in self.drive.components)}): the two-mass "
+                        f"drive at the same {p.phase} point would be "
+                        f"{VerdictWord(bool(two.stable), StateInstability(two))}, the whole drive is {word}")
+        return ''
 
     @property
     def selfLockingVerdicts(self) -> Dict[str, Any]:
@@ -229,10 +350,11 @@ class DriveAnalysis:
         return any(v.dangerous for v in self.selfLockingVerdicts.values())
 
     def ToDict(self) -> Dict:
-        """JSON-ready: ``stable``, ``model``, ``components``, ``maxRealPart``, ``frequencyHz``, ``operatingPoints``,
+        """JSON-ready: ``stable``, ``instability``, ``model``, ``components``, ``maxRealPart``, ``frequencyHz``,
+        ``operatingPoints``,
         ``deciding``, ``decidingText``, ``dangerous``, ``selfLockingAtOperatingPoints``."""
         deciding = self.deciding
-        return {'stable': self.stable, 'model': self.model.value, 'components': [c.text for c in self.drive.components],
+        return {'stable': self.stable, 'instability': self.instability, 'model': self.model.value, 'components': [c.text for c in self.drive.components],
                 'maxRealPart': JsonNumber(self.maxRealPart), 'frequencyHz': JsonNumber(self.frequencyHz),
                 'operatingPoints': [p.ToDict() for p in self.operatingPoints],
                 'deciding': None if deciding is None else {'phase': deciding.phase,

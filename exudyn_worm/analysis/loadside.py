@@ -114,8 +114,9 @@ class LoadSideDiagnosis:
 
     @property
     def frequencyHz(self) -> float:
-        """The frequency that matters in Hz: the growing mode's, else the highest wheel mode's (0 if none)."""
-        if self.growingMode is not None:
+        """The frequency that matters in Hz: the growing mode's, else (none grows, or it is real: a divergence) the
+        highest wheel mode's (0 if none)."""
+        if self.growingMode is not None and self.growingMode['frequencyHz'] > 0.:
             return self.growingMode['frequencyHz']
         return max(self.wheelModesHz, default=0.)
 
@@ -142,13 +143,20 @@ class LoadSideDiagnosis:
             g = self.growingMode
             shares = ', '.join(f"{k} {v:.0%}" for k, v in sorted(g['energyShare'].items(), key=lambda kv: -kv[1])
                                if v >= 0.1)
-            text += (f" (S = {g['S']:+d}: mode at {g['frequencyHz']:.4g} Hz grows at {g['realPart']:.3g} 1/s; "
-                     f"kinetic energy {shares})")
+            mode = (f"mode at {g['frequencyHz']:.4g} Hz grows" if g['frequencyHz'] > 0. else
+                    'a real mode grows (divergence: the drive runs away or creeps, no vibration)')
+            text += f" (S = {g['S']:+d}: {mode} at {g['realPart']:.3g} 1/s; kinetic energy {shares})"
         if self.lumpingSafe:
             return text + (f"; lumping is safe: every stage frequency is at least {self.limitFactor:.2f} times the "
                            f"highest wheel mode ({max(self.wheelModesHz, default=0.):.4g} Hz)")
         if self.cause is None:
-            return text + '; lumping is not safe (the verdicts differ)'
+            if self.lumpedStable != self.wholeStable:
+                return text + '; lumping is not safe (the verdicts differ)'
+            highest = max(self.wheelModesHz, default=0.)
+            low = next(s for s in self.stages if s.frequencyHz < self.limitFactor * highest)
+            return text + (f"; lumping is not safe although the verdicts agree: load-side stage {low.number}'s "
+                           f"{low.frequencyHz:.4g} Hz lie below {self.limitFactor:.2f} x the lumped drive's highest "
+                           f"wheel mode {highest:.4g} Hz, so the driven machine does not follow the wheel there")
         s = self.stages[self.cause - 1]
         highest = max(self.wheelModesHz, default=0.)
         return text + (f"; the cause is load-side stage {s.number}: its {s.frequencyHz:.4g} Hz lie below "

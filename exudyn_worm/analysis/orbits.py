@@ -26,6 +26,7 @@ a moving belt with static > kinetic friction (stick-slip, closed form).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Callable, Dict, Optional, Sequence, Tuple
 
@@ -33,11 +34,16 @@ import numpy as np
 
 from .._checks import CheckPositive
 
-__all__ = ['PeriodicOrbit', 'ShootingError', 'FindPeriodicOrbit', 'FloquetMultipliers', 'ShootingJacobian',
-           'Monodromy', 'FlowVelocity', 'BroydenUpdate', 'SHOOTING_TOLERANCE', 'SLOW_CONVERGENCE']
+__all__ = ['PeriodicOrbit', 'ShootingError', 'NoSteadyChatter', 'FindPeriodicOrbit', 'FloquetMultipliers', 'ShootingJacobian',
+           'Monodromy', 'FlowVelocity', 'BroydenUpdate', 'SHOOTING_TOLERANCE', 'SLOW_CONVERGENCE',
+           'TRIVIAL_MULTIPLIER_TOLERANCE']
 
 #: default tolerance of the shooting residual ``|x(T) - x0|``, relative to the state scale
 SHOOTING_TOLERANCE = 1e-8
+#: an orbit is accurate where its trivial Floquet multiplier (1 in exact arithmetic) is within this of 1: along the
+#: chatter branches of docs/chatter-amplitude.md ("Accuracy and limits") the error was 0.005-0.007 in the median and
+#: at most 0.05 (the 0.5 mm backlash branch); beyond it the monodromy matrix, and the orbit's stability, is not trusted
+TRIVIAL_MULTIPLIER_TOLERANCE = 0.05
 
 
 class ShootingError(ValueError):
@@ -55,6 +61,19 @@ class ShootingError(ValueError):
     def __init__(self, message: str, lastOrbit: Optional['PeriodicOrbit'] = None):
         super().__init__(message)
         self.lastOrbit = lastOrbit
+
+
+class NoSteadyChatter(ShootingError):
+    """Not a failure of the method: the drive settles to rest, so there is no steady chatter to find (a result; the
+    message says why). A :class:`ShootingError`, so that a caller that handles those handles this one too.
+
+    Parameters
+    ----------
+    message : str
+        What settles and why.
+    lastOrbit : PeriodicOrbit or None
+        None (no orbit was iterated).
+    """
 
 
 @dataclass
@@ -112,6 +131,19 @@ class PeriodicOrbit:
         circle than this."""
         mu = self.multipliers
         return float(np.min(np.abs(mu - 1.))) if mu.size else 0.
+
+    @property
+    def accurate(self) -> bool:
+        """True where :attr:`trivialMultiplierError` is at most :data:`TRIVIAL_MULTIPLIER_TOLERANCE`."""
+        return self.trivialMultiplierError <= TRIVIAL_MULTIPLIER_TOLERANCE
+
+    @property
+    def stabilityDecided(self) -> bool:
+        """True where the orbit is :attr:`accurate` and its largest non-trivial multiplier lies farther from the unit
+        circle than the trivial multiplier's error (else the monodromy matrix cannot tell stable from unstable)."""
+        mu = self.nontrivialMultipliers
+        distance = abs(float(np.max(np.abs(mu))) - 1.) if mu.size else math.inf
+        return self.accurate and distance > self.trivialMultiplierError
 
     @property
     def stable(self) -> bool:

@@ -34,7 +34,7 @@ from .stepsize import CheckStepSize, RecommendedStepSize
 __all__ = ['SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
            'DefaultPhases', 'DefaultSimulatedTime', 'WindowPhases', 'PhaseLabel',
            'CheckRunSize', 'RunSizeError', 'SolverSettings', 'DEFAULT_STEP_SIZE',
-           'SOLVER_SETTINGS', 'MAX_STEPS']
+           'SOLVER_SETTINGS', 'MAX_STEPS', 'STANDSTILL_TOLERANCE']
 
 #: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change
 #: < 1 % when it is halved, see validation/REPORT.md); SimulateReelChanger's default is the drive's own
@@ -256,11 +256,25 @@ def _IdleWords(drive: Drive, t: float) -> str:
     if load is None:
         return 'no load'
     ratio = drive.gear.ratio
-    angle, speed = MotorMotion(drive.parameters, 'PhaseLabel').AngleAndSpeed(t, MATH_OPS)
+    motion = MotorMotion(drive.parameters, 'PhaseLabel')
+    angle, speed = motion.AngleAndSpeed(t, MATH_OPS)
     torque = load.Torque(angle / ratio, speed / ratio, t, MATH_OPS)
     if abs(torque) <= 1e-9 * max(load.maximum, 1e-300):
         return 'no load'
-    return 'standstill under load' if speed == 0. else 'idle'
+    return 'standstill under load' if abs(speed) <= STANDSTILL_TOLERANCE * _LargestSpeed(motion) else 'idle'
+
+
+#: the motor stands where its speed is at most this fraction of its own largest speed (a speed table interpolated
+#: between rows of zero speed returns round-off, e.g. 8.9e-16 rad/s, not an exact 0)
+STANDSTILL_TOLERANCE = 1e-9
+
+
+def _LargestSpeed(motion) -> float:
+    """The motor's largest speed in rad/s: a speed table's largest row, a constant or start-stop motor's speed (a
+    motor on its characteristic: its no-load speed)."""
+    if hasattr(motion, 'points'):
+        return max((abs(float(w)) for _, w in motion.points), default=0.)
+    return abs(float(getattr(motion, 'speed', getattr(motion, 'noLoadSpeed', 0.))))
 
 
 def DefaultSimulatedTime(drive: Drive) -> float:
@@ -422,7 +436,7 @@ def SimulateReelChanger(drive: Drive, endTime: Optional[float] = None,
     stepSize = RecommendedStepSize(drive) if stepSize is None else CheckPositive(w, 'stepSize', stepSize, 's')
     steps = CheckRunSize(endTime, stepSize, maxSteps, w)
     CheckStepSize(drive, stepSize, w)          # refuses a step that cannot resolve the drive's modes
-    CheckWormRotation(parameters, stepSize, w)      # warns: a worm rotation in fewer than a few steps
+    CheckWormRotation(parameters, stepSize, 'simulation')     # warns: a worm rotation in fewer than a few steps
     rigid = drive.isRigidBody                       # the 3D model (docs/mesh-3d.md)
     if rigid:
         # lazy: the 3D model's module builds on this one's helpers
@@ -478,7 +492,7 @@ def SimulateReelChanger(drive: Drive, endTime: Optional[float] = None,
         series['axialForce'] = mesh.axialForce
     if rigid:
         series.update(reelchanger3d.MeshForceSeries(model, mesh))
-    CheckWormSpeed(series['omega1'], series.get('omega0', ()), parameters, w)   # warns: the load drives the worm
+    CheckWormSpeed(series['omega1'], series.get('omega0', ()), parameters, 'simulation', time)  # the load drives the worm
     return SimulationResult(time=time, series=series, J2=core.J2, r2=core.gear.r2, solveSeconds=solveSeconds,
                             steps=steps, info={'stepSize': stepSize,
                                                'maxLoadTorque': model.load.maximum if model.load is not None else 0.,

@@ -378,7 +378,8 @@ def CompareHalfStep(metrics: Sequence[Mapping], halfStepMetrics: Sequence[Mappin
     Returns
     -------
     list of dict
-        ``metrics`` with ``chatter`` set to :data:`UNRESOLVED` where the two verdicts differ, and ``halfStep``: the
+        ``metrics`` with ``chatter`` set to :data:`UNRESOLVED` where the two verdicts (True, False or
+        ``'undecided'``) differ, and ``halfStep``: the
         half-step run's metrics of the window.
 
     Raises
@@ -392,7 +393,7 @@ def CompareHalfStep(metrics: Sequence[Mapping], halfStepMetrics: Sequence[Mappin
                          f"{[(b['t0'], b['t1']) for b in halfStepMetrics]} against {[(a['t0'], a['t1']) for a in metrics]}")
     out = []
     for a, b in zip(metrics, halfStepMetrics):
-        chatter = a['chatter'] if bool(a['chatter']) == bool(b['chatter']) else UNRESOLVED
+        chatter = a['chatter'] if a['chatter'] == b['chatter'] else UNRESOLVED
         out.append(dict(a, chatter=chatter, halfStep={k: v for k, v in b.items() if k not in ('t0', 't1')}))
     return out
 

@@ -19,6 +19,8 @@ import numpy as np
 
 from .._files import WriteAtomically, WriteTextAtomically
 from ..setups.presets import PARAMETER_UNITS
+from ..items.results import CHATTER_STATES, UNDECIDED
+from .drivestability import CHATTER, DIVERGENCE
 from .studymap import ComputeChatterMap
 from .studygrid import Study, Variation, _Identity
 from .studypoint import HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS
@@ -48,12 +50,20 @@ def _FromCsv(column: str, text: str):
         return None
     if column == 'run':
         return int(text)
+    if column in ('analyticInstability', 'analyticInstabilityLowering'):
+        if text not in (DIVERGENCE, CHATTER):
+            raise ValueError(f"column {column}: expected {DIVERGENCE}, {CHATTER} or empty, got {text!r}")
+        return text
+    if column.endswith('.chatterState'):
+        if text not in CHATTER_STATES:
+            raise ValueError(f"column {column}: expected one of {', '.join(CHATTER_STATES)}, got {text!r}")
+        return text
     if column in _BOOL_COLUMNS or column.endswith('.chatter'):
         verdict = column == 'loweringChatter' or column.endswith('.chatter')
-        if text not in ('True', 'False') and not (verdict and text == 'unresolved'):
-            raise ValueError(f"column {column}: expected True or False{' or unresolved' if verdict else ''}, "
-                             f"got {text!r}")
-        return text if text == 'unresolved' else text == 'True'
+        if text not in ('True', 'False') and not (verdict and text in ('unresolved', UNDECIDED)):
+            raise ValueError(f"column {column}: expected True or False{', unresolved or undecided' if verdict else ''}"
+                             f", got {text!r}")
+        return text if text in ('unresolved', UNDECIDED) else text == 'True'
     return float(text)
 
 
@@ -244,12 +254,28 @@ class StudyResult:
         return [r for r in self.rows if r['status'] != 'ok']
 
     @property
+    def judged(self) -> List[Dict]:
+        """The finished runs that :attr:`agreement` counts: a decided lowering window (chatter True or False) and a
+        linear verdict of the lowering operating points that is not a divergence."""
+        return [r for r in self._Decided() if r.get('analyticInstabilityLowering') != DIVERGENCE]
+
+    def _Decided(self) -> List[Dict]:
+        return [r for r in self.finished if r['loweringChatter'] in (True, False)
+                and r['analyticStableLowering'] is not None]
+
+    @property
+    def divergent(self) -> List[Dict]:
+        """The judged runs whose lowering points diverge (left out of :attr:`agreement`)."""
+        return [r for r in self._Decided() if r.get('analyticInstabilityLowering') == DIVERGENCE]
+
+    @property
     def agreement(self) -> Optional[float]:
         """Fraction of finished runs whose chatter while lowering matches the analytical S = -1 verdict
-        (chatter iff unstable); None if no finished run has a lowering window. Runs whose verdict is
-        ``'unresolved'`` (it changes at half the step) are left out."""
-        judged = [r for r in self.finished if r['loweringChatter'] in (True, False)
-                  and r['analyticStableLowering'] is not None]
+        (chatter iff unstable), over the runs whose lowering window is decided; None if there is none. Runs whose
+        verdict is ``'unresolved'`` (it changes at half the step) or ``'undecided'`` (the window is too short to
+        tell a decaying vibration from chatter) are left out (:attr:`judged` counts the others), and so are runs
+        whose lowering points diverge (a real eigenvalue: a runaway or creep, not chatter; :attr:`divergent`)."""
+        judged = self.judged
         if not judged:
             return None
         return sum(r['loweringChatter'] == (not r['analyticStableLowering']) for r in judged) / len(judged)
@@ -273,6 +299,8 @@ class StudyResult:
                 'status': row['status'], 'error': row['error'] or None, 'seconds': row['seconds'],
                 'solveSeconds': row['solveSeconds'], 'stepSize': row['stepSize'], 'windows': windows,
                 'analyticStable': row['analyticStable'], 'analyticStableLowering': row['analyticStableLowering'],
+                'analyticInstability': row.get('analyticInstability'),
+                'analyticInstabilityLowering': row.get('analyticInstabilityLowering'),
                 'loweringChatter': row['loweringChatter'], 'stepChecked': row.get('stepChecked')}
 
     def ToDict(self) -> Dict:
@@ -388,7 +416,8 @@ def _WriteSidecar(path: Path, study: Study, shard, engine, workers, started, ver
             'units': {k: PARAMETER_UNITS[k] for k in study.keys},
             'windowMetricUnits': {'t0': 's', 't1': 's', 'maxAbsWheelAcceleration': 'rad/s^2', 'maxNormalForce': 'N',
                                   'dominantFrequencyHz': 'Hz', 'fractionSNegative': '-', 'minWormSpeed': 'rad/s',
-                                  'chatter': 'bool', 'vibrationSeconds': 's'},
+                                  'chatter': 'bool or undecided', 'chatterState': '-', 'chatterAmplitude': '-',
+                                  'envelopeRate': '1/s', 'vibrationSeconds': 's'},
             'columns': _Columns(study), 'started': started, 'updated': time.strftime('%Y-%m-%dT%H:%M:%S%z'),
             'counts': counts, 'wallSeconds': wallSeconds}
     WriteTextAtomically(path, json.dumps(meta, indent=2, allow_nan=False))

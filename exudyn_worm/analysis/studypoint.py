@@ -6,30 +6,33 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from typing import Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
-from ..items.results import CHATTER_TORQUE_FRACTION
+from .._checks import WarningText
+from ..items.results import CHATTER_TORQUE_FRACTION, UNDECIDED
 from ..items.solve import IsInterrupt
 from ..params.plausibility import ImplausibleValueWarning
 from ..setups.duty import IsReelChangerDuty
 from ..setups.wholedrive import Drive
-from .drivestability import AnalyzeDrive, DriveAnalysis
+from .drivestability import AnalyzeDrive, DriveAnalysis, StateInstability
 from .reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedTime
 from .stepsize import UNRESOLVED, CloseVerdicts, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
 from . import reelchanger
 
-__all__ = ['WINDOW_METRICS', 'RUN_COLUMNS', 'HALF_STEP_METRICS', 'VibrationSeconds', 'LoweringVerdict',
+__all__ = ['WINDOW_METRICS', 'RUN_COLUMNS', 'HALF_STEP_METRICS', 'VibrationSeconds', 'LoweringVerdict', 'RunLabel',
            'DecidingWindow', 'RunPoint']
 
 
 #: metrics written per window (those of ``SimulationResult.WindowMetrics`` plus ``vibrationSeconds``)
 WINDOW_METRICS = ('t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
-                  'fractionSNegative', 'minWormSpeed', 'chatter', 'vibrationSeconds')
+                  'fractionSNegative', 'minWormSpeed', 'chatter', 'chatterState', 'chatterAmplitude', 'envelopeRate',
+                  'vibrationSeconds')
 #: per-run columns of the results table, before the varied parameters and the window metrics
 RUN_COLUMNS = ('run', 'status', 'error', 'seconds', 'solveSeconds', 'stepSize', 'analyticStable',
-               'analyticStableLowering', 'loweringChatter', 'stepChecked')
+               'analyticStableLowering', 'analyticInstability', 'analyticInstabilityLowering', 'loweringChatter',
+               'stepChecked')
 #: metrics of the run at half the step written per window as ``w{i}.halfStep.{metric}`` (where the step is checked,
 #: :func:`~exudyn_worm.analysis.stepsize.CompareHalfStep`; a window's ``chatter`` is then ``'unresolved'`` where they differ)
 HALF_STEP_METRICS = ('maxAbsWheelAcceleration', 'dominantFrequencyHz', 'chatter')
@@ -118,6 +121,20 @@ def _OneLine(err: BaseException) -> str:
     return ' '.join(f"{type(err).__name__}: {err}".split())
 
 
+def RunLabel(run: int, varied: Mapping[str, Any]) -> str:
+    """A run of a study in words, for its warnings: ``run 3 (J1 = 0.01, kT = 2000)``.
+
+    Parameters
+    ----------
+    run : int
+        The run's index.
+    varied : mapping
+        Its varied parameters and their values (SI).
+    """
+    return f"run {run} (" + ', '.join(f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}"
+                                      for k, v in varied.items()) + ')'
+
+
 def RunPoint(task: Mapping) -> Dict:
     """Run one point of a study; never raises for a failing run (it is recorded as failed with its reason).
 
@@ -140,14 +157,17 @@ def RunPoint(task: Mapping) -> Dict:
     start = time.perf_counter()
     p = dict(task['parameters'])
     row = {'run': int(task['run']), 'status': 'failed', 'error': '', 'seconds': None, 'solveSeconds': None,
-           'stepSize': None, 'analyticStable': None, 'analyticStableLowering': None, 'loweringChatter': None,
-           'stepChecked': None}
+           'stepSize': None, 'analyticStable': None, 'analyticStableLowering': None, 'analyticInstability': None,
+           'analyticInstabilityLowering': None, 'loweringChatter': None, 'stepChecked': None}
     row.update(task['varied'])
     try:
         drive = Drive.FromParameters(p)         # the run's drive, resolved once in its worker
         analysis = AnalyzeDrive(drive)          # at the duty's operating points: two-mass or the whole drive
         row['analyticStable'] = analysis.stable
         row['analyticStableLowering'] = LoweringVerdict(analysis)
+        row['analyticInstability'] = analysis.instability
+        if row['analyticStableLowering'] is not None:
+            row['analyticInstabilityLowering'] = StateInstability(analysis.State(-1))
         period = DefaultSimulatedTime(drive)      # one rotation of the reel changer; another duty: its tables' end
         if task['windows'] is not None:
             windows, phases = task['windows'], None
@@ -165,11 +185,14 @@ def RunPoint(task: Mapping) -> Dict:
             check = StepCheckByDefault(drive) and 2 * endTime / stepSize <= maxSteps
 
         def Simulate(h):       # no bar per run: the study draws one bar for all runs
-            with warnings.catch_warnings():
+            with warnings.catch_warnings(record=True) as caught:
                 if h != stepSize:      # the run at half the step repeats what the run at the step said
                     warnings.simplefilter('ignore', ImplausibleValueWarning)
                 result = reelchanger.SimulateReelChanger(drive, endTime=endTime, stepSize=h, progress=False,
                                                          maxSteps=maxSteps)
+            for caughtWarning in caught:       # each warning says which run it comes from
+                text = WarningText(caughtWarning.message).removeprefix('simulation: ')
+                warnings.warn(f"{RunLabel(row['run'], task['varied'])}: {text}", caughtWarning.category, stacklevel=1)
             if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
                 raise FloatingPointError('diverged: non-finite state in the solution'
                                          + (' at half the step' if h != stepSize else ''))
@@ -188,7 +211,7 @@ def RunPoint(task: Mapping) -> Dict:
             m = dict(m, vibrationSeconds=VibrationSeconds(result, t0, t1))
             for name in WINDOW_METRICS:
                 value = m[name]
-                if not isinstance(value, (bool, str)) and not math.isfinite(value):
+                if value is not None and not isinstance(value, (bool, str)) and not math.isfinite(value):
                     raise FloatingPointError(f"diverged: window {i} metric {name} = {value}")
                 row[f'w{i}.{name}'] = value
             for name in HALF_STEP_METRICS if check else ():
@@ -198,7 +221,7 @@ def RunPoint(task: Mapping) -> Dict:
         lowering = ([i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1] if phases is None
                     else [i for i, (_, _, phase) in enumerate(phases) if phase == 'lower'])   # the load drives
         verdict = metrics[lowering[0]]['chatter'] if lowering else None
-        row['loweringChatter'] = verdict if verdict in (None, UNRESOLVED) else bool(verdict)
+        row['loweringChatter'] = verdict if verdict in (None, UNRESOLVED, UNDECIDED) else bool(verdict)
         row['status'] = 'ok'
     except Exception as err:            # a failing run is a result, not the end of the study
         if IsInterrupt(err):            # ... but Ctrl-C is the end of it

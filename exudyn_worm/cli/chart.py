@@ -135,16 +135,19 @@ class _OwnVerdict:
         from ..analysis.drivestability import AnalyzeDrive
         analysis = AnalyzeDrive(self.drive)
         return {'label': self.label, **ChartCoordinates(self.drive.elastic), 'stable': analysis.stable,
-                'maxRealPart': analysis.maxRealPart, 'decidingText': analysis.decidingText,
-                'components': [c.text for c in self.drive.components]}
+                'instability': analysis.instability, 'maxRealPart': analysis.maxRealPart,
+                'decidingText': analysis.decidingText, 'components': [c.text for c in self.drive.components],
+                'cause': analysis.CauseText()}
 
     def Text(self) -> str:
+        # lazy: start-up (exudyn-worm --help imports every command module)
+        from ..analysis.drivestability import VerdictWord
         d = self.ToDict()
         parts = f"; it has {' and '.join(d['components'])}, which the chart does not" if d['components'] else ''
         return (f"this drive ({self.label}) is marked at x = {d['x']:.4g}, y = {d['y']:.4g} (own D_V = {d['DV']:.4g}, "
                 f"D_TV = {d['DTV']:.4g}){parts}; its verdict at the operating points of its duty (as exudyn-worm "
-                f"stability, mu(v) and the whole drive): {'stable' if d['stable'] else 'UNSTABLE'} "
-                f"({d['decidingText']})")
+                f"stability, mu(v) and the whole drive): {VerdictWord(d['stable'], d['instability'])} "
+                f"({d['decidingText']})" + (f"; {d['cause']}" if d['cause'] else ''))
 
 
 def _Run(args: argparse.Namespace) -> int:

@@ -103,12 +103,32 @@ def _RunSteady(args: argparse.Namespace, drive, parameters) -> int:
     model for a drive with shaft bearings (or, where no orbit converges, its settled long simulation)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.chatter import SteadyChatterSummary
+    from ..analysis.drivestability import DIVERGENCE, AnalyzeDrive, GrowthText, StateInstability
+    from ..analysis.orbits import NoSteadyChatter
     if args.plot:
         raise UsageError("chatter: --plot draws the branch of --vary; without --vary there is one orbit to report")
-    with StdoutToStderr(args.json), BadInput():
-        summary = SteadyChatterSummary(parameters, rigidBody=drive.isRigidBody)
+    with BadInput():
+        lowering = AnalyzeDrive(drive).State(-1)
+    divergence = None
+    if StateInstability(lowering) == DIVERGENCE:      # a runaway or creep, which no chatter orbit describes
+        divergence = (f"the lowering operating point diverges: {GrowthText(float(lowering.maxRealPart), 0., DIVERGENCE)}"
+                      f"; what follows is the periodic orbit a time simulation settles on, if any")
+        if not args.json:
+            print(f"exudyn-worm chatter: note: {divergence}", file=sys.stderr)
+    try:
+        with StdoutToStderr(args.json), BadInput():
+            summary = SteadyChatterSummary(parameters, rigidBody=drive.isRigidBody)
+    except UsageError as err:         # no steady chatter is a result, not an error
+        if not isinstance(err.__cause__, NoSteadyChatter):
+            raise
+        reason = str(err.__cause__).split(': ', 1)[-1]
+        if args.json:
+            PrintJson({'steadyChatter': False, 'reason': reason, 'divergence': divergence})
+        else:
+            print(f"exudyn-worm chatter: {SourceText(args)}, lowering phase (constant load torque): {reason}")
+        return 0
     if args.json:
-        PrintJson(summary)
+        PrintJson({**summary, 'divergence': divergence})
         return 0
     print('\n'.join(FormatSteadyChatter(summary, f"exudyn-worm chatter: {SourceText(args)}, steady chatter of the "
                                                   f"lowering phase (constant load torque)")))

@@ -29,6 +29,7 @@ def FormatSpeedChart(chart: 'SpeedChart', source: str) -> List[str]:
     """
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.speedchart import RPM
+    from ..analysis.drivestability import VerdictWord
     model = ('eq. (16) extended by the friction slope' if chart.model == 'analytical' else
              f"the linearized whole drive: it has {' and '.join(chart.components)}")
     lines = [f"exudyn-worm chart --speed: {source}; {chart.frictionLaw} friction law; each direction of the duty at "
@@ -50,12 +51,18 @@ def FormatSpeedChart(chart: 'SpeedChart', source: str) -> List[str]:
                      f"No chatter while {what} at any of these speeds.")
     if chart.ownPoints:
         lines.append("At the drive's own operating points (the verdict of exudyn-worm stability): "
-                     + '; '.join(f"{p.point.Label()}: {'stable' if p.stable else 'UNSTABLE'} "
-                                 f"({p.maxRealPart:.4g} 1/s at {p.frequencyHz:.4g} Hz)" for p in chart.ownPoints)
-                     + f"; the drive is {'stable' if chart.stable else 'UNSTABLE'}")
+                     + '; '.join(f"{p.point.Label()}: {VerdictWord(p.stable, p.instability)} ({p.growthText})"
+                                 for p in chart.ownPoints)
+                     + f"; the drive is {VerdictWord(chart.stable, _Instability(chart))}")
     else:
         lines.append("The drive has no motor: no operating point of its own (the load is taken at every speed).")
     return lines
+
+
+def _Instability(chart: 'SpeedChart'):
+    """The instability of the own point with the largest real part (None: stable)."""
+    unstable = [p for p in chart.ownPoints if not p.stable]
+    return max(unstable, key=lambda p: p.maxRealPart).instability if unstable else None
 
 
 def FormatChartTable(charts: Sequence[StabilityChart], points: Optional[Dict[str, Dict[str, float]]] = None

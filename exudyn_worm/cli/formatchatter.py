@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from typing import List
 
+from ..analysis.orbits import TRIVIAL_MULTIPLIER_TOLERANCE
 from ..items.bearings import BEARING_LOADS
 
 __all__ = ['FormatBranch', 'FormatSteadyChatter']
@@ -35,9 +36,13 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
         row = ''.join(f" {p.info.get(k, float('nan')) / 1e3:15.3f}" for k, _ in loads)
         lines.append(f"  {p.value:{width}.6g} {p.info.get('forceFactor', float('nan')):11.3f} "
                      f"{p.info.get('maxWheelAcceleration', float('nan')):16.1f} {p.orbit.frequencyHz:8.2f}{row}  "
-                     f"{'stable' if p.stable else 'unstable'}")
+                     + (f"{'stable' if p.stable else 'unstable'}" if p.orbit.accurate else
+                        f"INACCURATE (trivial multiplier off by {p.orbit.trivialMultiplierError:.2g})"))
     if loads:
         lines.append('  (bearing loads: the largest over each orbit)')
+    if any(not p.orbit.accurate for p in branch.points):
+        lines.append(f"  (INACCURATE: the trivial Floquet multiplier, 1 in exact arithmetic, is off by more than "
+                     f"{TRIVIAL_MULTIPLIER_TOLERANCE:g}: that orbit's stability is not decided)")
     lines.append('')
     for h in branch.hopf:
         lines.append(f"Hopf point at {branch.parameter} = {h['value']:.6g} ({h['type']}); linear boundary "
@@ -92,8 +97,16 @@ def FormatSteadyChatter(summary: dict, title: str) -> List[str]:
         lines.append(f"  min worm speed          {a['minWormSpeed']:10.3f} rad/s")
     if orbit:
         multipliers = ', '.join(f'{m:.4g}' for m in summary['multipliers'][:4])
-        lines.append(f"  Floquet multipliers     {multipliers} (largest |mu|; trivial one off by "
-                     f"{summary['trivialMultiplierError']:.2g}): {'stable' if summary['stable'] else 'unstable'} orbit")
+        error = summary['trivialMultiplierError']
+        if not summary.get('accurate', True):
+            tail = (f"trivial one off by {error:.2g}, above the tolerance {TRIVIAL_MULTIPLIER_TOLERANCE:g}): INACCURATE "
+                    f"orbit, its stability is not decided (exudyn-worm simulate is the better guide here)")
+        elif not summary.get('stabilityDecided', True):
+            tail = (f"trivial one off by {error:.2g}, no less than the largest's distance from the unit circle): the "
+                    f"orbit's stability is not decided")
+        else:
+            tail = f"trivial one off by {error:.2g}): {'stable' if summary['stable'] else 'unstable'} orbit"
+        lines.append(f"  Floquet multipliers     {multipliers} (largest |mu|; {tail}")
     else:
         lines.append('  Floquet multipliers     none (no periodic orbit: values of the settled long simulation)')
     if any(k in a for k, _ in BEARING_LOADS):

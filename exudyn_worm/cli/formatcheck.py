@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, List
 
+from ..analysis.drivestability import DIVERGENCE, StateInstability, VerdictWord
 from .formatstability import DangerLines, OperatingPointLines
 
 if TYPE_CHECKING:
@@ -24,6 +25,8 @@ def _G(x, digits: int = 4) -> str:
 
 
 def _Simulated(chatter) -> str:
+    if chatter == 'undecided':
+        return 'undecided (a vibration that decays slower than the window; simulate says more)'
     return '' if chatter is None else ('CHATTER' if chatter else 'no chatter')
 
 
@@ -74,11 +77,13 @@ def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
     a = result.analysis
     p = result.chartPoint
     lines = [title, '']
-    states = '; '.join(f"S = {S:+d}: {'stable' if s.stable else 'UNSTABLE'}, max Re(lambda) = {s.maxRealPart:.4g} 1/s"
+    states = '; '.join(f"S = {S:+d}: {VerdictWord(bool(s.stable), StateInstability(s))}, max Re(lambda) = "
+                       f"{s.maxRealPart:.4g} 1/s" + (' (a real eigenvalue)' if StateInstability(s) == DIVERGENCE else '')
                        for S, s in result.ContactStates().items())
     verdict = ('STABLE with margin' if result.stableWithMargin else
                f"stable, but within the margin along {', '.join(result.marginShortBy)}" if result.stable else
-               'UNSTABLE (chatter expected)')
+               'DIVERGENT (not chatter: the drive runs away or creeps from its operating point)'
+               if a.instability == DIVERGENCE else 'UNSTABLE (chatter expected)')
     lines.append(f"Verdict: {verdict} ({states})")
     lines.append(a.decidingText[0].upper() + a.decidingText[1:])
     drive = result.drive

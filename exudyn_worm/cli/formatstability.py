@@ -5,12 +5,13 @@ model's table (the numbers come from :mod:`exudyn_worm.analysis.drivestability` 
 from __future__ import annotations
 
 import math
-from typing import List
+from typing import Any, List
 
-from ..analysis.drivestability import AnalyzeDrive, DriveAnalysis
+from ..analysis.drivestability import (DIVERGENCE, AnalyzeDrive, DriveAnalysis, GrowthText, StateInstability,
+                                       VerdictWord)
 from ..model.stability import CONTACT_STATES, StabilityAnalysis
 
-__all__ = ['FormatStability', 'OperatingPointLines', 'VerdictLine', 'DangerLines']
+__all__ = ['FormatStability', 'OperatingPointLines', 'VerdictLine', 'DangerLines', 'StateLine']
 
 _RPM = 60. / (2 * math.pi)
 
@@ -38,7 +39,7 @@ def OperatingPointLines(analysis: DriveAnalysis) -> List[str]:
         dynamic = p.selfLocking.dynamic
         lines.append(f"  {p.phase:<9} {p.point.motorSpeed * _RPM:9.4g} {p.point.loadTorque:10.4g} "
                      f"{op.slidingSpeed:8.4g} {op.mu:7.4g} {op.dmuDv:10.4g} {op.normalForce:10.4g} {op.S:+3d} "
-                     f"{p.maxRealPart:9.4g} {p.frequencyHz:8.4g}  {'stable' if p.stable else 'UNSTABLE'}, "
+                     f"{p.maxRealPart:9.4g} {p.frequencyHz:8.4g}  {VerdictWord(p.stable, p.instability)}, "
                      f"{dynamic.rating if dynamic is not None else 'n/a'}")
     lines.append(f"  ({', '.join(sorted({p.point.source for p in analysis.operatingPoints}))}; {analysis.decidingText})")
     return lines
@@ -57,11 +58,42 @@ def VerdictLine(analysis: DriveAnalysis) -> str:
     str
     """
     p = analysis.deciding
-    where = '' if p is None else f" (decided by the {p.phase} phase, S = {p.S:+d}, at {p.point.motorSpeed * _RPM:.4g} rpm: " \
-                                  f"{p.maxRealPart:.4g} 1/s at {p.frequencyHz:.4g} Hz)"
     if p is None:
         where = ' (at rest, every contact state: the duty has no steady phase)'
-    return f"Verdict: {'STABLE (no chatter predicted by the linear model)' if analysis.stable else 'UNSTABLE (chatter expected)'}{where}"
+    elif p.instability == DIVERGENCE:
+        where = (f" (decided by the {p.phase} phase, S = {p.S:+d}, at {p.point.motorSpeed * _RPM:.4g} rpm: a real "
+                 f"eigenvalue grows at {p.maxRealPart:.4g} 1/s)")
+    else:
+        where = (f" (decided by the {p.phase} phase, S = {p.S:+d}, at {p.point.motorSpeed * _RPM:.4g} rpm: "
+                 f"{p.maxRealPart:.4g} 1/s at {p.frequencyHz:.4g} Hz)")
+    if analysis.stable:
+        words = 'STABLE (no chatter predicted by the linear model)'
+    elif analysis.instability == DIVERGENCE:
+        words = 'DIVERGENT (not chatter: the drive runs away or creeps from its operating point)'
+    else:
+        words = 'UNSTABLE (chatter expected)'
+    also = [q for q in analysis.operatingPoints if q is not p and q.instability is not None
+            and q.instability != analysis.instability]
+    also = ''.join(f"; also {'chatter expected' if q.instability != DIVERGENCE else 'DIVERGENT'} in the {q.phase} "
+                   f"phase, S = {q.S:+d}, at {q.point.motorSpeed * _RPM:.4g} rpm ({q.growthText})" for q in also)
+    return f"Verdict: {words}{where}{also}"
+
+
+def StateLine(label: str, state: Any) -> str:
+    """One contact state's verdict line of the whole drive's mode table (``stability``): ``label: stable, largest
+    real part ...``, or for a divergence ``label: DIVERGENT, divergence: a real eigenvalue grows at ...``.
+
+    Parameters
+    ----------
+    label : str
+        The operating point and contact state.
+    state : object
+        A contact state's analysis (``stable``, ``maxRealPart``, ``eigenvalues``).
+    """
+    kind = StateInstability(state)
+    if kind == DIVERGENCE:
+        return f"{label}: {VerdictWord(False, kind)}, {GrowthText(float(state.maxRealPart), 0., kind)}"
+    return f"{label}: {VerdictWord(bool(state.stable))}, largest real part {state.maxRealPart:.4g} 1/s"
 
 
 def DangerLines(analysis: DriveAnalysis) -> List[str]:
@@ -85,6 +117,11 @@ def DangerLines(analysis: DriveAnalysis) -> List[str]:
 def _G(x: float, digits: int = 5) -> str:
     return 'n/a' if x is None else ('inf' if math.isinf(x) and x > 0 else '-inf' if math.isinf(x)
                                     else f'{x:.{digits}g}')
+
+
+def _Lehr(x: float, digits: int = 4) -> str:
+    """A Lehr damping measure; a real mode (no frequency: the measure is infinite) reads ``real``."""
+    return 'real' if x is not None and math.isinf(x) else _G(x, digits)
 
 
 def _Complex(z: complex) -> str:
@@ -153,8 +190,10 @@ def FormatStability(analysis: StabilityAnalysis, title: str = 'Stability', where
     for i in range(2):
         lines.append(row(f'frequency f{i + 1} [Hz]', *(_G(c[S].frequenciesHz[i], 4) for S in CONTACT_STATES)))
     for i in range(2):
-        lines.append(row(f'Lehr damping D{i + 1} = -delta/omega', *(_G(float(c[S].lehrDamping[i]), 3)
-                                                                    for S in CONTACT_STATES)))
+        lines.append(row(f'Lehr damping D{i + 1} = -delta/omega',
+                         *(_Lehr(float(c[S].lehrDamping[i]), 3) + (' (grows)' if c[S].lehrDamping[i] == -math.inf else
+                                                                   ' (decays)' if c[S].lehrDamping[i] == math.inf
+                                                                   else '') for S in CONTACT_STATES)))
     lines.append(row('stable (all Re(lambda) < 0)', *('yes' if c[S].stable else 'NO' for S in CONTACT_STATES)))
 
     ratio = d.inertiaRatio

@@ -50,6 +50,7 @@ from pathlib import Path
 from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 from .. import __version__
+from .._checks import WarningText
 from ..setups.config import DEFAULT_PRESET, LoadConfig, ResolveParameters, ResolveParametersWithSources
 from ..setups.wholedrive import Drive
 from ..params.plausibility import CheckWormRotation, ImplausibleValueWarning
@@ -533,7 +534,7 @@ _SHOWN: set = set()
 
 def _ShowWarning(message, category, filename, lineno, file=None, line=None) -> None:
     """Print a Python warning as one line ``exudyn-worm: warning: ...`` on stderr (no source path), once per run."""
-    text = f"{PROG}: warning: {' '.join(str(message).split())}"
+    text = f"{PROG}: warning: {WarningText(message)}"
     if text not in _SHOWN:
         _SHOWN.add(text)
         print(text, file=sys.stderr)

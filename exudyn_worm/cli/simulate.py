@@ -220,6 +220,7 @@ def _Run(args: argparse.Namespace) -> int:
     from ..analysis.reelchanger import PhaseLabel, SimulateReelChanger, WindowPhases
     from ..items.solve import SolverDivergedError
     from ..analysis.stepsize import CloseVerdicts, CoarseStepWarning, CompareHalfStep, UNRESOLVED
+    from ..items.results import ChatterVerdict, UNDECIDED
     from ..params.plausibility import ImplausibleValueWarning, UnresolvedRotationWarning
 
     def Simulate(h):
@@ -259,14 +260,18 @@ def _Run(args: argparse.Namespace) -> int:
         print(_SIMULATE_HEADER)
         for m in metrics:
             verdict = {True: 'YES', False: 'no'}.get(m['chatter'], m['chatter'])
+            if m['chatter'] != UNRESOLVED and m['chatterState'] != 'none':
+                text = ChatterVerdict.FromMetrics(m).Describe()
+                verdict = text if m['chatter'] == UNDECIDED else f"{verdict} ({text})"
             if m['chatter'] == UNRESOLVED:
-                verdict += (f" (h: {'YES' if not m['halfStep']['chatter'] else 'no'}, "
-                            f"h/2: {'YES' if m['halfStep']['chatter'] else 'no'}; max|phi2''| at h/2 "
-                            f"{m['halfStep']['maxAbsWheelAcceleration']:.1f})")
+                verdict += (f" (h: {_STATE_WORDS[m['chatterState']]}, h/2: {_STATE_WORDS[m['halfStep']['chatterState']]}"
+                            f"; max|phi2''| at h/2 {m['halfStep']['maxAbsWheelAcceleration']:.1f})")
             print(f"{m['t0']:>5.2f} - {m['t1']:<5.2f} {PhaseLabel(drive, m['phase'], (m['t0'], m['t1'])):<22}"
                   f"{m['maxAbsWheelAcceleration']:>20.1f} {m['maxNormalForce'] / 1e3:>10.1f} "
                   f"{m['dominantFrequencyHz']:>7.1f} {100 * m['fractionSNegative']:>6.0f} {m['minWormSpeed']:>16.2f}  "
                   f"{verdict}")
+        for line in _DivergenceLines(drive):
+            print(line)
         if drive.isRigidBody:
             print(_BEARING_HEADER)
             for m in metrics:
@@ -285,6 +290,22 @@ def _Run(args: argparse.Namespace) -> int:
         print(f"wrote {Path(path).resolve()}", file=sys.stderr)
     return 0
 
+
+def _DivergenceLines(drive) -> List[str]:
+    """A line per operating point at which the linear analysis finds a divergence (a real eigenvalue grows: the drive
+    runs away or creeps, which a window's chatter verdict does not describe)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.drivestability import DIVERGENCE, AnalyzeDrive
+    try:
+        points = AnalyzeDrive(drive).operatingPoints
+    except ValueError:          # no linear analysis of this drive: nothing to add to the simulation
+        return []
+    return [f"note: the linear analysis at {p.point.Label()} finds a divergence, not chatter: {p.growthText}"
+            for p in points if p.instability == DIVERGENCE]
+
+
+#: a window's state in the step check's words (YES / no as in the chatter column)
+_STATE_WORDS = {'chatter': 'YES', 'none': 'no', 'decaying': 'no (decaying)', 'undecided': 'undecided'}
 
 COMMAND = Subcommand('simulate', 'time-domain simulation of the reel changer with the Exudyn worm-gear connector',
                      _AddArguments, _Run)

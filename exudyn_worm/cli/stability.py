@@ -6,7 +6,7 @@ from typing import Dict
 
 from .main import (BadInput, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WarnUnresolvedRotation,
                    WholeDriveFromArgs)
-from .formatstability import DangerLines, FormatStability, OperatingPointLines, VerdictLine, _G
+from .formatstability import DangerLines, FormatStability, OperatingPointLines, StateLine, VerdictLine, _G, _Lehr
 from ..analysis.stabilityhint import StabilizingChanges
 from ..analysis.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, DriveAnalysis
 from ..model.geometry import DescribeGeometry, GeometryForm
@@ -47,11 +47,11 @@ def _RunWholeDrive(args: argparse.Namespace, analysis: DriveAnalysis) -> int:
     states = [(f"{p.point.Label()}, S = {p.S:+d}", p.state) for p in analysis.operatingPoints] or \
         [(f"at rest, S = {', '.join(f'{s:+d}' for s in state.S)}", state) for state in analysis.atRest.states.values()]
     for label, state in states:
-        lines.append(f"{label}: {'stable' if state.stable else 'UNSTABLE'}, largest real part {state.maxRealPart:.4g} 1/s")
+        lines.append(StateLine(label, state))
         lines.append(f"  {'f (Hz)':>9} {'Lehr D':>9} {'Re (1/s)':>10}  coordinates taking part (kinetic energy share)")
         for mode in state.modes:
             parts = ', '.join(f"{k} {mode.energyShare[k]:.0%}" for k in mode.Participants())
-            lines.append(f"  {mode.frequencyHz:9.2f} {_G(mode.lehrDamping, 4):>9} {mode.eigenvalue.real:10.4g}  {parts}")
+            lines.append(f"  {mode.frequencyHz:9.2f} {_Lehr(mode.lehrDamping):>9} {mode.eigenvalue.real:10.4g}  {parts}")
     lines += [''] + DangerLines(analysis) + [VerdictLine(analysis)]
     if loadSide is not None:
         lines.append(f"Load side: {loadSide.Text()}.")

@@ -99,7 +99,8 @@ def _CheckPlot(args, study) -> None:
     if len(study.keys) == 1:
         if args.metric is None:
             args.metric = _DefaultMetric(study)
-        names = [f'w{i}.{m}' for i in range(study.numberOfWindows) for m in WINDOW_METRICS] + list(RUN_COLUMNS[3:6])
+        names = [f'w{i}.{m}' for i in range(study.numberOfWindows) for m in WINDOW_METRICS
+                 if m != 'chatterState'] + list(RUN_COLUMNS[3:6])         # a number per run: not the state's word
         if args.metric not in names:
             raise UsageError(f"--metric: unknown column '{args.metric}'; expected one of: {' '.join(names)}")
 

@@ -11,21 +11,42 @@ from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
+from .._checks import JsonNumber
 from ..model.contact import NormalForceFlanks
 
-__all__ = ['SimulationResult', 'SeriesUnit', 'SERIES_UNITS', 'BEARING_LOADS', 'CheckWindows', 'CHATTER_AMPLITUDE', 'CHATTER_SUSTAIN',
-           'CHATTER_MIN_MESH_TORQUE', 'CHATTER_TORQUE_FRACTION']
+__all__ = ['SimulationResult', 'SeriesUnit', 'SERIES_UNITS', 'BEARING_LOADS', 'CheckWindows', 'ChatterVerdict',
+           'SteadyMotorStretch', 'STEADY_MOTOR_TOLERANCE',
+           'CHATTER_AMPLITUDE', 'CHATTER_STEADY_EXPONENT', 'CHATTER_GROWTH_EXPONENT', 'CHATTER_DECAY_EXPONENT',
+           'CHATTER_SATURATION', 'CHATTER_MIN_PERIODS', 'CHATTER_STATES', 'UNDECIDED', 'CHATTER_MIN_MESH_TORQUE',
+           'CHATTER_TORQUE_FRACTION']
 
 # The chatter rule of SimulationResult.Chatter, fixed with its reasons in validation/CHATTER_RULE.md: the mesh's
 # normal force and its sliding (worm speed against the motor), each as an amplitude relative to its steady value
-# in the third and last quarter of a window.
-#: chatter: the relative amplitude of the mesh's normal force or sliding in the window's last quarter is at least
-#: this (a self-excited vibration of a zero-backlash mesh saturates only where the flanks unload or the sliding
-#: stops, at a relative amplitude of about 1; speed ramps and slow duty changes move the mesh by a few per cent)
+# in the window's last quarter, and the growth or decay rate of that relative amplitude's envelope over the
+# window's second half.
+#: a vibration counts: the relative amplitude of the mesh's normal force or sliding in the window's last quarter is
+#: at least this (a self-excited vibration of a zero-backlash mesh saturates only where the flanks unload or the
+#: sliding stops, at a relative amplitude of about 1; speed ramps and slow duty changes move the mesh by a few per cent)
 CHATTER_AMPLITUDE = 0.25
-#: ... and at least this fraction of the third quarter's (a decay resolvable within the window, sigma L >= 3,
-#: loses the factor exp(-3/4) = 0.47 per quarter; a sustained or growing vibration keeps about 1 or more)
-CHATTER_SUSTAIN = 0.5
+#: steady: the envelope's rate sigma (1/s) times the window length L is at least -this (it loses less than
+#: 1 - exp(-0.2) = 18 % over the window); below it the vibration decays
+CHATTER_STEADY_EXPONENT = 0.2
+#: growing: sigma L is at least this (it gains more than a factor exp(0.2) over the window)
+CHATTER_GROWTH_EXPONENT = 0.2
+#: decided decaying: sigma L <= -this, the decay time 1/|sigma| is at most the window; between this and
+#: -:data:`CHATTER_STEADY_EXPONENT` the decay time is longer than the window and the window is undecided
+CHATTER_DECAY_EXPONENT = 1.
+#: a steady (neither growing nor decaying) vibration is chatter only where it saturates: its relative amplitude is
+#: at least this (the flanks unload or the sliding stops or reverses); a steady vibration below it may be a lightly
+#: damped free vibration whose decay the window cannot resolve: undecided
+CHATTER_SATURATION = 1.
+#: the envelope is measured over sliding spans of one period of the dominant frequency; at least this many periods
+#: must fit in the window's second half, else its rate is not measured (undecided where the amplitude counts)
+CHATTER_MIN_PERIODS = 2.
+#: the states of a window's :class:`ChatterVerdict`; ``chatter`` and ``undecided`` are the strings of a window's
+#: ``chatter`` metric beside True / False
+CHATTER_STATES = ('chatter', 'none', 'decaying', 'undecided')
+UNDECIDED = 'undecided'
 #: ... and only where the mesh carries a load: below this mesh torque on the wheel (N*m) a window has no load
 #: to chatter against; what moves there is round-off (about 1e-7 N*m in P1 without load, 1e-3 N*m is 1e4 times that)
 CHATTER_MIN_MESH_TORQUE = 1e-3
@@ -47,6 +68,159 @@ def _Detrended(t: np.ndarray, x: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
 
 def _HalfRange(x: np.ndarray) -> float:
     return 0.5 * float(np.max(x) - np.min(x)) if x.size else 0.
+
+
+def _EnvelopeRate(t: np.ndarray, rest: np.ndarray, steady: np.ndarray) -> float:
+    """Robust slope (1/s, Theil-Sen: the median of the slopes between all pairs of points) of the log of the relative
+    envelope of ``rest`` (half its range over sliding spans of one dominant period, over the span's mean |steady|);
+    NaN where fewer than CHATTER_MIN_PERIODS periods fit."""
+    n = rest.size
+    if n < 16 or not np.any(rest):
+        return float('nan')
+    dt = float(t[-1] - t[0]) / (n - 1)
+    spectrum = np.abs(np.fft.rfft((rest - rest.mean()) * np.hanning(n), n=4 * n))
+    freq = np.fft.rfftfreq(4 * n, dt)
+    f = float(freq[1:][np.argmax(spectrum[1:])])
+    span = max(3, int(round(1. / (f * dt)))) if f > 0. else n
+    if CHATTER_MIN_PERIODS * span > n:
+        return float('nan')
+    starts = np.unique(np.linspace(0, n - span, min(64, n - span + 1)).astype(int))
+    env = np.array([_HalfRange(rest[i:i + span]) / max(float(np.mean(np.abs(steady[i:i + span]))), 1e-300)
+                    for i in starts])
+    centres = t[starts + span // 2]
+    if np.any(env <= 0.):
+        return float('nan')
+    i, j = np.triu_indices(env.size, 1)          # Theil-Sen: the median of the slopes between all pairs of points
+    return float(np.median((np.log(env[j]) - np.log(env[i])) / (centres[j] - centres[i])))
+
+
+#: the motor holds its speed where it stays within this fraction of its largest speed in the window of the median
+STEADY_MOTOR_TOLERANCE = 1e-6
+
+
+def SteadyMotorStretch(result: 'SimulationResult', t0: float, t1: float) -> Tuple[float, float]:
+    """The longest stretch (a, b) of [t0, t1] in which the motor speed stays within :data:`STEADY_MOTOR_TOLERANCE` of
+    its largest magnitude from its median in [t0, t1] ([t0, t1] itself without a motor series or where it holds).
+
+    Parameters
+    ----------
+    result : SimulationResult
+        The run.
+    t0, t1 : float
+        The span in s.
+
+    Returns
+    -------
+    (float, float)
+    """
+    m = result._Window(t0, t1)
+    if 'omega0' not in result.series or np.count_nonzero(m) < 2:
+        return t0, t1
+    t, w = result.time[m], result.series['omega0'][m]
+    scale = float(np.max(np.abs(w)))
+    held = np.abs(w - np.median(w)) <= STEADY_MOTOR_TOLERANCE * scale
+    if held.all() or not held.any():
+        return t0, t1
+    edges = np.diff(np.concatenate(([0], held.astype(int), [0])))
+    starts, ends = np.nonzero(edges == 1)[0], np.nonzero(edges == -1)[0]
+    k = int(np.argmax(ends - starts))
+    return float(t[starts[k]]), float(t[ends[k] - 1])
+
+
+def _MeasureState(amplitude: float, rate: float, length: float) -> str:
+    """One measure's state by the rule of SimulationResult.ChatterVerdict."""
+    if amplitude < CHATTER_AMPLITUDE:
+        return 'none'
+    if not np.isfinite(rate):
+        return UNDECIDED
+    exponent = rate * length
+    if exponent >= CHATTER_GROWTH_EXPONENT:
+        return 'chatter'
+    if exponent >= -CHATTER_STEADY_EXPONENT:
+        return 'chatter' if amplitude >= CHATTER_SATURATION else UNDECIDED
+    return 'decaying' if exponent <= -CHATTER_DECAY_EXPONENT else UNDECIDED
+
+
+@dataclass(frozen=True)
+class ChatterVerdict:
+    """The chatter verdict of one window (:meth:`SimulationResult.ChatterVerdict`).
+
+    Attributes
+    ----------
+    state : str
+        ``'chatter'``, ``'none'`` (no vibration of :data:`CHATTER_AMPLITUDE`), ``'decaying'`` (a vibration that
+        decays within the window) or ``'undecided'`` (a vibration whose decay time is longer than the window, or a
+        steady one below :data:`CHATTER_SATURATION`).
+    measures : tuple of str
+        The measures (``'normal'``, ``'sliding'``) in that state.
+    window : float
+        The window's length L in s.
+    amplitude : float
+        The deciding measure's relative amplitude in the window's last quarter.
+    rate : float
+        Its envelope's growth (> 0) or decay (< 0) rate in 1/s over the window's second half (NaN: not measured).
+    """
+    state: str
+    measures: Tuple[str, ...]
+    window: float
+    amplitude: float
+    rate: float
+
+    @property
+    def chatter(self) -> bool:
+        """True where the window chatters."""
+        return self.state == 'chatter'
+
+    @property
+    def decided(self) -> bool:
+        """False where the window is undecided."""
+        return self.state != UNDECIDED
+
+    @property
+    def value(self):
+        """The window's ``chatter`` metric: True, False or ``'undecided'``."""
+        return UNDECIDED if self.state == UNDECIDED else self.chatter
+
+    @classmethod
+    def FromMetrics(cls, metrics: Dict) -> 'ChatterVerdict':
+        """The verdict of a window from its metrics (:meth:`SimulationResult.WindowMetrics`, JSON or a study's row).
+
+        Parameters
+        ----------
+        metrics : dict
+            ``t0``, ``t1``, ``chatterState``, ``chatterAmplitude``, ``envelopeRate`` (None: not measured).
+        """
+        rate = metrics.get('envelopeRate')
+        return cls(state=metrics['chatterState'], measures=(), window=float(metrics['t1']) - float(metrics['t0']),
+                   amplitude=float(metrics['chatterAmplitude']), rate=float('nan') if rate is None else float(rate))
+
+    def Describe(self) -> str:
+        """The verdict in words, e.g. ``'decaying, rate -2.5 1/s (amplitude 0.6)'``."""
+        rate = 'rate not measured' if not np.isfinite(self.rate) else f"rate {self.rate:+.3g} 1/s"
+        if self.state == 'none':
+            return f"no vibration of {CHATTER_AMPLITUDE:g} of the steady value (amplitude {self.amplitude:.3g})"
+        if self.state == 'decaying':
+            return f"decaying, {rate} (amplitude {self.amplitude:.3g})"
+        if self.state == 'chatter':
+            how = ('growing' if self.rate * self.window >= CHATTER_GROWTH_EXPONENT
+                   else 'steady at the saturated amplitude')
+            return f"{how}, {rate} (amplitude {self.amplitude:.3g})"
+        if not np.isfinite(self.rate):
+            why = (f"fewer than {CHATTER_MIN_PERIODS:g} periods of its dominant frequency in the window's second half "
+                   f"(where the motor holds its speed); a longer window decides")
+        elif self.rate * self.window >= -CHATTER_STEADY_EXPONENT:
+            why = (f"steady, {rate}, below the saturated amplitude {CHATTER_SATURATION:g}: a lightly damped free "
+                   f"vibration looks the same; a longer window or the linear verdict decides")
+        else:
+            why = (f"decaying, {rate}: its decay time {-1. / self.rate:.3g} s is longer than the window "
+                   f"{self.window:.3g} s")
+        return f"undecided: amplitude {self.amplitude:.3g}, {why}"
+
+
+def _VerdictMetrics(verdict: ChatterVerdict) -> Dict:
+    """The window metrics of a verdict (SimulationResult.WindowMetrics; ChatterVerdict.FromMetrics reads them)."""
+    return {'chatter': verdict.value, 'chatterState': verdict.state, 'chatterAmplitude': verdict.amplitude,
+            'envelopeRate': JsonNumber(verdict.rate)}
 
 
 @dataclass
@@ -162,16 +336,91 @@ class SimulationResult:
             out['sliding'].append(_HalfRange(rest) / steady if steady > 0. else 0.)
         return out
 
-    def Chatter(self, t0: float, t1: float) -> bool:
-        """Chatter in [t0, t1]: a vibration of the mesh that keeps its amplitude over the window's second half.
+    def _Relative(self, t0: float, t1: float) -> Dict[str, Tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """Per measure of :meth:`MeshOscillation`, over [t0, t1]: time, the signal with its quadratic removed, and
+        its steady value (positive, per sample)."""
+        s, t = self.series, self.time
+        m = self._Window(t0, t1)
+        floor = (self.info['frictionSpeed'] / self.info['slidingRadius']
+                 if 'frictionSpeed' in self.info and 'slidingRadius' in self.info else 0.)
+        tm = t[m]
+        rest, trend = _Detrended(tm, s['normalForce'][m])
+        out = {'normal': (tm, rest, np.abs(trend))}
+        if 'omega0' in s:
+            rest, _ = _Detrended(tm, s['omega1'][m] - s['omega0'][m])
+            steady = np.maximum(np.abs(s['omega0'][m]), floor)
+        else:
+            rest, steady = _Detrended(tm, s['omega1'][m])
+        out['sliding'] = (tm, rest, np.maximum(np.abs(steady), floor))
+        return out
 
-        For the normal force or the sliding of the mesh (:meth:`MeshOscillation`, relative amplitudes), the
-        last quarter's amplitude is at least :data:`CHATTER_AMPLITUDE` and at least :data:`CHATTER_SUSTAIN`
-        times the third quarter's (a decaying transient, e.g. after a load reversal, does not count; a
-        self-excited vibration does, wherever in the drive it lives: the wheel and load side show in the normal
-        force, the worm and drive side in the sliding, stick-slip with worm reversal in both), and the mesh
-        torque on the wheel exceeds :data:`CHATTER_MIN_MESH_TORQUE` somewhere in the window (an unloaded mesh,
-        e.g. ``loadMass = 0``, does not chatter). The rule and its reasons: validation/CHATTER_RULE.md.
+    def EnvelopeRates(self, t0: float, t1: float) -> Dict[str, float]:
+        """Growth (> 0) or decay (< 0) rate in 1/s of each mesh measure's relative vibration amplitude over the
+        second half of [t0, t1] (the measures of :meth:`MeshOscillation`).
+
+        The measure's signal, a quadratic over the second half removed, has its envelope taken as half the range
+        over sliding spans of one period of its dominant frequency (a span's steady value, the mean magnitude of the
+        quadratic or of the motor speed, at least the friction law's regularization speed, divides it); the rate is
+        the slope of the logarithm of that relative envelope over time, fitted robustly (Theil-Sen: the median of the
+        slopes between all pairs of envelope points, so that a stop at the window's end, a speed ramp to rest, does
+        not read as a decay of the whole window). Only the longest stretch of the second half in which the motor
+        holds its speed is fitted (:func:`SteadyMotorStretch`: a ramp within the window, which starts a transient of
+        the drive, is left out). NaN where fewer than :data:`CHATTER_MIN_PERIODS` periods of the dominant frequency
+        fit in that stretch, or where the signal does not move.
+
+        Parameters
+        ----------
+        t0, t1 : float
+            The window in s.
+
+        Returns
+        -------
+        dict
+            ``normal`` and ``sliding``: rates in 1/s.
+        """
+        a, b = SteadyMotorStretch(self, 0.5 * (t0 + t1), t1)
+        return {name: _EnvelopeRate(tm, rest, steady) for name, (tm, rest, steady) in self._Relative(a, b).items()}
+
+    def ChatterVerdict(self, t0: float, t1: float) -> 'ChatterVerdict':
+        """The chatter verdict of [t0, t1] from the amplitude and the growth or decay rate of the mesh's vibration.
+
+        For each measure of :meth:`MeshOscillation` (the normal force, the sliding), with its relative amplitude a4
+        in the last quarter and the rate sigma of :meth:`EnvelopeRates` over the window's second half, L = t1 - t0:
+
+        - a4 < :data:`CHATTER_AMPLITUDE`: ``none`` (small);
+        - sigma L >= :data:`CHATTER_GROWTH_EXPONENT`: ``chatter`` (growing);
+        - sigma L >= -:data:`CHATTER_STEADY_EXPONENT` (steady): ``chatter`` where a4 >= :data:`CHATTER_SATURATION`
+          (the flanks unload or the sliding stops), else ``undecided`` (a lightly damped free vibration looks the same);
+        - sigma L <= -:data:`CHATTER_DECAY_EXPONENT`: ``decaying`` (its decay time is at most the window);
+        - between, or sigma not measured: ``undecided`` (the decay time is longer than the window).
+
+        The window's state: ``chatter`` if any measure chatters, else ``undecided`` if any is undecided, else
+        ``decaying`` if any decays, else ``none``; ``none`` for an unloaded mesh (its torque on the wheel never above
+        :data:`CHATTER_MIN_MESH_TORQUE`). The rule and its reasons: validation/CHATTER_RULE.md.
+
+        Parameters
+        ----------
+        t0, t1 : float
+            The window in s.
+
+        Returns
+        -------
+        ChatterVerdict
+        """
+        length = float(t1 - t0)
+        loaded = self._LoadedOscillation(t0, t1)
+        rates = self.EnvelopeRates(t0, t1) if loaded else {}
+        states = {name: _MeasureState(a[3], rates[name], length) for name, a in loaded.items()}
+        state = next((x for x in ('chatter', UNDECIDED, 'decaying') if x in states.values()), 'none')
+        measures = tuple(name for name, x in states.items() if x == state) if state != 'none' else ()
+        pick = max(measures or tuple(loaded), key=lambda name: loaded[name][3], default=None)
+        return ChatterVerdict(state=state, measures=measures, window=length,
+                              amplitude=float(loaded[pick][3]) if pick else 0.,
+                              rate=float(rates[pick]) if pick else float('nan'))
+
+    def Chatter(self, t0: float, t1: float) -> bool:
+        """Chatter in [t0, t1]: :meth:`ChatterVerdict`'s state is ``chatter`` (a vibration of the mesh that grows,
+        or keeps a saturated amplitude, over the window's second half; a decaying or undecided window is not).
 
         Parameters
         ----------
@@ -182,10 +431,10 @@ class SimulationResult:
         -------
         bool
         """
-        return bool(self.ChatterMeasures(t0, t1))
+        return self.ChatterVerdict(t0, t1).chatter
 
     def ChatterMeasures(self, t0: float, t1: float) -> List[str]:
-        """The measures of :meth:`MeshOscillation` by which [t0, t1] chatters (:meth:`Chatter`): ``'normal'``,
+        """The measures of :meth:`MeshOscillation` by which [t0, t1] chatters (:meth:`ChatterVerdict`): ``'normal'``,
         ``'sliding'``, both or none (none also for an unloaded mesh).
 
         Parameters
@@ -197,8 +446,8 @@ class SimulationResult:
         -------
         list of str
         """
-        return [name for name, a in self._LoadedOscillation(t0, t1).items()
-                if a[3] >= CHATTER_AMPLITUDE and a[3] >= CHATTER_SUSTAIN * a[2]]
+        v = self.ChatterVerdict(t0, t1)
+        return list(v.measures) if v.chatter else []
 
     def _LoadedOscillation(self, t0: float, t1: float) -> Dict[str, List[float]]:
         """:meth:`MeshOscillation` of [t0, t1], empty for an unloaded mesh (its torque on the wheel never above
@@ -208,11 +457,9 @@ class SimulationResult:
         return self.MeshOscillation(t0, t1) if meshTorque > CHATTER_MIN_MESH_TORQUE else {}
 
     def ChatterRatio(self, t0: float, t1: float) -> float:
-        """How clearly [t0, t1] chatters or not: for each measure of :meth:`MeshOscillation`, the last quarter's
-        amplitude over the larger of its two thresholds in :meth:`Chatter` (:data:`CHATTER_AMPLITUDE`, and
-        :data:`CHATTER_SUSTAIN` times the third quarter's amplitude); the largest over the measures. At least 1
-        where the window chatters (the mesh loaded), below 1 where it does not; 0 for an unloaded mesh. Near 1 the
-        verdict is close (the step check of :mod:`exudyn_worm.analysis.stepsize` looks there).
+        """How clearly the amplitude of [t0, t1] counts: for each measure of :meth:`MeshOscillation`, the last
+        quarter's amplitude over :data:`CHATTER_AMPLITUDE`; the largest over the measures (0 for an unloaded mesh).
+        Near 1 the verdict is close (the step check of :mod:`exudyn_worm.analysis.stepsize` looks there).
 
         Parameters
         ----------
@@ -224,8 +471,7 @@ class SimulationResult:
         float
             Dimensionless, >= 0.
         """
-        return max((a[3] / max(CHATTER_AMPLITUDE, CHATTER_SUSTAIN * a[2])
-                    for a in self._LoadedOscillation(t0, t1).values()), default=0.)
+        return max((a[3] / CHATTER_AMPLITUDE for a in self._LoadedOscillation(t0, t1).values()), default=0.)
 
     def MinWormSpeed(self, t0: float, t1: float) -> float:
         """Smallest worm speed in [t0, t1] in rad/s, counted in the direction the motor turns in the window
@@ -245,7 +491,9 @@ class SimulationResult:
 
     def WindowMetrics(self, windows: Sequence[Tuple[float, float]]) -> List[Dict]:
         """Per window: t0, t1, maxAbsWheelAcceleration (rad/s^2), maxNormalForce (N), dominantFrequencyHz,
-        fractionSNegative, minWormSpeed (rad/s, in the motor's direction: :meth:`MinWormSpeed`), chatter; for a run
+        fractionSNegative, minWormSpeed (rad/s, in the motor's direction: :meth:`MinWormSpeed`), chatter (True, False
+        or ``'undecided'``: :meth:`ChatterVerdict`), chatterState (its state), chatterAmplitude (relative) and
+        envelopeRate (1/s, None where not measured) of its deciding measure; for a run
         of the 3D model (worm and wheel as rigid bodies) also ``bearingLoads``: the peak magnitudes in N of
         :data:`BEARING_LOADS` (``wormAxial``, ``wormRadial``, ``wheelAxial``, ``wheelRadial``; radial: the vector sum
         over the shaft's radial bearings)."""
@@ -260,7 +508,7 @@ class SimulationResult:
                         'dominantFrequencyHz': self.DominantFrequency(t0, t1),
                         'fractionSNegative': float(np.mean(self.series['S'][m] < 0)),
                         'minWormSpeed': self.MinWormSpeed(t0, t1),
-                        'chatter': self.Chatter(t0, t1)})
+                        **_VerdictMetrics(self.ChatterVerdict(t0, t1))})
             if all(name in self.series for name in BEARING_LOADS.values()):     # the 3D model
                 out[-1]['bearingLoads'] = {key: float(np.max(np.abs(self.series[name][m])))
                                            for key, name in BEARING_LOADS.items()}

@@ -21,21 +21,23 @@ Speeds and loads of a simulation (:func:`CheckWormRotation` before it, :func:`Ch
 
 - one rotation of the worm at the motor's largest speed shorter than :data:`MIN_STEPS_PER_ROTATION` time steps:
   **warned**. The mesh is not resolved in time; the usual cause is a speed in rpm given as rad/s.
-- the worm faster than :data:`MAX_WORM_SPEED_RATIO` times the motor's largest speed: **warned**. The load
-  overpowers the drive (``loadMass = 1e9`` kg spins the worm backwards at millions of rad/s); the usual cause
-  is a mass, lever or torque off by orders of magnitude.
+- the worm's speed, averaged over :data:`RUNAWAY_SPAN` (a vibration of the worm, stick-slip or chatter, averages
+  out; a worm that the load drives away does not), faster than :data:`MAX_WORM_SPEED_RATIO` times the motor's
+  largest speed: **warned**. The load overpowers the drive (``loadMass = 1e9`` kg spins the worm backwards at
+  millions of rad/s); the usual cause is a mass, lever or torque off by orders of magnitude.
 """
 from __future__ import annotations
 
 import math
 import warnings
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping, Optional, Sequence
 
 import numpy as np
 
 from .parameters import PARAMETERS, ParameterError
 
 __all__ = ['ImplausibleValueWarning', 'UnresolvedRotationWarning', 'MAX_PLAUSIBLE_MU', 'MIN_STEPS_PER_ROTATION', 'MAX_WORM_SPEED_RATIO',
+           'RUNAWAY_SPAN',
            'CheckGearPlausibility', 'CheckWormRotation', 'CheckWormSpeed']
 
 #: flank friction coefficient above which a gear is warned about; the paper's gears have 0.132
@@ -97,7 +99,7 @@ def CheckGearPlausibility(gear: 'WormGear', where: str = 'WormGear') -> None:
     gear : WormGear
         A gear whose values passed their own range checks (``r1``, ``r2``, ``gamma``, ``alphaN``, ``mu``, ``rho``).
     where : str
-        Prefix of the messages.
+        Prefix of the errors (a warning starts with ``the gear:``, what a user of the command line knows it by).
 
     Raises
     ------
@@ -124,11 +126,11 @@ def CheckGearPlausibility(gear: 'WormGear', where: str = 'WormGear') -> None:
                              f"{math.degrees(rho):.4g} deg (mu = {mu:g}){slip}",
                              ('mu', 'rho', 'gamma') if _MuSlip(mu) else ('gamma', 'mu', 'rho'))
     if mu > MAX_PLAUSIBLE_MU:
-        warnings.warn(f"{where}: flank friction mu = {mu:g} (rho = {math.degrees(rho):.4g} deg) is far above what a "
+        warnings.warn(f"the gear: flank friction mu = {mu:g} (rho = {math.degrees(rho):.4g} deg) is far above what a "
                       f"lubricated worm gear has (the paper's gears: 0.132; warned above {MAX_PLAUSIBLE_MU:g})"
                       f"{_MuSlip(mu)}", ImplausibleValueWarning, stacklevel=1)
     if r1 > r2:
-        warnings.warn(f"{where}: the worm radius r1 = {r1:g} m is larger than the wheel radius r2 = {r2:g} m "
+        warnings.warn(f"the gear: the worm radius r1 = {r1:g} m is larger than the wheel radius r2 = {r2:g} m "
                       f"(unusual: diameter quotient q above the wheel teeth z2){_RadiusSlip('r1', r1)}",
                       ImplausibleValueWarning, stacklevel=1)
 
@@ -174,9 +176,15 @@ def CheckWormRotation(parameters: Mapping[str, Any], stepSize: float, where: str
                   f"(--set '{key}={speed:g} rpm')", UnresolvedRotationWarning, stacklevel=1)
 
 
+#: the worm's speed is averaged over this span (s; at most a tenth of the run) before it is compared with the motor:
+#: a vibration of 10 Hz or more (the drives' chatter and stick-slip) averages out, a runaway lasts longer
+RUNAWAY_SPAN = 0.1
+
+
 def CheckWormSpeed(wormSpeed: Sequence[float], motorSpeed: Sequence[float], parameters: Mapping[str, Any],
-                   where: str = 'CheckWormSpeed') -> None:
-    """Warn if the worm of a simulation ran faster than :data:`MAX_WORM_SPEED_RATIO` times the motor.
+                   where: str = 'the simulation', time: Optional[Sequence[float]] = None) -> None:
+    """Warn if the worm of a simulation ran, on average over :data:`RUNAWAY_SPAN`, faster than
+    :data:`MAX_WORM_SPEED_RATIO` times the motor (the load drives the worm away; a vibration does not count).
 
     Parameters
     ----------
@@ -187,24 +195,44 @@ def CheckWormSpeed(wormSpeed: Sequence[float], motorSpeed: Sequence[float], para
     parameters : mapping
         The run's flat parameter set (its load keys are named in the message).
     where : str
-        Prefix of the message.
+        Prefix of the message: what ran, in the user's words (never a function's name).
+    time : array_like, optional
+        The output times in s (None: the samples are compared one by one).
 
     Warns
     -----
     ImplausibleValueWarning
-        Naming the worm's extreme speed, the motor's largest speed, their ratio and the load values.
+        Naming the worm's extreme mean speed, the motor's largest speed, their ratio and the load values.
     """
     worm = np.asarray(wormSpeed, dtype=float)
     if worm.size == 0 or not np.isfinite(worm).all():
         return
+    span = 1
+    if time is not None and worm.size > 1:
+        t = np.asarray(time, dtype=float)
+        dt = float(t[-1] - t[0]) / (t.size - 1)
+        span = max(1, int(round(min(RUNAWAY_SPAN, 0.1 * float(t[-1] - t[0])) / dt))) if dt > 0. else 1
+    mean = np.convolve(worm, np.ones(span) / span, mode='valid') if span > 1 else worm
     reference = max(float(np.max(np.abs(motorSpeed))) if np.size(motorSpeed) else 0., _MotorSpeed(parameters))
-    extreme = float(worm[np.argmax(np.abs(worm))])
+    extreme = float(mean[np.argmax(np.abs(mean))])
     if abs(extreme) <= MAX_WORM_SPEED_RATIO * reference:
         return
     ratio = f", {abs(extreme) / reference:.3g} times the motor's largest speed {reference:.4g} rad/s" \
         if reference > 0. else ' while the motor stands'
+    over = f" on average over {span * dt:.3g} s" if span > 1 else ''
     load = ', '.join(f"{k} = {parameters[k]:g} {PARAMETERS[k].unit}".rstrip() for k in
                      ('loadMass', 'leverArm', 'loadTorque') if isinstance(parameters.get(k), (int, float)))
-    warnings.warn(f"{where}: the worm reached {extreme:.3g} rad/s{ratio} (warned above {MAX_WORM_SPEED_RATIO:g} "
-                  f"times): the load overpowers the drive{' (' + load + ')' if load else ''}; check the load values "
-                  f"and their units", ImplausibleValueWarning, stacklevel=1)
+    if 'loadTorqueOverTime' in parameters:
+        load = ', '.join(filter(None, (load, 'loadTorqueOverTime (largest magnitude '
+                                       f"{_LargestTableValue(parameters['loadTorqueOverTime']):g} N*m)")))
+    warnings.warn(f"{where}: the worm turned at {extreme:.3g} rad/s{over}{ratio} (warned above "
+                  f"{MAX_WORM_SPEED_RATIO:g} times): the load overpowers the drive{' (' + load + ')' if load else ''}; "
+                  f"check the load values and their units", ImplausibleValueWarning, stacklevel=1)
+
+
+def _LargestTableValue(rows) -> float:
+    """The largest magnitude in the second column of a (time, value) table (0 where it cannot be read)."""
+    try:
+        return max(abs(float(r[1])) for r in rows)
+    except (TypeError, ValueError, IndexError):
+        return 0.

@@ -187,7 +187,8 @@ def PlotChatterMap(result, chatterMap: 'ChatterMap', ax=None,
     chatter = [r for r in ok if r['loweringChatter']]
     quiet = [r for r in ok if not r['loweringChatter']]
     unresolved = [r for r in result.rows if r['status'] == 'ok' and r['loweringChatter'] == 'unresolved']
-    failed = [r for r in result.rows if r not in ok and r not in unresolved]
+    undecided = [r for r in result.rows if r['status'] == 'ok' and r['loweringChatter'] == 'undecided']
+    failed = [r for r in result.rows if r not in ok and r not in unresolved and r not in undecided]
     differ = [r for r in ok if r['analyticStableLowering'] is not None
               and r['loweringChatter'] == r['analyticStableLowering']]
     pts = lambda rows: (np.array([r[x] for r in rows]) * xf, np.array([r[y] for r in rows]) * yf)
@@ -196,6 +197,9 @@ def PlotChatterMap(result, chatterMap: 'ChatterMap', ax=None,
     if unresolved:
         ax.plot(*pts(unresolved), 'D', mfc='white', color=_C_FAILED, ms=5,
                 label='simulation: unresolved (changes at half the step)')
+    if undecided:
+        ax.plot(*pts(undecided), 's', mfc='white', color=_C_FAILED, ms=5,
+                label='simulation: undecided (decays slower than the window)')
     if failed:
         ax.plot(*pts(failed), 'x', color=_C_FAILED, ms=6, label='failed run')
     if differ:
