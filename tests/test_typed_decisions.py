@@ -111,6 +111,7 @@ FLAT_ALLOWED: Dict[Tuple[str, str], str] = {
     ('analysis/study.py', 'RunStudy'): _ROW,
     ('analysis/studyfiles.py', 'Run'): _ROW,
     ('analysis/studypoint.py', 'RunPoint'): _STUDIES,
+    ('analysis/studypoint.py', 'RunLabel'): _STUDIES,
     ('analysis/reelchanger.py', 'SolverSettings'): _SOLVER,
     ('analysis/reelchanger.py', 'SimulateReelChanger'): _SOLVER,
     ('analysis/stepsize.py', 'CompareHalfStep'): _METRICS,

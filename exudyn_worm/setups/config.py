@@ -295,8 +295,17 @@ def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None, folde
 
 
 class LoadedConfig(dict):
-    """A drive file as :func:`LoadConfig` read it (``preset``, ``parameters``, ``wholeDrive``, ``locations``): what
-    :func:`ResolveParametersWithSources` takes instead of the path, so that a command reads its file once."""
+    """A drive file as :func:`LoadConfig` read it: what :func:`ResolveParametersWithSources` takes instead of the
+    path, so that a command reads its file once.
+
+    Parameters
+    ----------
+    content : mapping
+        ``preset``, ``parameters``, ``wholeDrive`` and ``locations``, as :func:`LoadConfig` returns them.
+    """
+
+    def __init__(self, content: Mapping) -> None:
+        super().__init__(content)
 
 
 def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
