@@ -5,10 +5,10 @@ repetitions (the minimum counts), ``--resolution N`` the grid. Prints one table;
 
 Timed, on the gear of set (25) (preset 'chart'), D_V = 0.014, D_TV = 1, S = -1, the default domain:
 
-- ``mask``: :func:`~exudyn_worm.analysis.charts.ComputeStabilityChart` (coefficients (16) on the grid, Hurwitz (17)-(19),
+- ``mask``: :func:`~exudyn_worm.analysis.charts.stabilitychart.ComputeStabilityChart` (coefficients (16) on the grid, Hurwitz (17)-(19),
   the margin field), the target is under 1 s;
 - ``maxRealPart``: the largest real part of the eigenvalues on the whole grid (closed-form quartic + Newton
-  polish, :func:`~exudyn_worm.analysis.quartic.MaxRealPart`);
+  polish, :func:`~exudyn_worm.analysis.charts.quartic.MaxRealPart`);
 - ``eigvals``: numpy's batched ``eigvals`` of the companion matrices on a 100000-point subset, scaled to the
   grid (the straightforward alternative to ``maxRealPart``);
 - ``boundaries``: marching squares and joining into curves; ``ranges``: the refined unstable x and y ranges.
@@ -24,9 +24,9 @@ from typing import Dict, Optional, Sequence
 
 import numpy as np
 
-from exudyn_worm.analysis.charts import ComputeStabilityChart
-from exudyn_worm.analysis.quartic import MaxRealPart
-from exudyn_worm.setups.presets import GearFromParameters, GetPreset
+from exudyn_worm.analysis.charts.stabilitychart import ComputeStabilityChart
+from exudyn_worm.analysis.charts.quartic import MaxRealPart
+from exudyn_worm.drive.presets import GearFromParameters, GetPreset
 
 __all__ = ['TimeCharts', 'main']
 

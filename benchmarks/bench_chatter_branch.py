@@ -25,9 +25,9 @@ import time
 import numpy as np
 
 import exudyn_worm as ew
-from exudyn_worm.analysis import chatterbranch, exudynflow
-from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude
-from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch
+from exudyn_worm.analysis.orbits import chatterbranch, exudynflow
+from exudyn_worm.analysis.orbits.longsimulation import LongSimulationAmplitude
+from exudyn_worm.analysis.orbits.chatterbranch import AnalyzeChatterBranch
 
 #: (parameter, low, high, changes to reel-P1)
 BRANCHES = (('J1', 0.05, 0.3, {}), ('kT', 2000., 20000., {}), ('J1', 0.2, 0.3, {'backlash': 5e-4}))

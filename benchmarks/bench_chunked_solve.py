@@ -20,11 +20,11 @@ def Solve(preset: str, mode: str):
     """CPU seconds and Newton statistics of one solve of ``preset`` in ``mode`` ('one', 'chunks', 'bar')."""
     import exudyn as exu
     from exudyn_worm import GetPreset
-    from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings
-    from exudyn_worm.setups.build import BuildReelChanger
+    from exudyn_worm.analysis.simulation.reelchanger import RotationPeriod, SolverSettings
+    from exudyn_worm.builders.oneangle import BuildReelChanger
     from exudyn_worm.items.solve import SolveDynamicInChunks
-    from exudyn_worm.analysis.stepsize import RecommendedStepSize
-    from exudyn_worm.setups.wholedrive import ResolveDrive
+    from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
+    from exudyn_worm.drive.wholedrive import ResolveDrive
     p = GetPreset(preset)
     drive = ResolveDrive(parameters=p)
     endTime, h = RotationPeriod(drive), RecommendedStepSize(drive)

@@ -24,7 +24,7 @@ def WorkerGrowth(preset: str = 'reel-P7', runs: int = 64, endTime=None, warmUp: 
     systems; None: the study's default, which checks only close verdicts).
     """
     from exudyn_worm import GetPreset
-    from exudyn_worm.analysis.studypoint import RunPoint
+    from exudyn_worm.analysis.studies.studypoint import RunPoint
     task = dict(run=0, parameters=GetPreset(preset), varied={}, windows=None, endTime=endTime, stepSize=None,
                 checkStep=checkStep)
     for _ in range(warmUp):

@@ -46,15 +46,15 @@ import scipy                                         # noqa: E402
 
 import exudyn as exu                                 # noqa: E402
 import exudyn_worm                                   # noqa: E402
-from exudyn_worm.setups.presets import GetPreset            # noqa: E402
-from exudyn_worm.analysis.reelchanger import DefaultWindows, RotationPeriod, SimulateReelChanger, SolverSettings
-from exudyn_worm.setups.build import BuildReelChanger
-from exudyn_worm.analysis.stepsize import RecommendedStepSize  # noqa: E402
+from exudyn_worm.drive.presets import GetPreset            # noqa: E402
+from exudyn_worm.analysis.simulation.reelchanger import DefaultWindows, RotationPeriod, SimulateReelChanger, SolverSettings
+from exudyn_worm.builders.oneangle import BuildReelChanger
+from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize  # noqa: E402
 from scipy_reference import SolveReelChangerScipy    # noqa: E402
 from compiled_reference import CompiledReelChanger   # noqa: E402
 from torque_driven import SimulateTorqueDriven       # noqa: E402
 from exudyn_worm.model.contact import ContactOptions       # noqa: E402
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 __all__ = ['SCIPY_SETTINGS', 'REFERENCE_SETTINGS', 'TARGETS', 'EnvironmentInfo', 'RunBenchmark',
            'ScanTolerances', 'ProfileExudyn', 'FormatReport', 'Main']

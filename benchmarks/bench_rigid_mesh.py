@@ -21,12 +21,12 @@ import time
 
 import numpy as np
 
-from exudyn_worm.analysis.reelchanger import SolverSettings
-from exudyn_worm.setups.build import BuildReelChanger
-from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
-from exudyn_worm.analysis.stepsize import RecommendedStepSize
-from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
+from exudyn_worm.builders.oneangle import BuildReelChanger
+from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
+from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 __all__ = ['RunOnce', 'Main']
 

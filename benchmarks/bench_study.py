@@ -1,4 +1,4 @@
-"""Benchmark of parameter studies (exudyn_worm.analysis.study): parallel speed-up, per-run overhead, the 144-point map.
+"""Benchmark of parameter studies (exudyn_worm.analysis.studies.study): parallel speed-up, per-run overhead, the 144-point map.
 
 Measures, in one process on this machine:
 
@@ -38,13 +38,13 @@ sys.dont_write_bytecode = True
 import exudyn as exu
 import numpy as np                                                  # noqa: E402
 
-from exudyn_worm.setups.config import ResolveParameters                   # noqa: E402
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset      # noqa: E402
+from exudyn_worm.drive.config import ResolveParameters                   # noqa: E402
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset      # noqa: E402
 from exudyn_worm.model.stability import AnalyzeStability                  # noqa: E402
-from exudyn_worm.analysis.study import RunStudy  # noqa: E402
-from exudyn_worm.analysis.studygrid import ParseVariation, Study
-from exudyn_worm.analysis.studypoint import VibrationSeconds
-from exudyn_worm.setups.wholedrive import ResolveDrive  # noqa: E402
+from exudyn_worm.analysis.studies.study import RunStudy  # noqa: E402
+from exudyn_worm.analysis.studies.studygrid import ParseVariation, Study
+from exudyn_worm.analysis.studies.studypoint import VibrationSeconds
+from exudyn_worm.drive.wholedrive import ResolveDrive  # noqa: E402
 
 __all__ = ['SpeedUp', 'Overhead', 'MapWallTime', 'Main']
 
@@ -94,8 +94,8 @@ def SpeedUp(repeat: int = 3) -> Dict:
 def Overhead(repeat: int = 5) -> Dict:
     """Per-run overhead of a P1 run, by stage, against its solve time (best of ``repeat`` per stage)."""
     import exudyn as exu
-    from exudyn_worm.analysis.reelchanger import DefaultWindows, RotationPeriod
-    from exudyn_worm.setups.build import BuildReelChanger
+    from exudyn_worm.analysis.simulation.reelchanger import DefaultWindows, RotationPeriod
+    from exudyn_worm.builders.oneangle import BuildReelChanger
     p = GetPreset('reel-P1')
     stages = {k: [] for k in ('buildPython', 'buildSymbolic', 'assemble', 'solve', 'postProcess', 'writeRow')}
     for _ in range(repeat):
@@ -130,7 +130,7 @@ def Overhead(repeat: int = 5) -> Dict:
         model.connector.Evaluate(series['phi1'], series['phi2'], series['omega1'], series['omega2'])
         stages['postProcess'].append(time.perf_counter() - t0)
     # window metrics, vibration durations and the analytical verdict on a finished result
-    from exudyn_worm.analysis.reelchanger import SimulateReelChanger
+    from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
     result = SimulateReelChanger(ResolveDrive(parameters=p))
     metrics = []
     for _ in range(repeat):

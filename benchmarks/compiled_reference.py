@@ -27,9 +27,9 @@ from typing import Mapping, Optional
 import numpy as np
 
 from exudyn_worm.model.contact import ContactOptions, MeshContact
-from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod
+from exudyn_worm.analysis.simulation.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod
 from exudyn_worm.items.results import SimulationResult
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 from scipy_reference import ReelChangerOde, ResultFromStates
 
 #: the reference models have no stick state: they use the regularized friction law (docs/friction-sticking.md);

@@ -36,13 +36,13 @@ from exudyn_worm.items.connector import CreateWormGear                          
 from exudyn_worm.model.contact import ContactOptions, MeshContact, SlidingCoordinate  # noqa: E402
 from exudyn_worm.model.friction import NUMPY_OPS
 from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque           # noqa: E402
-from exudyn_worm.setups.presets import ElasticDriveFromParameters                         # noqa: E402
+from exudyn_worm.drive.presets import ElasticDriveFromParameters                         # noqa: E402
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque          # noqa: E402
-from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings  # noqa: E402
+from exudyn_worm.analysis.simulation.reelchanger import RotationPeriod, SolverSettings  # noqa: E402
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult                            # noqa: E402
-from exudyn_worm.analysis.stepsize import RecommendedStepSize                        # noqa: E402
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize                        # noqa: E402
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 #: bristle mass (kg-equivalent of the z equation) and damper: relaxation time 1e-5 s, below every step used
 LUGRE_MASS, LUGRE_DAMPER = 1e-5, 1.

@@ -42,11 +42,11 @@ sys.dont_write_bytecode = True                       # leave no __pycache__ besi
 import numpy as np                                   # noqa: E402
 import exudyn as exu                                 # noqa: E402
 
-from exudyn_worm.analysis.reelchanger import DefaultSimulatedTime, SolverSettings   # noqa: E402
-from exudyn_worm.analysis.stepsize import RecommendedStepSize                        # noqa: E402
-from exudyn_worm.setups.build import BuildReelChanger                                # noqa: E402
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset         # noqa: E402
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.simulation.reelchanger import DefaultSimulatedTime, SolverSettings   # noqa: E402
+from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize                        # noqa: E402
+from exudyn_worm.builders.oneangle import BuildReelChanger                                # noqa: E402
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset         # noqa: E402
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 __all__ = ['VARIANTS', 'SolveVariant', 'Main']
 

@@ -32,17 +32,17 @@ import time
 import exudyn as exu
 import numpy as np
 
-from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings, _SolverCounters
-from exudyn_worm.analysis.stepsize import RecommendedStepSize
+from exudyn_worm.analysis.simulation.reelchanger import BuildReelChanger, SolverSettings, _SolverCounters
+from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
 from exudyn_worm.items._userfunctions import SetGenericForceLaw
 from exudyn_worm.items.drivetrain import CreatePrescribedRotation, CreateRotor
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear
 from exudyn_worm.model.contact import ContactOptions
 from exudyn_worm.model.profiles import ConstantSpeed
-from exudyn_worm.setups.duty import LoadFromParameters
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.duty import LoadFromParameters
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 __all__ = ['BuildCompiledRigidBodyReelChanger', 'Main']
 

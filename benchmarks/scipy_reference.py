@@ -13,7 +13,7 @@ the mesh torques from :func:`exudyn_worm.model.contact.MeshContact` with the pla
 Exudyn model (:func:`exudyn_worm.items.equilibrium.SteadyInitialState`).
 
 The result is a :class:`exudyn_worm.items.results.SimulationResult` with the same series names as
-:func:`exudyn_worm.analysis.reelchanger.SimulateReelChanger`, so both are evaluated by the same
+:func:`exudyn_worm.analysis.simulation.reelchanger.SimulateReelChanger`, so both are evaluated by the same
 ``WindowMetrics``. Accelerations are the right-hand side evaluated at the output points.
 """
 from __future__ import annotations
@@ -28,12 +28,12 @@ from scipy.integrate import solve_ivp
 from exudyn_worm.model.contact import ContactOptions, MeshContact
 from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.model.drive import ElasticDrive
-from exudyn_worm.setups.presets import ElasticDriveFromParameters
+from exudyn_worm.drive.presets import ElasticDriveFromParameters
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque
-from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod
+from exudyn_worm.analysis.simulation.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 #: the reference models have no stick state: they use the regularized friction law (docs/friction-sticking.md);
 #: where the worm never stops (P1) it gives the same results as the package's default sticking law

@@ -24,7 +24,7 @@ PEAKS = ('maxAbsWheelAcceleration', 'maxNormalForce')
 def _Parameters(preset: str) -> dict:
     """A preset (``reel-P1``, ...), a shipped drive (``figure19``, ...) or a drive file (``*.toml``)."""
     from exudyn_worm.params.drives import ConfigPath
-    from exudyn_worm.setups.config import ResolveParameters
+    from exudyn_worm.drive.config import ResolveParameters
     return ResolveParameters(preset) if preset.startswith('reel-') else ResolveParameters(config=ConfigPath(preset))
 
 
@@ -32,9 +32,9 @@ def WindowPeaks(preset: str, divisor: int = 1) -> dict:
     """Peaks per default window of one rotation of ``preset`` (see :func:`_Parameters`; a drive file: its duty's
     windows) at the recommended step / ``divisor``."""
     from exudyn_worm import SimulateReelChanger
-    from exudyn_worm.analysis.reelchanger import DefaultWindows
-    from exudyn_worm.analysis.stepsize import RecommendedStepSize
-    from exudyn_worm.setups.wholedrive import ResolveDrive
+    from exudyn_worm.analysis.simulation.reelchanger import DefaultWindows
+    from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
+    from exudyn_worm.drive.wholedrive import ResolveDrive
     p = _Parameters(preset)
     drive = ResolveDrive(parameters=p)
     h = RecommendedStepSize(drive) / divisor
@@ -50,9 +50,9 @@ def _Change(a: dict, b: dict) -> float:
 
 def Converge(preset: str, tolerance: float = 5e-4, maxHalvings: int = 6) -> list:
     """Runs of ``preset`` at the default step and halved steps until the peaks change by less than ``tolerance``."""
-    from exudyn_worm.analysis.reelchanger import MAX_STEPS, DefaultSimulatedTime
-    from exudyn_worm.analysis.stepsize import RecommendedStepSize
-    from exudyn_worm.setups.wholedrive import ResolveDrive
+    from exudyn_worm.analysis.simulation.reelchanger import MAX_STEPS, DefaultSimulatedTime
+    from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
+    from exudyn_worm.drive.wholedrive import ResolveDrive
     drive = ResolveDrive(parameters=_Parameters(preset))
     runs = [WindowPeaks(preset)]
     for k in range(1, maxHalvings + 1):

@@ -1,6 +1,6 @@
 """The reel changer with the worm driven by the shaft torque as a user-function load (benchmark lever).
 
-Not part of the package. :func:`exudyn_worm.setups.build.BuildReelChanger` prescribes the motor angle with a
+Not part of the package. :func:`exudyn_worm.builders.oneangle.BuildReelChanger` prescribes the motor angle with a
 ``CoordinateConstraint``, which Exudyn's explicit and adaptive integrators (RK44, ODE23, DOPRI5) ignore.
 Here the motor node and its constraint are left out: the prescribed motor enters only through the shaft
 torque ``kT (phi0(t) - phi1) + dT (omega0(t) - omega1)`` (eq. (6)), applied to the worm with
@@ -18,12 +18,12 @@ from exudyn_worm.items.connector import CreateWormGear
 from exudyn_worm.model.contact import ContactOptions
 from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque
-from exudyn_worm.setups.presets import ElasticDriveFromParameters
+from exudyn_worm.drive.presets import ElasticDriveFromParameters
 from exudyn_worm.model.profiles import ConstantSpeed, GravityLeverTorque
-from exudyn_worm.analysis.reelchanger import RotationPeriod, SolverSettings
+from exudyn_worm.analysis.simulation.reelchanger import RotationPeriod, SolverSettings
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 __all__ = ['SimulateTorqueDriven']
 

@@ -6,7 +6,9 @@ after ``pip install -e '.[docs]'``. The pages are listed by the toctrees of ``in
 Generated at build time, so they follow the code without edits:
 
 - the API reference, ``api/index.md`` (the package and the names it re-exports) and one page per subpackage,
-  ``api/<subpackage>.md`` (one autodoc section per public module); a subpackage without its page, or a page
+  ``api/<subpackage>.md`` (one autodoc section per public module; a nested subpackage
+  has its own page, ``api/analysis.stability.md``, listed on its parent's page);
+  a subpackage without its page, or a page
   without its subpackage, is a build warning;
 - the gallery, ``gallery.md``: every script of ``examples/`` is run as the reader would run it,
   ``python examples/NAME.py --out DIR``, with DIR and its working folder in the doctree folder (``-d``), while
@@ -80,8 +82,15 @@ SUBPACKAGE_TITLES = {
     'params': 'Parameter registry and drive files',
     'model': 'The gear model and the analytical theory',
     'items': 'Exudyn items: the connector, the drivetrain, the solver',
-    'setups': 'Presets, config files and duty cycles',
-    'analysis': 'Analyses: linearization, charts, design check, studies, orbits',
+    'drive': 'The drive boundary: the Drive, the resolver, preset data, duty',
+    'builders': 'Exudyn model builders',
+    'analysis': 'Analyses of a drive',
+    'analysis.stability': 'Linear stability of a drive',
+    'analysis.charts': 'Stability charts',
+    'analysis.simulation': 'Time simulation of the machine',
+    'analysis.orbits': 'Periodic orbits and chatter amplitude',
+    'analysis.design': 'The design check',
+    'analysis.studies': 'Parameter studies',
     'plotting': 'Plots',
     'cli': 'The command line',
 }
@@ -103,9 +112,16 @@ def PublicModules() -> list:
 
 
 def Subpackages() -> list:
-    """Short names of the public subpackages of exudyn_worm ('analysis', 'cli', ...), sorted."""
-    return sorted(info.name for info in pkgutil.iter_modules(exudyn_worm.__path__)
-                  if info.ispkg and not info.name.startswith('_'))
+    """Public subpackages below exudyn_worm ('analysis', 'analysis.stability', 'cli', ...), sorted."""
+    return sorted(info.name.split('.', 1)[1] for info in pkgutil.walk_packages(exudyn_worm.__path__, 'exudyn_worm.')
+                  if info.ispkg and not any(part.startswith('_') for part in info.name.split('.')))
+
+
+def _Children(subpackage: str) -> list:
+    """The subpackages directly below ``subpackage`` ('' for the package), in layer order."""
+    depth = subpackage.count('.') + 1 if subpackage else 0
+    return sorted((name for name in Subpackages() if name.count('.') == depth
+                   and (not subpackage or name.startswith(subpackage + '.'))), key=_LayerOrder)
 
 
 def _ApiDocs() -> list:
@@ -136,7 +152,7 @@ def ApiIndexPage() -> str:
            'one section per module. A name that `exudyn_worm` re-exports (`import exudyn_worm as ew;',
            'ew.CreateWormGear`) is documented once, in the module that defines it; the table below links to it.',
            '', '```{toctree}', ':maxdepth: 1', '']
-    out += [name for name in sorted(Subpackages(), key=_LayerOrder)]
+    out += _Children('')
     out += ['```', '', '## The package `exudyn_worm`', '', '```{eval-rst}', '.. automodule:: exudyn_worm']
     if own:
         out += [f'   :members: {", ".join(own)}']
@@ -159,8 +175,11 @@ def SubpackagePage(subpackage: str) -> str:
     package = f'exudyn_worm.{subpackage}'
     title = SUBPACKAGE_TITLES.get(subpackage, package)
     out = [f'# {title} (`{package}`)', '', '```{eval-rst}', f'.. automodule:: {package}', '```', '']
+    children = _Children(subpackage)
+    if children:                      # nested subpackages: one page each, listed here
+        out += ['```{toctree}', ':maxdepth: 1', ''] + children + ['```', '']
     for modname in PublicModules():
-        if modname.startswith(package + '.'):
+        if modname.rsplit('.', 1)[0] == package and modname.split('.', 1)[1] not in Subpackages():
             out += [f'## `{modname}`', ''] + ModuleSection(modname)
     return '\n'.join(out)
 

@@ -4,7 +4,7 @@ This is also the worked example for building your own drivetrain around the worm
 item is added by hand with the public builders (``CreateRotor``, ``CreateShaft``, ``CreateWormGear``, ...),
 the sensors record every time step, and the results are read as time, normal force and mesh state.
 
-Model (Figure 19; keys of :mod:`exudyn_worm.setups.presets`; ``BuildReelChanger`` builds the same from ``J4, k4, d4``)::
+Model (Figure 19; keys of :mod:`exudyn_worm.drive.presets`; ``BuildReelChanger`` builds the same from ``J4, k4, d4``)::
 
     motor phi0(t) --spring-Damper4 (k4, d4)-- inertia4 J4 --spring-Damper1 (kT, dT)-- worm J1 --mesh-- wheel J2 -- reel
 
@@ -22,7 +22,7 @@ value, only that inertia4 "introduces a third natural frequency of 116 Hz" and t
 
 What it shows (numbers from :func:`RunExample`, checked by tests/test_example_drive_side_inertia.py):
 
-- Linear analysis (:func:`~exudyn_worm.analysis.linearization.AnalyzeLinearStability`): S = +1: 29.0, 46.7, 116.0 Hz;
+- Linear analysis (:func:`~exudyn_worm.analysis.stability.linearization.AnalyzeLinearStability`): S = +1: 29.0, 46.7, 116.0 Hz;
   S = -1: 36.9 Hz growing (largest real part 18.5 1/s against 19.8 1/s without inertia4): the extra inertia
   moves P1 towards stability but not into it. At this k4, P1 becomes stable for J4 between 0.20 and 0.76
   kg*m^2 (equivalent inertia ratio (J1 + J4)/J2 of 0.009 to 0.026, the region of P2 at 0.009); a much larger
@@ -59,12 +59,12 @@ from scipy.signal import find_peaks
 import exudyn_worm as ew
 from exudyn_worm._checks import CheckOutputFolder
 from exudyn_worm.model.drive import TorsionalDampingFromMeasure
-from exudyn_worm.analysis.linearization import AnalyzeLinearStability, LinearStability
-from exudyn_worm.setups.presets import DriveSideChain
-from exudyn_worm.analysis.reelchanger import RotationPeriod
+from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability, LinearStability
+from exudyn_worm.drive.presets import DriveSideChain
+from exudyn_worm.analysis.simulation.reelchanger import RotationPeriod
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.items.results import SimulationResult
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 __all__ = ['PRESET', 'J4', 'D4', 'MODE_HZ', 'STEP_SIZE', 'LOWERING', 'ZOOM', 'DriveSideParameters',
            'StiffnessForThirdMode', 'DriveSideModel', 'BuildDriveSideInertia', 'LinearAnalysis', 'MaxRealPart',

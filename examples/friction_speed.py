@@ -9,7 +9,7 @@ tests/test_example_friction_speed.py), drawn only when the file is run::
    (reel-P3 with ``mu = 0.092``, ``muStatic = 0.2``, ``stribeckVelocity = 0.9 m/s``: mu = 0.132 at the paper's
    472.5 rpm, v0 = 0.897 m/s) and the AGMA 6034 curve.
 2. :func:`SpeedChart`: the largest real part of the lowering state against motor speed, eq. (16) extended by the
-   friction slope at each operating point (:func:`exudyn_worm.analysis.speedchart.SpeedStabilityChart`). With constant mu
+   friction slope at each operating point (:func:`exudyn_worm.analysis.charts.speedchart.SpeedStabilityChart`). With constant mu
    it does not depend on speed; with the Stribeck law reel-P3 chatters while lowering between the boundaries near
    85 and 610 rpm (``exudyn-worm chart --speed``, docs/charts.md); the example prints the unstable speeds of its own
    grid, which lie inside them.
@@ -38,9 +38,9 @@ import numpy as np
 
 import exudyn_worm as ew
 from exudyn_worm.model.friction import NUMPY_OPS, AgmaFriction, ConstantFriction, StribeckFriction
-from exudyn_worm.analysis.reelchanger import RotationPeriod, SimulateReelChanger
-from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.simulation.reelchanger import RotationPeriod, SimulateReelChanger
+from exudyn_worm.analysis.charts.speedchart import RPM, SpeedStabilityChart
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 #: reel-P3 with the Stribeck law of docs/friction.md: mu(v0) = 0.132 at 472.5 rpm
 PARAMETERS = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,

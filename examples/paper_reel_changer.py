@@ -33,10 +33,10 @@ import sys
 from pathlib import Path
 from typing import Dict, Iterable, List, Mapping, Optional, Sequence
 
-from exudyn_worm.setups.presets import REEL_KEYS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
-from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SimulateReelChanger
+from exudyn_worm.drive.presets import REEL_KEYS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.analysis.simulation.reelchanger import DEFAULT_STEP_SIZE, RotationPeriod, SimulateReelChanger
 from exudyn_worm.items.results import SimulationResult
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 from exudyn_worm.params.parameters import PARAMETERS
 
 __all__ = ['PAPER_FIGURES', 'BACKLASH_STUDY', 'RPM', 'CaseParameters', 'RunPaperCases', 'Summary',

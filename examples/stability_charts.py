@@ -34,12 +34,12 @@ from typing import Dict, List, Optional, Sequence
 
 import numpy as np
 
-from exudyn_worm.analysis.charts import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, PresetChartPoints,
+from exudyn_worm.analysis.charts.stabilitychart import (ComputeStabilityChart, FirstCriterionChart, FirstCriterionCurves, PresetChartPoints,
                                 StabilityChart)
 from exudyn_worm.cli.formatchart import FormatChartTable
 from exudyn_worm._checks import CheckOutputFolder
 from exudyn_worm.plotting.plot_charts import ZOOM_DECADES, PointsToZoom
-from exudyn_worm.setups.presets import GearFromParameters, GetPreset
+from exudyn_worm.drive.presets import GearFromParameters, GetPreset
 
 __all__ = ['CHART_PRESET', 'FIGURE_DV', 'DTV_VALUES', 'POINT_PRESETS', 'FIGURE3_RHO_DEG', 'ZOOM_DECADES',
            'Figure3PitchAngles', 'ComputeFigures', 'Summary', 'FormatSummary', 'DrawFigures', 'WriteFigures', 'PointsToZoom', 'main']

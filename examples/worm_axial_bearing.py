@@ -4,8 +4,8 @@ Model: the drive of Figure 2 plus the worm's axial coordinate xA, the worm's axi
 bearing's axial spring-damper kA, dA to the housing, in series with the mesh:
 Delta s = r1 cos(alphaN) sin(gamma) (phi1 - u phi2) + cos(alphaN) cos(gamma) xA, and the worm takes the axial
 reaction -c4 F / r2 (derivation in :func:`exudyn_worm.model.contact.MeshContact`). Linearized by Exudyn with S held
-(:func:`~exudyn_worm.analysis.linearization.AnalyzeLinearStability` on
-:func:`~exudyn_worm.analysis.linearization.BuildLinearizationModel` with ``axialBearing``): a 3-DOF characteristic
+(:func:`~exudyn_worm.analysis.stability.linearization.AnalyzeLinearStability` on
+:func:`~exudyn_worm.analysis.stability.linearization.BuildLinearizationModel` with ``axialBearing``): a 3-DOF characteristic
 problem in (phi1, phi2, xA), six eigenvalues, a characteristic polynomial of degree 6.
 
 Values: mA = 5 kg (worm, shaft and bearing inner rings of a worm with r1 = 18 mm; the P1 boundary below moves by
@@ -43,10 +43,10 @@ from scipy.optimize import brentq
 
 import exudyn_worm as ew
 from exudyn_worm._checks import CheckOutputFolder
-from exudyn_worm.analysis.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStability
-from exudyn_worm.setups.presets import AxialBearingFromParameters
-from exudyn_worm.analysis.reelchanger import DefaultWindows
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStability
+from exudyn_worm.drive.presets import AxialBearingFromParameters
+from exudyn_worm.analysis.simulation.reelchanger import DefaultWindows
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 __all__ = ['AXIAL_MASS', 'AXIAL_DAMPING', 'STIFFNESSES', 'AxialParameters', 'AxialLinearStability',
            'MaxRealPart', 'BoundaryStiffness', 'EquivalentMeshStiffness', 'EquivalentTwoMassMaxRealPart',

@@ -6,9 +6,10 @@ angles in rad. Plotting lives in :mod:`exudyn_worm.plotting` (the only subpackag
 
 The subpackages are the layers of the package, lowest first (docs/development.md): :mod:`~exudyn_worm.params`
 (the parameter registry and drive files), :mod:`~exudyn_worm.model` (gear, contact and friction laws, the
-analytical theory), :mod:`~exudyn_worm.items` (the Exudyn items and the solver), :mod:`~exudyn_worm.setups`
-(presets, config files, duty cycles: a parameter set resolved into a drive), :mod:`~exudyn_worm.analysis`
-(linearization, charts, design check, studies, simulations, periodic orbits), :mod:`~exudyn_worm.plotting`
+analytical theory), :mod:`~exudyn_worm.items` (the Exudyn items and the solver), :mod:`~exudyn_worm.drive`
+(the drive boundary: the Drive, the resolver, preset data, duty), :mod:`~exudyn_worm.builders` (Exudyn model
+builders), :mod:`~exudyn_worm.analysis` (stability, charts, simulation, periodic orbits, design check,
+studies), :mod:`~exudyn_worm.plotting`
 and :mod:`~exudyn_worm.cli`.
 """
 import importlib
@@ -25,26 +26,26 @@ _LAZY = {'WormGear': 'model.gear',
                           'CreateLoadSideChain'), 'items.drivetrain'),
          **dict.fromkeys(('ConstantSpeed', 'CoulombViscousFriction', 'GravityLeverTorque', 'LinearMotorCharacteristic',
                           'StartStopProfile'), 'model.profiles'),
-         **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'ElasticDriveFromParameters', 'GetPreset', 'PRESETS', 'LoadSideChain'), 'setups.presets'),
-         **dict.fromkeys(('AnalyzeLinearStability', 'LinearStability'), 'analysis.linearization'),
-         **dict.fromkeys(('Drive', 'ResolveDrive', 'Component'), 'setups.wholedrive'),
-         **dict.fromkeys(('ValueSource', 'SourceKind'), 'setups.config'),
+         **dict.fromkeys(('ApplyOverrides', 'DriveFromParameters', 'ElasticDriveFromParameters', 'GetPreset', 'PRESETS', 'LoadSideChain'), 'drive.presets'),
+         **dict.fromkeys(('AnalyzeLinearStability', 'LinearStability'), 'analysis.stability.linearization'),
+         **dict.fromkeys(('Drive', 'ResolveDrive', 'Component'), 'drive.wholedrive'),
+         **dict.fromkeys(('ValueSource', 'SourceKind'), 'drive.config'),
          **dict.fromkeys(('CreateRigidBodyWormGear', 'RigidBodyWormGearConnector'), 'items.rigidmesh'),
          **dict.fromkeys(('CreateShaftBearings', 'ShaftBearings', 'StoredBearingLoads'), 'items.bearings'),
-         'BuildRigidBodyReelChanger': 'analysis.reelchanger3d',
-         **dict.fromkeys(('DutyOperatingPoints', 'DutyPoint'), 'setups.operatingpoints'),
+         'BuildRigidBodyReelChanger': 'analysis.simulation.reelchanger3d',
+         **dict.fromkeys(('DutyOperatingPoints', 'DutyPoint'), 'drive.operatingpoints'),
          **dict.fromkeys(('AnalyzeDrive', 'DriveAnalysis', 'OperatingPointStability', 'StabilityModel'),
-                         'analysis.drivestability'),
-         'BuildReelChanger': 'setups.build', 'SimulateReelChanger': 'analysis.reelchanger',
+                         'analysis.stability.drivestability'),
+         'BuildReelChanger': 'builders.oneangle', 'SimulateReelChanger': 'analysis.simulation.reelchanger',
          'SteadyInitialState': 'items.equilibrium',
          'SimulationResult': 'items.results',
          **dict.fromkeys(('ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction', 'FrictionLaw'),
                          'model.friction'),
          **dict.fromkeys(('OperatingPoint', 'OperatingPointAt'), 'model.stability'),
          'SelfLocking': 'model.selflocking',
-         **dict.fromkeys(('FindPeriodicOrbit', 'PeriodicOrbit'), 'analysis.orbits'),
-         'FindSteadyChatter': 'analysis.chatter', 'SteadyChatterOfSystem': 'analysis.chatter', 'AnalyzeChatterBranch': 'analysis.chatterbranch',
-         **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'analysis.stepsize')}
+         **dict.fromkeys(('FindPeriodicOrbit', 'PeriodicOrbit'), 'analysis.orbits.periodic'),
+         'FindSteadyChatter': 'analysis.orbits.chatter', 'SteadyChatterOfSystem': 'analysis.orbits.chatter', 'AnalyzeChatterBranch': 'analysis.orbits.chatterbranch',
+         **dict.fromkeys(('RecommendedStepSize', 'CheckStepSize'), 'analysis.simulation.stepsize')}
 
 
 def __getattr__(name):

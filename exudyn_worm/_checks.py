@@ -179,7 +179,7 @@ def CheckName(where: str, name: str, value) -> str:
 def CheckSystem(where: str, mbs, name: str = 'mbs'):
     """Return ``mbs`` if it is an ``exudyn.MainSystem``; raise ``TypeError`` otherwise.
 
-    An object with a MainSystem attribute ``mbs`` (e.g. a :class:`~exudyn_worm.setups.build.ReelChangerModel`)
+    An object with a MainSystem attribute ``mbs`` (e.g. a :class:`~exudyn_worm.builders.oneangle.ReelChangerModel`)
     is named in the message, so that the caller can pass ``model.mbs``.
     """
     import exudyn

@@ -1,4 +1,4 @@
-"""How a varied key's values are spaced: shared by the chatter map's grid (:mod:`exudyn_worm.analysis.studymap`) and
+"""How a varied key's values are spaced: shared by the chatter map's grid (:mod:`exudyn_worm.analysis.studies.studymap`) and
 the axes of the study plots (:mod:`exudyn_worm.plotting.plot_study`). numpy only."""
 from __future__ import annotations
 

@@ -9,15 +9,15 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.charts import ComputeStabilityChart, PresetChartPoints
+from exudyn_worm.analysis.charts.stabilitychart import ComputeStabilityChart, PresetChartPoints
 from exudyn_worm.model.contact import MeshContact
 from exudyn_worm.model.friction import NUMPY_OPS
-from exudyn_worm.analysis.design import DesignCheck
-from exudyn_worm.analysis.linearization import AnalyzeLinearStability
+from exudyn_worm.analysis.design.designcheck import DesignCheck
+from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
 from exudyn_worm.model.friction import AgmaFriction
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.setups.presets import GearFromParameters
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.drive.presets import GearFromParameters
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 P1 = ew.GetPreset('reel-P1')
 

@@ -6,15 +6,15 @@ import exudyn as exu
 import numpy as np
 import pytest
 
-from exudyn_worm.setups.config import ParseSetOption
+from exudyn_worm.drive.config import ParseSetOption
 from exudyn_worm.model.drive import AxialBearing
 from exudyn_worm.model.contact import ContactOptions, MeshContact
 from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
-from exudyn_worm.setups.presets import (PARAMETER_UNITS, ApplyOverrides, AxialBearingFromParameters, ElasticDriveFromParameters,
+from exudyn_worm.drive.presets import (PARAMETER_UNITS, ApplyOverrides, AxialBearingFromParameters, ElasticDriveFromParameters,
                                  DriveSideChain, GetPreset)
-from exudyn_worm.analysis.reelchanger import SimulateReelChanger
-from exudyn_worm.setups.build import BuildReelChanger
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
+from exudyn_worm.builders.oneangle import BuildReelChanger
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 P1 = GetPreset('reel-P1')
 

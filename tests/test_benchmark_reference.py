@@ -7,9 +7,9 @@ the chatter after the load reverses at 2 s. Only results are compared, never wal
 import numpy as np
 import pytest
 
-from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, SimulateReelChanger
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.analysis.simulation.reelchanger import DEFAULT_STEP_SIZE, SimulateReelChanger
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 

@@ -1,4 +1,4 @@
-"""Tests of the stability charts (exudyn_worm.analysis.charts): the vectorized chart agrees with the single-drive
+"""Tests of the stability charts (exudyn_worm.analysis.charts.stabilitychart): the vectorized chart agrees with the single-drive
 analysis, the largest real part agrees with the verdict and with numpy's eigenvalues, the chart is
 dimensionless, S = +1 is stable everywhere, boundaries, ranges, JSON and bad input."""
 import json
@@ -9,11 +9,11 @@ import pytest
 from hypothesis import assume, given, settings, strategies as st
 from numpy.testing import assert_allclose
 
-from exudyn_worm.analysis.charts import (ChartCoefficients, ChartCoordinates, ComputeStabilityChart, MaxRealPartGrid, UnstableGrid)
-from exudyn_worm.analysis.contours import ContourLines
-from exudyn_worm.analysis.quartic import MaxRealPart
+from exudyn_worm.analysis.charts.stabilitychart import (ChartCoefficients, ChartCoordinates, ComputeStabilityChart, MaxRealPartGrid, UnstableGrid)
+from exudyn_worm.analysis.charts.contours import ContourLines
+from exudyn_worm.analysis.charts.quartic import MaxRealPart
 from exudyn_worm.model.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GearFromParameters, GetPreset
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GearFromParameters, GetPreset
 from exudyn_worm.model.stability import AnalyzeStability, CharacteristicCoefficients, HurwitzStable
 
 GEAR25 = GearFromParameters(GetPreset('chart'), meshDamping=False)     # set (25)

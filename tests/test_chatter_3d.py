@@ -7,15 +7,15 @@ import json
 import numpy as np
 import pytest
 
-import exudyn_worm.analysis.chatter as chatter
-from exudyn_worm.analysis.chatter import FindSteadyChatter, SteadyChatterSummary
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
-from exudyn_worm.analysis.lowering import BuildRigidBodyLoweringModel, LoweringPhaseParameters
-from exudyn_worm.analysis.orbits import PeriodicOrbit, ShootingError
+import exudyn_worm.analysis.orbits.chatter as chatter
+from exudyn_worm.analysis.orbits.chatter import FindSteadyChatter, SteadyChatterSummary
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
+from exudyn_worm.analysis.orbits.lowering import BuildRigidBodyLoweringModel, LoweringPhaseParameters
+from exudyn_worm.analysis.orbits.periodic import PeriodicOrbit, ShootingError
 from exudyn_worm.cli.formatchatter import FormatSteadyChatter
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 pytest.importorskip('exudyn')
 DRIVE_3D = 'examples/drives/reel-3d.toml'

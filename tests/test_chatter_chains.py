@@ -1,4 +1,4 @@
-"""Steady chatter of drives beyond the two-mass drive of Figure 2 (exudyn_worm.analysis.chatter): the lowering model with
+"""Steady chatter of drives beyond the two-mass drive of Figure 2 (exudyn_worm.analysis.orbits.chatter): the lowering model with
 drive-side and load-side chains and the worm's axial bearing, and the orbit of a user's own Exudyn system.
 
 Independent checks: a load shaft so stiff that the load follows the wheel gives the two-mass drive's orbit (load
@@ -14,15 +14,15 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import (BuildLoweringModel, FindSteadyChatter, LoweringModelOfSystem, SettleLowering, SteadyChatterOfSystem, _LinearlyStable)
-from exudyn_worm.analysis.lowering import EquilibriumState
-from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude
+from exudyn_worm.analysis.orbits.chatter import (BuildLoweringModel, FindSteadyChatter, LoweringModelOfSystem, SettleLowering, SteadyChatterOfSystem, _LinearlyStable)
+from exudyn_worm.analysis.orbits.lowering import EquilibriumState
+from exudyn_worm.analysis.orbits.longsimulation import LongSimulationAmplitude
 from exudyn_worm.cli.main import Main
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
-from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries, SmallestDisturbance
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
+from exudyn_worm.analysis.orbits.chatterbranch import AnalyzeChatterBranch, LinearBoundaries, SmallestDisturbance
 from exudyn_worm.items.drivetrain import CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
 from exudyn_worm.model.profiles import ConstantSpeed, ConstantTorque
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 

@@ -1,4 +1,4 @@
-"""The one-period map of the Exudyn model (exudyn_worm.analysis.exudynflow.ExudynFlow) with the sticking friction model:
+"""The one-period map of the Exudyn model (exudyn_worm.analysis.orbits.exudynflow.ExudynFlow) with the sticking friction model:
 its result must depend on the start state and the time alone, not on the calls before it (the stick/slip state
 of the connector lives outside the ODE2 coordinates; before the fix it was left from the previous call, and a
 call from the same start after a call that ended with the worm turning back differed by 1e-3 of the state
@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import (BuildLoweringModel, FindSteadyChatter, SettleLowering, StateScale, _LoweringFlow)
-from exudyn_worm.analysis.lowering import EquilibriumState
-from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude, SettledSimulationAmplitude
+from exudyn_worm.analysis.orbits.chatter import (BuildLoweringModel, FindSteadyChatter, SettleLowering, StateScale, _LoweringFlow)
+from exudyn_worm.analysis.orbits.lowering import EquilibriumState
+from exudyn_worm.analysis.orbits.longsimulation import LongSimulationAmplitude, SettledSimulationAmplitude
 from exudyn_worm.model.contact import FrictionState, SlidingCoordinate
-from exudyn_worm.analysis.speedchart import RPM
+from exudyn_worm.analysis.charts.speedchart import RPM
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 

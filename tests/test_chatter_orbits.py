@@ -1,5 +1,5 @@
-"""Steady chatter of the lowering phase as a periodic orbit of the Exudyn model (exudyn_worm.analysis.chatter,
-exudyn_worm.analysis.continuation, exudyn_worm.analysis.chatterbranch) and the ``exudyn-worm chatter`` command.
+"""Steady chatter of the lowering phase as a periodic orbit of the Exudyn model (exudyn_worm.analysis.orbits.chatter,
+exudyn_worm.analysis.orbits.continuation, exudyn_worm.analysis.orbits.chatterbranch) and the ``exudyn-worm chatter`` command.
 
 Independent checks: the orbit's amplitude against a long time simulation with the time simulations' own
 solver settings (modified Newton, tolerance 1e-6, a different step); the Hopf points of the branch against the
@@ -13,18 +13,18 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import BuildLoweringModel, FindSteadyChatter, SettleLowering, StateScale
+from exudyn_worm.analysis.orbits.chatter import BuildLoweringModel, FindSteadyChatter, SettleLowering, StateScale
 from exudyn_worm.model.profiles import ConstantTorque
-from exudyn_worm.analysis.lowering import EquilibriumState, UpdateLoweringModel
-from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude
-from exudyn_worm.analysis.chatterbranch import (AnalyzeChatterBranch, ChatterBranchError, LinearBoundaries, SmallestDisturbance)
-from exudyn_worm.analysis.disturbance import ChattersAfterDisturbance
+from exudyn_worm.analysis.orbits.lowering import EquilibriumState, UpdateLoweringModel
+from exudyn_worm.analysis.orbits.longsimulation import LongSimulationAmplitude
+from exudyn_worm.analysis.orbits.chatterbranch import (AnalyzeChatterBranch, ChatterBranchError, LinearBoundaries, SmallestDisturbance)
+from exudyn_worm.analysis.orbits.disturbance import ChattersAfterDisturbance
 from exudyn_worm.cli.main import Main
 from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
-from exudyn_worm.analysis.orbits import FloquetMultipliers, Monodromy
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
+from exudyn_worm.analysis.orbits.periodic import FloquetMultipliers, Monodromy
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 

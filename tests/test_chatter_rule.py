@@ -11,8 +11,8 @@ from exudyn_worm import GetPreset, SimulateReelChanger
 from exudyn_worm.items.results import (CHATTER_AMPLITUDE, CHATTER_DECAY_EXPONENT, CHATTER_GROWTH_EXPONENT,
                                        CHATTER_MIN_MESH_TORQUE, CHATTER_SATURATION, CHATTER_STEADY_EXPONENT,
                                        ChatterVerdict, SimulationResult)
-from exudyn_worm.analysis.reelchanger import DefaultPhases
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.simulation.reelchanger import DefaultPhases
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 _T = np.linspace(0., 1., 20001)
 #: frequency in Hz of the test tones: 100 periods in each quarter of the window [0, 1] s

@@ -1,4 +1,4 @@
-"""The branch of friction-limited chatter from a smooth Hopf point (exudyn_worm.analysis.smoothbranch.SmoothHopfBranch,
+"""The branch of friction-limited chatter from a smooth Hopf point (exudyn_worm.analysis.orbits.smoothbranch.SmoothHopfBranch,
 used by AnalyzeChatterBranch and ``exudyn-worm chatter``): reel-P3 with a Stribeck law over the motor speed.
 
 Independent checks: the Hopf point (from the orbits' amplitudes alone) against the linear boundary (roots of the
@@ -11,8 +11,8 @@ import math
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.smoothbranch import SmoothHopfBranch
-from exudyn_worm.analysis.speedchart import RPM
+from exudyn_worm.analysis.orbits.smoothbranch import SmoothHopfBranch
+from exudyn_worm.analysis.charts.speedchart import RPM
 from exudyn_worm.cli.chatter import ParseVary
 from exudyn_worm.cli.main import Main, UsageError
 

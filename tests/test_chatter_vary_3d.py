@@ -7,15 +7,15 @@ import json
 import numpy as np
 import pytest
 
-from exudyn_worm.analysis.chatter import SteadyChatterSummary
-from exudyn_worm.analysis.chatterbranch import BEARING_LOAD_KEYS, AnalyzeChatterBranch, ChatterBranch
-from exudyn_worm.analysis.continuation import BranchPoint
-from exudyn_worm.analysis.lowering import (BuildRigidBodyLoweringModel, LoweringPhaseParameters,
-                                           UpdateLoweringModel)
-from exudyn_worm.analysis.orbits import PeriodicOrbit
+from exudyn_worm.analysis.orbits.chatter import SteadyChatterSummary
+from exudyn_worm.analysis.orbits.chatterbranch import BEARING_LOAD_KEYS, AnalyzeChatterBranch, ChatterBranch
+from exudyn_worm.analysis.orbits.continuation import BranchPoint
+from exudyn_worm.analysis.orbits.lowering import (BuildRigidBodyLoweringModel, LoweringPhaseParameters,
+                                                  UpdateLoweringModel)
+from exudyn_worm.analysis.orbits.periodic import PeriodicOrbit
 from exudyn_worm.cli.formatchatter import FormatBranch
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 pytest.importorskip('exudyn')
 DRIVE_3D = 'examples/drives/reel-3d.toml'

@@ -17,12 +17,12 @@ import pytest
 
 from exudyn_worm import ApplyOverrides, GetPreset
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.setups.presets import DriveSideChain
-from exudyn_worm.analysis.design import DesignCheck, LocalCharts
-from exudyn_worm.setups import operatingpoints
-from exudyn_worm.setups.wholedrive import ResolveDrive
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.drive.presets import DriveSideChain
+from exudyn_worm.analysis.design.designcheck import DesignCheck, LocalCharts
+from exudyn_worm.drive import operatingpoints
+from exudyn_worm.drive.wholedrive import ResolveDrive
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
 from paper_model import ChainEigenvalues, HurwitzStable
 
 DRIVES = Path(__file__).resolve().parents[1] / 'examples' / 'drives'

@@ -13,7 +13,7 @@ import exudyn_worm
 from exudyn_worm.cli import main as cli
 from exudyn_worm.cli.main import Main
 from exudyn_worm.model.stability import AnalyzeStability
-import exudyn_worm.analysis.linearization as linearization
+import exudyn_worm.analysis.stability.linearization as linearization
 
 S_KEYS = {'b', 'hurwitz', 'eigenvalues', 'frequenciesHz', 'lehrDamping', 'stable'}
 # the speed-dependent friction added 'friction' (the law), 'selfLockingVerdict' (static/dynamic) and 'operatingPoint' (None without load/speed)

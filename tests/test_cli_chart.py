@@ -6,10 +6,10 @@ from pathlib import Path
 import pytest
 from numpy.testing import assert_allclose
 
-import exudyn_worm.analysis.charts as charts
-from exudyn_worm.analysis.charts import ComputeStabilityChart
+import exudyn_worm.analysis.charts.stabilitychart as charts
+from exudyn_worm.analysis.charts.stabilitychart import ComputeStabilityChart
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.presets import GearFromParameters, GetPreset
+from exudyn_worm.drive.presets import GearFromParameters, GetPreset
 
 ENTRY_KEYS = {'DV', 'DTV', 'unstableXRange', 'unstableYRange', 'unstableFraction'}
 

@@ -4,13 +4,13 @@ import os
 
 import pytest
 
-import exudyn_worm.analysis.reelchanger as reelchanger
+import exudyn_worm.analysis.simulation.reelchanger as reelchanger
 from exudyn_worm import GetPreset, SimulateReelChanger
 from exudyn_worm.cli.main import Main
 from exudyn_worm.cli.simulate import ParseWindows
-from exudyn_worm.analysis.reelchanger import DefaultWindows, RotationPeriod
+from exudyn_worm.analysis.simulation.reelchanger import DefaultWindows, RotationPeriod
 from exudyn_worm.items.solve import SolverDivergedError
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 WINDOW_KEYS = {'t0', 't1', 'maxAbsWheelAcceleration', 'maxNormalForce', 'dominantFrequencyHz',
                'fractionSNegative', 'minWormSpeed', 'chatter', 'chatterState', 'chatterAmplitude', 'envelopeRate'}

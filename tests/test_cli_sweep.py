@@ -10,12 +10,12 @@ from pathlib import Path
 import pytest
 
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.analysis.studyfiles import ReadResults
-from exudyn_worm.analysis.reelchanger import DefaultPhases
-from exudyn_worm.analysis.studypoint import DecidingWindow
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.analysis.studies.studyfiles import ReadResults
+from exudyn_worm.analysis.simulation.reelchanger import DefaultPhases
+from exudyn_worm.analysis.studies.studypoint import DecidingWindow
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 SHORT = ['--windows', '0:0.5,0.5:1', '--end-time', '1', '--quiet']
 

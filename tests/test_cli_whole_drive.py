@@ -9,9 +9,9 @@ import pytest
 
 from exudyn_worm.cli import main as cli
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.linearization import LinearStabilityOfDrive
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.analysis.stability.linearization import LinearStabilityOfDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 ROOT = Path(__file__).resolve().parents[1]
 FIGURE19 = ROOT / 'examples' / 'drives' / 'figure19.toml'

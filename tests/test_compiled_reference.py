@@ -8,7 +8,7 @@ import shutil
 import numpy as np
 import pytest
 
-from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.drive.presets import GetPreset
 
 from conftest import LoadScript
 

@@ -1,4 +1,4 @@
-"""Tests of exudyn_worm.setups.config: quantities with units, --set options, TOML config files, resolution."""
+"""Tests of exudyn_worm.drive.config: quantities with units, --set options, TOML config files, resolution."""
 import doctest
 import math
 import subprocess
@@ -7,12 +7,12 @@ import sys
 import pytest
 from hypothesis import given, strategies as st
 
-from exudyn_worm.setups import config
+from exudyn_worm.drive import config
 
 from exudyn_worm.params import parameters
-from exudyn_worm.setups.config import (DEFAULT_PRESET, LoadConfig, ParseQuantity, ParseSetOption,
+from exudyn_worm.drive.config import (DEFAULT_PRESET, LoadConfig, ParseQuantity, ParseSetOption,
                                 ResolveParameters)
-from exudyn_worm.setups.presets import PARAMETER_UNITS, GetPreset
+from exudyn_worm.drive.presets import PARAMETER_UNITS, GetPreset
 
 RPM = 2 * math.pi / 60
 
@@ -104,7 +104,7 @@ def test_parse_quantity_millimetre(x):
 
 
 def test_unit_registry_lazy_and_single():
-    code = ("import sys; from exudyn_worm.setups.config import ParseQuantity, ResolveParameters; "
+    code = ("import sys; from exudyn_worm.drive.config import ParseQuantity, ResolveParameters; "
             "ParseQuantity('J1', '0.1'); ResolveParameters(sets=['J1=0.2']); print('pint' in sys.modules)")
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout
     assert out.strip() == 'False'

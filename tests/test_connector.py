@@ -9,11 +9,11 @@ from exudyn.itemInterface import NodePoint
 from exudyn_worm import AnalyzeStability
 from exudyn_worm.items.connector import CreateWormGear
 from exudyn_worm.items.drivetrain import CreateRotor, CreateShaft
-from exudyn_worm.analysis.linearization import ExudynStabilityAnalysis, ExudynEigenvalues
-from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
-from exudyn_worm.analysis.reelchanger import SimulateReelChanger
-from exudyn_worm.setups.build import BuildReelChanger
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.stability.linearization import ExudynStabilityAnalysis, ExudynEigenvalues
+from exudyn_worm.drive.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
+from exudyn_worm.builders.oneangle import BuildReelChanger
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 

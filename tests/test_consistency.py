@@ -6,12 +6,12 @@ import json
 import pytest
 
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.studygrid import ParseVariation
-from exudyn_worm.analysis.study import RunStudy, Study
-import exudyn_worm.analysis.design as design
-import exudyn_worm.analysis.reelchanger as reelchanger
-import exudyn_worm.analysis.charts as charts
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.analysis.studies.studygrid import ParseVariation
+from exudyn_worm.analysis.studies.study import RunStudy, Study
+import exudyn_worm.analysis.design.designcheck as design
+import exudyn_worm.analysis.simulation.reelchanger as reelchanger
+import exudyn_worm.analysis.charts.stabilitychart as charts
 import validation.runner as runner
 from validation.cli import Main as ValidationMain
 

@@ -7,7 +7,7 @@ from hypothesis import given, settings, strategies as st
 import exudyn as exu
 from exudyn_worm.model.contact import ContactOptions, MeshContact, SymbolicOps
 from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset
 
 GEAR = ElasticDriveFromParameters(GetPreset('reel-P1')).gear
 GEAR_BACKLASH = GEAR.Replace(backlash=0.5e-3)

@@ -1,4 +1,4 @@
-"""Pseudo-arclength continuation of periodic orbits (exudyn_worm.analysis.continuation) on the Hopf normal form.
+"""Pseudo-arclength continuation of periodic orbits (exudyn_worm.analysis.orbits.continuation) on the Hopf normal form.
 
     x' = mu x - y - x (x^2 + y^2),   y' = x + mu y - y (x^2 + y^2)
 
@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from exudyn_worm.analysis.continuation import ContinueOrbits
-from exudyn_worm.analysis.orbits import BroydenUpdate, FindPeriodicOrbit, Monodromy
+from exudyn_worm.analysis.orbits.continuation import ContinueOrbits
+from exudyn_worm.analysis.orbits.periodic import BroydenUpdate, FindPeriodicOrbit, Monodromy
 
 
 class Counted:

@@ -1,4 +1,4 @@
-"""Design check (exudyn_worm.analysis.design): recommendations for the paper's P1, the margin rule, the chart point.
+"""Design check (exudyn_worm.analysis.design.designcheck): recommendations for the paper's P1, the margin rule, the chart point.
 
 Every recommendation is re-checked here with the scalar analytical model (AnalyzeStability of the changed
 parameter set), independently of the vectorized scan that found it.
@@ -9,12 +9,12 @@ import numpy as np
 import pytest
 
 from exudyn_worm import AnalyzeStability, ApplyOverrides, ElasticDriveFromParameters, GetPreset
-from exudyn_worm.analysis.design import DesignCheck
-from exudyn_worm.analysis.designconfirm import ConfirmBySimulation
-from exudyn_worm.analysis.designrules import DEFAULT_MARGIN
-from exudyn_worm.analysis.stabilityhint import NearestStableValue, StabilizingChanges
-from exudyn_worm.analysis.designscan import DesignParameters
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.design.designcheck import DesignCheck
+from exudyn_worm.analysis.design.designconfirm import ConfirmBySimulation
+from exudyn_worm.analysis.design.designrules import DEFAULT_MARGIN
+from exudyn_worm.analysis.design.stabilityhint import NearestStableValue, StabilizingChanges
+from exudyn_worm.analysis.design.designscan import DesignParameters
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 
 def _Stable(p):

@@ -6,11 +6,11 @@ import numpy as np
 import pytest
 
 from exudyn_worm import AnalyzeStability, ApplyOverrides, ElasticDriveFromParameters, GetPreset
-from exudyn_worm.analysis import design
+from exudyn_worm.analysis.design import designcheck
 from exudyn_worm.cli.main import Main
-from exudyn_worm.analysis.design import DesignCheck, LocalCharts
+from exudyn_worm.analysis.design.designcheck import DesignCheck, LocalCharts
 from exudyn_worm.plotting.plot_design import PlotDesignCheck, _Dense
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 from paper_model import BoundaryDecades, HurwitzStable
 
 
@@ -146,7 +146,7 @@ def test_check_bad_input(capsys, argv, message):
 
 @pytest.mark.messages
 def test_check_plot_path_is_checked_before_computing(capsys, tmp_path, monkeypatch):
-    monkeypatch.setattr(design, 'DesignCheck', lambda *a, **k: pytest.fail('computed before the path check'))
+    monkeypatch.setattr(designcheck, 'DesignCheck', lambda *a, **k: pytest.fail('computed before the path check'))
     (tmp_path / 'folder.png').mkdir()
     rc, _, err = Run(capsys, 'check', '--plot', str(tmp_path / 'folder.png'))
     assert rc == 2 and 'is a folder' in err

@@ -7,14 +7,14 @@ import json
 import numpy as np
 import pytest
 
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
-from exudyn_worm.analysis.reelchanger import SolverSettings
-from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger, StoredShaftLoads
-from exudyn_worm.analysis.stepsize import RecommendedStepSize
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
+from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
+from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger, StoredShaftLoads
+from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
 from exudyn_worm.cli.main import Main
 from exudyn_worm.items.bearings import ShaftBearings
-from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.setups.wholedrive import Component, ResolveDrive
+from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.drive.wholedrive import Component, ResolveDrive
 
 pytest.importorskip('exudyn')
 DRIVE_3D = 'examples/drives/reel-3d.toml'

@@ -7,13 +7,13 @@ from pathlib import Path
 
 import pytest
 
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
 from exudyn_worm.cli.main import Main
 from exudyn_worm.model.geometry import GeometryForm, GeometryFormKind
 from exudyn_worm.params.parameters import PARAMETERS, UNIT_REQUIRED, ParameterError
-from exudyn_worm.setups.config import (LoadConfig, ParseQuantity, ParseSetOption, ResolveParameters,
-                                       ResolveParametersWithSources, SourceKind, ValueSource)
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.config import (LoadConfig, ParseQuantity, ParseSetOption, ResolveParameters,
+                                      ResolveParametersWithSources, SourceKind, ValueSource)
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 ROOT = Path(__file__).resolve().parents[1]
 DRIVES = ROOT / 'examples' / 'drives'

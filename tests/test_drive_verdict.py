@@ -11,17 +11,17 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis import drivestability
+from exudyn_worm.analysis.stability import drivestability
 from exudyn_worm.cli.main import Main
-from exudyn_worm.analysis.design import DesignCheck
-from exudyn_worm.analysis.stabilityhint import StabilizingChanges
-from exudyn_worm.setups import config, presets, wholedrive
-from exudyn_worm.setups.config import ResolveParameters, SourceKind, ValueSource
-from exudyn_worm.setups.operatingpoints import DutyOperatingPoints, SteadyPhases
-from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
-from exudyn_worm.setups.wholedrive import Component, Drive, ResolveDrive
+from exudyn_worm.analysis.design.designcheck import DesignCheck
+from exudyn_worm.analysis.design.stabilityhint import StabilizingChanges
+from exudyn_worm.drive import config, presets, wholedrive
+from exudyn_worm.drive.config import ResolveParameters, SourceKind, ValueSource
+from exudyn_worm.drive.operatingpoints import DutyOperatingPoints, SteadyPhases
+from exudyn_worm.drive.presets import DriveFromParameters, GetPreset
+from exudyn_worm.drive.wholedrive import Component, Drive, ResolveDrive
 from exudyn_worm.cli import main
-from exudyn_worm.analysis.lowering import LoweringPhaseParameters
+from exudyn_worm.analysis.orbits.lowering import LoweringPhaseParameters
 
 import paper_model
 

@@ -1,4 +1,4 @@
-"""Tests of whole-drive TOML files (exudyn_worm.params.drivefile through exudyn_worm.setups.config)."""
+"""Tests of whole-drive TOML files (exudyn_worm.params.drivefile through exudyn_worm.drive.config)."""
 import doctest
 import json
 import math
@@ -11,9 +11,9 @@ import pytest
 
 from conftest import LoadScript
 from exudyn_worm.params import drivefile
-from exudyn_worm.setups.config import LoadConfig, ResolveParameters
+from exudyn_worm.drive.config import LoadConfig, ResolveParameters
 from exudyn_worm.params.drivefile import DRIVE_FILE_TABLES, DRIVE_SIDE_KEYS, DriveSideKey
-from exudyn_worm.setups.presets import AxialBearingFromParameters, DriveSideChain, GetPreset, PARAMETER_UNITS, PRESETS
+from exudyn_worm.drive.presets import AxialBearingFromParameters, DriveSideChain, GetPreset, PARAMETER_UNITS, PRESETS
 
 ROOT = Path(__file__).resolve().parents[1]
 DRIVES = ROOT / 'examples' / 'drives'

@@ -6,17 +6,17 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.drive.config import ResolveParameters
 from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.model.profiles import ConstantTorque, SpeedTable, TorqueTable
-from exudyn_worm.analysis.reelchanger import (DefaultPhases, DefaultSimulatedTime, PhaseLabel, RotationPeriod,
-                                              SimulateReelChanger)
-from exudyn_worm.setups.duty import LoadFromParameters, MotorFromParameters, SteadyMotorSpeed
+from exudyn_worm.analysis.simulation.reelchanger import (DefaultPhases, DefaultSimulatedTime, PhaseLabel, RotationPeriod,
+                                                         SimulateReelChanger)
+from exudyn_worm.drive.duty import LoadFromParameters, MotorFromParameters, SteadyMotorSpeed
 from exudyn_worm.cli.main import Main
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
-from exudyn_worm.setups.presets import ExtraComponents
-from exudyn_worm.analysis.designconfirm import ChatterWhileLowering
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
+from exudyn_worm.drive.presets import ExtraComponents
+from exudyn_worm.analysis.design.designconfirm import ChatterWhileLowering
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 
 def test_speed_table_angle_is_the_integral_of_its_speed():

@@ -11,7 +11,7 @@ from exudyn_worm.model.drive import AxialBearing
 from exudyn_worm.model.contact import ContactOptions, MeshContact
 from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.items.equilibrium import SteadyInitialState
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, DriveSideChain, GetPreset
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, DriveSideChain, GetPreset
 from exudyn_worm.model.profiles import GravityLeverTorque
 
 DOCS = Path(__file__).resolve().parents[1] / 'docs'

@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.linearization import AnalyzeLinearStability
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 

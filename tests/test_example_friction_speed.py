@@ -7,7 +7,7 @@ import pytest
 
 import exudyn_worm as ew
 from conftest import LoadScript
-from exudyn_worm.analysis.speedchart import RPM
+from exudyn_worm.analysis.charts.speedchart import RPM
 
 
 @pytest.fixture(scope='module')

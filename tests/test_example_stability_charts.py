@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 
 from conftest import LoadScript
-from exudyn_worm.analysis.charts import ChartCoordinates, MaxRealPartGrid
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GearFromParameters, GetPreset
+from exudyn_worm.analysis.charts.stabilitychart import ChartCoordinates, MaxRealPartGrid
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GearFromParameters, GetPreset
 from exudyn_worm.model.stability import AnalyzeStability
 from exudyn_worm.plotting.plot_charts import HATCHES, POINT_SIZE, NearestBoundary, PlotStabilityCharts
 

@@ -3,9 +3,9 @@ import exudyn as exu
 import numpy as np
 import pytest
 
-from exudyn_worm.setups.build import BuildReelChanger
-from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.builders.oneangle import BuildReelChanger
+from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 

@@ -11,7 +11,7 @@ from exudyn_worm.model.contact import MATH_OPS, NUMPY_OPS, ContactOptions, MeshC
 from exudyn_worm.model.friction import (FT_PER_MIN, AgmaFriction, ConstantFriction, FrictionLaw,
                                         FrictionTableRangeWarning, ReadFrictionTable, StribeckFriction, TableFriction)
 from exudyn_worm.model.gear import WormGear
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset
 
 STRIBECK = StribeckFriction(mu=0.05, muStatic=0.15, stribeckVelocity=0.1)
 TABLE = TableFriction([(0., 0.15), (0.05, 0.10), (0.5, 0.06), (2., 0.04)])

@@ -7,10 +7,10 @@ import sys
 
 import pytest
 
-from exudyn_worm.setups.config import LoadConfig, ResolveParameters
+from exudyn_worm.drive.config import LoadConfig, ResolveParameters
 from exudyn_worm.model.friction import AgmaFriction, StribeckFriction, TableFriction
 from exudyn_worm.params.parameters import PARAMETERS
-from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GearFromParameters, GetPreset
+from exudyn_worm.drive.presets import ApplyOverrides, ElasticDriveFromParameters, GearFromParameters, GetPreset
 from exudyn_worm.params.parameters import MissingParameterError
 from exudyn_worm.model.stability import OperatingPointFromParameters
 

@@ -9,16 +9,16 @@ import pytest
 from exudyn_worm.model.contact import ContactOptions, MeshContact
 from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.model.friction import StribeckFriction, TableFriction
-from exudyn_worm.analysis.linearization import ExudynStabilityAnalysis, LinearStabilityOfDrive
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.analysis.stability.linearization import ExudynStabilityAnalysis, LinearStabilityOfDrive
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.selflocking import GREY_ZONE, Rating, SelfLocking
 from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoefficients, EigenvaluesFromPolynomial,
                                          EigenvaluesFromStateMatrix, FirstCriterionLimit, LinearMatrices,
                                          OperatingPoint, OperatingPointAt, OperatingPointFromParameters,
                                          PolynomialCoefficients)
-from exudyn_worm.setups.wholedrive import ResolveDrive
-import exudyn_worm.analysis.reelchanger as rc
-import exudyn_worm.setups.wholedrive as wholedrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
+import exudyn_worm.analysis.simulation.reelchanger as rc
+import exudyn_worm.drive.wholedrive as wholedrive
 
 P3 = GetPreset('reel-P3')
 DRIVE = ElasticDriveFromParameters(P3)

@@ -7,11 +7,11 @@ import sys
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.drive.config import ResolveParameters
 from exudyn_worm.model.contact import ContactOptions, MeshContact
 from exudyn_worm.model.geometry import (DescribeGeometry, DesignationFromRadii, GeometryFromParameters,
                                   MeshStiffnessFromWheelTorsion, RadiiFromCentreDistance, RadiiFromDesignation)
-from exudyn_worm.setups.presets import ApplyOverrides, CheckParameterKeys, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.presets import ApplyOverrides, CheckParameterKeys, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.params.parameters import MissingParameterError
 
 deg = math.radians

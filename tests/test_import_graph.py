@@ -44,8 +44,15 @@ LAYERS = (
     ('parameters and files', 'params'),
     ('gear model', 'model'),
     ('Exudyn items', 'items'),
-    ('parameter sets', 'setups'),
-    ('analyses', 'analysis'),
+    ('the drive', 'drive'),
+    ('model builders', 'builders'),
+    ('analyses: stability', 'analysis.stability'),
+    ('analyses: charts', 'analysis.charts'),
+    ('analyses: simulation', 'analysis.simulation'),
+    ('analyses: orbits', 'analysis.orbits'),
+    ('analyses: design', 'analysis.design'),
+    ('analyses: studies', 'analysis.studies'),
+    ('analyses', 'analysis'),       # the package analysis itself, above its sub-layers
     ('plotting', 'plotting'),
     ('command line', 'cli __main__'),
 )
@@ -62,8 +69,8 @@ def LayerOf(module: str) -> int:
 
 
 class Import(NamedTuple):
-    module: str          # importing module, e.g. 'exudyn_worm.analysis.study'
-    target: str          # imported module, e.g. 'exudyn_worm.setups.presets' or 'numpy'
+    module: str          # importing module, e.g. 'exudyn_worm.analysis.studies.study'
+    target: str          # imported module, e.g. 'exudyn_worm.drive.presets' or 'numpy'
     function: str        # enclosing function ('' at module level)
     line: int
     comment: str         # the reason of a '# lazy: ...' comment on the line or the line above, else ''
@@ -258,14 +265,14 @@ def test_allowed_list_only_shrinks():
 
 
 @pytest.mark.parametrize('comment, target, ok', [
-    ('', 'exudyn_worm.setups.presets', False),
-    ('cycle with presets', 'exudyn_worm.setups.presets', False),
+    ('', 'exudyn_worm.drive.presets', False),
+    ('cycle with presets', 'exudyn_worm.drive.presets', False),
     ('start-up (tests/test_startup.py)', 'tqdm', True),
     ('start-up (tests/test_startup.py)', 'exudyn_worm._checks', False),
     ('optional dependency (the mpi extra)', 'mpi4py.futures', True),
 ])
 def test_rule_on_examples(comment, target, ok):
-    item = Import('exudyn_worm.analysis.study', target, 'RunStudy', 1, comment)
+    item = Import('exudyn_worm.analysis.studies.study', target, 'RunStudy', 1, comment)
     assert (_Problem(item, ModuleGraph()) == '') is ok
 
 

@@ -20,18 +20,18 @@ from exudyn_worm._files import WriteAtomically
 from exudyn_worm._workers import _QUIET_THREADS, _QuietAboutCancelledJobs, CancelPool, INTERRUPTED_STATUS
 from exudyn_worm.items.solve import Interruptible, IsInterrupt
 import exudyn_worm.plotting.plot as plot
-import exudyn_worm.analysis.reelchanger as reelchanger
+import exudyn_worm.analysis.simulation.reelchanger as reelchanger
 import exudyn_worm.items.results as results
-import exudyn_worm.analysis.charts as charts
-import exudyn_worm.analysis.design as design
+import exudyn_worm.analysis.charts.stabilitychart as charts
+import exudyn_worm.analysis.design.designcheck as design
 from validation.runner import CheckGroup, RunValidation, WriteText
 import validation.runner as runner
 from validation.cli import Main as ValidationMain
 from exudyn_worm._workers import CancelPool
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.studyfiles import ReadResults
-from exudyn_worm.analysis.study import RunPoint, Study, StudySidecarPath
-from exudyn_worm.analysis.studygrid import Variation
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.analysis.studies.studyfiles import ReadResults
+from exudyn_worm.analysis.studies.study import RunPoint, Study, StudySidecarPath
+from exudyn_worm.analysis.studies.studygrid import Variation
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -261,7 +261,7 @@ def _InterruptWhen(process, ready, timeout: float = 120.):
 def test_sigint_during_simulate(folder):
     csv = folder / 'long.csv'
     process = _Started(
-        "import sys, signal, exudyn_worm.cli.main, exudyn_worm.analysis.reelchanger\n"
+        "import sys, signal, exudyn_worm.cli.main, exudyn_worm.analysis.simulation.reelchanger\n"
         "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         "print('ready', file=sys.stderr, flush=True)\n"
         f"raise SystemExit(exudyn_worm.cli.main.Main(['simulate', '--end-time', '600', '--csv', {str(csv)!r}]))",
@@ -275,7 +275,7 @@ def test_sigint_during_simulate(folder):
 def test_sigint_during_sweep_keeps_the_finished_runs(folder):
     output = folder / 'runs.csv'
     process = _Started(
-        "import sys, signal, exudyn_worm.cli.main, exudyn_worm.analysis.reelchanger\n"
+        "import sys, signal, exudyn_worm.cli.main, exudyn_worm.analysis.simulation.reelchanger\n"
         "signal.signal(signal.SIGINT, signal.default_int_handler)\n"
         "print('ready', file=sys.stderr, flush=True)\n"
         "raise SystemExit(exudyn_worm.cli.main.Main(['sweep', '--vary', 'J1=0.01:0.4:400', '--workers', '2', "

@@ -6,9 +6,9 @@ import pytest
 
 import exudyn as exu
 import exudyn_worm as ew
-from exudyn_worm.analysis.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStabilityOfDrive
-from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStabilityOfDrive
+from exudyn_worm.drive.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 REEL_PRESETS = [name for name in PRESETS if name.startswith('reel-')]
 

@@ -14,23 +14,23 @@ import pytest
 from exudyn.itemInterface import (CoordinateSpringDamper, MarkerNodeCoordinate, Node1D, NodePointGround,
                                   ObjectRotationalMass1D)
 
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.linearization import AnalyzeLinearStability
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
 from exudyn_worm import ContactOptions, CreateWormGear, WormGear
-from exudyn_worm.analysis.design import DesignCheck
-from exudyn_worm.setups.presets import (ElasticDriveFromParameters, ExtraComponents, GetPreset, LoadSideChain,
-                                        LumpedLoadSide)
+from exudyn_worm.analysis.design.designcheck import DesignCheck
+from exudyn_worm.drive.presets import (ElasticDriveFromParameters, ExtraComponents, GetPreset, LoadSideChain,
+                                       LumpedLoadSide)
 from exudyn_worm.cli.main import Main
 from exudyn_worm.params.drivefile import StageKey
 from exudyn_worm.model.profiles import GravityLeverTorque
 from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.model.contact import MATH_OPS
-from exudyn_worm.analysis.reelchanger import SimulateReelChanger
+from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
 from exudyn_worm.items.results import SeriesUnit
-from exudyn_worm.analysis.study import RunPoint
-from exudyn_worm.analysis.loadside import DiagnoseLoadSide
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.studies.study import RunPoint
+from exudyn_worm.analysis.stability.loadside import DiagnoseLoadSide
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 ROOT = Path(__file__).resolve().parents[1]
 LOAD_SHAFT = ROOT / 'examples' / 'drives' / 'load-shaft.toml'

@@ -11,10 +11,10 @@ import sys
 import exudyn as exu
 import pytest
 
-from exudyn_worm.analysis.reelchanger import BuildReelChanger
+from exudyn_worm.analysis.simulation.reelchanger import BuildReelChanger
 from exudyn_worm.items._userfunctions import _KEEP_ALIVE
-from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 from conftest import ROOT
 

@@ -8,7 +8,7 @@ import numpy as np
 import exudyn_worm as ew
 from exudyn_worm.model.contact import MeshState, NormalForceFlanks
 from exudyn_worm.items.solve import SolveDynamicInChunks
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 
 def test_every_field_documented_with_a_unit_or_sign():

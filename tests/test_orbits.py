@@ -1,4 +1,4 @@
-"""Shooting and Floquet multipliers (exudyn_worm.analysis.orbits) on textbook systems before the worm drive.
+"""Shooting and Floquet multipliers (exudyn_worm.analysis.orbits.periodic) on textbook systems before the worm drive.
 
 - van der Pol, x'' - eps (1 - x^2) x' + x = 0: for small eps the limit cycle has amplitude 2 and period
   2 pi (1 + eps^2/16 + O(eps^4)) (Lindstedt-Poincare, e.g. Nayfeh & Mook, Nonlinear Oscillations, 1979,
@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp, trapezoid
 
-from exudyn_worm.analysis.orbits import FindPeriodicOrbit, FloquetMultipliers, ShootingError
+from exudyn_worm.analysis.orbits.periodic import FindPeriodicOrbit, FloquetMultipliers, ShootingError
 
 
 def VanDerPolFlow(eps):

@@ -3,9 +3,9 @@ SimulateReelChanger solves, and taking the post-Newton function out of P1 change
 never stops). Work counters compared, never times."""
 import pytest
 
-from exudyn_worm.analysis.reelchanger import SimulateReelChanger
-from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
+from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 

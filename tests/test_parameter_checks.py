@@ -6,11 +6,11 @@ import pytest
 
 from exudyn_worm import ApplyOverrides, DriveFromParameters, GetPreset, SimulateReelChanger, WormGear
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.design import DesignCheck
-from exudyn_worm.setups.presets import CheckParameterKeys, GearFromParameters, PRESETS
-from exudyn_worm.analysis.studygrid import Study
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.analysis.design.designcheck import DesignCheck
+from exudyn_worm.drive.presets import CheckParameterKeys, GearFromParameters, PRESETS
+from exudyn_worm.analysis.studies.studygrid import Study
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 
 @pytest.mark.messages

@@ -9,12 +9,12 @@ from pathlib import Path
 
 import pytest
 
-from exudyn_worm.setups.config import LoadConfig, ParseQuantity, ParseSetOption, ResolveParameters
+from exudyn_worm.drive.config import LoadConfig, ParseQuantity, ParseSetOption, ResolveParameters
 from exudyn_worm.params.drivefile import DRIVE_FILE_TABLES, FileKeyOf, FlattenDriveFile
 from exudyn_worm.params.parameters import PARAMETERS, Parameter, ParameterRegistry, ParametersMarkdown, WithGeneratedTables
-from exudyn_worm.setups.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, CheckParameters, GetPreset,
+from exudyn_worm.drive.presets import (PARAMETER_UNITS, ApplyOverrides, CheckParameterKeys, CheckParameters, GetPreset,
                                  UnknownParameterMessage)
-from exudyn_worm.analysis.studygrid import ParseVariation
+from exudyn_worm.analysis.studies.studygrid import ParseVariation
 
 DOCS = Path(__file__).resolve().parents[1] / 'docs'
 

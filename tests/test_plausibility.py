@@ -8,11 +8,11 @@ import warnings
 import pytest
 
 from exudyn_worm.model.gear import WormGear
-from exudyn_worm.analysis.stepsize import RecommendedStepSize
+from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
 from exudyn_worm.params.plausibility import (MAX_WORM_SPEED_RATIO, MIN_STEPS_PER_ROTATION, CheckWormRotation,
                                              CheckWormSpeed, ImplausibleValueWarning, UnresolvedRotationWarning)
-from exudyn_worm.setups.presets import PRESETS, ElasticDriveFromParameters, GearFromParameters, GetPreset
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.presets import PRESETS, ElasticDriveFromParameters, GearFromParameters, GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 deg = math.radians
 GEAR = dict(alphaN=deg(20), gamma=deg(5.3228), r1=0.01805, r2=0.10595, kV=2e8, dV=21470., mu=0.132)

@@ -11,9 +11,9 @@ from exudyn_worm.plotting.plot import (DENSE_SWITCHES_PER_INCH, MEAN_WINDOW, S_S
                                        MergePhases, PhaseMeans, PlotSimulation, TorqueSignNote, _RunningMean)
 from exudyn_worm.plotting.plot_charts import PlotSpeedChart
 from exudyn_worm.items.results import SimulationResult
-from exudyn_worm.setups.wholedrive import ResolveDrive
-from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
-from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
+from exudyn_worm.analysis.charts.speedchart import RPM, SpeedStabilityChart
+from exudyn_worm.drive.presets import GetPreset
 
 
 @pytest.fixture(scope='module')

@@ -14,16 +14,16 @@ import pytest
 
 import exudyn_worm
 from exudyn_worm.items.results import SimulationResult
-from exudyn_worm.analysis.studygrid import ParseVariation
-from exudyn_worm.analysis.study import Study, StudyResult
-from exudyn_worm.analysis.charts import (ChartCoordinates, ChartPoints, ComputeStabilityChart, FirstCriterionCurves,
-                                         PresetChartPoints, StabilityChart)
-from exudyn_worm.analysis.design import DesignCheckResult
-from exudyn_worm.analysis.speedchart import SpeedChart
+from exudyn_worm.analysis.studies.studygrid import ParseVariation
+from exudyn_worm.analysis.studies.study import Study, StudyResult
+from exudyn_worm.analysis.charts.stabilitychart import (ChartCoordinates, ChartPoints, ComputeStabilityChart, FirstCriterionCurves,
+                                                        PresetChartPoints, StabilityChart)
+from exudyn_worm.analysis.design.designcheck import DesignCheckResult
+from exudyn_worm.analysis.charts.speedchart import SpeedChart
 from exudyn_worm.plotting.plot_charts import PlotStabilityChart
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.studymap import ComputeChatterMap
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.analysis.studies.studymap import ComputeChatterMap
 
 PACKAGE = Path(exudyn_worm.__file__).parent
 PLOT_DIR = PACKAGE / 'plotting'
@@ -38,7 +38,7 @@ def _InternalImports(stem: str):
     """``(module, name)`` of every relative import in a plotting module, at its top or inside a function."""
     tree = ast.parse((PLOT_DIR / f'{stem}.py').read_text())
     for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom) and node.level in (1, 2):      # .plot (plotting), ..analysis.charts
+        if isinstance(node, ast.ImportFrom) and node.level in (1, 2):      # .plot (plotting), ..analysis.charts.stabilitychart
             base = 'plotting' if node.level == 1 else ''
             for alias in node.names:
                 module = '.'.join(part for part in (base, node.module) if part)
@@ -75,10 +75,10 @@ def test_the_rule_catches_a_computation(tmp_path, monkeypatch):
     monkeypatch.setattr(sys.modules[__name__], 'PLOT_DIR', tmp_path)
     (tmp_path / 'plot_old.py').write_text(textwrap.dedent('''
         def AnalyticalMap():
-            from ..analysis.drivestability import AnalyzeDrive
-            from ..setups.presets import ApplyOverrides
+            from ..analysis.stability.drivestability import AnalyzeDrive
+            from ..drive.presets import ApplyOverrides
     '''))
-    with pytest.raises(AssertionError, match='function analysis.drivestability.AnalyzeDrive'):
+    with pytest.raises(AssertionError, match='function analysis.stability.drivestability.AnalyzeDrive'):
         test_plot_module_imports_no_computation('plot_old')
 
 
@@ -97,7 +97,7 @@ def test_no_numerical_module_imports_matplotlib():
     ''')
     out = subprocess.run([sys.executable, '-c', code], capture_output=True, text=True, check=True).stdout.split()
     assert out == ['none', str(len(NON_PLOT_MODULES))], f'{out[0]} imports matplotlib'
-    assert {'exudyn_worm.analysis.charts', 'exudyn_worm.analysis.studymap', 'exudyn_worm.analysis.design', 'exudyn_worm.analysis.study',
+    assert {'exudyn_worm.analysis.charts.stabilitychart', 'exudyn_worm.analysis.studies.studymap', 'exudyn_worm.analysis.design.designcheck', 'exudyn_worm.analysis.studies.study',
             'exudyn_worm.items.results', 'exudyn_worm.cli.formatchart'} <= set(NON_PLOT_MODULES)
 
 
@@ -121,7 +121,7 @@ def test_chart_points_are_resolved_before_drawing():
     assert ChartPoints(None) == {}
     chart = ComputeStabilityChart(drive.gear, drive.J2, c['DV'], c['DTV'], resolution=20)
     for points in (['P1'], {'d': drive}):
-        with pytest.raises(TypeError, match='resolved by exudyn_worm.analysis.charts.ChartPoints'):
+        with pytest.raises(TypeError, match='resolved by exudyn_worm.analysis.charts.stabilitychart.ChartPoints'):
             PlotStabilityChart(chart, points=points)
     ax = chart.plot(points={'d': drive})
     assert [line.get_xydata()[0].tolist() for line in ax.lines if line.get_gid() == 'point d'] == \

@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 from exudyn_worm import ApplyOverrides, GetPreset, SimulateReelChanger
-from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.drive.config import ResolveParameters
 from exudyn_worm.items.results import SeriesUnit
-from exudyn_worm.analysis.studygrid import ParseVariation, Study
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.studies.studygrid import ParseVariation, Study
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 
 @pytest.fixture(scope='module')

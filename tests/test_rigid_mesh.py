@@ -10,18 +10,18 @@ from exudyn.itemInterface import (CoordinateSpringDamper, MarkerBodyRigid, Marke
 from exudyn.rigidBodyUtilities import (InertiaCylinder, RigidBodyInertia, RotationMatrixX, RotationMatrixY,
                                        RotationMatrixZ)
 
-from exudyn_worm.analysis.reelchanger import SolverSettings
-from exudyn_worm.setups.build import BuildReelChanger
-from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
-from exudyn_worm.analysis.stepsize import RecommendedStepSize
+from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
+from exudyn_worm.builders.oneangle import BuildReelChanger
+from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
 from exudyn_worm.items.bearings import CreateShaftBearings, ShaftBearings, StoredBearingLoads
 from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear, MeshForceComponents
 from exudyn_worm.model.contact import MATH_OPS, ContactOptions, MeshContact
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset
 from exudyn_worm.items._rigidnodes import RIGID_NODES
 from exudyn_worm.items.connector import CreateWormGear
 from exudyn_worm.items.drivetrain import CreateRotor
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 exu = pytest.importorskip('exudyn')
 P1 = GetPreset('reel-P1')

@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 from exudyn.rigidBodyUtilities import RigidBodyInertia
 
-from exudyn_worm.analysis.linearization import AnalyzeLinearStability
-from exudyn_worm.analysis.reelchanger import BuildReelChanger, SolverSettings
+from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
+from exudyn_worm.analysis.simulation.reelchanger import BuildReelChanger, SolverSettings
 from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 

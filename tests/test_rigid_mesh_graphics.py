@@ -2,10 +2,10 @@
 import numpy as np
 import pytest
 
-from exudyn_worm.analysis.reelchanger import SolverSettings
-from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
+from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.items.meshgraphics import AddRigidMeshGraphics
-from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.drive.presets import GetPreset
 
 pytest.importorskip('exudyn')
 

@@ -4,12 +4,12 @@ import exudyn as exu
 import numpy as np
 import pytest
 
-from exudyn_worm.analysis.linearization import AnalyzeLinearStability
-from exudyn_worm.setups.build import BuildReelChanger
-from exudyn_worm.analysis.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
+from exudyn_worm.builders.oneangle import BuildReelChanger
+from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger
 from exudyn_worm.items.bearings import ShaftBearings
-from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 pytest.importorskip('exudyn')
 P1 = GetPreset('reel-P1')

@@ -6,11 +6,11 @@ import pytest
 
 import exudyn_worm as ew
 from exudyn_worm import GetPreset, SimulateReelChanger
-from exudyn_worm.analysis.reelchanger import SolverSettings
-from exudyn_worm.setups.build import BuildReelChanger
+from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
+from exudyn_worm.builders.oneangle import BuildReelChanger
 from exudyn_worm.items.solve import SolveDynamicInChunks, SolverDivergedError
 from exudyn_worm.items.solve import IncompleteSolveError
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 
 def _Plain(parameters, endTime, stepSize):

@@ -8,15 +8,15 @@ import sys
 import numpy as np
 import pytest
 
-from exudyn_worm.analysis.design import DesignCheck
-from exudyn_worm.analysis.designscan import SPEED_KEY
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
-from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.analysis.design.designcheck import DesignCheck
+from exudyn_worm.analysis.design.designscan import SPEED_KEY
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
+from exudyn_worm.drive.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.profiles import STANDARD_GRAVITY
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
-from exudyn_worm.analysis.speedchart import RPM, SpeedChart, SpeedCurve, SpeedStabilityChart
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
+from exudyn_worm.analysis.charts.speedchart import RPM, SpeedChart, SpeedCurve, SpeedStabilityChart
 from exudyn_worm.model.stability import AnalyzeStability, OperatingPointAt
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 #: reel-P3 with the steep Stribeck law of docs/friction.md (mu(v0) = 0.132 at 472.5 rpm)
 P3 = {**GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2, 'stribeckVelocity': 0.9}

@@ -8,7 +8,7 @@ from numpy.testing import assert_allclose
 
 from exudyn_worm.model.drive import ElasticDrive, MeshDampingFromMeasure, TorsionalDampingFromMeasure
 from exudyn_worm.model.gear import WormGear
-from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoefficients, ContactStability,
                                    EigenvaluesFromPolynomial, EigenvaluesFromStateMatrix, FirstCriterionLimit,
                                    FuesgenLimit, HurwitzConditions, HurwitzStable, StateMatrix)

@@ -4,11 +4,11 @@ shipped drives figure19 and load-shaft: the window peaks at the default step aga
 import pytest
 
 from exudyn_worm import SimulateReelChanger
-from exudyn_worm.analysis.reelchanger import DefaultWindows
-from exudyn_worm.analysis.stepsize import PEAK_ACCURACY, TRANSIENT_PEAK_ACCURACY, RecommendedStepSize
+from exudyn_worm.analysis.simulation.reelchanger import DefaultWindows
+from exudyn_worm.analysis.simulation.stepsize import PEAK_ACCURACY, TRANSIENT_PEAK_ACCURACY, RecommendedStepSize
 from exudyn_worm.params.drives import ConfigPath
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 #: the reference step of each drive, as a divisor of its recommended step: the halving after it changes no window
 #: peak by more than 0.05 % (measured with benchmarks/step_convergence.py); the lift after the lowering chatter of

@@ -6,18 +6,18 @@ import numpy as np
 import pytest
 
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.drive.presets import ApplyOverrides, GetPreset
 from exudyn_worm.items.results import ChatterVerdict, SimulationResult
-from exudyn_worm.analysis.stepsize import (SMALL_MARGIN, UNRESOLVED, CompareHalfStep, LinearMargin, RecommendedStepSize,
+from exudyn_worm.analysis.simulation.stepsize import (SMALL_MARGIN, UNRESOLVED, CompareHalfStep, LinearMargin, RecommendedStepSize,
                                   StepCheckByDefault)
-from exudyn_worm.analysis.studyfiles import ReadResults
-from exudyn_worm.analysis.study import RunPoint, RunStudy, Study
-from exudyn_worm.analysis.studygrid import Variation
-from exudyn_worm.analysis.reelchanger import SimulateReelChanger
-from exudyn_worm.analysis.stepsize import VERDICT_FACTOR, CloseVerdicts
+from exudyn_worm.analysis.studies.studyfiles import ReadResults
+from exudyn_worm.analysis.studies.study import RunPoint, RunStudy, Study
+from exudyn_worm.analysis.studies.studygrid import Variation
+from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
+from exudyn_worm.analysis.simulation.stepsize import VERDICT_FACTOR, CloseVerdicts
 from exudyn_worm.cli.sweep import FormatStudy
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 from paper_model import Eigenvalues
 
 # a user's drive: J1 = 0.0247 kg*m^2, kT = 1508 N*m/rad on P1's gear and load

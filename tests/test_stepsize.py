@@ -1,4 +1,4 @@
-"""Step size from the drive (exudyn_worm.analysis.stepsize) and the coarse-step refusal."""
+"""Step size from the drive (exudyn_worm.analysis.simulation.stepsize) and the coarse-step refusal."""
 import json
 import math
 import warnings
@@ -8,14 +8,14 @@ import numpy as np
 import pytest
 
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.linearization import LinearStabilityOfDrive
-from exudyn_worm.analysis.drivestability import AnalyzeDrive
-from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
-from exudyn_worm.analysis.reelchanger import SimulateReelChanger
-from exudyn_worm.analysis.stepsize import (HARD_CYCLES, RECOMMENDED_CYCLES, SOFT_CYCLES, CheckStepSize, CoarseStepWarning,
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.analysis.stability.linearization import LinearStabilityOfDrive
+from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
+from exudyn_worm.drive.presets import ApplyOverrides, GetPreset
+from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
+from exudyn_worm.analysis.simulation.stepsize import (HARD_CYCLES, RECOMMENDED_CYCLES, SOFT_CYCLES, CheckStepSize, CoarseStepWarning,
                                   LinearizedFrequencies, PeriodError, RecommendedStepSize, StepSizeLimits)
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 from paper_model import AxialBearingEigenvalues, ChainEigenvalues, Eigenvalues
 
 

@@ -19,10 +19,10 @@ from exudyn_worm.model.contact import ContactOptions, FrictionState, MeshContact
 from exudyn_worm.model.friction import MATH_OPS
 from exudyn_worm.items.drivetrain import CreateRotor, CreateRotorTorque
 from exudyn_worm.model.friction import StribeckFriction
-from exudyn_worm.setups.presets import ElasticDriveFromParameters
+from exudyn_worm.drive.presets import ElasticDriveFromParameters
 from exudyn_worm.model.profiles import GravityLeverTorque
-from exudyn_worm.analysis.reelchanger import SimulateReelChanger, SolverSettings
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger, SolverSettings
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 P1 = GetPreset('reel-P1')
 SETTLE, HOLD = 5., 18.         # s: settling of the mesh oscillation, then the hold time

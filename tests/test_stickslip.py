@@ -8,7 +8,7 @@ import pytest
 from exudyn_worm.model.contact import FrictionState, SlidingCoordinate
 from exudyn_worm.model.stickslip import (CHECK_FRACTION, CHECK_INTERVAL, REVERSAL_WINDOW, CarrySchedule, IsDue,
                                          MeshReading, NextCheck, StartFrictionState, StartSchedule, StickSlipStep)
-from exudyn_worm.setups.presets import ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset
 
 GEAR = ElasticDriveFromParameters(GetPreset('reel-P1')).gear
 H = 1e-4                       # s: the made-up solver step

@@ -4,9 +4,9 @@ import math
 import numpy as np
 import pytest
 
-from exudyn_worm.setups.presets import PRESETS
-from exudyn_worm.analysis.study import RunStudy
-from exudyn_worm.analysis.studygrid import Study, Variation
+from exudyn_worm.drive.presets import PRESETS
+from exudyn_worm.analysis.studies.study import RunStudy
+from exudyn_worm.analysis.studies.studygrid import Study, Variation
 from validation import studies
 
 

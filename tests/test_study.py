@@ -1,4 +1,4 @@
-"""Parameter studies (exudyn_worm.analysis.study): parsing, points, shards, failed runs, results files, resume."""
+"""Parameter studies (exudyn_worm.analysis.studies.study): parsing, points, shards, failed runs, results files, resume."""
 import csv
 import json
 import os
@@ -13,16 +13,16 @@ import numpy as np
 import pytest
 from hypothesis import given, strategies as st
 
-from exudyn_worm.analysis import studymap
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.analysis.linearization import LinearStabilityOfDrive
-from exudyn_worm.setups.presets import ElasticDriveFromParameters
+from exudyn_worm.analysis.studies import studymap
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.analysis.stability.linearization import LinearStabilityOfDrive
+from exudyn_worm.drive.presets import ElasticDriveFromParameters
 from exudyn_worm.model.stability import AnalyzeStability
-from exudyn_worm.analysis.study import RunStudy
-from exudyn_worm.analysis.studyfiles import ReadResults, StudyResult, StudySidecarPath
-from exudyn_worm.analysis.studygrid import ParseShard, ParseVariation, ShardIndices, Study, StudyPoints, Variation
-from exudyn_worm.analysis.studypoint import HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, RunPoint
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.studies.study import RunStudy
+from exudyn_worm.analysis.studies.studyfiles import ReadResults, StudyResult, StudySidecarPath
+from exudyn_worm.analysis.studies.studygrid import ParseShard, ParseVariation, ShardIndices, Study, StudyPoints, Variation
+from exudyn_worm.analysis.studies.studypoint import HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS, RunPoint
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 # short runs: 1 s of the reel changer (lifting), two windows
 SHORT = dict(windows=[(0., 0.5), (0.5, 1.)], endTime=1.)
@@ -199,9 +199,9 @@ def test_shards_together_give_the_whole_study(tmp_path):
 
 _KILLABLE = textwrap.dedent('''
     import sys
-    from exudyn_worm.setups.config import ResolveParameters
-    from exudyn_worm.analysis.study import RunStudy
-    from exudyn_worm.analysis.studygrid import ParseVariation, Study
+    from exudyn_worm.drive.config import ResolveParameters
+    from exudyn_worm.analysis.studies.study import RunStudy
+    from exudyn_worm.analysis.studies.studygrid import ParseVariation, Study
     study = Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.02:0.3:12:log')],
                   windows=[(0., 0.5), (0.5, 1.)], endTime=1.)
     RunStudy(study, sys.argv[1], workers=1, quiet=True)

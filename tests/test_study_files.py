@@ -10,12 +10,12 @@ from pathlib import Path
 import pytest
 
 from exudyn_worm._files import OutputBusyError, OutputLock, WriteTextAtomically
-from exudyn_worm.analysis.studyfiles import ReadResults
-from exudyn_worm.analysis.study import RunStudy, Study, StudySidecarPath
-from exudyn_worm.analysis.studygrid import StudyGrid, StudyPoints, Variation
-from exudyn_worm.analysis.studyfiles import StudyFileWarning
+from exudyn_worm.analysis.studies.studyfiles import ReadResults
+from exudyn_worm.analysis.studies.study import RunStudy, Study, StudySidecarPath
+from exudyn_worm.analysis.studies.studygrid import StudyGrid, StudyPoints, Variation
+from exudyn_worm.analysis.studies.studyfiles import StudyFileWarning
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.drive.config import ResolveParameters
 
 SHORT = ['--windows', '0:0.1,0.1:0.2', '--end-time', '0.2', '--quiet']
 

@@ -3,9 +3,9 @@ SimulateReelChanger (motor prescribed through a constraint): results compared, n
 import numpy as np
 import pytest
 
-from exudyn_worm.setups.presets import GetPreset
-from exudyn_worm.analysis.reelchanger import SimulateReelChanger
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 from conftest import LoadScript
 

@@ -8,7 +8,7 @@ Two walks over the package's source with :mod:`ast`:
   enum of stop kinds, directions, value sources, geometry forms). Parsing text a user gave (a drive file, an
   option) compares with single tokens and is not caught.
 - **no flat mapping below the boundary**: the drive is resolved once (``ResolveDrive``: presets, drive files,
-  ``--set`` and API keywords) and everything below takes the :class:`~exudyn_worm.setups.wholedrive.Drive` or its
+  ``--set`` and API keywords) and everything below takes the :class:`~exudyn_worm.drive.wholedrive.Drive` or its
   typed parts. A public function of the analyses or the model builder whose argument is a mapping
   (``Mapping``/``Dict`` in its annotation) or is named like a flat parameter set (``parameters``, ``base``,
   ``params``) is listed in ``FLAT_ALLOWED`` with the reason it is still there. The list may only shrink: an entry
@@ -81,7 +81,7 @@ def test_the_phrase_rule_catches_what_it_should():
 
 # --- no flat mapping below the boundary ---------------------------------------------------------------------------
 #: the modules below the drive boundary (they receive the resolved drive)
-BELOW = ('analysis', 'setups/build.py', 'setups/operatingpoints.py')
+BELOW = ('analysis', 'builders/oneangle.py', 'drive/operatingpoints.py')
 _FLAT_NAMES = ('parameters', 'base', 'params')
 _MAPPING = re.compile(r'\b(Mapping|Dict|dict|MutableMapping)\b')
 
@@ -99,24 +99,24 @@ _NOT_A_SET = (_LOG_FACTORS, _ROW, _SOLVER, _METRICS)
 
 #: (module, function) -> why it still takes a mapping. May only shrink.
 FLAT_ALLOWED: Dict[Tuple[str, str], str] = {
-    **{('analysis/chatter.py', f): _ORBITS for f in ('FindSteadyChatter', 'SteadyChatterSummary')},
-    **{('analysis/chatterbranch.py', f): _ORBITS for f in ('LinearBoundaries', 'AnalyzeChatterBranch')},
-    **{('analysis/disturbance.py', f): _ORBITS for f in ('SmallestDisturbance', 'ChattersAfterDisturbance')},
-    **{('analysis/longsimulation.py', f): _ORBITS for f in ('LongSimulationAmplitude', 'SettledSimulationAmplitude')},
-    **{('analysis/lowering.py', f): _ORBITS for f in ('LoweringPhaseParameters', 'BuildLoweringModel',
+    **{('analysis/orbits/chatter.py', f): _ORBITS for f in ('FindSteadyChatter', 'SteadyChatterSummary')},
+    **{('analysis/orbits/chatterbranch.py', f): _ORBITS for f in ('LinearBoundaries', 'AnalyzeChatterBranch')},
+    **{('analysis/orbits/disturbance.py', f): _ORBITS for f in ('SmallestDisturbance', 'ChattersAfterDisturbance')},
+    **{('analysis/orbits/longsimulation.py', f): _ORBITS for f in ('LongSimulationAmplitude', 'SettledSimulationAmplitude')},
+    **{('analysis/orbits/lowering.py', f): _ORBITS for f in ('LoweringPhaseParameters', 'BuildLoweringModel',
                                                      'BuildRigidBodyLoweringModel', 'UpdateLoweringModel')},
-    ('analysis/smoothbranch.py', 'SmoothHopfBranch'): _ORBITS,
-    **{('analysis/reelchanger3d.py', f): _3D for f in ('BuildRigidBodyReelChanger',
+    ('analysis/orbits/smoothbranch.py', 'SmoothHopfBranch'): _ORBITS,
+    **{('analysis/simulation/reelchanger3d.py', f): _3D for f in ('BuildRigidBodyReelChanger',
                                                        'BuildRigidBodyLinearizationModel')},
-    ('analysis/study.py', 'RunStudy'): _ROW,
-    ('analysis/studyfiles.py', 'Run'): _ROW,
-    ('analysis/studypoint.py', 'RunPoint'): _STUDIES,
-    ('analysis/studypoint.py', 'RunLabel'): _STUDIES,
-    ('analysis/reelchanger.py', 'SolverSettings'): _SOLVER,
-    ('analysis/reelchanger.py', 'SimulateReelChanger'): _SOLVER,
-    ('analysis/stepsize.py', 'CompareHalfStep'): _METRICS,
-    **{('analysis/designscan.py', f): _LOG_FACTORS for f in ('Stable', 'Changed', 'Analysis', 'StableAt', 'After')},
-    ('analysis/charts.py', 'ChartPoints'): 'chart points by label (the user\'s marks), not a parameter set',
+    ('analysis/studies/study.py', 'RunStudy'): _ROW,
+    ('analysis/studies/studyfiles.py', 'Run'): _ROW,
+    ('analysis/studies/studypoint.py', 'RunPoint'): _STUDIES,
+    ('analysis/studies/studypoint.py', 'RunLabel'): _STUDIES,
+    ('analysis/simulation/reelchanger.py', 'SolverSettings'): _SOLVER,
+    ('analysis/simulation/reelchanger.py', 'SimulateReelChanger'): _SOLVER,
+    ('analysis/simulation/stepsize.py', 'CompareHalfStep'): _METRICS,
+    **{('analysis/design/designscan.py', f): _LOG_FACTORS for f in ('Stable', 'Changed', 'Analysis', 'StableAt', 'After')},
+    ('analysis/charts/stabilitychart.py', 'ChartPoints'): 'chart points by label (the user\'s marks), not a parameter set',
 }
 
 
@@ -153,8 +153,8 @@ def test_no_flat_mapping_below_the_boundary():
     assert not stale, f'FLAT_ALLOWED entries no longer needed (remove them): {stale}'
 
 
-@pytest.mark.parametrize('module', ['analysis/reelchanger.py', 'analysis/stepsize.py', 'analysis/design.py',
-                                    'analysis/drivestability.py', 'setups/build.py'])
+@pytest.mark.parametrize('module', ['analysis/simulation/reelchanger.py', 'analysis/simulation/stepsize.py', 'analysis/design/designcheck.py',
+                                    'analysis/stability/drivestability.py', 'builders/oneangle.py'])
 def test_the_simulation_and_stability_paths_take_the_drive(module):
     """The simulation (step size, phases, the builder, the run) and the stability and design analyses take the
     Drive: none of their public functions reads a flat set (the solver settings excepted)."""

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from numpy.testing import assert_allclose
 
-from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.stability import CharacteristicCoefficients
 from validation import runner
 from validation.paper import eigenvalue_forensics

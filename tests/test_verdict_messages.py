@@ -12,15 +12,15 @@ import pytest
 
 import exudyn_worm as ew
 import paper_model
-from exudyn_worm.analysis.drivestability import (CHATTER, DIVERGENCE, GrowthText, StateInstability, VerdictWord)
-from exudyn_worm.analysis.orbits import TRIVIAL_MULTIPLIER_TOLERANCE
-from exudyn_worm.analysis import reelchanger
-from exudyn_worm.analysis.designconfirm import ChatterWhileLowering
-from exudyn_worm.analysis.reelchanger import PhaseLabel, WindowPhases
-from exudyn_worm.analysis.study import RunPoint, Study
-from exudyn_worm.analysis.studygrid import Variation
-from exudyn_worm.analysis.studypoint import RunLabel
-from exudyn_worm.analysis.studyfiles import StudyResult
+from exudyn_worm.analysis.stability.drivestability import (CHATTER, DIVERGENCE, GrowthText, StateInstability, VerdictWord)
+from exudyn_worm.analysis.orbits.periodic import TRIVIAL_MULTIPLIER_TOLERANCE
+from exudyn_worm.analysis.simulation import reelchanger
+from exudyn_worm.analysis.design.designconfirm import ChatterWhileLowering
+from exudyn_worm.analysis.simulation.reelchanger import PhaseLabel, WindowPhases
+from exudyn_worm.analysis.studies.study import RunPoint, Study
+from exudyn_worm.analysis.studies.studygrid import Variation
+from exudyn_worm.analysis.studies.studypoint import RunLabel
+from exudyn_worm.analysis.studies.studyfiles import StudyResult
 from exudyn_worm.cli.formatchatter import FormatSteadyChatter
 from exudyn_worm.cli.formatsweep import FormatStudy
 from exudyn_worm._checks import WarningText

@@ -15,7 +15,7 @@ import numpy as np
 from exudyn_worm.model.drive import (MeshDampingFromMeasure, MeshDampingMeasure, TorsionalDampingFromMeasure,
                     TorsionalDampingMeasure)
 from exudyn_worm.model.gear import WormGear
-from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.stability import AnalyzeStability, CharacteristicCoefficients, ContactStability, HurwitzConditions
 from .paper import eigenvalue_forensics
 from .runner import PAPER_MU, Check, HalfUnit, InputRounding, ValidationContext

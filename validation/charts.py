@@ -3,7 +3,7 @@
 Domain and measures are fixed in ``validation/README.md`` (with the reading rules, before any chart result):
 set (25), x = kT/(kV r1^2) from 1e-4 to 1e2, y = J1/J2 from 1e-6 to 1, a 600 x 600 log grid; "smaller D_TV"
 than 1 means 0.2 and 0.5; an area is measured in log10-log10 coordinates, an extent in log10 decades.
-The charts come from :func:`exudyn_worm.analysis.charts.ComputeStabilityChart`.
+The charts come from :func:`exudyn_worm.analysis.charts.stabilitychart.ComputeStabilityChart`.
 """
 from __future__ import annotations
 
@@ -14,12 +14,12 @@ from typing import TYPE_CHECKING, Callable, Dict, List, Optional, Sequence, Tupl
 import numpy as np
 
 from exudyn_worm.model.gear import WormGear
-from exudyn_worm.setups.presets import GearFromParameters, GetPreset
+from exudyn_worm.drive.presets import GearFromParameters, GetPreset
 
 from .runner import Check, Fmt, ValidationContext
 
 if TYPE_CHECKING:   # a hint only: the chart module is imported when a chart is computed
-    from exudyn_worm.analysis.charts import StabilityChart
+    from exudyn_worm.analysis.charts.stabilitychart import StabilityChart
 
 __all__ = ['X_RANGE', 'Y_RANGE', 'RESOLUTION', 'DTV_VALUES', 'BOUND_DTV', 'Chart', 'DisplayedDomain', 'Area', 'XExtent', 'SmallXYExtent',
            'Tail', 'TailText', 'StatementValues', 'ChartChecks']
@@ -59,9 +59,9 @@ def Chart(DV: float, DTV: float, S: int = -1, displayed: bool = False):
 
     Returns
     -------
-    exudyn_worm.analysis.charts.StabilityChart
+    exudyn_worm.analysis.charts.stabilitychart.StabilityChart
     """
-    from exudyn_worm.analysis.charts import ComputeStabilityChart
+    from exudyn_worm.analysis.charts.stabilitychart import ComputeStabilityChart
     gear, J2 = _Set25()
     xRange, yRange = DisplayedDomain() if displayed else (X_RANGE, Y_RANGE)
     return ComputeStabilityChart(gear, J2, DV, DTV, xRange=xRange, yRange=yRange, resolution=RESOLUTION, S=S)
@@ -309,7 +309,7 @@ def _Section(ctx, checks, c14: Dict, c56: Dict, area14: Dict, area56: Dict, smal
     clipped = [key for key, c in fixed.items() if c.clippedSides]
     ctx.AddSection('Stability charts: what the section 2.3 rows measured', f"""
 Set (25) with mu = 0.132, x = kT/(kV r1^2) from 1e-4 to 1e2, y = J1/J2 from 1e-6 to 1, {RESOLUTION} x {RESOLUTION}
-log grid (0.01 decade per step), S = -1 unless stated, from `exudyn_worm.analysis.charts.ComputeStabilityChart` (the domain
+log grid (0.01 decade per step), S = -1 unless stated, from `exudyn_worm.analysis.charts.stabilitychart.ComputeStabilityChart` (the domain
 and the measures fixed in validation/README.md before the results):
 
 {chr(10).join(_MeasureTable(fixed))}

@@ -35,7 +35,7 @@ from .charts import (BOUND_DTV, DTV_VALUES, RESOLUTION, SMALL_X, Area, Chart, Di
 from .runner import Check, Fmt, ValidationContext
 
 if TYPE_CHECKING:   # a hint only: the chart module is imported when a chart is computed
-    from exudyn_worm.analysis.charts import StabilityChart
+    from exudyn_worm.analysis.charts.stabilitychart import StabilityChart
 
 __all__ = ['AXIS_READINGS', 'BOUND_X_END', 'PaperChart', 'BoundChart', 'LinearCellWidths',
            'LinearArea', 'LinearXExtent', 'SmallXLinearYExtent',
@@ -61,7 +61,7 @@ def PaperChart(DV: float, DTV: float, S: int = -1) -> 'StabilityChart':
 
     Returns
     -------
-    exudyn_worm.analysis.charts.StabilityChart
+    exudyn_worm.analysis.charts.stabilitychart.StabilityChart
     """
     return Chart(DV, DTV, S, displayed=True)
 
@@ -79,9 +79,9 @@ def BoundChart(DV: float, DTV: float) -> 'StabilityChart':
 
     Returns
     -------
-    exudyn_worm.analysis.charts.StabilityChart
+    exudyn_worm.analysis.charts.stabilitychart.StabilityChart
     """
-    from exudyn_worm.analysis.charts import ComputeStabilityChart   # lazy: as validation.charts.Chart
+    from exudyn_worm.analysis.charts.stabilitychart import ComputeStabilityChart   # lazy: as validation.charts.Chart
     gear, J2 = _Set25()
     (x0, _), yRange = DisplayedDomain()
     return ComputeStabilityChart(gear, J2, DV, DTV, xRange=(x0, BOUND_X_END), yRange=yRange, resolution=RESOLUTION)

@@ -5,7 +5,7 @@ Run from the repository root::
     python -m validation.chatter                 # writes validation/chatter/chatter.csv and validation/CHATTER.md
     python -m validation.chatter --checks 4      # fewer long simulations per study
 
-It computes, with :mod:`exudyn_worm.analysis.chatterbranch` (docs/chatter-amplitude.md), for the reel changer P1
+It computes, with :mod:`exudyn_worm.analysis.orbits.chatterbranch` (docs/chatter-amplitude.md), for the reel changer P1
 
 * the branch of steady chatter in J1 (0.05-0.3 kg m^2) and in kT (2000-20000 N m/rad), zero backlash: Hopf
   points against the linear boundaries, their type, folds, coexistence;
@@ -18,9 +18,9 @@ It computes, with :mod:`exudyn_worm.analysis.chatterbranch` (docs/chatter-amplit
   and beyond it long runs and single orbits that show why no periodic orbit can be confirmed there.
 
 At ``--checks`` orbits spread along each study a long time simulation
-(:func:`~exudyn_worm.analysis.longsimulation.LongSimulationAmplitude`: 4 s, step 2e-4 s, the time simulations' solver settings;
+(:func:`~exudyn_worm.analysis.orbits.longsimulation.LongSimulationAmplitude`: 4 s, step 2e-4 s, the time simulations' solver settings;
 where rest and chatter coexist it starts on the orbit with a 1 % worm-speed kick; for the friction branch
-:func:`~exudyn_worm.analysis.longsimulation.SettledSimulationAmplitude`, from rest until settled, because near a smooth Hopf point
+:func:`~exudyn_worm.analysis.orbits.longsimulation.SettledSimulationAmplitude`, from rest until settled, because near a smooth Hopf point
 the chatter grows and settles slowly) gives the steady amplitude; the orbit must equal it within 2 % (our requirement).
 Every sentence of the report is generated from the numbers.
 """
@@ -36,13 +36,13 @@ from typing import Dict, List, Optional
 import numpy as np
 
 import exudyn_worm as ew
-from exudyn_worm.analysis.chatter import FindSteadyChatter
-from exudyn_worm.analysis.longsimulation import LongSimulationAmplitude, SettledSimulationAmplitude
-from exudyn_worm.analysis.chatterbranch import AnalyzeChatterBranch, LinearBoundaries
-from exudyn_worm.analysis.smoothbranch import SMOOTH_OFFSETS, SMOOTH_SEED, SmoothHopfBranch
-from exudyn_worm.analysis.orbits import ShootingError
-from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.analysis.orbits.chatter import FindSteadyChatter
+from exudyn_worm.analysis.orbits.longsimulation import LongSimulationAmplitude, SettledSimulationAmplitude
+from exudyn_worm.analysis.orbits.chatterbranch import AnalyzeChatterBranch, LinearBoundaries
+from exudyn_worm.analysis.orbits.smoothbranch import SMOOTH_OFFSETS, SMOOTH_SEED, SmoothHopfBranch
+from exudyn_worm.analysis.orbits.periodic import ShootingError
+from exudyn_worm.analysis.charts.speedchart import RPM, SpeedStabilityChart
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 __all__ = ['TOLERANCE', 'FOLD_DISTANCE', 'RunChatterStudies', 'WriteCsv', 'WriteReport', 'Main']
 
@@ -137,7 +137,7 @@ def _Sweep(study: str, name: str, base: Dict, values, checks: int, settleTime: f
 def _FrictionBranch(study: str, base: Dict, checks: int) -> Dict:
     """The branch of friction-limited chatter from the lower linear boundary (a smooth Hopf point: the orbit
     stays in contact and its amplitude starts from zero), by the library's
-    :func:`~exudyn_worm.analysis.smoothbranch.SmoothHopfBranch`: started from a settled time simulation at
+    :func:`~exudyn_worm.analysis.orbits.smoothbranch.SmoothHopfBranch`: started from a settled time simulation at
     SMOOTH_SEED above the boundary, continued from orbit to orbit at SMOOTH_OFFSETS (the library's defaults) towards
     the boundary and away from it until the worm turns back within the orbit."""
     t0 = time.perf_counter()

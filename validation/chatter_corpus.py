@@ -215,9 +215,9 @@ def _Plateaus(parameters: Mapping) -> List[tuple]:
 
 def _Simulate(p: Mapping, maxSteps: int):
     """One run of the whole duty at the recommended step (raises where it needs more than ``maxSteps``)."""
-    from exudyn_worm.analysis.reelchanger import SimulateReelChanger
-    from exudyn_worm.analysis.stepsize import RecommendedStepSize
-    from exudyn_worm.setups.wholedrive import ResolveDrive
+    from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
+    from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
+    from exudyn_worm.drive.wholedrive import ResolveDrive
     drive = ResolveDrive(parameters=p)
     stepSize = RecommendedStepSize(drive)
     endTime = DutyWindows(p)['end']
@@ -249,8 +249,8 @@ def RunDrive(index: int, parameters: Mapping, longParameters: Optional[Mapping] 
     list of dict
         Rows with the columns :data:`CSV_COLUMNS`.
     """
-    from exudyn_worm.setups.presets import ElasticDriveFromParameters
-    from exudyn_worm.setups.wholedrive import ResolveDrive
+    from exudyn_worm.drive.presets import ElasticDriveFromParameters
+    from exudyn_worm.drive.wholedrive import ResolveDrive
     start = time.perf_counter()
     p = dict(parameters)
     gear = ElasticDriveFromParameters(p).gear

@@ -8,11 +8,11 @@ For each preset and each of 21 motor speeds (20 ... 2000 rpm, log-spaced) it com
 
 * the analytical verdict: the lowering state S = -1 of eq. (16) extended at the operating point of steady lowering
   (worm speed = motor speed, normal force from loadMass * g * leverArm, mu(v0) and dmu/dv(v0);
-  :func:`exudyn_worm.analysis.speedchart.SpeedStabilityChart`, the same verdict as the ``analyticStableLowering`` column of
+  :func:`exudyn_worm.analysis.charts.speedchart.SpeedStabilityChart`, the same verdict as the ``analyticStableLowering`` column of
   ``exudyn-worm sweep``), with
 * the simulation's verdict: the chatter rule of ``exudyn-worm simulate`` in the lowering phase (T/4 ... 3T/4 of the
   wheel's rotation period T) of the reel-changer model with the friction law evaluated in the connector, run by
-  :func:`exudyn_worm.analysis.studypoint.RunPoint` (the one-run function of ``exudyn-worm sweep``) with the end time cut to the end
+  :func:`exudyn_worm.analysis.studies.studypoint.RunPoint` (the one-run function of ``exudyn-worm sweep``) with the end time cut to the end
   of the lowering phase (3T/4), so that no lifting phase after it is simulated.
 
 Law and rule, fixed before the agreement was looked at (only the analytical curves were used to choose them):
@@ -36,12 +36,12 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence
 
 import numpy as np
 
-from exudyn_worm.setups.presets import ApplyOverrides, GetPreset
-from exudyn_worm.analysis.reelchanger import RotationPeriod
-from exudyn_worm.analysis.speedchart import RPM, SpeedStabilityChart
-from exudyn_worm.analysis.studygrid import ParseVariation, Study
-from exudyn_worm.analysis.studypoint import RunPoint
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.presets import ApplyOverrides, GetPreset
+from exudyn_worm.analysis.simulation.reelchanger import RotationPeriod
+from exudyn_worm.analysis.charts.speedchart import RPM, SpeedStabilityChart
+from exudyn_worm.analysis.studies.studygrid import ParseVariation, Study
+from exudyn_worm.analysis.studies.studypoint import RunPoint
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 __all__ = ['PRESETS', 'LAWS', 'SPEEDS', 'LawParameters', 'AnalyticalBoundaries', 'RunSpeedStudy', 'Summary',
            'WriteReport', 'Main']
@@ -74,7 +74,7 @@ def LawParameters(preset: str) -> Dict[str, object]:
     """
     base = GetPreset(preset)
     muStatic, vs = LAWS[preset]
-    from exudyn_worm.setups.presets import ElasticDriveFromParameters
+    from exudyn_worm.drive.presets import ElasticDriveFromParameters
     v0 = ElasticDriveFromParameters(base).gear.SlidingSpeed(_PAPER_SPEED)
     x = math.exp(-(v0 / vs) ** 2)
     mu = (base['mu'] - muStatic * x) / (1. - x)
@@ -178,7 +178,7 @@ def WriteReport(rows: List[Dict], path: Path = _REPORT) -> str:
              'The rule and the laws are in the docstring of `validation/friction_speed.py` (fixed '
              'before the agreement was looked at): analytical verdict = lowering state S = -1 of eq. (16) extended at '
              'the operating point; simulated verdict = the chatter rule of `exudyn-worm simulate` in the lowering '
-             'phase (T/4 to 3T/4) of the reel-changer model, one run per speed with `exudyn_worm.analysis.studypoint.RunPoint`, '
+             'phase (T/4 to 3T/4) of the reel-changer model, one run per speed with `exudyn_worm.analysis.studies.studypoint.RunPoint`, '
              'ending at 3T/4.', '']
     for preset in PRESETS:
         sub = [r for r in rows if r['preset'] == preset]

@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 from exudyn_worm._files import WriteTextAtomically
-from exudyn_worm.setups.presets import PRESETS
+from exudyn_worm.drive.presets import PRESETS
 from exudyn_worm.items.solve import IsInterrupt
 
 from .model import (KINDS, READINGS, RULES, VERDICTS, Check, CheckGroup, Fmt, GroupFunction, HeadLine, ReferenceRow,

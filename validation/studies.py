@@ -5,7 +5,7 @@ Run from the repository root::
     python -m validation.studies                 # all studies, every core; writes validation/STUDIES.md
     python -m validation.studies --workers 2 --quiet
 
-It runs, with :func:`exudyn_worm.analysis.study.RunStudy`,
+It runs, with :func:`exudyn_worm.analysis.studies.study.RunStudy`,
 
 * the stability map: a 12 x 12 log grid of J1 and kT of the reel changer around P1, spanning P2 ... P7, at
   D_V = 0.014 (Figure 4) and at D_V = 0.056 (Figure 5), both with D_TV = 1 (the chart line through P1). Each run
@@ -30,12 +30,12 @@ from typing import Dict, List, Optional
 
 import numpy as np
 
-from exudyn_worm.setups.config import ResolveParameters
-from exudyn_worm.setups.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters
+from exudyn_worm.drive.config import ResolveParameters
+from exudyn_worm.drive.presets import PRESETS, ApplyOverrides, ElasticDriveFromParameters
 from exudyn_worm.model.stability import AnalyzeStability
-from exudyn_worm.analysis.study import RunStudy
-from exudyn_worm.analysis.studyfiles import StudyResult, StudySidecarPath
-from exudyn_worm.analysis.studygrid import ParseVariation, Study
+from exudyn_worm.analysis.studies.study import RunStudy
+from exudyn_worm.analysis.studies.studyfiles import StudyResult, StudySidecarPath
+from exudyn_worm.analysis.studies.studygrid import ParseVariation, Study
 
 __all__ = ['MAP_DV', 'MapStudy', 'BacklashStudy', 'RunStudies', 'MapAnalysis', 'BacklashAnalysis', 'WriteReport',
            'Main']
@@ -151,7 +151,7 @@ def MapAnalysis(result: StudyResult) -> Dict:
         ``agreement``, ``counts`` (both unstable+chatter, both stable+quiet, unstable+quiet, stable+chatter,
         failed), ``disagreements`` (list of dicts with the numbers and a generated explanation), ``nearest`` (the
         six runs closest to the analytical boundary, in decades of J1 or kT), ``chartSame`` (runs where the
-        stability chart of :mod:`exudyn_worm.analysis.charts` gives the same verdict as eqs. (15)-(16)), ``chartDTV``.
+        stability chart of :mod:`exudyn_worm.analysis.charts.stabilitychart` gives the same verdict as eqs. (15)-(16)), ``chartDTV``.
     """
     base = result.study.base
     rows = result.finished
@@ -197,8 +197,8 @@ def MapAnalysis(result: StudyResult) -> Dict:
                             'analyticStable': r['analyticStableLowering'], 'chatter': r['loweringChatter'],
                             'sigma': _Growth(base, r['J1'], r['kT'])})
     nearest.sort(key=lambda d: d['decades'])
-    # the stability chart's own verdict (exudyn_worm.analysis.charts, vectorized Hurwitz) at every run: the same chart?
-    from exudyn_worm.analysis.charts import ChartCoordinates, UnstableGrid
+    # the stability chart's own verdict (exudyn_worm.analysis.charts.stabilitychart, vectorized Hurwitz) at every run: the same chart?
+    from exudyn_worm.analysis.charts.stabilitychart import ChartCoordinates, UnstableGrid
     drive = ElasticDriveFromParameters(base)
     c = ChartCoordinates(drive)
     x = np.array([r['kT'] for r in result.rows]) / (drive.gear.kV * drive.gear.r1**2)
@@ -433,7 +433,7 @@ def WriteReport(results: Dict[str, Dict], path: Path = HERE / 'STUDIES.md', figu
               '| | simulation: chatter | simulation: no chatter |', '|---|---|---|',
               f"| analytical: unstable | {c['unstable, chatter']} | {c['unstable, no chatter']} |",
               f"| analytical: stable | {c['stable, chatter']} | {c['stable, no chatter']} |", '',
-              f"The stability chart of `exudyn_worm.analysis.charts` (D_V = {DV}, D_TV = {a['chartDTV']:g}, x = kT/(kV r1^2), "
+              f"The stability chart of `exudyn_worm.analysis.charts.stabilitychart` (D_V = {DV}, D_TV = {a['chartDTV']:g}, x = kT/(kV r1^2), "
               f"y = J1/J2) gives the same verdict as eqs. (15)-(16) at {a['chartSame']} of the {len(result.rows)} runs; "
               f"its boundary is the line in the figure.", '',
               'Analytical verdicts at the paper\'s points on this map: '

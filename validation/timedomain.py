@@ -14,10 +14,10 @@ from typing import Callable, Dict, List, Tuple
 import numpy as np
 
 from exudyn_worm.model.contact import ContactOptions
-from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
-from exudyn_worm.analysis.reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
+from exudyn_worm.drive.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.analysis.simulation.reelchanger import DEFAULT_STEP_SIZE, DefaultWindows, SimulateReelChanger
 from exudyn_worm.model.stability import AnalyzeStability
-from exudyn_worm.setups.wholedrive import ResolveDrive
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 from .paper.eigenvalue_forensics import WheelCircumferenceFactor
 from .runner import READINGS, Fmt
@@ -219,7 +219,7 @@ def SimulationChecks(ctx):
                      f'{Fmt(n.computed, n.row.publishedText)} | {n.verdict} | '
                      f'{Fmt(p.computed, p.row.publishedText)} | {p.verdict} | {"yes" if p.inSample else "no"} |')
     ctx.AddSection('Time domain: both mesh readings side by side', f'''
-All runs: the reel changer of `exudyn_worm.analysis.reelchanger` (motor with prescribed constant speed, elastic shaft
+All runs: the reel changer of `exudyn_worm.analysis.simulation.reelchanger` (motor with prescribed constant speed, elastic shaft
 kT/dT, worm J1, the worm-gear connector, wheel J2, load -m2 g l2 cos(phi2)), one full rotation starting in the
 static equilibrium at full speed, generalized-alpha with step 5e-4 s, the worm sticking at zero sliding speed (the
 default friction model).

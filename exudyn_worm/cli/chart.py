@@ -26,7 +26,7 @@ PAPER_DTV = (1., 5., 25.)
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.charts import DEFAULT_RESOLUTION, DEFAULT_X_RANGE, DEFAULT_Y_RANGE
+    from ..analysis.charts.stabilitychart import DEFAULT_RESOLUTION, DEFAULT_X_RANGE, DEFAULT_Y_RANGE
     parser.add_argument('--DV', type=float, default=None, metavar='D_V',
                         help="mesh damping measure D_V of eq. (23) (default: the parameter set's, from DV or dV)")
     parser.add_argument('--DTV', type=float, nargs='+', default=list(PAPER_DTV), metavar='D_TV',
@@ -58,7 +58,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _PresetName(name: str) -> str:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..setups.presets import PRESETS
+    from ..drive.presets import PRESETS
     # a point needs J1 and kT: the 'chart' preset has neither (it is the gear the chart is drawn for)
     drives = [p for p in PRESETS if p != 'chart']
     if name in drives:
@@ -82,10 +82,10 @@ def _MeshDampingMeasure(parameters: Dict[str, float], gear) -> float:
 
 def _RunSpeed(args: argparse.Namespace) -> int:
     """``chart --speed SPEC``: the drive's stability over motor speed at the load of its own duty
-    (:mod:`exudyn_worm.analysis.speedchart`)."""
+    (:mod:`exudyn_worm.analysis.charts.speedchart`)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.speedchart import SpeedStabilityChart
-    from ..analysis.studygrid import ParseVariation
+    from ..analysis.charts.speedchart import SpeedStabilityChart
+    from ..analysis.studies.studygrid import ParseVariation
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None
     drive = WholeDriveFromArgs(args)
@@ -131,8 +131,8 @@ class _OwnVerdict:
 
     def ToDict(self) -> Dict:
         # lazy: start-up (exudyn-worm --help imports every command module)
-        from ..analysis.charts import ChartCoordinates
-        from ..analysis.drivestability import AnalyzeDrive
+        from ..analysis.charts.stabilitychart import ChartCoordinates
+        from ..analysis.stability.drivestability import AnalyzeDrive
         analysis = AnalyzeDrive(self.drive)
         return {'label': self.label, **ChartCoordinates(self.drive.elastic), 'stable': analysis.stable,
                 'instability': analysis.instability, 'maxRealPart': analysis.maxRealPart,
@@ -141,7 +141,7 @@ class _OwnVerdict:
 
     def Text(self) -> str:
         # lazy: start-up (exudyn-worm --help imports every command module)
-        from ..analysis.drivestability import VerdictWord
+        from ..analysis.stability.drivestability import VerdictWord
         d = self.ToDict()
         parts = f"; it has {' and '.join(d['components'])}, which the chart does not" if d['components'] else ''
         return (f"this drive ({self.label}) is marked at x = {d['x']:.4g}, y = {d['y']:.4g} (own D_V = {d['DV']:.4g}, "
@@ -154,8 +154,8 @@ def _Run(args: argparse.Namespace) -> int:
     if args.speed is not None:
         return _RunSpeed(args)
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.charts import MAX_CHART_POINTS, ChartCoordinates, ComputeStabilityChart, PresetChartPoints
-    from ..setups.presets import ExtraComponents, GearFromParameters
+    from ..analysis.charts.stabilitychart import MAX_CHART_POINTS, ChartCoordinates, ComputeStabilityChart, PresetChartPoints
+    from ..drive.presets import ExtraComponents, GearFromParameters
     from ..params.parameters import MissingParameterError
     from ..progress import ProgressBar
     output = CheckFigurePath(args.output, '--output', args.overwrite) if args.output else None

@@ -27,7 +27,7 @@ def ParseVary(text: str) -> Tuple[str, float, float]:
         If it is malformed, a bound has the wrong unit, or ``LOW >= HIGH``.
     """
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..setups.config import ParseQuantity
+    from ..drive.config import ParseQuantity
     name, sep, rest = text.partition('=')
     parts = rest.split(':')
     name = name.strip()
@@ -60,9 +60,9 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.chatterbranch import AnalyzeChatterBranch
-    from ..analysis.smoothbranch import ChatterBranchError
-    from ..analysis.lowering import LoweringPhaseParameters
+    from ..analysis.orbits.chatterbranch import AnalyzeChatterBranch
+    from ..analysis.orbits.smoothbranch import ChatterBranchError
+    from ..analysis.orbits.lowering import LoweringPhaseParameters
     name, low, high = ParseVary(args.vary) if args.vary is not None else (None, None, None)
     with BadInput():      # any drive: the periodic orbits of its lowering phase
         drive = WholeDriveFromArgs(args)
@@ -102,9 +102,9 @@ def _RunSteady(args: argparse.Namespace, drive, parameters) -> int:
     """The steady chatter at the lowering operating point: one periodic orbit of the one-angle model, or of the 3D
     model for a drive with shaft bearings (or, where no orbit converges, its settled long simulation)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.chatter import SteadyChatterSummary
-    from ..analysis.drivestability import DIVERGENCE, AnalyzeDrive, GrowthText, StateInstability
-    from ..analysis.orbits import NoSteadyChatter
+    from ..analysis.orbits.chatter import SteadyChatterSummary
+    from ..analysis.stability.drivestability import DIVERGENCE, AnalyzeDrive, GrowthText, StateInstability
+    from ..analysis.orbits.periodic import NoSteadyChatter
     if args.plot:
         raise UsageError("chatter: --plot draws the branch of --vary; without --vary there is one orbit to report")
     with BadInput():

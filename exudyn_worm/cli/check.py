@@ -1,7 +1,7 @@
 """``exudyn-worm check``: the design check. The verdict of ``exudyn-worm stability`` (the drive's own operating
 points), the self-locking verdicts at each of them, where a two-mass drive sits on its chart, and the smallest changes
 of J1, J2, kT, the damping and the chains that make it stable with a margin
-(:func:`exudyn_worm.analysis.design.DesignCheck`)."""
+(:func:`exudyn_worm.analysis.design.designcheck.DesignCheck`)."""
 from __future__ import annotations
 
 import argparse
@@ -14,7 +14,7 @@ __all__ = ['COMMAND']
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.designrules import DEFAULT_MARGIN, DEFAULT_SPAN
+    from ..analysis.design.designrules import DEFAULT_MARGIN, DEFAULT_SPAN
     parser.add_argument('--margin', type=float, default=DEFAULT_MARGIN, metavar='DECADES',
                         help=f'stability margin in decades of the changed parameter (default {DEFAULT_MARGIN:g}: '
                              f'the drive stays stable if that parameter is off by a factor {10 ** DEFAULT_MARGIN:.2f})')
@@ -45,8 +45,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis import design, designconfirm
-    from ..analysis.designscan import DesignKeys
+    from ..analysis.design import designcheck, designconfirm
+    from ..analysis.design.designscan import DesignKeys
     from ..progress import ProgressBar
     plotPath = CheckFigurePath(args.plot, '--plot', args.overwrite) if args.plot is not None else None
     drive = WholeDriveFromArgs(args)              # resolved once: every analysis below takes this drive
@@ -54,7 +54,7 @@ def _Run(args: argparse.Namespace) -> int:
         WarnUnresolvedRotation(drive, 'check')
     if args.simulate:
         # lazy: start-up (exudyn-worm --help imports every command module)
-        from ..setups.build import CheckReelChangerKeys
+        from ..builders.oneangle import CheckReelChangerKeys
         with BadInput():
             CheckReelChangerKeys(drive, 'check --simulate')
     elif args.step_size is not None:
@@ -63,7 +63,7 @@ def _Run(args: argparse.Namespace) -> int:
     with BadInput(), StdoutToStderr(args.json):
         keys, _ = DesignKeys(drive)
         with ProgressBar(total=len(keys), desc='check', unit='parameter', quiet=quiet) as bar:
-            result = design.DesignCheck(drive, margin=args.margin, span=args.span, progress=bar.update)
+            result = designcheck.DesignCheck(drive, margin=args.margin, span=args.span, progress=bar.update)
     if args.simulate:
         runs = 1 + len(result.recommendations) + (result.bestPair is not None)
         with ProgressBar(total=runs, desc='check --simulate', unit='run', quiet=quiet) as bar:
@@ -72,7 +72,7 @@ def _Run(args: argparse.Namespace) -> int:
     loadSide = None
     if drive.loadSideChain:          # as stability: may the driven machine be lumped into J2? which stage is not?
         # lazy: start-up (exudyn-worm --help imports every command module)
-        from ..analysis.loadside import DiagnoseLoadSide
+        from ..analysis.stability.loadside import DiagnoseLoadSide
         with StdoutToStderr(args.json), BadInput():
             loadSide = DiagnoseLoadSide(drive, args.margin)
     disturbance = _DisturbanceVerdict(args, drive, result)
@@ -104,21 +104,21 @@ def _Run(args: argparse.Namespace) -> int:
 
 
 def _DisturbanceVerdict(args: argparse.Namespace, drive, result):
-    """:func:`~exudyn_worm.analysis.disturbance.ChattersAfterDisturbance` of the drive, or None where it is not asked
+    """:func:`~exudyn_worm.analysis.orbits.disturbance.ChattersAfterDisturbance` of the drive, or None where it is not asked
     for: ``--no-disturbance``; by default only for a drive with backlash that is linearly stable while lowering
     (S = -1) and has the reel changer's keys. ``--disturbance`` asks for it for any drive (missing keys: exit 2)."""
     if args.disturbance == 'no':
         return None
     if args.disturbance == 'auto':
         # lazy: start-up (exudyn-worm --help imports every command module)
-        from ..setups.presets import REEL_KEYS
+        from ..drive.presets import REEL_KEYS
         lowering = result.ContactStates().get(-1)
         if not (drive.gear.backlash > 0. and lowering is not None and lowering.stable
                 and all(k in drive.parameters for k in REEL_KEYS)):
             return None
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.disturbance import ChattersAfterDisturbance
-    from ..setups.build import CheckReelChangerKeys
+    from ..analysis.orbits.disturbance import ChattersAfterDisturbance
+    from ..builders.oneangle import CheckReelChangerKeys
     parameters = dict(drive.parameters)      # the lowering-phase orbit reads the flat set
     if args.disturbance == 'auto':
         try:

@@ -1,13 +1,13 @@
 """Text tables of ``exudyn-worm chart``: the stability charts and the speed chart (the numbers come from
-:mod:`exudyn_worm.analysis.charts` and :mod:`exudyn_worm.analysis.speedchart`; this module only formats them).
+:mod:`exudyn_worm.analysis.charts.stabilitychart` and :mod:`exudyn_worm.analysis.charts.speedchart`; this module only formats them).
 """
 from __future__ import annotations
 
 from typing import TYPE_CHECKING, Dict, List, Optional, Sequence
 
 if TYPE_CHECKING:
-    from ..analysis.charts import StabilityChart
-    from ..analysis.speedchart import SpeedChart
+    from ..analysis.charts.stabilitychart import StabilityChart
+    from ..analysis.charts.speedchart import SpeedChart
 
 __all__ = ['FormatChartTable', 'FormatSpeedChart']
 
@@ -19,7 +19,7 @@ def FormatSpeedChart(chart: 'SpeedChart', source: str) -> List[str]:
     Parameters
     ----------
     chart : SpeedChart
-        From :func:`~exudyn_worm.analysis.speedchart.SpeedStabilityChart`.
+        From :func:`~exudyn_worm.analysis.charts.speedchart.SpeedStabilityChart`.
     source : str
         Where the drive came from (first line).
 
@@ -28,8 +28,8 @@ def FormatSpeedChart(chart: 'SpeedChart', source: str) -> List[str]:
     list of str
     """
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.speedchart import RPM
-    from ..analysis.drivestability import VerdictWord
+    from ..analysis.charts.speedchart import RPM
+    from ..analysis.stability.drivestability import VerdictWord
     model = ('eq. (16) extended by the friction slope' if chart.model == 'analytical' else
              f"the linearized whole drive: it has {' and '.join(chart.components)}")
     lines = [f"exudyn-worm chart --speed: {source}; {chart.frictionLaw} friction law; each direction of the duty at "
@@ -75,7 +75,7 @@ def FormatChartTable(charts: Sequence[StabilityChart], points: Optional[Dict[str
     charts : sequence of StabilityChart
         The charts, one row each.
     points : dict, optional
-        ``{label: {'x', 'y', ...}}`` (e.g. :func:`~exudyn_worm.analysis.charts.PresetChartPoints`): each chart's exact verdict at the
+        ``{label: {'x', 'y', ...}}`` (e.g. :func:`~exudyn_worm.analysis.charts.stabilitychart.PresetChartPoints`): each chart's exact verdict at the
         point's (x, y) is listed (U unstable, s stable).
 
     Returns

@@ -1,19 +1,19 @@
 """Text of ``exudyn-worm chatter``: the chatter branch as a table, or the steady chatter at the lowering operating
-point (the numbers come from :mod:`exudyn_worm.analysis.chatterbranch` and
-:func:`~exudyn_worm.analysis.chatter.SteadyChatterSummary`; this module only formats them).
+point (the numbers come from :mod:`exudyn_worm.analysis.orbits.chatterbranch` and
+:func:`~exudyn_worm.analysis.orbits.chatter.SteadyChatterSummary`; this module only formats them).
 """
 from __future__ import annotations
 
 from typing import List
 
-from ..analysis.orbits import TRIVIAL_MULTIPLIER_TOLERANCE
+from ..analysis.orbits.periodic import TRIVIAL_MULTIPLIER_TOLERANCE
 from ..items.bearings import BEARING_LOADS
 
 __all__ = ['FormatBranch', 'FormatSteadyChatter']
 
 
 def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
-    """Table of a :class:`~exudyn_worm.analysis.chatterbranch.ChatterBranch`.
+    """Table of a :class:`~exudyn_worm.analysis.orbits.chatterbranch.ChatterBranch`.
 
     Parameters
     ----------
@@ -70,7 +70,7 @@ def FormatSteadyChatter(summary: dict, title: str) -> List[str]:
     Parameters
     ----------
     summary : dict
-        From :func:`~exudyn_worm.analysis.chatter.SteadyChatterSummary` (SI units).
+        From :func:`~exudyn_worm.analysis.orbits.chatter.SteadyChatterSummary` (SI units).
     title : str
         The first line (what was analysed).
 

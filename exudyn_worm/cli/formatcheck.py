@@ -1,16 +1,16 @@
 """Text of ``exudyn-worm check``: the design check's report and the self-locking lines (the numbers come from
-:mod:`exudyn_worm.analysis.design`; this module only formats them).
+:mod:`exudyn_worm.analysis.design.designcheck`; this module only formats them).
 """
 from __future__ import annotations
 
 import math
 from typing import TYPE_CHECKING, List
 
-from ..analysis.drivestability import DIVERGENCE, StateInstability, VerdictWord
+from ..analysis.stability.drivestability import DIVERGENCE, StateInstability, VerdictWord
 from .formatstability import DangerLines, OperatingPointLines
 
 if TYPE_CHECKING:
-    from ..analysis.drivestability import DriveAnalysis
+    from ..analysis.stability.drivestability import DriveAnalysis
 
 __all__ = ['FormatDesignCheck', 'SelfLockingLines', 'HEAVY_DAMPING']
 
@@ -41,7 +41,7 @@ def SelfLockingLines(analysis: DriveAnalysis) -> List[str]:
     Parameters
     ----------
     analysis : DriveAnalysis
-        Result of :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`.
+        Result of :func:`~exudyn_worm.analysis.stability.drivestability.AnalyzeDrive`.
 
     Returns
     -------
@@ -60,12 +60,12 @@ def SelfLockingLines(analysis: DriveAnalysis) -> List[str]:
 
 
 def FormatDesignCheck(result, title: str = 'Design check') -> List[str]:
-    """Human-readable report of a :class:`~exudyn_worm.analysis.design.DesignCheckResult` (the ``check`` output).
+    """Human-readable report of a :class:`~exudyn_worm.analysis.design.designcheck.DesignCheckResult` (the ``check`` output).
 
     Parameters
     ----------
     result : DesignCheckResult
-        From :func:`~exudyn_worm.analysis.design.DesignCheck` (optionally :func:`~exudyn_worm.analysis.designconfirm.ConfirmBySimulation`).
+        From :func:`~exudyn_worm.analysis.design.designcheck.DesignCheck` (optionally :func:`~exudyn_worm.analysis.design.designconfirm.ConfirmBySimulation`).
     title : str, optional
         First line.
 

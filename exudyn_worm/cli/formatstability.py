@@ -1,5 +1,5 @@
 """Text of ``exudyn-worm stability``: the verdict, the operating points, the danger lines and the analytical
-model's table (the numbers come from :mod:`exudyn_worm.analysis.drivestability` and
+model's table (the numbers come from :mod:`exudyn_worm.analysis.stability.drivestability` and
 :mod:`exudyn_worm.model.stability`; this module only formats them).
 """
 from __future__ import annotations
@@ -7,8 +7,8 @@ from __future__ import annotations
 import math
 from typing import Any, List
 
-from ..analysis.drivestability import (DIVERGENCE, AnalyzeDrive, DriveAnalysis, GrowthText, StateInstability,
-                                       VerdictWord)
+from ..analysis.stability.drivestability import (DIVERGENCE, AnalyzeDrive, DriveAnalysis, GrowthText, StateInstability,
+                                                 VerdictWord)
 from ..model.stability import CONTACT_STATES, StabilityAnalysis
 
 __all__ = ['FormatStability', 'OperatingPointLines', 'VerdictLine', 'DangerLines', 'StateLine']
@@ -22,7 +22,7 @@ def OperatingPointLines(analysis: DriveAnalysis) -> List[str]:
     Parameters
     ----------
     analysis : DriveAnalysis
-        Result of :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`.
+        Result of :func:`~exudyn_worm.analysis.stability.drivestability.AnalyzeDrive`.
 
     Returns
     -------
@@ -51,7 +51,7 @@ def VerdictLine(analysis: DriveAnalysis) -> str:
     Parameters
     ----------
     analysis : DriveAnalysis
-        Result of :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`.
+        Result of :func:`~exudyn_worm.analysis.stability.drivestability.AnalyzeDrive`.
 
     Returns
     -------
@@ -103,7 +103,7 @@ def DangerLines(analysis: DriveAnalysis) -> List[str]:
     Parameters
     ----------
     analysis : DriveAnalysis
-        Result of :func:`~exudyn_worm.analysis.drivestability.AnalyzeDrive`.
+        Result of :func:`~exudyn_worm.analysis.stability.drivestability.AnalyzeDrive`.
 
     Returns
     -------

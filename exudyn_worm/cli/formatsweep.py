@@ -1,11 +1,11 @@
-"""Text of ``exudyn-worm sweep``: the study's table (the numbers come from :mod:`exudyn_worm.analysis.study`; this
+"""Text of ``exudyn-worm sweep``: the study's table (the numbers come from :mod:`exudyn_worm.analysis.studies.study`; this
 module only formats them).
 """
 from __future__ import annotations
 
 from typing import List
 
-from ..analysis.drivestability import VerdictWord
+from ..analysis.stability.drivestability import VerdictWord
 from ..params.parameters import PARAMETERS
 
 __all__ = ['FormatStudy']
@@ -24,7 +24,7 @@ def FormatStudy(result, title: str = 'Study') -> List[str]:
     Parameters
     ----------
     result : StudyResult
-        Result of :func:`~exudyn_worm.analysis.study.RunStudy`.
+        Result of :func:`~exudyn_worm.analysis.studies.study.RunStudy`.
     title : str, optional
         First line.
 

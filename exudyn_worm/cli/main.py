@@ -51,12 +51,12 @@ from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Un
 
 from .. import __version__
 from .._checks import WarningText
-from ..setups.config import DEFAULT_PRESET, LoadConfig, ResolveParameters, ResolveParametersWithSources
-from ..setups.wholedrive import Drive
+from ..drive.config import DEFAULT_PRESET, LoadConfig, ResolveParameters, ResolveParametersWithSources
+from ..drive.wholedrive import Drive
 from ..params.plausibility import CheckWormRotation, ImplausibleValueWarning
-from ..analysis.stepsize import RecommendedStepSize
+from ..analysis.simulation.stepsize import RecommendedStepSize
 from ..model.drive import ElasticDrive
-from ..setups.presets import PRESETS
+from ..drive.presets import PRESETS
 from ..params.parameters import MissingParameterError
 from .. import _files
 from .._files import WriteAtomically
@@ -289,7 +289,7 @@ def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
 
 
 def ParametersFromArgs(args: argparse.Namespace) -> Dict[str, float]:
-    """Resolve the parameter set of the shared options with :func:`~exudyn_worm.setups.config.ResolveParameters`.
+    """Resolve the parameter set of the shared options with :func:`~exudyn_worm.drive.config.ResolveParameters`.
 
     Parameters
     ----------
@@ -315,7 +315,7 @@ def ParametersFromArgs(args: argparse.Namespace) -> Dict[str, float]:
 
 
 def _DriveFile(args: argparse.Namespace):
-    """The drive file of ``--config`` as :func:`~exudyn_worm.setups.config.LoadConfig` reads it, read once per
+    """The drive file of ``--config`` as :func:`~exudyn_worm.drive.config.LoadConfig` reads it, read once per
     command (None without ``--config``)."""
     if not args.config:
         return None
@@ -326,7 +326,7 @@ def _DriveFile(args: argparse.Namespace):
 
 
 def WholeDriveFromArgs(args: argparse.Namespace) -> Drive:
-    """The :class:`~exudyn_worm.setups.wholedrive.Drive` of the shared options, resolved and checked once per
+    """The :class:`~exudyn_worm.drive.wholedrive.Drive` of the shared options, resolved and checked once per
     command (a second call returns the same object, so its analyses are computed once).
 
     Parameters
@@ -355,7 +355,7 @@ def WholeDriveFromArgs(args: argparse.Namespace) -> Drive:
 
 def WarnUnresolvedRotation(drive: Drive, where: str) -> None:
     """Warn, for a command that does not simulate, if any simulation of ``drive`` at its own recommended time step
-    (:func:`~exudyn_worm.analysis.stepsize.RecommendedStepSize`) would turn the worm once in fewer than
+    (:func:`~exudyn_worm.analysis.simulation.stepsize.RecommendedStepSize`) would turn the worm once in fewer than
     :data:`~exudyn_worm.params.plausibility.MIN_STEPS_PER_ROTATION` steps (a speed in rpm given as rad/s):
     the linear verdict holds for that speed, but no run of the drive could check it.
 

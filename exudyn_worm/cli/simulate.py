@@ -14,7 +14,7 @@ from .main import (AddOverwriteOption, BadInput, CheckOutputPath, PositiveFloat,
 from .._files import WriteAtomically
 
 if TYPE_CHECKING:
-    from ..setups.wholedrive import Drive
+    from ..drive.wholedrive import Drive
 
 __all__ = ['COMMAND', 'ParseWindows']
 
@@ -119,7 +119,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
                              "last --windows)")
     parser.add_argument('--step-size', type=PositiveFloat('s'), default=None, metavar='S',
                         help='time step in s (default: from the drive, 0.039 / its highest natural frequency); refused '
-                             'if it cannot resolve that frequency (rule in exudyn_worm/analysis/stepsize.py)')
+                             'if it cannot resolve that frequency (rule in exudyn_worm/analysis/simulation/stepsize.py)')
     parser.add_argument('--max-steps', type=PositiveInt('steps'), default=None, metavar='N',
                         help='refuse runs of more solver steps (= stored samples) than N (default 1e6, about 0.4 GB '
                              'of results; 780 s simulated of P1 at its default step)')
@@ -144,8 +144,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 def _StepCheck(args: argparse.Namespace, drive: Drive, endTime: float, stepSize: float, maxSteps: int) -> dict:
     """Whether the verdicts are checked at half the step, and why (--check-step, or the linear margin)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.reelchanger import CheckRunSize
-    from ..analysis.stepsize import SMALL_MARGIN, VERDICT_FACTOR, LinearMargin
+    from ..analysis.simulation.reelchanger import CheckRunSize
+    from ..analysis.simulation.stepsize import SMALL_MARGIN, VERDICT_FACTOR, LinearMargin
     with BadInput():
         margin = LinearMargin(drive)
     check = {'checked': margin['small'] if args.check_step is None else args.check_step,
@@ -166,9 +166,9 @@ def _StepCheck(args: argparse.Namespace, drive: Drive, endTime: float, stepSize:
 def _RunSettings(args: argparse.Namespace, drive: Drive) -> Tuple[float, float, int, List[Tuple[float, float]]]:
     """End time, step size, step limit and windows of a run, checked before anything is computed."""
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.reelchanger import MAX_STEPS, CheckRunSize, DefaultSimulatedTime, DefaultWindows
-    from ..setups.build import CheckReelChangerKeys
-    from ..analysis.stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
+    from ..analysis.simulation.reelchanger import MAX_STEPS, CheckRunSize, DefaultSimulatedTime, DefaultWindows
+    from ..builders.oneangle import CheckReelChangerKeys
+    from ..analysis.simulation.stepsize import CheckStepSize, CoarseStepWarning, RecommendedStepSize
     from ..params.plausibility import CheckWormRotation
     with BadInput():
         CheckReelChangerKeys(drive, 'simulate')
@@ -217,9 +217,9 @@ def _Run(args: argparse.Namespace) -> int:
     endTime, stepSize, maxSteps, windows = _RunSettings(args, drive)
     stepCheck = _StepCheck(args, drive, endTime, stepSize, maxSteps)
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.reelchanger import PhaseLabel, SimulateReelChanger, WindowPhases
+    from ..analysis.simulation.reelchanger import PhaseLabel, SimulateReelChanger, WindowPhases
     from ..items.solve import SolverDivergedError
-    from ..analysis.stepsize import CloseVerdicts, CoarseStepWarning, CompareHalfStep, UNRESOLVED
+    from ..analysis.simulation.stepsize import CloseVerdicts, CoarseStepWarning, CompareHalfStep, UNRESOLVED
     from ..items.results import ChatterVerdict, UNDECIDED
     from ..params.plausibility import ImplausibleValueWarning, UnresolvedRotationWarning
 
@@ -295,7 +295,7 @@ def _DivergenceLines(drive) -> List[str]:
     """A line per operating point at which the linear analysis finds a divergence (a real eigenvalue grows: the drive
     runs away or creeps, which a window's chatter verdict does not describe)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.drivestability import DIVERGENCE, AnalyzeDrive
+    from ..analysis.stability.drivestability import DIVERGENCE, AnalyzeDrive
     try:
         points = AnalyzeDrive(drive).operatingPoints
     except ValueError:          # no linear analysis of this drive: nothing to add to the simulation

@@ -7,10 +7,10 @@ from typing import Dict
 from .main import (BadInput, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WarnUnresolvedRotation,
                    WholeDriveFromArgs)
 from .formatstability import DangerLines, FormatStability, OperatingPointLines, StateLine, VerdictLine, _G, _Lehr
-from ..analysis.stabilityhint import StabilizingChanges
-from ..analysis.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, DriveAnalysis
+from ..analysis.design.stabilityhint import StabilizingChanges
+from ..analysis.stability.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, DriveAnalysis
 from ..model.geometry import DescribeGeometry, GeometryForm
-from ..setups.wholedrive import Drive
+from ..drive.wholedrive import Drive
 
 __all__ = ['COMMAND', 'StabilityHintData']
 
@@ -29,7 +29,7 @@ def _RunWholeDrive(args: argparse.Namespace, analysis: DriveAnalysis) -> int:
     loadSide = None
     if drive.loadSideChain:          # may the driven machine be lumped into J2? which stage is not?
         # lazy: start-up (exudyn-worm --help imports every command module)
-        from ..analysis.loadside import DiagnoseLoadSide
+        from ..analysis.stability.loadside import DiagnoseLoadSide
         with StdoutToStderr(args.json), BadInput():
             loadSide = DiagnoseLoadSide(drive)
     if args.json:
@@ -95,13 +95,13 @@ def _Run(args: argparse.Namespace) -> int:
 
 def StabilityHintData(drive: Drive, span: float = 100.) -> Dict:
     """The design hint of an unstable drive as data: the nearest stable J1 and kT
-    (:func:`~exudyn_worm.analysis.stabilityhint.StabilizingChanges`), other parameters as given; the table's hint line
+    (:func:`~exudyn_worm.analysis.design.stabilityhint.StabilizingChanges`), other parameters as given; the table's hint line
     and the ``--json`` key ``hint`` both come from here.
 
     Parameters
     ----------
     drive : Drive
-        The drive (:class:`~exudyn_worm.setups.wholedrive.Drive`).
+        The drive (:class:`~exudyn_worm.drive.wholedrive.Drive`).
     span : float, optional
         Search range factor, > 1.
 

@@ -61,8 +61,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _Study(args: argparse.Namespace):
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..setups.duty import CheckSimulationKeys
-    from ..analysis.studygrid import ParseVariation, Study
+    from ..drive.duty import CheckSimulationKeys
+    from ..analysis.studies.studygrid import ParseVariation, Study
     from .simulate import ParseWindows
     parameters = ParametersFromArgs(args)
     if args.overwrite and not (args.output or args.plot):
@@ -95,7 +95,7 @@ def _CheckPlot(args, study) -> None:
     if len(study.keys) not in (1, 2):
         raise UsageError(f"--plot needs one or two varied keys, got {len(study.keys)}")
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.studypoint import RUN_COLUMNS, WINDOW_METRICS
+    from ..analysis.studies.studypoint import RUN_COLUMNS, WINDOW_METRICS
     if len(study.keys) == 1:
         if args.metric is None:
             args.metric = _DefaultMetric(study)
@@ -109,8 +109,8 @@ def _DefaultMetric(study) -> str:
     """The default ``--metric``: the largest |phi2''| in the first window of the phase that decides the first run's
     linear verdict (window 1, the lowering, if no window belongs to it)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.studypoint import DecidingWindow
-    from ..setups.wholedrive import ResolveDrive
+    from ..analysis.studies.studypoint import DecidingWindow
+    from ..drive.wholedrive import ResolveDrive
     with BadInput():
         window = DecidingWindow(ResolveDrive(parameters=study.Parameters(0)), study.windows, study.endTime)
     return f"w{1 if window is None else window}.{_DEFAULT_METRIC}"
@@ -118,10 +118,10 @@ def _DefaultMetric(study) -> str:
 
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.study import RunStudy
-    from ..analysis.studygrid import CheckStudySize, ParseShard
-    from ..analysis.studyfiles import StudySidecarPath
-    from ..analysis.reelchanger import RunSizeError
+    from ..analysis.studies.study import RunStudy
+    from ..analysis.studies.studygrid import CheckStudySize, ParseShard
+    from ..analysis.studies.studyfiles import StudySidecarPath
+    from ..analysis.simulation.reelchanger import RunSizeError
     study = _Study(args)
     with BadInput():              # a grid too large for one call is refused before anything is built or written
         CheckStudySize(study, ParseShard(args.shard), args.max_runs, 'sweep', ('--max-runs', '--shard'))

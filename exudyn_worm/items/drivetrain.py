@@ -136,7 +136,7 @@ def CreateLoadSideChain(mbs, wheel, stages: Sequence[Tuple[float, float, float]]
     stages : sequence of (float, float, float)
         ``(J, k, d)`` of each stage, wheel side first: inertia in kg*m^2 (> 0), stiffness in N*m/rad (> 0) and
         damping in N*m*s/rad (>= 0) of the shaft on its wheel side
-        (:func:`~exudyn_worm.setups.presets.LoadSideChain` gives them from a parameter set).
+        (:func:`~exudyn_worm.drive.presets.LoadSideChain` gives them from a parameter set).
     initial : mapping, optional
         Initial angles ``phiL1, ...`` in rad and speeds ``omegaL1, ...`` in rad/s (default 0), e.g. from
         :func:`~exudyn_worm.items.equilibrium.SteadyInitialState`.

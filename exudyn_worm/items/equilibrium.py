@@ -14,7 +14,7 @@ motor speed / u) the damping torques vanish and every spring carries the torque 
 - each drive-side spring (kT, k4, ...) carries the worm's mesh torque: twist -wormTorque / k;
 - an axial bearing carries the mesh's axial force: kA xA = axial force.
 
-:func:`~exudyn_worm.analysis.linearization.AnalyzeLinearStability` linearizes a system about its initial state, in
+:func:`~exudyn_worm.analysis.stability.linearization.AnalyzeLinearStability` linearizes a system about its initial state, in
 which every mesh must be in contact: start your own Exudyn model from this state (docs/equilibrium.md).
 """
 from __future__ import annotations
@@ -108,7 +108,7 @@ def SteadyInitialState(drive: ElasticDrive, load: Optional[Any] = None, motorSpe
     axialBearing : AxialBearing, optional
         The worm's axial bearing (None: axially rigid worm).
     chain : sequence of (J, k, d), optional
-        Drive-side chain, worm side first (:func:`~exudyn_worm.setups.presets.DriveSideChain`): inertia i and the
+        Drive-side chain, worm side first (:func:`~exudyn_worm.drive.presets.DriveSideChain`): inertia i and the
         spring-damper on its motor side.
     loadSide : sequence of (J, k) or (J, k, d), optional
         Load-side chain, wheel side first: inertia i in kg*m^2 and the shaft on its wheel side in N*m/rad (and
@@ -130,7 +130,7 @@ def SteadyInitialState(drive: ElasticDrive, load: Optional[Any] = None, motorSpe
 
     Examples
     --------
-    >>> from exudyn_worm.setups.presets import DriveFromParameters, GetPreset
+    >>> from exudyn_worm.drive.presets import DriveFromParameters, GetPreset
     >>> drive = DriveFromParameters(GetPreset('reel-P1'))
     >>> state = SteadyInitialState(drive, load=-2000., motorSpeed=49.48, loadSide=[(0.5, 2e4)])
     >>> round((state['phiL1'] - state['phi2']) * 2e4, 6)          # the load shaft carries the load: M / k

@@ -52,7 +52,7 @@ UNDECIDED = 'undecided'
 CHATTER_MIN_MESH_TORQUE = 1e-3
 #: wheel inertia torque J2*|phi2''| against this fraction of the largest mesh torque on the wheel: the chatter rule
 #: before the mesh-based one, kept for the wheel's vibration time of a study
-#: (:func:`~exudyn_worm.analysis.studypoint.VibrationSeconds`)
+#: (:func:`~exudyn_worm.analysis.studies.studypoint.VibrationSeconds`)
 CHATTER_TORQUE_FRACTION = 0.1
 
 
@@ -459,7 +459,7 @@ class SimulationResult:
     def ChatterRatio(self, t0: float, t1: float) -> float:
         """How clearly the amplitude of [t0, t1] counts: for each measure of :meth:`MeshOscillation`, the last
         quarter's amplitude over :data:`CHATTER_AMPLITUDE`; the largest over the measures (0 for an unloaded mesh).
-        Near 1 the verdict is close (the step check of :mod:`exudyn_worm.analysis.stepsize` looks there).
+        Near 1 the verdict is close (the step check of :mod:`exudyn_worm.analysis.simulation.stepsize` looks there).
 
         Parameters
         ----------

@@ -432,7 +432,7 @@ class RigidBodyWormGearConnector:
     def RestartAngles(self, mbs, coordinates) -> None:
         """Measure the turns of a new solve from the whole-system ODE2 ``coordinates`` (without the reference
         values; within a quarter turn of the initial state), not from where the previous solve ended (the orbit
-        functions' flow, :class:`~exudyn_worm.analysis.exudynflow.ExudynFlow`).
+        functions' flow, :class:`~exudyn_worm.analysis.orbits.exudynflow.ExudynFlow`).
 
         Parameters
         ----------

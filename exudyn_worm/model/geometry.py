@@ -218,7 +218,7 @@ def GeometryFromParameters(parameters: Mapping[str, float], where: str = 'Geomet
     ----------
     parameters : mapping
         Flat parameter dictionary (SI); mixed forms (``r1`` with ``a``) are refused by
-        :func:`~exudyn_worm.setups.presets.CheckParameterKeys` before this is called.
+        :func:`~exudyn_worm.drive.presets.CheckParameterKeys` before this is called.
     where : str
         Prefix of error messages.
 

@@ -124,7 +124,7 @@ def OperatingPointFromParameters(parameters: Mapping[str, Any], gear: 'WormGear'
     Parameters
     ----------
     parameters : mapping
-        Flat parameter set (see :mod:`exudyn_worm.setups.presets`).
+        Flat parameter set (see :mod:`exudyn_worm.drive.presets`).
     gear : WormGear
         The mesh built from it.
 
@@ -164,7 +164,7 @@ def PolynomialCoefficients(gear, S: int, J1, J2, kT, dT, dV=None,
     """Coefficients b1..b4 of eq. (16) from the gear and the drive values; broadcasts over numpy arrays.
 
     The one implementation of eq. (16): :func:`CharacteristicCoefficients` (one drive) and the stability
-    charts (:mod:`exudyn_worm.analysis.charts`, a whole grid at once) both call it.
+    charts (:mod:`exudyn_worm.analysis.charts.stabilitychart`, a whole grid at once) both call it.
 
     Parameters
     ----------
@@ -484,7 +484,7 @@ class StabilityAnalysis:
 
     def State(self, S: int) -> ContactStability:
         """The result for contact state ``S`` (+1 or -1): ``contact[S]``, under the name
-        :meth:`~exudyn_worm.analysis.linearization.LinearStability.State` uses for the whole drive.
+        :meth:`~exudyn_worm.analysis.stability.linearization.LinearStability.State` uses for the whole drive.
 
         Parameters
         ----------

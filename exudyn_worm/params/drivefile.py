@@ -1,14 +1,14 @@
 """Whole-drive TOML files: one table per component of the drive, mapped onto the flat parameter keys.
 
 A drive file describes a whole drive in the words of a drive engineer; :data:`DRIVE_FILE_TABLES` says which
-file key becomes which parameter key of :mod:`exudyn_worm.setups.presets` (the keys that ``--set`` takes and the solver
+file key becomes which parameter key of :mod:`exudyn_worm.drive.presets` (the keys that ``--set`` takes and the solver
 receives). It is derived from the registry :data:`~exudyn_worm.params.parameters.PARAMETERS`, where each parameter
 names its table and file key. The format requires no table or key: what a file leaves out comes from the
 ``preset`` it names; a file with component tables that names no preset inherits nothing, and a value the drive
 needs but the file leaves out is reported missing (a flat ``[parameters]`` table without a preset is applied on
-top of ``reel-P1``, see :mod:`exudyn_worm.setups.config`). Values are strings with units (``"18.05 mm"``,
+top of ``reel-P1``, see :mod:`exudyn_worm.drive.config`). Values are strings with units (``"18.05 mm"``,
 ``"8 deg"``, ``"472.5 rpm"``) or plain numbers in the key's SI unit, read by
-:func:`exudyn_worm.setups.config.ParseQuantity`; an angle, an angular speed or a length needs its unit (zero excepted,
+:func:`exudyn_worm.drive.config.ParseQuantity`; an angle, an angular speed or a length needs its unit (zero excepted,
 docs/drive-files.md, "Values").
 
 Example (the reel changer at P1, parameter set (28))::

@@ -46,7 +46,7 @@ def ShippedDrives() -> Dict[str, Path]:
 
 def ShippedDrive(name: str) -> Path:
     """The path of a shipped drive file, e.g. ``ShippedDrive('figure19')`` for
-    :func:`~exudyn_worm.setups.config.LoadConfig`.
+    :func:`~exudyn_worm.drive.config.LoadConfig`.
 
     Parameters
     ----------

@@ -3,8 +3,8 @@
 Each :class:`Parameter` carries its name, SI unit (pint syntax), range, kind of value, the quantity whose
 alternative forms it belongs to (``mu`` | ``rho``, ``dV`` | ``DV``, ``dT`` | ``DT`` | ``DTV``), its table and
 key in a whole-drive file, a short label for axes and table heads, and a one-line description. Everything
-else derives from :data:`PARAMETERS`: the range checks of :func:`~exudyn_worm.setups.presets.CheckParameters`, the
-unit parsing of :func:`~exudyn_worm.setups.config.ParseQuantity` and ``--set``, the drive-file mapping of
+else derives from :data:`PARAMETERS`: the range checks of :func:`~exudyn_worm.drive.presets.CheckParameters`, the
+unit parsing of :func:`~exudyn_worm.drive.config.ParseQuantity` and ``--set``, the drive-file mapping of
 :mod:`exudyn_worm.params.drivefile`, the messages for unknown keys, the axis labels of studies and the parameter
 table of docs/parameters.md (:meth:`ParameterRegistry.MarkdownTable`).
 
@@ -835,7 +835,7 @@ def _DimensionText(ureg, units, radians) -> str:
 
 
 def _ParseNumber(key: str, text, target: str, where: str, fromFile: bool = False) -> float:
-    """A number (SI) or a string with a unit, converted to ``target``; see :func:`~exudyn_worm.setups.config.ParseQuantity`.
+    """A number (SI) or a string with a unit, converted to ``target``; see :func:`~exudyn_worm.drive.config.ParseQuantity`.
     A plain number in text (or, with ``fromFile``, a file's number) of a quantity in :data:`UNIT_REQUIRED` is refused."""
     if isinstance(text, bool) or not isinstance(text, (str, Real)):
         raise TypeError(f"{where}: value of '{key}' must be a number or a string such as '0.5 mm', "

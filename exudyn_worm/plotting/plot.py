@@ -127,7 +127,7 @@ def _Interval(where: str, result, tZoom) -> Tuple[np.ndarray, Tuple[float, float
 
 def _Phases(result) -> list:
     """The lift / lower phases the simulation recorded (``result.info['phases']``, from the duty:
-    :func:`~exudyn_worm.analysis.reelchanger.DefaultPhases`); idle phases are not shaded."""
+    :func:`~exudyn_worm.analysis.simulation.reelchanger.DefaultPhases`); idle phases are not shaded."""
     return MergePhases([(a, b, kind) for a, b, kind in getattr(result, 'info', {}).get('phases', ())
                         if kind in _PHASE_COLORS])
 
@@ -508,7 +508,7 @@ def PlotSimulation(result, kind: str = 'overview', tZoom: Optional[Tuple[float, 
     Parameters
     ----------
     result : SimulationResult
-        Result of e.g. :func:`exudyn_worm.analysis.reelchanger.SimulateReelChanger`.
+        Result of e.g. :func:`exudyn_worm.analysis.simulation.reelchanger.SimulateReelChanger`.
     kind : str
         One of :data:`PLOT_KINDS`: ``'acceleration'`` (Fig. 8/13), ``'zoom'`` (phi2'' and S, Fig. 9/14/16),
         ``'speed'`` (phi1' and sf, Fig. 10/15), ``'normalForce'`` (both flanks, Fig. 11),

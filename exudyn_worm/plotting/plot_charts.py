@@ -1,12 +1,12 @@
 """Plots of the stability charts: Figures 3, 4 and 5 of the paper.
 
-Imports matplotlib inside the functions (``import exudyn_worm.analysis.charts`` never pulls it in). Figures are
+Imports matplotlib inside the functions (``import exudyn_worm.analysis.charts.stabilitychart`` never pulls it in). Figures are
 made as in :mod:`exudyn_worm.plotting.plot` (a plain :class:`~matplotlib.figure.Figure`, or through pyplot if the
 caller already uses it); save them with :func:`exudyn_worm.plotting.plot.SaveFigure`.
 
 The unstable region is shaded with matplotlib's ``contourf`` of the chart's margin field (its zero level
 set is the boundary); the boundary lines themselves are the chart's own marching-squares curves
-(:attr:`~exudyn_worm.analysis.charts.StabilityChart.boundaries`).
+(:attr:`~exudyn_worm.analysis.charts.stabilitychart.StabilityChart.boundaries`).
 """
 from __future__ import annotations
 
@@ -14,9 +14,9 @@ import math
 from typing import Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
-from ..analysis.charts import FirstCriterionCurves, StabilityChart
+from ..analysis.charts.stabilitychart import FirstCriterionCurves, StabilityChart
 from .plot import _NewFigure
-from ..analysis.speedchart import RPM, SpeedChart
+from ..analysis.charts.speedchart import RPM, SpeedChart
 
 __all__ = ['STIFFNESS_RATIO_LABEL', 'INERTIA_RATIO_LABEL', 'POINT_SIZE', 'HATCHES', 'ZOOM_DECADES',
            'PlotStabilityChart', 'PlotStabilityCharts', 'PlotSpeedChart', 'PlotFirstCriterion', 'NearestBoundary',
@@ -47,12 +47,12 @@ def _PointXY(value):
 
 def _Points(where: str, points) -> Mapping:
     """``points`` as ``{label: (x, y)}``; only draws, so preset names and drives must be resolved before
-    (:func:`~exudyn_worm.analysis.charts.ChartPoints`, which :meth:`StabilityChart.plot
-    <exudyn_worm.analysis.charts.StabilityChart.plot>` calls)."""
+    (:func:`~exudyn_worm.analysis.charts.stabilitychart.ChartPoints`, which :meth:`StabilityChart.plot
+    <exudyn_worm.analysis.charts.stabilitychart.StabilityChart.plot>` calls)."""
     if points is None:
         return {}
     form = ("a mapping {label: (x, y) or a dict with 'x' and 'y'}; preset names and ElasticDrives are resolved by "
-            "exudyn_worm.analysis.charts.ChartPoints (StabilityChart.plot does it)")
+            "exudyn_worm.analysis.charts.stabilitychart.ChartPoints (StabilityChart.plot does it)")
     if not isinstance(points, Mapping):
         raise TypeError(f"{where}: 'points' must be {form}, got {type(points).__name__} {points!r}")
     out = {}
@@ -123,7 +123,7 @@ def NearestBoundary(chart: 'StabilityChartData', point: Tuple[float, float]) -> 
         The chart.
     point : (float, float) or mapping
         The point, as (x, y) or a dict with 'x' and 'y' (:meth:`StabilityChart.NearestBoundary
-        <exudyn_worm.analysis.charts.StabilityChart.NearestBoundary>` computes it).
+        <exudyn_worm.analysis.charts.stabilitychart.StabilityChart.NearestBoundary>` computes it).
 
     Returns
     -------
@@ -168,14 +168,14 @@ def PlotStabilityChart(chart, ax=None, points: Optional[Mapping] = None, color: 
     Parameters
     ----------
     chart : StabilityChart
-        From :func:`~exudyn_worm.analysis.charts.ComputeStabilityChart`.
+        From :func:`~exudyn_worm.analysis.charts.stabilitychart.ComputeStabilityChart`.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into (default: a new figure).
     points : mapping, optional
         ``{label: point}`` with a point as (x, y) or as a dict with 'x' and 'y' (e.g. from
-        :func:`~exudyn_worm.analysis.charts.ChartCoordinates`). Preset names and ElasticDrives are resolved before
-        drawing by :func:`~exudyn_worm.analysis.charts.ChartPoints` (as :meth:`StabilityChart.plot
-        <exudyn_worm.analysis.charts.StabilityChart.plot>` does).
+        :func:`~exudyn_worm.analysis.charts.stabilitychart.ChartCoordinates`). Preset names and ElasticDrives are resolved before
+        drawing by :func:`~exudyn_worm.analysis.charts.stabilitychart.ChartPoints` (as :meth:`StabilityChart.plot
+        <exudyn_worm.analysis.charts.stabilitychart.StabilityChart.plot>` does).
     color : str, optional
         Colour of region and boundary.
     label : str, optional
@@ -374,7 +374,7 @@ def PlotFirstCriterion(curves, ax=None, title: Optional[str] = None, mark: Optio
     Parameters
     ----------
     curves : FirstCriterionCurves
-        From :func:`~exudyn_worm.analysis.charts.FirstCriterionChart`.
+        From :func:`~exudyn_worm.analysis.charts.stabilitychart.FirstCriterionChart`.
     ax : matplotlib.axes.Axes, optional
         Axes to draw into (default: a new figure).
     title : str, optional
@@ -416,7 +416,7 @@ def PlotSpeedChart(chart: 'SpeedChart', ax=None, title: Optional[str] = None, lo
     Parameters
     ----------
     chart : SpeedChart
-        From :func:`exudyn_worm.analysis.speedchart.SpeedStabilityChart`.
+        From :func:`exudyn_worm.analysis.charts.speedchart.SpeedStabilityChart`.
     ax : matplotlib Axes, optional
         Draw into these axes; default a new figure.
     title : str, optional

@@ -10,8 +10,8 @@ import textwrap
 from typing import Mapping, Optional
 
 import numpy as np
-from ..analysis.design import DesignCheckResult
-from ..analysis.designscan import SPEED_KEY
+from ..analysis.design.designcheck import DesignCheckResult
+from ..analysis.design.designscan import SPEED_KEY
 from .plot import _NewFigure
 from .plot_charts import _Legend, PlotStabilityChart
 
@@ -21,11 +21,11 @@ _C_PLUS, _C_POINT, _C_MOVE, _C_PAIR = '#b9770e', '#1f4e79', '#2e7d32', '#8e24aa'
 
 
 def PlotDesignCheck(result, charts: Optional[Mapping[int, 'StabilityChart']], ax=None, title: str = ''):
-    """Draw a :class:`~exudyn_worm.analysis.design.DesignCheckResult`: on the chart plane (x = kT/(kV r1^2),
+    """Draw a :class:`~exudyn_worm.analysis.design.designcheck.DesignCheckResult`: on the chart plane (x = kT/(kV r1^2),
     y = J1/J2) for the two-mass drive, as the stable ranges of the scanned parameters for any other drive.
 
     Only draws: the charts are computed by the caller (:meth:`DesignCheckResult.plot
-    <exudyn_worm.analysis.design.DesignCheckResult.plot>` passes :func:`~exudyn_worm.analysis.designchart.LocalCharts`).
+    <exudyn_worm.analysis.design.designcheck.DesignCheckResult.plot>` passes :func:`~exudyn_worm.analysis.design.designchart.LocalCharts`).
     **Two-mass drive**: the charts that decide, at the drive's D_V and D_TV and at the operating point that decides in
     each contact state of its duty (mu(v0) and its slope; the title names it where the friction depends on speed),
     drawn with :func:`~exudyn_worm.plotting.plot_charts.PlotStabilityChart` (S = +1 only where it has an unstable
@@ -40,9 +40,9 @@ def PlotDesignCheck(result, charts: Optional[Mapping[int, 'StabilityChart']], ax
     Parameters
     ----------
     result : DesignCheckResult
-        From :func:`~exudyn_worm.analysis.design.DesignCheck`.
+        From :func:`~exudyn_worm.analysis.design.designcheck.DesignCheck`.
     charts : mapping of int to StabilityChart, or None
-        ``{S: chart}`` for the contact states of the duty (:func:`~exudyn_worm.analysis.designchart.LocalCharts` of
+        ``{S: chart}`` for the contact states of the duty (:func:`~exudyn_worm.analysis.design.designchart.LocalCharts` of
         ``result.drive``); None for a drive the chart does not describe (``result.chartApplies`` False).
     ax : matplotlib.axes.Axes, optional
         Axes to draw into (default: a new figure).

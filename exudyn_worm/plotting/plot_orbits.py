@@ -1,4 +1,4 @@
-"""Plot of a chatter branch (:class:`~exudyn_worm.analysis.chatterbranch.ChatterBranch`): amplitude over the parameter.
+"""Plot of a chatter branch (:class:`~exudyn_worm.analysis.orbits.chatterbranch.ChatterBranch`): amplitude over the parameter.
 
 Draws a result object only; matplotlib is imported inside the function, so importing the package never pulls it in.
 """
@@ -24,7 +24,7 @@ def PlotChatterBranch(branch: 'ChatterBranch', fileName: Optional[str] = None, a
     Parameters
     ----------
     branch : ChatterBranch
-        From :func:`~exudyn_worm.analysis.chatterbranch.AnalyzeChatterBranch`.
+        From :func:`~exudyn_worm.analysis.orbits.chatterbranch.AnalyzeChatterBranch`.
     fileName : str, optional
         Save the figure there (format from the suffix).
     ax : sequence of matplotlib.axes.Axes, optional

@@ -1,4 +1,4 @@
-"""Plots of parameter studies (:mod:`exudyn_worm.analysis.study`): a metric against one parameter, and the chatter
+"""Plots of parameter studies (:mod:`exudyn_worm.analysis.studies.study`): a metric against one parameter, and the chatter
 map over two parameters drawn over the analytical stability boundary.
 
 matplotlib is imported inside the functions only (through :mod:`exudyn_worm.plotting.plot`).
@@ -12,7 +12,7 @@ import numpy as np
 from ..params.parameters import PARAMETERS
 from .._spacing import IsLogSpaced
 from .plot import _NewFigure
-from ..analysis.studymap import ChatterMap
+from ..analysis.studies.studymap import ChatterMap
 
 __all__ = ['PlotMetric', 'PlotChatterMap', 'AxisLabel', 'ChartAxes']
 
@@ -81,7 +81,7 @@ def PlotMetric(result, x: str, metric: str = 'w1.maxAbsWheelAcceleration', ax=No
     Parameters
     ----------
     result : StudyResult
-        Result of :func:`~exudyn_worm.analysis.study.RunStudy`.
+        Result of :func:`~exudyn_worm.analysis.studies.study.RunStudy`.
     x : str
         Varied key on the horizontal axis.
     metric : str, optional
@@ -143,20 +143,20 @@ def PlotChatterMap(result, chatterMap: 'ChatterMap', ax=None,
                    subtitle: str = ''):
     """Chatter while lowering of every run over two varied parameters, over the analytical S = -1 region.
 
-    Only draws: the region is computed by :func:`~exudyn_worm.analysis.studymap.ComputeChatterMap` (which
-    :meth:`StudyResult.plot <exudyn_worm.analysis.studyfiles.StudyResult.plot>` calls). The shaded region and its boundary
+    Only draws: the region is computed by :func:`~exudyn_worm.analysis.studies.studymap.ComputeChatterMap` (which
+    :meth:`StudyResult.plot <exudyn_worm.analysis.studies.studyfiles.StudyResult.plot>` calls). The shaded region and its boundary
     line are where the linear model (eqs. (15)-(16), S = -1) predicts chatter: for a map of J1 and kT at fixed
-    damping measures the stability chart of :func:`~exudyn_worm.analysis.charts.ComputeStabilityChart`, else
-    :func:`~exudyn_worm.analysis.studymap.AnalyticalMap` on a finer grid; red filled dots: the simulation chatters
+    damping measures the stability chart of :func:`~exudyn_worm.analysis.charts.stabilitychart.ComputeStabilityChart`, else
+    :func:`~exudyn_worm.analysis.studies.studymap.AnalyticalMap` on a finer grid; red filled dots: the simulation chatters
     while lowering; blue open circles: it does not; grey crosses: failed runs. Runs whose simulated verdict
     differs from the analytical one are ringed.
 
     Parameters
     ----------
     result : StudyResult
-        Result of :func:`~exudyn_worm.analysis.study.RunStudy` with a lowering window.
+        Result of :func:`~exudyn_worm.analysis.studies.study.RunStudy` with a lowering window.
     chatterMap : ChatterMap
-        The analytical map over two varied keys, from :func:`~exudyn_worm.analysis.studymap.ComputeChatterMap`.
+        The analytical map over two varied keys, from :func:`~exudyn_worm.analysis.studies.studymap.ComputeChatterMap`.
     ax : matplotlib.axes.Axes, optional
         Draw into these axes (default: a new figure).
     labels : mapping, optional

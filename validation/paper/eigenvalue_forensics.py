@@ -43,7 +43,7 @@ from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple
 import numpy as np
 
 from exudyn_worm.model.drive import ElasticDrive
-from exudyn_worm.setups.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
+from exudyn_worm.drive.presets import ApplyOverrides, ElasticDriveFromParameters, GetPreset
 from exudyn_worm.model.stability import CharacteristicCoefficients, ContactStability, EigenvaluesFromPolynomial
 
 # the friction coefficient the printed b1..b4 and (19) were computed with (see validation/REPORT.md)
@@ -92,14 +92,14 @@ def PrintedEigenvalues(path: Path = REFERENCE_CSV) -> Dict[int, np.ndarray]:
 def BaseParameters(**overrides) -> Dict[str, float]:
     """Parameter set (28) as the paper computed it: preset ``reel-P1`` with mu = 0.132.
 
-    ``overrides`` are applied with :func:`exudyn_worm.setups.presets.ApplyOverrides`.
+    ``overrides`` are applied with :func:`exudyn_worm.drive.presets.ApplyOverrides`.
     """
     return ApplyOverrides(GetPreset('reel-P1'), {'mu': PAPER_MU, **overrides})
 
 
 def P7Parameters(**overrides) -> Dict[str, float]:
     """Parameter set P7 of section 3.2.3 (J1 and kT ten times smaller than (28)), mu = 0.132; ``overrides`` are
-    applied with :func:`exudyn_worm.setups.presets.ApplyOverrides`."""
+    applied with :func:`exudyn_worm.drive.presets.ApplyOverrides`."""
     return ApplyOverrides(GetPreset('reel-P7'), {'mu': PAPER_MU, **overrides})
 
 
