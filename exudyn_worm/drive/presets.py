@@ -36,7 +36,6 @@ Optional components beyond the two-mass drive (absent = the drive of Figure 2):
 """
 from __future__ import annotations
 
-import collections
 import math
 import os
 from typing import Dict, List, Mapping, Optional, Tuple
@@ -57,7 +56,7 @@ __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', '
            'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
            'FrictionLawFromParameters',
            'DriveFromParameters', 'ElasticDriveFromParameters', 'ElasticDriveWithGear', 'GEAR_FREE_KEYS', 'GearFreeKeys',
-           'ParameterKey', 'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
+           'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
            'AxialBearingFromParameters', 'ShaftSupportsFromParameters', 'SHAFT_KEYS', 'MAX_RATE', 'MIN_RATE_SPREAD']
 
 #: keys of the elastic drive (Figure 2): the drive-file tables [gear], [worm], [wheel], [driveShaft]
@@ -481,41 +480,6 @@ def DriveFromParameters(parameters: Mapping[str, float]) -> ElasticDrive:
     return ElasticDriveFromParameters(parameters, 'DriveFromParameters')
 
 
-def _Freeze(value):
-    if isinstance(value, (list, tuple)):
-        return tuple(_Freeze(v) for v in value)
-    if isinstance(value, os.PathLike):
-        return os.fspath(value)
-    return value
-
-
-def ParameterKey(parameters: Mapping) -> Optional[tuple]:
-    """A hashable image of a flat parameter set (its content), or None if it has a value that cannot be one; the key
-    under which the drive and its analyses built from the set are kept for the next call with the same set.
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter set.
-
-    Returns
-    -------
-    tuple or None
-    """
-    try:
-        key = tuple(sorted((k, type(v).__name__, _Freeze(v)) for k, v in parameters.items()))
-        hash(key)
-    except (TypeError, AttributeError):
-        return None
-    return key
-
-
-#: the two-mass cores built last, by the content of their parameter sets (an ElasticDrive is immutable): one run
-#: asks for its drive several times (step size, end time, phases, model), it is built once
-_RECENT_CORES: 'collections.OrderedDict' = collections.OrderedDict()
-_RECENT_CORES_SIZE = 8
-
-
 def ElasticDriveFromParameters(parameters: Mapping[str, float], where: str = 'ElasticDriveFromParameters'
                                ) -> ElasticDrive:
     """Build the two-mass core (:class:`ElasticDrive`, Figure 2) of a flat parameter dictionary; the keys of
@@ -546,20 +510,6 @@ def ElasticDriveFromParameters(parameters: Mapping[str, float], where: str = 'El
     TypeError
         If ``parameters`` is not a mapping.
     """
-    key = ParameterKey(parameters) if isinstance(parameters, Mapping) else None
-    if key is not None and key in _RECENT_CORES:
-        _RECENT_CORES.move_to_end(key)
-        return _RECENT_CORES[key]
-    drive = _BuildElasticDrive(parameters, where)
-    if key is not None:
-        _RECENT_CORES[key] = drive
-        while len(_RECENT_CORES) > _RECENT_CORES_SIZE:
-            _RECENT_CORES.popitem(last=False)
-    return drive
-
-
-def _BuildElasticDrive(parameters: Mapping[str, float], where: str) -> ElasticDrive:
-    """:func:`ElasticDriveFromParameters` without the memory of recent sets."""
     CheckParameterKeys(parameters, where)
     p = dict(parameters)
     CheckParameters(p)                   # a value out of range (z1 = 1.5) is named before the keys it leaves missing
