@@ -11,12 +11,13 @@ import contextlib
 import os
 import re
 import socket
+import stat
 import time
 from pathlib import Path
 from typing import Callable, Optional, Sequence, Union
 
-__all__ = ['WriteAtomically', 'WriteTextAtomically', 'PartialPath', 'OutputLock', 'OutputBusyError', 'CheckOutputPath',
-           'OutputPathError']
+__all__ = ['WriteAtomically', 'WriteTextAtomically', 'PartialPath', 'OutputLock', 'LockPath', 'OutputBusyError',
+           'CheckOutputPath', 'OutputPathError']
 
 
 def PartialPath(path: Union[str, os.PathLike]) -> Path:
@@ -86,6 +87,23 @@ def WriteTextAtomically(path: Union[str, os.PathLike], text: str) -> Path:
     return WriteAtomically(path, lambda tmp: Path(tmp).write_text(text, encoding='utf-8'))
 
 
+def LockPath(path: Union[str, os.PathLike]) -> Path:
+    """The lock file of :class:`OutputLock` for an output: ``.<name>.lock`` beside the file that ``path`` names
+    (a symbolic link is followed, so that the file and its link share one lock).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The output file.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    real = Path(os.path.realpath(path))
+    return real.with_name(f'.{real.name}.lock')
+
+
 class OutputBusyError(ValueError):
     """Another process holds the lock of an output (:class:`OutputLock`); the message names it."""
 
@@ -117,9 +135,10 @@ class OutputLock:
 
     def __init__(self, path: Union[str, os.PathLike], where: str = 'OutputLock'):
         self.path = Path(path)
-        self.lockPath = self.path.with_name(f'.{self.path.name}.lock')
+        self.lockPath = LockPath(self.path)
         self.where = where
         self._fd: Optional[int] = None
+        self._fileFds: list = []
 
     def __enter__(self) -> 'OutputLock':
         try:
@@ -127,7 +146,11 @@ class OutputLock:
         except ImportError:                               # pragma: no cover - Windows
             fcntl = None
         for _ in range(10):                               # retried only if the lock file was replaced meanwhile
-            fd = os.open(self.lockPath, os.O_RDWR | os.O_CREAT, 0o644)
+            try:
+                fd = os.open(self.lockPath, os.O_RDWR | os.O_CREAT | os.O_NONBLOCK, 0o644)
+            except OSError as err:
+                raise OutputPathError(f"{self.where}: '{self.path}': cannot create its lock file "
+                                      f"{self.lockPath.name}: {err.strerror or err}") from None
             try:
                 if fcntl is not None:
                     _Flock(fcntl, fd)
@@ -143,14 +166,54 @@ class OutputLock:
             if not same:                                  # the holder removed it as we opened it: take the new one
                 os.close(fd)
                 continue
-            os.ftruncate(fd, 0)
-            os.write(fd, f"process {os.getpid()} on host {socket.gethostname()} (since "
-                         f"{time.strftime('%Y-%m-%dT%H:%M:%S%z')})\n".encode())
+            with contextlib.suppress(OSError):           # the holder's name is for messages: a full disk keeps the lock
+                os.ftruncate(fd, 0)
+                os.write(fd, f"process {os.getpid()} on host {socket.gethostname()} (since "
+                             f"{time.strftime('%Y-%m-%dT%H:%M:%S%z')})\n".encode())
             self._fd = fd
+            try:
+                self.HoldFile()
+            except BaseException:
+                self.__exit__(None, None, None)
+                raise
             return self
         raise OutputBusyError(f"{self.where}: '{self.path}': its lock file {self.lockPath.name} keeps changing")
 
+    def HoldFile(self) -> None:
+        """Lock the output file itself (its device and inode), if it exists: another name of it (a hard link, a
+        symbolic link) is then refused too. Called on entering, and again after the output is created or replaced.
+
+        Raises
+        ------
+        OutputBusyError
+            If another process (or another lock of this one) holds the file under any name.
+        """
+        try:
+            import fcntl                                  # lazy: POSIX only
+        except ImportError:                               # pragma: no cover - Windows
+            return
+        try:
+            fd = os.open(self.path, os.O_RDONLY | os.O_NONBLOCK)
+        except OSError:                                   # none yet (or unreadable: then the writing fails later)
+            return
+        try:
+            info = os.fstat(fd)
+            if not stat.S_ISREG(info.st_mode) or any(os.path.samestat(info, os.fstat(held)) for held in self._fileFds):
+                os.close(fd)                              # not a file, or held already
+                return
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            os.close(fd)
+            raise OutputBusyError(f"{self.where}: '{self.path}' is being written by another process under another "
+                                  f"name (a hard or symbolic link to the same file); wait for it to end or choose "
+                                  f"another output") from None
+        self._fileFds.append(fd)
+
     def __exit__(self, *exc) -> None:
+        for fd in self._fileFds:
+            with contextlib.suppress(OSError):
+                os.close(fd)
+        self._fileFds = []
         if self._fd is not None:
             with contextlib.suppress(OSError):
                 self.lockPath.unlink()                    # while still held, so that no one locks a removed file

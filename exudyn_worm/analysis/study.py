@@ -47,7 +47,7 @@ from ..progress import ProgressBar
 from .studyfiles import (StudyResult, StudySidecarPath, _CheckOutput, _CheckOutputPath, _Columns, _CsvText, _Versions,
                          _WriteSidecar)
 from .studygrid import CheckStudySize, ParseShard, ShardIndices, Study
-from .studypoint import RunPoint
+from . import studypoint
 
 __all__ = ['ENGINES', 'DefaultWorkers', 'RunStudy']
 
@@ -146,16 +146,19 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     indices = ShardIndices(len(study.points), shard)
     with contextlib.ExitStack() as stack:
         stack.enter_context(SigtermAsInterrupt())         # SIGTERM (a scheduler's limit) saves the runs as Ctrl-C
+        lock = None
         if output is not None:
             _CheckOutputPath(output)
-            stack.enter_context(OutputLock(output, where))  # a second study on the same file is refused at once
-        return _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite, onRow)
+            # a second study on the same file (under any name) is refused at once
+            lock = stack.enter_context(OutputLock(output, where))
+        return _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite, onRow, lock)
 
 
-def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite, onRow) -> StudyResult:
+def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite, onRow, lock) -> StudyResult:
     """The body of :func:`RunStudy`, with ``output`` checked and locked."""
     previous = _CheckOutput(output, study, shard, overwrite) if output is not None else []
-    done = {r['run']: r for r in previous if r['run'] in set(indices)}
+    shardRuns = set(indices)
+    done = {r['run']: r for r in previous if r['run'] in shardRuns}
     startTime = time.perf_counter()
     started = time.strftime('%Y-%m-%dT%H:%M:%S%z')
     wallBefore = 0.
@@ -176,12 +179,22 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
     if record:
         versions = _Versions(engine)       # once: the final record after Ctrl-C runs no subprocess
         _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started, versions)
-        new = not output.exists() or output.stat().st_size == 0
+        created = not output.exists()
+        new = created or output.stat().st_size == 0
         csvFile = output.open('a', newline='')
-        writer = csv.writer(csvFile)
-        if new:
-            writer.writerow(columns)
-            csvFile.flush()
+        try:
+            writer = csv.writer(csvFile)
+            if new:
+                writer.writerow(columns)
+                csvFile.flush()
+            lock.HoldFile()                               # the file itself, now that it exists (or was replaced)
+        except BaseException:                             # e.g. a full disk: no empty or half a header left
+            csvFile.close()
+            if created:
+                for path in (output, StudySidecarPath(output)):
+                    with contextlib.suppress(OSError):
+                        path.unlink()
+            raise
 
     def Record(row):
         nonlocal failed
@@ -201,7 +214,7 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
             executor = _Executor(engine, None if workers is None else min(workers, len(todo)))
             futures = []
             try:
-                futures += [executor.submit(RunPoint, study.Task(i)) for i in todo]
+                futures += [executor.submit(studypoint.RunPoint, study.Task(i)) for i in todo]
                 with ProgressBar(total=len(todo), desc='sweep', unit='run', quiet=quiet) as bar:
                     for future in as_completed(futures):
                         Record(future.result())
