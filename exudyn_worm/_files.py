@@ -42,7 +42,7 @@ def WriteAtomically(path: Union[str, os.PathLike], write: Callable[[Path], objec
     """Write a file so that it is either complete or absent: into a temporary file beside it, then renamed.
 
     An interrupt (Ctrl-C, SIGTERM handled as one) or an error during ``write`` removes the temporary file and
-    leaves ``path`` as it was.
+    leaves ``path`` as it was. An ``OSError`` of the temporary file (a full disk) is raised naming ``path``.
 
     Parameters
     ----------
@@ -62,9 +62,11 @@ def WriteAtomically(path: Union[str, os.PathLike], write: Callable[[Path], objec
     try:
         write(tmp)
         os.replace(tmp, path)
-    except BaseException:
+    except BaseException as err:
         with contextlib.suppress(OSError):
             tmp.unlink()
+        if isinstance(err, OSError) and err.errno is not None and err.filename in (None, os.fspath(tmp)):
+            raise OSError(err.errno, err.strerror, os.fspath(path)) from None   # the user's name, not the temporary one
         raise
     return path
 

@@ -564,6 +564,23 @@ def InterruptedLine(err: BaseException, what: str = 'no output file was left hal
     return status
 
 
+def _OSErrorLine(err: OSError) -> int:
+    """Print the one line of an error of the system (a full disk, ...) on stderr; return the exit status 1. A
+    stdout that cannot be written is named (and what is still buffered for it is dropped, so that the exit stays
+    quiet)."""
+    what = err.filename
+    try:
+        sys.stdout.flush()
+    except (OSError, ValueError):
+        with contextlib.suppress(OSError, ValueError):
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        what = what or 'standard output'
+    with contextlib.suppress(OSError, ValueError):
+        print(f"{PROG}: error: {'cannot write ' + what if what == 'standard output' else what or 'a file'}: "
+              f"{err.strerror or err}", file=sys.stderr)
+    return 1
+
+
 def Main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line; return the exit status.
 
@@ -575,19 +592,22 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     Returns
     -------
     int
-        0 on success, 1 if a validation failed, 2 for bad input (one line ``exudyn-worm: error: ...``
+        0 on success, 1 if a validation failed or an output could not be written (a full disk, a stdout that
+        cannot be written: one line), 2 for bad input (one line ``exudyn-worm: error: ...``
         on stderr), 130 after Ctrl-C and 143 after SIGTERM (one line ``exudyn-worm: interrupted ...`` on stderr, no
         traceback).
     """
     args = None
     _SHOWN.clear()
     try:
-        args = BuildParser().parse_args(argv)
-        with warnings.catch_warnings():
-            warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
-            warnings.simplefilter('always', ImplausibleValueWarning)  # shown once per run by _ShowWarning
-            with SigtermAsInterrupt():                # SIGTERM ends a command as Ctrl-C does, with status 143
-                return int(args.run(args) or 0)
+        with SigtermAsInterrupt():                    # SIGTERM ends a command as Ctrl-C does, with status 143
+            args = BuildParser().parse_args(argv)
+            with warnings.catch_warnings():
+                warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
+                warnings.simplefilter('always', ImplausibleValueWarning)  # shown once per run by _ShowWarning
+                status = int(args.run(args) or 0)
+            sys.stdout.flush()                        # a stdout that cannot be written fails here, not at exit
+            return status
     except UsageError as err:
         if IsInterrupt(err):
             return InterruptedLine(err)
@@ -602,6 +622,8 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     except PermissionError as err:     # a file or folder of the user's that this user may not read or write
         print(f"{PROG}: error: {err.filename or 'a file'}: {err.strerror or 'permission denied'}", file=sys.stderr)
         return 2
+    except OSError as err:             # a full disk, a name too long, a stdout that cannot be written: one line
+        return _OSErrorLine(err)
     except SystemExit as err:          # --help, --version
         return err.code if isinstance(err.code, int) else 0 if err.code is None else 2
     except Exception as err:           # e.g. Exudyn's SystemError around a pending Ctrl-C

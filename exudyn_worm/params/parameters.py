@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import functools
 import math
+import os
 import pathlib
 import re
 import sys
@@ -47,7 +48,11 @@ from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Tuple
 from .._checks import CheckAngle, CheckNonNegative, CheckPositive, CheckRange, CheckReal, Suggest
 
 __all__ = ['KINDS', 'RANGES', 'Parameter', 'ParameterRegistry', 'PARAMETERS', 'ParametersMarkdown',
-           'WithGeneratedTables']
+           'WithGeneratedTables', 'MAX_STAGES']
+
+#: the most stages of one chain (``J4, J5, ...``; ``JL1, JL2, ...``): the linear analysis of 100 stages takes a few
+#: seconds, its cost grows with the cube of the number of stages (300 stages: half a minute)
+MAX_STAGES = 100
 
 
 class MissingParameterError(ValueError):
@@ -560,6 +565,10 @@ class ParameterRegistry:
         parameter = self.Get(key)
         if parameter is None:
             raise ValueError(self.UnknownKeyMessage(where, key))
+        series = self.SeriesIndex(key)
+        if series and series[1] - parameter.series + 1 > MAX_STAGES:
+            raise ValueError(f"{where}: '{key}' is stage {series[1] - parameter.series + 1:,} of the "
+                             f"{self.SeriesText(parameter.table)}, above the limit of {MAX_STAGES} stages")
         if parameter.kind == 'number':
             return _ParseNumber(key, value, parameter.unit, where)
         if parameter.kind == 'choice':
@@ -601,6 +610,10 @@ class ParameterRegistry:
         parameter = self.Get(key)
         if parameter is None:
             raise ValueError(self.UnknownKeyMessage(where, key))
+        series = self.SeriesIndex(key)
+        if series and series[1] - parameter.series + 1 > MAX_STAGES:
+            raise ValueError(f"{where}: '{key}' is stage {series[1] - parameter.series + 1:,} of the "
+                             f"{self.SeriesText(parameter.table)}, above the limit of {MAX_STAGES} stages")
         if parameter.kind == 'number':
             _CheckNumber(where, key, value, parameter.range, parameter.unit)
         elif parameter.kind == 'choice':
@@ -612,6 +625,10 @@ class ParameterRegistry:
             if not value.strip():
                 raise ValueError(f"{where}: '{key}' must be a file path or rows of "
                                  f"({', '.join(n for n, _, _ in parameter.columns)}), got an empty string")
+            if not os.path.isfile(os.path.expanduser(value)):
+                raise ValueError(f"{where}: '{key}' must be the path of a table file or rows of "
+                                 f"({', '.join(n for n, _, _ in parameter.columns)}) such as "
+                                 f"[[{', '.join('0' for _ in parameter.columns)}]], got {value!r} (no such file)")
         else:
             rows = self._Rows(parameter, key, value, where)
             for i, row in enumerate(rows):

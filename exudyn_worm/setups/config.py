@@ -32,19 +32,13 @@ This module holds no command-line code; :mod:`exudyn_worm.cli.main` uses it.
 from __future__ import annotations
 
 import os
-import sys
 from numbers import Real
 from typing import Dict, Iterable, Mapping, Optional, Tuple, Union
 
 from ..params.drivefile import (ARRAY_TABLES, COMPONENT_TABLES, DRIVE_FILE_TABLES, DRIVE_SIDE_TABLE, LOAD_SIDE_TABLE,
-                        TOP_LEVEL_KEYS, FlattenDriveFile)
+                        TOP_LEVEL_KEYS, FlattenDriveFile, ReadDriveFile)
 from ..params.parameters import PARAMETERS
 from .presets import PRESETS, ApplyOverrides, CheckParameters, DriveSideChain, GetPreset, LoadSideChain
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
 
 __all__ = ['DEFAULT_PRESET', 'CONFIG_KEYS', 'ParseQuantity', 'ParseSetOption', 'LoadConfig', 'ResolveParametersWithSources',
            'ResolveParameters']
@@ -207,23 +201,15 @@ def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
     Raises
     ------
     ValueError
-        If the file cannot be read, is not valid TOML, has unknown keys, an unknown preset, a value that is
+        If the file cannot be read, is no regular file or exceeds a limit of
+        :func:`~exudyn_worm.params.drivefile.ReadDriveFile` (size, nesting, keys, stages), is not valid TOML, has
+        unknown keys, an unknown preset, a value that is
         invalid or out of range (:func:`~exudyn_worm.setups.presets.CheckParameters`), gives one quantity twice or in
         two forms (e.g. both ``mu`` and ``rho``), or gives neither a parameter nor a preset. The message
         names the file, the line where it can be found, the table and key, and what was expected.
     """
     where = f"LoadConfig: '{path}'"
-    try:
-        with open(path, 'rb') as file:
-            raw = file.read()
-        text = raw.decode('utf-8-sig')          # a byte-order mark (some Windows editors write one) is no content
-        data = tomllib.loads(text)
-    except OSError as err:
-        raise ValueError(f"{where}: cannot read it: {err.strerror or err}") from None
-    except tomllib.TOMLDecodeError as err:
-        raise ValueError(f"{where}: not valid TOML: {err}") from None
-    except UnicodeDecodeError as err:
-        raise ValueError(f"{where}: not valid TOML (not UTF-8 text: {err.reason})") from None
+    data, text = ReadDriveFile(path, where)     # bounded: size, nesting, keys, stages; never a FIFO or a device
     return _ConfigFromData(data, where, text, os.path.dirname(os.path.abspath(path)))
 
 
