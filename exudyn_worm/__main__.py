@@ -3,21 +3,56 @@ handled from its first line.
 
 Loading the command line takes a moment (numpy, the parameter registry, every subcommand's module); a Ctrl-C or a
 SIGTERM in that moment ends the command like one at any later moment: one line on stderr, no traceback, exit
-status 130 (Ctrl-C) or 143 (SIGTERM). Only the standard library and :mod:`exudyn_worm._workers` are loaded before
-the handlers are in place.
+status 130 (Ctrl-C) or 143 (SIGTERM). Only ``sys`` and ``signal`` are loaded before the handlers are in place.
+What comes before this module's first line, Python's own start (about 0.1 s), is Python's: a signal then has its
+default effect.
 """
-import contextlib
+from __future__ import annotations    # the annotations below name typing, which is loaded after the handlers
+
 import signal
 import sys
-from typing import Optional, Sequence
-
-from ._workers import InterruptStatus, SigtermAsInterrupt, TERMINATED_STATUS
 
 __all__ = ['Main', 'Run']
 
+#: the signals (SIGINT, SIGTERM) that arrived while this entry point's handlers were in place
+_RECEIVED: list = []
+
+
+def _OnSignal(signum, frame):
+    """Ctrl-C or SIGTERM while the command line loads (or between its own handlers): a ``KeyboardInterrupt``,
+    remembered, so that an error it causes in a module being loaded (numpy's ImportError) counts as the interrupt."""
+    _RECEIVED.append(signum)
+    raise KeyboardInterrupt
+
+
+def _Install() -> list:
+    """Install :func:`_OnSignal` for SIGTERM, and for SIGINT unless it is ignored; return what to restore."""
+    restore = []
+    for number in (signal.SIGINT, signal.SIGTERM):
+        try:
+            previous = signal.getsignal(number)
+            if number == signal.SIGINT and previous is not signal.default_int_handler:
+                continue                                  # ignored (a background job) or the caller's own: kept
+            signal.signal(number, _OnSignal)
+            restore.append((number, previous))
+        except (ValueError, OSError):                     # not the main thread: nothing to handle
+            pass
+    return restore
+
+
+def _Interrupted() -> int:
+    """Print the one line of an interrupt the command line could not report itself; return the exit status."""
+    terminated = signal.SIGTERM in _RECEIVED
+    try:
+        print(f"exudyn-worm: interrupted ({'SIGTERM' if terminated else 'Ctrl-C'}); no output file was left "
+              f"half-written", file=sys.stderr)
+    except (KeyboardInterrupt, OSError, ValueError):
+        pass
+    return 143 if terminated else 130
+
 
 def Main(argv: Optional[Sequence[str]] = None) -> int:
-    """Run the command line (:func:`exudyn_worm.cli.main.Main`) with SIGTERM handled as Ctrl-C before it loads.
+    """Run the command line (:func:`exudyn_worm.cli.main.Main`) with Ctrl-C and SIGTERM handled before it loads.
 
     Parameters
     ----------
@@ -30,16 +65,21 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
         The exit status of :func:`exudyn_worm.cli.main.Main`; 130 (Ctrl-C) or 143 (SIGTERM) if interrupted while
         it loads.
     """
+    del _RECEIVED[:]
+    restore = _Install()
     try:
-        with SigtermAsInterrupt():
+        try:
             from .cli import main   # lazy: the signal handlers are in place before the command line loads
             return main.Main(argv)
-    except KeyboardInterrupt as err:
-        status = InterruptStatus(err)
-        with contextlib.suppress(KeyboardInterrupt, OSError, ValueError):
-            print(f"exudyn-worm: interrupted ({'SIGTERM' if status == TERMINATED_STATUS else 'Ctrl-C'}); "
-                  f"no output file was written", file=sys.stderr)
-        return status
+        finally:
+            for number, previous in restore:
+                signal.signal(number, previous)
+    except KeyboardInterrupt:
+        return _Interrupted()
+    except Exception:
+        if not _RECEIVED:
+            raise                   # an internal error: its traceback is for the bug report
+        return _Interrupted()       # an error of a module interrupted while it loaded
 
 
 def Run() -> int:
@@ -51,10 +91,15 @@ def Run() -> int:
     int
         The exit status.
     """
-    status = Main()
+    try:
+        status = Main()
+    except KeyboardInterrupt:           # a second signal in the moment the first one's line is printed
+        status = 143 if signal.SIGTERM in _RECEIVED else 130
     for number in (signal.SIGINT, signal.SIGTERM):
-        with contextlib.suppress(ValueError, OSError, AttributeError):
+        try:
             signal.signal(number, signal.SIG_IGN)
+        except (ValueError, OSError):
+            pass
     return status
 
 

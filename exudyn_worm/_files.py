@@ -289,8 +289,10 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
     Raises
     ------
     OutputPathError
-        A ValueError: if the path is empty, is a folder where a file is wanted or the other way round, exists without
-        ``overwrite``, its parent is missing or not a folder, or it is not writable.
+        A ValueError: if the path is empty, is a folder where a file is wanted or the other way round, is a device,
+        FIFO or socket, exists without ``overwrite``, its parent is missing or not a folder, it is not writable, no
+        file can be created in its folder (``/proc``, a read-only file system) or its name leaves no room for the
+        temporary file beside it (ENAMETOOLONG).
     """
     if kind not in ('file', 'folder'):
         raise ValueError(f"CheckOutputPath: 'kind' must be 'file' or 'folder', got {kind!r}")
@@ -300,6 +302,9 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
         raise OutputPathError(f"{option}: expected a {kind} name, got ''")
     state = _PathState(p, option, text)
     if state != 'missing':
+        if state == 'special':                            # replaced by a rename, /dev/null would be lost
+            raise OutputPathError(f"{option} {text}: is not a regular file (a device, FIFO or socket); give a "
+                                  f"{kind} name")
         if kind == 'file' and state == 'folder':
             raise OutputPathError(f"{option} {text}: is a folder; give a file name (e.g. {Path(text) / 'out.csv'})"
                              if option == '--csv' else f"{option} {text}: is a folder; give a file name")
@@ -313,6 +318,7 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
                 f"holds {', '.join(e.name for e in existing[:3])}{' ...' if len(existing) > 3 else ''}"
             raise OutputPathError(f"{option} {text}: {what}; give --overwrite to replace "
                              f"{'it' if len(existing) == 1 else 'them'}, or choose another name")
+        _CheckCreate(p if kind == 'folder' else p.parent, option, text)
         return p
     parent = p.parent
     state = _PathState(parent, option, text)
@@ -323,16 +329,53 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
         raise OutputPathError(f"{option} {text}: {parent} is not a folder")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise OutputPathError(f"{option} {text}: cannot write into the folder {parent} (permission denied)")
+    _CheckName(p, option, text)
+    _CheckCreate(parent, option, text)
     return p
 
 
 def _PathState(p: Path, option: str, text: str) -> str:
-    """'missing', 'folder' or 'file'; a path behind a folder one may not search is refused, naming the folder."""
+    """'missing', 'folder', 'file' or 'special' (a device, FIFO, socket); a path behind a folder one may not search is refused, naming the folder."""
     try:
-        return 'folder' if p.is_dir() else 'file' if p.exists() else 'missing'
+        return 'folder' if p.is_dir() else 'file' if p.is_file() else 'special' if p.exists() else 'missing'
     except PermissionError:
         blocked = next((q for q in reversed(p.absolute().parents) if not os.access(q, os.X_OK)), p.parent)
         raise OutputPathError(f"{option} {text}: cannot reach it: the folder {blocked} may not be searched "
                          f"(permission denied)") from None
+    except OSError as err:                                # a name too long, a loop of symbolic links
+        raise OutputPathError(f"{option} {text}: {err.strerror or err}") from None
+
+
+#: bytes of a file name kept free for the temporary and lock files beside an output (``.<name>.<pid>.partial``)
+_NAME_ROOM = 32
+
+
+def _CheckName(p: Path, option: str, text: str) -> None:
+    """Refuse a file name too long to leave room for the temporary file beside it."""
+    try:
+        limit = os.pathconf(p.parent if os.fspath(p.parent) else '.', 'PC_NAME_MAX')
+    except (OSError, ValueError, AttributeError):
+        limit = 255
+    length = len(os.fsencode(p.name))
+    if length > limit - _NAME_ROOM:
+        raise OutputPathError(f"{option} {text}: the file name is {length} bytes long, above the limit of "
+                              f"{limit - _NAME_ROOM} bytes (the file system allows {limit}; the temporary file "
+                              f"written beside it needs the rest)")
+
+
+def _CheckCreate(folder: Path, option: str, text: str) -> None:
+    """Create and remove an empty hidden file in ``folder``: a folder that cannot hold a new file (``/proc``, a
+    read-only file system) is refused before any computation."""
+    probe = folder / f'.exudyn-worm-probe.{os.getpid()}'
+    try:
+        fd = os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+    except FileExistsError:
+        return
+    except OSError as err:
+        raise OutputPathError(f"{option} {text}: cannot create a file in the folder {folder}: "
+                              f"{err.strerror or err}") from None
+    os.close(fd)
+    with contextlib.suppress(OSError):
+        os.unlink(probe)
 
 

@@ -28,7 +28,7 @@ from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.model.contact import MATH_OPS
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 from exudyn_worm.items.results import SeriesUnit
-from exudyn_worm.analysis.study import RunPoint
+from exudyn_worm.analysis.studypoint import RunPoint
 from exudyn_worm.analysis.loadside import DiagnoseLoadSide
 
 ROOT = Path(__file__).resolve().parents[1]

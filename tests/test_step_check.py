@@ -12,7 +12,8 @@ from exudyn_worm.items.results import SimulationResult
 from exudyn_worm.analysis.stepsize import (SMALL_MARGIN, UNRESOLVED, CompareHalfStep, LinearMargin, RecommendedStepSize,
                                   StepCheckByDefault)
 from exudyn_worm.analysis.studyfiles import ReadResults
-from exudyn_worm.analysis.study import RunPoint, RunStudy, Study
+from exudyn_worm.analysis.study import RunStudy, Study
+from exudyn_worm.analysis.studypoint import RunPoint
 from exudyn_worm.analysis.studygrid import Variation
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 from exudyn_worm.analysis.stepsize import VERDICT_FACTOR, CloseVerdicts

@@ -202,8 +202,11 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
         rows[row['run']] = row
         failed += row['status'] != 'ok'
         if writer is not None:
-            writer.writerow([_CsvText(row.get(c)) for c in columns])
-            csvFile.flush()
+            try:
+                writer.writerow([_CsvText(row.get(c)) for c in columns])
+                csvFile.flush()
+            except OSError as err:                        # a full disk: the message names the results file
+                raise OSError(err.errno, err.strerror, os.fspath(output)) from None
         if onRow is not None:
             onRow(row)
 

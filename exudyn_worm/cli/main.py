@@ -564,20 +564,41 @@ def InterruptedLine(err: BaseException, what: str = 'no output file was left hal
     return status
 
 
+#: the file name of an error in writing stdout (:class:`_NamedStdout`)
+_STDOUT = 'standard output'
+
+
+class _NamedStdout:
+    """sys.stdout whose write errors (a full disk, ``> /dev/full``) name it, so that :func:`Main` can say so."""
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def _Named(self, method, *args):
+        try:
+            return method(*args)
+        except OSError as err:
+            raise OSError(err.errno, err.strerror, _STDOUT) from None
+
+    def write(self, text):
+        return self._Named(self._stream.write, text)
+
+    def flush(self):
+        return self._Named(self._stream.flush)
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
 def _OSErrorLine(err: OSError) -> int:
-    """Print the one line of an error of the system (a full disk, ...) on stderr; return the exit status 1. A
-    stdout that cannot be written is named (and what is still buffered for it is dropped, so that the exit stays
-    quiet)."""
-    what = err.filename
-    try:
-        sys.stdout.flush()
-    except (OSError, ValueError):
-        with contextlib.suppress(OSError, ValueError):
+    """Print the one line of an error of the system (a full disk, a name too long) on stderr; return the exit
+    status 1. After a stdout that cannot be written, what is still buffered for it is dropped (a quiet exit)."""
+    if err.filename == _STDOUT:
+        with contextlib.suppress(OSError, ValueError, AttributeError):
             os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        what = what or 'standard output'
+    what = f'cannot write {_STDOUT}' if err.filename == _STDOUT else err.filename or 'a file'
     with contextlib.suppress(OSError, ValueError):
-        print(f"{PROG}: error: {'cannot write ' + what if what == 'standard output' else what or 'a file'}: "
-              f"{err.strerror or err}", file=sys.stderr)
+        print(f"{PROG}: error: {what}: {err.strerror or err}", file=sys.stderr)
     return 1
 
 
@@ -599,8 +620,9 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     """
     args = None
     _SHOWN.clear()
+    stdout = sys.stdout
     try:
-        with SigtermAsInterrupt():                    # SIGTERM ends a command as Ctrl-C does, with status 143
+        with SigtermAsInterrupt(), contextlib.redirect_stdout(_NamedStdout(stdout)):  # SIGTERM: as Ctrl-C, 143
             args = BuildParser().parse_args(argv)
             with warnings.catch_warnings():
                 warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors

@@ -96,7 +96,7 @@ def _SaveFigures(result, folder: Path, subtitle: str = '', quiet=None) -> List[P
             for kind in kinds:
                 path = folder / f'{kind}.png'
                 figure = plot.PlotSimulation(result, kind=kind, subtitle=subtitle)
-                plot.SaveFigure(figure, path)                 # atomic: complete or absent
+                WriteAtomically(path, lambda tmp: plot.SaveFigure(figure, tmp))
                 paths.append(path)
                 bar.update(1)
     except BaseException:            # a full disk, Ctrl-C: a folder made here is not left half-filled

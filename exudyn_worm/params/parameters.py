@@ -35,7 +35,6 @@ from __future__ import annotations
 
 import functools
 import math
-import os
 import pathlib
 import re
 import sys
@@ -625,10 +624,6 @@ class ParameterRegistry:
             if not value.strip():
                 raise ValueError(f"{where}: '{key}' must be a file path or rows of "
                                  f"({', '.join(n for n, _, _ in parameter.columns)}), got an empty string")
-            if not os.path.isfile(os.path.expanduser(value)):
-                raise ValueError(f"{where}: '{key}' must be the path of a table file or rows of "
-                                 f"({', '.join(n for n, _, _ in parameter.columns)}) such as "
-                                 f"[[{', '.join('0' for _ in parameter.columns)}]], got {value!r} (no such file)")
         else:
             rows = self._Rows(parameter, key, value, where)
             for i, row in enumerate(rows):

@@ -132,7 +132,14 @@ def ParseSetOption(text: str) -> Tuple[str, float]:
     if not sep or not key:
         raise ValueError(f"{where}: expected KEY=VALUE (e.g. 'J1=0.3' or 'backlash=0.5 mm'), got {text!r}")
     _CheckKey(where, key)
-    return key, _ParseQuantity(key, value.strip(), f"{where}: {text!r}")
+    parsed = _ParseQuantity(key, value.strip(), f"{where}: {text!r}")
+    parameter = PARAMETERS.Get(key)
+    if parameter is not None and parameter.kind == 'table' and isinstance(parsed, str) \
+            and not os.path.isfile(os.path.expanduser(parsed)):
+        columns = ', '.join(name for name, _, _ in parameter.columns)
+        raise ValueError(f"{where}: {text!r}: '{key}' must be the path of a table file or rows of ({columns}) "
+                         f"such as '[[{', '.join('0' for _ in parameter.columns)}]]', got {parsed!r} (no such file)")
+    return key, parsed
 
 
 def _RejectAlternatives(values: Mapping[str, float], where: str, locations: Optional[Mapping[str, str]] = None
