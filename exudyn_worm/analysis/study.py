@@ -188,12 +188,15 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
                 writer.writerow(columns)
                 csvFile.flush()
             lock.HoldFile()                               # the file itself, now that it exists (or was replaced)
-        except BaseException:                             # e.g. a full disk: no empty or half a header left
-            csvFile.close()
+        except BaseException as err:                      # e.g. a full disk: no empty or half a header left
+            with contextlib.suppress(OSError):
+                csvFile.close()
             if created:
                 for path in (output, StudySidecarPath(output)):
                     with contextlib.suppress(OSError):
                         path.unlink()
+            if isinstance(err, OSError) and err.filename is None:
+                raise OSError(err.errno, err.strerror, os.fspath(output)) from None
             raise
 
     def Record(row):
