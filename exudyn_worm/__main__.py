@@ -100,7 +100,19 @@ def Run() -> int:
             signal.signal(number, signal.SIG_IGN)
         except (ValueError, OSError):
             pass
+    _ForgetHandledInterrupt()
     return status
+
+
+def _ForgetHandledInterrupt() -> None:
+    """CPython remembers a Ctrl-C raised inside code that a C extension runs with ``PyRun_String`` (pybind11's
+    ``exec`` while a module loads) even when it was handled, and then ends the process by SIGINT at exit instead of
+    with the status returned (seen after a SIGTERM as much as after Ctrl-C): the interrupt was handled, forget it."""
+    try:
+        import ctypes               # lazy: only at the exit, and only CPython keeps this flag
+        ctypes.c_int.in_dll(ctypes.pythonapi, '_Py_UnhandledKeyboardInterrupt').value = 0
+    except (ImportError, AttributeError, ValueError, OSError):
+        pass
 
 
 if __name__ == '__main__':

@@ -194,9 +194,9 @@ class OutputLock:
             import fcntl                                  # lazy: POSIX only
         except ImportError:                               # pragma: no cover - Windows
             return
-        try:
-            fd = os.open(self.path, os.O_RDONLY | os.O_NONBLOCK)
-        except OSError:                                   # none yet (or unreadable: then the writing fails later)
+        try:                                              # for writing: NFS maps flock to a POSIX write lock
+            fd = os.open(self.path, os.O_RDWR | os.O_NONBLOCK)
+        except OSError:                                   # none yet (or not writable: then the writing fails later)
             return
         try:
             info = os.fstat(fd)
@@ -204,8 +204,10 @@ class OutputLock:
                 os.close(fd)                              # not a file, or held already
                 return
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
+        except OSError as err:
             os.close(fd)
+            if not isinstance(err, BlockingIOError):      # a file system without locks: the name's lock remains
+                return
             raise OutputBusyError(f"{self.where}: '{self.path}' is being written by another process under another "
                                   f"name (a hard or symbolic link to the same file); wait for it to end or choose "
                                   f"another output") from None

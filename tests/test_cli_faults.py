@@ -273,3 +273,28 @@ def test_a_signal_while_the_command_line_loads_is_one_line(command, name, status
 def test_the_console_script_is_the_entry_point_that_handles_signals():
     text = (ROOT / 'pyproject.toml').read_text()
     assert 'exudyn-worm = "exudyn_worm.__main__:Run"' in text
+
+
+#: a command whose Ctrl-C is raised inside code a C extension runs (pybind11's exec, as while Exudyn loads): CPython
+#: remembers it although the command handled it
+_INTERRUPT_IN_C_EXTENSION_CODE = '''
+import ctypes, sys
+from exudyn_worm import __main__ as entry
+from exudyn_worm.cli import main
+run = ctypes.pythonapi.PyRun_String
+run.restype, run.argtypes = ctypes.py_object, [ctypes.c_char_p, ctypes.c_int, ctypes.py_object, ctypes.py_object]
+def Main(argv=None):
+    try:
+        run(b'raise KeyboardInterrupt', 257, {}, {})
+    except KeyboardInterrupt as err:
+        return main.InterruptedLine(err)
+main.Main = Main
+sys.exit(entry.Run())
+'''
+
+
+def test_an_interrupt_handled_in_c_extension_code_ends_with_its_status_not_by_sigint():
+    done = subprocess.run([sys.executable, '-c', _INTERRUPT_IN_C_EXTENSION_CODE], capture_output=True, text=True,
+                          timeout=120, env=dict(os.environ, PYTHONPATH=str(ROOT)))
+    assert done.returncode == 130, (done.returncode, done.stderr)    # not -2: killed by SIGINT at exit
+    assert done.stderr == 'exudyn-worm: interrupted (Ctrl-C); no output file was left half-written\n'

@@ -7,6 +7,9 @@ The runs are not simulated: ``studypoint.RunPoint`` is replaced by a function th
 parameters at once, since what is checked here is the file, not a run."""
 import errno
 import os
+import signal
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -17,6 +20,7 @@ from exudyn_worm.analysis import studypoint
 from exudyn_worm.analysis.study import RunStudy, Study, StudySidecarPath
 from exudyn_worm.analysis.studyfiles import ReadResults, StudyFileWarning
 from exudyn_worm.analysis.studygrid import Variation
+from exudyn_worm.cli.main import Main
 from exudyn_worm.setups.config import ResolveParameters
 
 
@@ -73,6 +77,26 @@ def test_a_study_on_another_name_of_a_locked_output_is_refused(tmp_path, alias):
     with OutputLock(out, 'first'):
         with pytest.raises(OutputBusyError, match=r"^RunStudy: '.*other.csv' is being written by "):
             RunStudy(_Study(3), other, workers=1, quiet=True)
+    assert out.read_bytes() == before
+
+
+@pytest.mark.parametrize('alias', ['symlink', 'hardlink'])
+def test_a_sweep_on_another_name_of_an_output_another_process_writes_is_refused(capsys, tmp_path, alias):
+    out = _Finished(tmp_path, 3)
+    other = tmp_path / 'other.csv'
+    (other.symlink_to if alias == 'symlink' else other.hardlink_to)(out)
+    before = out.read_bytes()
+    holder = subprocess.Popen([sys.executable, '-c', 'import sys, time\nfrom exudyn_worm._files import OutputLock\n'
+                               'lock = OutputLock(sys.argv[1]).__enter__()\nprint("ready", flush=True)\n'
+                               'time.sleep(120)\n', str(out)], stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline() == 'ready\n'
+        assert Main(['sweep', '--vary', 'J1=0.1,0.11,0.12', '--output', str(other), '--quiet']) == 2
+    finally:
+        holder.send_signal(signal.SIGKILL)
+        holder.wait()
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith(f"exudyn-worm: error: RunStudy: '{other}' is being written by "), err
     assert out.read_bytes() == before
 
 
