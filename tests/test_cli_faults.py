@@ -293,8 +293,10 @@ sys.exit(entry.Run())
 '''
 
 
-def test_an_interrupt_handled_in_c_extension_code_ends_with_its_status_not_by_sigint():
-    done = subprocess.run([sys.executable, '-c', _INTERRUPT_IN_C_EXTENSION_CODE], capture_output=True, text=True,
-                          timeout=120, env=dict(os.environ, PYTHONPATH=str(ROOT)))
+def test_an_interrupt_handled_in_c_extension_code_ends_with_its_status_not_by_sigint(tmp_path):
+    # run with -m, as `python -m exudyn_worm`: CPython checks the flag at the exit of a module run so (not of -c)
+    (tmp_path / 'interrupted_in_c.py').write_text(_INTERRUPT_IN_C_EXTENSION_CODE)
+    done = subprocess.run([sys.executable, '-m', 'interrupted_in_c'], capture_output=True, text=True, timeout=120,
+                          env=dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), str(tmp_path)])))
     assert done.returncode == 130, (done.returncode, done.stderr)    # not -2: killed by SIGINT at exit
     assert done.stderr == 'exudyn-worm: interrupted (Ctrl-C); no output file was left half-written\n'
