@@ -17,7 +17,56 @@ from pathlib import Path
 from typing import Callable, Optional, Sequence, Union
 
 __all__ = ['WriteAtomically', 'WriteTextAtomically', 'PartialPath', 'OutputLock', 'LockPath', 'OutputBusyError',
-           'CheckOutputPath', 'OutputPathError']
+           'CheckOutputPath', 'OutputPathError', 'ReadRegularFile', 'MAX_TABLE_FILE_BYTES']
+
+#: the largest table file read (a friction table, a load or speed table over time): 10 MB, some 300,000 rows
+MAX_TABLE_FILE_BYTES = 10_000_000
+
+
+def ReadRegularFile(path: Union[str, os.PathLike], maxBytes: int, where: str, what: str) -> bytes:
+    """Read an input file within bounds: a regular file (a FIFO, a device such as ``/dev/zero``, a folder or a
+    socket is refused without reading it, so it cannot block or never end) of at most ``maxBytes`` bytes.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    maxBytes : int
+        The largest size accepted.
+    where : str
+        Prefix of the messages, e.g. ``"LoadConfig: 'drive.toml'"``.
+    what : str
+        What the file should be, for the messages, e.g. ``'a TOML file'``.
+
+    Returns
+    -------
+    bytes
+        Its content.
+
+    Raises
+    ------
+    ValueError
+        One line: ``<where>: is a FIFO (named pipe), expected <what>``, ``<where>: larger than the limit of ...
+        bytes for <what>``, ``<where>: cannot read it: <reason>``.
+    """
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)     # a FIFO with no writer does not block the open
+        try:
+            mode = os.fstat(fd).st_mode
+            if not stat.S_ISREG(mode):
+                kind = ('a folder' if stat.S_ISDIR(mode) else 'a FIFO (named pipe)' if stat.S_ISFIFO(mode) else
+                        'a device' if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else 'a socket' if stat.S_ISSOCK(mode)
+                        else 'not a regular file')
+                raise ValueError(f"{where}: is {kind}, expected {what}")
+            with os.fdopen(fd, 'rb', closefd=False) as file:
+                raw = file.read(maxBytes + 1)
+        finally:
+            os.close(fd)
+    except OSError as err:
+        raise ValueError(f"{where}: cannot read it: {err.strerror or err}") from None
+    if len(raw) > maxBytes:
+        raise ValueError(f"{where}: larger than the limit of {maxBytes:,} bytes for {what}")
+    return raw
 
 
 def PartialPath(path: Union[str, os.PathLike]) -> Path:

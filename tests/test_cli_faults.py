@@ -4,6 +4,7 @@ cannot be written and a signal while the command line loads each end in one line
 status, and leave no file half-written or lost."""
 import errno
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -17,7 +18,10 @@ from exudyn_worm.analysis import studypoint
 from exudyn_worm.cli.main import Main
 from exudyn_worm.params.drivefile import MAX_FILE_BYTES, MAX_KEYS, MAX_NESTING
 from exudyn_worm.params.parameters import MAX_STAGES
-from exudyn_worm.setups.config import LoadConfig
+from exudyn_worm.model.friction import ReadFrictionTable
+from exudyn_worm.setups.config import LoadConfig, ParseSetOption
+from exudyn_worm.setups.duty import LoadFromParameters
+from exudyn_worm.setups.presets import GetPreset
 import validation.cli as validation_cli
 import validation.runner as runner
 
@@ -175,18 +179,18 @@ def test_a_fifo_as_drive_file_is_refused_at_once(capsys, folder):
     os.mkfifo(fifo)                                       # no writer: reading it would block for ever
     assert Main(['stability', '--config', str(fifo)]) == 2
     assert _OneLine(capsys, 'exudyn-worm: error: ') == \
-        f"exudyn-worm: error: LoadConfig: '{fifo}': is a FIFO (named pipe), expected a TOML file"
+        f"exudyn-worm: error: LoadConfig: '{fifo}': is a FIFO (named pipe), expected a TOML drive file"
 
 
 @pytest.mark.messages
 def test_a_device_as_drive_file_is_refused_without_reading_it():
-    with pytest.raises(ValueError, match=r"^LoadConfig: '/dev/zero': is a device, expected a TOML file$"):
+    with pytest.raises(ValueError, match=r"^LoadConfig: '/dev/zero': is a device, expected a TOML drive file$"):
         LoadConfig('/dev/zero')
 
 
 #: drive file -> (its text, the message after "LoadConfig: '<file>': ")
 _OVER_A_LIMIT = {
-    'size': ('# ' + 'x' * MAX_FILE_BYTES + '\n', 'larger than the limit of 1,000,000 bytes for a drive file'),
+    'size': ('# ' + 'x' * MAX_FILE_BYTES + '\n', 'larger than the limit of 1,000,000 bytes for a TOML drive file'),
     'nesting': ('x = ' + '[' * (MAX_NESTING + 1) + ']' * (MAX_NESTING + 1) + '\n',
                 f'nested deeper than the limit of {MAX_NESTING} levels (tables, arrays or inline tables)'),
     'deep nesting': ('x = ' + '[' * 5000 + ']' * 5000 + '\n',       # a RecursionError of the TOML parser
@@ -300,3 +304,23 @@ def test_an_interrupt_handled_in_c_extension_code_ends_with_its_status_not_by_si
                           env=dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), str(tmp_path)])))
     assert done.returncode == 130, (done.returncode, done.stderr)    # not -2: killed by SIGINT at exit
     assert done.stderr == 'exudyn-worm: interrupted (Ctrl-C); no output file was left half-written\n'
+
+
+@pytest.mark.messages
+@pytest.mark.parametrize('special', ['fifo', 'device'])
+def test_a_special_table_file_is_refused_without_reading_it(folder, special):
+    path = folder / 'table.csv'
+    if special == 'fifo':
+        os.mkfifo(path)
+    else:
+        path = Path('/dev/zero')
+    kind = 'a FIFO (named pipe)' if special == 'fifo' else 'a device'
+    with pytest.raises(ValueError) as caught:
+        ReadFrictionTable(str(path))
+    assert str(caught.value) == f"ReadFrictionTable: the friction table '{path}': is {kind}, expected a table file"
+    parameters = dict(GetPreset('reel-P1'), loadType='timeTable', loadTorqueOverTime=str(path))
+    with pytest.raises(ValueError) as caught:
+        LoadFromParameters(parameters, 'here')
+    assert str(caught.value) == f"here: 'loadTorqueOverTime': the table file '{path}': is {kind}, expected a table file"
+    with pytest.raises(ValueError, match=re.escape(f"got '{path}' (not a regular file)")):
+        ParseSetOption(f'loadTorqueOverTime={path}')

@@ -64,11 +64,11 @@ from __future__ import annotations
 
 import os
 import re
-import stat
 import sys
 from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
 
 from .._checks import Suggest as _Suggest
+from .._files import ReadRegularFile
 from .parameters import MAX_STAGES, PARAMETERS
 
 if sys.version_info >= (3, 11):
@@ -255,23 +255,7 @@ def ReadDriveFile(path: Union[str, os.PathLike], where: str) -> Tuple[Dict[str, 
     ValueError
         One line naming the file and what is wrong (the limit it exceeds, the kind of file it is, the TOML error).
     """
-    try:
-        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)     # a FIFO with no writer does not block the open
-        try:
-            mode = os.fstat(fd).st_mode
-            if not stat.S_ISREG(mode):
-                kind = ('a folder' if stat.S_ISDIR(mode) else 'a FIFO (named pipe)' if stat.S_ISFIFO(mode) else
-                        'a device' if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else 'a socket' if stat.S_ISSOCK(mode)
-                        else 'not a regular file')
-                raise ValueError(f"{where}: is {kind}, expected a TOML file")
-            with os.fdopen(fd, 'rb', closefd=False) as file:
-                raw = file.read(MAX_FILE_BYTES + 1)
-        finally:
-            os.close(fd)
-    except OSError as err:
-        raise ValueError(f"{where}: cannot read it: {err.strerror or err}") from None
-    if len(raw) > MAX_FILE_BYTES:
-        raise ValueError(f"{where}: larger than the limit of {MAX_FILE_BYTES:,} bytes for a drive file")
+    raw = ReadRegularFile(path, MAX_FILE_BYTES, where, 'a TOML drive file')     # never blocks, never without end
     try:
         text = raw.decode('utf-8-sig')          # a byte-order mark (some Windows editors write one) is no content
         data = tomllib.loads(text)

@@ -138,7 +138,8 @@ def ParseSetOption(text: str) -> Tuple[str, float]:
             and not os.path.isfile(os.path.expanduser(parsed)):
         columns = ', '.join(name for name, _, _ in parameter.columns)
         raise ValueError(f"{where}: {text!r}: '{key}' must be the path of a table file or rows of ({columns}) "
-                         f"such as '[[{', '.join('0' for _ in parameter.columns)}]]', got {parsed!r} (no such file)")
+                         f"such as '[[{', '.join('0' for _ in parameter.columns)}]]', got {parsed!r} "
+                         f"({'not a regular file' if os.path.exists(os.path.expanduser(parsed)) else 'no such file'})")
     return key, parsed
 
 
