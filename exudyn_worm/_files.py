@@ -91,7 +91,8 @@ def WriteAtomically(path: Union[str, os.PathLike], write: Callable[[Path], objec
     """Write a file so that it is either complete or absent: into a temporary file beside it, then renamed.
 
     An interrupt (Ctrl-C, SIGTERM handled as one) or an error during ``write`` removes the temporary file and
-    leaves ``path`` as it was. An ``OSError`` of the temporary file (a full disk) is raised naming ``path``.
+    leaves ``path`` as it was. An ``OSError`` of the temporary file (a full disk) is raised naming ``path``. A
+    symbolic link is followed: the file it points to is replaced, the link stays.
 
     Parameters
     ----------
@@ -107,10 +108,11 @@ def WriteAtomically(path: Union[str, os.PathLike], write: Callable[[Path], objec
         ``path``.
     """
     path = Path(path)
-    tmp = PartialPath(path)
+    target = Path(os.path.realpath(path)) if os.path.islink(path) else path   # a link's file is written, not replaced
+    tmp = PartialPath(target)
     try:
         write(tmp)
-        os.replace(tmp, path)
+        os.replace(tmp, target)
     except BaseException as err:
         with contextlib.suppress(OSError):
             tmp.unlink()

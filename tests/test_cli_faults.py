@@ -13,6 +13,7 @@ from pathlib import Path
 import pytest
 
 import exudyn_worm.plotting.plot as plot
+from exudyn_worm._files import WriteTextAtomically
 from exudyn_worm.analysis import study as study_module
 from exudyn_worm.analysis import studypoint
 from exudyn_worm.cli.main import Main
@@ -123,11 +124,12 @@ def test_a_full_disk_for_simulate_plot_leaves_no_half_made_folder(capsys, folder
     assert list(folder.iterdir()) == []                   # the folder it made is gone, with the figure in it
 
 
-def test_stdout_that_cannot_be_written_is_one_line_exit_1():
+@pytest.mark.parametrize('argv', [['stability', '--json'], ['--version']])   # argparse swallows the error of --version
+def test_stdout_that_cannot_be_written_is_one_line_exit_1(argv):
     if not os.path.exists('/dev/full'):
         pytest.skip('no /dev/full on this system')
     with open('/dev/full', 'w') as full:
-        done = subprocess.run([sys.executable, '-m', 'exudyn_worm', 'stability', '--json'], stdout=full,
+        done = subprocess.run([sys.executable, '-m', 'exudyn_worm', *argv], stdout=full,
                               stderr=subprocess.PIPE, text=True, timeout=120)
     assert done.returncode == 1
     assert done.stderr == 'exudyn-worm: error: cannot write standard output: No space left on device\n'
@@ -324,3 +326,13 @@ def test_a_special_table_file_is_refused_without_reading_it(folder, special):
     assert str(caught.value) == f"here: 'loadTorqueOverTime': the table file '{path}': is {kind}, expected a table file"
     with pytest.raises(ValueError, match=re.escape(f"got '{path}' (not a regular file)")):
         ParseSetOption(f'loadTorqueOverTime={path}')
+
+
+def test_an_atomic_write_through_a_symbolic_link_replaces_the_file_not_the_link(folder):
+    target = folder / 'target.csv'
+    target.write_text('old')
+    link = folder / 'link.csv'
+    link.symlink_to(target)
+    WriteTextAtomically(link, 'new')
+    assert link.is_symlink() and target.read_text() == 'new'
+    assert sorted(p.name for p in folder.iterdir()) == ['link.csv', 'target.csv']

@@ -573,12 +573,14 @@ class _NamedStdout:
 
     def __init__(self, stream):
         self._stream = stream
+        self.error: Optional[OSError] = None     # kept: argparse's --help and --version swallow it
 
     def _Named(self, method, *args):
         try:
             return method(*args)
         except OSError as err:
-            raise OSError(err.errno, err.strerror, _STDOUT) from None
+            self.error = OSError(err.errno, err.strerror, _STDOUT)
+            raise self.error from None
 
     def write(self, text):
         return self._Named(self._stream.write, text)
@@ -620,15 +622,17 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     """
     args = None
     _SHOWN.clear()
-    stdout = sys.stdout
+    stdout = _NamedStdout(sys.stdout)
     try:
-        with SigtermAsInterrupt(), contextlib.redirect_stdout(_NamedStdout(stdout)):  # SIGTERM: as Ctrl-C, 143
+        with SigtermAsInterrupt(), contextlib.redirect_stdout(stdout):  # SIGTERM: as Ctrl-C, with status 143
             args = BuildParser().parse_args(argv)
             with warnings.catch_warnings():
                 warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
                 warnings.simplefilter('always', ImplausibleValueWarning)  # shown once per run by _ShowWarning
                 status = int(args.run(args) or 0)
             sys.stdout.flush()                        # a stdout that cannot be written fails here, not at exit
+            if stdout.error is not None:              # ... or failed before, and the error was swallowed
+                raise stdout.error
             return status
     except UsageError as err:
         if IsInterrupt(err):
@@ -647,6 +651,12 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     except OSError as err:             # a full disk, a name too long, a stdout that cannot be written: one line
         return _OSErrorLine(err)
     except SystemExit as err:          # --help, --version
+        try:
+            sys.stdout.flush()             # what they printed: a stdout that cannot be written is said
+        except OSError as failed:
+            stdout.error = OSError(failed.errno, failed.strerror, _STDOUT)
+        if stdout.error is not None:
+            return _OSErrorLine(stdout.error)
         return err.code if isinstance(err.code, int) else 0 if err.code is None else 2
     except Exception as err:           # e.g. Exudyn's SystemError around a pending Ctrl-C
         if not IsInterrupt(err):
