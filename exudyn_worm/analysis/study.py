@@ -215,6 +215,7 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
 
     if done and quiet is not True:
         print(f"resuming: {len(done)} of {len(indices)} runs already in '{output}'", file=sys.stderr)
+    completed = False
     try:
         if todo:
             executor = _Executor(engine, None if workers is None else min(workers, len(todo)))
@@ -231,11 +232,16 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
                 raise
             else:
                 executor.shutdown(wait=True)
+        completed = True
     finally:
+        # each row was flushed: closing fails only after a failed flush, which was raised (a full disk)
         if csvFile is not None:
-            csvFile.close()
+            with contextlib.suppress(OSError):
+                csvFile.close()
         if record:
-            _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started, versions,
-                          counts={'runs': len(indices), 'done': len(rows), 'failed': failed},
-                          wallSeconds=wallBefore + time.perf_counter() - startTime)
+            # the last record; after an interrupt or an error, its own failure (a full disk) does not replace them
+            with contextlib.suppress(*(() if completed else (OSError,))):
+                _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started, versions,
+                              counts={'runs': len(indices), 'done': len(rows), 'failed': failed},
+                              wallSeconds=wallBefore + time.perf_counter() - startTime)
     return StudyResult(study, [rows[i] for i in sorted(rows)])
