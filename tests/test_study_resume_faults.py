@@ -203,3 +203,34 @@ def test_a_full_disk_while_taking_the_lock_keeps_the_lock_and_leaves_no_lock_fil
         with pytest.raises(OutputBusyError):
             OutputLock(out, 'again').__enter__()
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_disk_full_after_some_rows_keeps_them_and_a_resume_completes_the_study(capsys, tmp_path, monkeypatch):
+    out = tmp_path / 'runs.csv'
+    real = study_module.csv.writer
+
+    class FillsUp:
+        """Writes the header and two rows, then half a row before the disk is full."""
+
+        def __init__(self, file):
+            self.file, self.writer, self.rows = file, real(file), 0
+
+        def writerow(self, row):
+            self.rows += 1
+            if self.rows == 4:
+                self.file.write('half,a,row')
+                self.file.flush()
+                raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+            self.writer.writerow(row)
+    monkeypatch.setattr(study_module.csv, 'writer', FillsUp)
+    argv = ['sweep', '--vary', 'J1=0.1,0.11,0.12,0.13,0.14', '--output', str(out), '--quiet', '--workers', '1']
+    assert Main(argv) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == [f'exudyn-worm: error: {out}: No space left on device']
+    assert len(out.read_text().splitlines()) == 4                     # header, two rows, the half row
+    monkeypatch.setattr(study_module.csv, 'writer', real)
+    assert Main(argv + ['--json']) == 0
+    err = capsys.readouterr().err
+    assert "dropped 1 line that cannot be read or is no run of the study, their runs are run again (line 4: cut " \
+           "off" in err and 'Traceback' not in err
+    assert [r['run'] for r in ReadResults(out).rows] == [0, 1, 2, 3, 4]
