@@ -29,7 +29,8 @@ signals bad user input by raising :class:`UsageError` (or a ``ValueError``/``Typ
 ``with BadInput():``); :func:`Main` prints it as one line ``exudyn-worm: error: ...`` on stderr and
 returns 2. Other exceptions are internal errors and propagate with their traceback.
 
-Exit status: 0 success (for ``stability`` whatever the verdict), 1 failed runs, 2 bad input, 130 interrupted
+Exit status: 0 success (for ``stability`` whatever the verdict), 1 failed runs or an error of the system (a full
+disk, a stdout that cannot be written: one line naming the file), 2 bad input, 130 interrupted
 (Ctrl-C), 143 terminated (SIGTERM, handled as Ctrl-C): one line on stderr, no traceback; files are written with
 :func:`~exudyn_worm._files.WriteAtomically`, so none is left half-written, and worker processes end with the
 command (:mod:`exudyn_worm._workers`). An existing output file is refused unless ``--overwrite`` (:func:`CheckOutputPath`).
