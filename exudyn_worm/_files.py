@@ -170,7 +170,10 @@ class OutputLock:
     is taken over (if the holder named in it has ended on this host, its dying workers are waited for, up to
     5 s). Unlike a POSIX record lock it is not lost when the holder opens and closes the file again, and
     it also keeps a second study of the same process off. On NFS, Linux maps it to a POSIX lock on the server.
-    The file is removed on release. Where ``fcntl`` is missing (Windows) it only records the holder.
+    The file is removed on release. The output itself is locked too, by its device and inode (:meth:`HoldFile`,
+    once it exists), and the lock file sits beside the file a symbolic link points to (:func:`LockPath`): a second
+    process on another name of the same file (a hard or symbolic link) is refused as well. Where ``fcntl`` is
+    missing (Windows) it only records the holder.
 
     Parameters
     ----------

@@ -231,8 +231,8 @@ def test_a_numbered_key_beyond_the_stage_limit_is_refused(capsys):
 @pytest.mark.messages
 @pytest.mark.parametrize('argv, message', [
     (['stability', '--set', 'loadTorqueOverTime=notalist'],
-     "ParseSetOption: 'loadTorqueOverTime=notalist': 'loadTorqueOverTime' must be the path of a table file or rows "
-     "of (time, torque) such as '[[0, 0]]', got 'notalist' (no such file)"),
+     "ParseSetOption: 'loadTorqueOverTime=notalist': 'loadTorqueOverTime': cannot read the table file 'notalist' "
+     "(no such file); expected the path of a table file or rows of (time, torque) such as '[[0, 0]]'"),
     (['chatter', '--vary', 'J1=0.1:0.2', '--vary', 'J1=0.1:0.3'],
      "argument --vary: expected once (one parameter is continued), got 'J1=0.1:0.2' and 'J1=0.1:0.3' "
      "(see 'exudyn-worm chatter --help')"),
@@ -324,7 +324,7 @@ def test_a_special_table_file_is_refused_without_reading_it(folder, special):
     with pytest.raises(ValueError) as caught:
         LoadFromParameters(parameters, 'here')
     assert str(caught.value) == f"here: 'loadTorqueOverTime': the table file '{path}': is {kind}, expected a table file"
-    with pytest.raises(ValueError, match=re.escape(f"got '{path}' (not a regular file)")):
+    with pytest.raises(ValueError, match=re.escape(f"cannot read the table file '{path}' (not a regular file)")):
         ParseSetOption(f'loadTorqueOverTime={path}')
 
 

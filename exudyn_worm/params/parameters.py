@@ -564,10 +564,7 @@ class ParameterRegistry:
         parameter = self.Get(key)
         if parameter is None:
             raise ValueError(self.UnknownKeyMessage(where, key))
-        series = self.SeriesIndex(key)
-        if series and series[1] - parameter.series + 1 > MAX_STAGES:
-            raise ValueError(f"{where}: '{key}' is stage {series[1] - parameter.series + 1:,} of the "
-                             f"{self.SeriesText(parameter.table)}, above the limit of {MAX_STAGES} stages")
+        self._CheckStage(key, parameter, where)
         if parameter.kind == 'number':
             return _ParseNumber(key, value, parameter.unit, where)
         if parameter.kind == 'choice':
@@ -609,10 +606,7 @@ class ParameterRegistry:
         parameter = self.Get(key)
         if parameter is None:
             raise ValueError(self.UnknownKeyMessage(where, key))
-        series = self.SeriesIndex(key)
-        if series and series[1] - parameter.series + 1 > MAX_STAGES:
-            raise ValueError(f"{where}: '{key}' is stage {series[1] - parameter.series + 1:,} of the "
-                             f"{self.SeriesText(parameter.table)}, above the limit of {MAX_STAGES} stages")
+        self._CheckStage(key, parameter, where)
         if parameter.kind == 'number':
             _CheckNumber(where, key, value, parameter.range, parameter.unit)
         elif parameter.kind == 'choice':
@@ -635,6 +629,13 @@ class ParameterRegistry:
                     raise ValueError(f"{where}: '{key}': the {parameter.columns[0][0]} must increase from row to "
                                      f"row, got {first[i - 1]:g} then {first[i]:g} (rows {i - 1} and {i})")
         return value
+
+    def _CheckStage(self, key: str, parameter: Parameter, where: str) -> None:
+        """Refuse a numbered key (``J104``, ``kL101``) of a stage beyond :data:`MAX_STAGES` of its chain."""
+        series = self.SeriesIndex(key)
+        if series and series[1] - parameter.series + 1 > MAX_STAGES:
+            raise ValueError(f"{where}: '{key}' is stage {series[1] - parameter.series + 1:,} of the "
+                             f"{self.SeriesText(parameter.table)}, above the limit of {MAX_STAGES} stages")
 
     @staticmethod
     def _Rows(parameter: Parameter, key: str, value, where: str):

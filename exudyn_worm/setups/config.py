@@ -137,9 +137,10 @@ def ParseSetOption(text: str) -> Tuple[str, float]:
     if parameter is not None and parameter.kind == 'table' and isinstance(parsed, str) \
             and not os.path.isfile(os.path.expanduser(parsed)):
         columns = ', '.join(name for name, _, _ in parameter.columns)
-        raise ValueError(f"{where}: {text!r}: '{key}' must be the path of a table file or rows of ({columns}) "
-                         f"such as '[[{', '.join('0' for _ in parameter.columns)}]]', got {parsed!r} "
-                         f"({'not a regular file' if os.path.exists(os.path.expanduser(parsed)) else 'no such file'})")
+        why = 'not a regular file' if os.path.exists(os.path.expanduser(parsed)) else 'no such file'
+        raise ValueError(f"{where}: {text!r}: '{key}': cannot read the table file {parsed!r} ({why}); expected the "
+                         f"path of a table file or rows of ({columns}) such as "
+                         f"'[[{', '.join('0' for _ in parameter.columns)}]]'")
     return key, parsed
 
 
