@@ -8,6 +8,7 @@ import re
 import signal
 import subprocess
 import sys
+import threading
 from pathlib import Path
 
 import pytest
@@ -16,7 +17,9 @@ import exudyn_worm.plotting.plot as plot
 from exudyn_worm._files import WriteTextAtomically
 from exudyn_worm.analysis import study as study_module
 from exudyn_worm.analysis import studypoint
-from exudyn_worm.cli.main import Main
+from exudyn_worm._workers import SignalsHeld, SigtermAsInterrupt
+from exudyn_worm.cli import main as cli_main
+from exudyn_worm.cli.main import BadInput, Main, Subcommand
 from exudyn_worm.params.drivefile import MAX_FILE_BYTES, MAX_KEYS, MAX_NESTING
 from exudyn_worm.params.parameters import MAX_STAGES
 from exudyn_worm.model.friction import ReadFrictionTable
@@ -336,3 +339,42 @@ def test_an_atomic_write_through_a_symbolic_link_replaces_the_file_not_the_link(
     WriteTextAtomically(link, 'new')
     assert link.is_symlink() and target.read_text() == 'new'
     assert sorted(p.name for p in folder.iterdir()) == ['link.csv', 'target.csv']
+
+
+def _Swallowing(number, then):
+    """A subcommand whose library swallows the interrupt of signal ``number``, then does ``then``."""
+    def Run(args):
+        try:
+            os.kill(os.getpid(), number)
+            sum(range(1000))                                  # the handler runs here
+        except BaseException:                                 # a bare `except:` of a library
+            pass
+        return then()
+    return Subcommand('swallow', 'a library that swallows an interrupt', lambda parser: None, Run,
+                      parameterOptions=False)
+
+
+def _BadInputAfterIt():
+    with BadInput():
+        raise ValueError('zero-size array to reduction operation minimum which has no identity')
+
+
+@pytest.mark.parametrize('name, status, what', [('SIGINT', 130, 'Ctrl-C'), ('SIGTERM', 143, 'SIGTERM')])
+@pytest.mark.parametrize('then', [lambda: 0, _BadInputAfterIt, lambda: 1 / 0], ids=['success', 'bad input', 'error'])
+def test_an_interrupt_a_library_swallows_still_ends_the_command_as_one(capsys, monkeypatch, name, status, what,
+                                                                        then):
+    monkeypatch.setattr(cli_main, 'SUBCOMMANDS', [_Swallowing(getattr(signal, name), then)])
+    assert Main(['swallow']) == status
+    assert _OneLine(capsys, 'exudyn-worm: interrupted') == \
+        f'exudyn-worm: interrupted ({what}); no output file was left half-written'
+
+
+def test_signals_held_arrive_when_the_block_ends():
+    arrived = []
+    with SigtermAsInterrupt():
+        with pytest.raises(KeyboardInterrupt):
+            with SignalsHeld():                               # to this thread: held by its mask
+                signal.pthread_kill(threading.main_thread().ident, signal.SIGINT)
+                sum(range(1000))
+                arrived.append('not yet')                     # the signal waits for the end of the block
+    assert arrived == ['not yet']

@@ -34,7 +34,7 @@ from .orbits import PeriodicOrbit, ShootingError
 from .._checks import CheckPositive
 from ..items.bearings import BEARING_LOADS
 from .drivestability import DriveStability
-from .._workers import CancelPool, WorkerInit
+from .._workers import CancelPool, SignalsHeld, WorkerInit
 from ..params.parameters import PARAMETERS
 from ..setups.presets import ElasticDriveFromParameters
 from .disturbance import COEXISTENCE_KICK, SmallestDisturbance
@@ -528,7 +528,9 @@ def _RunDirections(jobs: List[Tuple], processes: int, onPoint: Optional[Callable
                                        initargs=(os.getpid(),))
             futures = []
             try:
-                futures += [pool.submit(_FollowDirectionJob, job) for job in jobs]
+                with SignalsHeld():                    # the first submit forks the workers
+                    futures.append(pool.submit(_FollowDirectionJob, jobs[0]))
+                futures += [pool.submit(_FollowDirectionJob, job) for job in jobs[1:]]
                 results = [future.result() for future in futures]
             except BaseException:
                 CancelPool(pool, futures)              # at once: no waiting for the running directions

@@ -42,7 +42,7 @@ from pathlib import Path
 from typing import Callable, Dict, Optional, Tuple, Union
 
 from .._files import OutputLock
-from .._workers import CancelPool, SigtermAsInterrupt, WorkerInit
+from .._workers import CancelPool, SignalsHeld, SigtermAsInterrupt, WorkerInit
 from ..progress import ProgressBar
 from .studyfiles import (StudyResult, StudySidecarPath, _CheckOutput, _CheckOutputPath, _Columns, _CsvText, _Versions,
                          _WriteSidecar)
@@ -221,7 +221,9 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
             executor = _Executor(engine, None if workers is None else min(workers, len(todo)))
             futures = []
             try:
-                futures += [executor.submit(studypoint.RunPoint, study.Task(i)) for i in todo]
+                with SignalsHeld():                       # the first submit forks the workers
+                    futures.append(executor.submit(studypoint.RunPoint, study.Task(todo[0])))
+                futures += [executor.submit(studypoint.RunPoint, study.Task(i)) for i in todo[1:]]
                 with ProgressBar(total=len(todo), desc='sweep', unit='run', quiet=quiet) as bar:
                     for future in as_completed(futures):
                         Record(future.result())

@@ -60,7 +60,8 @@ from ..setups.presets import PRESETS
 from ..params.parameters import MissingParameterError
 from .. import _files
 from .._files import WriteAtomically
-from .._workers import TERMINATED_STATUS, InterruptStatus, SigtermAsInterrupt
+from .._workers import (INTERRUPTED_STATUS, TERMINATED_STATUS, ForgetSignals, InterruptStatus, ReceivedSignalStatus,
+                        SigtermAsInterrupt)
 from ..items.solve import IsInterrupt
 from ..params.drivefile import FileKeyOf
 from ..params.drives import ConfigArgument, DocPath, ShippedDrives
@@ -623,6 +624,7 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     """
     args = None
     _SHOWN.clear()
+    ForgetSignals()
     stdout = _NamedStdout(sys.stdout)
     try:
         with SigtermAsInterrupt(), contextlib.redirect_stdout(stdout):  # SIGTERM: as Ctrl-C, with status 143
@@ -631,12 +633,14 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
                 warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
                 warnings.simplefilter('always', ImplausibleValueWarning)  # shown once per run by _ShowWarning
                 status = int(args.run(args) or 0)
+            if ReceivedSignalStatus() and status not in (INTERRUPTED_STATUS, TERMINATED_STATUS):
+                return InterruptedLine(KeyboardInterrupt())   # swallowed by a library: its results are not trusted
             sys.stdout.flush()                        # a stdout that cannot be written fails here, not at exit
             if stdout.error is not None:              # ... or failed before, and the error was swallowed
                 raise stdout.error
             return status
     except UsageError as err:
-        if IsInterrupt(err):
+        if IsInterrupt(err) or ReceivedSignalStatus():   # also an interrupt a library turned into another error
             return InterruptedLine(err)
         message = ' '.join((str(err) + _WhereToAdd(err, args)).split())
         print(f"{PROG}: error: {message}", file=sys.stderr)
@@ -650,7 +654,7 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
         print(f"{PROG}: error: {err.filename or 'a file'}: {err.strerror or 'permission denied'}", file=sys.stderr)
         return 2
     except OSError as err:             # a full disk, a name too long, a stdout that cannot be written: one line
-        return _OSErrorLine(err)
+        return InterruptedLine(err) if ReceivedSignalStatus() else _OSErrorLine(err)
     except SystemExit as err:          # --help, --version
         try:
             sys.stdout.flush()             # what they printed: a stdout that cannot be written is said
@@ -660,6 +664,6 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
             return _OSErrorLine(stdout.error)
         return err.code if isinstance(err.code, int) else 0 if err.code is None else 2
     except Exception as err:           # e.g. Exudyn's SystemError around a pending Ctrl-C
-        if not IsInterrupt(err):
+        if not (IsInterrupt(err) or ReceivedSignalStatus()):
             raise                      # an internal error: its traceback is for the bug report
         return InterruptedLine(err)
