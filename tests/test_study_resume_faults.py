@@ -234,3 +234,10 @@ def test_a_disk_full_after_some_rows_keeps_them_and_a_resume_completes_the_study
     assert "dropped 1 line that cannot be read or is no run of the study, their runs are run again (line 4: cut " \
            "off" in err and 'Traceback' not in err
     assert [r['run'] for r in ReadResults(out).rows] == [0, 1, 2, 3, 4]
+
+
+def test_read_results_refuses_a_sidecar_that_cannot_be_read(tmp_path):
+    out = _Finished(tmp_path, 2)
+    StudySidecarPath(out).write_text('{"study": {"base": 3}}')
+    with pytest.raises(ValueError, match=r"^ReadResults: its sidecar '.*runs.study.json' cannot be read \("):
+        ReadResults(out)

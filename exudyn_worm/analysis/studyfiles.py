@@ -192,13 +192,18 @@ def ReadResults(*paths: Union[str, os.PathLike]) -> 'StudyResult':
         sidecar = StudySidecarPath(path)
         if not path.is_file() or not sidecar.is_file():
             raise ValueError(f"ReadResults: '{path}' and its sidecar '{sidecar}' must both exist")
-        meta = json.loads(sidecar.read_text())
-        if definition is None:
-            definition = meta['study']
-        elif _Identity(meta['study']) != _Identity(definition):
-            raise ValueError(f"ReadResults: '{path}' belongs to a different study than '{paths[0]}'")
         try:
-            found = _ReadCsv(path, _StudyFromDict(definition))[1]
+            meta = json.loads(sidecar.read_text(encoding='utf-8'))
+            study = _StudyFromDict(meta['study'])
+            same = definition is None or _Identity(meta['study']) == _Identity(definition)
+        except (OSError, ValueError, KeyError, TypeError, AttributeError) as err:
+            raise ValueError(f"ReadResults: its sidecar '{sidecar}' cannot be read ({type(err).__name__}: "
+                             f"{' '.join(str(err).split())[:200]})") from None
+        if not same:
+            raise ValueError(f"ReadResults: '{path}' belongs to a different study than '{paths[0]}'")
+        definition = definition or meta['study']
+        try:
+            found = _ReadCsv(path, study)[1]
         except _HeaderError:
             raise ValueError(f"ReadResults: '{path}' has other columns than its study (its header line was changed "
                              f"or lost)") from None
