@@ -200,6 +200,9 @@ _OVER_A_LIMIT = {
                 f'nested deeper than the limit of {MAX_NESTING} levels (tables, arrays or inline tables)'),
     'deep nesting': ('x = ' + '[' * 5000 + ']' * 5000 + '\n',       # a RecursionError of the TOML parser
                      f'nested deeper than the limit of {MAX_NESTING} levels (arrays or inline tables)'),
+    'digits': ('[gear]\nwormRadius = ' + '9' * 5000 + '\n',
+               'not valid TOML: Exceeds the limit (4300 digits) for integer string conversion: value has 5000 digits; '
+               'use sys.set_int_max_str_digits() to increase the limit'),
     'keys': ('[parameters]\n' + ''.join(f'unknown{i} = 1\n' for i in range(MAX_KEYS + 1)),
              'more than the limit of 1,000 keys in a drive file'),
     'stages': (FIGURE19.read_text() + ''.join('\n[[driveSide]]\ninertia = 0.01\nstiffness = 1e4\n'

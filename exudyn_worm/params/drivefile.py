@@ -263,6 +263,8 @@ def ReadDriveFile(path: Union[str, os.PathLike], where: str) -> Tuple[Dict[str, 
         raise ValueError(f"{where}: not valid TOML: {err}") from None
     except UnicodeDecodeError as err:
         raise ValueError(f"{where}: not valid TOML (not UTF-8 text: {err.reason})") from None
+    except ValueError as err:                   # e.g. an integer of more than 4300 digits
+        raise ValueError(f"{where}: not valid TOML: {' '.join(str(err).split())}") from None
     except RecursionError:
         raise ValueError(f"{where}: nested deeper than the limit of {MAX_NESTING} levels (arrays or inline "
                          f"tables)") from None
