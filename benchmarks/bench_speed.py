@@ -6,7 +6,7 @@ In one process, interleaved, best of ``--repeat``:
     ``SOLVER_SETTINGS``, symbolic user functions, the sticking friction) against
     ``scipy_reference.SolveReelChangerScipy(..., method='LSODA', rtol=1e-5, atol=1e-8)`` (the tuned reference of
     ``bench_reel_changer.py``); wall-clock seconds of the solver call alone, and CPU seconds;
-(b) a default sweep of the seven reel presets: :func:`exudyn_worm.analysis.studies.study.RunPoint` of each preset with the
+(b) a default sweep of the seven reel presets: :func:`exudyn_worm.analysis.studies.studypoint.RunPoint` of each preset with the
     default step check (``checkStep`` None), without it (False) and with it forced (True, what the default did when
     every preset's small linear margin sent it to half the step); whole-run seconds summed over the presets;
 (c) N = 1, 2, 4, 8 independent reel-P1 meshes in one Exudyn system (each a worm and wheel on the sticking
@@ -34,7 +34,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import exudyn as exu                                 # noqa: E402
 from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset   # noqa: E402
 from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger, SolverSettings   # noqa: E402
-from exudyn_worm.analysis.studies.study import RunPoint     # noqa: E402
+from exudyn_worm.analysis.studies.studypoint import RunPoint     # noqa: E402
 from exudyn_worm.drive.wholedrive import ResolveDrive
 from scipy_reference import SolveReelChangerScipy    # noqa: E402
 

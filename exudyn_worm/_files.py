@@ -11,12 +11,62 @@ import contextlib
 import os
 import re
 import socket
+import stat
 import time
 from pathlib import Path
 from typing import Callable, Optional, Sequence, Union
 
-__all__ = ['WriteAtomically', 'WriteTextAtomically', 'PartialPath', 'OutputLock', 'OutputBusyError', 'CheckOutputPath',
-           'OutputPathError']
+__all__ = ['WriteAtomically', 'WriteTextAtomically', 'PartialPath', 'OutputLock', 'LockPath', 'OutputBusyError',
+           'CheckOutputPath', 'OutputPathError', 'ReadRegularFile', 'MAX_TABLE_FILE_BYTES']
+
+#: the largest table file read (a friction table, a load or speed table over time): 10 MB, some 300,000 rows
+MAX_TABLE_FILE_BYTES = 10_000_000
+
+
+def ReadRegularFile(path: Union[str, os.PathLike], maxBytes: int, where: str, what: str) -> bytes:
+    """Read an input file within bounds: a regular file (a FIFO, a device such as ``/dev/zero``, a folder or a
+    socket is refused without reading it, so it cannot block or never end) of at most ``maxBytes`` bytes.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    maxBytes : int
+        The largest size accepted.
+    where : str
+        Prefix of the messages, e.g. ``"LoadConfig: 'drive.toml'"``.
+    what : str
+        What the file should be, for the messages, e.g. ``'a TOML file'``.
+
+    Returns
+    -------
+    bytes
+        Its content.
+
+    Raises
+    ------
+    ValueError
+        One line: ``<where>: is a FIFO (named pipe), expected <what>``, ``<where>: larger than the limit of ...
+        bytes for <what>``, ``<where>: cannot read it: <reason>``.
+    """
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)     # a FIFO with no writer does not block the open
+        try:
+            mode = os.fstat(fd).st_mode
+            if not stat.S_ISREG(mode):
+                kind = ('a folder' if stat.S_ISDIR(mode) else 'a FIFO (named pipe)' if stat.S_ISFIFO(mode) else
+                        'a device' if stat.S_ISCHR(mode) or stat.S_ISBLK(mode) else 'a socket' if stat.S_ISSOCK(mode)
+                        else 'not a regular file')
+                raise ValueError(f"{where}: is {kind}, expected {what}")
+            with os.fdopen(fd, 'rb', closefd=False) as file:
+                raw = file.read(maxBytes + 1)
+        finally:
+            os.close(fd)
+    except OSError as err:
+        raise ValueError(f"{where}: cannot read it: {err.strerror or err}") from None
+    if len(raw) > maxBytes:
+        raise ValueError(f"{where}: larger than the limit of {maxBytes:,} bytes for {what}")
+    return raw
 
 
 def PartialPath(path: Union[str, os.PathLike]) -> Path:
@@ -41,7 +91,8 @@ def WriteAtomically(path: Union[str, os.PathLike], write: Callable[[Path], objec
     """Write a file so that it is either complete or absent: into a temporary file beside it, then renamed.
 
     An interrupt (Ctrl-C, SIGTERM handled as one) or an error during ``write`` removes the temporary file and
-    leaves ``path`` as it was.
+    leaves ``path`` as it was. An ``OSError`` of the temporary file (a full disk) is raised naming ``path``. A
+    symbolic link is followed: the file it points to is replaced, the link stays.
 
     Parameters
     ----------
@@ -57,13 +108,16 @@ def WriteAtomically(path: Union[str, os.PathLike], write: Callable[[Path], objec
         ``path``.
     """
     path = Path(path)
-    tmp = PartialPath(path)
+    target = Path(os.path.realpath(path)) if os.path.islink(path) else path   # a link's file is written, not replaced
+    tmp = PartialPath(target)
     try:
         write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
+        os.replace(tmp, target)
+    except BaseException as err:
         with contextlib.suppress(OSError):
             tmp.unlink()
+        if isinstance(err, OSError) and err.errno is not None and err.filename in (None, os.fspath(tmp)):
+            raise OSError(err.errno, err.strerror, os.fspath(path)) from None   # the user's name, not the temporary one
         raise
     return path
 
@@ -86,6 +140,23 @@ def WriteTextAtomically(path: Union[str, os.PathLike], text: str) -> Path:
     return WriteAtomically(path, lambda tmp: Path(tmp).write_text(text, encoding='utf-8'))
 
 
+def LockPath(path: Union[str, os.PathLike]) -> Path:
+    """The lock file of :class:`OutputLock` for an output: ``.<name>.lock`` beside the file that ``path`` names
+    (a symbolic link is followed, so that the file and its link share one lock).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The output file.
+
+    Returns
+    -------
+    pathlib.Path
+    """
+    real = Path(os.path.realpath(path))
+    return real.with_name(f'.{real.name}.lock')
+
+
 class OutputBusyError(ValueError):
     """Another process holds the lock of an output (:class:`OutputLock`); the message names it."""
 
@@ -99,7 +170,10 @@ class OutputLock:
     is taken over (if the holder named in it has ended on this host, its dying workers are waited for, up to
     5 s). Unlike a POSIX record lock it is not lost when the holder opens and closes the file again, and
     it also keeps a second study of the same process off. On NFS, Linux maps it to a POSIX lock on the server.
-    The file is removed on release. Where ``fcntl`` is missing (Windows) it only records the holder.
+    The file is removed on release. The output itself is locked too, by its device and inode (:meth:`HoldFile`,
+    once it exists), and the lock file sits beside the file a symbolic link points to (:func:`LockPath`): a second
+    process on another name of the same file (a hard or symbolic link) is refused as well. Where ``fcntl`` is
+    missing (Windows) it only records the holder.
 
     Parameters
     ----------
@@ -117,9 +191,10 @@ class OutputLock:
 
     def __init__(self, path: Union[str, os.PathLike], where: str = 'OutputLock'):
         self.path = Path(path)
-        self.lockPath = self.path.with_name(f'.{self.path.name}.lock')
+        self.lockPath = LockPath(self.path)
         self.where = where
         self._fd: Optional[int] = None
+        self._fileFds: list = []
 
     def __enter__(self) -> 'OutputLock':
         try:
@@ -127,7 +202,11 @@ class OutputLock:
         except ImportError:                               # pragma: no cover - Windows
             fcntl = None
         for _ in range(10):                               # retried only if the lock file was replaced meanwhile
-            fd = os.open(self.lockPath, os.O_RDWR | os.O_CREAT, 0o644)
+            try:
+                fd = os.open(self.lockPath, os.O_RDWR | os.O_CREAT | os.O_NONBLOCK, 0o644)
+            except OSError as err:
+                raise OutputPathError(f"{self.where}: '{self.path}': cannot create its lock file "
+                                      f"{self.lockPath.name}: {err.strerror or err}") from None
             try:
                 if fcntl is not None:
                     _Flock(fcntl, fd)
@@ -143,14 +222,56 @@ class OutputLock:
             if not same:                                  # the holder removed it as we opened it: take the new one
                 os.close(fd)
                 continue
-            os.ftruncate(fd, 0)
-            os.write(fd, f"process {os.getpid()} on host {socket.gethostname()} (since "
-                         f"{time.strftime('%Y-%m-%dT%H:%M:%S%z')})\n".encode())
+            with contextlib.suppress(OSError):           # the holder's name is for messages: a full disk keeps the lock
+                os.ftruncate(fd, 0)
+                os.write(fd, f"process {os.getpid()} on host {socket.gethostname()} (since "
+                             f"{time.strftime('%Y-%m-%dT%H:%M:%S%z')})\n".encode())
             self._fd = fd
+            try:
+                self.HoldFile()
+            except BaseException:
+                self.__exit__(None, None, None)
+                raise
             return self
         raise OutputBusyError(f"{self.where}: '{self.path}': its lock file {self.lockPath.name} keeps changing")
 
+    def HoldFile(self) -> None:
+        """Lock the output file itself (its device and inode), if it exists: another name of it (a hard link, a
+        symbolic link) is then refused too. Called on entering, and again after the output is created or replaced.
+
+        Raises
+        ------
+        OutputBusyError
+            If another process (or another lock of this one) holds the file under any name.
+        """
+        try:
+            import fcntl                                  # lazy: POSIX only
+        except ImportError:                               # pragma: no cover - Windows
+            return
+        try:                                              # for writing: NFS maps flock to a POSIX write lock
+            fd = os.open(self.path, os.O_RDWR | os.O_NONBLOCK)
+        except OSError:                                   # none yet (or not writable: then the writing fails later)
+            return
+        try:
+            info = os.fstat(fd)
+            if not stat.S_ISREG(info.st_mode) or any(os.path.samestat(info, os.fstat(held)) for held in self._fileFds):
+                os.close(fd)                              # not a file, or held already
+                return
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as err:
+            os.close(fd)
+            if not isinstance(err, BlockingIOError):      # a file system without locks: the name's lock remains
+                return
+            raise OutputBusyError(f"{self.where}: '{self.path}' is being written by another process under another "
+                                  f"name (a hard or symbolic link to the same file); wait for it to end or choose "
+                                  f"another output") from None
+        self._fileFds.append(fd)
+
     def __exit__(self, *exc) -> None:
+        for fd in self._fileFds:
+            with contextlib.suppress(OSError):
+                os.close(fd)
+        self._fileFds = []
         if self._fd is not None:
             with contextlib.suppress(OSError):
                 self.lockPath.unlink()                    # while still held, so that no one locks a removed file
@@ -224,8 +345,10 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
     Raises
     ------
     OutputPathError
-        A ValueError: if the path is empty, is a folder where a file is wanted or the other way round, exists without
-        ``overwrite``, its parent is missing or not a folder, or it is not writable.
+        A ValueError: if the path is empty, is a folder where a file is wanted or the other way round, is a device,
+        FIFO or socket, exists without ``overwrite``, its parent is missing or not a folder, it is not writable, no
+        file can be created in its folder (``/proc``, a read-only file system) or its name leaves no room for the
+        temporary file beside it (ENAMETOOLONG).
     """
     if kind not in ('file', 'folder'):
         raise ValueError(f"CheckOutputPath: 'kind' must be 'file' or 'folder', got {kind!r}")
@@ -235,6 +358,9 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
         raise OutputPathError(f"{option}: expected a {kind} name, got ''")
     state = _PathState(p, option, text)
     if state != 'missing':
+        if state == 'special':                            # replaced by a rename, /dev/null would be lost
+            raise OutputPathError(f"{option} {text}: is not a regular file (a device, FIFO or socket); give a "
+                                  f"{kind} name")
         if kind == 'file' and state == 'folder':
             raise OutputPathError(f"{option} {text}: is a folder; give a file name (e.g. {Path(text) / 'out.csv'})"
                              if option == '--csv' else f"{option} {text}: is a folder; give a file name")
@@ -248,6 +374,7 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
                 f"holds {', '.join(e.name for e in existing[:3])}{' ...' if len(existing) > 3 else ''}"
             raise OutputPathError(f"{option} {text}: {what}; give --overwrite to replace "
                              f"{'it' if len(existing) == 1 else 'them'}, or choose another name")
+        _CheckCreate(p if kind == 'folder' else p.parent, option, text)
         return p
     parent = p.parent
     state = _PathState(parent, option, text)
@@ -258,16 +385,53 @@ def CheckOutputPath(path, option: str, kind: str = 'file', overwrite: bool = Fal
         raise OutputPathError(f"{option} {text}: {parent} is not a folder")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise OutputPathError(f"{option} {text}: cannot write into the folder {parent} (permission denied)")
+    _CheckName(p, option, text)
+    _CheckCreate(parent, option, text)
     return p
 
 
 def _PathState(p: Path, option: str, text: str) -> str:
-    """'missing', 'folder' or 'file'; a path behind a folder one may not search is refused, naming the folder."""
+    """'missing', 'folder', 'file' or 'special' (a device, FIFO, socket); a path behind a folder one may not search is refused, naming the folder."""
     try:
-        return 'folder' if p.is_dir() else 'file' if p.exists() else 'missing'
+        return 'folder' if p.is_dir() else 'file' if p.is_file() else 'special' if p.exists() else 'missing'
     except PermissionError:
         blocked = next((q for q in reversed(p.absolute().parents) if not os.access(q, os.X_OK)), p.parent)
         raise OutputPathError(f"{option} {text}: cannot reach it: the folder {blocked} may not be searched "
                          f"(permission denied)") from None
+    except OSError as err:                                # a name too long, a loop of symbolic links
+        raise OutputPathError(f"{option} {text}: {err.strerror or err}") from None
+
+
+#: bytes of a file name kept free for the temporary and lock files beside an output (``.<name>.<pid>.partial``)
+_NAME_ROOM = 32
+
+
+def _CheckName(p: Path, option: str, text: str) -> None:
+    """Refuse a file name too long to leave room for the temporary file beside it."""
+    try:
+        limit = os.pathconf(p.parent if os.fspath(p.parent) else '.', 'PC_NAME_MAX')
+    except (OSError, ValueError, AttributeError):
+        limit = 255
+    length = len(os.fsencode(p.name))
+    if length > limit - _NAME_ROOM:
+        raise OutputPathError(f"{option} {text}: the file name is {length} bytes long, above the limit of "
+                              f"{limit - _NAME_ROOM} bytes (the file system allows {limit}; the temporary file "
+                              f"written beside it needs the rest)")
+
+
+def _CheckCreate(folder: Path, option: str, text: str) -> None:
+    """Create and remove an empty hidden file in ``folder``: a folder that cannot hold a new file (``/proc``, a
+    read-only file system) is refused before any computation."""
+    probe = folder / f'.exudyn-worm-probe.{os.getpid()}'
+    try:
+        fd = os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+    except FileExistsError:
+        return
+    except OSError as err:
+        raise OutputPathError(f"{option} {text}: cannot create a file in the folder {folder}: "
+                              f"{err.strerror or err}") from None
+    os.close(fd)
+    with contextlib.suppress(OSError):
+        os.unlink(probe)
 
 

@@ -11,18 +11,16 @@ does so after SIGTERM too; :func:`InterruptStatus` gives the exit status (130 or
 from __future__ import annotations
 
 import contextlib
-import ctypes
-import ctypes.util
 import os
 import signal
 import sys
 import threading
 import weakref
-from concurrent.futures import InvalidStateError
-from typing import Iterable, Iterator, Optional
+from typing import Iterable, Iterator, Optional, Sequence
 
 __all__ = ['Terminated', 'TerminationRequested', 'SigtermAsInterrupt', 'InterruptStatus', 'WorkerInit', 'CancelPool',
-           'INTERRUPTED_STATUS', 'TERMINATED_STATUS']
+           'INTERRUPTED_STATUS', 'TERMINATED_STATUS', 'InstallSignalHandlers', 'RestoreSignalHandlers',
+           'ReceivedSignalStatus', 'ForgetSignals', 'SignalsHeld']
 
 #: exit status after Ctrl-C (SIGINT): 128 + 2, the shell's convention
 INTERRUPTED_STATUS = 130
@@ -39,11 +37,73 @@ class Terminated(KeyboardInterrupt):
 #: set when SIGTERM arrives inside :func:`SigtermAsInterrupt` (a solver that swallowed the exception of its user
 #: function and stopped early learns from it that it was terminated, :func:`TerminationRequested`)
 _terminated = [False]
+#: the signals (SIGINT, SIGTERM) received by the handlers of this module since :func:`ForgetSignals`
+_received: list = []
 
 
 def _RaiseTerminated(signum, frame):
     _terminated[0] = True
+    _received.append(signum)
     raise Terminated()
+
+
+def _RaiseInterrupt(signum, frame):
+    _received.append(signum)
+    raise KeyboardInterrupt()
+
+
+def InstallSignalHandlers() -> list:
+    """Handle Ctrl-C (unless it is ignored, as in a background job) and SIGTERM as :func:`SigtermAsInterrupt` does,
+    remembering each signal (:func:`ReceivedSignalStatus`): the entry point of the command line calls it first.
+
+    Returns
+    -------
+    list of (int, handler)
+        The previous handlers, for :func:`RestoreSignalHandlers`.
+    """
+    previous = []
+    for number, handler in ((signal.SIGINT, _RaiseInterrupt), (signal.SIGTERM, _RaiseTerminated)):
+        try:
+            old = signal.getsignal(number)
+            if number == signal.SIGINT and old is not signal.default_int_handler:
+                continue                                  # ignored, or the caller's own: kept
+            signal.signal(number, handler)
+            previous.append((number, old))
+        except (ValueError, OSError, AttributeError):      # not the main thread
+            pass
+    return previous
+
+
+def RestoreSignalHandlers(previous: Sequence) -> None:
+    """Put back the handlers that :func:`InstallSignalHandlers` replaced.
+
+    Parameters
+    ----------
+    previous : sequence of (int, handler)
+        What :func:`InstallSignalHandlers` returned.
+    """
+    for number, handler in previous:
+        with contextlib.suppress(ValueError, OSError, TypeError):
+            signal.signal(number, handler)
+
+
+def ReceivedSignalStatus() -> Optional[int]:
+    """The exit status of a signal received by this module's handlers since :func:`ForgetSignals`: 143 after
+    SIGTERM, 130 after Ctrl-C, None if none came. A library that swallows the ``KeyboardInterrupt`` (or turns it
+    into another error) cannot hide the signal from it.
+
+    Returns
+    -------
+    int or None
+    """
+    if not _received:
+        return None
+    return TERMINATED_STATUS if signal.SIGTERM in _received else INTERRUPTED_STATUS
+
+
+def ForgetSignals() -> None:
+    """Start a command afresh for :func:`ReceivedSignalStatus`."""
+    del _received[:]
 
 
 def TerminationRequested() -> bool:
@@ -69,10 +129,37 @@ def SigtermAsInterrupt() -> Iterator[None]:
     except (ValueError, AttributeError):      # not the main thread, or no SIGTERM
         yield
         return
+    interrupt = signal.getsignal(signal.SIGINT)
+    if interrupt is signal.default_int_handler:   # Ctrl-C as before, but remembered (ReceivedSignalStatus)
+        signal.signal(signal.SIGINT, _RaiseInterrupt)
     try:
         yield
     finally:
         signal.signal(signal.SIGTERM, previous)
+        if interrupt is signal.default_int_handler:
+            signal.signal(signal.SIGINT, interrupt)
+
+
+#: the signals that :func:`SignalsHeld` holds back
+_HELD = (signal.SIGINT, signal.SIGTERM)
+
+
+@contextlib.contextmanager
+def SignalsHeld() -> Iterator[None]:
+    """Within the block, Ctrl-C and SIGTERM wait (they are blocked) and arrive as the block ends: for a pool's
+    first ``submit``, which forks its workers. A ``KeyboardInterrupt`` raised inside ``os.fork``'s handlers (those
+    of ``logging`` release a lock there) is printed by Python as 'Exception ignored' and lost; held, it is raised
+    after the fork, where the pool is cancelled. The workers let them through again (:func:`WorkerInit`).
+    """
+    try:
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
+    except (AttributeError, OSError, ValueError):         # no pthread_sigmask (Windows)
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 def InterruptStatus(err: BaseException) -> int:
@@ -93,7 +180,7 @@ def InterruptStatus(err: BaseException) -> int:
             return TERMINATED_STATUS
         seen.add(id(err))
         err = err.__cause__ or err.__context__
-    return INTERRUPTED_STATUS
+    return ReceivedSignalStatus() or INTERRUPTED_STATUS
 
 
 def _DieWithParent(parent: int) -> None:
@@ -101,6 +188,9 @@ def _DieWithParent(parent: int) -> None:
     if not sys.platform.startswith('linux'):
         return
     try:
+        # lazy: only a worker needs them, and the command line's entry point loads this module before all others
+        import ctypes
+        import ctypes.util
         libc = ctypes.CDLL(ctypes.util.find_library('c') or 'libc.so.6', use_errno=True)
         libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
     except (OSError, AttributeError):
@@ -128,6 +218,8 @@ def WorkerInit(parent: Optional[int] = None) -> None:
     for number, handler in ((signal.SIGINT, signal.SIG_IGN), (signal.SIGTERM, signal.SIG_DFL)):
         with contextlib.suppress(ValueError, OSError, AttributeError):
             signal.signal(number, handler)
+    with contextlib.suppress(ValueError, OSError, AttributeError):   # forked where they were held (SignalsHeld)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _HELD)
     _DieWithParent(os.getppid() if parent is None else parent)
 
 
@@ -173,6 +265,8 @@ def _QuietAboutCancelledJobs(thread: threading.Thread) -> None:
     if getattr(threading.excepthook, '_exudynWorm', False):
         return
     previous = threading.excepthook
+    # lazy: only a cancelled pool needs it, and the command line's entry point loads this module before all others
+    from concurrent.futures import InvalidStateError
 
     def ExceptHook(args):
         if args.thread in _QUIET_THREADS and args.exc_type is not None and issubclass(args.exc_type, InvalidStateError):

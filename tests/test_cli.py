@@ -186,7 +186,7 @@ BAD_CASES = {
     'missing parameters': 'missing parameter(s) J1, kT',
     'conflicting overrides': "both 'mu' and 'rho' are given",
     'missing config': 'missing.toml',
-    'config is a directory': 'cannot read it',
+    'config is a directory': 'is a folder, expected a TOML drive file',
     'malformed config': 'not valid TOML',
     'unknown key in config': "unknown parameter 'foo'",
     'wrong unit in config': "'kT' must be in N*m/rad",

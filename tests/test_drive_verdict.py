@@ -16,6 +16,7 @@ from exudyn_worm.cli.main import Main
 from exudyn_worm.analysis.design.designcheck import DesignCheck
 from exudyn_worm.analysis.design.stabilityhint import StabilizingChanges
 from exudyn_worm.drive import config, presets, wholedrive
+from exudyn_worm.params import drivefile
 from exudyn_worm.drive.config import ResolveParameters, SourceKind, ValueSource
 from exudyn_worm.drive.operatingpoints import DutyOperatingPoints, SteadyPhases
 from exudyn_worm.drive.presets import DriveFromParameters, GetPreset
@@ -262,7 +263,7 @@ def test_each_command_reads_its_drive_file_once_and_builds_its_drive_once(argv, 
     """One boundary: the drive file is parsed once per command and the user's drive built once (a drive the
     command derives from it, as the load side's lumped drive, is another drive)."""
     parsed, built = [], []
-    loads, build = config.tomllib.loads, wholedrive.Drive.FromParameters.__func__
+    loads, build = drivefile.tomllib.loads, wholedrive.Drive.FromParameters.__func__
 
     def CountedLoads(text, *args, **kwargs):
         parsed.append(len(text))
@@ -272,7 +273,7 @@ def test_each_command_reads_its_drive_file_once_and_builds_its_drive_once(argv, 
         if not any(v.kind == SourceKind.CHANGED for v in (sources or {}).values()):       # a trial of the design check is another drive
             built.append(dict(parameters))
         return build(cls, parameters, sources, *args, **kwargs)
-    monkeypatch.setattr(config.tomllib, 'loads', CountedLoads)
+    monkeypatch.setattr(drivefile.tomllib, 'loads', CountedLoads)
     monkeypatch.setattr(wholedrive.Drive, 'FromParameters', classmethod(CountedBuild))
     path = tmp_path / 'p1.toml'
     path.write_text('preset = "reel-P1"\n[parameters]\nkT = 7001.0\n')

@@ -30,7 +30,8 @@ from validation.cli import Main as ValidationMain
 from exudyn_worm._workers import CancelPool
 from exudyn_worm.drive.config import ResolveParameters
 from exudyn_worm.analysis.studies.studyfiles import ReadResults
-from exudyn_worm.analysis.studies.study import RunPoint, Study, StudySidecarPath
+from exudyn_worm.analysis.studies.study import Study, StudySidecarPath
+from exudyn_worm.analysis.studies.studypoint import RunPoint
 from exudyn_worm.analysis.studies.studygrid import Variation
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -28,7 +28,7 @@ from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.model.contact import MATH_OPS
 from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
 from exudyn_worm.items.results import SeriesUnit
-from exudyn_worm.analysis.studies.study import RunPoint
+from exudyn_worm.analysis.studies.studypoint import RunPoint
 from exudyn_worm.analysis.stability.loadside import DiagnoseLoadSide
 from exudyn_worm.drive.wholedrive import ResolveDrive
 

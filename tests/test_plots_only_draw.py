@@ -30,8 +30,9 @@ PLOT_DIR = PACKAGE / 'plotting'
 PLOT_MODULES = sorted(p.stem for p in PLOT_DIR.glob('plot*.py'))
 NON_PLOT_MODULES = sorted(m.name for m in pkgutil.walk_packages(exudyn_worm.__path__, 'exudyn_worm.')
                           if not m.name.rsplit('.', 1)[-1].startswith('plot'))
-#: modules a plotting module may take anything from: the other plotting modules and pure helpers (labels, spacing)
-DRAWING_HELPERS = {'params.parameters', '_spacing'}
+#: modules a plotting module may take anything from: the other plotting modules and pure helpers (labels, spacing,
+#: the atomic write that saves a figure whole or not at all)
+DRAWING_HELPERS = {'params.parameters', '_spacing', '_files'}
 
 
 def _InternalImports(stem: str):

@@ -125,13 +125,13 @@ def _ShortestUse():
 def test_shortest_use_lists_the_commands_checked_here():
     assert _ShortestUse() == list(SHORTEST_USE)
     scripts = tomllib.loads((ROOT / 'pyproject.toml').read_text())['project']['scripts']
-    assert scripts == {'exudyn-worm': 'exudyn_worm.cli.main:Main'}
+    assert scripts == {'exudyn-worm': 'exudyn_worm.__main__:Run'}     # signals handled while the rest loads
 
 
 @pytest.mark.parametrize('command', [pytest.param(c, marks=pytest.mark.slow) if ' simulate ' in c else c   # 2 s
                                      for c in SHORTEST_USE])
 def test_shortest_use_command_does_what_its_comment_says(command, tmp_path, monkeypatch, capsys):
-    """Run in an empty folder through the console script's function (``exudyn-worm`` is ``Main``)."""
+    """Run in an empty folder through the function the console script runs (``exudyn-worm`` is ``Run``, around ``Main``)."""
     monkeypatch.chdir(tmp_path)
     status = Main(shlex.split(command)[1:])
     out, err = capsys.readouterr()

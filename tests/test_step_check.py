@@ -12,7 +12,8 @@ from exudyn_worm.items.results import ChatterVerdict, SimulationResult
 from exudyn_worm.analysis.simulation.stepsize import (SMALL_MARGIN, UNRESOLVED, CompareHalfStep, LinearMargin, RecommendedStepSize,
                                   StepCheckByDefault)
 from exudyn_worm.analysis.studies.studyfiles import ReadResults
-from exudyn_worm.analysis.studies.study import RunPoint, RunStudy, Study
+from exudyn_worm.analysis.studies.study import RunStudy, Study
+from exudyn_worm.analysis.studies.studypoint import RunPoint
 from exudyn_worm.analysis.studies.studygrid import Variation
 from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
 from exudyn_worm.analysis.simulation.stepsize import VERDICT_FACTOR, CloseVerdicts

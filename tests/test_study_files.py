@@ -107,7 +107,7 @@ def test_a_resume_drops_only_the_unreadable_lines_and_names_them(tmp_path):
     lines[2] = ','.join(cells)
     out.write_text(''.join(lines))
     seen = []
-    with pytest.warns(StudyFileWarning, match=r"dropped 1 line that cannot be read, their runs are run again "
+    with pytest.warns(StudyFileWarning, match=r"dropped 1 line that cannot be read or is no run of the study, their runs are run again "
                                               r"\(line 3: could not convert"):
         again = RunStudy(study, out, workers=1, quiet=True, onRow=seen.append)
     assert [r['run'] for r in seen] == [1]                 # only the damaged run is run again, not those behind it

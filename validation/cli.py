@@ -146,6 +146,10 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     except ValueError as err:
         print(f'{PROG}: error: {err}', file=sys.stderr)
         return 2
+    except OSError as err:                      # a full disk: one line (the report is complete or absent)
+        with contextlib.suppress(OSError, ValueError):
+            print(f"{PROG}: error: {err.filename or 'a file'}: {err.strerror or err}", file=sys.stderr)
+        return 1
     except Exception as err:
         if not IsInterrupt(err):
             raise

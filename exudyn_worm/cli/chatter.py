@@ -6,10 +6,24 @@ import sys
 from typing import Tuple
 
 from .formatchatter import FormatBranch, FormatSteadyChatter
-from .main import (BadInput, CheckOutputPath, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError,
-                   WholeDriveFromArgs)
+from .main import (BadInput, CheckFigurePath, PositiveInt, PrintJson, SourceText, StdoutToStderr, Subcommand,
+                   UsageError, WholeDriveFromArgs)
 
 __all__ = ['COMMAND', 'ParseVary']
+
+#: orbits in each direction of a branch of ``--vary`` unless ``--max-points`` says otherwise
+_MAX_POINTS = 60
+
+
+class _Once(argparse.Action):
+    """An option given at most once: a second ``--vary`` is refused instead of replacing the first."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        previous = getattr(namespace, self.dest, None)
+        if previous is not None:
+            raise argparse.ArgumentError(self, f"expected once (one parameter is continued), got {previous!r} and "
+                                               f"{values!r}")
+        setattr(namespace, self.dest, values)
 
 
 def ParseVary(text: str) -> Tuple[str, float, float]:
@@ -47,15 +61,16 @@ def ParseVary(text: str) -> Tuple[str, float, float]:
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument('--vary', metavar='NAME=LOW:HIGH', default=None,
+    parser.add_argument('--vary', metavar='NAME=LOW:HIGH', default=None, action=_Once,
                         help='the parameter to continue and its range in SI units or with units, e.g. J1=0.05:0.3 '
                              'or motorSpeed=80rpm:89rpm (the output is in SI units; a drive with shaft bearings: '
                              'also their keys, e.g. wheelRadialStiffness=0.9e9:1.1e9); without it: the steady chatter '
                              'at the drive\'s own lowering operating point, one orbit')
-    parser.add_argument('--plot', metavar='FILE', default=None,
-                        help='draw the branch (stable solid, unstable dashed, linear boundary dotted) into FILE')
-    parser.add_argument('--max-points', type=int, default=60, dest='max_points',
-                        help='largest number of orbits in each direction (default 60)')
+    parser.add_argument('--plot', metavar='FILE.png', default=None,
+                        help='draw the branch (stable solid, unstable dashed, linear boundary dotted) into FILE '
+                             '(.png, .pdf or .svg)')
+    parser.add_argument('--max-points', type=PositiveInt('orbits'), default=None, dest='max_points',
+                        help=f'with --vary: largest number of orbits in each direction (default {_MAX_POINTS})')
 
 
 def _Run(args: argparse.Namespace) -> int:
@@ -70,13 +85,10 @@ def _Run(args: argparse.Namespace) -> int:
     if name is None:
         return _RunSteady(args, drive, parameters)
     if args.plot:
-        with BadInput():
-            CheckOutputPath(args.plot, '--plot')
-    if args.max_points < 1:
-        raise UsageError(f"--max-points must be >= 1, got {args.max_points}")
+        CheckFigurePath(args.plot, '--plot')
     try:
         with StdoutToStderr(args.json), BadInput():
-            branch = AnalyzeChatterBranch(parameters, name, low, high, maxPoints=args.max_points,
+            branch = AnalyzeChatterBranch(parameters, name, low, high, maxPoints=args.max_points or _MAX_POINTS,
                                           rigidBody=drive.isRigidBody)
     except UsageError as err:
         partial = getattr(err.__cause__, 'branch', None)
@@ -107,6 +119,9 @@ def _RunSteady(args: argparse.Namespace, drive, parameters) -> int:
     from ..analysis.orbits.periodic import NoSteadyChatter
     if args.plot:
         raise UsageError("chatter: --plot draws the branch of --vary; without --vary there is one orbit to report")
+    if args.max_points is not None:
+        raise UsageError(f"chatter: --max-points bounds the branch of --vary; without --vary there is one orbit to "
+                         f"report, got --max-points {args.max_points}")
     with BadInput():
         lowering = AnalyzeDrive(drive).State(-1)
     divergence = None

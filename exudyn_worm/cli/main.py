@@ -29,7 +29,8 @@ signals bad user input by raising :class:`UsageError` (or a ``ValueError``/``Typ
 ``with BadInput():``); :func:`Main` prints it as one line ``exudyn-worm: error: ...`` on stderr and
 returns 2. Other exceptions are internal errors and propagate with their traceback.
 
-Exit status: 0 success (for ``stability`` whatever the verdict), 1 failed runs, 2 bad input, 130 interrupted
+Exit status: 0 success (for ``stability`` whatever the verdict), 1 failed runs or an error of the system (a full
+disk, a stdout that cannot be written: one line naming the file), 2 bad input, 130 interrupted
 (Ctrl-C), 143 terminated (SIGTERM, handled as Ctrl-C): one line on stderr, no traceback; files are written with
 :func:`~exudyn_worm._files.WriteAtomically`, so none is left half-written, and worker processes end with the
 command (:mod:`exudyn_worm._workers`). An existing output file is refused unless ``--overwrite`` (:func:`CheckOutputPath`).
@@ -60,7 +61,8 @@ from ..drive.presets import PRESETS
 from ..params.parameters import MissingParameterError
 from .. import _files
 from .._files import WriteAtomically
-from .._workers import TERMINATED_STATUS, InterruptStatus, SigtermAsInterrupt
+from .._workers import (INTERRUPTED_STATUS, TERMINATED_STATUS, ForgetSignals, InterruptStatus, ReceivedSignalStatus,
+                        SigtermAsInterrupt)
 from ..items.solve import IsInterrupt
 from ..params.drivefile import FileKeyOf
 from ..params.drives import ConfigArgument, DocPath, ShippedDrives
@@ -576,6 +578,46 @@ def InterruptedLine(err: BaseException, what: str = 'no output file was left hal
     return status
 
 
+#: the file name of an error in writing stdout (:class:`_NamedStdout`)
+_STDOUT = 'standard output'
+
+
+class _NamedStdout:
+    """sys.stdout whose write errors (a full disk, ``> /dev/full``) name it, so that :func:`Main` can say so."""
+
+    def __init__(self, stream):
+        self._stream = stream
+        self.error: Optional[OSError] = None     # kept: argparse's --help and --version swallow it
+
+    def _Named(self, method, *args):
+        try:
+            return method(*args)
+        except OSError as err:
+            self.error = OSError(err.errno, err.strerror, _STDOUT)
+            raise self.error from None
+
+    def write(self, text):
+        return self._Named(self._stream.write, text)
+
+    def flush(self):
+        return self._Named(self._stream.flush)
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
+def _OSErrorLine(err: OSError) -> int:
+    """Print the one line of an error of the system (a full disk, a name too long) on stderr; return the exit
+    status 1. After a stdout that cannot be written, what is still buffered for it is dropped (a quiet exit)."""
+    if err.filename == _STDOUT:
+        with contextlib.suppress(OSError, ValueError, AttributeError):
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    what = f'cannot write {_STDOUT}' if err.filename == _STDOUT else err.filename or 'a file'
+    with contextlib.suppress(OSError, ValueError):
+        print(f"{PROG}: error: {what}: {err.strerror or err}", file=sys.stderr)
+    return 1
+
+
 def Main(argv: Optional[Sequence[str]] = None) -> int:
     """Run the command line; return the exit status.
 
@@ -587,21 +629,30 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     Returns
     -------
     int
-        0 on success, 1 if a validation failed, 2 for bad input (one line ``exudyn-worm: error: ...``
+        0 on success, 1 if a validation failed or an output could not be written (a full disk, a stdout that
+        cannot be written: one line), 2 for bad input (one line ``exudyn-worm: error: ...``
         on stderr), 130 after Ctrl-C and 143 after SIGTERM (one line ``exudyn-worm: interrupted ...`` on stderr, no
         traceback).
     """
     args = None
     _SHOWN.clear()
+    ForgetSignals()
+    stdout = _NamedStdout(sys.stdout)
     try:
-        args = BuildParser().parse_args(argv)
-        with warnings.catch_warnings():
-            warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
-            warnings.simplefilter('always', ImplausibleValueWarning)  # shown once per run by _ShowWarning
-            with SigtermAsInterrupt():                # SIGTERM ends a command as Ctrl-C does, with status 143
-                return int(args.run(args) or 0)
+        with SigtermAsInterrupt(), contextlib.redirect_stdout(stdout):  # SIGTERM: as Ctrl-C, with status 143
+            args = BuildParser().parse_args(argv)
+            with warnings.catch_warnings():
+                warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
+                warnings.simplefilter('always', ImplausibleValueWarning)  # shown once per run by _ShowWarning
+                status = int(args.run(args) or 0)
+            if ReceivedSignalStatus() and status not in (INTERRUPTED_STATUS, TERMINATED_STATUS):
+                return InterruptedLine(KeyboardInterrupt())   # swallowed by a library: its results are not trusted
+            sys.stdout.flush()                        # a stdout that cannot be written fails here, not at exit
+            if stdout.error is not None:              # ... or failed before, and the error was swallowed
+                raise stdout.error
+            return status
     except UsageError as err:
-        if IsInterrupt(err):
+        if IsInterrupt(err) or ReceivedSignalStatus():   # also an interrupt a library turned into another error
             return InterruptedLine(err)
         message = ' '.join((str(err) + _WhereToAdd(err, args)).split())
         print(f"{PROG}: error: {message}", file=sys.stderr)
@@ -614,9 +665,17 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     except PermissionError as err:     # a file or folder of the user's that this user may not read or write
         print(f"{PROG}: error: {err.filename or 'a file'}: {err.strerror or 'permission denied'}", file=sys.stderr)
         return 2
+    except OSError as err:             # a full disk, a name too long, a stdout that cannot be written: one line
+        return InterruptedLine(err) if ReceivedSignalStatus() else _OSErrorLine(err)
     except SystemExit as err:          # --help, --version
+        try:
+            sys.stdout.flush()             # what they printed: a stdout that cannot be written is said
+        except OSError as failed:
+            stdout.error = OSError(failed.errno, failed.strerror, _STDOUT)
+        if stdout.error is not None:
+            return _OSErrorLine(stdout.error)
         return err.code if isinstance(err.code, int) else 0 if err.code is None else 2
     except Exception as err:           # e.g. Exudyn's SystemError around a pending Ctrl-C
-        if not IsInterrupt(err):
+        if not (IsInterrupt(err) or ReceivedSignalStatus()):
             raise                      # an internal error: its traceback is for the bug report
         return InterruptedLine(err)

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import enum
 import math
 import sys
@@ -99,16 +100,26 @@ def _SaveFigures(result, folder: Path, subtitle: str = '', quiet=None) -> List[P
     from ..items.results import BEARING_LOADS
     from ..plotting import plot
     from ..progress import ProgressBar
+    created = not folder.exists()
     folder.mkdir(exist_ok=True)
     paths = []
     kinds = _Figures(all(name in result.series for name in BEARING_LOADS.values()))
-    with ProgressBar(total=len(kinds), desc='figures', unit='figure', quiet=quiet, delay=2.) as bar:
-        for kind in kinds:
-            path = folder / f'{kind}.png'
-            figure = plot.PlotSimulation(result, kind=kind, subtitle=subtitle)
-            WriteAtomically(path, lambda tmp: plot.SaveFigure(figure, tmp))
-            paths.append(path)
-            bar.update(1)
+    try:
+        with ProgressBar(total=len(kinds), desc='figures', unit='figure', quiet=quiet, delay=2.) as bar:
+            for kind in kinds:
+                path = folder / f'{kind}.png'
+                figure = plot.PlotSimulation(result, kind=kind, subtitle=subtitle)
+                WriteAtomically(path, lambda tmp: plot.SaveFigure(figure, tmp))
+                paths.append(path)
+                bar.update(1)
+    except BaseException:            # a full disk, Ctrl-C: a folder made here is not left half-filled
+        if created:
+            for path in paths:
+                with contextlib.suppress(OSError):
+                    path.unlink()
+            with contextlib.suppress(OSError):
+                folder.rmdir()
+        raise
     return paths
 
 

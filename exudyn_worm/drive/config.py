@@ -36,22 +36,16 @@ from __future__ import annotations
 import enum
 import os
 import re
-import sys
 from dataclasses import dataclass
 from numbers import Real
 from typing import Dict, Iterable, Mapping, Optional, Tuple, Union
 
 from ..params.drivefile import (ARRAY_TABLES, COMPONENT_TABLES, DRIVE_FILE_TABLES, DRIVE_SIDE_TABLE, LOAD_SIDE_TABLE,
-                        TOP_LEVEL_KEYS, FlattenDriveFile)
+                        TOP_LEVEL_KEYS, FlattenDriveFile, ReadDriveFile)
 from .._checks import Suggest
 from ..params.parameters import PARAMETERS
 from .duty import LOAD_TYPES, MOTOR_TYPES
 from .presets import _LAW_KEYS, PRESETS, ApplyOverrides, CheckParameters, DriveSideChain, GetPreset, LoadSideChain
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
 
 __all__ = ['DEFAULT_PRESET', 'CONFIG_KEYS', 'SourceKind', 'ValueSource', 'ParseQuantity', 'ParseSetOption', 'LoadConfig',
            'LoadedConfig', 'ResolveParametersWithSources', 'ResolveParameters', 'DropReplacedChoiceKeys']
@@ -241,7 +235,16 @@ def ParseSetOption(text: str) -> Tuple[str, float]:
         raise ValueError(f"{where}: {text!r}: '{key}' must be a number or a value with units "
                          f"({PARAMETERS.ExpectedText(key)}), got no value (an empty value, --set {key}=, takes the key "
                          f"back, among the overrides of ResolveParameters and the CLI only)")
-    return key, _ParseQuantity(key, value.strip(), f"{where}: {text!r}")
+    parsed = _ParseQuantity(key, value.strip(), f"{where}: {text!r}")
+    parameter = PARAMETERS.Get(key)
+    if parameter is not None and parameter.kind == 'table' and isinstance(parsed, str) \
+            and not os.path.isfile(os.path.expanduser(parsed)):
+        columns = ', '.join(name for name, _, _ in parameter.columns)
+        why = 'not a regular file' if os.path.exists(os.path.expanduser(parsed)) else 'no such file'
+        raise ValueError(f"{where}: {text!r}: '{key}': cannot read the table file {parsed!r} ({why}); expected the "
+                         f"path of a table file or rows of ({columns}) such as "
+                         f"'[[{', '.join('0' for _ in parameter.columns)}]]'")
+    return key, parsed
 
 
 def _RejectAlternatives(values: Mapping[str, float], where: str, locations: Optional[Mapping[str, str]] = None
@@ -330,23 +333,15 @@ def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
     Raises
     ------
     ValueError
-        If the file cannot be read, is not valid TOML, has unknown keys, an unknown preset, a value that is
+        If the file cannot be read, is no regular file or exceeds a limit of
+        :func:`~exudyn_worm.params.drivefile.ReadDriveFile` (size, nesting, keys, stages), is not valid TOML, has
+        unknown keys, an unknown preset, a value that is
         invalid or out of range (:func:`~exudyn_worm.drive.presets.CheckParameters`), gives one quantity twice or in
         two forms (e.g. both ``mu`` and ``rho``), or gives neither a parameter nor a preset. The message
         names the file, the line where it can be found, the table and key, and what was expected.
     """
     where = f"LoadConfig: '{path}'"
-    try:
-        with open(path, 'rb') as file:
-            raw = file.read()
-        text = raw.decode('utf-8-sig')          # a byte-order mark (some Windows editors write one) is no content
-        data = tomllib.loads(text)
-    except OSError as err:
-        raise ValueError(f"{where}: cannot read it: {err.strerror or err}") from None
-    except tomllib.TOMLDecodeError as err:
-        raise ValueError(f"{where}: not valid TOML: {err}") from None
-    except UnicodeDecodeError as err:
-        raise ValueError(f"{where}: not valid TOML (not UTF-8 text: {err.reason})") from None
+    data, text = ReadDriveFile(path, where)     # bounded: size, nesting, keys, stages; never a FIFO or a device
     return LoadedConfig(_ConfigFromData(data, where, text, os.path.dirname(os.path.abspath(path))))
 
 

@@ -30,11 +30,13 @@ the rigid kinematics (wheel angle phi0(t) / u) and gives the default evaluation 
 """
 from __future__ import annotations
 
+import io
 import math
 from typing import Any, List, Mapping, Optional, Tuple
 
 import numpy as np
 
+from .._files import MAX_TABLE_FILE_BYTES, ReadRegularFile
 from .presets import REEL_KEYS, AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain
 from ..params.parameters import MissingParameterError, ParameterError
 from ..model.profiles import (ConstantSpeed, ConstantTorque, GravityLeverTorque, LinearMotorCharacteristic, SpeedTable,
@@ -161,10 +163,12 @@ def _Table(parameters: Mapping, key: str, where: str):
     value = parameters[key]
     if not isinstance(value, str):
         return value
+    raw = ReadRegularFile(value, MAX_TABLE_FILE_BYTES, f"{where}: '{key}': the table file '{value}'", 'a table file')
     try:
-        rows = np.genfromtxt(value, delimiter=',', comments='#', dtype=float, ndmin=2)
-    except OSError as err:
-        raise ParameterError(where, f"'{key}': cannot read the table file '{value}' ({err})", (key,)) from None
+        rows = np.genfromtxt(io.BytesIO(raw), delimiter=',', comments='#', dtype=float, ndmin=2)
+    except ValueError as err:
+        raise ParameterError(where, f"'{key}': the file '{value}' must hold two numeric columns separated by commas "
+                             f"(SI units): {' '.join(str(err).split())}", (key,)) from None
     if rows.ndim != 2 or rows.shape[1] != 2 or not np.all(np.isfinite(rows)):
         raise ParameterError(where, f"'{key}': the file '{value}' must hold two numeric columns separated by commas "
                              f"(SI units), got shape {rows.shape}", (key,))

@@ -47,6 +47,7 @@ from typing import Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from .._checks import CheckNonNegative, CheckPositive, Suggest
+from .._files import MAX_TABLE_FILE_BYTES, ReadRegularFile
 
 __all__ = ['FRICTION_LAWS', 'FT_PER_MIN', 'ConstantFriction', 'StribeckFriction', 'AgmaFriction', 'TableFriction',
            'FrictionLaw', 'FrictionTableRangeWarning', 'ReadFrictionTable']
@@ -457,11 +458,11 @@ def ReadFrictionTable(source: Union[str, os.PathLike, Sequence[Sequence[float]]]
     if not isinstance(source, (str, os.PathLike)):
         return TableFriction(tuple(source))
     w = 'ReadFrictionTable'
+    raw = ReadRegularFile(source, MAX_TABLE_FILE_BYTES, f"{w}: the friction table {str(source)!r}", 'a table file')
     try:
-        with open(source, encoding='utf-8') as file:
-            lines = file.read().splitlines()
-    except OSError as error:
-        raise ValueError(f"{w}: cannot read the friction table {str(source)!r}: {error.strerror or error}") from None
+        lines = raw.decode('utf-8').splitlines()
+    except UnicodeDecodeError as error:
+        raise ValueError(f"{w}: the friction table {str(source)!r} is not UTF-8 text ({error.reason})") from None
     points, first = [], True
     for number, line in enumerate(lines, start=1):
         text = line.strip()

@@ -64,14 +64,23 @@ is an error. docs/drive-files.md documents the format for users.
 """
 from __future__ import annotations
 
+import os
 import re
-from typing import Any, Dict, List, Mapping, Optional, Tuple
+import sys
+from typing import Any, Dict, List, Mapping, Optional, Tuple, Union
 
 from .._checks import Suggest as _Suggest
-from .parameters import PARAMETERS
+from .._files import ReadRegularFile
+from .parameters import MAX_STAGES, PARAMETERS
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
 
 __all__ = ['COMPONENT_TABLES', 'DRIVE_FILE_TABLES', 'DRIVE_SIDE_TABLE', 'DRIVE_SIDE_KEYS', 'LOAD_SIDE_TABLE',
-           'LOAD_SIDE_KEYS', 'ARRAY_TABLES', 'TOP_LEVEL_KEYS', 'DriveSideKey', 'StageKey', 'FileKeyOf', 'FlattenDriveFile']
+           'LOAD_SIDE_KEYS', 'ARRAY_TABLES', 'TOP_LEVEL_KEYS', 'DriveSideKey', 'StageKey', 'FileKeyOf', 'FlattenDriveFile',
+           'ReadDriveFile', 'MAX_FILE_BYTES', 'MAX_NESTING', 'MAX_KEYS']
 
 #: file table -> {file key: parameter key}; the mapping from a drive file to the flat parameters, derived from the
 #: ``table`` and ``fileKey`` of each parameter in the registry :data:`~exudyn_worm.params.parameters.PARAMETERS`
@@ -94,6 +103,14 @@ LOAD_SIDE_KEYS: Dict[str, str] = ARRAY_TABLES[LOAD_SIDE_TABLE]
 
 #: keys allowed at the top of a file besides the tables
 TOP_LEVEL_KEYS = ('preset', 'description', 'parameters')
+
+#: the largest drive file read, in bytes (the shipped drives have a few kB; a friction table is a file of its own)
+MAX_FILE_BYTES = 1_000_000
+#: the deepest nesting of tables, arrays and inline tables in a drive file (a friction table inside a table is 4)
+MAX_NESTING = 16
+#: the most keys (and tables) in a drive file, counted over all its tables (the shipped drives have fewer than 100;
+#: each key is located by its line for messages, a cost that grows with the square of their number)
+MAX_KEYS = 1_000
 
 
 def DriveSideKey(fileKey: str, index: int) -> str:
@@ -216,6 +233,65 @@ class _Lines:
 
 def _Where(where: str, line: Optional[int], path: str) -> str:
     return f"{where}, line {line}: {path}" if line else f"{where}: {path}"
+
+
+def ReadDriveFile(path: Union[str, os.PathLike], where: str) -> Tuple[Dict[str, Any], str]:
+    """Read and parse a drive file (TOML) within bounds: a regular file (never a FIFO, device or folder, which
+    could block or never end), at most :data:`MAX_FILE_BYTES` bytes, nested at most :data:`MAX_NESTING` levels, with
+    at most :data:`MAX_KEYS` keys and :data:`~exudyn_worm.params.parameters.MAX_STAGES` stages in each chain.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    where : str
+        Prefix of error messages, e.g. ``"LoadConfig: 'drive.toml'"``.
+
+    Returns
+    -------
+    (dict, str)
+        The parsed document and its text.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and what is wrong (the limit it exceeds, the kind of file it is, the TOML error).
+    """
+    raw = ReadRegularFile(path, MAX_FILE_BYTES, where, 'a TOML drive file')     # never blocks, never without end
+    try:
+        text = raw.decode('utf-8-sig')          # a byte-order mark (some Windows editors write one) is no content
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ValueError(f"{where}: not valid TOML: {err}") from None
+    except UnicodeDecodeError as err:
+        raise ValueError(f"{where}: not valid TOML (not UTF-8 text: {err.reason})") from None
+    except ValueError as err:                   # e.g. an integer of more than 4300 digits
+        raise ValueError(f"{where}: not valid TOML: {' '.join(str(err).split())}") from None
+    except RecursionError:
+        raise ValueError(f"{where}: nested deeper than the limit of {MAX_NESTING} levels (arrays or inline "
+                         f"tables)") from None
+    _CheckBounds(data, where)
+    return data, text
+
+
+def _CheckBounds(data: Mapping[str, Any], where: str) -> None:
+    """The limits of :func:`ReadDriveFile` on a parsed document: nesting, keys, stages."""
+    keys, todo = 0, [(data, 1)]
+    while todo:
+        value, depth = todo.pop()
+        if depth > MAX_NESTING:
+            raise ValueError(f"{where}: nested deeper than the limit of {MAX_NESTING} levels (tables, arrays or "
+                             f"inline tables)")
+        children = value.values() if isinstance(value, Mapping) else value
+        keys += len(value) if isinstance(value, Mapping) else 0
+        if keys > MAX_KEYS:
+            raise ValueError(f"{where}: more than the limit of {MAX_KEYS:,} keys in a drive file")
+        todo.extend((child, depth + 1) for child in children if isinstance(child, (Mapping, list)))
+    for table in ARRAY_TABLES:
+        stages = data.get(table)
+        if isinstance(stages, list) and len(stages) > MAX_STAGES:
+            raise ValueError(f"{where}: [[{table}]]: {len(stages):,} stages, above the limit of {MAX_STAGES} stages "
+                             f"of a chain")
 
 
 def FlattenDriveFile(data: Mapping[str, Any], where: str, text: Optional[str] = None

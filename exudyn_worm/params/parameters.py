@@ -47,8 +47,12 @@ from typing import Any, Dict, Iterable, Iterator, List, Mapping, Optional, Tuple
 
 from .._checks import CheckAngle, CheckNonNegative, CheckPositive, CheckRange, CheckReal, Suggest
 
-__all__ = ['KINDS', 'RANGES', 'UNIT_REQUIRED', 'ParameterError', 'Parameter', 'ParameterRegistry', 'PARAMETERS', 'ParametersMarkdown',
-           'WithGeneratedTables']
+__all__ = ['KINDS', 'RANGES', 'UNIT_REQUIRED', 'ParameterError', 'Parameter', 'ParameterRegistry', 'PARAMETERS',
+           'ParametersMarkdown', 'WithGeneratedTables', 'MAX_STAGES']
+
+#: the most stages of one chain (``J4, J5, ...``; ``JL1, JL2, ...``): the linear analysis of 100 stages takes a few
+#: seconds, its cost grows with the cube of the number of stages (300 stages: half a minute)
+MAX_STAGES = 100
 
 
 class MissingParameterError(ValueError):
@@ -650,6 +654,7 @@ class ParameterRegistry:
         parameter = self.Get(key)
         if parameter is None:
             raise ValueError(self.UnknownKeyMessage(where, key))
+        self._CheckStage(key, parameter, where)
         if parameter.kind == 'number':
             return _ParseNumber(key, value, parameter.unit, where, fromFile)
         if parameter.kind == 'choice':
@@ -691,6 +696,7 @@ class ParameterRegistry:
         parameter = self.Get(key)
         if parameter is None:
             raise ValueError(self.UnknownKeyMessage(where, key))
+        self._CheckStage(key, parameter, where)
         if parameter.kind == 'number':
             _CheckNumber(where, key, value, parameter.range, parameter.unit)
         elif parameter.kind == 'choice':
@@ -713,6 +719,13 @@ class ParameterRegistry:
                     raise ValueError(f"{where}: '{key}': the {parameter.columns[0][0]} must increase from row to "
                                      f"row, got {first[i - 1]:g} then {first[i]:g} (rows {i - 1} and {i})")
         return value
+
+    def _CheckStage(self, key: str, parameter: Parameter, where: str) -> None:
+        """Refuse a numbered key (``J104``, ``kL101``) of a stage beyond :data:`MAX_STAGES` of its chain."""
+        series = self.SeriesIndex(key)
+        if series and series[1] - parameter.series + 1 > MAX_STAGES:
+            raise ValueError(f"{where}: '{key}' is stage {series[1] - parameter.series + 1:,} of the "
+                             f"{self.SeriesText(parameter.table)}, above the limit of {MAX_STAGES} stages")
 
     @staticmethod
     def _Rows(parameter: Parameter, key: str, value, where: str):

@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
+from .._files import WriteAtomically
 from ..items.results import SERIES_UNITS
 
 __all__ = ['PLOT_KINDS', 'COMPARISON_QUANTITIES', 'MEAN_WINDOW', 'S_SIGN_LABEL', 'S_SIGN_NOTE',
@@ -709,7 +710,8 @@ def PlotComparison(results: Mapping[str, Any], quantity: str = 'normalForce',
 
 
 def SaveFigure(fig, path, dpi: int = 150) -> Path:
-    """Save ``fig`` to ``path`` (format from the suffix, e.g. ``.png``, ``.pdf``), creating the folder.
+    """Save ``fig`` to ``path`` (format from the suffix, e.g. ``.png``, ``.pdf``), creating the folder; the file is
+    written atomically (:func:`~exudyn_worm._files.WriteAtomically`: complete or absent).
 
     Works without a display: a plain :class:`~matplotlib.figure.Figure` renders with Agg.
 
@@ -737,5 +739,4 @@ def SaveFigure(fig, path, dpi: int = 150) -> Path:
         raise TypeError(f"SaveFigure: 'fig' must be a matplotlib Figure, got {type(fig).__name__}")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=dpi)
-    return path
+    return WriteAtomically(path, lambda tmp: fig.savefig(tmp, dpi=dpi))   # never half a file (a full disk)

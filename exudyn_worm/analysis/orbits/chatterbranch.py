@@ -35,7 +35,7 @@ from ..._checks import CheckPositive
 from ...items.bearings import BEARING_LOADS
 from ...drive.wholedrive import Drive
 from ..stability.drivestability import AnalyzeDrive
-from ..._workers import CancelPool, WorkerInit
+from ..._workers import CancelPool, SignalsHeld, WorkerInit
 from ...params.parameters import PARAMETERS
 from ...drive.presets import ElasticDriveFromParameters
 from .disturbance import COEXISTENCE_KICK, SmallestDisturbance
@@ -529,7 +529,9 @@ def _RunDirections(jobs: List[Tuple], processes: int, onPoint: Optional[Callable
                                        initargs=(os.getpid(),))
             futures = []
             try:
-                futures += [pool.submit(_FollowDirectionJob, job) for job in jobs]
+                with SignalsHeld():                    # the first submit forks the workers
+                    futures.append(pool.submit(_FollowDirectionJob, jobs[0]))
+                futures += [pool.submit(_FollowDirectionJob, job) for job in jobs[1:]]
                 results = [future.result() for future in futures]
             except BaseException:
                 CancelPool(pool, futures)              # at once: no waiting for the running directions

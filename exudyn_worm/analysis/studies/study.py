@@ -42,12 +42,12 @@ from pathlib import Path
 from typing import Callable, Dict, Optional, Tuple, Union
 
 from ..._files import OutputLock
-from ..._workers import CancelPool, SigtermAsInterrupt, WorkerInit
+from ..._workers import CancelPool, SignalsHeld, SigtermAsInterrupt, WorkerInit
 from ...progress import ProgressBar
 from .studyfiles import (StudyResult, StudySidecarPath, _CheckOutput, _CheckOutputPath, _Columns, _CsvText, _SortByRun,
                          _Versions, _WriteSidecar)
 from .studygrid import CheckStudySize, ParseShard, ShardIndices, Study
-from .studypoint import RunPoint
+from . import studypoint
 
 __all__ = ['ENGINES', 'DefaultWorkers', 'RunStudy']
 
@@ -146,16 +146,19 @@ def RunStudy(study: Study, output: Union[str, os.PathLike, None] = None, workers
     indices = ShardIndices(len(study.points), shard)
     with contextlib.ExitStack() as stack:
         stack.enter_context(SigtermAsInterrupt())         # SIGTERM (a scheduler's limit) saves the runs as Ctrl-C
+        lock = None
         if output is not None:
             _CheckOutputPath(output)
-            stack.enter_context(OutputLock(output, where))  # a second study on the same file is refused at once
-        return _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite, onRow)
+            # a second study on the same file (under any name) is refused at once
+            lock = stack.enter_context(OutputLock(output, where))
+        return _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite, onRow, lock)
 
 
-def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite, onRow) -> StudyResult:
+def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite, onRow, lock) -> StudyResult:
     """The body of :func:`RunStudy`, with ``output`` checked and locked."""
     previous = _CheckOutput(output, study, shard, overwrite) if output is not None else []
-    done = {r['run']: r for r in previous if r['run'] in set(indices)}
+    shardRuns = set(indices)
+    done = {r['run']: r for r in previous if r['run'] in shardRuns}
     startTime = time.perf_counter()
     started = time.strftime('%Y-%m-%dT%H:%M:%S%z')
     wallBefore = 0.
@@ -176,12 +179,25 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
     if record:
         versions = _Versions(engine)       # once: the final record after Ctrl-C runs no subprocess
         _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started, versions)
-        new = not output.exists() or output.stat().st_size == 0
+        created = not output.exists()
+        new = created or output.stat().st_size == 0
         csvFile = output.open('a', newline='')
-        writer = csv.writer(csvFile)
-        if new:
-            writer.writerow(columns)
-            csvFile.flush()
+        try:
+            writer = csv.writer(csvFile)
+            if new:
+                writer.writerow(columns)
+                csvFile.flush()
+            lock.HoldFile()                               # the file itself, now that it exists (or was replaced)
+        except BaseException as err:                      # e.g. a full disk: no empty or half a header left
+            with contextlib.suppress(OSError):
+                csvFile.close()
+            if created:
+                for path in (output, StudySidecarPath(output)):
+                    with contextlib.suppress(OSError):
+                        path.unlink()
+            if isinstance(err, OSError) and err.filename is None:
+                raise OSError(err.errno, err.strerror, os.fspath(output)) from None
+            raise
 
     def Record(row):
         nonlocal failed
@@ -189,19 +205,25 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
         rows[row['run']] = row
         failed += row['status'] != 'ok'
         if writer is not None:
-            writer.writerow([_CsvText(row.get(c)) for c in columns])
-            csvFile.flush()
+            try:
+                writer.writerow([_CsvText(row.get(c)) for c in columns])
+                csvFile.flush()
+            except OSError as err:                        # a full disk: the message names the results file
+                raise OSError(err.errno, err.strerror, os.fspath(output)) from None
         if onRow is not None:
             onRow(row)
 
     if done and quiet is not True:
         print(f"resuming: {len(done)} of {len(indices)} runs already in '{output}'", file=sys.stderr)
+    completed = False
     try:
         if todo:
             executor = _Executor(engine, None if workers is None else min(workers, len(todo)))
             futures = []
             try:
-                futures += [executor.submit(RunPoint, study.Task(i)) for i in todo]
+                with SignalsHeld():                       # the first submit forks the workers
+                    futures.append(executor.submit(studypoint.RunPoint, study.Task(todo[0])))
+                futures += [executor.submit(studypoint.RunPoint, study.Task(i)) for i in todo[1:]]
                 with ProgressBar(total=len(todo), desc='sweep', unit='run', quiet=quiet) as bar:
                     for future in as_completed(futures):
                         Record(future.result())
@@ -212,12 +234,17 @@ def _RunLocked(study, output, indices, workers, engine, shard, quiet, overwrite,
                 raise
             else:
                 executor.shutdown(wait=True)
+        completed = True
     finally:
+        # each row was flushed: closing fails only after a failed flush, which was raised (a full disk)
         if csvFile is not None:
-            csvFile.close()
+            with contextlib.suppress(OSError):
+                csvFile.close()
             _SortByRun(output)                     # written as the runs finished: in run order on finishing
         if record:
-            _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started, versions,
-                          counts={'runs': len(indices), 'done': len(rows), 'failed': failed},
-                          wallSeconds=wallBefore + time.perf_counter() - startTime)
+            # the last record; after an interrupt or an error, its own failure (a full disk) does not replace them
+            with contextlib.suppress(*(() if completed else (OSError,))):
+                _WriteSidecar(StudySidecarPath(output), study, shard, engine, workers, started, versions,
+                              counts={'runs': len(indices), 'done': len(rows), 'failed': failed},
+                              wallSeconds=wallBefore + time.perf_counter() - startTime)
     return StudyResult(study, [rows[i] for i in sorted(rows)])

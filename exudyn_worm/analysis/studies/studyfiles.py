@@ -13,16 +13,16 @@ import warnings
 from dataclasses import dataclass
 from importlib import metadata
 from pathlib import Path
-from typing import Dict, List, Mapping, Optional, Tuple, Union
+from typing import Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from ..._files import WriteAtomically, WriteTextAtomically
+from ..._files import LockPath, WriteAtomically, WriteTextAtomically
 from ...drive.presets import PARAMETER_UNITS
 from ...items.results import CHATTER_STATES, UNDECIDED
 from ..stability.drivestability import CHATTER, DIVERGENCE
 from .studymap import ComputeChatterMap
-from .studygrid import Study, Variation, _Identity
+from .studygrid import ShardIndices, Study, Variation, _Identity
 from .studypoint import HALF_STEP_METRICS, RUN_COLUMNS, WINDOW_METRICS
 
 __all__ = ['StudySidecarPath', 'ReadResults', 'StudyResult', 'StudyFileWarning']
@@ -79,20 +79,36 @@ def StudySidecarPath(output: Union[str, os.PathLike]) -> Path:
     return output.with_name(output.stem + '.study.json')
 
 
-def _ReadCsv(path: Path, repair: bool = False) -> Tuple[List[str], List[Dict]]:
-    """Rows of a results file. A line that cannot be read (cut off by a killed job, or damaged) is dropped alone,
-    not with the lines behind it; a warning names each dropped line and why. With ``repair`` the file is rewritten
-    (atomically) without them, so that their runs are run again."""
-    with path.open(newline='', encoding='utf-8', errors='replace') as f:
-        text = f.read()
-    lines = text.splitlines(keepends=True)
-    header = next(csv.reader(lines[:1]), None)
+def _ReadCsv(path: Path, study: Optional[Study] = None, runs: Optional[Sequence[int]] = None,
+             repair: bool = False) -> Tuple[List[str], List[Dict]]:
+    """Rows of a results file. A line that cannot be read (cut off by a killed job, damaged, not UTF-8 text), or,
+    given ``study``, that is no run of it (a run index outside the study or ``runs``, a varied parameter other than
+    the study's own, every line of a run written twice) is dropped alone, not with the lines behind it; a warning
+    names the dropped lines (the first five) and why. With ``repair`` the file is rewritten (atomically) without
+    them, so that their runs are run again, but only if its header is the study's: a file that is refused is
+    never written."""
+    with path.open('rb') as f:
+        raw = f.read()
+    lines = raw.splitlines(keepends=True)
+    try:
+        header = next(csv.reader([lines[0].decode('utf-8')]), None) if lines else None
+    except UnicodeDecodeError:
+        header = ['(not UTF-8 text)']
     if header is None:
         return [], []
-    rows, keep, dropped = {}, [lines[0]], []
+    if study is not None and header != _Columns(study):
+        raise _HeaderError(header)
+    allowed = None if runs is None else set(runs)
+    rows, lineOf, keep, dropped = {}, {}, {}, []
     for number, line in enumerate(lines[1:], start=2):
-        values = next(csv.reader([line]), [])
-        if not line.endswith('\n'):
+        why = None
+        try:
+            text = line.decode('utf-8')
+        except UnicodeDecodeError as err:
+            dropped.append((number, f'not UTF-8 text ({err.reason} at byte {err.start})'))
+            continue
+        values = next(csv.reader([text]), [])
+        if not line.endswith(b'\n'):
             dropped.append((number, 'cut off (no end of line: the job writing it was stopped)'))
             continue
         if len(values) != len(header):
@@ -105,17 +121,31 @@ def _ReadCsv(path: Path, repair: bool = False) -> Tuple[List[str], List[Dict]]:
         except ValueError as err:
             dropped.append((number, str(err)))
             continue
-        if row['run'] in rows:
-            dropped.append((number, f"run {row['run']} appears again (the later line is kept)"))
+        if study is not None:
+            why = _NotARunOf(study, allowed, row)
+        if why:
+            dropped.append((number, why))
+            continue
+        if row['run'] in lineOf:
+            first = lineOf[row['run']]
+            if first in keep:
+                dropped.append((first, f"run {row['run']} is written again on line {number} (both dropped)"))
+                del keep[first]
+                del rows[row['run']]
+            dropped.append((number, f"run {row['run']} is written again (line {first}; both dropped)"))
+            continue
+        lineOf[row['run']] = number
         rows[row['run']] = row
-        keep.append(line)
+        keep[number] = text
     if dropped:
+        dropped.sort()
         shown = '; '.join(f'line {n}: {why}' for n, why in dropped[:5]) + (' ...' if len(dropped) > 5 else '')
         warnings.warn(f"'{path}': dropped {len(dropped)} line{'s' if len(dropped) > 1 else ''} that cannot be "
-                      f"read{', their runs are run again' if repair else ''} ({shown})", StudyFileWarning,
-                      stacklevel=3)
+                      f"read or {'are' if len(dropped) > 1 else 'is'} no run of the study{', their runs are run again' if repair else ''} "
+                      f"({shown})",
+                      StudyFileWarning, stacklevel=3)
     if repair and dropped:
-        WriteTextAtomically(path, ''.join(keep))
+        WriteTextAtomically(path, lines[0].decode('utf-8') + ''.join(keep.values()))
     return header, [rows[k] for k in sorted(rows)]
 
 
@@ -141,6 +171,30 @@ def _SortByRun(path: Path) -> None:
             with open(tmp, 'w', newline='', encoding='utf-8') as f:
                 f.write(lines[0] + ''.join(body))
         WriteAtomically(path, Write)
+
+
+class _HeaderError(ValueError):
+    """A results file whose header is not the columns of the study (:func:`_ReadCsv`)."""
+
+    def __init__(self, header: List[str]):
+        super().__init__(header)
+        self.header = header
+
+
+def _NotARunOf(study: Study, allowed: Optional[set], row: Mapping) -> Optional[str]:
+    """Why a row read back is no run of ``study`` (or of its shard, ``allowed``), or None if it is one."""
+    run, size = row['run'], len(study.points)
+    if not 0 <= run < size:
+        return f'run {run} is no run of the study (runs 0 to {size - 1})'
+    if allowed is not None and run not in allowed:
+        return f'run {run} is no run of this shard'
+    if row.get('status') not in ('ok', 'failed'):
+        return f"status {row.get('status')!r}, expected ok or failed"
+    point = study.points[run]
+    for key in study.keys:
+        if row.get(key) != point[key]:
+            return f"run {run}: {key} = {_Text(row.get(key))}, but the study's run {run} has {key} = {_Text(point[key])}"
+    return None
 
 
 class StudyFileWarning(UserWarning):
@@ -172,12 +226,22 @@ def ReadResults(*paths: Union[str, os.PathLike]) -> 'StudyResult':
         sidecar = StudySidecarPath(path)
         if not path.is_file() or not sidecar.is_file():
             raise ValueError(f"ReadResults: '{path}' and its sidecar '{sidecar}' must both exist")
-        meta = json.loads(sidecar.read_text())
-        if definition is None:
-            definition = meta['study']
-        elif _Identity(meta['study']) != _Identity(definition):
+        try:
+            meta = json.loads(sidecar.read_text(encoding='utf-8'))
+            study = _StudyFromDict(meta['study'])
+            same = definition is None or _Identity(meta['study']) == _Identity(definition)
+        except (OSError, ValueError, KeyError, TypeError, AttributeError) as err:
+            raise ValueError(f"ReadResults: its sidecar '{sidecar}' cannot be read ({type(err).__name__}: "
+                             f"{' '.join(str(err).split())[:200]})") from None
+        if not same:
             raise ValueError(f"ReadResults: '{path}' belongs to a different study than '{paths[0]}'")
-        for row in _ReadCsv(path)[1]:
+        definition = definition or meta['study']
+        try:
+            found = _ReadCsv(path, study)[1]
+        except _HeaderError:
+            raise ValueError(f"ReadResults: '{path}' has other columns than its study (its header line was changed "
+                             f"or lost)") from None
+        for row in found:
             rows[row['run']] = row
     study = _StudyFromDict(definition)
     return StudyResult(study, [rows[k] for k in sorted(rows)])
@@ -378,6 +442,16 @@ def _CheckOutputPath(output: Path) -> None:
         raise ValueError(f"{where}: the folder of 'output' does not exist: '{output.parent}'")
     if not os.access(output.parent, os.W_OK):
         raise ValueError(f"{where}: cannot write into '{output.parent}'")
+    for path, what in ((StudySidecarPath(output), 'its sidecar'),
+                       (LockPath(output), 'its lock file')):
+        if path.is_dir():
+            raise ValueError(f"{where}: the path of {what} '{path}' is a folder; move it away or choose another "
+                             f"output file")
+        if path.exists() and not path.is_file():
+            raise ValueError(f"{where}: the path of {what} '{path}' is not a regular file; move it away or choose "
+                             f"another output file")
+    if output.exists() and not output.is_file():
+        raise ValueError(f"{where}: 'output' is not a regular file: '{output}'")
 
 
 def _CheckOutput(output: Path, study: Study, shard, overwrite: bool) -> List[Dict]:
@@ -403,10 +477,16 @@ def _CheckOutput(output: Path, study: Study, shard, overwrite: bool) -> List[Dic
         raise ValueError(f"{where}: '{output}' holds results of a different study ({'; '.join(differences)}); "
                          f"give the same options to resume it, or choose another output file or start it afresh "
                          f"(--overwrite; overwrite=True)")
-    header, rows = _ReadCsv(output, repair=True)
-    if header and header != _Columns(study):
-        raise ValueError(f"{where}: '{output}' has other columns than this study; choose another output file")
-    return rows
+    try:
+        return _ReadCsv(output, study, ShardIndices(len(study.points), shard), repair=True)[1]
+    except _HeaderError as err:                           # refused before anything is written
+        expected = _Columns(study)
+        differ = next((f"column {i + 1} is {name!r}, expected {want!r}" for i, (name, want) in
+                       enumerate(zip(err.header, expected)) if name != want),
+                      f"{len(err.header)} columns, expected {len(expected)}")
+        raise ValueError(f"{where}: '{output}' has other columns than this study ({differ}: its header line was "
+                         f"changed or lost), so it cannot be resumed; the file is left as it is; choose another "
+                         f"output file") from None
 
 
 def _WriteSidecar(path: Path, study: Study, shard, engine, workers, started, versions, counts=None,
