@@ -15,17 +15,17 @@ import pytest
 
 import exudyn_worm.plotting.plot as plot
 from exudyn_worm._files import WriteTextAtomically
-from exudyn_worm.analysis import study as study_module
-from exudyn_worm.analysis import studypoint
+from exudyn_worm.analysis.studies import study as study_module
+from exudyn_worm.analysis.studies import studypoint
 from exudyn_worm._workers import SignalsHeld, SigtermAsInterrupt
 from exudyn_worm.cli import main as cli_main
 from exudyn_worm.cli.main import BadInput, Main, Subcommand
 from exudyn_worm.params.drivefile import MAX_FILE_BYTES, MAX_KEYS, MAX_NESTING
 from exudyn_worm.params.parameters import MAX_STAGES
 from exudyn_worm.model.friction import ReadFrictionTable
-from exudyn_worm.setups.config import LoadConfig, ParseSetOption
-from exudyn_worm.setups.duty import LoadFromParameters
-from exudyn_worm.setups.presets import GetPreset
+from exudyn_worm.drive.config import LoadConfig, ParseSetOption
+from exudyn_worm.drive.duty import LoadFromParameters
+from exudyn_worm.drive.presets import GetPreset
 import validation.cli as validation_cli
 import validation.runner as runner
 

@@ -167,7 +167,7 @@ def test_api_refusals_name_the_argument_and_the_value(kwargs, error, pattern):
     ('reel-P1', 'speed = "472.5 rpm"', 'type = "startStop"\nspeed = "472.5 rpm"\nrampTime = "1 s"\nbrakeTime = "0.5 s"',
      r"line 33: \[motor\] brakeTime: 'brakeTime' must be >= rampTime = 1 s \(motorType startStop\), got 0.5 s"),
     ('hoist', 'type = "constant"\ntorque = "-367.875 N*m"', 'type = "timeTable"\ntorqueOverTime = "nofile.csv"',
-     r"line 39: \[load\] torqueOverTime: 'loadTorqueOverTime': cannot read the table file '.*nofile.csv'"),
+     r"line 39: \[load\] torqueOverTime: 'loadTorqueOverTime': the table file '.*nofile.csv': cannot read it"),
     ('reel-P1', 'inertia = "33 kg*m^2"', 'inertia = "33 kg*m^2"\nmass = "30 kg"',
      r"line 20: \[wheel\] mass: 'wheelMass' \(the wheel's mass, kg\) is used only by the 3D model, .* got 30 kg"),
     ('reel-P1', 'description', 'preset = "reel-P9"\ndescription',

@@ -15,13 +15,13 @@ from pathlib import Path
 import pytest
 
 from exudyn_worm._files import OutputBusyError, OutputLock, LockPath
-from exudyn_worm.analysis import study as study_module
-from exudyn_worm.analysis import studypoint
-from exudyn_worm.analysis.study import RunStudy, Study, StudySidecarPath
-from exudyn_worm.analysis.studyfiles import ReadResults, StudyFileWarning
-from exudyn_worm.analysis.studygrid import Variation
+from exudyn_worm.analysis.studies import study as study_module
+from exudyn_worm.analysis.studies import studypoint
+from exudyn_worm.analysis.studies.study import RunStudy, Study, StudySidecarPath
+from exudyn_worm.analysis.studies.studyfiles import ReadResults, StudyFileWarning
+from exudyn_worm.analysis.studies.studygrid import Variation
 from exudyn_worm.cli.main import Main
-from exudyn_worm.setups.config import ResolveParameters
+from exudyn_worm.drive.config import ResolveParameters
 
 
 def _InstantPoint(task):

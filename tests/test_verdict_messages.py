@@ -17,7 +17,8 @@ from exudyn_worm.analysis.orbits.periodic import TRIVIAL_MULTIPLIER_TOLERANCE
 from exudyn_worm.analysis.simulation import reelchanger
 from exudyn_worm.analysis.design.designconfirm import ChatterWhileLowering
 from exudyn_worm.analysis.simulation.reelchanger import PhaseLabel, WindowPhases
-from exudyn_worm.analysis.studies.study import RunPoint, Study
+from exudyn_worm.analysis.studies.study import Study
+from exudyn_worm.analysis.studies.studypoint import RunPoint
 from exudyn_worm.analysis.studies.studygrid import Variation
 from exudyn_worm.analysis.studies.studypoint import RunLabel
 from exudyn_worm.analysis.studies.studyfiles import StudyResult
@@ -97,7 +98,7 @@ def test_check_and_chart_report_a_divergence(capsys):
     assert status == 0 and 'Traceback' not in err
     assert out.splitlines()[2].startswith('Verdict: DIVERGENT (not chatter')
     assert 'S = -1: DIVERGENT, max Re(lambda) = 603 1/s (a real eigenvalue)' in out
-    status, out, err = _Run(capsys, 'chart', '--config', HOIST, *DIVERGENT, '--speed', '100')
+    status, out, err = _Run(capsys, 'chart', '--config', HOIST, *DIVERGENT, '--speed', '100 rad/s')
     assert status == 0 and 'Traceback' not in err
     assert 'DIVERGENT (a real eigenvalue grows at 603 1/s' in out and 'the drive is DIVERGENT' in out
 

@@ -163,7 +163,11 @@ def _Table(parameters: Mapping, key: str, where: str):
     value = parameters[key]
     if not isinstance(value, str):
         return value
-    raw = ReadRegularFile(value, MAX_TABLE_FILE_BYTES, f"{where}: '{key}': the table file '{value}'", 'a table file')
+    try:
+        raw = ReadRegularFile(value, MAX_TABLE_FILE_BYTES, 'it', 'a table file')
+    except ValueError as err:          # named at the drive file's line of the key (ParameterError)
+        raise ParameterError(where, f"'{key}': the table file '{value}': {str(err).removeprefix('it: ')}",
+                             (key,)) from None
     try:
         rows = np.genfromtxt(io.BytesIO(raw), delimiter=',', comments='#', dtype=float, ndmin=2)
     except ValueError as err:
