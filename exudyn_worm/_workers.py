@@ -7,6 +7,9 @@ and on Linux the kernel sends it SIGKILL when the parent dies, even by ``kill -9
 :func:`SigtermAsInterrupt` turns SIGTERM (a job scheduler's time limit, ``kill``) into :class:`Terminated`, a
 ``KeyboardInterrupt``, so that every path that cleans up after Ctrl-C (temporary files, a study's last record)
 does so after SIGTERM too; :func:`InterruptStatus` gives the exit status (130 or 143).
+
+A worker runs its linear algebra on one thread (:func:`SingleThreadedBlas`): the pool already has a worker per
+core, and a multi-threaded BLAS in each would put more threads than cores to work.
 """
 from __future__ import annotations
 
@@ -22,7 +25,7 @@ from concurrent.futures import InvalidStateError
 from typing import Iterable, Iterator, Optional
 
 __all__ = ['Terminated', 'TerminationRequested', 'SigtermAsInterrupt', 'InterruptStatus', 'WorkerInit', 'CancelPool',
-           'INTERRUPTED_STATUS', 'TERMINATED_STATUS']
+           'SingleThreadedBlas', 'INTERRUPTED_STATUS', 'TERMINATED_STATUS', 'THREAD_VARIABLES']
 
 #: exit status after Ctrl-C (SIGINT): 128 + 2, the shell's convention
 INTERRUPTED_STATUS = 130
@@ -30,6 +33,12 @@ INTERRUPTED_STATUS = 130
 TERMINATED_STATUS = 143
 
 _PR_SET_PDEATHSIG = 1          # <linux/prctl.h>
+
+#: environment variables that BLAS and OpenMP libraries read when they load: the number of threads they start
+THREAD_VARIABLES = ('OMP_NUM_THREADS', 'OPENBLAS_NUM_THREADS', 'MKL_NUM_THREADS', 'BLIS_NUM_THREADS')
+#: the thread setters of OpenBLAS builds: its own, the 64-bit-integer build, and the one numpy's wheels bundle
+_OPENBLAS_SETTERS = ('openblas_set_num_threads', 'openblas_set_num_threads64_', 'scipy_openblas_set_num_threads64_',
+                     'scipy_openblas_set_num_threads')
 
 
 class Terminated(KeyboardInterrupt):
@@ -129,6 +138,57 @@ def WorkerInit(parent: Optional[int] = None) -> None:
         with contextlib.suppress(ValueError, OSError, AttributeError):
             signal.signal(number, handler)
     _DieWithParent(os.getppid() if parent is None else parent)
+    SingleThreadedBlas()
+
+
+def SingleThreadedBlas() -> str:
+    """Run BLAS (numpy's linear algebra) on one thread in this process, for a worker of a pool with a worker per core.
+
+    Sets :data:`THREAD_VARIABLES` to 1 (libraries loaded later, also by the process's children, read them) and
+    limits the libraries already loaded (a forked worker inherits numpy's BLAS from its parent, with its threads):
+    with ``threadpoolctl`` where it is installed, else through OpenBLAS's own setter where OpenBLAS is loaded (the
+    BLAS of numpy's wheels).
+
+    Returns
+    -------
+    str
+        How the loaded libraries were limited: ``'threadpoolctl'``, ``'openblas'``, or ``'environment'`` (only
+        the variables: no BLAS loaded yet, or one that neither way reaches).
+    """
+    for name in THREAD_VARIABLES:
+        os.environ[name] = '1'
+    try:
+        from threadpoolctl import threadpool_limits  # lazy: optional package, not a dependency
+    except ImportError:
+        pass
+    else:
+        threadpool_limits(limits=1)
+        return 'threadpoolctl'
+    limited = False
+    for path in _LoadedLibraries('openblas'):
+        try:
+            library = ctypes.CDLL(path)          # already loaded: the same library, not a second copy
+        except OSError:
+            continue
+        for symbol in _OPENBLAS_SETTERS:
+            setter = getattr(library, symbol, None)
+            if setter is not None:
+                setter.argtypes = [ctypes.c_int]
+                setter(1)
+                limited = True
+                break
+    return 'openblas' if limited else 'environment'
+
+
+def _LoadedLibraries(word: str) -> list:
+    """Paths of the shared libraries loaded in this process whose file name contains ``word`` (Linux: from
+    ``/proc/self/maps``; elsewhere none)."""
+    try:
+        with open('/proc/self/maps') as maps:
+            paths = {line.split(None, 5)[5].strip() for line in maps if line.count(' ') >= 5 and '.so' in line}
+    except (OSError, IndexError):
+        return []
+    return sorted(p for p in paths if word in os.path.basename(p).lower())
 
 
 def CancelPool(executor, futures: Iterable) -> None:

@@ -16,7 +16,7 @@ from exudyn_worm.analysis.study import RunPoint, RunStudy, Study
 from exudyn_worm.analysis.studygrid import Variation
 from exudyn_worm.analysis.reelchanger import SimulateReelChanger
 from exudyn_worm.analysis.stepsize import VERDICT_FACTOR, CloseVerdicts
-from exudyn_worm.cli.sweep import FormatStudy
+from exudyn_worm.cli.formatsweep import FormatStudy
 from paper_model import Eigenvalues
 
 # a user's drive: J1 = 0.0247 kg*m^2, kT = 1508 N*m/rad on P1's gear and load

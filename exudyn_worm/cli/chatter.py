@@ -5,7 +5,6 @@ import argparse
 import sys
 from typing import Tuple
 
-from .formatchatter import FormatBranch, FormatSteadyChatter
 from .main import (BadInput, CheckOutputPath, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError,
                    WholeDriveFromArgs)
 
@@ -61,6 +60,7 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.chatterbranch import AnalyzeChatterBranch
+    from .formatchatter import FormatBranch
     from ..analysis.smoothbranch import ChatterBranchError
     from ..analysis.lowering import LoweringPhaseParameters
     name, low, high = ParseVary(args.vary) if args.vary is not None else (None, None, None)
@@ -103,6 +103,7 @@ def _RunSteady(args: argparse.Namespace, drive, parameters) -> int:
     model for a drive with shaft bearings (or, where no orbit converges, its settled long simulation)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.chatter import SteadyChatterSummary
+    from .formatchatter import FormatSteadyChatter
     if args.plot:
         raise UsageError("chatter: --plot draws the branch of --vary; without --vary there is one orbit to report")
     with StdoutToStderr(args.json), BadInput():
