@@ -8,8 +8,10 @@ and on Linux the kernel sends it SIGKILL when the parent dies, even by ``kill -9
 ``KeyboardInterrupt``, so that every path that cleans up after Ctrl-C (temporary files, a study's last record)
 does so after SIGTERM too; :func:`InterruptStatus` gives the exit status (130 or 143).
 
-A worker runs its linear algebra on one thread (:func:`SingleThreadedBlas`): the pool already has a worker per
-core, and a multi-threaded BLAS in each would put more threads than cores to work.
+A worker starts with the thread variables of BLAS and OpenMP at 1 (:func:`SingleThreadedBlas`): the pool already has
+a worker per core, and a library that loads in the worker (a spawned worker's numpy, a child process) then starts
+no more threads. The BLAS a forked worker inherits from its parent keeps its threads: limiting it there made a sweep
+of 16 reel runs in 2 workers 5 % slower (benchmarks/README.md, "Worker processes and BLAS threads").
 """
 from __future__ import annotations
 
@@ -138,25 +140,33 @@ def WorkerInit(parent: Optional[int] = None) -> None:
         with contextlib.suppress(ValueError, OSError, AttributeError):
             signal.signal(number, handler)
     _DieWithParent(os.getppid() if parent is None else parent)
-    SingleThreadedBlas()
+    SingleThreadedBlas(loaded=False)
 
 
-def SingleThreadedBlas() -> str:
+def SingleThreadedBlas(loaded: bool = True) -> str:
     """Run BLAS (numpy's linear algebra) on one thread in this process, for a worker of a pool with a worker per core.
 
-    Sets :data:`THREAD_VARIABLES` to 1 (libraries loaded later, also by the process's children, read them) and
-    limits the libraries already loaded (a forked worker inherits numpy's BLAS from its parent, with its threads):
-    with ``threadpoolctl`` where it is installed, else through OpenBLAS's own setter where OpenBLAS is loaded (the
-    BLAS of numpy's wheels).
+    Sets :data:`THREAD_VARIABLES` to 1 (libraries loaded later, also by the process's children, read them) and, with
+    ``loaded``, limits the libraries already loaded too (a forked worker inherits numpy's BLAS from its parent, with
+    its threads): with ``threadpoolctl`` where it is installed, else through OpenBLAS's own setter where OpenBLAS is
+    loaded (the BLAS of numpy's wheels).
+
+    Parameters
+    ----------
+    loaded : bool, optional
+        Also limit the libraries already loaded (default True). :func:`WorkerInit` passes False: limiting the
+        OpenBLAS of numpy's wheels in a forked worker made a sweep 5 % slower, measured.
 
     Returns
     -------
     str
         How the loaded libraries were limited: ``'threadpoolctl'``, ``'openblas'``, or ``'environment'`` (only
-        the variables: no BLAS loaded yet, or one that neither way reaches).
+        the variables: ``loaded`` False, no BLAS loaded yet, or one that neither way reaches).
     """
     for name in THREAD_VARIABLES:
         os.environ[name] = '1'
+    if not loaded:
+        return 'environment'
     try:
         from threadpoolctl import threadpool_limits  # lazy: optional package, not a dependency
     except ImportError:

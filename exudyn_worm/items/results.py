@@ -48,7 +48,7 @@ def _Detrended(t: np.ndarray, x: np.ndarray) -> Tuple[np.ndarray, np.ndarray]:
 def _FastFftLength(n: int) -> int:
     """The smallest length >= ``n`` whose prime factors are 2, 3 and 5 only (a fast length of numpy's real FFT;
     the same as ``scipy.fft.next_fast_len(n, real=True)``, without importing SciPy in a simulation's process).
-    A window's own length can have a large prime factor (1289), and the FFT of such a length is 46-59 times
+    A window's own length can have a large prime factor (1289), and the FFT of such a length is 25-45 times
     slower than of a fast one."""
     best = 1 << max(int(n) - 1, 0).bit_length()          # the next power of 2
     p5 = 1
