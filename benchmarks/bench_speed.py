@@ -10,11 +10,13 @@ In one process, interleaved, best of ``--repeat``:
     default step check (``checkStep`` None), without it (False) and with it forced (True, what the default did when
     every preset's small linear margin sent it to half the step); whole-run seconds summed over the presets;
 (c) N = 1, 2, 4, 8 independent reel-P1 meshes in one Exudyn system (each a worm and wheel on the sticking
-    connector, the worm started at the motor speed, the lever load on the wheel; 0.5 s), solve seconds per mesh.
+    connector, the worm started at the motor speed, the lever load on the wheel; 0.5 s), solve seconds per mesh;
+(d) with ``--instructions``: the instructions of the same solver calls of (a), ours and LSODA, counted by callgrind
+    (``count_instructions.py``; four more processes under valgrind, 5-10 min), and their ratios.
 
 Usage::
 
-    python benchmarks/bench_speed.py [--repeat 5] [--json FILE]
+    python benchmarks/bench_speed.py [--repeat 5] [--instructions] [--json FILE]
 
 Nothing is written unless ``--json FILE`` is given.
 """
@@ -37,6 +39,7 @@ from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger, Sol
 from exudyn_worm.analysis.studies.studypoint import RunPoint     # noqa: E402
 from exudyn_worm.drive.wholedrive import ResolveDrive
 from scipy_reference import SolveReelChangerScipy    # noqa: E402
+import count_instructions                            # noqa: E402
 
 __all__ = ['SCIPY_SETTINGS', 'TARGETS', 'PRESETS', 'SpeedRatios', 'SweepCost', 'MeshScaling', 'Main']
 
@@ -129,6 +132,8 @@ def MeshScaling(repeat: int, counts: Sequence[int] = (1, 2, 4, 8)) -> Dict:
 def Main(argv: Optional[Sequence[str]] = None) -> Dict:
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     parser.add_argument('--repeat', type=int, default=5, help='repetitions, best counts (default 5)')
+    parser.add_argument('--instructions', action='store_true',
+                        help='also count the instructions of the solver calls of (a) under callgrind (needs valgrind)')
     parser.add_argument('--json', metavar='FILE', help='save every number to FILE (JSON)')
     args = parser.parse_args(argv)
     printing, exu.config.printToConsole = exu.config.printToConsole, False
@@ -138,11 +143,19 @@ def Main(argv: Optional[Sequence[str]] = None) -> Dict:
     finally:
         exu.config.printToConsole = printing
     data['loadAverageAfter'] = list(os.getloadavg())
+    if args.instructions:
+        for name in ('reel-P1', 'reel-P7'):
+            counts = {model: count_instructions.CountInstructions(model, name) for model in ('ours', 'lsoda')}
+            data['ratios'][name].update(oursInstructions=counts['ours'], scipyInstructions=counts['lsoda'],
+                                        ratioInstructions=counts['lsoda'] / counts['ours'])
     for name, target in (('reel-P1', 'p1Ratio'), ('reel-P7', 'p7Ratio')):
         r = data['ratios'][name]
+        counted = (f", instructions {r['oursInstructions'] / 1e6:.0f} M / {r['scipyInstructions'] / 1e6:.0f} M "
+                   f"(x{r['ratioInstructions']:.1f})" if 'ratioInstructions' in r else '')
         print(f"{name}: ours {r['ours'] * 1e3:.1f} ms (CPU {r['oursCpu'] * 1e3:.1f}), scipy LSODA {r['scipy'] * 1e3:.0f} ms "
-              f"(CPU {r['scipyCpu'] * 1e3:.0f}): x{r['ratio']:.1f} (CPU x{r['ratioCpu']:.1f}); target >= "
-              f"{TARGETS[target]:g}: {'MET' if r['ratio'] >= TARGETS[target] else 'NOT MET'}; {r['solver']}")
+              f"(CPU {r['scipyCpu'] * 1e3:.0f}): x{r['ratio']:.1f} (CPU x{r['ratioCpu']:.1f}{counted}); target >= "
+              f"{TARGETS[target]:g} in CPU time: {'MET' if r['ratioCpu'] >= TARGETS[target] else 'NOT MET'}; "
+              f"{r['solver']}")
     s = data['sweep']
     print(f"sweep of the seven presets: default {s['default']['seconds']:.3f} s ({s['default']['checkedRuns']} runs "
           f"checked), without the check {s['off']['seconds']:.3f} s, forced {s['forced']['seconds']:.3f} s: default / "

@@ -7,6 +7,11 @@ and on Linux the kernel sends it SIGKILL when the parent dies, even by ``kill -9
 :func:`SigtermAsInterrupt` turns SIGTERM (a job scheduler's time limit, ``kill``) into :class:`Terminated`, a
 ``KeyboardInterrupt``, so that every path that cleans up after Ctrl-C (temporary files, a study's last record)
 does so after SIGTERM too; :func:`InterruptStatus` gives the exit status (130 or 143).
+
+A worker starts with the thread variables of BLAS and OpenMP at 1 (:func:`SingleThreadedBlas`): the pool already has
+a worker per core, and a library that loads in the worker (a spawned worker's numpy, a child process) then starts
+no more threads. The BLAS a forked worker inherits from its parent keeps its threads: limiting it there made a sweep
+of 16 reel runs in 2 workers 5 % slower (benchmarks/README.md, "Worker processes and BLAS threads").
 """
 from __future__ import annotations
 
@@ -20,7 +25,7 @@ from typing import Iterable, Iterator, Optional, Sequence
 
 __all__ = ['Terminated', 'TerminationRequested', 'SigtermAsInterrupt', 'InterruptStatus', 'WorkerInit', 'CancelPool',
            'INTERRUPTED_STATUS', 'TERMINATED_STATUS', 'InstallSignalHandlers', 'RestoreSignalHandlers',
-           'ReceivedSignalStatus', 'ForgetSignals', 'SignalsHeld']
+           'ReceivedSignalStatus', 'ForgetSignals', 'SignalsHeld', 'SingleThreadedBlas', 'THREAD_VARIABLES']
 
 #: exit status after Ctrl-C (SIGINT): 128 + 2, the shell's convention
 INTERRUPTED_STATUS = 130
@@ -28,6 +33,12 @@ INTERRUPTED_STATUS = 130
 TERMINATED_STATUS = 143
 
 _PR_SET_PDEATHSIG = 1          # <linux/prctl.h>
+
+#: environment variables that BLAS and OpenMP libraries read when they load: the number of threads they start
+THREAD_VARIABLES = ('OMP_NUM_THREADS', 'OPENBLAS_NUM_THREADS', 'MKL_NUM_THREADS', 'BLIS_NUM_THREADS')
+#: the thread setters of OpenBLAS builds: its own, the 64-bit-integer build, and the one numpy's wheels bundle
+_OPENBLAS_SETTERS = ('openblas_set_num_threads', 'openblas_set_num_threads64_', 'scipy_openblas_set_num_threads64_',
+                     'scipy_openblas_set_num_threads')
 
 
 class Terminated(KeyboardInterrupt):
@@ -221,6 +232,65 @@ def WorkerInit(parent: Optional[int] = None) -> None:
     with contextlib.suppress(ValueError, OSError, AttributeError):   # forked where they were held (SignalsHeld)
         signal.pthread_sigmask(signal.SIG_UNBLOCK, _HELD)
     _DieWithParent(os.getppid() if parent is None else parent)
+    SingleThreadedBlas(loaded=False)
+
+
+def SingleThreadedBlas(loaded: bool = True) -> str:
+    """Run BLAS (numpy's linear algebra) on one thread in this process, for a worker of a pool with a worker per core.
+
+    Sets :data:`THREAD_VARIABLES` to 1 (libraries loaded later, also by the process's children, read them) and, with
+    ``loaded``, limits the libraries already loaded too (a forked worker inherits numpy's BLAS from its parent, with
+    its threads): with ``threadpoolctl`` where it is installed, else through OpenBLAS's own setter where OpenBLAS is
+    loaded (the BLAS of numpy's wheels).
+
+    Parameters
+    ----------
+    loaded : bool, optional
+        Also limit the libraries already loaded (default True). :func:`WorkerInit` passes False: limiting the
+        OpenBLAS of numpy's wheels in a forked worker made a sweep 5 % slower, measured.
+
+    Returns
+    -------
+    str
+        How the loaded libraries were limited: ``'threadpoolctl'``, ``'openblas'``, or ``'environment'`` (only
+        the variables: ``loaded`` False, no BLAS loaded yet, or one that neither way reaches).
+    """
+    for name in THREAD_VARIABLES:
+        os.environ[name] = '1'
+    if not loaded:
+        return 'environment'
+    try:
+        from threadpoolctl import threadpool_limits  # lazy: optional package, not a dependency
+    except ImportError:
+        pass
+    else:
+        threadpool_limits(limits=1)
+        return 'threadpoolctl'
+    limited = False
+    for path in _LoadedLibraries('openblas'):
+        try:
+            library = ctypes.CDLL(path)          # already loaded: the same library, not a second copy
+        except OSError:
+            continue
+        for symbol in _OPENBLAS_SETTERS:
+            setter = getattr(library, symbol, None)
+            if setter is not None:
+                setter.argtypes = [ctypes.c_int]
+                setter(1)
+                limited = True
+                break
+    return 'openblas' if limited else 'environment'
+
+
+def _LoadedLibraries(word: str) -> list:
+    """Paths of the shared libraries loaded in this process whose file name contains ``word`` (Linux: from
+    ``/proc/self/maps``; elsewhere none)."""
+    try:
+        with open('/proc/self/maps') as maps:
+            paths = {line.split(None, 5)[5].strip() for line in maps if line.count(' ') >= 5 and '.so' in line}
+    except (OSError, IndexError):
+        return []
+    return sorted(p for p in paths if word in os.path.basename(p).lower())
 
 
 def CancelPool(executor, futures: Iterable) -> None:

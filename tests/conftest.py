@@ -1,9 +1,18 @@
 """Shared test helpers."""
+import copy
+import hashlib
 import importlib.util
+import os
+import pickle
 import sys
 from pathlib import Path
 
 import pytest
+
+try:
+    import fcntl
+except ImportError:             # not POSIX: each worker computes its own
+    fcntl = None
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -27,3 +36,58 @@ def emptyWorkingDirectory(tmp_path, monkeypatch):
     monkeypatch.chdir(cwd)
     yield cwd
     assert sorted(p.name for p in cwd.iterdir()) == []
+
+
+#: results of deterministic analyses that several tests compute with the same arguments (the 3D model's steady
+#: chatter and branch of examples/drives/reel-3d.toml: minutes each, mostly its settling run): computed once per
+#: test run by :func:`Shared` and handed to each caller as a copy
+_SHARED = {}
+#: [the folder where :func:`Shared` leaves its results for the other pytest-xdist workers of the run]
+_SHARED_FOLDER = [None]
+
+
+@pytest.fixture(scope='session', autouse=True)
+def _sharedFolder(tmp_path_factory):
+    """The run's base temporary folder, which pytest-xdist's workers share (their own folders are inside it)."""
+    base = tmp_path_factory.getbasetemp()
+    _SHARED_FOLDER[0] = base.parent if os.environ.get('PYTEST_XDIST_WORKER') else base
+    yield
+
+
+def Shared(function, *args, **kwargs):
+    """``function(*args, **kwargs)``, computed once per test run for equal arguments (a mapping argument by its
+    items); a deep copy is returned, so that a test that changes it changes nothing for the next. Only for functions
+    whose result depends on their arguments alone. Under pytest-xdist the first worker to ask computes it (under a
+    file lock) and leaves it pickled in the run's temporary folder; another worker asking meanwhile waits for it."""
+    def Key(value):
+        if isinstance(value, dict) or hasattr(value, 'items'):
+            return tuple(sorted((k, Key(v)) for k, v in value.items()))
+        return repr(value)
+    key = (function.__module__, function.__qualname__, tuple(Key(a) for a in args), Key(kwargs))
+    if key not in _SHARED:
+        folder = _SHARED_FOLDER[0]
+        if folder is None or fcntl is None:
+            _SHARED[key] = function(*args, **kwargs)
+        else:
+            path = Path(folder) / f"shared-{hashlib.sha256(repr(key).encode()).hexdigest()[:24]}.pickle"
+            with open(path.with_suffix('.lock'), 'w') as lock:
+                fcntl.flock(lock, fcntl.LOCK_EX)          # released when the file is closed
+                if path.exists():
+                    _SHARED[key] = pickle.loads(path.read_bytes())
+                else:
+                    _SHARED[key] = function(*args, **kwargs)
+                    partial = path.with_suffix('.partial')
+                    partial.write_bytes(pickle.dumps(_SHARED[key]))
+                    partial.replace(path)
+    return copy.deepcopy(_SHARED[key])
+
+
+@pytest.fixture
+def sharedChatterAnalyses(monkeypatch):
+    """``SteadyChatterSummary`` and ``AnalyzeChatterBranch`` through :func:`Shared` for the test's calls (the command
+    line's included: ``chatter`` imports them from their modules when it runs)."""
+    import exudyn_worm.analysis.orbits.chatter as chatter                  # lazy: only the tests that use this fixture
+    import exudyn_worm.analysis.orbits.chatterbranch as chatterbranch      # lazy: only the tests that use this fixture
+    for module, name in ((chatter, 'SteadyChatterSummary'), (chatterbranch, 'AnalyzeChatterBranch')):
+        original = getattr(module, name)
+        monkeypatch.setattr(module, name, lambda *a, _f=original, **k: Shared(_f, *a, **k))

@@ -96,6 +96,7 @@ def test_lowering_point_of_the_bearing_drive_has_a_barely_damped_tilt_mode_besid
 
 
 @pytest.mark.slow
+@pytest.mark.usefixtures('sharedChatterAnalyses')      # computed once for --json, the text and test_chatter_vary_3d.py
 def test_chatter_reports_the_steady_chatter_of_a_drive_with_shaft_bearings(capsys):
     # measured on reel-3d.toml: a 20 s time simulation (step 1e-4 s) settles to a motion of period 32.224 ms on the
     # Poincare section (wheel-speed crossings, period spread 1 us), force factor 2.741, |phi2''| 112.6 rad/s^2, worm

@@ -16,6 +16,7 @@ from exudyn_worm.analysis.orbits.periodic import PeriodicOrbit
 from exudyn_worm.cli.formatchatter import FormatBranch
 from exudyn_worm.cli.main import Main
 from exudyn_worm.drive.wholedrive import ResolveDrive
+from conftest import Shared
 
 pytest.importorskip('exudyn')
 DRIVE_3D = 'examples/drives/reel-3d.toml'
@@ -90,11 +91,15 @@ def test_chatter_vary_on_a_bearing_drive_with_a_chain_key_prints_one_line(capsys
 @pytest.fixture(scope='module')
 def stiffnessBranch():
     # reel-3d.toml's wheel bearings (1e9 N/m) +-5 %: linearly unstable on the whole range, so the first orbit is at
-    # the drive's own value, as without --vary; two orbits in each direction (about 30 s on the 2-core machine)
-    return AnalyzeChatterBranch(_Parameters(), 'wheelRadialStiffness', 0.95e9, 1.05e9, maxPoints=2, rigidBody=True)
+    # the drive's own value, as without --vary; two orbits in each direction (about 30 s on the 2-core machine);
+    # the same branch as the command line's in test_chatter_vary_on_a_bearing_drive_gives_the_3d_branch_as_json,
+    # computed once for both (conftest.Shared)
+    return Shared(AnalyzeChatterBranch, _Parameters(), 'wheelRadialStiffness', 0.95e9, 1.05e9, maxPoints=2,
+                  rigidBody=True)
 
 
 @pytest.mark.slow
+@pytest.mark.usefixtures('sharedChatterAnalyses')      # the steady chatter of test_chatter_3d.py, computed once
 def test_3d_branch_starts_at_the_orbit_without_vary(stiffnessBranch):
     summary = SteadyChatterSummary(_Parameters(), rigidBody=True)
     assert summary['method'] == 'shooting'
@@ -134,11 +139,12 @@ def test_3d_branch_moves_monotonically_and_carries_positive_bearing_loads(stiffn
 
 
 @pytest.mark.slow
+@pytest.mark.usefixtures('sharedChatterAnalyses')      # the branch of stiffnessBranch, computed once
 def test_chatter_vary_on_a_bearing_drive_gives_the_3d_branch_as_json(capsys):
     status, out, err = _Run(capsys, 'chatter', '--config', DRIVE_3D, '--vary',
-                            'wheelRadialStiffness=0.98e9N/m:1.02e9N/m', '--max-points', '1', '--json')
+                            'wheelRadialStiffness=0.95e9N/m:1.05e9N/m', '--max-points', '2', '--json')
     assert status == 0, err
     data = json.loads(out)
-    assert data['model'] == '3D' and data['parameter'] == 'wheelRadialStiffness' and len(data['points']) == 3
-    assert data['points'][1]['value'] == 1e9
+    assert data['model'] == '3D' and data['parameter'] == 'wheelRadialStiffness' and len(data['points']) == 5
+    assert data['points'][2]['value'] == 1e9
     assert all(p['amplitude'][k] > 0. for p in data['points'] for k in BEARING_LOAD_KEYS)

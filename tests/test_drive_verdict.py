@@ -233,7 +233,7 @@ def test_a_command_resolves_its_drive_once_and_analyses_each_point_once(capsys, 
     side's lumped drive, another drive, has its own points)."""
     built, analysed, resolved = [], [], []
     build, atPoint, resolve = wholedrive.Drive.FromParameters.__func__, drivestability._AtPoint, \
-        main.ResolveParametersWithSources
+        config.ResolveParametersWithSources
 
     def CountedBuild(cls, parameters, *args, **kwargs):
         built.append(dict(parameters))
@@ -248,7 +248,7 @@ def test_a_command_resolves_its_drive_once_and_analyses_each_point_once(capsys, 
         return resolve(*args, **kwargs)
     monkeypatch.setattr(wholedrive.Drive, 'FromParameters', classmethod(CountedBuild))
     monkeypatch.setattr(drivestability, '_AtPoint', CountedPoint)
-    monkeypatch.setattr(main, 'ResolveParametersWithSources', CountedResolve)
+    monkeypatch.setattr(config, 'ResolveParametersWithSources', CountedResolve)
     assert Main(['stability', '--config', str(HOIST), '--set', 'kT=2100', '--json']) == 0
     data = json.loads(capsys.readouterr().out)
     assert len(resolved) == 1 and sum(1 for p in built if p.get('kT') == 2100 and 'JL1' in p) == 1

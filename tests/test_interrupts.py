@@ -106,7 +106,7 @@ def _InterruptCases(tmp_path, monkeypatch):
                 KeyboardInterrupt()))),
         'stability: while computing': (
             ['stability', '--preset', 'reel-P1', '--json'],
-            lambda: monkeypatch.setattr('exudyn_worm.cli.stability.AnalyzeDrive', lambda *a, **k: (_ for _ in ()).throw(
+            lambda: monkeypatch.setattr('exudyn_worm.analysis.stability.drivestability.AnalyzeDrive', lambda *a, **k: (_ for _ in ()).throw(
                 KeyboardInterrupt()))),
         'sweep: while writing --plot': (
             ['sweep', '--vary', 'J1=0.1,0.2', '--windows', '0:0.1,0.1:0.2', '--end-time', '0.2', '--quiet', '--workers', '1',

@@ -3,10 +3,11 @@ import csv
 
 import numpy as np
 import pytest
+from scipy.fft import next_fast_len
 
 from exudyn_worm import ApplyOverrides, GetPreset, SimulateReelChanger
 from exudyn_worm.drive.config import ResolveParameters
-from exudyn_worm.items.results import SeriesUnit
+from exudyn_worm.items.results import SeriesUnit, SimulationResult, _FastFftLength
 from exudyn_worm.analysis.studies.studygrid import ParseVariation, Study
 from exudyn_worm.drive.wholedrive import ResolveDrive
 
@@ -55,3 +56,26 @@ def test_study_refuses_windows_beyond_its_end_time():
         Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.1')], endTime=3., windows=[(0., 2.), (2., 6.)])
     assert np.isclose(Study(ResolveParameters('reel-P1'), [ParseVariation('J1=0.1')], endTime=3.,
                             windows=[(0., 2.), (2., 3.)]).windows[1][1], 3.)
+
+
+def test_fft_length_is_scipys_fast_length():
+    """The padded length of DominantFrequency: SciPy's fast length of a real FFT (prime factors 2, 3, 5)."""
+    lengths = [*range(1, 2000), 4 * 1289, 4 * 2 * 1289, 4 * 3 * 1289, 2 ** 20 + 1, 3 ** 9 * 5 - 1]
+    assert [_FastFftLength(n) for n in lengths] == [next_fast_len(n, real=True) for n in lengths]
+
+
+@pytest.mark.physics
+@pytest.mark.parametrize('samples', [1289, 2 * 1289, 4001])
+def test_dominant_frequency_of_a_sine_within_its_resolution(samples):
+    """A window whose padded length 4 N had the prime factor 1289 (a slow FFT) is padded to a fast length: its
+    dominant frequency is still the sine's (closed form) and the unpadded FFT's, each within the frequency step
+    of the unpadded spectrum, 1 / (4 N dt)."""
+    dt, f = 1e-3, 43.7
+    t = np.arange(samples) * dt
+    x = 3. + np.sin(2 * np.pi * f * t) + 0.2 * np.sin(2 * np.pi * 3.1 * f * t)
+    result = SimulationResult(time=t, series={'alpha2': x}, J2=1., r2=1.)
+    found = result.DominantFrequency(0., t[-1])
+    step = 1. / (4 * samples * dt)
+    window = (x - x.mean()) * np.hanning(samples)
+    unpadded = np.fft.rfftfreq(4 * samples, dt)[1:][np.argmax(np.abs(np.fft.rfft(window, n=4 * samples))[1:])]
+    assert abs(found - f) <= step and abs(found - unpadded) <= step

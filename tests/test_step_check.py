@@ -17,7 +17,7 @@ from exudyn_worm.analysis.studies.studypoint import RunPoint
 from exudyn_worm.analysis.studies.studygrid import Variation
 from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
 from exudyn_worm.analysis.simulation.stepsize import VERDICT_FACTOR, CloseVerdicts
-from exudyn_worm.cli.sweep import FormatStudy
+from exudyn_worm.cli.formatsweep import FormatStudy
 from exudyn_worm.drive.wholedrive import ResolveDrive
 from paper_model import Eigenvalues
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Dict, List
 
-from .main import (AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceInfo, SourceText, Subcommand, UsageError, WholeDriveFromArgs)
+from .main import (_LazyHelp, AddOverwriteOption, BadInput, CheckFigurePath, ParametersFromArgs, PrintJson, SourceInfo, SourceText, Subcommand, UsageError, WholeDriveFromArgs)
 from .formatchart import FormatChartTable, FormatSpeedChart
 from .._files import WriteAtomically
 
@@ -25,18 +25,16 @@ PAPER_DTV = (1., 5., 25.)
 
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
-    # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.charts.stabilitychart import DEFAULT_RESOLUTION, DEFAULT_X_RANGE, DEFAULT_Y_RANGE
     parser.add_argument('--DV', type=float, default=None, metavar='D_V',
                         help="mesh damping measure D_V of eq. (23) (default: the parameter set's, from DV or dV)")
     parser.add_argument('--DTV', type=float, nargs='+', default=list(PAPER_DTV), metavar='D_TV',
                         help='one or more damping ratios D_TV = D_T/D_V, one chart each (default: 1 5 25)')
-    parser.add_argument('--x-range', type=float, nargs=2, default=list(DEFAULT_X_RANGE), metavar=('MIN', 'MAX'),
-                        help='stiffness-ratio range kT/(kV r1^2) (default: %(default)s)')
-    parser.add_argument('--y-range', type=float, nargs=2, default=list(DEFAULT_Y_RANGE), metavar=('MIN', 'MAX'),
-                        help='inertia-ratio range J1/J2 (default: %(default)s)')
-    parser.add_argument('--resolution', type=int, default=DEFAULT_RESOLUTION, metavar='N',
-                        help='grid points per axis (default: %(default)s)')
+    for k, (option, kwargs, text) in enumerate((
+            ('--x-range', dict(type=float, nargs=2, metavar=('MIN', 'MAX')), 'stiffness-ratio range kT/(kV r1^2)'),
+            ('--y-range', dict(type=float, nargs=2, metavar=('MIN', 'MAX')), 'inertia-ratio range J1/J2'),
+            ('--resolution', dict(type=int, metavar='N'), 'grid points per axis'))):
+        action = parser.add_argument(option, default=None, help=text + ' (default: %(text)s)', **kwargs)
+        action.text = _LazyHelp(lambda k=k: str(_Defaults()[k]))
     parser.add_argument('--S', type=int, choices=(-1, 1), default=-1, dest='S',
                         help='contact state: -1 (load lowering, the paper\'s charts; default) or +1')
     parser.add_argument('--points', nargs='+', default=[], metavar='NAME',
@@ -150,7 +148,17 @@ class _OwnVerdict:
                 f"({d['decidingText']})" + (f"; {d['cause']}" if d['cause'] else ''))
 
 
+def _Defaults():
+    """The defaults of --x-range, --y-range and --resolution (the charts' own)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.charts.stabilitychart import DEFAULT_RESOLUTION, DEFAULT_X_RANGE, DEFAULT_Y_RANGE
+    return list(DEFAULT_X_RANGE), list(DEFAULT_Y_RANGE), DEFAULT_RESOLUTION
+
+
 def _Run(args: argparse.Namespace) -> int:
+    for name, default in zip(('x_range', 'y_range', 'resolution'), _Defaults()):
+        if getattr(args, name) is None:
+            setattr(args, name, default)
     if args.speed is not None:
         return _RunSpeed(args)
     # lazy: start-up (exudyn-worm --help imports every command module)

@@ -5,7 +5,6 @@ import argparse
 import sys
 from typing import Tuple
 
-from .formatchatter import FormatBranch, FormatSteadyChatter
 from .main import (BadInput, CheckFigurePath, PositiveInt, PrintJson, SourceText, StdoutToStderr, Subcommand,
                    UsageError, WholeDriveFromArgs)
 
@@ -78,6 +77,7 @@ def _Run(args: argparse.Namespace) -> int:
     from ..analysis.orbits.chatterbranch import AnalyzeChatterBranch
     from ..analysis.orbits.smoothbranch import ChatterBranchError
     from ..analysis.orbits.lowering import LoweringPhaseParameters
+    from .formatchatter import FormatBranch
     name, low, high = ParseVary(args.vary) if args.vary is not None else (None, None, None)
     with BadInput():      # any drive: the periodic orbits of its lowering phase
         drive = WholeDriveFromArgs(args)
@@ -117,6 +117,7 @@ def _RunSteady(args: argparse.Namespace, drive, parameters) -> int:
     from ..analysis.orbits.chatter import SteadyChatterSummary
     from ..analysis.stability.drivestability import DIVERGENCE, AnalyzeDrive, GrowthText, StateInstability
     from ..analysis.orbits.periodic import NoSteadyChatter
+    from .formatchatter import FormatSteadyChatter
     if args.plot:
         raise UsageError("chatter: --plot draws the branch of --vary; without --vary there is one orbit to report")
     if args.max_points is not None:

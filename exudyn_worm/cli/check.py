@@ -6,20 +6,19 @@ from __future__ import annotations
 
 import argparse
 import sys
-from .main import (AddOverwriteOption, BadInput, CheckFigurePath, PositiveFloat, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WarnUnresolvedRotation, WholeDriveFromArgs)
-from .formatcheck import FormatDesignCheck
+from .main import (_LazyHelp, AddOverwriteOption, BadInput, CheckFigurePath, PositiveFloat, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WarnUnresolvedRotation, WholeDriveFromArgs)
 from .._files import WriteAtomically
 
 __all__ = ['COMMAND']
 
 def _AddArguments(parser: argparse.ArgumentParser) -> None:
-    # lazy: start-up (exudyn-worm --help imports every command module)
-    from ..analysis.design.designrules import DEFAULT_MARGIN, DEFAULT_SPAN
-    parser.add_argument('--margin', type=float, default=DEFAULT_MARGIN, metavar='DECADES',
-                        help=f'stability margin in decades of the changed parameter (default {DEFAULT_MARGIN:g}: '
-                             f'the drive stays stable if that parameter is off by a factor {10 ** DEFAULT_MARGIN:.2f})')
-    parser.add_argument('--span', type=float, default=DEFAULT_SPAN, metavar='FACTOR',
-                        help=f'search changes up to this factor in each direction (default {DEFAULT_SPAN:g})')
+    margin = parser.add_argument('--margin', type=float, default=None, metavar='DECADES',
+                                 help='stability margin in decades of the changed parameter (default %(text)s)')
+    margin.text = _LazyHelp(lambda: f'{_Defaults()[0]:g}: the drive stays stable if that parameter is off by a '
+                                    f'factor {10 ** _Defaults()[0]:.2f}')
+    span = parser.add_argument('--span', type=float, default=None, metavar='FACTOR',
+                               help='search changes up to this factor in each direction (default %(text)s)')
+    span.text = _LazyHelp(lambda: f'{_Defaults()[1]:g}')
     parser.add_argument('--plot', default=None, metavar='FILE.png',
                         help='draw the check into FILE: for the two-mass drive its point on the chart that decides (at the '
                              'deciding operating point), the boundary and the recommended moves; for a drive with '
@@ -43,11 +42,22 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument('--quiet', action='store_true', help='no progress bar on stderr')
 
 
+def _Defaults():
+    """The defaults of --margin and --span (the design rules' own)."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.design.designrules import DEFAULT_MARGIN, DEFAULT_SPAN
+    return DEFAULT_MARGIN, DEFAULT_SPAN
+
+
 def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.design import designcheck, designconfirm
     from ..analysis.design.designscan import DesignKeys
     from ..progress import ProgressBar
+    from .formatcheck import FormatDesignCheck
+    defaultMargin, defaultSpan = _Defaults()
+    args.margin = defaultMargin if args.margin is None else args.margin
+    args.span = defaultSpan if args.span is None else args.span
     plotPath = CheckFigurePath(args.plot, '--plot', args.overwrite) if args.plot is not None else None
     drive = WholeDriveFromArgs(args)              # resolved once: every analysis below takes this drive
     if not args.simulate:                         # a run checks the speed against its own step

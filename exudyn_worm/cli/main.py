@@ -48,24 +48,19 @@ import sys
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, Callable, Dict, Iterator, List, Optional, Sequence, Tuple, Union
 
 from .. import __version__
-from .._checks import WarningText
-from ..drive.config import DEFAULT_PRESET, LoadConfig, ResolveParameters, ResolveParametersWithSources
-from ..drive.wholedrive import Drive
-from ..params.plausibility import CheckWormRotation, ImplausibleValueWarning
-from ..analysis.simulation.stepsize import RecommendedStepSize
-from ..model.drive import ElasticDrive
-from ..drive.presets import PRESETS
-from ..params.parameters import MissingParameterError
 from .. import _files
 from .._files import WriteAtomically
 from .._workers import (INTERRUPTED_STATUS, TERMINATED_STATUS, ForgetSignals, InterruptStatus, ReceivedSignalStatus,
                         SigtermAsInterrupt)
 from ..items.solve import IsInterrupt
-from ..params.drivefile import FileKeyOf
 from ..params.drives import ConfigArgument, DocPath, ShippedDrives
+
+if TYPE_CHECKING:
+    from ..model.drive import ElasticDrive
+    from ..drive.wholedrive import Drive
 
 __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'SUBCOMMANDS', 'Subcommands',
            'AddParameterOptions', 'ParametersFromArgs', 'WholeDriveFromArgs', 'WarnUnresolvedRotation', 'DriveFromArgs',
@@ -264,6 +259,32 @@ class Subcommand:
     parameterOptions: bool = True
 
 
+class _LazyHelp:
+    """A part of a help text (``%(name)s`` of an option, set as an attribute of its action) computed when the help
+    is printed, not when the parser is built: the defaults of the analyses load numpy, which ``exudyn-worm --help``
+    and an argument error do without. The option's default is then None, and its run function puts the real one in."""
+
+    def __init__(self, text: Callable[[], str]):
+        self.text = text
+
+    def __str__(self) -> str:
+        return self.text()
+
+
+class _PresetNames:
+    """The preset names (or the default preset) for a help text, looked up only when the help is printed: the
+    presets load numpy, which ``exudyn-worm --help`` and an argument error do without."""
+
+    def __init__(self, default: bool = False):
+        self.default = default
+
+    def __str__(self) -> str:
+        # lazy: start-up (numpy: the presets are read only when a help text is printed)
+        from ..drive.config import DEFAULT_PRESET
+        from ..drive.presets import PRESETS
+        return DEFAULT_PRESET if self.default else ', '.join(PRESETS)
+
+
 def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
     """Add the options shared by every subcommand that works on a parameter set.
 
@@ -275,9 +296,10 @@ def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
         :func:`ParametersFromArgs` / :func:`DriveFromArgs`.
     """
     group = parser.add_argument_group('parameter set (preset, then config file, then --set)')
-    group.add_argument('--preset', metavar='NAME', default=None,
-                       help=f"parameter preset, one of: {', '.join(PRESETS)} "
-                            f"(default: the config file's preset, else {DEFAULT_PRESET})")
+    preset = group.add_argument('--preset', metavar='NAME', default=None,
+                                help="parameter preset, one of: %(presets)s "
+                                     "(default: the config file's preset, else %(defaultPreset)s)")
+    preset.presets, preset.defaultPreset = _PresetNames(), _PresetNames(default=True)   # read when help is printed
     group.add_argument('--config', metavar='FILE.toml', default=None, type=ConfigArgument,
                        help=f"whole-drive TOML file or one with a [parameters] table (format: "
                             f"{DocPath('drive-files.md')}), or the name of a shipped drive: "
@@ -308,6 +330,8 @@ def ParametersFromArgs(args: argparse.Namespace) -> Dict[str, float]:
     UsageError
         For any bad input (unknown preset or key, malformed value, wrong unit, bad config file).
     """
+    # lazy: start-up (numpy: exudyn-worm --help and argument errors)
+    from ..drive.config import ResolveParametersWithSources
     resolved = getattr(args, '_resolved', None)
     if resolved is None:                   # resolved once per command: the file is read once
         with BadInput():
@@ -322,6 +346,8 @@ def _DriveFile(args: argparse.Namespace):
     if not args.config:
         return None
     if getattr(args, '_driveFile', None) is None:
+        # lazy: start-up (numpy: exudyn-worm --help and argument errors)
+        from ..drive.config import LoadConfig
         with BadInput():
             args._driveFile = LoadConfig(args.config)
     return args._driveFile
@@ -345,6 +371,8 @@ def WholeDriveFromArgs(args: argparse.Namespace) -> Drive:
     UsageError
         For any bad input (also a drive the model rejects).
     """
+    # lazy: start-up (numpy: exudyn-worm --help and argument errors)
+    from ..drive.wholedrive import Drive
     drive = getattr(args, '_drive', None)
     if drive is None:
         ParametersFromArgs(args)
@@ -368,6 +396,9 @@ def WarnUnresolvedRotation(drive: Drive, where: str) -> None:
     where : str
         The command, the prefix of the warning.
     """
+    # lazy: start-up (numpy: exudyn-worm --help and argument errors)
+    from ..analysis.simulation.stepsize import RecommendedStepSize
+    from ..params.plausibility import CheckWormRotation
     with BadInput():       # the drive itself: its linear analysis is the command's own, not computed again
         CheckWormRotation(dict(drive.parameters), RecommendedStepSize(drive),
                           f"{where} (at the drive's recommended step)")
@@ -450,6 +481,8 @@ def SourceInfo(args: argparse.Namespace) -> Dict:
         (``'--preset'``, ``'config'``, ``'default'`` or None), ``config`` (path or None) and ``overrides``
         (the ``--set`` texts, in order).
     """
+    # lazy: start-up (numpy: exudyn-worm --help and argument errors)
+    from ..drive.config import DEFAULT_PRESET
     known = getattr(args, '_sourceInfo', None)
     if known is not None:
         return dict(known)
@@ -536,6 +569,8 @@ _SHOWN: set = set()
 
 def _ShowWarning(message, category, filename, lineno, file=None, line=None) -> None:
     """Print a Python warning as one line ``exudyn-worm: warning: ...`` on stderr (no source path), once per run."""
+    # lazy: start-up (numpy: a warning comes from a command that has loaded it)
+    from .._checks import WarningText
     text = f"{PROG}: warning: {WarningText(message)}"
     if text not in _SHOWN:
         _SHOWN.add(text)
@@ -544,11 +579,16 @@ def _ShowWarning(message, category, filename, lineno, file=None, line=None) -> N
 
 def _WhereToAdd(err: BaseException, args: Optional[argparse.Namespace]) -> str:
     """For parameters missing from a run with a drive file: the file and the tables to add them to."""
+    config = getattr(args, 'config', None)
+    if not config:                     # also an argument error: no args
+        return ''
+    # lazy: start-up (numpy: exudyn-worm --help and argument errors)
+    from ..params.drivefile import FileKeyOf
+    from ..params.parameters import MissingParameterError
     cause = err.__cause__
     while cause is not None and not isinstance(cause, MissingParameterError):
         cause = cause.__cause__
-    config = getattr(args, 'config', None)
-    if cause is None or not config:
+    if cause is None:
         return ''
     return (f"; to describe the drive in '{config}', add " + ', '.join(f"{FileKeyOf(k)} ({k})" for k in cause.keys)
             + (' (a file with component tables inherits no preset unless it names one)'
@@ -641,6 +681,8 @@ def Main(argv: Optional[Sequence[str]] = None) -> int:
     try:
         with SigtermAsInterrupt(), contextlib.redirect_stdout(stdout):  # SIGTERM: as Ctrl-C, with status 143
             args = BuildParser().parse_args(argv)
+            # lazy: start-up (numpy: exudyn-worm --help and argument errors end above)
+            from ..params.plausibility import ImplausibleValueWarning
             with warnings.catch_warnings():
                 warnings.showwarning = _ShowWarning      # a warning of any subcommand reads like our errors
                 warnings.simplefilter('always', ImplausibleValueWarning)  # shown once per run by _ShowWarning

@@ -2,15 +2,14 @@
 from __future__ import annotations
 
 import argparse
-from typing import Dict
+from typing import TYPE_CHECKING, Dict, Union
 
 from .main import (BadInput, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError, WarnUnresolvedRotation,
                    WholeDriveFromArgs)
-from .formatstability import DangerLines, FormatStability, OperatingPointLines, StateLine, VerdictLine, _G, _Lehr
-from ..analysis.design.stabilityhint import StabilizingChanges
-from ..analysis.stability.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive, DriveAnalysis
-from ..model.geometry import DescribeGeometry, GeometryForm
-from ..drive.wholedrive import Drive
+
+if TYPE_CHECKING:
+    from ..analysis.stability.drivestability import DriveAnalysis
+    from ..drive.wholedrive import Drive
 
 __all__ = ['COMMAND', 'StabilityHintData']
 
@@ -25,6 +24,8 @@ def _AddArguments(parser: argparse.ArgumentParser) -> None:
 
 def _RunWholeDrive(args: argparse.Namespace, analysis: DriveAnalysis) -> int:
     """A drive beyond two masses (or --method exudyn): the linearized Exudyn model at each operating point."""
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from .formatstability import DangerLines, OperatingPointLines, StateLine, VerdictLine, _G, _Lehr
     drive = analysis.drive
     loadSide = None
     if drive.loadSideChain:          # may the driven machine be lumped into J2? which stage is not?
@@ -60,6 +61,10 @@ def _RunWholeDrive(args: argparse.Namespace, analysis: DriveAnalysis) -> int:
 
 
 def _Run(args: argparse.Namespace) -> int:
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from .formatstability import DangerLines, FormatStability, OperatingPointLines, VerdictLine
+    from ..analysis.stability.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive
+    from ..model.geometry import DescribeGeometry, GeometryForm
     drive = WholeDriveFromArgs(args)
     if drive.components and args.method == 'analytical':
         raise UsageError(f"--method analytical: eqs. (15)-(19) describe the two-mass drive of Figure 2; this "
@@ -112,6 +117,8 @@ def StabilityHintData(drive: Drive, span: float = 100.) -> Dict:
         ``given``, ``below``, ``above`` (None where there is none within the span), ``unit``, ``ratioName``,
         ``ratioBelow``, ``ratioAbove``.
     """
+    # lazy: start-up (exudyn-worm --help imports every command module)
+    from ..analysis.design.stabilityhint import StabilizingChanges
     ranges = StabilizingChanges(drive, span)
     parts = []
     for r in ranges:

@@ -6,7 +6,6 @@ import sys
 from pathlib import Path
 
 from .main import (BadInput, InterruptedLine, CheckFigurePath, CheckOutputPath, ParametersFromArgs, PositiveInt, PrintJson, SourceText, StdoutToStderr, Subcommand, UsageError)
-from .formatsweep import FormatStudy
 from .._files import WriteAtomically
 
 __all__ = ['COMMAND']
@@ -122,6 +121,7 @@ def _Run(args: argparse.Namespace) -> int:
     from ..analysis.studies.studygrid import CheckStudySize, ParseShard
     from ..analysis.studies.studyfiles import StudySidecarPath
     from ..analysis.simulation.reelchanger import RunSizeError
+    from .formatsweep import FormatStudy
     study = _Study(args)
     with BadInput():              # a grid too large for one call is refused before anything is built or written
         CheckStudySize(study, ParseShard(args.shard), args.max_runs, 'sweep', ('--max-runs', '--shard'))
