@@ -266,6 +266,8 @@ def SingleThreadedBlas(loaded: bool = True) -> str:
     else:
         threadpool_limits(limits=1)
         return 'threadpoolctl'
+    # lazy: only a worker needs it, and the command line's entry point loads this module before all others
+    import ctypes
     limited = False
     for path in _LoadedLibraries('openblas'):
         try:
