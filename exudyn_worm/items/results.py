@@ -33,7 +33,7 @@ CHATTER_AMPLITUDE = 0.25
 CHATTER_STEADY_EXPONENT = 0.2
 #: growing: sigma L is at least this (it gains more than a factor exp(0.2) over the window)
 CHATTER_GROWTH_EXPONENT = 0.2
-#: decided decaying: sigma L <= -this, the decay time 1/|sigma| is at most the window; between this and
+#: decided decaying: sigma L <= -this, the decay time 1/abs(sigma) is at most the window; between this and
 #: -:data:`CHATTER_STEADY_EXPONENT` the decay time is longer than the window and the window is undecided
 CHATTER_DECAY_EXPONENT = 1.
 #: a steady (neither growing nor decaying) vibration is chatter only where it saturates: its relative amplitude is
