@@ -30,7 +30,8 @@ coordinates: the normal and friction forces at the pitch point on both bodies, t
 Angles. A body's rotation about its axis is measured from its reference orientation by an ``atan`` relative to a
 reference angle that the system's post-Newton function moves along with the body between time steps (a fifth
 of a radian ahead at most), so no rotation parameter wraps and the angle grows over any number of turns. It starts
-within +-pi from the bodies' initial rotations (``referenceAngles`` shift the tooth position).
+within +-pi from the bodies' initial rotations. ``referenceAngles`` shift the tooth position: they are added to the
+law's worm and wheel angles (not to the measured rotations), as the one-angle connector adds its nodes' references.
 """
 from __future__ import annotations
 
@@ -377,7 +378,7 @@ class RigidBodyWormGearConnector:
     name : str
         Name of the Exudyn object.
     referenceAngles : list of float
-        Angles in rad added to the bodies' measured rotations (the tooth position at the reference configuration).
+        Angles in rad added to the law's worm and wheel angles (the tooth position at the reference configuration).
     sensors : dict
         Sensors added by :meth:`AddSensors`, by name.
     stickSlip : object or None
@@ -414,7 +415,13 @@ class RigidBodyWormGearConnector:
         state, or coordinates x samples)."""
         terms, frames = self._kinematics.Evaluate(q, self._spin.LawSpins() if spins is None else spins)
         rows = self._kinematics.Rows(terms, frames)
-        return [tm.value for tm in terms], np.einsum('yj...,j...->y...', rows, np.asarray(v, dtype=float)), rows
+        x = [tm.value for tm in terms]
+        # referenceAngles shift the law's worm and wheel angles (the tooth position), as the one-angle connector's
+        # node references do; the spin references follow the bodies' measured rotations only
+        for k, offset in enumerate(self.referenceAngles):
+            if offset != 0.:
+                x[k] = x[k] + offset
+        return x, np.einsum('yj...,j...->y...', rows, np.asarray(v, dtype=float)), rows
 
     def _ForceLaw(self, options: ContactOptions):
         """The generalized forces on both nodes as ``law(t, q, q_t, ops)`` (plain Python)."""
@@ -809,8 +816,9 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Optional[Sequence[Any]] = None, ge
     contactOptions : ContactOptions
         Friction model (default: sticking, with a stick/slip state), tension-free or linear law, fixed S.
     referenceAngles : (float, float)
-        Angles in rad added to the worm's and the wheel's measured rotations (default 0: no deflection of the
-        mesh in the reference configuration).
+        Angles in rad added to the law's worm and wheel angles, as :func:`~exudyn_worm.items.connector.CreateWormGear`
+        adds its nodes' reference angles (default 0: no deflection of the mesh in the reference configuration;
+        ``[0.01, 0]`` deflects the flank there by ``gear.normalLever * 0.01``).
     markerNumbers : [worm, wheel], optional
         Instead of ``bodyNumbers``: a ``MarkerBodyRigid`` or ``MarkerBodyPosition`` on each body, at a point of its
         rotation axis.
@@ -902,7 +910,6 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Optional[Sequence[Any]] = None, ge
     for b, q in zip(bodies, initial):
         R = _Rotation(b, q[3:])
         angles.append(math.atan2(float(b.spinTangent @ R @ b.radial), float(ec @ R @ b.radial)))
-    angles = [x + o for x, o in zip(angles, offsets)]
 
     from exudyn.itemInterface import ObjectGenericODE2
     nodes = [f[2] for f in found]
