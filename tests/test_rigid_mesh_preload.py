@@ -152,3 +152,37 @@ def test_preload_angle_drives_the_one_angle_connectors_oscillation(useSymbolic):
     assert rigid[0] == pytest.approx(start, rel=1e-12)
     assert np.ptp(rigid) > 0.5 * start        # it oscillates: the preload is released
     assert np.max(np.abs(rigid - oneAngle)) < 1e-6 * np.max(np.abs(oneAngle))
+
+
+@pytest.mark.physics
+@pytest.mark.parametrize('useSymbolic', [False, True])
+@pytest.mark.parametrize('angles', [(PRELOAD, 0.), (0., -PRELOAD / GEAR.ratio), (-PRELOAD, 0.5 * PRELOAD / GEAR.ratio),
+                                    (PRELOAD, PRELOAD / GEAR.ratio)])
+def test_worm_and_wheel_preload_angles_enter_as_the_one_angle_connectors(useSymbolic, angles):
+    """Worm and wheel preload angles (a1, a2) at the start: the signed normal force is
+    sign(d) kV (LEVER |d| - delta/2) with d = a1 - u a2 (0 for a turn of both, a1 = u a2), as MeshContact's at (a1, a2)
+    and the one-angle connector's with (a1, a2) as its nodes' reference angles."""
+    a1, a2 = angles
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    wormInertia, wheelInertia = _Inertias()
+    worm = mbs.CreateRigidBody(inertia=wormInertia, nodeType=exu.NodeType.RotationRxyz,
+                               referenceRotationMatrix=RotationMatrixX(math.pi / 2), returnDict=True)
+    wheel = mbs.CreateRigidBody(inertia=wheelInertia, nodeType=exu.NodeType.RotationRxyz,
+                                referencePosition=[GEAR.r1 + GEAR.r2, 0., 0.], returnDict=True)
+    mesh = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=GEAR, wormAxis=[0., 0., 1.], wheelAxis=[0., 0., 1.],
+                                   contactOptions=OPTIONS, referenceAngles=[a1, a2], useSymbolic=useSymbolic)
+    d = a1 - GEAR.ratio * a2
+    expected = math.copysign(max(GEAR.kV * (LEVER * abs(d) - 0.5 * GEAR.backlash), 0.), d)
+    Fn = float(mesh.InitialMeshState(mbs).normalForce)
+    assert Fn == pytest.approx(expected, rel=1e-9, abs=1e-9 * GEAR.kV * LEVER * PRELOAD)
+    law = MeshContact(GEAR, np.array([a1]), np.array([a2]), np.zeros(1), np.zeros(1), OPTIONS, NUMPY_OPS)
+    assert Fn == pytest.approx(float(law.normalForce[0]), rel=1e-12, abs=1e-9 * GEAR.kV * LEVER * PRELOAD)
+    mbs1 = exu.SystemContainer().AddSystem()
+    nodes = []
+    for inertia, reference in zip(_Inertias(), angles):
+        nodes.append(mbs1.AddNode(Node1D(referenceCoordinates=[reference])))
+        mbs1.AddObject(ObjectRotationalMass1D(nodeNumber=nodes[-1], inertia=float(inertia.Inertia()[2, 2])))
+    oneAngle = CreateWormGear(mbs1, nodes, gear=GEAR, contactOptions=OPTIONS)
+    assert Fn == pytest.approx(float(oneAngle.InitialMeshState(mbs1).normalForce), rel=1e-12,
+                               abs=1e-9 * GEAR.kV * LEVER * PRELOAD)
