@@ -89,6 +89,23 @@ def test_stability_reports_a_divergence_with_its_rate_and_no_infinite_damping(ca
     assert any(line.split()[:2] == ['0.00', 'real'] for line in out.splitlines())
     assert 'lumping is not safe (the verdicts differ)' not in out               # both verdicts are unstable
     assert 'a real mode grows (divergence' in out
+    load = next(line for line in out.splitlines() if line.startswith('Load side:'))
+    assert 'lumped into J2 the drive is DIVERGENT, the whole drive is DIVERGENT' in load and 'UNSTABLE' not in load
+
+
+@pytest.mark.messages
+def test_the_load_side_verdicts_name_a_divergence_and_a_growing_vibration_apart():
+    """The lumped and the whole drive's words are the drive verdict's: DIVERGENT for a real eigenvalue, UNSTABLE for
+    a growing vibration, stable."""
+    from exudyn_worm.analysis.stability.loadside import LoadSideDiagnosis, LoadSideStage
+    stages = [LoadSideStage(1, 6.2, 6.2, 8e4)]
+    words = {(True, None): 'stable', (False, DIVERGENCE): 'DIVERGENT', (False, CHATTER): 'UNSTABLE'}
+    for (lumped, kind), word in words.items():
+        for whole, other in words.items():
+            d = LoadSideDiagnosis(stages, 0.1, (8.9,), lumped, whole[0], lumpedInstability=kind,
+                                  wholeInstability=whole[1])
+            assert f"lumped into J2 the drive is {word}, the whole drive is {other}" in d.Text()
+            assert (d.ToDict()['lumpedInstability'], d.ToDict()['wholeInstability']) == (kind, whole[1])
 
 
 @pytest.mark.messages

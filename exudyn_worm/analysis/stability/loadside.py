@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from typing import Dict, List, Optional, Tuple
 from ..._checks import CheckRange
 from .linearization import LinearStabilityOfDrive
-from .drivestability import AnalyzeDrive
+from .drivestability import AnalyzeDrive, VerdictWord
 from ...drive.wholedrive import CheckDrive, Drive
 from ...drive.presets import LumpedLoadSide
 
@@ -97,6 +97,9 @@ class LoadSideDiagnosis:
         Number of the stage named as the cause (None: lumping is safe, or no stage is below the limit).
     notes : list of str
         Remarks for the design check's table (e.g. that the lumped drive was checked).
+    lumpedInstability, wholeInstability : str or None
+        How the lumped and the whole drive are unstable (``DriveAnalysis.instability``): None (stable or not given),
+        ``'divergence'`` (a real eigenvalue grows: the verdict reads DIVERGENT) or ``'chatter'`` (UNSTABLE).
     """
     stages: List[LoadSideStage]
     margin: float
@@ -106,6 +109,8 @@ class LoadSideDiagnosis:
     growingMode: Optional[Dict] = None
     cause: Optional[int] = None
     notes: List[str] = field(default_factory=list)
+    lumpedInstability: Optional[str] = None
+    wholeInstability: Optional[str] = None
 
     @property
     def limitFactor(self) -> float:
@@ -136,9 +141,9 @@ class LoadSideDiagnosis:
         """
         stages = '; '.join(f"stage {s.number}: JL{s.number} = {s.inertia:.4g} kg*m^2 behind kL{s.number} = "
                            f"{s.stiffness:.4g} N*m/rad, {s.frequencyHz:.4g} Hz" for s in self.stages)
-        verdict = lambda stable: 'stable' if stable else 'UNSTABLE'
-        text = (f"load-side chain ({stages}); lumped into J2 the drive is {verdict(self.lumpedStable)}, the whole "
-                f"drive is {verdict(self.wholeStable)}")
+        text = (f"load-side chain ({stages}); lumped into J2 the drive is "
+                f"{VerdictWord(self.lumpedStable, self.lumpedInstability)}, the whole drive is "
+                f"{VerdictWord(self.wholeStable, self.wholeInstability)}")
         if self.growingMode is not None:
             g = self.growingMode
             shares = ', '.join(f"{k} {v:.0%}" for k, v in sorted(g['energyShare'].items(), key=lambda kv: -kv[1])
@@ -176,7 +181,9 @@ class LoadSideDiagnosis:
         return {'stages': [{'number': s.number, 'inertia': s.inertia, 'inertiaBeyond': s.inertiaBeyond,
                             'stiffness': s.stiffness, 'frequencyHz': s.frequencyHz} for s in self.stages],
                 'margin': self.margin, 'limitFactor': self.limitFactor, 'wheelModesHz': list(self.wheelModesHz),
-                'lumpedStable': self.lumpedStable, 'wholeStable': self.wholeStable, 'growingMode': self.growingMode,
+                'lumpedStable': self.lumpedStable, 'wholeStable': self.wholeStable,
+                'lumpedInstability': self.lumpedInstability, 'wholeInstability': self.wholeInstability,
+                'growingMode': self.growingMode,
                 'lumpingSafe': self.lumpingSafe, 'cause': self.cause, 'text': self.Text()}
 
 
@@ -225,7 +232,8 @@ def DiagnoseLoadSide(drive: Drive, margin: float = 0.1) -> LoadSideDiagnosis:
     stages = [LoadSideStage(i, J, sum(j for j, _, _ in chain[i - 1:]), k) for i, (J, k, _) in enumerate(chain, 1)]
     lumpedDrive = Drive.FromParameters(LumpedLoadSide(drive.parameters), drive.sources, drive.name)
     lumped = LinearStabilityOfDrive(lumpedDrive)          # its modes: which ones move the wheel
-    lumpedStable = AnalyzeDrive(lumpedDrive).stable           # its verdict: at the duty's operating points
+    lumpedAnalysis = AnalyzeDrive(lumpedDrive)                # its verdict: at the duty's operating points
+    lumpedStable = lumpedAnalysis.stable
     wheelModes = tuple(sorted({m.frequencyHz for s in lumped.states.values() for m in s.modes
                                if m.energyShare.get('wheel', 0.) >= WHEEL_SHARE and m.eigenvalue.imag != 0}))
     whole = AnalyzeDrive(drive)
@@ -235,9 +243,10 @@ def DiagnoseLoadSide(drive: Drive, margin: float = 0.1) -> LoadSideDiagnosis:
         S, mode = max(((s.S, m) for s in states for m in s.modes), key=lambda sm: sm[1].eigenvalue.real)
         growing = {'S': int(S[0]), 'frequencyHz': mode.frequencyHz, 'realPart': float(mode.eigenvalue.real),
                    'energyShare': dict(mode.energyShare)}
-    diagnosis = LoadSideDiagnosis(stages, margin, wheelModes, lumpedStable, whole.stable, growing)
+    kinds = {'lumpedInstability': lumpedAnalysis.instability, 'wholeInstability': whole.instability}
+    diagnosis = LoadSideDiagnosis(stages, margin, wheelModes, lumpedStable, whole.stable, growing, **kinds)
     if not diagnosis.lumpingSafe:
         limit = diagnosis.limitFactor * diagnosis.frequencyHz
         cause = next((s.number for s in stages if s.frequencyHz < limit), None)
-        diagnosis = LoadSideDiagnosis(stages, margin, wheelModes, lumpedStable, whole.stable, growing, cause)
+        diagnosis = LoadSideDiagnosis(stages, margin, wheelModes, lumpedStable, whole.stable, growing, cause, **kinds)
     return diagnosis
