@@ -66,6 +66,7 @@ def SolveOnce(model: str, preset: str) -> None:
     sys.path.insert(0, str(HERE))
     import exudyn as exu                                         # lazy: a benchmark script's own process
     from exudyn_worm.drive.presets import GetPreset
+    from exudyn_worm.drive.wholedrive import ResolveDrive
     import exudyn_worm.analysis.simulation.reelchanger as reelchanger
     import scipy_reference
     from bench_speed import SCIPY_SETTINGS
@@ -73,7 +74,7 @@ def SolveOnce(model: str, preset: str) -> None:
     p = GetPreset(preset)
     if model == 'ours':
         reelchanger.SolveDynamicInChunks = Trampoline(reelchanger.SolveDynamicInChunks)
-        reelchanger.SimulateReelChanger(p, progress=False)
+        reelchanger.SimulateReelChanger(ResolveDrive(preset), progress=False)
     elif model == 'lsoda':
         scipy_reference.solve_ivp = Trampoline(scipy_reference.solve_ivp)
         scipy_reference.SolveReelChangerScipy(p, **SCIPY_SETTINGS)
