@@ -105,6 +105,7 @@ UNHINTED = {
         'exudyn_worm.plotting.plot_charts.PlotStabilityCharts': ['ax', '->'],
         'exudyn_worm.plotting.plot_charts.PlotSpeedChart': ['ax', '->'],
         'exudyn_worm.plotting.plot_orbits.PlotChatterBranch': ['ax', '->'],
+        'exudyn_worm.plotting.plot_stability.PlotEigenvalues': ['ax', '->'],
         'exudyn_worm.plotting.plot_design.PlotDesignCheck': ['result', 'ax', '->'],
         'exudyn_worm.plotting.plot_study.PlotChatterMap': ['result', 'ax', '->'],
         'exudyn_worm.plotting.plot_study.PlotMetric': ['result', 'ax', '->'],

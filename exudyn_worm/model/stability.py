@@ -514,6 +514,23 @@ class StabilityAnalysis:
         operating point's sliding speed."""
         return SelfLocking(self.drive.gear, None if self.operatingPoint is None else self.operatingPoint.slidingSpeed)
 
+    def plot(self, title: Optional[str] = None, ax=None):
+        """Draw the eigenvalues of both contact states as growth rate against frequency
+        (:func:`exudyn_worm.plotting.plot_stability.PlotEigenvalues`); returns the axes.
+
+        Parameters
+        ----------
+        title : str, optional
+            Title of the axes.
+        ax : matplotlib.axes.Axes, optional
+            Draw into this axes.
+        """
+        from ..plotting.plot_stability import PlotEigenvalues
+        groups = {f'S = {S:+d}': self.contact[S].eigenvalues for S in CONTACT_STATES}
+        S = max(CONTACT_STATES, key=lambda s: self.contact[s].maxRealPart)
+        lam = np.asarray(self.contact[S].eigenvalues)
+        return PlotEigenvalues(groups, (f'S = {S:+d}', complex(lam[int(np.argmax(lam.real))])), title, ax)
+
     def ToDict(self) -> Dict:
         """JSON-ready dictionary in the schema of ``exudyn-worm stability --json``."""
         g = self.drive.gear

@@ -349,6 +349,25 @@ class DriveAnalysis:
         holds, but runs away once it moves)."""
         return any(v.dangerous for v in self.selfLockingVerdicts.values())
 
+    def plot(self, title: Optional[str] = None, ax=None):
+        """Draw the eigenvalues at each operating point (in its own contact state; without one, of both contact
+        states at rest) as growth rate against frequency, the deciding one circled
+        (:func:`exudyn_worm.plotting.plot_stability.PlotEigenvalues`); returns the axes.
+
+        Parameters
+        ----------
+        title : str, optional
+            Title of the axes (default: the verdict and what decides it).
+        ax : matplotlib.axes.Axes, optional
+            Draw into this axes.
+        """
+        from ...plotting.plot_stability import PlotEigenvalues
+        if not self.operatingPoints:
+            return self.atRest.plot(title=title or self.decidingText, ax=ax)
+        groups = {p.point.Label(): p.eigenvalues for p in self.operatingPoints}
+        p = self.deciding
+        return PlotEigenvalues(groups, (p.point.Label(), _Deciding(p.state)), title or self.decidingText, ax)
+
     def ToDict(self) -> Dict:
         """JSON-ready: ``stable``, ``instability``, ``model``, ``components``, ``maxRealPart``, ``frequencyHz``,
         ``operatingPoints``,

@@ -226,6 +226,26 @@ class LinearStability:
             raise ValueError(f"LinearStability.State: expected one of {sorted(self.states)}, got {key}")
         return self.states[key]
 
+    def plot(self, title: Optional[str] = None, ax=None):
+        """Draw the eigenvalues of every combination of contact states as growth rate against frequency
+        (:func:`exudyn_worm.plotting.plot_stability.PlotEigenvalues`); returns the axes.
+
+        Parameters
+        ----------
+        title : str, optional
+            Title of the axes.
+        ax : matplotlib.axes.Axes, optional
+            Draw into this axes.
+        """
+        from ...plotting.plot_stability import PlotEigenvalues
+        label = {key: 'S = ' + ', '.join(f'{s:+d}' for s in key) for key in self.states}
+        groups = {label[key]: state.eigenvalues for key, state in self.states.items()}
+        key = max(self.states, key=lambda k: self.states[k].maxRealPart)
+        state = self.states[key]
+        lam = np.asarray(state.eigenvalues)
+        deciding = complex(lam[int(np.argmin(np.abs(lam.real - state.maxRealPart)))])
+        return PlotEigenvalues(groups, (label[key], deciding), title, ax)
+
     def ToDict(self) -> Dict:
         """JSON-ready dictionary: ``{"meshes", "coordinates", "stable", "states": [...]}``."""
         return {'meshes': list(self.meshes), 'coordinates': list(self.coordinates), 'stable': self.stable,
