@@ -14,6 +14,7 @@ import exudyn_worm as ew
 import paper_model
 from exudyn_worm.analysis.stability.drivestability import (CHATTER, DIVERGENCE, GrowthText, StateInstability, VerdictWord)
 from exudyn_worm.analysis.orbits.periodic import TRIVIAL_MULTIPLIER_TOLERANCE
+from exudyn_worm.analysis.stability.loadside import LoadSideDiagnosis, LoadSideStage
 from exudyn_worm.analysis.simulation import reelchanger
 from exudyn_worm.analysis.design.designconfirm import ChatterWhileLowering
 from exudyn_worm.analysis.simulation.reelchanger import PhaseLabel, WindowPhases
@@ -97,7 +98,6 @@ def test_stability_reports_a_divergence_with_its_rate_and_no_infinite_damping(ca
 def test_the_load_side_verdicts_name_a_divergence_and_a_growing_vibration_apart():
     """The lumped and the whole drive's words are the drive verdict's: DIVERGENT for a real eigenvalue, UNSTABLE for
     a growing vibration, stable."""
-    from exudyn_worm.analysis.stability.loadside import LoadSideDiagnosis, LoadSideStage
     stages = [LoadSideStage(1, 6.2, 6.2, 8e4)]
     words = {(True, None): 'stable', (False, DIVERGENCE): 'DIVERGENT', (False, CHATTER): 'UNSTABLE'}
     for (lumped, kind), word in words.items():
