@@ -23,7 +23,7 @@ import numpy as np
 
 from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
 from exudyn_worm.builders.oneangle import BuildReelChanger
-from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
 from exudyn_worm.drive.presets import GetPreset
 from exudyn_worm.drive.wholedrive import ResolveDrive

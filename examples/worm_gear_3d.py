@@ -1,6 +1,6 @@
 """The reel changer with worm and wheel as 3D rigid bodies in elastic bearings: bearing loads and stability.
 
-Model: :func:`~exudyn_worm.analysis.simulation.reelchanger3d.BuildRigidBodyReelChanger`, worm and wheel from
+Model: :func:`~exudyn_worm.builders.rigidbody.BuildRigidBodyReelChanger`, worm and wheel from
 ``mbs.CreateRigidBody`` coupled by :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`, each shaft on two
 radial bearings and an axial bearing (:func:`~exudyn_worm.items.bearings.CreateShaftBearings`) or on ideal revolute
 joints. Bearing values: the worm's radial bearings 5e8 N/m each, 0.12 m apart, the wheel's 1e9 N/m, 0.05 m apart
@@ -28,7 +28,7 @@ import numpy as np
 from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
 from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
 from exudyn_worm.builders.oneangle import BuildReelChanger
-from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
 from exudyn_worm.items.bearings import ShaftBearings, StoredBearingLoads
 from exudyn_worm.drive.presets import GetPreset

@@ -9,7 +9,8 @@ import pytest
 
 from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
 from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
-from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger, StoredShaftLoads
+from exudyn_worm.analysis.simulation.reelchanger3d import StoredShaftLoads
+from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
 from exudyn_worm.cli.main import Main
 from exudyn_worm.items.bearings import ShaftBearings

@@ -12,7 +12,7 @@ from exudyn.rigidBodyUtilities import (InertiaCylinder, RigidBodyInertia, Rotati
 
 from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
 from exudyn_worm.builders.oneangle import BuildReelChanger
-from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
 from exudyn_worm.items.bearings import CreateShaftBearings, ShaftBearings, StoredBearingLoads
 from exudyn_worm.items.rigidmesh import CreateRigidBodyWormGear, MeshForceComponents

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
-from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
 from exudyn_worm.items.meshgraphics import AddRigidMeshGraphics
 from exudyn_worm.drive.presets import GetPreset
 

@@ -6,7 +6,7 @@ import pytest
 
 from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
 from exudyn_worm.builders.oneangle import BuildReelChanger
-from exudyn_worm.analysis.simulation.reelchanger3d import BuildRigidBodyReelChanger
+from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
 from exudyn_worm.items.bearings import ShaftBearings
 from exudyn_worm.drive.presets import GetPreset
 from exudyn_worm.drive.wholedrive import ResolveDrive

@@ -81,7 +81,7 @@ def test_the_phrase_rule_catches_what_it_should():
 
 # --- no flat mapping below the boundary ---------------------------------------------------------------------------
 #: the modules below the drive boundary (they receive the resolved drive)
-BELOW = ('analysis', 'builders/oneangle.py', 'drive/operatingpoints.py')
+BELOW = ('analysis', 'builders', 'drive/operatingpoints.py')
 _FLAT_NAMES = ('parameters', 'base', 'params')
 _MAPPING = re.compile(r'\b(Mapping|Dict|dict|MutableMapping)\b')
 
@@ -106,7 +106,7 @@ FLAT_ALLOWED: Dict[Tuple[str, str], str] = {
     **{('analysis/orbits/lowering.py', f): _ORBITS for f in ('LoweringPhaseParameters', 'BuildLoweringModel',
                                                      'BuildRigidBodyLoweringModel', 'UpdateLoweringModel')},
     ('analysis/orbits/smoothbranch.py', 'SmoothHopfBranch'): _ORBITS,
-    **{('analysis/simulation/reelchanger3d.py', f): _3D for f in ('BuildRigidBodyReelChanger',
+    **{('builders/rigidbody.py', f): _3D for f in ('BuildRigidBodyReelChanger',
                                                        'BuildRigidBodyLinearizationModel')},
     ('analysis/studies/study.py', 'RunStudy'): _ROW,
     ('analysis/studies/studyfiles.py', 'Run'): _ROW,

@@ -28,6 +28,7 @@ from ...drive.duty import IsReelChangerDuty
 from ...drive.presets import (DUTY_KEYS, REEL_KEYS, AxialBearingFromParameters, ElasticDriveFromParameters,
                               DriveSideChain, LoadSideChain)
 from ...builders.oneangle import BuildReelChanger, CheckReelChangerKeys
+from ...builders.rigidbody import BuildRigidBodyReelChanger
 from ...items.equilibrium import SteadyInitialState
 from .exudynflow import ExudynFlow, _AddFlowSensors, _Configuration, _HeldCoordinates
 
@@ -228,7 +229,7 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
 def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
                                 contactOptions: ContactOptions = ContactOptions()) -> LoweringModel:
     """The lowering model of :func:`BuildLoweringModel` on the 3D model: worm and wheel as rigid bodies on their
-    shafts' bearings (:func:`~exudyn_worm.analysis.simulation.reelchanger3d.BuildRigidBodyReelChanger`), motor at constant
+    shafts' bearings (:func:`~exudyn_worm.builders.rigidbody.BuildRigidBodyReelChanger`), motor at constant
     speed ``motorSpeed``, constant load torque ``loadMass * g * leverArm`` on the wheel's turn, starting in the
     static equilibrium under that load (the mesh and the bearings deflected). The flow state holds every free ODE2
     coordinate (both bodies' six, the C++ mesh law's auxiliary ones: :func:`LoweringModelOfSystem`).
@@ -253,7 +254,7 @@ def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
         For a bad parameter set (as :func:`BuildLoweringModel` and the 3D model refuse it).
     """
     # lazy: the 3D model is built only for drives with shaft bearings
-    from ..simulation.reelchanger3d import AddSeriesSensors, BuildRigidBodyReelChanger
+    from ..simulation.reelchanger3d import AddSeriesSensors
     w = 'BuildRigidBodyLoweringModel'
     CheckReelChangerKeys(Drive.FromParameters(parameters), w)
     if not isinstance(contactOptions, ContactOptions):
@@ -323,7 +324,7 @@ def _StoredStates(model: LoweringModel) -> Dict[str, Any]:
 
 
 #: the turn among a rigid-body node's coordinates that the lowering model follows: the last Tait-Bryan angle of an
-#: Rxyz node turning about it (as :func:`~exudyn_worm.analysis.simulation.reelchanger3d.BuildRigidBodyReelChanger` builds them)
+#: Rxyz node turning about it (as :func:`~exudyn_worm.builders.rigidbody.BuildRigidBodyReelChanger` builds them)
 _RIGID_TURN = 5
 
 

@@ -26,6 +26,7 @@ from ...model.friction import MATH_OPS
 from ...model.drive import ElasticDrive
 from ...params.plausibility import CheckWormRotation, CheckWormSpeed
 from ...model.stability import CharacteristicCoefficients, EigenvaluesFromPolynomial
+from ...builders.rigidbody import BuildRigidBodyReelChanger
 from ...builders.oneangle import BuildReelChanger, CheckModelOptions, CheckReelChangerKeys
 from ...drive.duty import DefaultEndTime, DutyPhases, IsReelChangerDuty, MotorMotion
 from ...drive.wholedrive import CheckDrive, Drive
@@ -441,7 +442,7 @@ def SimulateReelChanger(drive: Drive, endTime: Optional[float] = None,
     if rigid:
         # lazy: the 3D model's module builds on this one's helpers
         from . import reelchanger3d
-        model = reelchanger3d.BuildRigidBodyReelChanger(parameters, contactOptions, useSymbolic, profile=profile,
+        model = BuildRigidBodyReelChanger(parameters, contactOptions, useSymbolic, profile=profile,
                                                         startFromEquilibrium=startFromEquilibrium)
         reelchanger3d.AddSeriesSensors(model)
     else:

@@ -30,6 +30,7 @@ from ...model.stability import CONTACT_STATES, AnalyzeStability, OperatingPoint
 from ...drive.operatingpoints import DutyOperatingPoints, DutyPoint
 from ...drive.wholedrive import CheckDrive, Drive
 from . import linearization
+from ...builders.rigidbody import BuildRigidBodyLinearizationModel
 
 __all__ = ['StabilityModel', 'OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'StateGrowth',
            'StateInstability', 'GrowthText', 'VerdictWord', 'DIVERGENCE', 'CHATTER', 'REAL_EIGENVALUE_TOLERANCE']
@@ -410,8 +411,6 @@ def _WholeDriveModel(drive: Drive, S: Optional[int], operatingPoint: Optional[Op
     """(SC, mbs) of the whole Exudyn drive to linearize: the 3D model of worm and wheel as rigid bodies where the
     drive has shaft bearings, else the one-angle model with its chains, axial bearing and free motor."""
     if drive.isRigidBody:
-        # lazy: the 3D model is built only for drives with shaft bearings
-        from ..simulation.reelchanger3d import BuildRigidBodyLinearizationModel
         return BuildRigidBodyLinearizationModel(drive.parameters, S, operatingPoint)
     return linearization.BuildLinearizationModel(drive.elastic, S, True, drive.axialBearing, drive.driveSideChain,
                                                  drive.loadSideChain, drive.freeMotor, operatingPoint=operatingPoint)

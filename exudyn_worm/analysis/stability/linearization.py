@@ -38,15 +38,13 @@ from ...items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, C
 from ...model.profiles import ConstantSpeed
 from ...model.stability import (CONTACT_STATES, SortEigenvalues, AnalyzeStability, ContactStability,
                         OperatingPoint, OperatingPointFromParameters, StabilityAnalysis)
+from ...builders.start import LinearizationStart
 from ...drive.wholedrive import CheckDrive, Drive
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
-           'BuildLinearizationModel', 'LinearizationStart', 'LinearStabilityOfDrive', 'ExudynEigenvalues',
+           'BuildLinearizationModel', 'LinearStabilityOfDrive', 'ExudynEigenvalues',
            'ExudynStabilityAnalysis']
 
-#: normal pre-deflection in m beyond half the backlash at which the 2-DOF model is linearized (any value > 0
-#: gives the same result: with S held the law is linear in the deflection)
-_PRELOAD = 1e-6
 #: smallest pre-deflection in m beyond half the backlash that AnalyzeLinearStability accepts: Exudyn's
 #: numerical differentiation must not cross the kink of the law at contact loss
 MINIMUM_PENETRATION = 1e-9
@@ -411,34 +409,6 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
         mbs.Assemble()
     return LinearStability(meshes=[c.name or f'mesh{i}' for i, c in enumerate(connectors)], coordinates=labels,
                            states=results)
-
-
-def LinearizationStart(gear: 'WormGear', S: Optional[int] = None, operatingPoint: Optional[OperatingPoint] = None
-                       ) -> Tuple[float, float]:
-    """Worm speed in rad/s and the worm's turn into contact in rad of a linearization model (wheel at angle 0).
-
-    At rest (no ``operatingPoint``) the worm is turned over half the backlash and a small preload; at an operating
-    point everything turns at the worm speed ``slidingSpeed cos(gamma) / r1`` and the worm is turned so that the
-    mesh carries the point's normal force on the flank sigma = S.
-
-    Parameters
-    ----------
-    gear : WormGear
-        The gear.
-    S : int, optional
-        The flank to load at the operating point (+1 or -1).
-    operatingPoint : OperatingPoint, optional
-        The steady state; None: at rest.
-
-    Returns
-    -------
-    (float, float)
-    """
-    if operatingPoint is None:
-        return 0., (0.5 * gear.backlash + _PRELOAD) / gear.normalLever
-    speed = operatingPoint.slidingSpeed * math.cos(gear.gamma) / gear.r1
-    deflection = operatingPoint.normalForce / gear.kV if operatingPoint.normalForce > 0 else _PRELOAD
-    return speed, S * (0.5 * gear.backlash + deflection) / gear.normalLever
 
 
 def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True,

@@ -1,0 +1,345 @@
+"""The 3D model of a drive, added to a new Exudyn system: worm and wheel as rigid bodies, on ideal revolute joints or
+on elastic bearings.
+
+:func:`BuildRigidBodyReelChanger` builds the drive of :func:`~exudyn_worm.builders.oneangle.BuildReelChanger`
+(motor at constant speed, drive shaft kT, dT, worm, mesh, wheel, the reel's lever load) with the worm and the wheel
+as ``mbs.CreateRigidBody`` bodies coupled by :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`. Each
+shaft sits on ideal revolute joints to ground, or on :func:`~exudyn_worm.items.bearings.CreateShaftBearings`
+(two radial bearings and an axial bearing, stiffness and damping). Both bodies use Tait-Bryan nodes (``Rxyz``)
+turning about their last angle (the worm's reference rotation puts its local z on global -y, the wheel turns about
+global z), so the drive shaft and the load act on those coordinates (the torque about the axis, for any tilt) and
+the mesh law runs in C++ (``useSymbolic``, :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`). The
+centre line is global +x; the pitch point is at x = r1.
+
+Parameter sets: those of the reel changer without drive-side or load-side chains, with a constant-speed motor (the
+presets reel-P1 ... reel-P7); an axial bearing ``kA, dA, mA`` lets the worm (of mass mA) slide on its revolute
+joint against the axial spring-damper, the model of :func:`~exudyn_worm.items.connector.CreateWormAxialBearing`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Dict, Mapping, Optional, Tuple
+
+import numpy as np
+
+from .._checks import CheckPositive
+from ..items.bearings import WHEEL_MASS, WORM_MASS, ShaftBearings, CreateShaftBearings
+from ..items.drivetrain import CreatePrescribedRotation, CreateRotor
+from ..items.equilibrium import SteadyInitialState
+from ..items._userfunctions import AddCoordinateForce
+from ..items.rigidmesh import CreateRigidBodyWormGear, RigidBodyWormGearConnector
+from ..model.contact import ContactOptions, MeshContact
+from ..model.friction import MATH_OPS
+from ..model.profiles import ConstantSpeed
+from ..model.stability import OperatingPoint
+from ..drive.duty import LoadFromParameters, MotorFromParameters, MotorType
+from ..drive.presets import (AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain,
+                             ShaftSupportsFromParameters)
+from .start import LinearizationStart
+
+__all__ = ['WORM_AXIS', 'WHEEL_AXIS', 'WORM_REFERENCE', 'TURN', 'RigidBodyReelChanger', 'BuildRigidBodyReelChanger',
+           'BuildRigidBodyLinearizationModel']
+
+
+#: the worm's axis (global): its turn is about -y, so that with the wheel's axis +z and the centre line +x the thread is
+#: right-handed, as in the one-angle model's sign conventions
+WORM_AXIS = np.array([0., -1., 0.])
+#: the wheel's axis (global)
+WHEEL_AXIS = np.array([0., 0., 1.])
+#: the worm node's reference rotation: its local z (the last Rxyz angle, its turn) onto WORM_AXIS
+WORM_REFERENCE = np.array([[1., 0., 0.], [0., 0., -1.], [0., 1., 0.]])
+#: index of the bodies' turn among their node coordinates (the last Tait-Bryan angle)
+TURN = 5
+
+
+@dataclass
+class RigidBodyReelChanger:
+    """The Exudyn system of :func:`BuildRigidBodyReelChanger` and what is needed to read its results.
+
+    Attributes
+    ----------
+    systemContainer, mbs : exudyn objects
+        The container (kept alive with the system) and the system, not yet assembled.
+    connector : RigidBodyWormGearConnector
+        The mesh.
+    bodies : dict
+        ``worm``, ``wheel``: the ``returnDict`` of ``mbs.CreateRigidBody``.
+    bearings : dict
+        ``worm``, ``wheel``: the items of :func:`~exudyn_worm.items.bearings.CreateShaftBearings` (None: revolute
+        joints, under ``'joint'`` then).
+    drive : ElasticDrive
+        The two-mass drive of the parameter set.
+    initial : dict
+        The static equilibrium the run starts from (:func:`~exudyn_worm.items.equilibrium.SteadyInitialState`).
+    motor : dict
+        The motor rotor (:func:`~exudyn_worm.items.drivetrain.CreateRotor`).
+    load : object or None
+        The load law on the wheel.
+    axialBearing : AxialBearing or None
+        The worm's axial bearing ``kA, dA, mA`` (the worm slides on its joint), if the parameter set gives one.
+    sensors : dict
+        Sensors by name (:func:`AddSeriesSensors`).
+    """
+    systemContainer: Any
+    mbs: Any
+    connector: RigidBodyWormGearConnector
+    bodies: Dict[str, Any]
+    bearings: Dict[str, Any]
+    drive: Any
+    initial: Dict[str, float] = field(default_factory=dict)
+    motor: Optional[Dict[str, Any]] = None
+    load: Optional[Any] = None
+    axialBearing: Optional[Any] = None
+    sensors: Dict[str, Any] = field(default_factory=dict)
+
+
+def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
+                              useSymbolic: bool = True, wormBearings: Optional[ShaftBearings] = None,
+                              wheelBearings: Optional[ShaftBearings] = None, wormMass: Optional[float] = None,
+                              wheelMass: Optional[float] = None, profile: Optional[Any] = None,
+                              startFromEquilibrium: bool = True) -> RigidBodyReelChanger:
+    """Build the reel changer with worm and wheel as rigid bodies (module docstring), starting in equilibrium.
+
+    Parameters
+    ----------
+    parameters : mapping
+        A reel-changer parameter set without chains or a motor on its characteristic (e.g.
+        ``GetPreset('reel-P1')``); its shaft bearings and masses (``wormRadialStiffness``, ..., ``wormMass``,
+        :func:`~exudyn_worm.drive.presets.ShaftSupportsFromParameters`) are used where the arguments below do not
+        give them.
+    contactOptions : ContactOptions
+        Options of the contact law.
+    useSymbolic : bool
+        C++ symbolic user functions (default) or plain Python for the drive, the load and the mesh law
+        (:func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`, docs/mesh-3d.md, "Speed").
+    wormBearings, wheelBearings : ShaftBearings, optional
+        Elastic bearings of the shafts; None (default): those of the parameter set, else ideal revolute joints.
+    wormMass, wheelMass : float, optional
+        Masses in kg of the bodies (> 0); default those of the parameter set, else :data:`WORM_MASS`,
+        :data:`WHEEL_MASS`. The moments of inertia about the axes are J1 and J2 of the set.
+    profile : optional
+        Motor motion with ``AngleAndSpeed(t, ops)`` (default: the duty's motor,
+        :func:`~exudyn_worm.drive.duty.MotorFromParameters`).
+    startFromEquilibrium : bool
+        Start in the static equilibrium under the initial load at the motor's initial speed (default); otherwise
+        at rest with zero angles.
+
+    Returns
+    -------
+    RigidBodyReelChanger
+
+    Raises
+    ------
+    ValueError
+        For a parameter set with chains, a motor on its characteristic, a bearing given twice or a bad mass.
+    """
+    w = 'BuildRigidBodyReelChanger'
+    supports = ShaftSupportsFromParameters(parameters, w)
+    for name, value in (('wormBearings', wormBearings), ('wheelBearings', wheelBearings)):
+        if value is not None and supports is not None and getattr(supports, name) is not None:
+            raise ValueError(f"{w}: '{name}' are given twice, as the argument and in the parameter set; give them once")
+    if supports is not None:
+        wormBearings = wormBearings or supports.wormBearings
+        wheelBearings = wheelBearings or supports.wheelBearings
+        wormMass = supports.wormMass if wormMass is None else wormMass
+        wheelMass = supports.wheelMass if wheelMass is None else wheelMass
+    wormMass = CheckPositive(w, 'wormMass', WORM_MASS if wormMass is None else wormMass, 'kg')
+    wheelMass = CheckPositive(w, 'wheelMass', WHEEL_MASS if wheelMass is None else wheelMass, 'kg')
+    if DriveSideChain(parameters) or LoadSideChain(parameters):
+        raise ValueError(f"{w}: the rigid-body reel changer has no drive-side or load-side chain: remove J4.., JL1.. "
+                         f"from the parameter set")
+    axial = AxialBearingFromParameters(parameters)
+    if axial is not None and wormBearings is not None:
+        raise ValueError(f"{w}: give the worm's axial bearing once: as kA, dA, mA of the parameter set or in "
+                         f"'wormBearings'")
+    if MotorType(parameters) == 'characteristic':
+        raise ValueError(f"{w}: the rigid-body reel changer holds the motor on its path; a motor on its "
+                         f"characteristic (motorType = characteristic) is not supported")
+    drive = ElasticDriveFromParameters(parameters)
+    load = LoadFromParameters(parameters, w)
+    profile = MotorFromParameters(parameters, w) if profile is None else profile
+    angle0, motorSpeed = (float(x) for x in profile.AngleAndSpeed(0., MATH_OPS))
+    if startFromEquilibrium:
+        init = SteadyInitialState(drive, load, motorSpeed, contactOptions, axial)
+    else:
+        init, angle0, motorSpeed = {'phi1': 0., 'omega1': 0., 'phi2': 0., 'omega2': 0.}, 0., 0.
+    init['phi0'], init['omega0'] = angle0, motorSpeed
+    wormMass = axial.mass if axial is not None else wormMass
+    if startFromEquilibrium and (wormBearings is not None or wheelBearings is not None):
+        init.update(_StaticPoses(parameters, drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass,
+                                 axial, init, profile, load))
+    return _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
+                  axial, init, profile, load)
+
+
+def _StaticPoses(parameters, drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, axial, init,
+                 profile, load) -> Dict[str, Any]:
+    """The bodies' poses with the bearings deflected by the initial mesh force: a static solve of the model at
+    t = 0 with the contact state of the one-angle equilibrium ``init`` held, so that a run starts without the
+    bearings' transient. Returns ``wormPose``, ``wheelPose`` (displacement, rotation matrix) and ``phi0``, the
+    motor's angle held (unchanged)."""
+    import exudyn as exu
+    S = 1 if init['omega1'] == 0. else int(np.sign(_StartS(drive, load, init, contactOptions)))
+    static = _Build(parameters, drive, ContactOptions(fixedS=S, frictionModel='regularized'), True, wormBearings,
+                    wheelBearings, wormMass, wheelMass, axial, {**init, 'omega0': 0., 'omega1': 0., 'omega2': 0.},
+                    ConstantSpeed(0.), load)
+    mbs = static.mbs
+    mbs.Assemble()
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False
+    ss.staticSolver.newton.relativeTolerance = 1e-10
+    ss.staticSolver.verboseMode = 0
+    ss.linearSolver.solverType = exu.LinearSolverType.EigenDense
+    mbs.SolveStatic(ss)
+    out = {}
+    for body in ('worm', 'wheel'):
+        node = static.bodies[body]['nodeNumber']
+        position = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.Displacement), dtype=float)
+        rotation = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.RotationMatrix), dtype=float).reshape(3, 3)
+        out[body + 'Pose'] = (position, rotation)
+    return out
+
+
+def _StartS(drive, load, init, contactOptions) -> float:
+    """The contact parameter S of the one-angle mesh at the start ``init`` (the flank and the sliding direction)."""
+    return float(np.asarray(MeshContact(drive.gear, init['phi1'], init['phi2'], init['omega1'], init['omega2'],
+                                        options=contactOptions, axialDisplacement=init.get('xA'),
+                                        axialSpeed=init.get('vA')).S))
+
+
+def _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
+           axial, init, profile, load) -> RigidBodyReelChanger:
+    """The system of :func:`BuildRigidBodyReelChanger` from the initial state ``init`` (phi0, omega0, phi1, omega1,
+    phi2, omega2, xA, vA), the motor ``profile`` and the ``load`` (None: none)."""
+    import exudyn as exu
+    from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate
+    from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixZ
+
+    w = 'BuildRigidBodyReelChanger'
+    gear = drive.gear
+    SC = exu.SystemContainer()
+    mbs = SC.AddSystem()
+    a = gear.r1 + gear.r2
+    # Rxyz nodes turning about their last angle (what the law in C++ needs, CreateRigidBodyWormGear): the worm's
+    # local z turned onto global -y by its reference rotation, the wheel's local z is global z; centre line +x
+    # a pose (displacement, rotation matrix) from the bearings' static deflection (_StaticPoses), else the turn alone
+    wormPose = init.get('wormPose', (init.get('xA', 0.) * WORM_AXIS, WORM_REFERENCE @ RotationMatrixZ(init['phi1'])))
+    wheelPose = init.get('wheelPose', (np.zeros(3), RotationMatrixZ(init['phi2'])))
+    worm = mbs.CreateRigidBody(name='worm', nodeType=exu.NodeType.RotationRxyz, referencePosition=[0., 0., 0.],
+                               referenceRotationMatrix=WORM_REFERENCE,
+                               inertia=RigidBodyInertia(mass=wormMass,
+                                                        inertiaTensor=np.diag([drive.J1, drive.J1, drive.J1])),
+                               initialRotationMatrix=WORM_REFERENCE.T @ wormPose[1],
+                               initialDisplacement=list(wormPose[0]),
+                               initialVelocity=list(init.get('vA', 0.) * WORM_AXIS),
+                               initialAngularVelocity=list(init['omega1'] * WORM_AXIS), returnDict=True)
+    wheel = mbs.CreateRigidBody(name='wheel', nodeType=exu.NodeType.RotationRxyz, referencePosition=[a, 0., 0.],
+                                inertia=RigidBodyInertia(mass=wheelMass,
+                                                         inertiaTensor=np.diag([drive.J2, drive.J2, drive.J2])),
+                                initialRotationMatrix=wheelPose[1], initialDisplacement=list(wheelPose[0]),
+                                initialAngularVelocity=list(init['omega2'] * WHEEL_AXIS), returnDict=True)
+    bearings = {'worm': _Support(mbs, worm, WORM_AXIS, wormBearings, 'worm', axial),
+                'wheel': _Support(mbs, wheel, WHEEL_AXIS, wheelBearings, 'wheel')}
+    motor = CreateRotor(mbs, 1e-3, initialAngle=init['phi0'], initialSpeed=init['omega0'], name='motor')
+    CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+    wormAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=worm['nodeNumber'], coordinate=TURN))
+    mbs.AddObject(CoordinateSpringDamper(markerNumbers=[motor['markerNumber'], wormAngle], stiffness=drive.kT,
+                                         damping=drive.dT, name='driveShaft'))
+    if load is not None:                       # the load torque on the wheel's turn about z (its last Rxyz angle)
+        wheelAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=wheel['nodeNumber'], coordinate=TURN))
+        AddCoordinateForce(mbs, wheel['nodeNumber'], wheelAngle,
+                           lambda t, phi, omega, ops: load.Torque(phi, omega, t, ops), name='reelLoad',
+                           useSymbolic=useSymbolic, where=w, signature='load.Torque(phi, omega, t, ops)')
+    connector = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=gear, wormAxis=[0., 0., 1.], wheelAxis=[0., 0., 1.],
+                                        name='wormGear', contactOptions=contactOptions, useSymbolic=useSymbolic)
+    return RigidBodyReelChanger(SC, mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init),
+                                motor=motor, load=load, axialBearing=axial)
+
+
+def BuildRigidBodyLinearizationModel(parameters: Mapping[str, float], S: Optional[int] = None,
+                                     operatingPoint: Optional[OperatingPoint] = None) -> Tuple[Any, Any]:
+    """The 3D model of a drive for its linearization, as
+    :func:`~exudyn_worm.analysis.stability.linearization.BuildLinearizationModel` builds the one-angle model; returns
+    ``(SC, mbs)``, assembled.
+
+    Motor held on its path (at rest, or at the worm speed of ``operatingPoint``), no load; the worm is turned
+    into contact (against the flank sigma = S carrying the operating point's normal force) while the bearings
+    are undeflected (their springs are linear: the linearization does not depend on their preload).
+
+    Parameters
+    ----------
+    parameters : mapping
+        Flat parameter set with the shafts' bearings (:func:`~exudyn_worm.drive.presets.ShaftSupportsFromParameters`)
+        or the worm's axial bearing.
+    S : int, optional
+        Contact parameter held in the mesh, +1 or -1; None: S follows eq. (8) (for
+        :func:`~exudyn_worm.analysis.stability.linearization.AnalyzeLinearStability`, which holds it itself).
+    operatingPoint : OperatingPoint, optional
+        Start in this steady state (needs ``S``); None: at rest.
+
+    Returns
+    -------
+    (exudyn.SystemContainer, exudyn.MainSystem)
+    """
+    w = 'BuildRigidBodyLinearizationModel'
+    if S is not None and S not in (1, -1):
+        raise ValueError(f"{w}: 'S' must be None, +1 or -1, got {S!r}")
+    if operatingPoint is not None and S is None:
+        raise ValueError(f"{w}: with an 'operatingPoint' give 'S' (+1 or -1), the flank to load, got None")
+    supports = ShaftSupportsFromParameters(parameters, w)
+    drive = ElasticDriveFromParameters(parameters)
+    g = drive.gear
+    speed, deltaPhi = LinearizationStart(g, S, operatingPoint)
+    init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0., 'omega2': speed / g.ratio}
+    options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
+    axial = AxialBearingFromParameters(parameters)
+    # the plain-Python law: the C++ law's auxiliary coordinates give the same eigenvalues, but which coordinates
+    # Exudyn keeps independent then shifts the modes' energy shares between the bodies' coordinates
+    model = _Build(parameters, drive, options, False, None if supports is None else supports.wormBearings,
+                   None if supports is None else supports.wheelBearings,
+                   axial.mass if axial is not None else (WORM_MASS if supports is None else supports.wormMass),
+                   WHEEL_MASS if supports is None else supports.wheelMass, axial, init, ConstantSpeed(speed), None)
+    model.mbs.Assemble()
+    return model.systemContainer, model.mbs
+
+
+def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axial=None):
+    """Ideal revolute joint about the global ``axis`` through the body's reference point, or the elastic bearings;
+    with ``axial`` (an AxialBearing) the joint lets the body slide along the axis on the axial spring-damper.
+
+    The ideal joint holds the node's translations and the two Tait-Bryan angles that are not the body's turn at
+    their reference values, one linear ``ObjectConnectorCoordinateVector``: exact for the Rxyz nodes of this model
+    (both turn about their last angle), and its Jacobian does not turn with the body
+    (an ``ObjectJointGeneric`` made the modified Newton iteration take three times the iterations and a Jacobian
+    every ten steps, benchmarks/README.md). Its multipliers, the forces on the held coordinates, are the bearing
+    loads (global x, y, z)."""
+    if bearings is not None:
+        return CreateShaftBearings(mbs, body, axis=axis, bearings=bearings, name=name + 'Bearing')
+    import exudyn as exu
+    from exudyn.itemInterface import (MarkerNodeCoordinates, NodePointGround, ObjectConnectorCoordinateVector,
+                                      SensorObject)
+    node = body['nodeNumber']
+    along = int(np.argmax(np.abs(axis)))                    # the translation along the (global) axis
+    held = [k for k in range(6) if k != TURN and not (axial is not None and k == along)]
+    reference = np.asarray(mbs.GetNode(node)['referenceCoordinates'], dtype=float)[held]
+    # the item couples two markers: the second is a ground node's (no coordinates)
+    joint = mbs.AddObject(ObjectConnectorCoordinateVector(
+        markerNumbers=[mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=node)),
+                       mbs.AddMarker(MarkerNodeCoordinates(nodeNumber=mbs.AddNode(NodePointGround())))],
+        scalingMarker0=np.eye(6)[held], scalingMarker1=np.zeros((len(held), 0)), offset=list(-reference),
+        name=name + 'Joint'))
+    OVT = exu.OutputVariableType
+    out = {'joint': joint, 'heldCoordinates': held, 'axis': np.asarray(axis, dtype=float),
+           'sensors': {'joint': mbs.AddSensor(SensorObject(objectNumber=joint, outputVariableType=OVT.Force,
+                                                           storeInternal=True, writeToFile=False))}}
+    if axial is not None:                      # the worm's axial coordinate: its node's translation along the axis
+        from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, NodePointGround
+        nGround = mbs.AddNode(NodePointGround())
+        m0 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=nGround, coordinate=0))
+        m1 = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=along))
+        out['axialSpring'] = mbs.AddObject(CoordinateSpringDamper(markerNumbers=[m0, m1], stiffness=axial.stiffness,
+                                                                  damping=axial.damping, name=name + 'Axial'))
+        out['sensors']['axialSpring'] = mbs.AddSensor(SensorObject(objectNumber=out['axialSpring'],
+                                                                   outputVariableType=OVT.Force,
+                                                                   storeInternal=True, writeToFile=False))
+    return out
