@@ -1,7 +1,7 @@
 """Benchmark: the reel changer P1 with worm and wheel as rigid bodies on ideal joints against the one-angle connector.
 
 Runs once each, in one process: ``BuildReelChanger(GetPreset('reel-P1'))`` (one-angle connector, symbolic C++ law),
-``BuildRigidBodyReelChanger(GetPreset('reel-P1'))`` (the mesh between rigid bodies on ideal joints that are linear
+``BuildRigidBodyReelChanger(mbs, ResolveDrive('reel-P1'))`` (the mesh between rigid bodies on ideal joints that are linear
 coordinate constraints, its law in C++ on auxiliary coordinates) and the same with ``useSymbolic=False`` (the law a
 plain-Python user function),
 8 s simulated at the drive's recommended step with the same solver settings; reports the solver call's wall and CPU
@@ -22,6 +22,7 @@ import time
 import numpy as np
 
 from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
+import exudyn as exu
 from exudyn_worm.builders.oneangle import BuildReelChanger
 from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
@@ -33,11 +34,12 @@ __all__ = ['RunOnce', 'Main']
 
 def RunOnce(build, parameters, endTime: float, **kwargs):
     """Build, solve and return (wall s, CPU s, stored mesh state) of one model."""
-    model = build(parameters, **kwargs)
+    drive = ResolveDrive(parameters=parameters)
+    model = build(exu.SystemContainer().AddSystem(), drive, **kwargs)
     if build is BuildRigidBodyReelChanger:
         model.connector.AddSensors(model.mbs)
     model.mbs.Assemble()
-    ss, solverType = SolverSettings(endTime, RecommendedStepSize(ResolveDrive(parameters=parameters)))
+    ss, solverType = SolverSettings(endTime, RecommendedStepSize(drive))
     wall, cpu = time.perf_counter(), time.process_time()
     model.mbs.SolveDynamic(ss, solverType=solverType)
     wall, cpu = time.perf_counter() - wall, time.process_time() - cpu

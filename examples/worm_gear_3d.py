@@ -62,7 +62,7 @@ def BearingLoadSeries(parameters: Optional[Mapping[str, float]] = None, endTime:
         of the two radial bearings), ``wheelAxial``, ``wheelRadial`` in N, one value per stored step.
     """
     parameters = dict(GetPreset('reel-P1') if parameters is None else parameters)
-    model = BuildRigidBodyReelChanger(parameters, wormBearings=wormBearings, wheelBearings=wheelBearings,
+    model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=parameters), wormBearings=wormBearings, wheelBearings=wheelBearings,
                                       wormMass=WORM_MASS)
     model.connector.AddSensors(model.mbs)
     model.mbs.Assemble()
@@ -139,7 +139,7 @@ def AxialStiffnessScan(stiffnesses: Sequence[float] = (2e9, 1e9, 7e8, 5e8),
     parameters = dict(GetPreset('reel-P1') if parameters is None else parameters)
     rows = []
     for kA in stiffnesses:
-        model = BuildRigidBodyReelChanger(parameters, wormMass=WORM_MASS,
+        model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=parameters), wormMass=WORM_MASS,
                                           wormBearings=ShaftBearings(radialStiffness=1e11, axialStiffness=kA, span=0.12))
         model.mbs.Assemble()
         rigid = AnalyzeLinearStability(model.mbs).State(-1)

@@ -115,6 +115,7 @@ UNHINTED = {
                                             'axialSpeed', 'radialApproach', 'radialSpeed'],
         'exudyn_worm.model.contact.NormalForceFlanks': ['normalForce', '->'],
         'exudyn_worm.builders.oneangle.BuildReelChanger': ['mbs', 'profile'],
+        'exudyn_worm.builders.rigidbody.BuildRigidBodyReelChanger': ['mbs'],
         'exudyn_worm.analysis.simulation.reelchanger.SimulateReelChanger': ['profile'],
     },
     _ARRAY: {

@@ -4,6 +4,7 @@ files keep the one-angle model."""
 import csv
 import json
 
+import exudyn as exu
 import numpy as np
 import pytest
 
@@ -80,7 +81,7 @@ def test_simulate_reports_bearing_loads_as_the_python_builder(capsys, tmp_path):
     assert {'wormAxialLoad [N]', 'wormRadialLoad [N]', 'wheelAxialLoad [N]', 'wheelRadialLoad [N]',
             'meshWheelTangential [N]'} <= set(header)
 
-    model = BuildRigidBodyReelChanger(GetPreset('reel-P1'), wormBearings=WORM, wheelBearings=WHEEL, wormMass=5.,
+    model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=GetPreset('reel-P1')), wormBearings=WORM, wheelBearings=WHEEL, wormMass=5.,
                                       wheelMass=30.)
     model.connector.AddSensors(model.mbs)
     model.mbs.Assemble()
@@ -125,7 +126,7 @@ def test_ideal_joint_loads_are_the_statics_of_the_mesh_force():
     """On ideal joints the bearing loads are the joints' reactions: at the start (static equilibrium) the worm's
     axial load is the wheel's tangential force, its radial load the worm's tangential and separating forces together,
     and the wheel's loads the same forces seen from the wheel (to 1e-6)."""
-    model = BuildRigidBodyReelChanger(GetPreset('reel-P1'))
+    model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=GetPreset('reel-P1')))
     model.connector.AddSensors(model.mbs)
     model.mbs.Assemble()
     ss, solverType = SolverSettings(0.01, 1e-3)

@@ -145,11 +145,11 @@ def test_axial_worm_shift_and_approach_enter_the_mesh_as_in_the_contact_law():
 
 def _ReelRuns(parameters, endTime, solverOptions=None, **kwargs):
     """The reel changer with the one-angle connector and with rigid bodies on ideal joints, same settings."""
-    h = RecommendedStepSize(ResolveDrive(parameters=parameters))
+    drive = ResolveDrive(parameters=parameters)
+    h = RecommendedStepSize(drive)
     out = []
     for build in (BuildReelChanger, BuildRigidBodyReelChanger):
-        model = (BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=parameters), **kwargs)
-                 if build is BuildReelChanger else build(parameters, **kwargs))
+        model = build(exu.SystemContainer().AddSystem(), drive, **kwargs)
         if build is BuildRigidBodyReelChanger:
             model.connector.AddSensors(model.mbs)
         model.mbs.Assemble()

@@ -1,4 +1,5 @@
 """Graphics of the rigid-body mesh for Exudyn's renderer: built on the bodies, the force arrow follows the run."""
+import exudyn as exu
 import numpy as np
 import pytest
 
@@ -6,6 +7,7 @@ from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
 from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
 from exudyn_worm.items.meshgraphics import AddRigidMeshGraphics
 from exudyn_worm.drive.presets import GetPreset
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 pytest.importorskip('exudyn')
 
@@ -13,7 +15,7 @@ pytest.importorskip('exudyn')
 def test_graphics_are_built_and_the_arrow_shows_the_stored_mesh_force():
     """Pitch cylinders, helix and tooth lines on the bodies; the arrow at the pitch point is the wheel's mesh force
     at the time shown (scaled to r2 for the largest normal force); nothing to draw before the solve."""
-    model = BuildRigidBodyReelChanger(GetPreset('reel-P1'))
+    model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=GetPreset('reel-P1')))
     mesh = model.connector
     mesh.AddSensors(model.mbs)
     graphics = AddRigidMeshGraphics(model.mbs, mesh, teeth=12)

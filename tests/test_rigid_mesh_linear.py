@@ -26,7 +26,7 @@ def test_ideal_joints_give_the_eigenvalues_of_the_one_angle_model(extra):
     model for S = +1 and -1 within 1e-6 relative (Exudyn differentiates the user functions numerically)."""
     parameters = {**P1, **extra}
     reference = AnalyzeLinearStability(BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=parameters)).mbs)
-    model = BuildRigidBodyReelChanger(parameters)
+    model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=parameters))
     model.mbs.Assemble()
     analysis = AnalyzeLinearStability(model.mbs)
     for S in (1, -1):
@@ -40,7 +40,7 @@ def test_ideal_joints_give_the_eigenvalues_of_the_one_angle_model(extra):
 def test_elastic_bearings_add_modes_with_their_bearing_named():
     """Elastic bearings (worm 5e8 N/m radial, 3e8 N/m axial): more modes; the worm's axial motion (its node's y)
     takes the largest energy share of one of them, and the torsional chatter pair stays near 40 Hz."""
-    model = BuildRigidBodyReelChanger(P1, wormBearings=ShaftBearings(5e8, 3e8, span=0.12),
+    model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=P1), wormBearings=ShaftBearings(5e8, 3e8, span=0.12),
                                       wheelBearings=ShaftBearings(1e9, 1e9, span=0.05))
     model.mbs.Assemble()
     state = AnalyzeLinearStability(model.mbs).State(-1)

@@ -89,7 +89,6 @@ _ORBITS = ('the periodic-orbit analysis (lowering phase, shooting, continuation)
            'flat set of the lowering phase; next step of the drive as the spine')
 _STUDIES = ('a study keeps its base set and its varied points flat, as its files and worker tasks do; each run '
             'resolves its drive once in its worker')
-_3D = 'the 3D model\'s builders still read the flat set; next step of the drive as the spine'
 _LOG_FACTORS = 'a mapping of design-parameter keys to log factors (decades), not a parameter set'
 _ROW = 'a row of the results table (CSV), not a parameter set'
 _SOLVER = 'solver settings by their path in exudyn.SimulationSettings, not a parameter set'
@@ -106,8 +105,6 @@ FLAT_ALLOWED: Dict[Tuple[str, str], str] = {
     **{('analysis/orbits/lowering.py', f): _ORBITS for f in ('LoweringPhaseParameters', 'BuildLoweringModel',
                                                      'BuildRigidBodyLoweringModel', 'UpdateLoweringModel')},
     ('analysis/orbits/smoothbranch.py', 'SmoothHopfBranch'): _ORBITS,
-    **{('builders/rigidbody.py', f): _3D for f in ('BuildRigidBodyReelChanger',
-                                                       'BuildRigidBodyLinearizationModel')},
     ('analysis/studies/study.py', 'RunStudy'): _ROW,
     ('analysis/studies/studyfiles.py', 'Run'): _ROW,
     ('analysis/studies/studypoint.py', 'RunPoint'): _STUDIES,

@@ -18,7 +18,7 @@ joint against the axial spring-damper, the model of :func:`~exudyn_worm.items.co
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Dict, Mapping, Optional, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
@@ -32,9 +32,8 @@ from ..model.contact import ContactOptions, MeshContact
 from ..model.friction import MATH_OPS
 from ..model.profiles import ConstantSpeed
 from ..model.stability import OperatingPoint
-from ..drive.duty import LoadFromParameters, MotorFromParameters, MotorType
-from ..drive.presets import (AxialBearingFromParameters, ElasticDriveFromParameters, DriveSideChain, LoadSideChain,
-                             ShaftSupportsFromParameters)
+from ..drive.wholedrive import CheckDrive, Drive
+from .oneangle import CheckReelChangerKeys
 from .start import LinearizationStart
 
 __all__ = ['WORM_AXIS', 'WHEEL_AXIS', 'WORM_REFERENCE', 'TURN', 'RigidBodyReelChanger', 'BuildRigidBodyReelChanger',
@@ -93,20 +92,22 @@ class RigidBodyReelChanger:
     sensors: Dict[str, Any] = field(default_factory=dict)
 
 
-def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
+def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = ContactOptions(),
                               useSymbolic: bool = True, wormBearings: Optional[ShaftBearings] = None,
                               wheelBearings: Optional[ShaftBearings] = None, wormMass: Optional[float] = None,
                               wheelMass: Optional[float] = None, profile: Optional[Any] = None,
                               startFromEquilibrium: bool = True) -> RigidBodyReelChanger:
-    """Build the reel changer with worm and wheel as rigid bodies (module docstring), starting in equilibrium.
+    """Add the 3D model of a drive to ``mbs``: worm and wheel as rigid bodies (module docstring), starting in
+    equilibrium.
 
     Parameters
     ----------
-    parameters : mapping
-        A reel-changer parameter set without chains or a motor on its characteristic (e.g.
-        ``GetPreset('reel-P1')``); its shaft bearings and masses (``wormRadialStiffness``, ..., ``wormMass``,
-        :func:`~exudyn_worm.drive.presets.ShaftSupportsFromParameters`) are used where the arguments below do not
-        give them.
+    mbs : exudyn.MainSystem
+        The system to add the items to (``SC.AddSystem()``); it is not assembled here.
+    drive : Drive
+        The drive (:func:`~exudyn_worm.drive.wholedrive.ResolveDrive`), without chains or a motor on its
+        characteristic (e.g. ``ResolveDrive('reel-P1')``), with a duty; its shafts' bearings and masses
+        (``drive.shaftSupports``) are used where the arguments below do not give them.
     contactOptions : ContactOptions
         Options of the contact law.
     useSymbolic : bool
@@ -134,7 +135,8 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
         For a parameter set with chains, a motor on its characteristic, a bearing given twice or a bad mass.
     """
     w = 'BuildRigidBodyReelChanger'
-    supports = ShaftSupportsFromParameters(parameters, w)
+    CheckReelChangerKeys(drive, w)
+    whole, supports = drive, drive.shaftSupports
     for name, value in (('wormBearings', wormBearings), ('wheelBearings', wheelBearings)):
         if value is not None and supports is not None and getattr(supports, name) is not None:
             raise ValueError(f"{w}: '{name}' are given twice, as the argument and in the parameter set; give them once")
@@ -145,19 +147,19 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
         wheelMass = supports.wheelMass if wheelMass is None else wheelMass
     wormMass = CheckPositive(w, 'wormMass', WORM_MASS if wormMass is None else wormMass, 'kg')
     wheelMass = CheckPositive(w, 'wheelMass', WHEEL_MASS if wheelMass is None else wheelMass, 'kg')
-    if DriveSideChain(parameters) or LoadSideChain(parameters):
+    if whole.driveSideChain or whole.loadSideChain:
         raise ValueError(f"{w}: the rigid-body reel changer has no drive-side or load-side chain: remove J4.., JL1.. "
                          f"from the parameter set")
-    axial = AxialBearingFromParameters(parameters)
+    axial = whole.axialBearing
     if axial is not None and wormBearings is not None:
         raise ValueError(f"{w}: give the worm's axial bearing once: as kA, dA, mA of the parameter set or in "
                          f"'wormBearings'")
-    if MotorType(parameters) == 'characteristic':
+    if whole.hasMotorCharacteristic:
         raise ValueError(f"{w}: the rigid-body reel changer holds the motor on its path; a motor on its "
                          f"characteristic (motorType = characteristic) is not supported")
-    drive = ElasticDriveFromParameters(parameters)
-    load = LoadFromParameters(parameters, w)
-    profile = MotorFromParameters(parameters, w) if profile is None else profile
+    drive = whole.elastic
+    load = whole.load
+    profile = whole.motor if profile is None else profile
     angle0, motorSpeed = (float(x) for x in profile.AngleAndSpeed(0., MATH_OPS))
     if startFromEquilibrium:
         init = SteadyInitialState(drive, load, motorSpeed, contactOptions, axial)
@@ -166,13 +168,13 @@ def BuildRigidBodyReelChanger(parameters: Mapping[str, float], contactOptions: C
     init['phi0'], init['omega0'] = angle0, motorSpeed
     wormMass = axial.mass if axial is not None else wormMass
     if startFromEquilibrium and (wormBearings is not None or wheelBearings is not None):
-        init.update(_StaticPoses(parameters, drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass,
+        init.update(_StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass,
                                  axial, init, profile, load))
-    return _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
+    return _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
                   axial, init, profile, load)
 
 
-def _StaticPoses(parameters, drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, axial, init,
+def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, axial, init,
                  profile, load) -> Dict[str, Any]:
     """The bodies' poses with the bearings deflected by the initial mesh force: a static solve of the model at
     t = 0 with the contact state of the one-angle equilibrium ``init`` held, so that a run starts without the
@@ -180,7 +182,7 @@ def _StaticPoses(parameters, drive, contactOptions, wormBearings, wheelBearings,
     motor's angle held (unchanged)."""
     import exudyn as exu
     S = 1 if init['omega1'] == 0. else int(np.sign(_StartS(drive, load, init, contactOptions)))
-    static = _Build(parameters, drive, ContactOptions(fixedS=S, frictionModel='regularized'), True, wormBearings,
+    static = _Build(exu.SystemContainer().AddSystem(), drive, ContactOptions(fixedS=S, frictionModel='regularized'), True, wormBearings,
                     wheelBearings, wormMass, wheelMass, axial, {**init, 'omega0': 0., 'omega1': 0., 'omega2': 0.},
                     ConstantSpeed(0.), load)
     mbs = static.mbs
@@ -207,7 +209,7 @@ def _StartS(drive, load, init, contactOptions) -> float:
                                         axialSpeed=init.get('vA')).S))
 
 
-def _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
+def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
            axial, init, profile, load) -> RigidBodyReelChanger:
     """The system of :func:`BuildRigidBodyReelChanger` from the initial state ``init`` (phi0, omega0, phi1, omega1,
     phi2, omega2, xA, vA), the motor ``profile`` and the ``load`` (None: none)."""
@@ -217,8 +219,6 @@ def _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBe
 
     w = 'BuildRigidBodyReelChanger'
     gear = drive.gear
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
     a = gear.r1 + gear.r2
     # Rxyz nodes turning about their last angle (what the law in C++ needs, CreateRigidBodyWormGear): the worm's
     # local z turned onto global -y by its reference rotation, the wheel's local z is global z; centre line +x
@@ -252,11 +252,11 @@ def _Build(parameters, drive, contactOptions, useSymbolic, wormBearings, wheelBe
                            useSymbolic=useSymbolic, where=w, signature='load.Torque(phi, omega, t, ops)')
     connector = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=gear, wormAxis=[0., 0., 1.], wheelAxis=[0., 0., 1.],
                                         name='wormGear', contactOptions=contactOptions, useSymbolic=useSymbolic)
-    return RigidBodyReelChanger(SC, mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init),
+    return RigidBodyReelChanger(mbs.GetSystemContainer(), mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init),
                                 motor=motor, load=load, axialBearing=axial)
 
 
-def BuildRigidBodyLinearizationModel(parameters: Mapping[str, float], S: Optional[int] = None,
+def BuildRigidBodyLinearizationModel(whole: Drive, S: Optional[int] = None,
                                      operatingPoint: Optional[OperatingPoint] = None) -> Tuple[Any, Any]:
     """The 3D model of a drive for its linearization, as
     :func:`~exudyn_worm.analysis.stability.linearization.BuildLinearizationModel` builds the one-angle model; returns
@@ -268,9 +268,8 @@ def BuildRigidBodyLinearizationModel(parameters: Mapping[str, float], S: Optiona
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the shafts' bearings (:func:`~exudyn_worm.drive.presets.ShaftSupportsFromParameters`)
-        or the worm's axial bearing.
+    whole : Drive
+        The drive, with the shafts' bearings (``shaftSupports``) or the worm's axial bearing.
     S : int, optional
         Contact parameter held in the mesh, +1 or -1; None: S follows eq. (8) (for
         :func:`~exudyn_worm.analysis.stability.linearization.AnalyzeLinearStability`, which holds it itself).
@@ -286,16 +285,16 @@ def BuildRigidBodyLinearizationModel(parameters: Mapping[str, float], S: Optiona
         raise ValueError(f"{w}: 'S' must be None, +1 or -1, got {S!r}")
     if operatingPoint is not None and S is None:
         raise ValueError(f"{w}: with an 'operatingPoint' give 'S' (+1 or -1), the flank to load, got None")
-    supports = ShaftSupportsFromParameters(parameters, w)
-    drive = ElasticDriveFromParameters(parameters)
+    supports, drive = CheckDrive(w, whole, 'whole').shaftSupports, whole.elastic
     g = drive.gear
     speed, deltaPhi = LinearizationStart(g, S, operatingPoint)
     init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0., 'omega2': speed / g.ratio}
     options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
-    axial = AxialBearingFromParameters(parameters)
+    axial = whole.axialBearing
     # the plain-Python law: the C++ law's auxiliary coordinates give the same eigenvalues, but which coordinates
     # Exudyn keeps independent then shifts the modes' energy shares between the bodies' coordinates
-    model = _Build(parameters, drive, options, False, None if supports is None else supports.wormBearings,
+    import exudyn as exu
+    model = _Build(exu.SystemContainer().AddSystem(), drive, options, False, None if supports is None else supports.wormBearings,
                    None if supports is None else supports.wheelBearings,
                    axial.mass if axial is not None else (WORM_MASS if supports is None else supports.wormMass),
                    WHEEL_MASS if supports is None else supports.wheelMass, axial, init, ConstantSpeed(speed), None)

@@ -255,13 +255,16 @@ def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
     """
     # lazy: the 3D model is built only for drives with shaft bearings
     from ..simulation.reelchanger3d import AddSeriesSensors
+    import exudyn as exu
     w = 'BuildRigidBodyLoweringModel'
     CheckReelChangerKeys(Drive.FromParameters(parameters), w)
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     loadTorque = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm']).maximum
-    reel = BuildRigidBodyReelChanger({**parameters, 'loadType': 'constant', 'loadTorque': loadTorque}, contactOptions,
+    reel = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(),
+                                     Drive.FromParameters({**parameters, 'loadType': 'constant', 'loadTorque': loadTorque}),
+                                     contactOptions,
                                      profile=ConstantSpeed(motorSpeed), startFromEquilibrium=True)
     sensors = AddSeriesSensors(reel)
     reel.connector.sensors.update(wormAccelerations=sensors['wormAccelerations'],

@@ -442,7 +442,7 @@ def SimulateReelChanger(drive: Drive, endTime: Optional[float] = None,
     if rigid:
         # lazy: the 3D model's module builds on this one's helpers
         from . import reelchanger3d
-        model = BuildRigidBodyReelChanger(parameters, contactOptions, useSymbolic, profile=profile,
+        model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), drive, contactOptions, useSymbolic, profile=profile,
                                                         startFromEquilibrium=startFromEquilibrium)
         reelchanger3d.AddSeriesSensors(model)
     else:

@@ -411,7 +411,7 @@ def _WholeDriveModel(drive: Drive, S: Optional[int], operatingPoint: Optional[Op
     """(SC, mbs) of the whole Exudyn drive to linearize: the 3D model of worm and wheel as rigid bodies where the
     drive has shaft bearings, else the one-angle model with its chains, axial bearing and free motor."""
     if drive.isRigidBody:
-        return BuildRigidBodyLinearizationModel(drive.parameters, S, operatingPoint)
+        return BuildRigidBodyLinearizationModel(drive, S, operatingPoint)
     return linearization.BuildLinearizationModel(drive.elastic, S, True, drive.axialBearing, drive.driveSideChain,
                                                  drive.loadSideChain, drive.freeMotor, operatingPoint=operatingPoint)
 
