@@ -90,6 +90,7 @@ UNHINTED = {
         'exudyn_worm.items.drivetrain.CreateRotorTorque': ['mbs', 'rotor', 'law'],
         'exudyn_worm.items.drivetrain.CreateShaft': ['mbs', 'rotors'],
         'exudyn_worm.items.drivetrain.CreateLoadSideChain': ['mbs', 'wheel'],
+        'exudyn_worm.items.drivetrain.CreateDriveSideChain': ['mbs', 'motor', 'worm'],
         'exudyn_worm.analysis.stability.linearization.AnalyzeLinearStability': ['mbs'],
         'exudyn_worm.analysis.stability.linearization.BuildLinearizationModel': ['->'],
         'exudyn_worm.analysis.simulation.reelchanger.SolverSettings': ['->'],

@@ -16,7 +16,8 @@ from typing import Any, Dict, Optional, Tuple
 
 from .._checks import CheckBool, CheckPositive
 from ..items.connector import CreateWormAxialBearing, CreateWormGear, WormGearConnector
-from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateRotorTorque, CreateShaft
+from ..items.drivetrain import (CreateDriveSideChain, CreateLoadSideChain, CreatePrescribedRotation, CreateRotor,
+                               CreateRotorTorque)
 from ..items.equilibrium import SteadyInitialState
 from ..model.contact import ContactOptions
 from ..model.friction import MATH_OPS
@@ -216,12 +217,8 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
         CreateRotorTorque(mbs, motor, characteristic, name='motorTorque', useSymbolic=useSymbolic)
     rotors = {'motor': motor, 'worm': worm, 'wheel': wheel}
     # drive-side chain, worm side first: worm --kT-- inertia4 --k4-- inertia5 ... --kn-- motor
-    chainRotors = [CreateRotor(mbs, J, initialAngle=init.get(f'phi{i}', 0.), initialSpeed=init.get(f'omega{i}', 0.),
-                               name=f'inertia{i}') for i, (J, _, _) in enumerate(chain, start=4)]
+    chainRotors = CreateDriveSideChain(mbs, motor, worm, drive.kT, drive.dT, chain, init)
     rotors.update({f'inertia{i}': r for i, r in enumerate(chainRotors, start=4)})
-    CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT, name='driveShaft')
-    for i, (rotor, motorSide, (_, k, d)) in enumerate(zip(chainRotors, chainRotors[1:] + [motor], chain), start=4):
-        CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d, name=f'springDamper{i}')
     axial = None
     if bearing is not None:
         axial = CreateWormAxialBearing(mbs, bearing, initialDisplacement=init.get('xA', 0.),

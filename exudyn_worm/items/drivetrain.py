@@ -13,7 +13,7 @@ from .._checks import CheckBool, CheckName, CheckNonNegative, CheckPositive, Che
 from ._userfunctions import AddCoordinateForce, CheckOffsetLaw, CheckPlainOffsetLaw, SetOffsetFunction
 from ..model.profiles import ConstantSpeed
 
-__all__ = ['CreateRotor', 'CreateShaft', 'CreateLoadSideChain', 'CreatePrescribedRotation', 'CreateRotorTorque']
+__all__ = ['CreateRotor', 'CreateShaft', 'CreateDriveSideChain', 'CreateLoadSideChain', 'CreatePrescribedRotation', 'CreateRotorTorque']
 
 
 def _Marker(mbs, rotor, where, name):
@@ -166,6 +166,47 @@ def CreateLoadSideChain(mbs, wheel, stages: Sequence[Tuple[float, float, float]]
         CreateShaft(mbs, [previous, rotor], stiffness=k, damping=d, name=f'loadShaft{i}')
         rotors.append(rotor)
         previous = rotor
+    return rotors
+
+
+def CreateDriveSideChain(mbs, motor, worm, shaftStiffness: float, shaftDamping: float,
+                         stages: Sequence[Tuple[float, float, float]],
+                         initial: Optional[Mapping[str, float]] = None) -> List[Dict[str, Any]]:
+    """Add the drive shaft and the drive-side chain of Figure 19 between ``worm`` and ``motor``:
+    worm --(kT, dT)-- J4 --(k4, d4)-- J5 ... --(kn, dn)-- motor; without stages the drive shaft joins worm and motor.
+
+    Rotor *i* is named ``inertia<i>`` (i from 4), the drive shaft ``driveShaft`` and the shaft on rotor *i*'s motor
+    side ``springDamper<i>``. Both one-angle builders (the time simulation's and the linearization's) add the chain
+    with this function.
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+    motor : dict
+        The motor's rotor from :func:`CreateRotor`.
+    worm : dict
+        The worm's rotor from :func:`CreateRotor`.
+    shaftStiffness : float
+        kT of the drive shaft in N*m/rad, > 0.
+    shaftDamping : float
+        dT of the drive shaft in N*m*s/rad, >= 0.
+    stages : sequence of (float, float, float)
+        ``(J, k, d)`` of each stage, worm side first: inertia in kg*m^2, and stiffness and damping of the shaft on its
+        motor side (:func:`~exudyn_worm.drive.presets.DriveSideChain` gives them from a parameter set).
+    initial : mapping, optional
+        Initial angles ``phi4, ...`` in rad and speeds ``omega4, ...`` in rad/s (default 0).
+
+    Returns
+    -------
+    list of dict
+        The chain's rotors (:func:`CreateRotor`), worm side first; empty for no stages.
+    """
+    initial = {} if initial is None else initial
+    rotors = [CreateRotor(mbs, J, initialAngle=initial.get(f'phi{i}', 0.), initialSpeed=initial.get(f'omega{i}', 0.),
+                          name=f'inertia{i}') for i, (J, _, _) in enumerate(stages, start=4)]
+    CreateShaft(mbs, [(rotors + [motor])[0], worm], stiffness=shaftStiffness, damping=shaftDamping, name='driveShaft')
+    for i, (rotor, motorSide, (_, k, d)) in enumerate(zip(rotors, rotors[1:] + [motor], stages), start=4):
+        CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d, name=f'springDamper{i}')
     return rotors
 
 

@@ -34,7 +34,7 @@ from ...items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
 from ...model.contact import ContactOptions
 from ...model.drive import ElasticDrive
 from ...model.gear import WormGear
-from ...items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateShaft
+from ...items.drivetrain import CreateDriveSideChain, CreateLoadSideChain, CreatePrescribedRotation, CreateRotor
 from ...model.profiles import ConstantSpeed
 from ...model.stability import (CONTACT_STATES, SortEigenvalues, AnalyzeStability, ContactStability,
                         OperatingPoint, OperatingPointFromParameters, StabilityAnalysis)
@@ -471,11 +471,8 @@ def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSym
         ground = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
         mbs.AddObject(CoordinateSpringDamper(markerNumbers=[ground, motor['markerNumber']], stiffness=0.,
                                              damping=free[1]))
-    chainRotors = [CreateRotor(mbs, J, initialSpeed=speed, name=f'inertia{i}')
-                   for i, (J, _, _) in enumerate(chain, start=4)]
-    CreateShaft(mbs, [(chainRotors + [motor])[0], worm], stiffness=drive.kT, damping=drive.dT)
-    for rotor, motorSide, (_, k, d) in zip(chainRotors, chainRotors[1:] + [motor], chain):
-        CreateShaft(mbs, [motorSide, rotor], stiffness=k, damping=d)
+    CreateDriveSideChain(mbs, motor, worm, drive.kT, drive.dT, chain,
+                         {f'omega{i}': speed for i in range(4, 4 + len(chain))})
     CreateLoadSideChain(mbs, wheel, loadChain, {f'omegaL{i}': speed / g.ratio for i in range(1, len(loadChain) + 1)})
     axialNode = None if axialBearing is None else CreateWormAxialBearing(mbs, axialBearing)['nodeNumber']
     options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
