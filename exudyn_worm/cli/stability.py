@@ -64,7 +64,7 @@ def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
     from .formatstability import DangerLines, FormatStability, OperatingPointLines, VerdictLine
     from ..analysis.stability.drivestability import ANALYTICAL, LINEARIZED, AnalyzeDrive
-    from ..model.geometry import DescribeGeometry, GeometryForm
+    from ..model.geometry import DescribeGeometry
     drive = WholeDriveFromArgs(args)
     if drive.components and args.method == 'analytical':
         raise UsageError(f"--method analytical: eqs. (15)-(19) describe the two-mass drive of Figure 2; this "
@@ -83,7 +83,7 @@ def _Run(args: argparse.Namespace) -> int:
     hint = None if analysis.stable else StabilityHintData(drive)     # the same drive: nothing resolved again
     if args.json:
         g = drive.gear
-        geometry = {'form': GeometryForm(parameters), 'r1': g.r1, 'r2': g.r2, 'gamma': g.gamma, 'u': g.ratio}
+        geometry = {'form': drive.geometryForm, 'r1': g.r1, 'r2': g.r2, 'gamma': g.gamma, 'u': g.ratio}
         PrintJson({**table.ToDict(), **analysis.ToDict(), 'method': method, 'geometry': geometry, 'hint': hint})
         return 0
     where = 'at rest' if deciding is None else f"at the deciding operating point, {deciding.point.Label()}"

@@ -55,7 +55,7 @@ __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', '
            'ExtraComponents',
            'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
            'FrictionLawFromParameters',
-           'DriveFromParameters', 'ElasticDriveFromParameters', 'ElasticDriveWithGear', 'GEAR_FREE_KEYS', 'GearFreeKeys',
+           'DriveFromParameters', 'ElasticDriveFromParameters', 'ElasticDriveWithGear',
            'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
            'AxialBearingFromParameters', 'ShaftSupportsFromParameters', 'SHAFT_KEYS', 'MAX_RATE', 'MIN_RATE_SPREAD']
 
@@ -225,6 +225,12 @@ def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, floa
     for key in overrides:        # applied in order: two forms here are fine, the later one replaces the earlier
         if key not in PARAMETER_UNITS:
             raise ValueError(UnknownParameterMessage(f"{w}: 'overrides'", key))
+    return _WithOverrides(parameters, overrides)
+
+
+def _WithOverrides(parameters: Mapping[str, float], overrides: Mapping[str, float]) -> Dict[str, float]:
+    """``parameters`` with ``overrides`` applied in order, each removing its alternative forms (keys checked by the
+    caller: :func:`ApplyOverrides`, :meth:`~exudyn_worm.drive.wholedrive.Drive.Replace`)."""
     out = dict(parameters)
     for key, value in overrides.items():
         for alt in PARAMETERS.Alternatives(key):
@@ -520,11 +526,11 @@ def ElasticDriveFromParameters(parameters: Mapping[str, float], where: str = 'El
 #: the keys of the two-mass core that never change its gear: a drive changed only in these keeps its gear
 #: (:meth:`~exudyn_worm.drive.wholedrive.Drive.Replace`); J2 only while the mesh damping is given as dV (with DV,
 #: dV = 2 DV sqrt(kV r2^2 J2) / r2^2 of eq. (23) depends on it)
-GEAR_FREE_KEYS = ('J1', 'kT', 'dT', 'DT', 'DTV')
+_GEAR_FREE_KEYS = ('J1', 'kT', 'dT', 'DT', 'DTV')
 
 
-def GearFreeKeys(parameters: Mapping[str, float]) -> Tuple[str, ...]:
-    """The keys of ``parameters`` whose change leaves the gear as it is (:data:`GEAR_FREE_KEYS`, and J2 unless the
+def _GearFreeKeys(parameters: Mapping[str, float]) -> Tuple[str, ...]:
+    """The keys of ``parameters`` whose change leaves the gear as it is (``_GEAR_FREE_KEYS``, and J2 unless the
     mesh damping is the measure DV).
 
     Parameters
@@ -536,7 +542,7 @@ def GearFreeKeys(parameters: Mapping[str, float]) -> Tuple[str, ...]:
     -------
     tuple of str
     """
-    return GEAR_FREE_KEYS + (() if 'DV' in parameters else ('J2',))
+    return _GEAR_FREE_KEYS + (() if 'DV' in parameters else ('J2',))
 
 
 def ElasticDriveWithGear(gear: WormGear, parameters: Mapping[str, float], where: str = 'ElasticDriveWithGear'

@@ -36,7 +36,7 @@ from .config import (DropReplacedChoiceKeys, ResolveParametersWithSources, Sourc
                      _Overrides)
 from .duty import LOAD_TYPES, MOTOR_TYPES, LoadType, MotorType, _LoadLaw, _MotorLaw
 from .presets import (ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
-                      ElasticDriveFromParameters, ElasticDriveWithGear, GearFreeKeys, LoadSideChain,
+                      ElasticDriveFromParameters, ElasticDriveWithGear, _GearFreeKeys, _WithOverrides, LoadSideChain,
                       ShaftSupportsFromParameters)
 from ..params.parameters import PARAMETERS, MissingParameterError, ParameterError
 
@@ -183,7 +183,7 @@ class Drive:
         Each new value is checked against the parameter registry (kind, range, unit); one form of a quantity
         replaces the others (``DT=...`` drops ``dT``, as :func:`~exudyn_worm.drive.presets.ApplyOverrides`).
         Inertias, the shaft stiffness and the dampings that leave the gear as it is
-        (:func:`~exudyn_worm.drive.presets.GearFreeKeys`) keep the gear, the chains, the bearings, the duty and
+        (J1, kT, the shaft damping in any form, and J2 while the mesh damping is given as dV) keep the gear, the chains, the bearings, the duty and
         its operating points (they do not depend on them); any other change builds the drive anew, with all its
         checks. This is how variations make their drives (the design check's trials, scans, studies).
 
@@ -207,18 +207,14 @@ class Drive:
         >>> drive.Replace(J1=0.3).elastic.J1, drive.Replace(J1=0.3).gear is drive.gear
         (0.3, True)
         """
+        if not changes:
+            return self
         where = f'{self.name}: Replace' if self.name != 'drive' else 'Drive.Replace'
         for key, value in changes.items():
             PARAMETERS.Check(key, value, where)
-        p = dict(self.parameters)
-        for key, value in changes.items():
-            for alt in PARAMETERS.Alternatives(key):
-                p.pop(alt, None)
-            p[key] = value
+        p = _WithOverrides(self.parameters, changes)
         sources = {**{k: v for k, v in self.sources.items() if k in p}, **{k: ValueSource.Changed() for k in changes}}
-        if not changes:
-            return self
-        if set(changes) <= set(GearFreeKeys(p)) and set(changes) <= set(GearFreeKeys(self.parameters)):
+        if set(changes) <= set(_GearFreeKeys(self.parameters)):     # none of them adds or drops DV: the same keys
             # the gear, the chains, the bearings and the duty stay; the operating points do not depend on them
             elastic = ElasticDriveWithGear(self.gear, p, where)
             drive = replace(self, parameters=types.MappingProxyType(p), sources=types.MappingProxyType(sources),

@@ -277,7 +277,8 @@ def SpeedStabilityChart(drive: Drive, motorSpeeds: Sequence[float],
         rows = []
         for speed in speeds:
             op = OperatingPointAt(gear, float(speed), torque, S)
-            point = DutyPoint(PHASE_NAMES[S], S * float(speed), S * torque, None, 'speed chart', op)
+            # the chart's speed (> 0) and a load torque whose power has the phase's sign (lifting: < 0)
+            point = DutyPoint(PHASE_NAMES[S], float(speed), -S * torque, None, 'speed chart', op)
             rows.append((*StateGrowth(AnalyzeDrive(drive, model, [point]).operatingPoints[0].state), op.normalForce))
             if progress is not None:
                 progress(1)

@@ -24,7 +24,7 @@ from ...items.connector import CONNECTORS_KEY, WormGearConnector
 from ...items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
 from ..stability.drivestability import AnalyzeDrive
 from ...drive.wholedrive import Component, Drive
-from ...drive.duty import IsReelChangerDuty
+from ...drive.duty import CheckSimulationKeys, IsReelChangerDuty
 from ...drive.presets import (DUTY_KEYS, REEL_KEYS, AxialBearingFromParameters, ElasticDriveFromParameters,
                               DriveSideChain, LoadSideChain)
 from ...builders.oneangle import BuildReelChanger, CheckReelChangerKeys
@@ -188,14 +188,15 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
     """
     import exudyn as exu
     w = 'BuildLoweringModel'
-    CheckReelChangerKeys(Drive.FromParameters(parameters), w)
+    whole = Drive.FromParameters(parameters)          # its core is the lowering model's
+    CheckReelChangerKeys(whole, w)
     if parameters.get('motorType') == 'characteristic':
         raise ValueError(f"{w}: the periodic-orbit analysis holds the motor at constant speed 'motorSpeed' (the "
                          f"lowering phase of the linear analysis); this parameter set has "
                          f"{Component.MOTOR_CHARACTERISTIC.text} (not supported); leave those keys out")
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
-    drive = ElasticDriveFromParameters(parameters)
+    drive = whole.elastic
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
     loadTorque = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm']).maximum
     # the time simulation's builder, with the lowering phase as its duty: one assembly of the chains
@@ -257,7 +258,7 @@ def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
     from ..simulation.reelchanger3d import AddSeriesSensors
     import exudyn as exu
     w = 'BuildRigidBodyLoweringModel'
-    CheckReelChangerKeys(Drive.FromParameters(parameters), w)
+    CheckSimulationKeys(parameters, w)              # the keys read below; the drive is checked when it is built
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
     motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
