@@ -28,6 +28,7 @@ import exudyn_worm as ew
 from exudyn_worm.analysis.orbits import chatterbranch, exudynflow
 from exudyn_worm.analysis.orbits.longsimulation import LongSimulationAmplitude
 from exudyn_worm.analysis.orbits.chatterbranch import AnalyzeChatterBranch
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 #: (parameter, low, high, changes to reel-P1)
 BRANCHES = (('J1', 0.05, 0.3, {}), ('kT', 2000., 20000., {}), ('J1', 0.2, 0.3, {'backlash': 5e-4}))
@@ -36,7 +37,7 @@ BRANCHES = (('J1', 0.05, 0.3, {}), ('kT', 2000., 20000., {}), ('J1', 0.2, 0.3, {
 def CheckBranch(name, low, high, changes, checks, duration, stepSize):
     p = {**ew.GetPreset('reel-P1'), **changes}
     t0 = time.perf_counter()
-    branch = AnalyzeChatterBranch(p, name, low, high)
+    branch = AnalyzeChatterBranch(ResolveDrive(parameters=p), name, low, high)
     branchSeconds = time.perf_counter() - t0
     chattering = [q for q in branch.points if q.info['forceFactor'] >= 2.]
     chattering.sort(key=lambda q: q.value)
@@ -46,7 +47,7 @@ def CheckBranch(name, low, high, changes, checks, duration, stepSize):
         t1 = time.perf_counter()
         # where rest is stable too (coexistence), start the long run on the orbit with the worm speed kicked by 1 %
         coexisting = bool(branch.coexistence) and any(lo <= q.value <= hi for lo, hi in branch.coexistence)
-        long = LongSimulationAmplitude({**p, name: q.value}, duration=duration, stepSize=stepSize,
+        long = LongSimulationAmplitude(ResolveDrive(parameters={**p, name: q.value}), duration=duration, stepSize=stepSize,
                                        initialState=q.orbit.state if coexisting else None)
         bruteSeconds += time.perf_counter() - t1
         rows.append({'value': float(q.value), 'orbitForceFactor': q.info['forceFactor'],
@@ -107,17 +108,17 @@ def FiftyPoints():
     with _Timers() as timers:
         # serial, so that the timers see every flow run (the settling + first orbit runs are counted in both)
         t0 = time.perf_counter()
-        branch = AnalyzeChatterBranch(p, name, low, high, stepLength=step, maxPoints=60, processes=1)
+        branch = AnalyzeChatterBranch(ResolveDrive(parameters=p), name, low, high, stepLength=step, maxPoints=60, processes=1)
         seconds = time.perf_counter() - t0
     t0 = time.perf_counter()
-    parallel = AnalyzeChatterBranch(p, name, low, high, stepLength=step, maxPoints=60, processes=2)
+    parallel = AnalyzeChatterBranch(ResolveDrive(parameters=p), name, low, high, stepLength=step, maxPoints=60, processes=2)
     parallelSeconds = time.perf_counter() - t0
     if [q.value for q in parallel.points] != [q.value for q in branch.points]:
         print('warning: the branch in two processes differs from the serial one', file=sys.stderr)
     values = [float(q.value) for q in branch.points]
     t1 = time.perf_counter()
     for v in values:
-        LongSimulationAmplitude({**p, name: v}, duration=4., stepSize=2e-4)
+        LongSimulationAmplitude(ResolveDrive(parameters={**p, name: v}), duration=4., stepSize=2e-4)
     brute = time.perf_counter() - t1
     trivial = np.array([q.orbit.trivialMultiplierError for q in branch.points if q.info['forceFactor'] >= 2.])
     return {'parameter': name, 'range': [low, high], 'stepLength': step, 'points': len(values),

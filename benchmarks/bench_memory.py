@@ -23,10 +23,9 @@ def WorkerGrowth(preset: str = 'reel-P7', runs: int = 64, endTime=None, warmUp: 
     ``checkStep``: the half-step check of each point (True: forced, so that every point builds and frees three
     systems; None: the study's default, which checks only close verdicts).
     """
-    from exudyn_worm import GetPreset
-    from exudyn_worm.analysis.studies.studypoint import RunPoint
-    task = dict(run=0, parameters=GetPreset(preset), varied={}, windows=None, endTime=endTime, stepSize=None,
-                checkStep=checkStep)
+    from exudyn_worm import ResolveDrive
+    from exudyn_worm.analysis.studies.studypoint import RunPoint, RunTask
+    task = RunTask(0, ResolveDrive(preset), endTime=endTime, checkStep=checkStep)
     for _ in range(warmUp):
         RunPoint(task)
     gc.collect()

@@ -36,7 +36,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import exudyn as exu                                 # noqa: E402
 from exudyn_worm.drive.presets import ElasticDriveFromParameters, GetPreset   # noqa: E402
 from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger, SolverSettings   # noqa: E402
-from exudyn_worm.analysis.studies.studypoint import RunPoint     # noqa: E402
+from exudyn_worm.analysis.studies.studypoint import RunPoint, RunTask     # noqa: E402
 from exudyn_worm.drive.wholedrive import ResolveDrive
 from scipy_reference import SolveReelChangerScipy    # noqa: E402
 import count_instructions                            # noqa: E402
@@ -76,8 +76,7 @@ def SpeedRatios(repeat: int) -> Dict:
 def _Sweep(checkStep) -> Dict:
     total, checked = 0., 0
     for k, name in enumerate(PRESETS):
-        row = RunPoint({'run': k, 'parameters': GetPreset(name), 'varied': {}, 'windows': None, 'endTime': None,
-                        'stepSize': None, 'checkStep': checkStep})
+        row = RunPoint(RunTask(k, ResolveDrive(name), checkStep=checkStep))
         if row['status'] != 'ok':
             raise RuntimeError(f"bench_speed: {name} failed: {row['error']}")
         total += row['seconds']

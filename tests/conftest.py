@@ -56,10 +56,12 @@ def _sharedFolder(tmp_path_factory):
 
 def Shared(function, *args, **kwargs):
     """``function(*args, **kwargs)``, computed once per test run for equal arguments (a mapping argument by its
-    items); a deep copy is returned, so that a test that changes it changes nothing for the next. Only for functions
-    whose result depends on their arguments alone. Under pytest-xdist the first worker to ask computes it (under a
+    items, a drive by its values); a deep copy is returned, so that a test that changes it changes nothing for the
+    next. Only for functions whose result depends on their arguments alone. Under pytest-xdist the first worker to ask computes it (under a
     file lock) and leaves it pickled in the run's temporary folder; another worker asking meanwhile waits for it."""
     def Key(value):
+        if hasattr(value, 'parameters') and hasattr(value, 'elastic'):      # a Drive: by its values
+            return Key(dict(value.parameters))
         if isinstance(value, dict) or hasattr(value, 'items'):
             return tuple(sorted((k, Key(v)) for k, v in value.items()))
         return repr(value)

@@ -10,7 +10,7 @@ import pytest
 import exudyn_worm.analysis.orbits.chatter as chatter
 from exudyn_worm.analysis.orbits.chatter import FindSteadyChatter, SteadyChatterSummary
 from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
-from exudyn_worm.analysis.orbits.lowering import BuildRigidBodyLoweringModel, LoweringPhaseParameters
+from exudyn_worm.analysis.orbits.lowering import BuildRigidBodyLoweringModel, LoweringPhaseDrive
 from exudyn_worm.analysis.orbits.periodic import PeriodicOrbit, ShootingError
 from exudyn_worm.cli.formatchatter import FormatSteadyChatter
 from exudyn_worm.cli.main import Main
@@ -28,7 +28,7 @@ def _Run(capsys, *argv):
 
 
 def test_rigid_body_lowering_model_leaves_the_auxiliary_coordinates_to_the_flow():
-    model = BuildRigidBodyLoweringModel(GetPreset('reel-P1'))
+    model = BuildRigidBodyLoweringModel(ResolveDrive(parameters=GetPreset('reel-P1')))
     auxiliary, D = model.dependent
     assert auxiliary.size == 7 and not set(auxiliary.tolist()) & set(model.coordinates)
     assert len(model.coordinates) == 12                      # both bodies' six coordinates, the motor held
@@ -42,10 +42,10 @@ def test_rigid_body_lowering_model_leaves_the_auxiliary_coordinates_to_the_flow(
 def test_3d_model_on_ideal_joints_chatters_as_the_one_angle_model():
     # ideal revolute joints give the one-angle mesh exactly (docs/mesh-3d.md): the converged orbits (shooting
     # tolerance 1e-8 of the state scale) must agree to that order, not only to the digits of a time simulation
-    parameters = GetPreset('reel-P1')
-    one = FindSteadyChatter(parameters)
-    model = BuildRigidBodyLoweringModel(parameters)
-    rigid = FindSteadyChatter(parameters, model=model)
+    drive = ResolveDrive('reel-P1')
+    one = FindSteadyChatter(drive)
+    model = BuildRigidBodyLoweringModel(drive)
+    rigid = FindSteadyChatter(drive, model=model)
     assert rigid.converged and one.converged
     assert rigid.period == pytest.approx(one.period, rel=1e-8)
     for key in ('forceFactor', 'maxWheelAcceleration', 'minWormSpeed'):
@@ -53,7 +53,7 @@ def test_3d_model_on_ideal_joints_chatters_as_the_one_angle_model():
     assert sorted(np.abs(rigid.nontrivialMultipliers))[-1] == pytest.approx(
         sorted(np.abs(one.nontrivialMultipliers))[-1], rel=1e-7)
     assert rigid.stable == one.stable
-    summary = SteadyChatterSummary(parameters, rigidBody=True)
+    summary = chatter._OrbitSummary(model, rigid, '3D')      # as SteadyChatterSummary gives it for such a drive
     assert summary['model'] == '3D' and summary['periodS'] == pytest.approx(one.period, rel=1e-8)
     loads = {'maxWormAxialLoad', 'maxWormRadialLoad', 'maxWheelAxialLoad', 'maxWheelRadialLoad'}
     assert loads <= set(summary['amplitude'])
@@ -147,8 +147,7 @@ def test_bearing_drive_without_a_converged_orbit_reports_the_settled_long_simula
         raise ShootingError('stalled', last)
 
     monkeypatch.setattr(chatter, 'FindSteadyChatter', Stall)
-    parameters = LoweringPhaseParameters(dict(ResolveDrive(config=DRIVE_3D).parameters))
-    summary = chatter.SteadyChatterSummary(parameters, rigidBody=True)
+    summary = chatter.SteadyChatterSummary(LoweringPhaseDrive(ResolveDrive(config=DRIVE_3D)))
     json.dumps(summary)
     assert summary['method'] == 'long simulation' and summary['stable'] is None and summary['multipliers'] == []
     assert 'no periodic orbit' in summary['reason'] and 'residual 0.21' in summary['reason']

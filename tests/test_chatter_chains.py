@@ -35,17 +35,17 @@ CHAIN = {**SPLIT, 'kL1': 1e7}
 
 @pytest.fixture(scope='module')
 def orbitP1():
-    return FindSteadyChatter(P1)
+    return FindSteadyChatter(ResolveDrive(parameters=P1))
 
 
 @pytest.fixture(scope='module')
 def orbitChain():
-    return FindSteadyChatter(CHAIN)
+    return FindSteadyChatter(ResolveDrive(parameters=CHAIN))
 
 
 def test_chain_model_holds_every_free_coordinate_and_starts_at_rest():
     p = {**CHAIN, 'J4': 0.05, 'k4': 2e5, 'd4': 1., 'kA': 5e8, 'mA': 2., 'dA': 1e3}
-    model = BuildLoweringModel(p)
+    model = BuildLoweringModel(ResolveDrive(parameters=p))
     mbs = model.mbs
     # every ODE2 coordinate but the prescribed motor: worm, wheel, inertia4, loadInertia1, the worm's axial one
     assert len(model.coordinates) == mbs.systemData.ODE2Size() - 1
@@ -65,7 +65,7 @@ def test_chain_model_holds_every_free_coordinate_and_starts_at_rest():
 
 def test_stiff_load_shaft_gives_the_two_mass_orbit(orbitP1):
     # a 1e9 N m/rad load shaft (its stage at 1.6 kHz): the load follows the wheel, as lumped into J2 = 33
-    stiff = FindSteadyChatter({**SPLIT, 'kL1': 1e9})
+    stiff = FindSteadyChatter(ResolveDrive(parameters={**SPLIT, 'kL1': 1e9}))
     assert stiff.converged and len(stiff.state) == 6
     # required: amplitudes within 2 % of the long simulation's
     assert stiff.info['forceFactor'] == pytest.approx(orbitP1.info['forceFactor'], rel=0.02)
@@ -77,16 +77,16 @@ def test_stiff_axial_bearing_gives_the_two_mass_orbit(orbitP1):
     # the worm's axial bearing at 5e10 N/m (the mesh's kV is 2e8 N/m): nearly the axially rigid worm of Figure 2;
     # the flow state holds the axial coordinate, the mesh is evaluated with it
     p = {**P1, 'kA': 5e10, 'mA': 2., 'dA': 100.}
-    orbit = FindSteadyChatter(p)
+    orbit = FindSteadyChatter(ResolveDrive(parameters=p))
     assert orbit.info['model'].stateKeys[-1] == 'xA' and len(orbit.state) == 6
     assert orbit.info['forceFactor'] == pytest.approx(orbitP1.info['forceFactor'], rel=0.02)
     assert orbit.info['maxWheelAcceleration'] == pytest.approx(orbitP1.info['maxWheelAcceleration'], rel=0.02)
     # and the disturbance search reads the mesh with the axial coordinate too: P1 is linearly unstable
-    assert SmallestDisturbance(p, duration=0.5, steps=1) <= 0.25
+    assert SmallestDisturbance(ResolveDrive(parameters=p), duration=0.5, steps=1) <= 0.25
 
 
 def test_chain_orbit_matches_long_simulation(orbitChain):
-    long = LongSimulationAmplitude(CHAIN, duration=4.0, stepSize=2e-4)
+    long = LongSimulationAmplitude(ResolveDrive(parameters=CHAIN), duration=4.0, stepSize=2e-4)
     assert orbitChain.converged and orbitChain.stable
     assert orbitChain.info['forceFactor'] == pytest.approx(long['forceFactor'], rel=0.02)
     assert orbitChain.info['maxWheelAcceleration'] == pytest.approx(long['maxWheelAcceleration'], rel=0.02)
@@ -94,9 +94,9 @@ def test_chain_orbit_matches_long_simulation(orbitChain):
 
 
 def test_chain_branch_hopf_point_on_the_linear_boundary():
-    branch = AnalyzeChatterBranch(CHAIN, 'J1', 0.06, 0.1, maxPoints=40)
-    chainRoots, _ = LinearBoundaries(CHAIN, 'J1', 0.06, 0.1)           # DriveStability: the whole drive
-    lumpedRoots, _ = LinearBoundaries(P1, 'J1', 0.06, 0.1)             # the load lumped into J2
+    branch = AnalyzeChatterBranch(ResolveDrive(parameters=CHAIN), 'J1', 0.06, 0.1, maxPoints=40)
+    chainRoots, _ = LinearBoundaries(ResolveDrive(parameters=CHAIN), 'J1', 0.06, 0.1)           # DriveStability: the whole drive
+    lumpedRoots, _ = LinearBoundaries(ResolveDrive(parameters=P1), 'J1', 0.06, 0.1)             # the load lumped into J2
     assert len(chainRoots) == 1 and len(branch.hopf) == 1
     # the chain moves the boundary by more than the tolerance, so the check tells chain from lumped drive
     assert abs(chainRoots[0] - lumpedRoots[0]) > 0.01 * chainRoots[0]
@@ -141,7 +141,7 @@ def test_own_three_mass_system_gives_the_parameter_sets_orbit(orbitChain):
     assert orbit.info['maxWheelAcceleration'] == pytest.approx(orbitChain.info['maxWheelAcceleration'], rel=1e-3)
     assert orbit.stable == orbitChain.stable
     # a long simulation of the user's system (model=) reaches the same amplitude
-    long = LongSimulationAmplitude({}, duration=3.0, stepSize=2e-4, model=model)
+    long = LongSimulationAmplitude(None, duration=3.0, stepSize=2e-4, model=model)
     assert orbit.info['forceFactor'] == pytest.approx(long['forceFactor'], rel=0.02)
 
 
@@ -180,7 +180,7 @@ def test_cli_chatter_names_the_unsupported_component(capsys):
 
 
 def test_branch_in_a_load_shaft_stiffness():
-    branch = AnalyzeChatterBranch(CHAIN, 'kL1', 8e6, 1.2e7, maxPoints=2)
+    branch = AnalyzeChatterBranch(ResolveDrive(parameters=CHAIN), 'kL1', 8e6, 1.2e7, maxPoints=2)
     assert branch.parameter == 'kL1' and len(branch.points) >= 2
     # each value rebuilds the lowering model with its own load shaft: the amplitude changes along the branch
     values = {round(p.value, 3): p.info['forceFactor'] for p in branch.points}
@@ -188,7 +188,7 @@ def test_branch_in_a_load_shaft_stiffness():
     # a stage the drive does not have cannot be continued; the message lists the drive's own keys
     with pytest.raises(ValueError, match=r"parameter 'kL2' cannot be continued; .* or a key of this drive's chains "
                                          r"and axial bearing \(JL1, kL1\)"):
-        AnalyzeChatterBranch(CHAIN, 'kL2', 1e6, 1e7)
+        AnalyzeChatterBranch(ResolveDrive(parameters=CHAIN), 'kL2', 1e6, 1e7)
 
 
 def test_own_system_at_rest_is_reported():

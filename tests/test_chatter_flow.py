@@ -12,13 +12,14 @@ from exudyn_worm.analysis.orbits.lowering import EquilibriumState
 from exudyn_worm.analysis.orbits.longsimulation import LongSimulationAmplitude, SettledSimulationAmplitude
 from exudyn_worm.model.contact import FrictionState, SlidingCoordinate
 from exudyn_worm.analysis.charts.speedchart import RPM
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
 
 @pytest.fixture(scope='module')
 def lowering():
-    model = BuildLoweringModel(ew.GetPreset('reel-P1'))      # sticking friction model (the default)
+    model = BuildLoweringModel(ResolveDrive(parameters=ew.GetPreset('reel-P1')))      # sticking friction model (the default)
     assert model.connector.stickSlip is not None
     return model, _LoweringFlow(model, 400)
 
@@ -84,19 +85,19 @@ def test_carry_keeps_the_stretch_of_the_stuck_flanks(lowering):
 
 def test_settled_simulation_stops_when_the_amplitude_stops_changing():
     p1 = ew.GetPreset('reel-P1')
-    settled = SettledSimulationAmplitude(p1, maxDuration=20.)
+    settled = SettledSimulationAmplitude(ResolveDrive(parameters=p1), maxDuration=20.)
     assert settled['settled'] and settled['duration'] < 20. and settled['change'] < 5e-4
     assert settled['peakSpread'] < 0.01                  # P1's chatter is periodic
-    fixed = LongSimulationAmplitude(p1, duration=settled['duration'], stepSize=2e-4)
+    fixed = LongSimulationAmplitude(ResolveDrive(parameters=p1), duration=settled['duration'], stepSize=2e-4)
     for key in ('forceFactor', 'maxWheelAcceleration'):
         assert settled[key] == pytest.approx(fixed[key], rel=1e-3)
-    short = SettledSimulationAmplitude(p1, maxDuration=1., piece=0.5)       # chatter still growing at 1 s
+    short = SettledSimulationAmplitude(ResolveDrive(parameters=p1), maxDuration=1., piece=0.5)       # chatter still growing at 1 s
     assert not short['settled'] and short['duration'] == pytest.approx(1.)
 
 
 def test_settled_simulation_rejects_a_piece_shorter_than_the_window():
     with pytest.raises(ValueError, match=r"SettledSimulationAmplitude: 'piece' must be longer than 'window'"):
-        SettledSimulationAmplitude(ew.GetPreset('reel-P1'), piece=0.2, window=0.25)
+        SettledSimulationAmplitude(ResolveDrive(parameters=ew.GetPreset('reel-P1')), piece=0.2, window=0.25)
 
 
 @pytest.mark.slow
@@ -106,15 +107,15 @@ def test_friction_limited_orbit_near_the_hopf_point_equals_a_settled_run():
     boundary, it equals a time simulation from rest run until settled within 2 % (the required agreement)."""
     base = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,
             'stribeckVelocity': 0.9}
-    orbit = FindSteadyChatter({**base, 'motorSpeed': 88. * RPM}, settleTime=40., maxIterations=40)
+    orbit = FindSteadyChatter(ResolveDrive(parameters={**base, 'motorSpeed': 88. * RPM}), settleTime=40., maxIterations=40)
     assert orbit.info['forceFactor'] < 2. and orbit.info['minWormSpeed'] > 0.       # in contact, sliding forward
     assert orbit.stable
-    closer = FindSteadyChatter({**base, 'motorSpeed': 87. * RPM}, start=(orbit.state, orbit.period),
+    closer = FindSteadyChatter(ResolveDrive(parameters={**base, 'motorSpeed': 87. * RPM}), start=(orbit.state, orbit.period),
                                maxIterations=40)
     # towards the Hopf point the amplitude shrinks and the amplitude's multiplier approaches 1
     assert closer.info['maxWheelAcceleration'] < orbit.info['maxWheelAcceleration']
     assert 1. - max(abs(closer.nontrivialMultipliers)) < 1. - max(abs(orbit.nontrivialMultipliers))
-    long = SettledSimulationAmplitude({**base, 'motorSpeed': 88. * RPM})
+    long = SettledSimulationAmplitude(ResolveDrive(parameters={**base, 'motorSpeed': 88. * RPM}))
     assert long['settled'] and long['peakSpread'] < 0.01
     for key in ('forceFactor', 'maxWheelAcceleration'):
         assert orbit.info[key] == pytest.approx(long[key], rel=0.02)
@@ -126,7 +127,7 @@ def test_one_period_run_started_at_the_largest_worm_speed_sees_the_reversal():
     and the worm turned back without sticking (no switch, the friction still pushing it forward)."""
     p = {**ew.GetPreset('reel-P3'), 'frictionLaw': 'stribeck', 'mu': 0.092, 'muStatic': 0.2,
          'stribeckVelocity': 0.9, 'motorSpeed': 140. * RPM}
-    model = BuildLoweringModel(p)
+    model = BuildLoweringModel(ResolveDrive(parameters=p))
     x, _ = SettleLowering(model, 5.)
     probe = _LoweringFlow(model, 4000)
     probe.Solve(x, 0.4, storeSensors=True)

@@ -33,7 +33,7 @@ P1 = ew.GetPreset('reel-P1')
 
 @pytest.fixture(scope='module')
 def orbitP1():
-    return FindSteadyChatter(P1)
+    return FindSteadyChatter(ResolveDrive(parameters=P1))
 
 
 def test_constant_torque_law():
@@ -42,7 +42,7 @@ def test_constant_torque_law():
 
 
 def test_lowering_model_starts_in_equilibrium():
-    model = BuildLoweringModel(P1)
+    model = BuildLoweringModel(ResolveDrive(parameters=P1))
     g = model.drive.gear
     # the static normal force carries the load torque m g l through the mesh: wheel torque = c4 * Fn = m g l
     loadTorque = P1['loadMass'] * STANDARD_GRAVITY * P1['leverArm']
@@ -58,16 +58,16 @@ def test_lowering_model_refuses_a_motor_on_its_characteristic():
     p = {**P1, 'motorType': 'characteristic', 'stallTorque': 300., 'noLoadSpeed': 52.36, 'motorInertia': 0.05}
     with pytest.raises(ValueError, match=r"BuildLoweringModel: .*constant speed.*a motor on its characteristic "
                                          r"\(motorType characteristic\) \(not supported\)"):
-        BuildLoweringModel(p)
+        BuildLoweringModel(ResolveDrive(parameters=p))
 
 
 def test_update_in_place_changes_inertia_and_shaft():
-    model = BuildLoweringModel(P1)
-    same = UpdateLoweringModel(model, {**P1, 'J1': 0.2})
+    model = BuildLoweringModel(ResolveDrive(parameters=P1))
+    same = UpdateLoweringModel(model, model.whole.Replace(J1=0.2))
     assert same is model and model.drive.J1 == 0.2
     assert model.mbs.GetObject(model.rotors['worm']['objectNumber'])['inertia'] == 0.2
     assert model.mbs.GetObject(model.rotors['driveShaft']['objectNumber'])['damping'] == pytest.approx(model.drive.dT)
-    other = UpdateLoweringModel(model, {**P1, 'J1': 0.2, 'backlash': 1e-4})
+    other = UpdateLoweringModel(model, model.whole.Replace(J1=0.2, backlash=1e-4))
     assert other is not model and other.drive.gear.backlash == 1e-4
 
 
@@ -87,7 +87,7 @@ def test_p1_steady_chatter_orbit(orbitP1):
 
 
 def test_p1_orbit_matches_long_simulation(orbitP1):
-    long = LongSimulationAmplitude(P1, duration=4.0, stepSize=2e-4)
+    long = LongSimulationAmplitude(ResolveDrive(parameters=P1), duration=4.0, stepSize=2e-4)
     # required: within 2 %
     assert orbitP1.info['forceFactor'] == pytest.approx(long['forceFactor'], rel=0.02)
     assert orbitP1.info['maxWheelAcceleration'] == pytest.approx(long['maxWheelAcceleration'], rel=0.02)
@@ -96,18 +96,18 @@ def test_p1_orbit_matches_long_simulation(orbitP1):
 
 def test_no_chatter_is_reported():
     with pytest.raises(ValueError, match=r"FindSteadyChatter: the lowering phase settles to rest"):
-        FindSteadyChatter(ew.GetPreset('reel-P2'), settleTime=0.3)
+        FindSteadyChatter(ResolveDrive(parameters=ew.GetPreset('reel-P2')), settleTime=0.3)
 
 
 def test_linear_boundaries_are_sign_changes():
-    roots, growth = LinearBoundaries(P1, 'J1', 0.05, 0.3)
+    roots, growth = LinearBoundaries(ResolveDrive(parameters=P1), 'J1', 0.05, 0.3)
     assert len(roots) == 2
     for r in roots:
         assert growth(r * (1 - 1e-6)) * growth(r * (1 + 1e-6)) < 0
 
 
 def test_branch_in_J1_hopf_points_on_the_linear_boundaries():
-    branch = AnalyzeChatterBranch(P1, 'J1', 0.05, 0.3)
+    branch = AnalyzeChatterBranch(ResolveDrive(parameters=P1), 'J1', 0.05, 0.3)
     assert len(branch.hopf) == 2
     for h in branch.hopf:
         assert h['relativeDifference'] < 0.005                  # required: within 0.5 % of the linear boundary
@@ -119,7 +119,7 @@ def test_branch_in_J1_hopf_points_on_the_linear_boundaries():
     values = np.array([p.value for p in inside])
     factors = np.array([p.info['forceFactor'] for p in inside])
     order = np.argsort(values)
-    assert np.interp(0.1, values[order], factors[order]) == pytest.approx(FindSteadyChatter(P1).info['forceFactor'],
+    assert np.interp(0.1, values[order], factors[order]) == pytest.approx(FindSteadyChatter(ResolveDrive(parameters=P1)).info['forceFactor'],
                                                                           rel=0.005)
     data = branch.ToDict()
     assert set(data) >= {'parameter', 'hopf', 'folds', 'points'}
@@ -129,11 +129,11 @@ def test_branch_in_J1_hopf_points_on_the_linear_boundaries():
 
 def test_branch_refuses_stable_range_and_unknown_parameter():
     with pytest.raises(ChatterBranchError, match=r"linearly stable for every J1 in \[0.2, 0.3\]"):
-        AnalyzeChatterBranch(P1, 'J1', 0.2, 0.3)
+        AnalyzeChatterBranch(ResolveDrive(parameters=P1), 'J1', 0.2, 0.3)
     with pytest.raises(ValueError, match=r"parameter 'alphaN' cannot be continued"):
-        AnalyzeChatterBranch(P1, 'alphaN', 0.2, 0.3)
+        AnalyzeChatterBranch(ResolveDrive(parameters=P1), 'alphaN', 0.2, 0.3)
     with pytest.raises(ValueError, match=r"low < high, got 0.3:0.2"):
-        AnalyzeChatterBranch(P1, 'J1', 0.3, 0.2)
+        AnalyzeChatterBranch(ResolveDrive(parameters=P1), 'J1', 0.3, 0.2)
 
 
 @pytest.mark.parametrize('argv, message', [
@@ -164,18 +164,18 @@ def test_cli_json_and_plot(capsys, tmp_path):
 
 def test_smallest_disturbance_unstable_and_stable_drive():
     # linearly unstable P1: the smallest kick tried already ends in chatter
-    assert SmallestDisturbance(P1, steps=3) <= 0.5 / 2**3
+    assert SmallestDisturbance(ResolveDrive(parameters=P1), steps=3) <= 0.5 / 2**3
     # P2 (J1 = 0.3) is linearly stable and its branch has no coexistence: even half the motor speed decays
-    assert SmallestDisturbance(ew.GetPreset('reel-P2'), steps=3) == math.inf
+    assert SmallestDisturbance(ResolveDrive(parameters=ew.GetPreset('reel-P2')), steps=3) == math.inf
 
 
 def test_settle_starts_from_the_equilibrium_every_time():
-    model = BuildLoweringModel(P1)
+    model = BuildLoweringModel(ResolveDrive(parameters=P1))
     x0 = EquilibriumState(model)
     SettleLowering(model, 0.05, kick=0.3)
     again, _ = SettleLowering(model, 0.05, kick=0.)
     np.testing.assert_allclose(again, x0, atol=1e-9)          # no kick left over from the first run
-    UpdateLoweringModel(model, {**P1, 'kT': 14000.})
+    UpdateLoweringModel(model, model.whole.Replace(kT=14000.))
     assert EquilibriumState(model)[0] != x0[0]                  # the shaft twist follows kT
 
 
@@ -185,15 +185,15 @@ def test_backlash_rest_and_chatter_coexist():
     # and a small kick dies out
     p = {**P1, 'J1': 0.25, 'backlash': 5e-4}
     assert AnalyzeDrive(ResolveDrive(parameters=p)).State(-1).stable
-    orbit = FindSteadyChatter(p, kick=0.5)
+    orbit = FindSteadyChatter(ResolveDrive(parameters=p), kick=0.5)
     assert orbit.stable and orbit.info['forceFactor'] > 4.
-    chatter = LongSimulationAmplitude(p, duration=4.0, stepSize=2e-4, kick=0.3)
+    chatter = LongSimulationAmplitude(ResolveDrive(parameters=p), duration=4.0, stepSize=2e-4, kick=0.3)
     assert orbit.info['forceFactor'] == pytest.approx(chatter['forceFactor'], rel=0.02)
     assert orbit.info['maxWheelAcceleration'] == pytest.approx(chatter['maxWheelAcceleration'], rel=0.02)
-    rest = LongSimulationAmplitude(p, duration=4.0, stepSize=2e-4, kick=0.01)
+    rest = LongSimulationAmplitude(ResolveDrive(parameters=p), duration=4.0, stepSize=2e-4, kick=0.01)
     assert rest['forceFactor'] < 1.01
     # the one-line verdict for a design check; the threshold kick lies between the 1 % and 30 % runs above
-    verdict = ChattersAfterDisturbance(p)
+    verdict = ChattersAfterDisturbance(ResolveDrive(parameters=p))
     assert verdict.linearlyStable and verdict.chatterFound
     assert 0.01 * p['motorSpeed'] < verdict.smallestDisturbance < 0.3 * p['motorSpeed']
     assert verdict.text.startswith('linearly stable, but chatters after a worm-speed disturbance of')
@@ -214,10 +214,10 @@ def test_trivial_multiplier_near_one(orbitP1):
 def test_branch_in_two_processes_equals_serial():
     # the two directions from the first orbit run in two worker processes (each builds its own model) or one
     # after the other: the same orbits
-    serial = AnalyzeChatterBranch(P1, 'kT', 2000., 20000., processes=1)
-    parallel = AnalyzeChatterBranch(P1, 'kT', 2000., 20000., processes=2)
+    serial = AnalyzeChatterBranch(ResolveDrive(parameters=P1), 'kT', 2000., 20000., processes=1)
+    parallel = AnalyzeChatterBranch(ResolveDrive(parameters=P1), 'kT', 2000., 20000., processes=2)
     assert [p.value for p in parallel.points] == [p.value for p in serial.points]
     assert [p.info['forceFactor'] for p in parallel.points] == [p.info['forceFactor'] for p in serial.points]
     assert parallel.hopf == serial.hopf and len(serial.hopf) == 2
     with pytest.raises(ValueError, match=r"AnalyzeChatterBranch: 'processes' must be an integer >= 1, got 0"):
-        AnalyzeChatterBranch(P1, 'kT', 2000., 20000., processes=0)
+        AnalyzeChatterBranch(ResolveDrive(parameters=P1), 'kT', 2000., 20000., processes=0)

@@ -15,6 +15,7 @@ from exudyn_worm.analysis.orbits.smoothbranch import SmoothHopfBranch
 from exudyn_worm.analysis.charts.speedchart import RPM
 from exudyn_worm.cli.chatter import ParseVary
 from exudyn_worm.cli.main import Main, UsageError
+from exudyn_worm.drive.wholedrive import ResolveDrive
 
 pytestmark = pytest.mark.usefixtures('emptyWorkingDirectory')
 
@@ -61,9 +62,9 @@ def test_cli_follows_the_friction_branch_from_its_hopf_point(capsys):
 def test_smooth_branch_refuses_bad_side_and_limit():
     p = ew.GetPreset('reel-P3')
     with pytest.raises(ValueError, match=r"SmoothHopfBranch: 'side' must be \+1 or -1"):
-        SmoothHopfBranch(p, 'motorSpeed', 8.9, 0)
+        SmoothHopfBranch(ResolveDrive(parameters=p), 'motorSpeed', 8.9, 0)
     with pytest.raises(ValueError, match=r"SmoothHopfBranch: 'limit' must lie on the unstable side \(above\)"):
-        SmoothHopfBranch(p, 'motorSpeed', 8.9, 1, limit=8.0)
+        SmoothHopfBranch(ResolveDrive(parameters=p), 'motorSpeed', 8.9, 1, limit=8.0)
 
 
 @pytest.mark.messages

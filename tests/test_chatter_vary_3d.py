@@ -10,7 +10,7 @@ import pytest
 from exudyn_worm.analysis.orbits.chatter import SteadyChatterSummary
 from exudyn_worm.analysis.orbits.chatterbranch import BEARING_LOAD_KEYS, AnalyzeChatterBranch, ChatterBranch
 from exudyn_worm.analysis.orbits.continuation import BranchPoint
-from exudyn_worm.analysis.orbits.lowering import (BuildRigidBodyLoweringModel, LoweringPhaseParameters,
+from exudyn_worm.analysis.orbits.lowering import (BuildRigidBodyLoweringModel, LoweringPhaseDrive,
                                                   UpdateLoweringModel)
 from exudyn_worm.analysis.orbits.periodic import PeriodicOrbit
 from exudyn_worm.cli.formatchatter import FormatBranch
@@ -28,7 +28,7 @@ BEARING_KEYS = ('wormRadialStiffness', 'wormAxialStiffness', 'wormRadialDamping'
 
 
 def _Parameters():
-    return LoweringPhaseParameters(dict(ResolveDrive(config=DRIVE_3D).parameters))
+    return LoweringPhaseDrive(ResolveDrive(config=DRIVE_3D))
 
 
 def _Run(capsys, *argv):
@@ -50,20 +50,20 @@ def test_bearing_keys_can_be_continued_on_the_3d_model_only():
     parameters = _Parameters()
     # a chain key is not part of the 3D model: refused at once, naming the bearing keys that can be continued
     with pytest.raises(ValueError, match='kL1') as err:
-        AnalyzeChatterBranch(parameters, 'kL1', 1e6, 1e7, rigidBody=True)
+        AnalyzeChatterBranch(parameters, 'kL1', 1e6, 1e7)
     assert all(k in str(err.value) for k in BEARING_KEYS) and "shaft bearings" in str(err.value)
     # the one-angle model has no bearings to vary
     with pytest.raises(ValueError, match='wheelRadialStiffness'):
-        AnalyzeChatterBranch(parameters, 'wheelRadialStiffness', 0.9e9, 1.1e9, rigidBody=False)
+        AnalyzeChatterBranch(ResolveDrive(preset='reel-P1'), 'wheelRadialStiffness', 0.9e9, 1.1e9)
 
 
 def test_the_3d_lowering_model_is_rebuilt_as_the_3d_model_for_a_new_parameter_value():
     parameters = _Parameters()
     model = BuildRigidBodyLoweringModel(parameters)
-    assert UpdateLoweringModel(model, dict(parameters)) is model
-    new = UpdateLoweringModel(model, {**parameters, 'wheelRadialStiffness': 1.2e9})
+    assert UpdateLoweringModel(model, parameters) is model
+    new = UpdateLoweringModel(model, parameters.Replace(wheelRadialStiffness=1.2e9))
     assert new is not model and new.rigidBody is not None and len(new.coordinates) == len(model.coordinates)
-    assert new.parameters['wheelRadialStiffness'] == 1.2e9 and model.parameters['wheelRadialStiffness'] == 1e9
+    assert new.whole.parameters['wheelRadialStiffness'] == 1.2e9 and model.whole.parameters['wheelRadialStiffness'] == 1e9
 
 
 def test_branch_points_of_the_3d_model_carry_the_bearing_loads_in_text_and_json():
@@ -94,14 +94,13 @@ def stiffnessBranch():
     # the drive's own value, as without --vary; two orbits in each direction (about 30 s on the 2-core machine);
     # the same branch as the command line's in test_chatter_vary_on_a_bearing_drive_gives_the_3d_branch_as_json,
     # computed once for both (conftest.Shared)
-    return Shared(AnalyzeChatterBranch, _Parameters(), 'wheelRadialStiffness', 0.95e9, 1.05e9, maxPoints=2,
-                  rigidBody=True)
+    return Shared(AnalyzeChatterBranch, _Parameters(), 'wheelRadialStiffness', 0.95e9, 1.05e9, maxPoints=2)
 
 
 @pytest.mark.slow
 @pytest.mark.usefixtures('sharedChatterAnalyses')      # the steady chatter of test_chatter_3d.py, computed once
 def test_3d_branch_starts_at_the_orbit_without_vary(stiffnessBranch):
-    summary = SteadyChatterSummary(_Parameters(), rigidBody=True)
+    summary = SteadyChatterSummary(_Parameters())
     assert summary['method'] == 'shooting'
     first = [p for p in stiffnessBranch.points if p.value == 1e9]
     assert len(first) == 1

@@ -67,7 +67,7 @@ def test_a_full_disk_for_chart_output_is_one_line_and_no_file(capsys, folder, mo
 
 def _InstantPoint(task):
     """A row of the run's own parameters at once (the runs are not what these tests check)."""
-    return {'run': task['run'], 'status': 'ok', 'error': '', 'seconds': 0.001, **task['varied']}
+    return {'run': task.run, 'status': 'ok', 'error': '', 'seconds': 0.001, **task.varied}
 
 
 def test_a_full_disk_for_sweep_output_is_one_line_and_no_file(capsys, folder, monkeypatch):

@@ -266,10 +266,10 @@ def test_a_dictionary_key_gives_way_to_a_choice_made_not_to_the_default():
     base = dict(ResolveDrive('reel-P1').parameters)
     lifted = ResolveDrive(parameters={**base, 'loadType': 'constant', 'loadTorque': -100.})
     assert 'loadMass' not in lifted.parameters and lifted.loadType == 'constant'
-    with pytest.raises(ValueError, match=r"^Drive: 'muStatic' is used only with frictionLaw = stribeck, got "
+    with pytest.raises(ValueError, match=r"^ResolveDrive: 'muStatic' is used only with frictionLaw = stribeck, got "
                                          r"frictionLaw = 'constant' \(the default\)"):
         ResolveDrive(parameters={**base, 'muStatic': 0.2})
-    with pytest.raises(ValueError, match=r"^Drive: 'loadTorque' \(API\) is not used by loadType = 'lever' \(the "
+    with pytest.raises(ValueError, match=r"^ResolveDrive: 'loadTorque' \(API\) is not used by loadType = 'lever' \(the "
                                          r"default\), which takes loadMass, leverArm"):
         ResolveDrive(parameters={**base, 'loadTorque': -100.})
 

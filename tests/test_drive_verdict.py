@@ -22,7 +22,7 @@ from exudyn_worm.drive.operatingpoints import DutyOperatingPoints, SteadyPhases
 from exudyn_worm.drive.presets import DriveFromParameters, GetPreset
 from exudyn_worm.drive.wholedrive import Component, Drive, ResolveDrive
 from exudyn_worm.cli import main
-from exudyn_worm.analysis.orbits.lowering import LoweringPhaseParameters
+from exudyn_worm.analysis.orbits.lowering import LoweringPhaseDrive
 
 import paper_model
 
@@ -306,11 +306,11 @@ def test_trial_drives_of_the_hint_and_the_design_check_do_not_go_through_the_res
 
 # --- the periodic-orbit analysis follows the drive's own lowering phase -------------------------------------------
 def test_chatter_analysis_takes_the_lowering_point_of_any_duty():
-    p = LoweringPhaseParameters(ResolveParameters(config=HOIST))
+    p = LoweringPhaseDrive(ResolveDrive(config=HOIST)).parameters
     assert p['motorSpeed'] == pytest.approx(100 * RPM) and 'motorSpeedOverTime' not in p and 'loadType' not in p
     assert p['loadMass'] * G * p['leverArm'] == pytest.approx(367.875, rel=1e-14)
-    reel = GetPreset('reel-P1')
-    assert LoweringPhaseParameters(reel) == reel
-    lifting = {**reel, 'loadType': 'constant', 'loadTorque': -500.}      # the load only ever opposes the motion
-    with pytest.raises(ValueError, match="LoweringPhaseParameters: the drive's duty has no lowering phase"):
-        LoweringPhaseParameters(lifting)
+    reel = ResolveDrive('reel-P1')
+    assert LoweringPhaseDrive(reel) is reel
+    lifting = reel.Replace(loadType='constant', loadTorque=-500.)      # the load only ever opposes the motion
+    with pytest.raises(ValueError, match="LoweringPhaseDrive: the drive's duty has no lowering phase"):
+        LoweringPhaseDrive(lifting)

@@ -28,7 +28,7 @@ from exudyn_worm.items.equilibrium import SteadyInitialState
 from exudyn_worm.model.contact import MATH_OPS
 from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
 from exudyn_worm.items.results import SeriesUnit
-from exudyn_worm.analysis.studies.studypoint import RunPoint
+from exudyn_worm.analysis.studies.studypoint import RunPoint, RunTask
 from exudyn_worm.analysis.stability.loadside import DiagnoseLoadSide
 from exudyn_worm.drive.wholedrive import ResolveDrive
 
@@ -201,8 +201,8 @@ def test_cli_stability_and_sweep_treat_the_whole_drive(tmp_path, fileParameters)
 @pytest.mark.parametrize('kL1, stable', [(2e4, False), (2e7, True)])
 def test_sweep_point_takes_the_verdict_of_the_whole_drive(fileParameters, kL1, stable):
     """A sweep over the load shaft: the soft one chatters (whole drive), the stiff one is the lumped drive."""
-    row = RunPoint({'run': 0, 'parameters': {**fileParameters, 'kL1': kL1}, 'varied': {'kL1': kL1},
-                    'windows': [(0., 0.01)], 'endTime': 0.01, 'stepSize': None})
+    row = RunPoint(RunTask(0, ResolveDrive(parameters=fileParameters), {'kL1': kL1}, windows=[(0., 0.01)],
+                           endTime=0.01))
     assert row['status'] == 'ok', row['error']
     assert row['analyticStable'] is stable and row['analyticStableLowering'] is stable
 

@@ -13,7 +13,7 @@ from exudyn_worm.analysis.simulation.stepsize import (SMALL_MARGIN, UNRESOLVED, 
                                   StepCheckByDefault)
 from exudyn_worm.analysis.studies.studyfiles import ReadResults
 from exudyn_worm.analysis.studies.study import RunStudy, Study
-from exudyn_worm.analysis.studies.studypoint import RunPoint
+from exudyn_worm.analysis.studies.studypoint import RunPoint, RunTask
 from exudyn_worm.analysis.studies.studygrid import Variation
 from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
 from exudyn_worm.analysis.simulation.stepsize import VERDICT_FACTOR, CloseVerdicts
@@ -44,8 +44,7 @@ def test_simulate_and_sweep_use_the_same_step():
     p = ResolveParameters('reel-P1', sets=USER_SETS)
     h = RecommendedStepSize(ResolveDrive(parameters=p))
     assert h > 5e-4                       # the old sweep rule min(5e-4, recommended) would differ here
-    row = RunPoint({'run': 0, 'parameters': p, 'varied': {}, 'windows': [(0., 0.5)], 'endTime': 0.5,
-                    'stepSize': None, 'checkStep': False})
+    row = RunPoint(RunTask(0, ResolveDrive(parameters=p), windows=[(0., 0.5)], endTime=0.5, checkStep=False))
     assert row['status'] == 'ok' and row['stepSize'] == h and row['stepChecked'] is False
 
 

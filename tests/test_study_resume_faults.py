@@ -26,7 +26,7 @@ from exudyn_worm.drive.config import ResolveParameters
 
 def _InstantPoint(task):
     """A row of the run's own parameters, as RunPoint writes it, without simulating."""
-    return {'run': task['run'], 'status': 'ok', 'error': '', 'seconds': 0.001, **task['varied']}
+    return {'run': task.run, 'status': 'ok', 'error': '', 'seconds': 0.001, **task.varied}
 
 
 @pytest.fixture(autouse=True)

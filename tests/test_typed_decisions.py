@@ -85,10 +85,6 @@ BELOW = ('analysis', 'builders', 'drive/operatingpoints.py')
 _FLAT_NAMES = ('parameters', 'base', 'params')
 _MAPPING = re.compile(r'\b(Mapping|Dict|dict|MutableMapping)\b')
 
-_ORBITS = ('the periodic-orbit analysis (lowering phase, shooting, continuation) still builds its models from the '
-           'flat set of the lowering phase; next step of the drive as the spine')
-_STUDIES = ('a study keeps its base set and its varied points flat, as its files and worker tasks do; each run '
-            'resolves its drive once in its worker')
 _LOG_FACTORS = 'a mapping of design-parameter keys to log factors (decades), not a parameter set'
 _ROW = 'a row of the results table (CSV), not a parameter set'
 _SOLVER = 'solver settings by their path in exudyn.SimulationSettings, not a parameter set'
@@ -98,17 +94,8 @@ _NOT_A_SET = (_LOG_FACTORS, _ROW, _SOLVER, _METRICS)
 
 #: (module, function) -> why it still takes a mapping. May only shrink.
 FLAT_ALLOWED: Dict[Tuple[str, str], str] = {
-    **{('analysis/orbits/chatter.py', f): _ORBITS for f in ('FindSteadyChatter', 'SteadyChatterSummary')},
-    **{('analysis/orbits/chatterbranch.py', f): _ORBITS for f in ('LinearBoundaries', 'AnalyzeChatterBranch')},
-    **{('analysis/orbits/disturbance.py', f): _ORBITS for f in ('SmallestDisturbance', 'ChattersAfterDisturbance')},
-    **{('analysis/orbits/longsimulation.py', f): _ORBITS for f in ('LongSimulationAmplitude', 'SettledSimulationAmplitude')},
-    **{('analysis/orbits/lowering.py', f): _ORBITS for f in ('LoweringPhaseParameters', 'BuildLoweringModel',
-                                                     'BuildRigidBodyLoweringModel', 'UpdateLoweringModel')},
-    ('analysis/orbits/smoothbranch.py', 'SmoothHopfBranch'): _ORBITS,
     ('analysis/studies/study.py', 'RunStudy'): _ROW,
     ('analysis/studies/studyfiles.py', 'Run'): _ROW,
-    ('analysis/studies/studypoint.py', 'RunPoint'): _STUDIES,
-    ('analysis/studies/studypoint.py', 'RunLabel'): _STUDIES,
     ('analysis/simulation/reelchanger.py', 'SolverSettings'): _SOLVER,
     ('analysis/simulation/reelchanger.py', 'SimulateReelChanger'): _SOLVER,
     ('analysis/simulation/stepsize.py', 'CompareHalfStep'): _METRICS,

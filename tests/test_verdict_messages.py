@@ -19,7 +19,7 @@ from exudyn_worm.analysis.simulation import reelchanger
 from exudyn_worm.analysis.design.designconfirm import ChatterWhileLowering
 from exudyn_worm.analysis.simulation.reelchanger import PhaseLabel, WindowPhases
 from exudyn_worm.analysis.studies.study import Study
-from exudyn_worm.analysis.studies.studypoint import RunPoint
+from exudyn_worm.analysis.studies.studypoint import RunPoint, RunTask
 from exudyn_worm.analysis.studies.studygrid import Variation
 from exudyn_worm.analysis.studies.studypoint import RunLabel
 from exudyn_worm.analysis.studies.studyfiles import StudyResult
@@ -151,7 +151,8 @@ def test_a_worm_vibration_is_no_runaway_a_runaway_is_warned_without_a_function_n
 
 
 def test_a_run_of_a_study_is_named_in_its_warnings():
-    assert RunLabel(3, {'J1': 0.0125, 'frictionLaw': 'agma'}) == 'run 3 (J1 = 0.0125, frictionLaw = agma)'
+    task = RunTask(3, None, {'J1': 0.0125, 'frictionLaw': 'agma'})
+    assert RunLabel(task) == 'run 3 (J1 = 0.0125, frictionLaw = agma)'
 
 
 def test_a_standstill_under_load_is_found_with_a_tolerance():

@@ -87,7 +87,7 @@ def _Row(study: str, name: str, value: float, orbit, info: Dict, long: Dict) -> 
 def _Branch(study: str, name: str, low: float, high: float, changes: Dict, checks: int) -> Dict:
     p = {**ew.GetPreset('reel-P1'), **changes}
     t0 = time.perf_counter()
-    branch = AnalyzeChatterBranch(p, name, low, high)
+    branch = AnalyzeChatterBranch(ResolveDrive(parameters=p), name, low, high)
     seconds = time.perf_counter() - t0
     # only stable orbits are steady states a long simulation can reach (the unstable ones between folds are not),
     # and only those at least FOLD_DISTANCE of the range from a fold: the basin of the stable orbit closes at the fold
@@ -99,14 +99,14 @@ def _Branch(study: str, name: str, low: float, high: float, changes: Dict, check
     rows = []
     for q in picks:
         coexisting = any(lo <= q.value <= hi for lo, hi in branch.coexistence)
-        long = LongSimulationAmplitude({**p, name: q.value}, **_LONG,
+        long = LongSimulationAmplitude(ResolveDrive(parameters={**p, name: q.value}), **_LONG,
                                        initialState=q.orbit.state if coexisting else None)
         rows.append(_Row(study, name, q.value, q.orbit, q.info, long))
     kicks = []
     for d in branch.disturbances:
         for factor in (0.95, 1.05):
             kick = factor * d['wormSpeedFraction']
-            long = LongSimulationAmplitude({**p, name: d['value']}, **_LONG, kick=kick)
+            long = LongSimulationAmplitude(ResolveDrive(parameters={**p, name: d['value']}), **_LONG, kick=kick)
             kicks.append({'value': d['value'], 'kick': kick, 'threshold': d['wormSpeedFraction'],
                           'forceFactor': long['forceFactor']})
     return {'study': study, 'parameter': name, 'range': (low, high), 'points': len(branch.points),
@@ -123,11 +123,11 @@ def _Sweep(study: str, name: str, base: Dict, values, checks: int, settleTime: f
     for v in values:
         q = {**base, name: float(v)}
         try:
-            orbit = FindSteadyChatter(q, settleTime=settleTime, maxIterations=maxIterations)
+            orbit = FindSteadyChatter(ResolveDrive(parameters=q), settleTime=settleTime, maxIterations=maxIterations)
         except ShootingError as err:
             failed.append((float(v), str(err).split(';')[0]))
             continue
-        long = LongSimulationAmplitude(q, duration=duration, stepSize=_LONG['stepSize'])
+        long = LongSimulationAmplitude(ResolveDrive(parameters=q), duration=duration, stepSize=_LONG['stepSize'])
         rows.append(_Row(study, name, v, orbit, orbit.info, long))
     keep = [rows[int(round(k))] for k in np.linspace(0, len(rows) - 1, min(checks, len(rows)))] if rows else []
     return {'study': study, 'parameter': name, 'seconds': time.perf_counter() - t0, 'rows': keep, 'failed': failed,
@@ -141,9 +141,9 @@ def _FrictionBranch(study: str, base: Dict, checks: int) -> Dict:
     SMOOTH_SEED above the boundary, continued from orbit to orbit at SMOOTH_OFFSETS (the library's defaults) towards
     the boundary and away from it until the worm turns back within the orbit."""
     t0 = time.perf_counter()
-    boundaries, _ = LinearBoundaries(base, 'motorSpeed', _FRICTION_SEARCH[0] * RPM, _FRICTION_SEARCH[1] * RPM)
+    boundaries, _ = LinearBoundaries(ResolveDrive(parameters=base), 'motorSpeed', _FRICTION_SEARCH[0] * RPM, _FRICTION_SEARCH[1] * RPM)
     boundary = boundaries[0]
-    branch = SmoothHopfBranch(base, 'motorSpeed', boundary, 1, offsets=SMOOTH_OFFSETS, seed=SMOOTH_SEED)
+    branch = SmoothHopfBranch(ResolveDrive(parameters=base), 'motorSpeed', boundary, 1, offsets=SMOOTH_OFFSETS, seed=SMOOTH_SEED)
     orbits = {q.info['offset']: q.orbit for q in branch.points}
     failed = [(v / RPM, why) for v, why in branch.failed]
     messages = [f"branch ends at {e['value'] / RPM:.2f} rpm: the worm turns back within the orbit (smallest worm "
@@ -156,16 +156,16 @@ def _FrictionBranch(study: str, base: Dict, checks: int) -> Dict:
     rows, unsettled = [], []
     for f in sorted(set(picks)):
         v, orbit = boundary * (1. + f), orbits[f]
-        long = SettledSimulationAmplitude({**base, 'motorSpeed': v}, **_SETTLE)
+        long = SettledSimulationAmplitude(ResolveDrive(parameters={**base, 'motorSpeed': v}), **_SETTLE)
         row = _Row(study, 'motorSpeed', v / RPM, orbit, orbit.info, long)
         row.update(settled=long['settled'], longSeconds=long['duration'], peakSpread=long['peakSpread'])
         (rows if long['settled'] else unsettled).append(row)
     sticking = []
     for rpm in _STICKING_RPM:
         q = {**base, 'motorSpeed': rpm * RPM}
-        long = SettledSimulationAmplitude(q, **_SETTLE)
+        long = SettledSimulationAmplitude(ResolveDrive(parameters=q), **_SETTLE)
         try:
-            orbit = FindSteadyChatter(q, settleTime=3., maxIterations=40)
+            orbit = FindSteadyChatter(ResolveDrive(parameters=q), settleTime=3., maxIterations=40)
             found = {'forceFactor': orbit.info['forceFactor'], 'multipliers': np.abs(orbit.nontrivialMultipliers)}
         except ShootingError as err:
             found = {'error': str(err).split(';')[0]}

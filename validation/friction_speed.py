@@ -118,7 +118,7 @@ def RunSpeedStudy(preset: str) -> List[Dict]:
     rows = []
     for run, speed in enumerate(speeds):
         task = study.Task(run)
-        task['endTime'] = 0.75 * RotationPeriod(ResolveDrive(parameters=task['parameters']))     # to the end of the lowering phase
+        task.endTime = 0.75 * RotationPeriod(task.base.Replace(**task.varied))     # to the end of the lowering phase
         row = RunPoint(task)
         analyticUnstable = bool(chart.maxRealPart[run] > 0)
         chatter = row['loweringChatter']

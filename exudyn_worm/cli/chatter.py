@@ -76,20 +76,19 @@ def _Run(args: argparse.Namespace) -> int:
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.orbits.chatterbranch import AnalyzeChatterBranch
     from ..analysis.orbits.smoothbranch import ChatterBranchError
-    from ..analysis.orbits.lowering import LoweringPhaseParameters
+    from ..analysis.orbits.lowering import LoweringPhaseDrive
     from .formatchatter import FormatBranch
     name, low, high = ParseVary(args.vary) if args.vary is not None else (None, None, None)
     with BadInput():      # any drive: the periodic orbits of its lowering phase
         drive = WholeDriveFromArgs(args)
-        parameters = LoweringPhaseParameters(dict(drive.parameters))
+        loweringDrive = LoweringPhaseDrive(drive)
     if name is None:
-        return _RunSteady(args, drive, parameters)
+        return _RunSteady(args, drive, loweringDrive)
     if args.plot:
         CheckFigurePath(args.plot, '--plot')
     try:
         with StdoutToStderr(args.json), BadInput():
-            branch = AnalyzeChatterBranch(parameters, name, low, high, maxPoints=args.max_points or _MAX_POINTS,
-                                          rigidBody=drive.isRigidBody)
+            branch = AnalyzeChatterBranch(loweringDrive, name, low, high, maxPoints=args.max_points or _MAX_POINTS)
     except UsageError as err:
         partial = getattr(err.__cause__, 'branch', None)
         if partial is not None and partial.points:                 # keep the points computed so far
@@ -110,7 +109,7 @@ def _Run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _RunSteady(args: argparse.Namespace, drive, parameters) -> int:
+def _RunSteady(args: argparse.Namespace, drive, loweringDrive) -> int:
     """The steady chatter at the lowering operating point: one periodic orbit of the one-angle model, or of the 3D
     model for a drive with shaft bearings (or, where no orbit converges, its settled long simulation)."""
     # lazy: start-up (exudyn-worm --help imports every command module)
@@ -133,7 +132,7 @@ def _RunSteady(args: argparse.Namespace, drive, parameters) -> int:
             print(f"exudyn-worm chatter: note: {divergence}", file=sys.stderr)
     try:
         with StdoutToStderr(args.json), BadInput():
-            summary = SteadyChatterSummary(parameters, rigidBody=drive.isRigidBody)
+            summary = SteadyChatterSummary(loweringDrive)
     except UsageError as err:         # no steady chatter is a result, not an error
         if not isinstance(err.__cause__, NoSteadyChatter):
             raise

@@ -129,17 +129,16 @@ def _DisturbanceVerdict(args: argparse.Namespace, drive, result):
     # lazy: start-up (exudyn-worm --help imports every command module)
     from ..analysis.orbits.disturbance import ChattersAfterDisturbance
     from ..builders.oneangle import CheckReelChangerKeys
-    parameters = dict(drive.parameters)      # the lowering-phase orbit reads the flat set
     if args.disturbance == 'auto':
         try:
             with StdoutToStderr(args.json):
-                return ChattersAfterDisturbance(parameters)
+                return ChattersAfterDisturbance(drive)
         except ValueError:          # a drive the lowering model refuses (a motor on its characteristic): as before
             return None
     with BadInput():
         CheckReelChangerKeys(drive, 'check --disturbance')
         with StdoutToStderr(args.json):
-            return ChattersAfterDisturbance(parameters)
+            return ChattersAfterDisturbance(drive)
 
 
 COMMAND = Subcommand('check', 'design check: stable or not, distance to the stability boundary and the smallest '

@@ -230,9 +230,13 @@ def ApplyOverrides(parameters: Mapping[str, float], overrides: Mapping[str, floa
 
 def _WithOverrides(parameters: Mapping[str, float], overrides: Mapping[str, float]) -> Dict[str, float]:
     """``parameters`` with ``overrides`` applied in order, each removing its alternative forms (keys checked by the
-    caller: :func:`ApplyOverrides`, :meth:`~exudyn_worm.drive.wholedrive.Drive.Replace`)."""
+    caller: :func:`ApplyOverrides`, :meth:`~exudyn_worm.drive.wholedrive.Drive.Replace`); a value None removes the
+    key itself."""
     out = dict(parameters)
     for key, value in overrides.items():
+        if value is None:
+            out.pop(key, None)
+            continue
         for alt in PARAMETERS.Alternatives(key):
             out.pop(alt, None)
         out[key] = value

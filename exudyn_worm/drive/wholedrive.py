@@ -118,7 +118,7 @@ class Drive:
 
     @classmethod
     def FromParameters(cls, parameters: Mapping[str, Any], sources: Optional[Mapping[str, ValueSource]] = None,
-                       name: str = 'drive') -> 'Drive':
+                       name: str = 'drive', where: Optional[str] = None) -> 'Drive':
         """Build and check the drive of a flat parameter set.
 
         Parameters
@@ -132,6 +132,8 @@ class Drive:
             (:func:`~exudyn_worm.drive.config.DropReplacedChoiceKeys`), else refused.
         name : str, optional
             What the drive is called in messages.
+        where : str, optional
+            The function the user called, named in messages (default ``Drive``).
 
         Returns
         -------
@@ -144,7 +146,7 @@ class Drive:
         """
         if isinstance(parameters, Drive):
             return parameters
-        where = f'Drive ({name})' if name != 'drive' else 'Drive'
+        where = where or (f'Drive ({name})' if name != 'drive' else 'Drive')
         CheckParameterKeys(parameters, where)
         if sources is not None and not isinstance(sources, Mapping):
             raise TypeError(f"{where}: 'sources' must be a mapping of parameter keys to ValueSource, got "
@@ -189,8 +191,9 @@ class Drive:
 
         Parameters
         ----------
-        **changes : float or str
-            New values by parameter key (SI), e.g. ``drive.Replace(J1=0.3, DV=0.056)``.
+        **changes : float, str or None
+            New values by parameter key (SI), e.g. ``drive.Replace(J1=0.3, DV=0.056)``; None leaves the key out
+            (``drive.Replace(kA=None)``: no axial bearing; the drive is then checked as a whole).
 
         Returns
         -------
@@ -211,10 +214,14 @@ class Drive:
             return self
         where = f'{self.name}: Replace' if self.name != 'drive' else 'Drive.Replace'
         for key, value in changes.items():
-            PARAMETERS.Check(key, value, where)
+            if value is not None:
+                PARAMETERS.Check(key, value, where)
+            elif PARAMETERS.Get(key) is None:
+                raise ValueError(PARAMETERS.UnknownKeyMessage(where, key))
         p = _WithOverrides(self.parameters, changes)
-        sources = {**{k: v for k, v in self.sources.items() if k in p}, **{k: ValueSource.Changed() for k in changes}}
-        if set(changes) <= set(_GearFreeKeys(self.parameters)):     # none of them adds or drops DV: the same keys
+        sources = {**{k: v for k, v in self.sources.items() if k in p},
+                   **{k: ValueSource.Changed() for k, v in changes.items() if v is not None}}
+        if None not in changes.values() and set(changes) <= set(_GearFreeKeys(self.parameters)):     # none of them adds or drops DV: the same keys
             # the gear, the chains, the bearings and the duty stay; the operating points do not depend on them
             elastic = ElasticDriveWithGear(self.gear, p, where)
             drive = replace(self, parameters=types.MappingProxyType(p), sources=types.MappingProxyType(sources),
@@ -300,12 +307,22 @@ class Drive:
             self._cache[key] = compute()
         return self._cache[key]
 
+    def __reduce__(self):
+        # a worker process (a study's point, a branch's direction) gets the drive by its values; it is built and
+        # checked again there, as the same drive
+        return _Rebuild, (dict(self.parameters), dict(self.sources), self.name)
+
     def ToDict(self) -> Dict:
         """JSON-ready ``{name, components, loadType, motorType, parameters, sources}``."""
         return {'name': self.name, 'components': [c.value for c in self.components], 'loadType': self.loadType,
                 'motorType': self.motorType,
                 'parameters': {k: (v if isinstance(v, (int, float, str)) else str(v)) for k, v in self.parameters.items()},
                 'sources': {k: v.text for k, v in self.sources.items()}}
+
+
+def _Rebuild(parameters: Dict[str, Any], sources: Dict[str, ValueSource], name: str) -> Drive:
+    """The drive of :meth:`Drive.__reduce__` (unpickled)."""
+    return Drive.FromParameters(parameters, sources, name)
 
 
 def _Duty(p: Mapping[str, Any], where: str):
@@ -366,10 +383,10 @@ def ResolveDrive(preset: Optional[str] = None, config: Union[None, str, Mapping]
         if not isinstance(parameters, Mapping):
             raise TypeError(f"ResolveDrive: 'parameters' must be a mapping (a flat parameter set), got "
                             f"{type(parameters).__name__} {parameters!r}")
-        CheckParameterKeys(parameters, 'ResolveDrive')        # a message that names the function the user called
         overrides, removed = _Overrides(sets)
-        if not overrides and not removed:
-            return Drive.FromParameters(parameters, name='drive')
+        if not overrides and not removed:     # its messages name the function the user called
+            return Drive.FromParameters(parameters, name='drive', where='ResolveDrive')
+        CheckParameterKeys(parameters, 'ResolveDrive')
         p = {k: v for k, v in ApplyOverrides(parameters, overrides).items() if k not in removed}
         _CheckChain(p, {})
         return Drive.FromParameters(p, {k: ValueSource.Set() if k in overrides else ValueSource.Api() for k in p})

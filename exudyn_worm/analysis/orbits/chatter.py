@@ -11,7 +11,7 @@ brute-force check by long time simulations is :mod:`exudyn_worm.analysis.orbits.
 """
 from __future__ import annotations
 
-from typing import Any, Dict, Mapping, Optional, Sequence
+from typing import Any, Dict, Optional, Sequence
 
 import numpy as np
 
@@ -20,7 +20,7 @@ from .periodic import FindPeriodicOrbit, NoSteadyChatter, PeriodicOrbit, Shootin
 from ..._checks import CheckPositive
 from ...items.connector import WormGearConnector
 from ..stability.linearization import AnalyzeLinearStability
-from ...drive.wholedrive import Drive
+from ...drive.wholedrive import CheckDrive, Drive
 from ..stability.drivestability import AnalyzeDrive
 from .exudynflow import STEPS_PER_PERIOD, ExudynFlow, _Configuration
 from .lowering import (BuildLoweringModel, BuildRigidBodyLoweringModel, LoweringModel, LoweringModelOfSystem,
@@ -72,7 +72,7 @@ def OrbitAmplitude(model: LoweringModel, flow: ExudynFlow, state: Sequence[float
     return out
 
 
-def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, stepsPerPeriod: int = STEPS_PER_PERIOD,
+def FindSteadyChatter(drive: Drive, settleTime: float = 1.0, stepsPerPeriod: int = STEPS_PER_PERIOD,
                       contactOptions: ContactOptions = ContactOptions(), start: Optional[Any] = None, maxIterations: int = 30,
                       tolerance: float = 1e-8, model: Optional[LoweringModel] = None, kick: float = 0.01,
                       initialState: Optional[Sequence[float]] = None) -> PeriodicOrbit:
@@ -80,8 +80,9 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's keys (e.g. ``GetPreset('reel-P1')``).
+    drive : Drive
+        A drive with the reel changer's duty (e.g. ``ResolveDrive('reel-P1')``; any other duty through
+        :func:`~exudyn_worm.analysis.orbits.lowering.LoweringPhaseDrive`).
     settleTime : float
         Duration in s of the time simulation (from the steady state, worm speed kicked by 1 %) whose end is
         the first guess, if ``start`` is not given. For the 3D model (``model`` from
@@ -99,7 +100,7 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
     tolerance : float
         Shooting tolerance (relative to the state scale).
     model : LoweringModel, optional
-        A model already built from ``parameters``.
+        A model already built from ``drive``.
     kick : float
         Initial worm-speed disturbance of the settling simulation, as a fraction of the motor speed (a large one
         finds chatter that coexists with a stable rest).
@@ -117,17 +118,17 @@ def FindSteadyChatter(parameters: Mapping[str, float], settleTime: float = 1.0, 
     ShootingError
         If the settled simulation does not oscillate (the drive is at rest: no chatter to find) or Newton fails.
     """
-    model = BuildLoweringModel(parameters, contactOptions) if model is None else model
+    model = BuildLoweringModel(drive, contactOptions) if model is None else model
     return _FindChatter(model, 'FindSteadyChatter', 'the lowering phase', settleTime, stepsPerPeriod, start,
                         maxIterations, tolerance, kick, initialState)
 
 
 def _LinearlyStable(model: LoweringModel) -> bool:
     """The linear verdict at the model's steady state: :func:`~exudyn_worm.analysis.stability.drivestability.AnalyzeDrive` (S = -1,
-    lowering) for a parameter set; for a user's system its own linearization in the contact state of its steady
+    lowering) for a drive; for a user's system its own linearization in the contact state of its steady
     state (False if it cannot be linearized there, so that a drive is never called at rest on that ground)."""
-    if model.parameters:
-        return bool(AnalyzeDrive(Drive.FromParameters(model.parameters)).State(-1).stable)
+    if model.whole is not None:
+        return bool(AnalyzeDrive(model.whole).State(-1).stable)
     S = int(np.sign(float(_MeshAt(model.connector, model.steady).S))) or -1
     mbs, C = model.mbs, _Configuration()
     mbs.systemData.SetODE2Coordinates(model.initialCoordinates.tolist(), configuration=C.Initial)
@@ -268,19 +269,15 @@ def SteadyChatterOfSystem(mbs: Any, connector: WormGearConnector, coordinates: O
                         maxIterations, tolerance, kick, initialState)
 
 
-def SteadyChatterSummary(parameters: Mapping[str, float], rigidBody: bool = False,
-                         stepsPerPeriod: int = STEPS_PER_PERIOD) -> Dict[str, Any]:
+def SteadyChatterSummary(drive: Drive, stepsPerPeriod: int = STEPS_PER_PERIOD) -> Dict[str, Any]:
     """The steady chatter of the lowering phase (:func:`FindSteadyChatter`) as a JSON-ready dictionary, on the
-    one-angle model or on the 3D model (:func:`~exudyn_worm.analysis.orbits.lowering.BuildRigidBodyLoweringModel`: worm and
-    wheel as rigid bodies on the shafts' bearings of the parameter set).
+    model the drive needs: the one-angle model, or the 3D model for a drive with shaft bearings
+    (:func:`~exudyn_worm.analysis.orbits.lowering.BuildRigidBodyLoweringModel`: worm and wheel as rigid bodies).
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's duty keys
-        (:func:`~exudyn_worm.analysis.orbits.lowering.LoweringPhaseParameters`), with the bearings for ``rigidBody``.
-    rigidBody : bool
-        The 3D model (True) or the one-angle model (False, default).
+    drive : Drive
+        A drive with the reel changer's duty (:func:`~exudyn_worm.analysis.orbits.lowering.LoweringPhaseDrive`).
     stepsPerPeriod : int
         Solver steps per period in the shooting runs.
 
@@ -304,10 +301,11 @@ def SteadyChatterSummary(parameters: Mapping[str, float], rigidBody: bool = Fals
     ShootingError
         If the lowering phase settles to rest (no chatter) or, on the one-angle model, shooting does not converge.
     """
-    if rigidBody:
-        return _SteadyChatterSummary3D(parameters, stepsPerPeriod)
-    model = BuildLoweringModel(parameters)
-    orbit = FindSteadyChatter(parameters, stepsPerPeriod=stepsPerPeriod, model=model)
+    drive = CheckDrive('SteadyChatterSummary', drive)
+    if drive.isRigidBody:
+        return _SteadyChatterSummary3D(drive, stepsPerPeriod)
+    model = BuildLoweringModel(drive)
+    orbit = FindSteadyChatter(drive, stepsPerPeriod=stepsPerPeriod, model=model)
     return _OrbitSummary(model, orbit, 'one-angle')
 
 
@@ -324,13 +322,13 @@ def _OrbitSummary(model: LoweringModel, orbit: PeriodicOrbit, name: str) -> Dict
             'motorSpeed': float(model.motorSpeed), 'loadTorque': float(model.loadTorque)}
 
 
-def _SteadyChatterSummary3D(parameters: Mapping[str, float], stepsPerPeriod: int) -> Dict[str, Any]:
+def _SteadyChatterSummary3D(drive: Drive, stepsPerPeriod: int) -> Dict[str, Any]:
     """:func:`SteadyChatterSummary` on the 3D model: shooting from a run settled on the Poincare section, or, where
     shooting does not converge from there, the settled run's vibration (``method`` 'long simulation')."""
     w = 'SteadyChatterSummary'
-    model = BuildRigidBodyLoweringModel(parameters)
+    model = BuildRigidBodyLoweringModel(drive)
     if not _ElasticBearings(model):                  # ideal joints: the one-angle model's dynamics, its start
-        summary = _OrbitSummary(model, FindSteadyChatter(parameters, stepsPerPeriod=stepsPerPeriod, model=model), '3D')
+        summary = _OrbitSummary(model, FindSteadyChatter(drive, stepsPerPeriod=stepsPerPeriod, model=model), '3D')
         summary.update(method='shooting', reason='periodic orbit by shooting (shafts on ideal joints)')
         return summary
     settled = SettleOnSection(model)
@@ -338,7 +336,7 @@ def _SteadyChatterSummary3D(parameters: Mapping[str, float], stepsPerPeriod: int
     settledText = (f"started on the Poincare section of a {settled['duration']:g} s time simulation (the section "
                    f"point moved by {settled['change']:.2g} of the state scale over its last 2 s)")
     try:
-        orbit = FindSteadyChatter(parameters, stepsPerPeriod=stepsPerPeriod, model=model, start=start)
+        orbit = FindSteadyChatter(drive, stepsPerPeriod=stepsPerPeriod, model=model, start=start)
     except ShootingError as err:
         residual = getattr(err.lastOrbit, 'residual', float('nan'))
         vibration = settled['vibration']

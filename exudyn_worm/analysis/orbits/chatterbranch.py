@@ -21,7 +21,7 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
-from typing import Callable, Dict, List, Mapping, Optional, Tuple
+from typing import Callable, Dict, List, Optional, Tuple
 
 import numpy as np
 
@@ -33,11 +33,10 @@ from .continuation import Branch, BranchPoint, ContinueOrbits, StopKind
 from .periodic import PeriodicOrbit, ShootingError
 from ..._checks import CheckPositive
 from ...items.bearings import BEARING_LOADS
-from ...drive.wholedrive import Drive
+from ...drive.wholedrive import CheckDrive, Drive
 from ..stability.drivestability import AnalyzeDrive
 from ..._workers import CancelPool, SignalsHeld, WorkerInit
 from ...params.parameters import PARAMETERS
-from ...drive.presets import ElasticDriveFromParameters
 from .disturbance import COEXISTENCE_KICK, SmallestDisturbance
 from .smoothbranch import ChatterBranchError, SmoothHopfBranch
 
@@ -136,25 +135,25 @@ class ChatterBranch:
         return PlotChatterBranch(self, fileName=fileName, **kwargs)
 
 
-def _BuildModel(parameters: Mapping[str, float], rigidBody: bool) -> LoweringModel:
-    """The lowering model of ``parameters``: the 3D model (``rigidBody``) or the one-angle model."""
-    return BuildRigidBodyLoweringModel(parameters) if rigidBody else BuildLoweringModel(parameters)
+def _BuildModel(drive: Drive) -> LoweringModel:
+    """The lowering model of ``drive``: the 3D model (a drive with shaft bearings) or the one-angle model."""
+    return BuildRigidBodyLoweringModel(drive) if drive.isRigidBody else BuildLoweringModel(drive)
 
 
-def _MaxRealPart(parameters) -> float:
-    return float(AnalyzeDrive(Drive.FromParameters(parameters)).State(-1).maxRealPart)
+def _MaxRealPart(drive: Drive) -> float:
+    return float(AnalyzeDrive(drive).State(-1).maxRealPart)
 
 
-def LinearBoundaries(parameters: Mapping[str, float], name: str, low: float, high: float, samples: int = 41
+def LinearBoundaries(drive: Drive, name: str, low: float, high: float, samples: int = 41
                      ) -> Tuple[List[float], Callable[[float], float]]:
     """Where the linearized drive (S = -1, the lowering phase) changes stability on ``[low, high]``.
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set.
+    drive : Drive
+        The drive.
     name : str
-        Parameter varied.
+        Parameter varied (its key, e.g. ``'J1'``).
     low, high : float
         Range.
     samples : int
@@ -167,8 +166,10 @@ def LinearBoundaries(parameters: Mapping[str, float], name: str, low: float, hig
     """
     from scipy.optimize import brentq
 
+    drive = CheckDrive('LinearBoundaries', drive)
+
     def Growth(v):
-        return _MaxRealPart({**parameters, name: v})
+        return _MaxRealPart(drive.Replace(**{name: v}))
     grid = np.linspace(low, high, samples)
     values = [Growth(v) for v in grid]
     roots = [brentq(Growth, a, b, xtol=1e-12 * max(1., abs(b)), rtol=1e-12)
@@ -176,12 +177,13 @@ def LinearBoundaries(parameters: Mapping[str, float], name: str, low: float, hig
     return roots, Growth
 
 
-def _ComponentKeys(parameters: Mapping[str, float], rigidBody: bool = False) -> List[str]:
-    """The keys of the parameter set's drive-side and load-side chain stages and axial bearing (``J4, k4, d4, ...,
+def _ComponentKeys(drive: Drive) -> List[str]:
+    """The keys of the drive's drive-side and load-side chain stages and axial bearing (``J4, k4, d4, ...,
     JL1, kL1, dL1, ..., kA, dA, mA``) that can be continued too (each value rebuilds the lowering model); on the 3D
-    model (``rigidBody``) the shafts' bearing keys and the bodies' masses the set gives (``wormRadialStiffness``,
-    ..., ``wheelBearingSpan``, ``wormMass``, ``wheelMass``)."""
-    if rigidBody:
+    model (a drive with shaft bearings) the shafts' bearing keys and the bodies' masses the drive gives
+    (``wormRadialStiffness``, ..., ``wheelBearingSpan``, ``wormMass``, ``wheelMass``)."""
+    parameters = drive.parameters
+    if drive.isRigidBody:
         return [k for k in PARAMETERS.KeysOf('wormBearing') + PARAMETERS.KeysOf('wheelBearing')
                 + ('wormMass', 'wheelMass', 'kA', 'dA', 'mA') if k in parameters]
     keys = [k for k in parameters if (PARAMETERS.SeriesIndex(k) or ('',))[0] in _SERIES_PREFIXES]
@@ -190,13 +192,12 @@ def _ComponentKeys(parameters: Mapping[str, float], rigidBody: bool = False) -> 
     return keys
 
 
-def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float, high: float,
+def AnalyzeChatterBranch(drive: Drive, name: str, low: float, high: float,
                          maxPoints: int = 60, settleTime: float = 1.0, onPoint: Optional[Callable] = None,
-                         restarts: int = 3, stepLength: float = 0.5, processes: int = 2,
-                         rigidBody: bool = False) -> ChatterBranch:
+                         restarts: int = 3, stepLength: float = 0.5, processes: int = 2) -> ChatterBranch:
     """Branch of steady chatter of the lowering phase in parameter ``name`` over ``[low, high]``.
 
-    On the 3D model (``rigidBody``: worm and wheel as rigid bodies on their shafts' bearings,
+    On the 3D model (a drive with shaft bearings: worm and wheel as rigid bodies on their shafts' bearings,
     :func:`~exudyn_worm.analysis.orbits.lowering.BuildRigidBodyLoweringModel`) with elastic bearings the first orbit is
     found as without continuation (:func:`~exudyn_worm.analysis.orbits.chatter.SteadyChatterSummary`): shooting from a time
     simulation settled on its Poincare section (:func:`~exudyn_worm.analysis.orbits.settling.SettleOnSection`, about 14 s
@@ -207,10 +208,11 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's keys (e.g. ``GetPreset('reel-P1')``).
+    drive : Drive
+        A drive with the reel changer's duty (e.g. ``ResolveDrive('reel-P1')``; any other duty through
+        :func:`~exudyn_worm.analysis.orbits.lowering.LoweringPhaseDrive`).
     name : str
-        The parameter, one of :data:`CONTINUABLE`, or a key of the parameter set's drive-side or load-side chain
+        The parameter, one of :data:`CONTINUABLE`, or a key of the drive's drive-side or load-side chain
         (``J4, k4, d4, ...``, ``JL1, kL1, dL1, ...``) or axial bearing (``kA, dA, mA``); on the 3D model a key of
         the shafts' bearings or the bodies' masses that the set gives (``wormRadialStiffness``, ...,
         ``wheelBearingSpan``, ``wormMass``, ``wheelMass``).
@@ -234,9 +236,6 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         Worker processes: with 2 (default) the two directions of the branch from the first orbit are computed at
         the same time in two processes (Linux, fork; each builds its own model), with 1 one after the other. The
         results are the same; ``onPoint`` is then called once a direction is done.
-    rigidBody : bool
-        The 3D model (True) or the one-angle model (False, default), as
-        :func:`~exudyn_worm.analysis.orbits.chatter.SteadyChatterSummary` takes it.
 
     Returns
     -------
@@ -251,8 +250,9 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
         found; ``.branch`` keeps what was computed.
     """
     w = 'AnalyzeChatterBranch'
-    rigidBody = bool(rigidBody)
-    components = _ComponentKeys(parameters, rigidBody)
+    drive = CheckDrive(w, drive)
+    rigidBody = drive.isRigidBody
+    components = _ComponentKeys(drive)
     if name not in CONTINUABLE and name not in components:
         extra = ', '.join(components)
         what = "shaft bearings and bodies' masses" if rigidBody else "chains and axial bearing"
@@ -264,20 +264,19 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     stepLength = CheckPositive(w, 'stepLength', stepLength)
     if isinstance(processes, bool) or not isinstance(processes, int) or processes < 1:
         raise ValueError(f"{w}: 'processes' must be an integer >= 1, got {processes!r}")
-    base = dict(parameters)
-    _BuildModel({**base, name: low}, rigidBody)         # checks the parameter set and the low end early
-    roots, Growth = LinearBoundaries(base, name, low, high)
+    _BuildModel(drive.Replace(**{name: low}))         # checks the drive and the low end early
+    roots, Growth = LinearBoundaries(drive, name, low, high)
     result = ChatterBranch(name, (low, high), linearBoundaries=roots, model='3D' if rigidBody else 'one-angle')
     # a friction law that falls with the sliding speed can limit the chatter while the mesh stays in contact: the
     # branch then leaves a linear boundary with zero amplitude (a smooth Hopf point), which the continuation below
     # (from an orbit that loses contact, stopped where the orbit stays in contact) cannot follow
-    if roots and _SpeedDependentFriction(base) and _SmoothBranches(base, name, low, high, roots, Growth, maxPoints,
+    if roots and _SpeedDependentFriction(drive) and _SmoothBranches(drive, name, low, high, roots, Growth, maxPoints,
                                                                     onPoint, result):
         return result
     # start in the middle of the widest linearly unstable interval
     edges = [low] + roots + [high]
     unstable = [(a, b) for a, b in zip(edges[:-1], edges[1:]) if Growth(0.5 * (a + b)) > 0]
-    own = base.get(name)
+    own = drive.parameters.get(name)
     if unstable and rigidBody and own is not None and low <= own <= high and Growth(own) > 0:
         # the 3D model: at the drive's own value, where the first orbit is the one without continuation (shooting
         # from the settled start converges there; in the middle of reel-3d.toml's unstable interval of
@@ -289,9 +288,9 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     else:
         # linearly stable everywhere: chatter can still coexist with rest; look for it after a large kick
         start, kick = 0.5 * (low + high), COEXISTENCE_KICK
-    model = _BuildModel({**base, name: start}, rigidBody)
+    model = _BuildModel(drive.Replace(**{name: start}))
     try:
-        orbit = _FirstOrbit({**base, name: start}, model, settleTime, kick, result)
+        orbit = _FirstOrbit(model, settleTime, kick, result)
     except ShootingError as err:
         if not unstable:
             raise ChatterBranchError(f"{w}: the drive is linearly stable for every {name} in [{low:g}, {high:g}] "
@@ -300,7 +299,7 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
                                      f"{start:g} dies out: no chatter found on this range; widen the range or pick a "
                                      f"parameter set that chatters (e.g. reel-P1)", result) from err
         hint = ''
-        if not roots and _SpeedDependentFriction(base):
+        if not roots and _SpeedDependentFriction(drive):
             hint = (f"; with a speed-dependent friction law the chatter near a linear boundary is small and settles "
                     f"slowly: include the linear boundary in the range, the branch is then followed from its Hopf "
                     f"point")
@@ -313,8 +312,8 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     # the start orbit without its model and flow (those cannot be pickled): each direction builds its own
     seed = PeriodicOrbit(state=orbit.state, period=orbit.period, monodromy=orbit.monodromy, velocity=orbit.velocity,
                          residual=orbit.residual, iterations=orbit.iterations, converged=orbit.converged)
-    jobs = [(base, name, low, high, seed, start, scale, scaleP, direction, maxPoints, settleTime, restarts,
-             stepLength, orbit.info['flow'].steps, rigidBody) for direction in (-1, 1)]
+    jobs = [(drive, name, low, high, seed, start, scale, scaleP, direction, maxPoints, settleTime, restarts,
+             stepLength, orbit.info['flow'].steps) for direction in (-1, 1)]
     halves = []
     for branch, messages in _RunDirections(jobs, processes, onPoint, result.messages):
         halves.append(branch)
@@ -378,39 +377,38 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
                                "only: not given for the 3D model")
     for lo, hi in ([] if rigidBody else result.coexistence):
         middle = 0.5 * (lo + hi)
-        kick = SmallestDisturbance({**base, name: middle})
+        kick = SmallestDisturbance(drive.Replace(**{name: middle}))
         result.disturbances.append({'value': middle, 'wormSpeedFraction': kick,
-                                    'wormSpeed': kick * float(base['motorSpeed'])})
+                                    'wormSpeed': kick * float(drive.Replace(**{name: middle}).motor.speed)})
     return result
 
 
-def _FirstOrbit(parameters: Dict, model: LoweringModel, settleTime: float, kick: float,
-                result: ChatterBranch) -> PeriodicOrbit:
+def _FirstOrbit(model: LoweringModel, settleTime: float, kick: float, result: ChatterBranch) -> PeriodicOrbit:
     """The branch's first orbit: :func:`~exudyn_worm.analysis.orbits.chatter.FindSteadyChatter` after ``settleTime``; on the
     3D model with elastic bearings from a run settled on the Poincare section
     (:func:`~exudyn_worm.analysis.orbits.settling.SettleOnSection`, noted in ``result.settling`` and ``messages``)."""
     if not _ElasticBearings(model):
-        return FindSteadyChatter(parameters, settleTime=settleTime, model=model, kick=kick)
+        return FindSteadyChatter(model.whole, settleTime=settleTime, model=model, kick=kick)
     w = 'AnalyzeChatterBranch'
     settled = SettleOnSection(model, kick=kick)
     start = _SettledStart(model, w, 'the lowering phase', settled)
-    value = parameters[result.parameter]
+    value = model.whole.parameters[result.parameter]
     result.settling = {'value': float(value), 'duration': float(settled['duration']),
                        'change': float(settled['change']), 'settled': bool(settled['settled'])}
-    orbit = FindSteadyChatter(parameters, model=model, start=start)
+    orbit = FindSteadyChatter(model.whole, model=model, start=start)
     result.messages.append(f"3D model: the first orbit ({result.parameter} = {value:.6g}) by shooting from a "
                            f"{settled['duration']:g} s time simulation settled on the Poincare section (its section "
                            f"point moved by {settled['change']:.2g} of the state scale over the last 2 s)")
     return orbit
 
 
-def _SpeedDependentFriction(parameters: Mapping[str, float]) -> bool:
+def _SpeedDependentFriction(drive: Drive) -> bool:
     """Whether the mesh's friction coefficient depends on the sliding speed. With a constant one the contact law is
     piecewise linear, so an orbit that stays in contact is one of the linearized drive: no smooth Hopf branch."""
-    return ElasticDriveFromParameters(parameters).gear.frictionLaw.kind != 'constant'
+    return drive.gear.frictionLaw.kind != 'constant'
 
 
-def _SmoothBranches(base: Dict, name: str, low: float, high: float, roots: List[float], Growth: Callable,
+def _SmoothBranches(drive: Drive, name: str, low: float, high: float, roots: List[float], Growth: Callable,
                     maxPoints: int, onPoint: Optional[Callable], result: ChatterBranch) -> bool:
     """The smooth branches (:func:`~exudyn_worm.analysis.orbits.smoothbranch.SmoothHopfBranch`) from the linear boundaries ``roots`` into their linearly
     unstable sides, put into ``result``; False (only why in ``result.messages``) if no boundary has one (each
@@ -421,7 +419,7 @@ def _SmoothBranches(base: Dict, name: str, low: float, high: float, roots: List[
         above = Growth(0.5 * (r + edges[i + 1])) > 0
         side, limit = (1, edges[i + 1]) if above else (-1, edges[i - 1])
         try:
-            found.append(SmoothHopfBranch(base, name, r, side, limit=limit, maxPoints=maxPoints,
+            found.append(SmoothHopfBranch(drive, name, r, side, limit=limit, maxPoints=maxPoints,
                                           maxSeedForceFactor=REST_FORCE_FACTOR, onPoint=onPoint))
         except (ShootingError, ChatterBranchError) as err:
             notes.append(f"no smooth branch from the linear boundary {name} = {r:.6g}: {str(err).split(';')[0]}")
@@ -441,20 +439,20 @@ def _SmoothBranches(base: Dict, name: str, low: float, high: float, roots: List[
     return True
 
 
-def _FollowDirection(base: Dict, name: str, low: float, high: float, start: PeriodicOrbit, value: float,
+def _FollowDirection(drive: Drive, name: str, low: float, high: float, start: PeriodicOrbit, value: float,
                      scale: np.ndarray, scaleP: float, direction: int, maxPoints: int, settleTime: float,
-                     restarts: int, stepLength: float, steps: int, rigidBody: bool = False,
-                     onPoint: Optional[Callable] = None) -> Tuple[Branch, List[str]]:
+                     restarts: int, stepLength: float, steps: int, onPoint: Optional[Callable] = None) -> Tuple[Branch, List[str]]:
     """One direction of the branch from ``start`` at ``value``: continuation, and restarts from a time simulation
     where the corrector is stuck (on the 3D model: shooting from the last orbit, whose slow tilt modes a short
     simulation would not settle). Builds its own model, so that it can run in a worker process."""
-    model = _BuildModel({**base, name: value}, rigidBody)
+    rigidBody = drive.isRigidBody
+    model = _BuildModel(drive.Replace(**{name: value}))
     current = {'model': model, 'flow': _LoweringFlow(model, steps)}
     messages = []
 
     def ModelAt(v):
         m = current['model']
-        new = UpdateLoweringModel(m, {**base, name: v})
+        new = UpdateLoweringModel(m, drive.Replace(**{name: v}))
         if new is not m:
             current['flow'] = _LoweringFlow(new, current['flow'].steps)
             current['model'] = new
@@ -491,10 +489,10 @@ def _FollowDirection(base: Dict, name: str, low: float, high: float, start: Peri
         m, _ = ModelAt(again)
         try:
             if rigidBody:
-                orbit = FindSteadyChatter({**base, name: again}, model=m,
+                orbit = FindSteadyChatter(m.whole, model=m,
                                           start=(last.orbit.state, last.orbit.period))
             else:
-                orbit = FindSteadyChatter({**base, name: again}, settleTime=settleTime, model=m,
+                orbit = FindSteadyChatter(m.whole, settleTime=settleTime, model=m,
                                           initialState=last.orbit.state)
         except ShootingError:
             messages.append(f"towards {side} {name}: no steady chatter found again at {name} = {again:.6g}")

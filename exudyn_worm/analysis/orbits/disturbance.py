@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Dict, Mapping
+from typing import Dict
 
 import numpy as np
 
@@ -14,7 +14,7 @@ from .chatter import FindSteadyChatter
 from .lowering import BuildLoweringModel, SettleLowering, _MeshAt
 from .periodic import ShootingError
 from ..._checks import JsonNumber
-from ...drive.wholedrive import Drive
+from ...drive.wholedrive import CheckDrive, Drive
 from ..stability.drivestability import AnalyzeDrive
 
 __all__ = ['COEXISTENCE_KICK', 'SmallestDisturbance', 'DisturbanceVerdict', 'ChattersAfterDisturbance']
@@ -22,7 +22,7 @@ __all__ = ['COEXISTENCE_KICK', 'SmallestDisturbance', 'DisturbanceVerdict', 'Cha
 COEXISTENCE_KICK = 0.5
 
 
-def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 3.0, largest: float = 0.5,
+def SmallestDisturbance(drive: Drive, duration: float = 3.0, largest: float = 0.5,
                         steps: int = 8) -> float:
     """Smallest initial worm-speed disturbance (fraction of the motor speed) after which the lowering phase ends
     in chatter, by bisection on time simulations from the steady state; ``math.inf`` if ``largest`` does not.
@@ -32,8 +32,8 @@ def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 3.0, 
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set (a drive that is linearly stable but may chatter).
+    drive : Drive
+        A drive with the reel changer's duty (linearly stable but it may chatter).
     duration : float
         Simulated time in s per trial, >= 0.5.
     largest : float
@@ -47,7 +47,7 @@ def SmallestDisturbance(parameters: Mapping[str, float], duration: float = 3.0, 
     """
     if not duration >= 0.5:
         raise ValueError(f"SmallestDisturbance: 'duration' must be >= 0.5 s, got {duration!r}")
-    model = BuildLoweringModel(parameters)
+    model = BuildLoweringModel(drive)
 
     def Chatters(kick):
         # chatter: the mesh still loses contact (largest normal force >= twice the static force) in the last 0.2 s;
@@ -107,7 +107,7 @@ class DisturbanceVerdict:
                 'text': self.text}
 
 
-def ChattersAfterDisturbance(parameters: Mapping[str, float]) -> DisturbanceVerdict:
+def ChattersAfterDisturbance(drive: Drive) -> DisturbanceVerdict:
     """Does a drive chatter in the lowering phase, and if it is linearly stable, after which disturbance?
 
     Meant for a design check: a linearly stable drive may still chatter after a disturbance where rest and chatter
@@ -115,23 +115,24 @@ def ChattersAfterDisturbance(parameters: Mapping[str, float]) -> DisturbanceVerd
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's keys (two-mass drive).
+    drive : Drive
+        A drive with the reel changer's duty.
 
     Returns
     -------
     DisturbanceVerdict
     """
-    stable = bool(AnalyzeDrive(Drive.FromParameters(parameters)).State(-1).stable)
+    drive = CheckDrive('ChattersAfterDisturbance', drive)
+    stable = bool(AnalyzeDrive(drive).State(-1).stable)
     nan = math.nan
     try:
-        orbit = FindSteadyChatter(parameters, kick=COEXISTENCE_KICK if stable else 0.01)
+        orbit = FindSteadyChatter(drive, kick=COEXISTENCE_KICK if stable else 0.01)
     except ShootingError:
         text = ('linearly stable, and a worm-speed kick of {:.0%} of the motor speed dies out'.format(COEXISTENCE_KICK)
                 if stable else 'linearly unstable, but no steady chatter orbit was found')
         return DisturbanceVerdict(stable, False, math.inf if stable else nan, nan, nan, nan, text)
-    speed = float(parameters['motorSpeed'])
-    kick = SmallestDisturbance(parameters) * speed if stable else 0.
+    speed = float(drive.motor.speed)
+    kick = SmallestDisturbance(drive) * speed if stable else 0.
     amplitude = (f"normal force up to {orbit.info['forceFactor']:.2f} times the static force, |phi2''| up to "
                  f"{orbit.info['maxWheelAcceleration']:.3g} rad/s^2, {orbit.frequencyHz:.1f} Hz")
     if not stable:

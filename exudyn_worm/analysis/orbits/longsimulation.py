@@ -6,19 +6,20 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Dict, Mapping, Optional, Sequence
+from typing import Dict, Optional, Sequence
 
 import numpy as np
 
 from ..._checks import CheckPositive
 from ...model.contact import ContactOptions
+from ...drive.wholedrive import Drive
 from .lowering import BuildLoweringModel, EquilibriumState, LoweringModel, _LoweringFlow, _MeshAt, _PeriodFromSignal
 from ..simulation.reelchanger import SOLVER_SETTINGS
 
 __all__ = ['LongSimulationAmplitude', 'SettledSimulationAmplitude']
 
 
-def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3.0, stepSize: float = 1e-4,
+def LongSimulationAmplitude(drive: Optional[Drive], duration: float = 3.0, stepSize: float = 1e-4,
                             kick: float = 0.01, window: float = 0.25,
                             contactOptions: ContactOptions = ContactOptions(),
                             initialState: Optional[Sequence[float]] = None,
@@ -29,8 +30,8 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's keys.
+    drive : Drive or None
+        A drive with the reel changer's duty (None with ``model``).
     duration : float
         Simulated time in s.
     stepSize : float
@@ -45,8 +46,8 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
         Flow state to start from (the worm-speed ``kick`` is added to it) instead of the equilibrium, e.g. a
         point of an orbit where rest and chatter coexist.
     model : LoweringModel, optional
-        A model to simulate instead of one built from ``parameters`` (e.g. :func:`~exudyn_worm.analysis.orbits.lowering.LoweringModelOfSystem`: then
-        ``parameters`` is not read).
+        A model to simulate instead of one built from ``drive`` (e.g.
+        :func:`~exudyn_worm.analysis.orbits.lowering.LoweringModelOfSystem`: then ``drive`` is not read).
 
     Returns
     -------
@@ -57,7 +58,7 @@ def LongSimulationAmplitude(parameters: Mapping[str, float], duration: float = 3
     duration = CheckPositive(w, 'duration', duration, 's')
     stepSize = CheckPositive(w, 'stepSize', stepSize, 's')
     window = CheckPositive(w, 'window', window, 's')
-    model = BuildLoweringModel(parameters, contactOptions) if model is None else model
+    model = BuildLoweringModel(drive, contactOptions) if model is None else model
     steps = max(10, int(round(duration / stepSize)))
     flow = _LoweringFlow(model, steps, SOLVER_SETTINGS)
     x = EquilibriumState(model) if initialState is None else np.array(initialState, dtype=float)
@@ -86,7 +87,7 @@ def _TailAmplitude(model: LoweringModel, window: float) -> Dict[str, float]:
             'frequencyHz': 1. / period, 'peakSpread': spread}
 
 
-def SettledSimulationAmplitude(parameters: Mapping[str, float], maxDuration: float = 300., piece: float = 2.,
+def SettledSimulationAmplitude(drive: Drive, maxDuration: float = 300., piece: float = 2.,
                                rate: float = 5e-4, stepSize: float = 2e-4, kick: float = 0.01, window: float = 0.25,
                                contactOptions: ContactOptions = ContactOptions()) -> Dict[str, float]:
     """Steady amplitude of the lowering phase by a time simulation from rest (worm speed kicked by ``kick``) that
@@ -98,8 +99,8 @@ def SettledSimulationAmplitude(parameters: Mapping[str, float], maxDuration: flo
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's keys.
+    drive : Drive
+        A drive with the reel changer's duty.
     maxDuration : float
         Longest simulated time in s.
     piece : float
@@ -131,7 +132,7 @@ def SettledSimulationAmplitude(parameters: Mapping[str, float], maxDuration: flo
     stepSize = CheckPositive(w, 'stepSize', stepSize, 's')
     if piece <= window:
         raise ValueError(f"{w}: 'piece' must be longer than 'window' ({window:g} s), got {piece:g} s")
-    model = BuildLoweringModel(parameters, contactOptions)
+    model = BuildLoweringModel(drive, contactOptions)
     steps = max(10, int(round(piece / stepSize)))
     flow = _LoweringFlow(model, steps, SOLVER_SETTINGS)
     x = EquilibriumState(model)

@@ -23,16 +23,14 @@ from ..._checks import CheckPositive, CheckSystem
 from ...items.connector import CONNECTORS_KEY, WormGearConnector
 from ...items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
 from ..stability.drivestability import AnalyzeDrive
-from ...drive.wholedrive import Component, Drive
-from ...drive.duty import CheckSimulationKeys, IsReelChangerDuty
-from ...drive.presets import (DUTY_KEYS, REEL_KEYS, AxialBearingFromParameters, ElasticDriveFromParameters,
-                              DriveSideChain, LoadSideChain)
+from ...drive.wholedrive import CheckDrive, Component, Drive
+from ...drive.presets import DUTY_KEYS
 from ...builders.oneangle import BuildReelChanger, CheckReelChangerKeys
 from ...builders.rigidbody import BuildRigidBodyReelChanger
 from ...items.equilibrium import SteadyInitialState
 from .exudynflow import ExudynFlow, _AddFlowSensors, _Configuration, _HeldCoordinates
 
-__all__ = ['LoweringModel', 'LOWERING_LEVER_ARM', 'LoweringPhaseParameters', 'BuildLoweringModel', 'IN_PLACE_KEYS',
+__all__ = ['LoweringModel', 'LOWERING_LEVER_ARM', 'LoweringPhaseDrive', 'BuildLoweringModel', 'IN_PLACE_KEYS',
            'BuildRigidBodyLoweringModel',
            'UpdateLoweringModel', 'SettleLowering', 'EquilibriumState', 'StateScale', 'LoweringModelOfSystem']
 
@@ -63,8 +61,8 @@ class LoweringModel:
         Normal force of the steady state in N.
     contactOptions : ContactOptions
         Options of the contact law.
-    parameters : dict of str to float
-        The flat parameter set the model was built from (empty for :func:`LoweringModelOfSystem`).
+    whole : Drive or None
+        The drive the model was built from (None for :func:`LoweringModelOfSystem`).
     coordinates : tuple of int
         ODE2 coordinate indices of the flow state: the worm's, the wheel's, then every other free coordinate
         (drive-side and load-side chain rotors, the worm's axial coordinate, ...).
@@ -93,7 +91,7 @@ class LoweringModel:
     loadTorque: float
     staticNormalForce: float
     contactOptions: ContactOptions
-    parameters: Dict[str, float]
+    whole: Optional[Drive]
     coordinates: Tuple[int, ...] = ()
     steadySpeeds: Any = None
     stateKeys: Tuple[str, ...] = ()
@@ -103,58 +101,85 @@ class LoweringModel:
     dependent: Any = None
 
 
-#: lever arm in m with which :func:`LoweringPhaseParameters` writes a drive's lowering load torque as the reel keys
+#: lever arm in m with which :func:`LoweringPhaseDrive` writes a drive's lowering load torque as the reel keys
 #: (the periodic-orbit analysis takes only their product ``loadMass * g * leverArm``, a constant torque)
 LOWERING_LEVER_ARM = 1.
 
 
-def LoweringPhaseParameters(parameters: Mapping[str, float]) -> Dict[str, float]:
-    """The parameter set of the periodic-orbit analysis for any drive: the lowering phase of its own duty.
+def LoweringPhaseDrive(drive: Drive) -> Drive:
+    """The drive of the periodic-orbit analysis for any drive: the lowering phase of its own duty.
 
     The analysis follows the chatter of steady lowering: the motor at constant speed, a constant load torque that
-    drives the gear (the reel keys ``motorSpeed``, ``loadMass``, ``leverArm``). The reel changer's duty is taken as it
-    is. Any other duty is replaced by its lowering operating point
+    drives the gear (the reel changer's duty: ``motorSpeed``, ``loadMass``, ``leverArm``). The reel changer's duty is
+    taken as it is. Any other duty is replaced by its lowering operating point
     (:func:`~exudyn_worm.drive.operatingpoints.DutyOperatingPoints`, S = -1; of several, the one with the largest
-    real part at which the linear analysis, :func:`~exudyn_worm.analysis.stability.drivestability.AnalyzeDrive`, puts it): the
-    speed's magnitude as ``motorSpeed`` and its load torque as ``loadMass * g * leverArm`` with
+    real part at which the linear analysis, :func:`~exudyn_worm.analysis.stability.drivestability.AnalyzeDrive`,
+    puts it): the speed's magnitude as ``motorSpeed`` and its load torque as ``loadMass * g * leverArm`` with
     ``leverArm`` = :data:`LOWERING_LEVER_ARM` (a drive turning backwards while lowering is its mirror image).
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set of the drive.
+    drive : Drive
+        The drive (:func:`~exudyn_worm.drive.wholedrive.ResolveDrive`).
 
     Returns
     -------
-    dict
-        A flat parameter set with the reel changer's duty keys.
+    Drive
+        ``drive`` itself for the reel changer's duty, else the drive with the lowering duty
+        (:meth:`~exudyn_worm.drive.wholedrive.Drive.Replace`).
 
     Raises
     ------
     ValueError
         If the drive has no lowering phase, or a motor on its characteristic (the analysis holds the motor).
     """
-    w = 'LoweringPhaseParameters'
-    if parameters.get('motorType') == 'characteristic':
+    w = 'LoweringPhaseDrive'
+    drive = CheckDrive(w, drive)
+    if drive.hasMotorCharacteristic:
         raise ValueError(f"{w}: the periodic-orbit analysis holds the motor at constant speed (the lowering phase of "
-                         f"the linear analysis); this parameter set has {Component.MOTOR_CHARACTERISTIC.text} (not "
+                         f"the linear analysis); this drive has {Component.MOTOR_CHARACTERISTIC.text} (not "
                          f"supported); leave those keys out")
-    if IsReelChangerDuty(parameters) and all(k in parameters for k in REEL_KEYS):
-        return dict(parameters)
-    analysis = AnalyzeDrive(Drive.FromParameters(parameters))
+    if _HasReelDuty(drive):
+        return drive
+    analysis = AnalyzeDrive(drive)
     lowering = [p for p in analysis.operatingPoints if p.S == -1]
     if not lowering:
         raise ValueError(f"{w}: the drive's duty has no lowering phase at a steady speed (no phase in which the load "
                          f"drives the gear; {analysis.decidingText}); the periodic-orbit analysis follows the chatter "
                          f"of lowering")
     point = max(lowering, key=lambda p: p.maxRealPart).point
-    out = {k: v for k, v in parameters.items() if k not in DUTY_KEYS}
-    out.update(motorSpeed=abs(point.motorSpeed), leverArm=LOWERING_LEVER_ARM,
-               loadMass=abs(point.loadTorque) / (STANDARD_GRAVITY * LOWERING_LEVER_ARM))
-    return out
+    changes: Dict[str, Any] = {k: None for k in DUTY_KEYS if k in drive.parameters}
+    changes.update(motorSpeed=abs(point.motorSpeed), leverArm=LOWERING_LEVER_ARM,
+                   loadMass=abs(point.loadTorque) / (STANDARD_GRAVITY * LOWERING_LEVER_ARM))
+    return drive.Replace(**changes)
 
 
-def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactOptions = ContactOptions(),
+def _HasReelDuty(drive: Drive) -> bool:
+    """The reel changer's duty with all its keys: a lever load at constant motor speed."""
+    return drive.loadType == 'lever' and drive.motorType == 'constantSpeed' and isinstance(drive.load,
+                                                                                          GravityLeverTorque)
+
+
+def _LoweringDuty(drive: Drive, where: str) -> Tuple[Drive, float, float]:
+    """The drive of the lowering model (the reel changer's duty with a constant load torque instead of the lever),
+    its motor speed in rad/s and its load torque in N*m."""
+    drive = CheckDrive(where, drive)
+    CheckReelChangerKeys(drive, where)
+    if drive.hasMotorCharacteristic:
+        raise ValueError(f"{where}: the periodic-orbit analysis holds the motor at constant speed 'motorSpeed' (the "
+                         f"lowering phase of the linear analysis); this drive has "
+                         f"{Component.MOTOR_CHARACTERISTIC.text} (not supported); leave those keys out")
+    if not _HasReelDuty(drive):
+        raise ValueError(f"{where}: the periodic-orbit analysis needs the reel changer's duty (a lever load at "
+                         f"constant motor speed, the lowering phase of the linear analysis); this drive has load "
+                         f"{drive.loadType} and motor {drive.motorType}: make its lowering drive with "
+                         f"LoweringPhaseDrive(drive)")
+    motorSpeed = CheckPositive(where, 'motorSpeed', drive.motor.speed, 'rad/s')
+    loadTorque = drive.load.maximum
+    return drive.Replace(loadType='constant', loadTorque=loadTorque), motorSpeed, loadTorque
+
+
+def BuildLoweringModel(drive: Drive, contactOptions: ContactOptions = ContactOptions(),
                        useSymbolic: bool = True) -> LoweringModel:
     """Exudyn model of the reel changer's lowering phase: motor at constant speed, constant load torque
     ``loadMass * g * leverArm`` driving the wheel (the last rotor of a load-side chain), starting in the steady
@@ -168,9 +193,10 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's keys (e.g. ``GetPreset('reel-P1')``), with or without the
-        chains and the axial bearing; a motor on its characteristic (``motorType = characteristic``) is refused.
+    drive : Drive
+        A drive with the reel changer's duty (e.g. ``ResolveDrive('reel-P1')``; any other duty through
+        :func:`LoweringPhaseDrive`), with or without the chains and the axial bearing; a motor on its characteristic
+        is refused.
     contactOptions : ContactOptions
         Options of the contact law.
     useSymbolic : bool
@@ -183,29 +209,20 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
     Raises
     ------
     ValueError, TypeError
-        For a bad parameter set, or one with a component the lowering model does not have (a motor on its
-        characteristic: the lowering phase holds the motor at constant speed).
+        For a drive without the reel changer's duty, or with a component the lowering model does not have (a motor
+        on its characteristic: the lowering phase holds the motor at constant speed).
     """
     import exudyn as exu
     w = 'BuildLoweringModel'
-    whole = Drive.FromParameters(parameters)          # its core is the lowering model's
-    CheckReelChangerKeys(whole, w)
-    if parameters.get('motorType') == 'characteristic':
-        raise ValueError(f"{w}: the periodic-orbit analysis holds the motor at constant speed 'motorSpeed' (the "
-                         f"lowering phase of the linear analysis); this parameter set has "
-                         f"{Component.MOTOR_CHARACTERISTIC.text} (not supported); leave those keys out")
+    lowering, motorSpeed, loadTorque = _LoweringDuty(drive, w)
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
-    drive = whole.elastic
-    motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
-    loadTorque = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm']).maximum
     # the time simulation's builder, with the lowering phase as its duty: one assembly of the chains
-    lowering = Drive.FromParameters({**parameters, 'loadType': 'constant', 'loadTorque': loadTorque})
     reel = BuildReelChanger(exu.SystemContainer().AddSystem(), lowering, contactOptions, useSymbolic,
                             startFromEquilibrium=True, profile=ConstantSpeed(motorSpeed))
     mbs = reel.mbs
     mbs.Assemble()                                  # coordinate indices and sizes exist from here on
-    steady = _SteadyState(drive, parameters, loadTorque, motorSpeed, contactOptions)
+    steady = _SteadyState(lowering, loadTorque, motorSpeed, contactOptions)
     # the flow state: worm, wheel, then the chains' rotors and the worm's axial coordinate, each with the key of
     # its equilibrium position in ``steady`` (SteadyInitialState's names) and of its steady speed
     nodes = [(reel.rotors['worm'], 'phi1', 'omega1'), (reel.rotors['wheel'], 'phi2', 'omega2')]
@@ -222,13 +239,12 @@ def BuildLoweringModel(parameters: Mapping[str, float], contactOptions: ContactO
     static = _MeshAt(reel.connector, steady)
     rotors = {**reel.rotors, 'driveShaft': {'objectNumber': mbs.GetObjectNumber('driveShaft')}}
     initial = np.array(mbs.systemData.GetODE2Coordinates(configuration=_Configuration().Initial), dtype=float)
-    return LoweringModel(reel.systemContainer, mbs, drive, reel.connector, rotors, steady, motorSpeed, loadTorque,
-                         abs(float(static.normalForce)), contactOptions, dict(parameters), tuple(index), speeds,
+    return LoweringModel(reel.systemContainer, mbs, lowering.elastic, reel.connector, rotors, steady, motorSpeed,
+                         loadTorque, abs(float(static.normalForce)), contactOptions, drive, tuple(index), speeds,
                          tuple(p for _, p, _ in nodes), initial, sensors)
 
 
-def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
-                                contactOptions: ContactOptions = ContactOptions()) -> LoweringModel:
+def BuildRigidBodyLoweringModel(drive: Drive, contactOptions: ContactOptions = ContactOptions()) -> LoweringModel:
     """The lowering model of :func:`BuildLoweringModel` on the 3D model: worm and wheel as rigid bodies on their
     shafts' bearings (:func:`~exudyn_worm.builders.rigidbody.BuildRigidBodyReelChanger`), motor at constant
     speed ``motorSpeed``, constant load torque ``loadMass * g * leverArm`` on the wheel's turn, starting in the
@@ -237,9 +253,9 @@ def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's keys and the shafts' bearings (``wormRadialStiffness``, ...,
-        :func:`~exudyn_worm.drive.presets.ShaftSupportsFromParameters`), without chains.
+    drive : Drive
+        A drive with the reel changer's duty and the shafts' bearings (``wormRadialStiffness``, ...,
+        :attr:`~exudyn_worm.drive.wholedrive.Drive.shaftSupports`), without chains.
     contactOptions : ContactOptions
         Options of the contact law.
 
@@ -252,20 +268,16 @@ def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
     Raises
     ------
     ValueError, TypeError
-        For a bad parameter set (as :func:`BuildLoweringModel` and the 3D model refuse it).
+        For a drive the lowering model or the 3D model refuses.
     """
     # lazy: the 3D model is built only for drives with shaft bearings
     from ..simulation.reelchanger3d import AddSeriesSensors
     import exudyn as exu
     w = 'BuildRigidBodyLoweringModel'
-    CheckSimulationKeys(parameters, w)              # the keys read below; the drive is checked when it is built
+    lowering, motorSpeed, loadTorque = _LoweringDuty(drive, w)
     if not isinstance(contactOptions, ContactOptions):
         raise TypeError(f"{w}: 'contactOptions' must be a ContactOptions, got {type(contactOptions).__name__}")
-    motorSpeed = CheckPositive(w, 'motorSpeed', parameters['motorSpeed'], 'rad/s')
-    loadTorque = GravityLeverTorque(mass=parameters['loadMass'], leverArm=parameters['leverArm']).maximum
-    reel = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(),
-                                     Drive.FromParameters({**parameters, 'loadType': 'constant', 'loadTorque': loadTorque}),
-                                     contactOptions,
+    reel = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), lowering, contactOptions,
                                      profile=ConstantSpeed(motorSpeed), startFromEquilibrium=True)
     sensors = AddSeriesSensors(reel)
     reel.connector.sensors.update(wormAccelerations=sensors['wormAccelerations'],
@@ -273,17 +285,16 @@ def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
     reel.mbs.Assemble()
     model = LoweringModelOfSystem(reel.mbs, reel.connector)
     model.systemContainer, model.drive, model.rigidBody = reel.systemContainer, reel.drive, reel
-    model.motorSpeed, model.loadTorque, model.parameters = motorSpeed, loadTorque, dict(parameters)
+    model.motorSpeed, model.loadTorque, model.whole = motorSpeed, loadTorque, drive
     return model
 
 
-def _SteadyState(drive, parameters: Mapping[str, float], loadTorque: float, motorSpeed: float,
-                 contactOptions: ContactOptions) -> Dict[str, float]:
-    """The steady state of lowering with the parameter set's chains and axial bearing, as
+def _SteadyState(drive: Drive, loadTorque: float, motorSpeed: float, contactOptions: ContactOptions
+                 ) -> Dict[str, float]:
+    """The steady state of lowering with the drive's chains and axial bearing, as
     :func:`~exudyn_worm.builders.oneangle.BuildReelChanger` starts its system."""
-    return SteadyInitialState(drive, ConstantTorque(loadTorque), motorSpeed, contactOptions,
-                              AxialBearingFromParameters(parameters), tuple(DriveSideChain(parameters)),
-                              loadSide=tuple(LoadSideChain(parameters)))
+    return SteadyInitialState(drive.elastic, ConstantTorque(loadTorque), motorSpeed, contactOptions,
+                              drive.axialBearing, drive.driveSideChain, loadSide=drive.loadSideChain)
 
 
 def _MeshAt(connector, state: Mapping[str, Any], mask=None):
@@ -347,37 +358,39 @@ def _StoredFlowStates(model: LoweringModel) -> Tuple[np.ndarray, np.ndarray]:
 IN_PLACE_KEYS = ('J1', 'J2', 'kT', 'DT', 'dT', 'DTV')
 
 
-def UpdateLoweringModel(model: LoweringModel, parameters: Mapping[str, float]) -> LoweringModel:
-    """The lowering model for ``parameters``: ``model`` changed in place if only :data:`IN_PLACE_KEYS` differ
-    (inertias, shaft stiffness and damping), else a new model; the 3D model (``model.rigidBody``) is built anew
-    (:func:`BuildRigidBodyLoweringModel`, about 0.02 s) for any change.
+def UpdateLoweringModel(model: LoweringModel, drive: Drive) -> LoweringModel:
+    """The lowering model of ``drive``: ``model`` changed in place if only :data:`IN_PLACE_KEYS` differ from the
+    drive it was built for (inertias, shaft stiffness and damping), else a new model; the 3D model
+    (``model.rigidBody``) is built anew (:func:`BuildRigidBodyLoweringModel`, about 0.02 s) for any change.
 
     Parameters
     ----------
     model : LoweringModel
-    parameters : mapping
-        The new flat parameter set.
+    drive : Drive
+        The new drive (e.g. ``model.whole.Replace(J1=0.2)``).
 
     Returns
     -------
     LoweringModel
     """
-    changed = {k for k in set(parameters) | set(model.parameters) if parameters.get(k) != model.parameters.get(k)}
+    drive = CheckDrive('UpdateLoweringModel', drive)
+    old, new = model.whole.parameters, drive.parameters
+    changed = {k for k in set(new) | set(old) if new.get(k) != old.get(k)}
     if not changed:
         return model
     if model.rigidBody is not None:
-        return BuildRigidBodyLoweringModel(parameters, model.contactOptions)
+        return BuildRigidBodyLoweringModel(drive, model.contactOptions)
     if not changed <= set(IN_PLACE_KEYS):
-        return BuildLoweringModel(parameters, model.contactOptions)
-    drive = ElasticDriveFromParameters(parameters)
+        return BuildLoweringModel(drive, model.contactOptions)
+    elastic = drive.elastic
     mbs = model.mbs
-    mbs.SetObjectParameter(model.rotors['worm']['objectNumber'], 'inertia', drive.J1)
-    mbs.SetObjectParameter(model.rotors['wheel']['objectNumber'], 'inertia', drive.J2)
-    mbs.SetObjectParameter(model.rotors['driveShaft']['objectNumber'], 'stiffness', drive.kT)
-    mbs.SetObjectParameter(model.rotors['driveShaft']['objectNumber'], 'damping', drive.dT)
+    mbs.SetObjectParameter(model.rotors['worm']['objectNumber'], 'inertia', elastic.J1)
+    mbs.SetObjectParameter(model.rotors['wheel']['objectNumber'], 'inertia', elastic.J2)
+    mbs.SetObjectParameter(model.rotors['driveShaft']['objectNumber'], 'stiffness', elastic.kT)
+    mbs.SetObjectParameter(model.rotors['driveShaft']['objectNumber'], 'damping', elastic.dT)
     mbs.Assemble()
-    model.drive, model.parameters = drive, dict(parameters)
-    model.steady = _SteadyState(drive, parameters, model.loadTorque, model.motorSpeed, model.contactOptions)
+    model.drive, model.whole = elastic, drive
+    model.steady = _SteadyState(drive, model.loadTorque, model.motorSpeed, model.contactOptions)
     return model
 
 
@@ -492,7 +505,7 @@ def LoweringModelOfSystem(mbs: Any, connector: WormGearConnector,
     Returns
     -------
     LoweringModel
-        ``drive`` is None, ``parameters`` empty, ``motorSpeed`` the worm's steady speed (kicks are fractions of
+        ``drive`` and ``whole`` are None, ``motorSpeed`` the worm's steady speed (kicks are fractions of
         it), ``loadTorque`` nan.
 
     Raises
@@ -561,7 +574,7 @@ def LoweringModelOfSystem(mbs: Any, connector: WormGearConnector,
         raise ValueError(f"{w}: 'coordinates' must leave out the mesh law's auxiliary coordinates "
                          f"{dependent[0].tolist()} (the flow sets them from the bodies' coordinates), got {chosen!r}")
     return LoweringModel(None, mbs, None, connector, {}, steady, abs(float(v0[worm])), math.nan, force,
-                         connector.options, {}, tuple(index), v0, tuple(keys), q0, sensors, dependent=dependent)
+                         connector.options, None, tuple(index), v0, tuple(keys), q0, sensors, dependent=dependent)
 
 
 def _AuxiliaryCoordinates(mbs, connector: RigidBodyWormGearConnector) -> Tuple[np.ndarray, np.ndarray]:

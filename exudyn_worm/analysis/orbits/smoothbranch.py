@@ -9,7 +9,7 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass, field
-from typing import Callable, Dict, List, Mapping, Optional, Sequence, Tuple
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -17,6 +17,7 @@ from .chatter import FindSteadyChatter
 from .continuation import BranchPoint
 from .periodic import ShootingError
 from ..._checks import CheckPositive
+from ...drive.wholedrive import CheckDrive, Drive
 
 __all__ = ['ChatterBranchError', 'SmoothBranch', 'SmoothHopfBranch', 'SMOOTH_OFFSETS', 'SMOOTH_SEED', 'SMOOTH_STEP',
            'SMOOTH_SETTLE_TIME', 'SMOOTH_MAX_ITERATIONS']
@@ -124,7 +125,7 @@ def _SmoothOffsets(reach: float, count: int) -> List[float]:
     return offsets[:count]
 
 
-def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float, side: int,
+def SmoothHopfBranch(drive: Drive, name: str, boundary: float, side: int,
                      limit: Optional[float] = None, offsets: Optional[Sequence[float]] = None,
                      seed: float = SMOOTH_SEED, settleTime: float = SMOOTH_SETTLE_TIME,
                      maxIterations: int = SMOOTH_MAX_ITERATIONS, maxPoints: int = 60,
@@ -146,8 +147,8 @@ def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float
 
     Parameters
     ----------
-    parameters : mapping
-        Flat parameter set with the reel changer's keys (e.g. reel-P3 with ``frictionLaw = 'stribeck'``).
+    drive : Drive
+        A drive with the reel changer's duty (e.g. reel-P3 with ``frictionLaw = 'stribeck'``).
     name : str
         The continued parameter (see :data:`~exudyn_worm.analysis.orbits.chatterbranch.CONTINUABLE`).
     boundary : float
@@ -188,6 +189,7 @@ def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float
         If the start orbit's force factor is ``maxSeedForceFactor`` or more.
     """
     w = 'SmoothHopfBranch'
+    drive = CheckDrive(w, drive)
     if side not in (-1, 1):
         raise ValueError(f"{w}: 'side' must be +1 or -1 (the linearly unstable side of the boundary), got {side!r}")
     boundary = float(boundary)
@@ -204,7 +206,7 @@ def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float
                              f"boundary {name} = {boundary:g}, got {limit!r}")
     offsets = sorted(f for f in offsets if 0 < f <= reach) if given else _SmoothOffsets(reach, maxPoints)
     seed = seed if seed < reach else 0.75 * reach
-    start = FindSteadyChatter({**parameters, name: Value(seed)}, settleTime=settleTime, maxIterations=maxIterations)
+    start = FindSteadyChatter(drive.Replace(**{name: Value(seed)}), settleTime=settleTime, maxIterations=maxIterations)
     if start.info['forceFactor'] >= maxSeedForceFactor:
         raise ChatterBranchError(f"{w}: the orbit at {name} = {Value(seed):.6g} ({seed:.1%} from the linear boundary "
                                  f"{boundary:.6g}) loses contact (force factor {start.info['forceFactor']:.3f}): the "
@@ -223,7 +225,7 @@ def SmoothHopfBranch(parameters: Mapping[str, float], name: str, boundary: float
                 break
             v = Value(f)
             try:
-                orbit = FindSteadyChatter({**parameters, name: v}, start=(last.state, last.period),
+                orbit = FindSteadyChatter(drive.Replace(**{name: v}), start=(last.state, last.period),
                                           maxIterations=maxIterations)
             except ShootingError as err:
                 result.failed.append((v, str(err).split(';')[0]))

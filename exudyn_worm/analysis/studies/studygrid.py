@@ -18,6 +18,7 @@ from ..._checks import CheckPositive
 from ...drive.duty import IsReelChangerDuty
 from ...drive.wholedrive import Drive
 from ..simulation.reelchanger import DefaultWindows
+from .studypoint import RunTask
 
 __all__ = ['MAX_RUNS', 'MAX_VALUES', 'BYTES_PER_RUN', 'Variation', 'ParseVariation', 'StudyPoints', 'StudyGrid', 'Study',
            'ParseShard', 'ShardIndices', 'ShardSize', 'CheckStudySize']
@@ -278,6 +279,7 @@ class Study:
     maxSteps: Optional[int] = None
     checkStep: Optional[bool] = None
     points: StudyGrid = field(init=False, repr=False)
+    _drive: Optional[Drive] = field(init=False, repr=False, default=None)
 
     def __post_init__(self):
         CheckParameterKeys(self.base, 'Study', 'base')
@@ -322,11 +324,28 @@ class Study:
         """The full parameter set of point ``run`` (0-based)."""
         return ApplyOverrides(self.base, self.points[run])
 
-    def Task(self, run: int) -> Dict:
-        """The picklable work item of point ``run`` for :func:`RunPoint` (plain data only)."""
-        return {'run': run, 'parameters': self.Parameters(run), 'varied': dict(self.points[run]),
-                'windows': self.windows, 'endTime': self.endTime, 'stepSize': self.stepSize,
-                'maxSteps': self.maxSteps, 'checkStep': self.checkStep}
+    @property
+    def drive(self) -> Drive:
+        """The base set as a drive, made once (each point is a :meth:`~exudyn_worm.drive.wholedrive.Drive.Replace`
+        of it)."""
+        if self._drive is None:
+            self._drive = Drive.FromParameters(self.base, where='Study')
+        return self._drive
+
+    def Task(self, run: int) -> RunTask:
+        """The picklable work item of point ``run`` for
+        :func:`~exudyn_worm.analysis.studies.studypoint.RunPoint`."""
+        varied = dict(self.points[run])
+        options = dict(windows=self.windows, endTime=self.endTime, stepSize=self.stepSize, maxSteps=self.maxSteps,
+                       checkStep=self.checkStep)
+        try:
+            return RunTask(run, self.drive, varied, **options)
+        except (ValueError, TypeError):
+            pass
+        try:        # a base that is a whole drive only with the point's values (e.g. the varied key missing in it)
+            return RunTask(run, Drive.FromParameters(self.Parameters(run), where='Study'), {}, **options)
+        except (ValueError, TypeError) as err:      # recorded as the run's failure, as any other
+            return RunTask(run, None, varied, **options, error=' '.join(f"{type(err).__name__}: {err}".split()))
 
     def ToDict(self) -> Dict:
         """JSON-ready definition: base set, variations, pairing, windows, times, number of runs."""

@@ -6,7 +6,8 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -21,8 +22,8 @@ from ..simulation.reelchanger import MAX_STEPS, DefaultPhases, DefaultSimulatedT
 from ..simulation.stepsize import UNRESOLVED, CloseVerdicts, CompareHalfStep, RecommendedStepSize, StepCheckByDefault
 from ..simulation import reelchanger
 
-__all__ = ['WINDOW_METRICS', 'RUN_COLUMNS', 'HALF_STEP_METRICS', 'VibrationSeconds', 'LoweringVerdict', 'RunLabel',
-           'DecidingWindow', 'RunPoint']
+__all__ = ['WINDOW_METRICS', 'RUN_COLUMNS', 'HALF_STEP_METRICS', 'VibrationSeconds', 'LoweringVerdict', 'RunTask',
+           'RunLabel', 'DecidingWindow', 'RunPoint']
 
 
 #: metrics written per window (those of ``SimulationResult.WindowMetrics`` plus ``vibrationSeconds``)
@@ -121,30 +122,63 @@ def _OneLine(err: BaseException) -> str:
     return ' '.join(f"{type(err).__name__}: {err}".split())
 
 
-def RunLabel(run: int, varied: Mapping[str, Any]) -> str:
+@dataclass
+class RunTask:
+    """One point of a study as a worker runs it (:meth:`~exudyn_worm.analysis.studies.studygrid.Study.Task`);
+    picklable (the drive travels by its values).
+
+    Attributes
+    ----------
+    run : int
+        The run's index.
+    base : Drive or None
+        The drive the point changes (the study's base drive); None if the point's drive could not be made (then
+        ``error`` says why and the run is recorded as failed).
+    varied : dict
+        The point's varied values by parameter key (SI), applied with
+        :meth:`~exudyn_worm.drive.wholedrive.Drive.Replace` in the worker.
+    windows : list of (float, float) or None
+        Evaluation windows in s; None: the duty's phases.
+    endTime, stepSize : float or None
+        Simulated time and time step in s; None: one rotation, the drive's recommended step.
+    maxSteps : int or None
+        Largest number of solver steps; None: the default limit.
+    checkStep : bool or None
+        Run again at half the step (True), never (False), or by the linear margin (None,
+        :func:`~exudyn_worm.analysis.simulation.stepsize.StepCheckByDefault`).
+    error : str
+        Why the point's drive could not be made ('' if it could).
+    """
+    run: int
+    base: Optional[Drive]
+    varied: Dict[str, Any] = field(default_factory=dict)
+    windows: Optional[Sequence[Tuple[float, float]]] = None
+    endTime: Optional[float] = None
+    stepSize: Optional[float] = None
+    maxSteps: Optional[int] = None
+    checkStep: Optional[bool] = None
+    error: str = ''
+
+
+def RunLabel(task: RunTask) -> str:
     """A run of a study in words, for its warnings: ``run 3 (J1 = 0.01, kT = 2000)``.
 
     Parameters
     ----------
-    run : int
-        The run's index.
-    varied : mapping
-        Its varied parameters and their values (SI).
+    task : RunTask
+        The run.
     """
-    return f"run {run} (" + ', '.join(f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}"
-                                      for k, v in varied.items()) + ')'
+    return f"run {task.run} (" + ', '.join(f"{k} = {v:.4g}" if isinstance(v, float) else f"{k} = {v}"
+                                           for k, v in task.varied.items()) + ')'
 
 
-def RunPoint(task: Mapping) -> Dict:
+def RunPoint(task: RunTask) -> Dict:
     """Run one point of a study; never raises for a failing run (it is recorded as failed with its reason).
 
     Parameters
     ----------
-    task : mapping
-        A work item of :meth:`Study.Task`: ``run`` (index), ``parameters`` (full set), ``varied``,
-        ``windows`` (None: default), ``endTime`` (None: one rotation), ``stepSize`` (None: the drive's
-        recommended step), ``maxSteps`` (optional; None: the default limit), ``checkStep`` (optional; None: by
-        the linear margin, :func:`~exudyn_worm.analysis.simulation.stepsize.StepCheckByDefault`).
+    task : RunTask
+        A work item of :meth:`~exudyn_worm.analysis.studies.studygrid.Study.Task`.
 
     Returns
     -------
@@ -155,13 +189,14 @@ def RunPoint(task: Mapping) -> Dict:
         step was checked (``stepChecked``).
     """
     start = time.perf_counter()
-    p = dict(task['parameters'])
-    row = {'run': int(task['run']), 'status': 'failed', 'error': '', 'seconds': None, 'solveSeconds': None,
+    row = {'run': int(task.run), 'status': 'failed', 'error': '', 'seconds': None, 'solveSeconds': None,
            'stepSize': None, 'analyticStable': None, 'analyticStableLowering': None, 'analyticInstability': None,
            'analyticInstabilityLowering': None, 'loweringChatter': None, 'stepChecked': None}
-    row.update(task['varied'])
+    row.update(task.varied)
     try:
-        drive = Drive.FromParameters(p)         # the run's drive, resolved once in its worker
+        if task.base is None:
+            raise ValueError(task.error)
+        drive = task.base.Replace(**task.varied)    # the run's drive, made once in its worker
         analysis = AnalyzeDrive(drive)          # at the duty's operating points: two-mass or the whole drive
         row['analyticStable'] = analysis.stable
         row['analyticStableLowering'] = LoweringVerdict(analysis)
@@ -169,17 +204,17 @@ def RunPoint(task: Mapping) -> Dict:
         if row['analyticStableLowering'] is not None:
             row['analyticInstabilityLowering'] = StateInstability(analysis.State(-1))
         period = DefaultSimulatedTime(drive)      # one rotation of the reel changer; another duty: its tables' end
-        if task['windows'] is not None:
-            windows, phases = task['windows'], None
+        if task.windows is not None:
+            windows, phases = task.windows, None
         else:        # the first rotation's lift / lower / lift (or the duty's phases), clipped to a shorter end time
-            phases = DefaultPhases(drive, None if task['endTime'] is None else min(task['endTime'], period),
+            phases = DefaultPhases(drive, None if task.endTime is None else min(task.endTime, period),
                                    minLength=1e-3)
             windows = [(t0, t1) for t0, t1, _ in phases]
-        endTime = task['endTime'] if task['endTime'] is not None else max(period, max(t1 for _, t1 in windows))
-        stepSize = task['stepSize'] or RecommendedStepSize(drive)       # the rule of simulate
+        endTime = task.endTime if task.endTime is not None else max(period, max(t1 for _, t1 in windows))
+        stepSize = task.stepSize or RecommendedStepSize(drive)       # the rule of simulate
         row['stepSize'] = stepSize
-        maxSteps = MAX_STEPS if task.get('maxSteps') is None else task['maxSteps']
-        check = task.get('checkStep')
+        maxSteps = MAX_STEPS if task.maxSteps is None else task.maxSteps
+        check = task.checkStep
         byDefault = check is None
         if byDefault:          # by the linear margin, unless the run at half the step would exceed the limit
             check = StepCheckByDefault(drive) and 2 * endTime / stepSize <= maxSteps
@@ -192,7 +227,7 @@ def RunPoint(task: Mapping) -> Dict:
                                                          maxSteps=maxSteps)
             for caughtWarning in caught:       # each warning says which run it comes from
                 text = WarningText(caughtWarning.message).removeprefix('simulation: ')
-                warnings.warn(f"{RunLabel(row['run'], task['varied'])}: {text}", caughtWarning.category, stacklevel=1)
+                warnings.warn(f"{RunLabel(task)}: {text}", caughtWarning.category, stacklevel=1)
             if not all(np.all(np.isfinite(result.series[k])) for k in ('phi1', 'phi2', 'omega1', 'omega2')):
                 raise FloatingPointError('diverged: non-finite state in the solution'
                                          + (' at half the step' if h != stepSize else ''))
@@ -216,7 +251,7 @@ def RunPoint(task: Mapping) -> Dict:
                 row[f'w{i}.{name}'] = value
             for name in HALF_STEP_METRICS if check else ():
                 row[f'w{i}.halfStep.{name}'] = m['halfStep'][name]
-        if phases is None and not IsReelChangerDuty(p):     # given windows: lowering where the duty lowers
+        if phases is None and not IsReelChangerDuty(drive.parameters):     # given windows: lowering where the duty lowers
             phases = _WindowPhases(drive, windows, endTime)
         lowering = ([i for i, (t0, t1) in enumerate(windows) if t0 <= period / 2 <= t1] if phases is None
                     else [i for i, (_, _, phase) in enumerate(phases) if phase == 'lower'])   # the load drives
