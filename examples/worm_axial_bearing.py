@@ -5,7 +5,7 @@ bearing's axial spring-damper kA, dA to the housing, in series with the mesh:
 Delta s = r1 cos(alphaN) sin(gamma) (phi1 - u phi2) + cos(alphaN) cos(gamma) xA, and the worm takes the axial
 reaction -c4 F / r2 (derivation in :func:`exudyn_worm.model.contact.MeshContact`). Linearized by Exudyn with S held
 (:func:`~exudyn_worm.analysis.stability.linearization.AnalyzeLinearStability` on
-:func:`~exudyn_worm.analysis.stability.linearization.BuildLinearizationModel` with ``axialBearing``): a 3-DOF characteristic
+:func:`~exudyn_worm.analysis.stability.linearization.LinearizationModel` of a drive with ``kA, dA, mA``): a 3-DOF characteristic
 problem in (phi1, phi2, xA), six eigenvalues, a characteristic polynomial of degree 6.
 
 Values: mA = 5 kg (worm, shaft and bearing inner rings of a worm with r1 = 18 mm; the P1 boundary below moves by
@@ -43,8 +43,7 @@ from scipy.optimize import brentq
 
 import exudyn_worm as ew
 from exudyn_worm._checks import CheckOutputFolder
-from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability, BuildLinearizationModel, LinearStability
-from exudyn_worm.drive.presets import AxialBearingFromParameters
+from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability, LinearizationModel, LinearStability
 from exudyn_worm.analysis.simulation.reelchanger import DefaultWindows
 from exudyn_worm.drive.wholedrive import ResolveDrive
 
@@ -85,9 +84,7 @@ def AxialLinearStability(parameters: Mapping[str, float]) -> LinearStability:
     parameters : mapping
         Flat parameter set; with ``kA, dA, mA`` the worm has its axial coordinate (else 2 DOF).
     """
-    drive = ew.ElasticDriveFromParameters(parameters)
-    SC, mbs = BuildLinearizationModel(drive, axialBearing=AxialBearingFromParameters(parameters))
-    return AnalyzeLinearStability(mbs)
+    return AnalyzeLinearStability(LinearizationModel(ResolveDrive(parameters=parameters)).mbs)
 
 
 def MaxRealPart(preset: str, kA: Optional[float], S: int = -1, mA: float = AXIAL_MASS,

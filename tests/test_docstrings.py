@@ -92,7 +92,6 @@ UNHINTED = {
         'exudyn_worm.items.drivetrain.CreateLoadSideChain': ['mbs', 'wheel'],
         'exudyn_worm.items.drivetrain.CreateDriveSideChain': ['mbs', 'motor', 'worm'],
         'exudyn_worm.analysis.stability.linearization.AnalyzeLinearStability': ['mbs'],
-        'exudyn_worm.analysis.stability.linearization.BuildLinearizationModel': ['->'],
         'exudyn_worm.analysis.simulation.reelchanger.SolverSettings': ['->'],
         'exudyn_worm.items.solve.SolveDynamicInChunks': ['mbs', 'simulationSettings', 'solverType', 'progress', '->'],
         'exudyn_worm.model.contact.SymbolicOps': ['->'],

@@ -25,8 +25,9 @@ from ..model.drive import ElasticDrive
 from ..model.profiles import ConstantSpeed, ConstantTorque
 from ..drive.duty import CheckSimulationKeys, SteadyMotorSpeed
 from ..drive.wholedrive import CheckDrive, Drive
+from .start import LinearizationPoint
 
-__all__ = ['ReelChangerModel', 'BuildReelChanger', 'CheckReelChangerKeys', 'CheckModelOptions']
+__all__ = ['ReelChangerModel', 'BuildReelChanger', 'CheckReelChangerKeys', 'CheckModelDrive', 'CheckModelOptions']
 
 _MOTOR_INERTIA = 1e-3   # kg*m^2; the motor node is prescribed, its inertia does not matter
 
@@ -51,6 +52,34 @@ def CheckReelChangerKeys(drive: Drive, where: str) -> None:
         If ``drive`` is not a :class:`~exudyn_worm.drive.wholedrive.Drive`.
     """
     CheckSimulationKeys(CheckDrive(where, drive).parameters, where)
+
+
+def CheckModelDrive(where: str, drive: Drive, linearization: Optional[LinearizationPoint]) -> None:
+    """Check the drive and the ``linearization`` of a model builder: a drive to simulate needs a duty
+    (:func:`CheckReelChangerKeys`), one to linearize only to be a drive.
+
+    Parameters
+    ----------
+    where : str
+        The builder, first in the message.
+    drive : Drive
+        What the builder received.
+    linearization : LinearizationPoint or None
+        Where the model is linearized (None: it is simulated).
+
+    Raises
+    ------
+    TypeError, ValueError
+        For something else than a drive or a :class:`~exudyn_worm.builders.start.LinearizationPoint`, or a drive
+        to simulate without a duty.
+    """
+    if linearization is not None and not isinstance(linearization, LinearizationPoint):
+        raise TypeError(f"{where}: 'linearization' must be None or a LinearizationPoint, got "
+                        f"{type(linearization).__name__} {linearization!r}")
+    if linearization is None:
+        CheckReelChangerKeys(drive, where)
+    else:
+        CheckDrive(where, drive)
 
 
 def CheckModelOptions(where: str, contactOptions: ContactOptions, profile: Any, useSymbolic: bool,
@@ -127,10 +156,12 @@ class ReelChangerModel:
 
 
 def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = ContactOptions(),
-                     useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None) -> ReelChangerModel:
+                     useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
+                     linearization: Optional[LinearizationPoint] = None) -> ReelChangerModel:
     """Add the one-angle model of a drive to ``mbs``: motor, drive shaft, worm, mesh, wheel, the chains, the
     worm's axial bearing and the duty's load, each rotor with its angle (the reel changer of section 3.2 and any
-    other duty).
+    other duty). The one builder of this model: the time simulation, the linear analysis, the lowering-phase orbit
+    and the studies use it.
 
     Parameters
     ----------
@@ -154,6 +185,10 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
         Motor motion: an object with ``AngleAndSpeed(t, ops)`` such as :class:`ConstantSpeed` or
         :class:`~exudyn_worm.model.profiles.StartStopProfile` (default: the drive's motor, ``drive.motor``:
         :class:`ConstantSpeed` at ``motorSpeed`` for the reel changer).
+    linearization : LinearizationPoint, optional
+        Build the model to be linearized at this point instead (:class:`~exudyn_worm.builders.start.LinearizationPoint`:
+        no load, the motor at the point's speed, the worm turned into contact, the contact state held); the drive
+        needs no duty then, and ``startFromEquilibrium`` and ``profile`` are not used.
 
     Returns
     -------
@@ -180,25 +215,36 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
 
     w = 'BuildReelChanger'
     CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
-    CheckReelChangerKeys(drive, w)
+    CheckModelDrive(w, drive, linearization)
     whole, drive = drive, drive.elastic
-    if whole.motorType in ('constantSpeed', 'startStop'):
+    if linearization is None and whole.motorType in ('constantSpeed', 'startStop'):
         CheckPositive(w, 'motorSpeed', whole.parameters['motorSpeed'], 'rad/s')
-    load = whole.load                                   # the duty: lever (reel changer), constant, table or None
+    load = whole.load if linearization is None else None     # the duty: lever, constant, table or None
     characteristic = None                               # a free motor on its torque-speed line, else prescribed
     if whole.hasMotorCharacteristic:
         if profile is not None:
             raise ValueError(f"{w}: 'profile' prescribes the motor, but the drive drives it by its "
                              f"characteristic (motorType = characteristic); give one of them")
         characteristic = whole.motor
-        profile = ConstantSpeed(SteadyMotorSpeed(whole.parameters, w))          # its start: the steady speed
-    profile = profile if profile is not None else whole.motor
-    motorSpeed = float(profile.AngleAndSpeed(0., MATH_OPS)[1])         # the motor's speed at t = 0
+        if linearization is None:
+            profile = ConstantSpeed(SteadyMotorSpeed(whole.parameters, w))          # its start: the steady speed
     chain = whole.driveSideChain
     loadChain = whole.loadSideChain
     bearing = whole.axialBearing
 
-    if startFromEquilibrium:
+    if linearization is not None:          # held at the point's speed (a free motor starts there)
+        speed, deltaPhi = linearization.Start(drive.gear)
+        profile, contactOptions = ConstantSpeed(speed), linearization.ContactOptions(contactOptions)
+    profile = profile if profile is not None else whole.motor
+    motorSpeed = float(profile.AngleAndSpeed(0., MATH_OPS)[1])         # the motor's speed at t = 0
+
+    if linearization is not None:          # every rotor at the point's speed, the worm turned into contact
+        wheelSpeed = speed / drive.gear.ratio
+        init = {'phi1': deltaPhi, 'omega1': speed, 'omega2': wheelSpeed,
+                **{f'omega{i}': speed for i in range(4, 4 + len(chain))},
+                **{f'omegaL{i}': wheelSpeed for i in range(1, 1 + len(loadChain))}}
+        init0 = (0., speed)
+    elif startFromEquilibrium:
         init = SteadyInitialState(drive, load or ConstantTorque(0.), motorSpeed, contactOptions, bearing, chain,
                                   loadSide=loadChain)
         init0 = profile.AngleAndSpeed(0., MATH_OPS)

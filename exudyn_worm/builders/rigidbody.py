@@ -32,12 +32,11 @@ from ..model.contact import ContactOptions, MeshContact
 from ..model.friction import MATH_OPS
 from ..model.profiles import ConstantSpeed
 from ..model.stability import OperatingPoint
-from ..drive.wholedrive import CheckDrive, Drive
-from .oneangle import CheckReelChangerKeys
-from .start import LinearizationStart
+from ..drive.wholedrive import Drive
+from .oneangle import CheckModelDrive
+from .start import LinearizationPoint
 
-__all__ = ['WORM_AXIS', 'WHEEL_AXIS', 'WORM_REFERENCE', 'TURN', 'RigidBodyReelChanger', 'BuildRigidBodyReelChanger',
-           'BuildRigidBodyLinearizationModel']
+__all__ = ['WORM_AXIS', 'WHEEL_AXIS', 'WORM_REFERENCE', 'TURN', 'RigidBodyReelChanger', 'BuildRigidBodyReelChanger']
 
 
 #: the worm's axis (global): its turn is about -y, so that with the wheel's axis +z and the centre line +x the thread is
@@ -96,9 +95,11 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
                               useSymbolic: bool = True, wormBearings: Optional[ShaftBearings] = None,
                               wheelBearings: Optional[ShaftBearings] = None, wormMass: Optional[float] = None,
                               wheelMass: Optional[float] = None, profile: Optional[Any] = None,
-                              startFromEquilibrium: bool = True) -> RigidBodyReelChanger:
+                              startFromEquilibrium: bool = True,
+                              linearization: Optional[LinearizationPoint] = None) -> RigidBodyReelChanger:
     """Add the 3D model of a drive to ``mbs``: worm and wheel as rigid bodies (module docstring), starting in
-    equilibrium.
+    equilibrium. The one builder of this model: the time simulation, the linear analysis and the lowering-phase
+    orbit use it.
 
     Parameters
     ----------
@@ -124,6 +125,12 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     startFromEquilibrium : bool
         Start in the static equilibrium under the initial load at the motor's initial speed (default); otherwise
         at rest with zero angles.
+    linearization : LinearizationPoint, optional
+        Build the model to be linearized at this point instead
+        (:class:`~exudyn_worm.builders.start.LinearizationPoint`: no load, the motor held at the point's speed, the
+        worm turned into contact while the bearings are undeflected: their springs are linear, the linearization
+        does not depend on their preload); the drive needs no duty then, ``profile`` and ``startFromEquilibrium``
+        are not used.
 
     Returns
     -------
@@ -135,7 +142,7 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
         For a parameter set with chains, a motor on its characteristic, a bearing given twice or a bad mass.
     """
     w = 'BuildRigidBodyReelChanger'
-    CheckReelChangerKeys(drive, w)
+    CheckModelDrive(w, drive, linearization)
     whole, supports = drive, drive.shaftSupports
     for name, value in (('wormBearings', wormBearings), ('wheelBearings', wheelBearings)):
         if value is not None and supports is not None and getattr(supports, name) is not None:
@@ -158,6 +165,13 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
         raise ValueError(f"{w}: the rigid-body reel changer holds the motor on its path; a motor on its "
                          f"characteristic (motorType = characteristic) is not supported")
     drive = whole.elastic
+    if linearization is not None:        # every body at the point's speed, the worm turned into contact
+        speed, deltaPhi = linearization.Start(drive.gear)
+        init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0.,
+                'omega2': speed / drive.gear.ratio}
+        return _Build(mbs, drive, linearization.ContactOptions(contactOptions), useSymbolic, wormBearings,
+                      wheelBearings, axial.mass if axial is not None else wormMass, wheelMass, axial, init,
+                      ConstantSpeed(speed), None)
     load = whole.load
     profile = whole.motor if profile is None else profile
     angle0, motorSpeed = (float(x) for x in profile.AngleAndSpeed(0., MATH_OPS))
@@ -254,52 +268,6 @@ def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings,
                                         name='wormGear', contactOptions=contactOptions, useSymbolic=useSymbolic)
     return RigidBodyReelChanger(mbs.GetSystemContainer(), mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init),
                                 motor=motor, load=load, axialBearing=axial)
-
-
-def BuildRigidBodyLinearizationModel(whole: Drive, S: Optional[int] = None,
-                                     operatingPoint: Optional[OperatingPoint] = None) -> Tuple[Any, Any]:
-    """The 3D model of a drive for its linearization, as
-    :func:`~exudyn_worm.analysis.stability.linearization.BuildLinearizationModel` builds the one-angle model; returns
-    ``(SC, mbs)``, assembled.
-
-    Motor held on its path (at rest, or at the worm speed of ``operatingPoint``), no load; the worm is turned
-    into contact (against the flank sigma = S carrying the operating point's normal force) while the bearings
-    are undeflected (their springs are linear: the linearization does not depend on their preload).
-
-    Parameters
-    ----------
-    whole : Drive
-        The drive, with the shafts' bearings (``shaftSupports``) or the worm's axial bearing.
-    S : int, optional
-        Contact parameter held in the mesh, +1 or -1; None: S follows eq. (8) (for
-        :func:`~exudyn_worm.analysis.stability.linearization.AnalyzeLinearStability`, which holds it itself).
-    operatingPoint : OperatingPoint, optional
-        Start in this steady state (needs ``S``); None: at rest.
-
-    Returns
-    -------
-    (exudyn.SystemContainer, exudyn.MainSystem)
-    """
-    w = 'BuildRigidBodyLinearizationModel'
-    if S is not None and S not in (1, -1):
-        raise ValueError(f"{w}: 'S' must be None, +1 or -1, got {S!r}")
-    if operatingPoint is not None and S is None:
-        raise ValueError(f"{w}: with an 'operatingPoint' give 'S' (+1 or -1), the flank to load, got None")
-    supports, drive = CheckDrive(w, whole, 'whole').shaftSupports, whole.elastic
-    g = drive.gear
-    speed, deltaPhi = LinearizationStart(g, S, operatingPoint)
-    init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0., 'omega2': speed / g.ratio}
-    options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
-    axial = whole.axialBearing
-    # the plain-Python law: the C++ law's auxiliary coordinates give the same eigenvalues, but which coordinates
-    # Exudyn keeps independent then shifts the modes' energy shares between the bodies' coordinates
-    import exudyn as exu
-    model = _Build(exu.SystemContainer().AddSystem(), drive, options, False, None if supports is None else supports.wormBearings,
-                   None if supports is None else supports.wheelBearings,
-                   axial.mass if axial is not None else (WORM_MASS if supports is None else supports.wormMass),
-                   WHEEL_MASS if supports is None else supports.wheelMass, axial, init, ConstantSpeed(speed), None)
-    model.mbs.Assemble()
-    return model.systemContainer, model.mbs
 
 
 def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axial=None):

@@ -261,42 +261,6 @@ def _RejectAlternatives(values: Mapping[str, float], where: str, locations: Opti
         raise ValueError(f"{where}: both '{key}' and {others} are given, {what}")
 
 
-def _ConfigFromData(data: Mapping, where: str, text: Optional[str] = None, folder: Optional[str] = None,
-                    fromFile: bool = True) -> Dict:
-    """Check the content of a config (drive) file and parse its values (see :mod:`exudyn_worm.params.drivefile`); a
-    relative file path of a table (``frictionTable``) is taken relative to ``folder``, the file's folder. The plain
-    numbers of an angle, an angular speed or a length are refused (``fromFile``, the rule of docs/drive-files.md)."""
-    preset, raw = FlattenDriveFile(data, where, text)
-    if preset is not None and preset not in PRESETS:
-        line = next((i for i, row in enumerate((text or '').splitlines(), 1)
-                     if re.match(r'\s*["\']?preset["\']?\s*=', row)), None)
-        raise ValueError(f"{where}{f', line {line}' if line else ''}: preset: unknown preset '{preset}'"
-                         f"{Suggest(preset, PRESETS)}; expected one of: {', '.join(PRESETS)}")
-    parameters, locations = {}, {}
-    for key, value, location in raw:
-        if key not in PARAMETERS:
-            raise ValueError(PARAMETERS.UnknownKeyMessage(location, key))
-        if PARAMETERS[key].kind == 'number' and (isinstance(value, bool) or not isinstance(value, (str, Real))):
-            what = 'a string with units' if PARAMETERS.UnitRequired(key) else 'a number (SI) or a string with units'
-            raise ValueError(f"{location}: must be {what}, got {type(value).__name__} {value!r}; '{key}' is "
-                             f"{PARAMETERS.ExpectedText(key)}")
-        parameters[key] = _ParseQuantity(key, value, location, fromFile)
-        if PARAMETERS[key].kind == 'table' and isinstance(parameters[key], str) and folder is not None \
-                and not os.path.isabs(os.path.expanduser(parameters[key])):
-            parameters[key] = os.path.join(folder, parameters[key])   # a table file beside the drive file
-        CheckParameters({key: parameters[key]}, location)        # the range, named by the file's line and key
-        locations[key] = location
-    _RejectAlternatives(parameters, where, locations)
-    if not parameters and preset is None:
-        raise ValueError(f"{where}: the file gives no parameters: a drive file must give the drive's values in "
-                         f"component tables ({', '.join(f'[{t}]' for t in DRIVE_FILE_TABLES)}, "
-                         f"[[{DRIVE_SIDE_TABLE}]], [[{LOAD_SIDE_TABLE}]]; see docs/drive-files.md) or in a [parameters] table, or name a "
-                         f"preset (preset = \"{DEFAULT_PRESET}\")")
-    # a file with component tables describes a whole drive: nothing is inherited unless it names a preset
-    wholeDrive = any(table in data for table in COMPONENT_TABLES)
-    return {'preset': preset, 'parameters': parameters, 'wholeDrive': wholeDrive, 'locations': locations}
-
-
 class LoadedConfig(dict):
     """A drive file as :func:`LoadConfig` read it: what :func:`ResolveParametersWithSources` takes instead of the
     path, so that a command reads its file once.
@@ -311,20 +275,21 @@ class LoadedConfig(dict):
         super().__init__(content)
 
 
-def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
-    """Read a TOML config file.
+def LoadConfig(path: Union[str, os.PathLike, Mapping]) -> LoadedConfig:
+    """Read a TOML config file (or take its content as a dictionary) and parse its values.
 
     Parameters
     ----------
-    path : str or path-like
+    path : str, path-like or mapping
         A TOML file: a whole-drive file with component tables (``[gear]``, ``[worm]``, ``[driveShaft]``, ...,
         see :mod:`exudyn_worm.params.drivefile` and docs/drive-files.md) and/or a flat ``[parameters]`` table, and
         an optional ``preset = "NAME"``. Values are numbers (SI, angles in rad) or strings with units (see
-        :func:`ParseQuantity`).
+        :func:`ParseQuantity`). A mapping is the content of such a file (what
+        :func:`ResolveParameters` takes as ``config``).
 
     Returns
     -------
-    dict
+    LoadedConfig
         ``{'preset': str or None, 'parameters': {key: float in SI}, 'wholeDrive': bool, 'locations': {key:
         str}}``; ``wholeDrive`` is True when the file has component tables (then :func:`ResolveParameters`
         inherits no preset unless the file or the caller names one); ``locations`` names the file, line,
@@ -340,9 +305,44 @@ def LoadConfig(path: Union[str, os.PathLike]) -> Dict:
         two forms (e.g. both ``mu`` and ``rho``), or gives neither a parameter nor a preset. The message
         names the file, the line where it can be found, the table and key, and what was expected.
     """
-    where = f"LoadConfig: '{path}'"
-    data, text = ReadDriveFile(path, where)     # bounded: size, nesting, keys, stages; never a FIFO or a device
-    return LoadedConfig(_ConfigFromData(data, where, text, os.path.dirname(os.path.abspath(path))))
+    if isinstance(path, Mapping):                # the content of a file, given as a dictionary
+        data, text, folder, where = path, None, None, 'ResolveParameters: config'
+    else:
+        where = f"LoadConfig: '{path}'"
+        data, text = ReadDriveFile(path, where)     # bounded: size, nesting, keys, stages; never a FIFO or a device
+        folder = os.path.dirname(os.path.abspath(path))
+    # a relative file path of a table (frictionTable) is taken relative to the file's folder; the plain numbers of
+    # an angle, an angular speed or a length are refused (the rule of docs/drive-files.md)
+    preset, raw = FlattenDriveFile(data, where, text)
+    if preset is not None and preset not in PRESETS:
+        line = next((i for i, row in enumerate((text or '').splitlines(), 1)
+                     if re.match(r'\s*["\']?preset["\']?\s*=', row)), None)
+        raise ValueError(f"{where}{f', line {line}' if line else ''}: preset: unknown preset '{preset}'"
+                         f"{Suggest(preset, PRESETS)}; expected one of: {', '.join(PRESETS)}")
+    parameters, locations = {}, {}
+    for key, value, location in raw:
+        if key not in PARAMETERS:
+            raise ValueError(PARAMETERS.UnknownKeyMessage(location, key))
+        if PARAMETERS[key].kind == 'number' and (isinstance(value, bool) or not isinstance(value, (str, Real))):
+            what = 'a string with units' if PARAMETERS.UnitRequired(key) else 'a number (SI) or a string with units'
+            raise ValueError(f"{location}: must be {what}, got {type(value).__name__} {value!r}; '{key}' is "
+                             f"{PARAMETERS.ExpectedText(key)}")
+        parameters[key] = _ParseQuantity(key, value, location, fromFile=True)
+        if PARAMETERS[key].kind == 'table' and isinstance(parameters[key], str) and folder is not None \
+                and not os.path.isabs(os.path.expanduser(parameters[key])):
+            parameters[key] = os.path.join(folder, parameters[key])   # a table file beside the drive file
+        CheckParameters({key: parameters[key]}, location)        # the range, named by the file's line and key
+        locations[key] = location
+    _RejectAlternatives(parameters, where, locations)
+    if not parameters and preset is None:
+        raise ValueError(f"{where}: the file gives no parameters: a drive file must give the drive's values in "
+                         f"component tables ({', '.join(f'[{t}]' for t in DRIVE_FILE_TABLES)}, "
+                         f"[[{DRIVE_SIDE_TABLE}]], [[{LOAD_SIDE_TABLE}]]; see docs/drive-files.md) or in a [parameters] table, or name a "
+                         f"preset (preset = \"{DEFAULT_PRESET}\")")
+    # a file with component tables describes a whole drive: nothing is inherited unless it names a preset
+    wholeDrive = any(table in data for table in COMPONENT_TABLES)
+    return LoadedConfig({'preset': preset, 'parameters': parameters, 'wholeDrive': wholeDrive,
+                         'locations': locations})
 
 
 def ResolveParameters(preset: Optional[str] = None,
@@ -411,9 +411,7 @@ def ResolveParametersWithSources(preset: Optional[str] = None,
         cfg = {'preset': None, 'parameters': {}, 'wholeDrive': False, 'locations': {}}
     elif isinstance(config, LoadedConfig):                 # read already (by the command that resolves it)
         cfg = config
-    elif isinstance(config, Mapping):
-        cfg = _ConfigFromData(config, 'ResolveParameters: config')
-    elif isinstance(config, (str, os.PathLike)):
+    elif isinstance(config, (Mapping, str, os.PathLike)):
         cfg = LoadConfig(config)
     else:
         raise TypeError(f"ResolveParameters: 'config' must be a path or a dict, got {type(config).__name__}")

@@ -522,9 +522,15 @@ def ElasticDriveFromParameters(parameters: Mapping[str, float], where: str = 'El
     """
     CheckParameterKeys(parameters, where)
     p = dict(parameters)
+    _CheckCore(p, where)
+    return ElasticDriveWithGear(GearFromParameters(p, where=where), p, where)
+
+
+def _CheckCore(p: Mapping[str, Any], where: str) -> None:
+    """The checks of the two-mass core's values before its gear is built (keys checked already): every value in
+    range, then the core's keys present."""
     CheckParameters(p)                   # a value out of range (z1 = 1.5) is named before the keys it leaves missing
     _Require(p, ('alphaN',) + MissingGeometryKeys(p) + ('kV', 'J1', 'J2', 'kT'), where)
-    return ElasticDriveWithGear(GearFromParameters(p, where=where), p, where)
 
 
 #: the keys of the two-mass core that never change its gear: a drive changed only in these keeps its gear

@@ -36,8 +36,8 @@ from .config import (DropReplacedChoiceKeys, ResolveParametersWithSources, Sourc
                      _Overrides)
 from .duty import LOAD_TYPES, MOTOR_TYPES, LoadType, MotorType, _LoadLaw, _MotorLaw
 from .presets import (ApplyOverrides, AxialBearingFromParameters, CheckParameterKeys, DriveSideChain,
-                      ElasticDriveFromParameters, ElasticDriveWithGear, _GearFreeKeys, _WithOverrides, LoadSideChain,
-                      ShaftSupportsFromParameters)
+                      ElasticDriveWithGear, GearFromParameters, _CheckCore, _GearFreeKeys, _WithOverrides,
+                      LoadSideChain, ShaftSupportsFromParameters)
 from ..params.parameters import PARAMETERS, MissingParameterError, ParameterError
 
 __all__ = ['Component', 'Drive', 'ResolveDrive', 'CheckDrive']
@@ -158,7 +158,8 @@ class Drive:
         src = {k: (sources or {}).get(k, ValueSource.Api()) for k in parameters}
         p, src = DropReplacedChoiceKeys(parameters, src, where)
         try:
-            elastic = ElasticDriveFromParameters(p, where)
+            _CheckCore(p, where)                   # the core's values; then its gear and the core in one step each
+            elastic = ElasticDriveWithGear(GearFromParameters(p, where=where), p, where)
             load, motor = _Duty(p, where)
             supports = ShaftSupportsFromParameters(p, where)
             axialBearing = AxialBearingFromParameters(p, where)
@@ -178,6 +179,28 @@ class Drive:
                     axialBearing=axialBearing, shaftSupports=supports, load=load, motor=motor,
                     name=name)
         return drive
+
+    @classmethod
+    def OfTwoMass(cls, elastic: ElasticDrive, name: str = 'two-mass drive') -> 'Drive':
+        """The drive of Figure 2 alone: its two-mass core and nothing else (no chains, bearings or duty; no flat
+        parameters). The paper's two-mass analyses build their Exudyn model from it
+        (:func:`~exudyn_worm.analysis.stability.linearization.ExudynStabilityAnalysis`).
+
+        Parameters
+        ----------
+        elastic : ElasticDrive
+            The two-mass drive.
+        name : str, optional
+            What the drive is called in messages.
+
+        Returns
+        -------
+        Drive
+        """
+        if not isinstance(elastic, ElasticDrive):
+            raise TypeError(f"Drive.OfTwoMass: 'elastic' must be an ElasticDrive, got {type(elastic).__name__}")
+        return cls(parameters=types.MappingProxyType({}), sources=types.MappingProxyType({}), elastic=elastic,
+                   name=name)
 
     def Replace(self, **changes: Any) -> 'Drive':
         """A new drive with some values changed, checked where it changed.

@@ -8,7 +8,7 @@ what the drive contains, a typed property:
 - the two-mass drive of Figure 2 (:attr:`~exudyn_worm.drive.wholedrive.Drive.isTwoMass`): the analytical model,
   eqs. (15)-(19) with the friction slope's damping (:func:`~exudyn_worm.model.stability.AnalyzeStability`);
 - any other drive (chains, axial bearing, motor on its characteristic): the linearized Exudyn model of the whole
-  drive at the same operating point (:func:`~exudyn_worm.analysis.stability.linearization.BuildLinearizationModel`).
+  drive at the same operating point (:func:`~exudyn_worm.analysis.stability.linearization.LinearizationModel`).
 
 An operating point is stable when its own contact state S is (lifting: S = +1, lowering: S = -1); the drive's
 verdict is the worst of its operating points, and the phase with the largest real part decides. A drive without a
@@ -30,7 +30,7 @@ from ...model.stability import CONTACT_STATES, AnalyzeStability, OperatingPoint
 from ...drive.operatingpoints import DutyOperatingPoints, DutyPoint
 from ...drive.wholedrive import CheckDrive, Drive
 from . import linearization
-from ...builders.rigidbody import BuildRigidBodyLinearizationModel
+from ...builders.start import LinearizationPoint
 
 __all__ = ['StabilityModel', 'OperatingPointStability', 'DriveAnalysis', 'AnalyzeDrive', 'StateGrowth',
            'StateInstability', 'GrowthText', 'VerdictWord', 'DIVERGENCE', 'CHATTER', 'REAL_EIGENVALUE_TOLERANCE']
@@ -389,8 +389,7 @@ def _AtRest(drive: Drive, model: StabilityModel = ANALYTICAL):
         if drive.isTwoMass:
             return AnalyzeStability(drive.elastic) if model == ANALYTICAL else \
                 linearization.ExudynStabilityAnalysis(drive.elastic)
-        SC, mbs = _WholeDriveModel(drive, None)
-        return linearization.AnalyzeLinearStability(mbs)
+        return linearization.AnalyzeLinearStability(linearization.LinearizationModel(drive).mbs)
     return drive.Cached(f'stabilityAtRest.{model.value}', Compute)
 
 
@@ -403,17 +402,8 @@ def _AtPoint(drive: Drive, operatingPoint: OperatingPoint, model: StabilityModel
         return AnalyzeStability(drive.elastic, op)
     if drive.isTwoMass:             # the same result type as the analytical model, from Exudyn's eigenvalues
         return linearization.ExudynStabilityAnalysis(drive.elastic, operatingPoint=op)
-    SC, mbs = _WholeDriveModel(drive, op.S, op)
-    return linearization.AnalyzeLinearStability(mbs, contactStates=[(op.S,)])
-
-
-def _WholeDriveModel(drive: Drive, S: Optional[int], operatingPoint: Optional[OperatingPoint] = None):
-    """(SC, mbs) of the whole Exudyn drive to linearize: the 3D model of worm and wheel as rigid bodies where the
-    drive has shaft bearings, else the one-angle model with its chains, axial bearing and free motor."""
-    if drive.isRigidBody:
-        return BuildRigidBodyLinearizationModel(drive, S, operatingPoint)
-    return linearization.BuildLinearizationModel(drive.elastic, S, True, drive.axialBearing, drive.driveSideChain,
-                                                 drive.loadSideChain, drive.freeMotor, operatingPoint=operatingPoint)
+    model = linearization.LinearizationModel(drive, LinearizationPoint(op.S, op))
+    return linearization.AnalyzeLinearStability(model.mbs, contactStates=[(op.S,)])
 
 
 def AnalyzeDrive(drive: Drive, model: Optional[Union[StabilityModel, str]] = None,

@@ -23,26 +23,25 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass, field, replace
-from typing import Dict, List, Optional, Sequence, Tuple
+from typing import Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from ..._checks import CheckSystem, JsonNumber
-from ...items.connector import CONNECTORS_KEY, CreateWormAxialBearing, CreateWormGear, WormGearConnector
-from ...model.drive import AxialBearing
+from ...items.connector import CONNECTORS_KEY, WormGearConnector
 from ...items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
 from ...model.contact import ContactOptions
 from ...model.drive import ElasticDrive
 from ...model.gear import WormGear
-from ...items.drivetrain import CreateDriveSideChain, CreateLoadSideChain, CreatePrescribedRotation, CreateRotor
-from ...model.profiles import ConstantSpeed
 from ...model.stability import (CONTACT_STATES, SortEigenvalues, AnalyzeStability, ContactStability,
                         OperatingPoint, OperatingPointFromParameters, StabilityAnalysis)
-from ...builders.start import LinearizationStart
+from ...builders.oneangle import BuildReelChanger, ReelChangerModel
+from ...builders.rigidbody import BuildRigidBodyReelChanger, RigidBodyReelChanger
+from ...builders.start import LinearizationPoint
 from ...drive.wholedrive import CheckDrive, Drive
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
-           'BuildLinearizationModel', 'LinearStabilityOfDrive', 'ExudynEigenvalues',
+           'LinearizationModel', 'LinearStabilityOfDrive', 'ExudynEigenvalues',
            'ExudynStabilityAnalysis']
 
 #: smallest pre-deflection in m beyond half the backlash that AnalyzeLinearStability accepts: Exudyn's
@@ -357,8 +356,9 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
     A gear with a speed-dependent friction law (:mod:`exudyn_worm.model.friction`) is linearized at its initial
     speed and normal force: start the system in the operating state. The friction slope enters with the sign of
     sigma sign(phi1') S, so only the contact state with S = sigma sign(phi1') of the initial state (S = -1 for a
-    system that starts lowering) has the physical damping; :func:`BuildLinearizationModel` with an
-    ``operatingPoint`` builds one consistent model per contact state.
+    system that starts lowering) has the physical damping; :func:`LinearizationModel` at a
+    :class:`~exudyn_worm.builders.start.LinearizationPoint` with an operating point builds one consistent model per
+    contact state.
 
     Examples
     --------
@@ -411,80 +411,46 @@ def AnalyzeLinearStability(mbs, connectors: Optional[Sequence[WormGearConnector]
                            states=results)
 
 
-def BuildLinearizationModel(drive: ElasticDrive, S: Optional[int] = None, useSymbolic: bool = True,
-                            axialBearing: Optional[AxialBearing] = None,
-                            chain: Sequence[Tuple[float, float, float]] = (),
-                            loadChain: Sequence[Tuple[float, float, float]] = (),
-                            motor: Optional[Tuple[float, float]] = None,
-                            operatingPoint: Optional[OperatingPoint] = None):
-    """Exudyn system of Figure 2 (motor held still), worm pre-deflected into contact; returns ``(SC, mbs)``.
-
-    With ``operatingPoint`` the system starts in that steady state instead (what a speed-dependent friction
-    law needs, :mod:`exudyn_worm.model.stability`): motor, worm and wheel turn at the worm speed
-    ``slidingSpeed cos(gamma) / r1`` (the motor prescribed at it) and the worm is deflected so that the mesh
-    carries the normal force ``normalForce`` on the flank sigma = S (S = -1: lowering), i.e.
-    sigma sign(phi1') = S as eq. (8) requires.
-
-    With ``axialBearing`` the worm has its axial coordinate (node ``wormAxial``): the 3-DOF problem in
-    (phi1, phi2, xA). With ``chain`` the drive-side chain of Figure 19 sits between worm and motor
-    (rotors ``inertia4``, ...), with ``loadChain`` the load-side chain behind the wheel (rotors ``loadInertia1``,
-    ...; topologies in :mod:`exudyn_worm.drive.presets`).
+def LinearizationModel(drive: Drive, point: LinearizationPoint = LinearizationPoint(), useSymbolic: bool = True
+                       ) -> Union[ReelChangerModel, RigidBodyReelChanger]:
+    """The Exudyn model of a drive to linearize, built by its model's builder and assembled: the 3D model
+    (:func:`~exudyn_worm.builders.rigidbody.BuildRigidBodyReelChanger`) for a drive with shaft bearings, else the
+    one-angle model (:func:`~exudyn_worm.builders.oneangle.BuildReelChanger`) with its chains, axial bearing and
+    free motor; no load, the motor at the point's speed, the worm turned into contact.
 
     Parameters
     ----------
-    drive : ElasticDrive
-        The 2-DOF drive of Figure 2.
-    S : int, optional
-        Contact parameter held in the connector, +1 or -1; None: S follows eq. (8) (for
-        :func:`AnalyzeLinearStability`, which holds it itself).
+    drive : Drive
+        The drive (:func:`~exudyn_worm.drive.wholedrive.ResolveDrive`); it needs no duty.
+    point : LinearizationPoint
+        Where (:class:`~exudyn_worm.builders.start.LinearizationPoint`: at rest, or at an operating point with the
+        contact state S held).
     useSymbolic : bool
-        Symbolic (C++) or Python user function for the connector.
-    axialBearing : AxialBearing, optional
-        The worm's axial bearing (None: axially rigid worm).
-    chain : sequence of (J, k, d)
-        Drive-side chain, worm side first (:func:`~exudyn_worm.drive.presets.DriveSideChain`).
-    loadChain : sequence of (J, k, d)
-        Load-side chain, wheel side first (:func:`~exudyn_worm.drive.presets.LoadSideChain`).
-    motor : (float, float), optional
-        A free motor rotor instead of one held on its path: its inertia in kg*m^2 and the damping to ground in
-        N*m*s/rad by which its torque falls with speed (the slope of a motor characteristic).
-    operatingPoint : OperatingPoint, optional
-        Start in this steady state (needs ``S``, the flank to load); None: at rest.
+        Symbolic (C++) or Python user function for the one-angle model's connector (the 3D model's law is
+        linearized in Python).
+
+    Returns
+    -------
+    ReelChangerModel or RigidBodyReelChanger
+        The builder's record; its ``mbs`` is assembled.
     """
     import exudyn as exu
-    from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate, NodePointGround
-    if S is not None and S not in CONTACT_STATES:
-        raise ValueError(f"BuildLinearizationModel: 'S' must be None, +1 or -1, got {S!r}")
-    g = drive.gear
-    SC = exu.SystemContainer()
-    mbs = SC.AddSystem()
-    if operatingPoint is not None and S is None:
-        raise ValueError("BuildLinearizationModel: with an 'operatingPoint' give 'S' (+1 or -1), the flank to "
-                         "load, got None")
-    speed, deltaPhi = LinearizationStart(g, S, operatingPoint)
-    free, motor = motor, CreateRotor(mbs, 1e-3 if motor is None else motor[0], initialSpeed=speed, name='motor')
-    worm = CreateRotor(mbs, drive.J1, initialAngle=deltaPhi, initialSpeed=speed, name='worm')
-    wheel = CreateRotor(mbs, drive.J2, initialSpeed=speed / g.ratio, name='wheel')
-    if free is None:
-        CreatePrescribedRotation(mbs, motor, ConstantSpeed(speed), useSymbolic=useSymbolic)
-    else:                                   # a free motor rotor, its characteristic's slope a damper to ground
-        ground = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=mbs.AddNode(NodePointGround()), coordinate=0))
-        mbs.AddObject(CoordinateSpringDamper(markerNumbers=[ground, motor['markerNumber']], stiffness=0.,
-                                             damping=free[1]))
-    CreateDriveSideChain(mbs, motor, worm, drive.kT, drive.dT, chain,
-                         {f'omega{i}': speed for i in range(4, 4 + len(chain))})
-    CreateLoadSideChain(mbs, wheel, loadChain, {f'omegaL{i}': speed / g.ratio for i in range(1, len(loadChain) + 1)})
-    axialNode = None if axialBearing is None else CreateWormAxialBearing(mbs, axialBearing)['nodeNumber']
-    options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
-    CreateWormGear(mbs, [worm['nodeNumber'], wheel['nodeNumber']], gear=g, useSymbolic=useSymbolic,
-                   contactOptions=options, name='wormGear', axialNodeNumber=axialNode)
+    CheckDrive('LinearizationModel', drive)
+    mbs = exu.SystemContainer().AddSystem()
+    if drive.isRigidBody:
+        # the plain-Python law: the C++ law's auxiliary coordinates give the same eigenvalues, but which
+        # coordinates Exudyn keeps independent then shifts the modes' energy shares between the bodies' coordinates
+        model = BuildRigidBodyReelChanger(mbs, drive, useSymbolic=False, linearization=point)
+    else:
+        model = BuildReelChanger(mbs, drive, useSymbolic=useSymbolic, linearization=point)
     mbs.Assemble()
-    return SC, mbs
+    return model
 
 
 def LinearStabilityOfDrive(whole: Drive, useSymbolic: bool = True) -> LinearStability:
-    """:func:`AnalyzeLinearStability` of the one-angle Exudyn model of a drive, with its modes: the drive-side and
-    load-side chains, the worm's axial bearing and a free motor where the drive has them; no load.
+    """:func:`AnalyzeLinearStability` of the Exudyn model of a drive (:func:`LinearizationModel`), with its modes:
+    the drive-side and load-side chains, the worm's axial bearing and a free motor where the drive has them; no
+    load.
 
     Parameters
     ----------
@@ -499,18 +465,18 @@ def LinearStabilityOfDrive(whole: Drive, useSymbolic: bool = True) -> LinearStab
         For S = +1 and S = -1; coordinates ``motor, worm, wheel`` (+ ``inertia4``, ..., ``loadInertia1``, ...,
         ``wormAxial``). With the reel-changer keys ``loadMass, leverArm, motorSpeed`` its ``operatingPoint`` is
         steady lowering (:func:`~exudyn_worm.model.stability.OperatingPointFromParameters`); a speed-dependent friction
-        law is then linearized there (one model per contact state, :func:`BuildLinearizationModel`).
+        law is then linearized there (one model per contact state,
+        :class:`~exudyn_worm.builders.start.LinearizationPoint`).
     """
     CheckDrive('LinearStabilityOfDrive', whole, 'whole')
     drive = whole.elastic
     operatingPoint = OperatingPointFromParameters(whole.parameters, drive.gear)
-    parts = (useSymbolic, whole.axialBearing, whole.driveSideChain, whole.loadSideChain, whole.freeMotor)
     if operatingPoint is None or not drive.gear.speedDependentFriction:
-        SC, mbs = BuildLinearizationModel(drive, None, *parts)
+        mbs = LinearizationModel(whole, LinearizationPoint(), useSymbolic).mbs
         return replace(AnalyzeLinearStability(mbs), operatingPoint=operatingPoint)
     states = {}
     for S in CONTACT_STATES:
-        SC, mbs = BuildLinearizationModel(drive, S, *parts, operatingPoint=operatingPoint)
+        mbs = LinearizationModel(whole, LinearizationPoint(S, operatingPoint), useSymbolic).mbs
         linear = AnalyzeLinearStability(mbs, contactStates=[(S,)])
         states.update(linear.states)
     return replace(linear, states=states, operatingPoint=operatingPoint)
@@ -530,7 +496,7 @@ def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> 
     """
     if S not in CONTACT_STATES:
         raise ValueError(f"ExudynEigenvalues: 'S' must be +1 or -1, got {S!r}")
-    SC, mbs = BuildLinearizationModel(drive, None, useSymbolic)
+    mbs = LinearizationModel(Drive.OfTwoMass(drive), LinearizationPoint(), useSymbolic).mbs
     return AnalyzeLinearStability(mbs, contactStates=[(S,)]).State(S).eigenvalues
 
 
@@ -545,8 +511,8 @@ def ExudynStabilityAnalysis(drive: ElasticDrive, useSymbolic: bool = True,
     useSymbolic : bool
         Evaluate the connector as symbolic (default) or Python user function.
     operatingPoint : OperatingPoint, optional
-        Linearize each contact state S in the steady state of :func:`BuildLinearizationModel` (speed, normal
-        force on the flank sigma = S); Exudyn differentiates the connector's mu(v) numerically. None: at rest.
+        Linearize each contact state S in the steady state of that point
+        (:class:`~exudyn_worm.builders.start.LinearizationPoint`: speed, normal force on the flank sigma = S); Exudyn differentiates the connector's mu(v) numerically. None: at rest.
 
     Returns
     -------
@@ -555,14 +521,15 @@ def ExudynStabilityAnalysis(drive: ElasticDrive, useSymbolic: bool = True,
     """
     if not isinstance(drive, ElasticDrive):
         raise TypeError(f"ExudynStabilityAnalysis: 'drive' must be an ElasticDrive, got {type(drive).__name__}")
+    twoMass = Drive.OfTwoMass(drive)
     if operatingPoint is not None:
         contact = {}
         for S in CONTACT_STATES:
-            SC, mbs = BuildLinearizationModel(drive, S, useSymbolic, operatingPoint=operatingPoint)
+            mbs = LinearizationModel(twoMass, LinearizationPoint(S, operatingPoint), useSymbolic).mbs
             eigenvalues = AnalyzeLinearStability(mbs, contactStates=[(S,)]).State(S).eigenvalues
             contact[S] = ContactStability.FromEigenvalues(S, eigenvalues)
         return StabilityAnalysis(drive, contact, operatingPoint)
-    SC, mbs = BuildLinearizationModel(drive, None, useSymbolic)
+    mbs = LinearizationModel(twoMass, LinearizationPoint(), useSymbolic).mbs
     linear = AnalyzeLinearStability(mbs)
     return StabilityAnalysis(drive, {S: ContactStability.FromEigenvalues(S, linear.State(S).eigenvalues)
                                      for S in CONTACT_STATES})
