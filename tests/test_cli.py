@@ -302,8 +302,8 @@ def test_registry_adds_a_subcommand(capsys, monkeypatch):
         parser.add_argument('--duration', type=float, default=8.)
 
     def RunDemo(args):
-        parameters, drive = cli.DriveFromArgs(args)
-        print(f"{args.duration} {drive.J1} {args.json}")
+        drive = cli.WholeDriveFromArgs(args)
+        print(f"{args.duration} {drive.elastic.J1} {args.json}")
         return 0
 
     monkeypatch.setattr(cli, 'SUBCOMMANDS', cli.SUBCOMMANDS + [cli.Subcommand('demo', 'demo', Add, RunDemo)])

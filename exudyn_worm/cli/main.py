@@ -7,13 +7,13 @@ one-line help text, a function that adds its arguments to its ``argparse`` subpa
 that runs it and returns the exit status. To add a subcommand ``demo``, write
 ``exudyn_worm/cli/demo.py``::
 
-    from .main import DriveFromArgs, Subcommand
+    from .main import Subcommand, WholeDriveFromArgs
 
     def _AddArguments(parser):
         parser.add_argument('--duration', type=float, default=8., help='simulated time in s')
 
     def _Run(args):
-        parameters, drive = DriveFromArgs(args)      # --preset/--config/--set, bad input -> exit 2
+        drive = WholeDriveFromArgs(args)      # --preset/--config/--set, bad input -> exit 2
         ...                                          # compute, then print (or JSON if args.json)
         return 0
 
@@ -59,11 +59,10 @@ from ..items.solve import IsInterrupt
 from ..params.drives import ConfigArgument, DocPath, ShippedDrives
 
 if TYPE_CHECKING:
-    from ..model.drive import ElasticDrive
     from ..drive.wholedrive import Drive
 
 __all__ = ['PROG', 'UsageError', 'BadInput', 'Subcommand', 'COMMAND_MODULES', 'SUBCOMMANDS', 'Subcommands',
-           'AddParameterOptions', 'ParametersFromArgs', 'WholeDriveFromArgs', 'WarnUnresolvedRotation', 'DriveFromArgs',
+           'AddParameterOptions', 'ParametersFromArgs', 'WholeDriveFromArgs', 'WarnUnresolvedRotation',
            'SourceText', 'SourceInfo',
            'StdoutToStderr', 'PrintJson', 'CheckOutputPath', 'CheckFigurePath', 'FIGURE_SUFFIXES',
            'AddOverwriteOption', 'InterruptedLine', 'PositiveFloat', 'PositiveInt', 'BuildParser', 'Main']
@@ -293,7 +292,7 @@ def AddParameterOptions(parser: argparse.ArgumentParser) -> None:
     parser : argparse.ArgumentParser
         The subcommand's parser; it gets ``--preset NAME``, ``--config FILE.toml``, ``--set KEY=VALUE``
         (repeatable, stored as the list ``args.set``) and ``--json``. Read them back with
-        :func:`ParametersFromArgs` / :func:`DriveFromArgs`.
+        :func:`ParametersFromArgs` / :func:`WholeDriveFromArgs`.
     """
     group = parser.add_argument_group('parameter set (preset, then config file, then --set)')
     preset = group.add_argument('--preset', metavar='NAME', default=None,
@@ -402,28 +401,6 @@ def WarnUnresolvedRotation(drive: Drive, where: str) -> None:
     with BadInput():       # the drive itself: its linear analysis is the command's own, not computed again
         CheckWormRotation(dict(drive.parameters), RecommendedStepSize(drive),
                           f"{where} (at the drive's recommended step)")
-
-
-def DriveFromArgs(args: argparse.Namespace) -> Tuple[Dict[str, float], ElasticDrive]:
-    """Resolve the parameter set and build its :class:`ElasticDrive`.
-
-    Parameters
-    ----------
-    args : argparse.Namespace
-        Parsed arguments of a subcommand with :func:`AddParameterOptions`.
-
-    Returns
-    -------
-    (dict, ElasticDrive)
-        The flat parameter dictionary and the drive built from it.
-
-    Raises
-    ------
-    UsageError
-        For bad input or parameters the model rejects (its ``ValueError``/``TypeError``).
-    """
-    drive = WholeDriveFromArgs(args)
-    return dict(drive.parameters), drive.elastic
 
 
 @contextlib.contextmanager
