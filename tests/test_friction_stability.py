@@ -18,7 +18,6 @@ from exudyn_worm.model.stability import (AnalyzeStability, CharacteristicCoeffic
                                          PolynomialCoefficients)
 from exudyn_worm.drive.wholedrive import ResolveDrive
 import exudyn_worm.analysis.simulation.reelchanger as rc
-import exudyn_worm.drive.wholedrive as wholedrive
 
 P3 = GetPreset('reel-P3')
 DRIVE = ElasticDriveFromParameters(P3)
@@ -197,13 +196,14 @@ def test_simulation_grows_where_the_linear_analysis_says_unstable(monkeypatch):
     assert steep[11] < steep[10]                                      # 5-6 s: the load falls, it decays again
 
 
-def test_whole_drive_linearization_at_the_operating_point(monkeypatch):
-    """LinearStabilityFromParameters (the whole-drive path of `stability`) linearizes a speed-dependent law at the
+def test_whole_drive_linearization_at_the_operating_point():
+    """LinearStabilityOfDrive (the whole-drive path of `stability`) linearizes a speed-dependent law at the
     operating point: for the two-mass drive it equals the extended eq. (16)."""
-    original = wholedrive.ElasticDriveFromParameters
-    monkeypatch.setattr(wholedrive, 'ElasticDriveFromParameters', lambda p, where='': Stribeck(original(p)))
-    linear = LinearStabilityOfDrive(ResolveDrive(parameters=P3))
-    drive = Stribeck()
+    law = StribeckThrough(0.132, 0.2, 0.9)
+    whole = ResolveDrive('reel-P3').Replace(frictionLaw='stribeck', mu=law.mu, muStatic=law.muStatic,
+                                            stribeckVelocity=law.stribeckVelocity)
+    linear = LinearStabilityOfDrive(whole)
+    drive = whole.elastic
     op = OperatingPointFromParameters(P3, drive.gear)
     assert linear.operatingPoint == op and linear.ToDict()['operatingPoint'] == op.ToDict()
     analytical = AnalyzeStability(drive, op)

@@ -41,7 +41,7 @@ from ...builders.start import LinearizationPoint
 from ...drive.wholedrive import CheckDrive, Drive
 
 __all__ = ['LinearMode', 'ContactStateLinearization', 'LinearStability', 'AnalyzeLinearStability',
-           'LinearizationModel', 'LinearStabilityOfDrive', 'ExudynEigenvalues',
+           'LinearizationModel', 'LinearStabilityOfDrive',
            'ExudynStabilityAnalysis']
 
 #: smallest pre-deflection in m beyond half the backlash that AnalyzeLinearStability accepts: Exudyn's
@@ -480,24 +480,6 @@ def LinearStabilityOfDrive(whole: Drive, useSymbolic: bool = True) -> LinearStab
         linear = AnalyzeLinearStability(mbs, contactStates=[(S,)])
         states.update(linear.states)
     return replace(linear, states=states, operatingPoint=operatingPoint)
-
-
-def ExudynEigenvalues(drive: ElasticDrive, S: int, useSymbolic: bool = True) -> np.ndarray:
-    """Complex eigenvalues (1/s) of the Exudyn model of Figure 2 linearized with S held.
-
-    Parameters
-    ----------
-    drive : ElasticDrive
-        The 2-DOF drive of Figure 2.
-    S : int
-        Contact parameter held during the linearization, +1 or -1.
-    useSymbolic : bool
-        Symbolic (C++) or Python user function for the connector.
-    """
-    if S not in CONTACT_STATES:
-        raise ValueError(f"ExudynEigenvalues: 'S' must be +1 or -1, got {S!r}")
-    mbs = LinearizationModel(Drive.OfTwoMass(drive), LinearizationPoint(), useSymbolic).mbs
-    return AnalyzeLinearStability(mbs, contactStates=[(S,)]).State(S).eigenvalues
 
 
 def ExudynStabilityAnalysis(drive: ElasticDrive, useSymbolic: bool = True,
