@@ -19,8 +19,7 @@ from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
 from exudyn_worm.analysis.stability.drivestability import AnalyzeDrive
 from exudyn_worm import ContactOptions, CreateWormGear, WormGear
 from exudyn_worm.analysis.design.designcheck import DesignCheck
-from exudyn_worm.drive.presets import (ElasticDriveFromParameters, ExtraComponents, GetPreset, LoadSideChain,
-                                       LumpedLoadSide)
+from exudyn_worm.drive.presets import ElasticDriveFromParameters, ExtraComponents, GetPreset, LoadSideChain
 from exudyn_worm.cli.main import Main
 from exudyn_worm.params.drivefile import StageKey
 from exudyn_worm.model.profiles import GravityLeverTorque
@@ -29,7 +28,7 @@ from exudyn_worm.model.contact import MATH_OPS
 from exudyn_worm.analysis.simulation.reelchanger import SimulateReelChanger
 from exudyn_worm.items.results import SeriesUnit
 from exudyn_worm.analysis.studies.studypoint import RunPoint, RunTask
-from exudyn_worm.analysis.stability.loadside import DiagnoseLoadSide
+from exudyn_worm.analysis.stability.loadside import DiagnoseLoadSide, LumpedLoadSide
 from exudyn_worm.drive.wholedrive import ResolveDrive
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -101,10 +100,11 @@ def test_drive_file_equals_the_drive_built_by_hand_in_exudyn(fileParameters):
 def test_lumping_the_load_into_j2_turns_the_verdict(fileParameters):
     """Lumped into J2 the drive looks stable (with margin), with the load shaft it chatters at
     about 200 Hz in the wheel's mode. Both verdicts from hand-built Exudyn models and from the package."""
-    lumped = LumpedLoadSide(fileParameters)
-    assert lumped['J2'] == pytest.approx(J2 + JL1) and 'JL1' not in lumped and 'kL1' not in lumped
-    assert _HandBuiltEigenvalues(J2 + JL1, None).stable and AnalyzeDrive(ResolveDrive(parameters=lumped)).stable
-    assert DesignCheck(ResolveDrive(parameters=lumped)).stableWithMargin
+    lumped = LumpedLoadSide(ResolveDrive(parameters=fileParameters))
+    assert lumped.elastic.J2 == pytest.approx(J2 + JL1) and not lumped.loadSideChain
+    assert 'JL1' not in lumped.parameters and 'kL1' not in lumped.parameters
+    assert _HandBuiltEigenvalues(J2 + JL1, None).stable and AnalyzeDrive(lumped).stable
+    assert DesignCheck(lumped).stableWithMargin
     chained = _HandBuiltEigenvalues(J2, (JL1, KL1))
     assert not chained.stable and chained.State(1).stable
     growing = max(chained.State(-1).modes, key=lambda m: m.eigenvalue.real)

@@ -56,7 +56,7 @@ __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', '
            'ApplyOverrides', 'CheckParameterKeys', 'CheckParameters', 'UnknownParameterMessage', 'GearFromParameters',
            'FrictionLawFromParameters',
            'DriveFromParameters', 'ElasticDriveFromParameters', 'ElasticDriveWithGear',
-           'DriveSideChain', 'LoadSideChain', 'LumpedLoadSide', 'LOAD_CHAIN_KEYS',
+           'DriveSideChain', 'LoadSideChain', 'LOAD_CHAIN_KEYS',
            'AxialBearingFromParameters', 'ShaftSupportsFromParameters', 'SHAFT_KEYS', 'MAX_RATE', 'MIN_RATE_SPREAD']
 
 #: keys of the elastic drive (Figure 2): the drive-file tables [gear], [worm], [wheel], [driveShaft]
@@ -700,40 +700,6 @@ def LoadSideChain(parameters: Mapping[str, float]) -> List[Tuple[float, float, f
     [(0.5, 20000.0, 0.0)]
     """
     return _SeriesChain(parameters, 'loadSide', 'LoadSideChain')
-
-
-def LumpedLoadSide(parameters: Mapping[str, float]) -> Dict[str, float]:
-    """``parameters`` with the load-side chain lumped into the wheel: J2 + JL1 + JL2 + ..., no chain keys.
-
-    What the two-mass model assumes when the driven machine is counted in J2 (rigid load shafts); compare its
-    verdict with the whole drive's (:func:`~exudyn_worm.analysis.stability.drivestability.DriveStability`) to see whether lumping is
-    safe for a drive (docs/drive-files.md, "Load-side chain").
-
-    Parameters
-    ----------
-    parameters : mapping
-        Flat parameter dictionary (SI) with ``J2``.
-
-    Returns
-    -------
-    dict
-        A new dictionary; a set without a load-side chain is returned unchanged (as a copy). The physical
-        damping is kept: a damping given as a measure (``DV``, ``DT``, ``DTV``, which refer to J2) is replaced by
-        the ``dV`` and ``dT`` it gives for the wheel's own J2.
-
-    Raises
-    ------
-    ValueError
-        For an incomplete chain (:func:`LoadSideChain`) or a missing ``J2``.
-    """
-    chain = LoadSideChain(parameters)
-    out = {k: v for k, v in parameters.items() if (PARAMETERS.SeriesIndex(k) or ('',))[0] not in ('JL', 'kL', 'dL')}
-    if chain:
-        _Require(parameters, ('J2',), 'LumpedLoadSide')
-        drive = ElasticDriveFromParameters(out)
-        out = ApplyOverrides(out, {'J2': parameters['J2'] + sum(J for J, _, _ in chain), 'dV': drive.gear.dV,
-                                   'dT': drive.dT})
-    return out
 
 
 def AxialBearingFromParameters(parameters: Mapping[str, float], where: str = 'AxialBearingFromParameters'

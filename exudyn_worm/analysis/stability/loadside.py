@@ -2,7 +2,7 @@
 
 A load-side chain (``JL1, kL1, dL1, ...``, :func:`~exudyn_worm.drive.presets.LoadSideChain`) puts the driven machine
 behind load shafts: ``wheel J2 --(kL1, dL1)-- JL1 --(kL2, dL2)-- JL2 ...``. The two-mass model of Figure 2 (and
-the design check built on it) needs the load lumped into J2 (:func:`~exudyn_worm.drive.presets.LumpedLoadSide`).
+the design check built on it) needs the load lumped into J2 (:func:`LumpedLoadSide`).
 
 **Criterion.** Seen from the wheel, stage *i* with everything beyond it rigid (inertia ``J = JLi + JL(i+1) + ...``
 on the shaft ``kLi``, wheel held) has the natural frequency ``fLi = sqrt(kLi / J) / (2 pi)``. At a frequency f
@@ -30,9 +30,9 @@ from ..._checks import CheckRange
 from .linearization import LinearStabilityOfDrive
 from .drivestability import AnalyzeDrive, VerdictWord
 from ...drive.wholedrive import CheckDrive, Drive
-from ...drive.presets import LumpedLoadSide
+from ...params.parameters import PARAMETERS
 
-__all__ = ['WHEEL_SHARE', 'LoadSideStage', 'LoadSideDiagnosis', 'DiagnoseLoadSide', 'LoadSideNotLumpable']
+__all__ = ['WHEEL_SHARE', 'LoadSideStage', 'LoadSideDiagnosis', 'LumpedLoadSide', 'DiagnoseLoadSide', 'LoadSideNotLumpable']
 
 #: smallest kinetic-energy share of the wheel in a mode of the lumped drive for the mode to count as one in which
 #: the wheel moves (the worm's own mode has < 1 % in the drives tested)
@@ -204,6 +204,34 @@ class LoadSideNotLumpable(ValueError):
         self.diagnosis = diagnosis
 
 
+def LumpedLoadSide(drive: Drive) -> Drive:
+    """The drive with its load-side chain lumped into the wheel: J2 + JL1 + JL2 + ..., no chain.
+
+    What the two-mass model assumes when the driven machine is counted in J2 (rigid load shafts); compare its
+    verdict with the whole drive's (:func:`~exudyn_worm.analysis.stability.drivestability.AnalyzeDrive`) to see
+    whether lumping is safe for a drive (docs/drive-files.md, "Load-side chain").
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+
+    Returns
+    -------
+    Drive
+        A new drive (:meth:`~exudyn_worm.drive.wholedrive.Drive.Replace`); ``drive`` itself without a load-side
+        chain. The physical damping is kept: a damping given as a measure (``DV``, ``DT``, ``DTV``, which refer to
+        J2) is replaced by the ``dV`` and ``dT`` it gives for the wheel's own J2.
+    """
+    drive = CheckDrive('LumpedLoadSide', drive)
+    chain = drive.loadSideChain
+    if not chain:
+        return drive
+    changes = {k: None for k in drive.parameters if (PARAMETERS.SeriesIndex(k) or ('',))[0] in ('JL', 'kL', 'dL')}
+    changes.update(J2=drive.elastic.J2 + sum(J for J, _, _ in chain), dV=drive.gear.dV, dT=drive.elastic.dT)
+    return drive.Replace(**changes)
+
+
 def DiagnoseLoadSide(drive: Drive, margin: float = 0.1) -> LoadSideDiagnosis:
     """May the load-side chain of ``drive`` be lumped into J2? The criterion is in the module docstring.
 
@@ -230,7 +258,7 @@ def DiagnoseLoadSide(drive: Drive, margin: float = 0.1) -> LoadSideDiagnosis:
     if not chain:
         raise ValueError(f"{w}: the drive has no load-side chain (JL1, kL1, ...)")
     stages = [LoadSideStage(i, J, sum(j for j, _, _ in chain[i - 1:]), k) for i, (J, k, _) in enumerate(chain, 1)]
-    lumpedDrive = Drive.FromParameters(LumpedLoadSide(drive.parameters), drive.sources, drive.name)
+    lumpedDrive = LumpedLoadSide(drive)
     lumped = LinearStabilityOfDrive(lumpedDrive)          # its modes: which ones move the wheel
     lumpedAnalysis = AnalyzeDrive(lumpedDrive)                # its verdict: at the duty's operating points
     lumpedStable = lumpedAnalysis.stable
