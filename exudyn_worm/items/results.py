@@ -283,8 +283,9 @@ class ChatterVerdict:
                    f"(its amplitude) or second half (its rate, where the motor holds its speed); a longer window "
                    f"decides")
         elif self.rate * self.window >= -CHATTER_STEADY_EXPONENT:
-            why = (f"steady, {rate}, below the saturated amplitude {CHATTER_SATURATION:g}: a lightly damped free "
-                   f"vibration looks the same; a longer window or the linear verdict decides")
+            why = (f"steady, {rate}, below the saturated amplitude {CHATTER_SATURATION:g} and without the worm "
+                   f"turning back: a lightly damped free vibration looks the same; a longer window or the linear "
+                   f"verdict decides")
         else:
             why = (f"decaying, {rate}: its decay time {-1. / self.rate:.3g} s is longer than the window "
                    f"{self.window:.3g} s")
