@@ -512,7 +512,8 @@ def WriteReport(rows: Sequence[Mapping], path: Path, duty: Mapping[str, float], 
     lines += [_HEADER] + [_Line(r) for r in s['disagree']] if s['disagree'] else ['None.']
     lines += ['', '## Resolvable points whose simulated window is undecided (not counted)', '',
               'The window holds a vibration of at least a quarter of the steady value that decays slower than the window, '
-              'or a steady one below saturation (CHATTER_RULE.md).', '']
+              'a steady one below saturation without the worm turning back, or fewer than 2 periods of its vibration in '
+              "the window's last quarter or second half (CHATTER_RULE.md; `largest a4` is the last quarter's own reading).", '']
     lines += [_HEADER] + [_Line(r) for r in s['undecided']] if s['undecided'] else ['None.']
     lg = s['long']
     lines += ['', f"## Short windows against the long simulations (second group, plateaus of {duty.get('long', 0):g} s)",
