@@ -63,7 +63,8 @@ def FormatStudy(result, title: str = 'Study') -> List[str]:
                      f"{100 * agreement:.0f} % of {judged} run{'s' if judged != 1 else ''} with a decided lowering "
                      f"window")
                   + (f"; {undecided} run{'s' if undecided != 1 else ''} left out, lowering undecided (UND: a "
-                     f"vibration that decays slower than the window, or a steady one below the saturated amplitude; "
+                     f"vibration that decays slower than the window, a steady one below the saturated amplitude, or "
+                     f"too few periods in the window; "
                      f"'simulate' on the run says which)" if undecided else '')
                   + (f"; {len(result.divergent)} left out whose lowering points diverge (DIVERGENT: a real "
                      f"eigenvalue, a runaway or creep, not chatter)" if result.divergent else '')]

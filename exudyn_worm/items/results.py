@@ -89,23 +89,71 @@ def _HalfRange(x: np.ndarray) -> float:
     return 0.5 * float(np.max(x) - np.min(x)) if x.size else 0.
 
 
-def _EnvelopeRate(t: np.ndarray, rest: np.ndarray, steady: np.ndarray) -> float:
-    """Robust slope (1/s, Theil-Sen: the median of the slopes between all pairs of points) of the log of the relative
-    envelope of ``rest`` (half its range over sliding spans of one dominant period, over the span's mean |steady|);
-    NaN where fewer than CHATTER_MIN_PERIODS periods fit."""
+def _DominantFrequency(t: np.ndarray, rest: np.ndarray) -> float:
+    """Frequency in Hz of the largest spectral peak of ``rest`` (mean removed, Hann window, zero-padded 4 times);
+    0 where it holds fewer than 16 samples or does not move."""
     n = rest.size
     if n < 16 or not np.any(rest):
-        return float('nan')
+        return 0.
     dt = float(t[-1] - t[0]) / (n - 1)
     spectrum = np.abs(np.fft.rfft((rest - rest.mean()) * np.hanning(n), n=4 * n))
     freq = np.fft.rfftfreq(4 * n, dt)
-    f = float(freq[1:][np.argmax(spectrum[1:])])
-    span = max(3, int(round(1. / (f * dt)))) if f > 0. else n
+    return float(freq[1:][np.argmax(spectrum[1:])])
+
+
+def _SteadyValueLeak(rest: np.ndarray, steady: np.ndarray, periods: float, window: float, stretch: float) -> float:
+    """Bound on what a swing can add to sigma L through a steady value fitted as a quadratic over the stretch.
+
+    A least-squares quadratic over ``periods`` whole periods of a tone of amplitude A takes up a line whose range over
+    the stretch is 6 A / (pi N) (closed form: the Legendre coefficient of the linear term is 3 A cos(phase) / (pi N)),
+    so the fitted steady value m may change by 6 a / (pi N) of itself, a = half the range of ``rest`` over the mean
+    of ``steady``; over the stretch of length T that is a rate of at most that over T, and sigma L up to
+    (6 / pi) (a / N) (L / T). The revised chatter rule (validation/CHATTER_RULE.md) divides the envelope by the fitted
+    steady value only where this is at most :data:`CHATTER_STEADY_EXPONENT`.
+
+    Parameters
+    ----------
+    rest : numpy.ndarray
+        The measure's signal over the stretch, its quadratic removed.
+    steady : numpy.ndarray
+        The magnitude of that quadratic (the fitted steady value), per sample.
+    periods : float
+        Periods N of the dominant frequency in the stretch, > 0.
+    window : float
+        The window's length L in s.
+    stretch : float
+        The stretch's length T in s, > 0.
+
+    Returns
+    -------
+    float
+        The bound on sigma L (inf where the steady value is 0).
+    """
+    mean = float(np.mean(np.abs(steady))) if steady.size else 0.
+    if mean <= 0. or periods <= 0. or stretch <= 0.:
+        return float('inf')
+    return 6. / np.pi * _HalfRange(rest) / mean / periods * window / stretch
+
+
+def _EnvelopeRate(t: np.ndarray, rest: np.ndarray, steady: np.ndarray, fitted: bool, window: float) -> float:
+    """Robust slope (1/s, Theil-Sen: the median of the slopes between all pairs of points) of the log of the envelope
+    of ``rest`` (half its range over sliding spans of one dominant period), divided span by span by the span's mean
+    |steady| unless that steady value is ``fitted`` and not resolved against the swing (:func:`_SteadyValueLeak` above
+    :data:`CHATTER_STEADY_EXPONENT`: then the half range's own rate); NaN where fewer than CHATTER_MIN_PERIODS
+    periods fit."""
+    n = rest.size
+    f = _DominantFrequency(t, rest)
+    if f <= 0.:
+        return float('nan')
+    dt = float(t[-1] - t[0]) / (n - 1)
+    span = max(3, int(round(1. / (f * dt))))
     if CHATTER_MIN_PERIODS * span > n:
         return float('nan')
+    stretch = float(t[-1] - t[0])
+    divide = not fitted or _SteadyValueLeak(rest, steady, f * stretch, window, stretch) <= CHATTER_STEADY_EXPONENT
     starts = np.unique(np.linspace(0, n - span, min(64, n - span + 1)).astype(int))
-    env = np.array([_HalfRange(rest[i:i + span]) / max(float(np.mean(np.abs(steady[i:i + span]))), 1e-300)
-                    for i in starts])
+    env = np.array([_HalfRange(rest[i:i + span])
+                    / (max(float(np.mean(np.abs(steady[i:i + span]))), 1e-300) if divide else 1.) for i in starts])
     centres = t[starts + span // 2]
     if np.any(env <= 0.):
         return float('nan')
@@ -146,18 +194,22 @@ def SteadyMotorStretch(result: 'SimulationResult', t0: float, t1: float) -> Tupl
     return float(t[starts[k]]), float(t[ends[k] - 1])
 
 
-def _MeasureState(amplitude: float, rate: float, length: float) -> str:
-    """One measure's state by the rule of SimulationResult.ChatterVerdict."""
+def _MeasureState(amplitude: float, rate: float, length: float, fewPeriods: bool = False,
+                  reversal: bool = False) -> str:
+    """One measure's state by the rule of SimulationResult.ChatterVerdict (``fewPeriods``: fewer than
+    CHATTER_MIN_PERIODS periods in the last quarter; ``reversal``: the worm turns back in it)."""
     if amplitude < CHATTER_AMPLITUDE:
         return 'none'
-    if not np.isfinite(rate):
+    if fewPeriods or not np.isfinite(rate):
         return UNDECIDED
     exponent = rate * length
+    if exponent <= -CHATTER_DECAY_EXPONENT:
+        return 'decaying'
+    if exponent < -CHATTER_STEADY_EXPONENT:
+        return UNDECIDED
     if exponent >= CHATTER_GROWTH_EXPONENT:
         return 'chatter'
-    if exponent >= -CHATTER_STEADY_EXPONENT:
-        return 'chatter' if amplitude >= CHATTER_SATURATION else UNDECIDED
-    return 'decaying' if exponent <= -CHATTER_DECAY_EXPONENT else UNDECIDED
+    return 'chatter' if amplitude >= CHATTER_SATURATION or reversal else UNDECIDED
 
 
 @dataclass(frozen=True)
@@ -168,8 +220,8 @@ class ChatterVerdict:
     ----------
     state : str
         ``'chatter'``, ``'none'`` (no vibration of :data:`CHATTER_AMPLITUDE`), ``'decaying'`` (a vibration that
-        decays within the window) or ``'undecided'`` (a vibration whose decay time is longer than the window, or a
-        steady one below :data:`CHATTER_SATURATION`).
+        decays within the window) or ``'undecided'`` (a vibration whose decay time is longer than the window, a
+        steady one below :data:`CHATTER_SATURATION` without the worm turning back, or too few periods).
     measures : tuple of str
         The measures (``'normal'``, ``'sliding'``) in that state.
     window : float
@@ -177,7 +229,8 @@ class ChatterVerdict:
     amplitude : float
         The deciding measure's relative amplitude in the window's last quarter.
     rate : float
-        Its envelope's growth (> 0) or decay (< 0) rate in 1/s over the window's second half (NaN: not measured).
+        Its envelope's growth (> 0) or decay (< 0) rate in 1/s over the window's second half (NaN: not measured, or
+        fewer than :data:`CHATTER_MIN_PERIODS` periods in the last quarter).
     """
     state: str
     measures: Tuple[str, ...]
@@ -222,14 +275,17 @@ class ChatterVerdict:
             return f"decaying, {rate} (amplitude {self.amplitude:.3g})"
         if self.state == 'chatter':
             how = ('growing' if self.rate * self.window >= CHATTER_GROWTH_EXPONENT
-                   else 'steady at the saturated amplitude')
+                   else 'steady at the saturated amplitude' if self.amplitude >= CHATTER_SATURATION
+                   else 'steady, the worm turning back')
             return f"{how}, {rate} (amplitude {self.amplitude:.3g})"
         if not np.isfinite(self.rate):
-            why = (f"fewer than {CHATTER_MIN_PERIODS:g} periods of its dominant frequency in the window's second half "
-                   f"(where the motor holds its speed); a longer window decides")
+            why = (f"fewer than {CHATTER_MIN_PERIODS:g} periods of its dominant frequency in the window's last quarter "
+                   f"(its amplitude) or second half (its rate, where the motor holds its speed); a longer window "
+                   f"decides")
         elif self.rate * self.window >= -CHATTER_STEADY_EXPONENT:
-            why = (f"steady, {rate}, below the saturated amplitude {CHATTER_SATURATION:g}: a lightly damped free "
-                   f"vibration looks the same; a longer window or the linear verdict decides")
+            why = (f"steady, {rate}, below the saturated amplitude {CHATTER_SATURATION:g} and without the worm "
+                   f"turning back: a lightly damped free vibration looks the same; a longer window or the linear "
+                   f"verdict decides")
         else:
             why = (f"decaying, {rate}: its decay time {-1. / self.rate:.3g} s is longer than the window "
                    f"{self.window:.3g} s")
@@ -335,46 +391,67 @@ class SimulationResult:
             ``normal`` and ``sliding``: four dimensionless amplitudes each, one per quarter (0 where a quarter
             holds fewer than 3 samples or the steady value is 0).
         """
-        s, t = self.series, self.time
-        floor = (self.info['frictionSpeed'] / self.info['slidingRadius']
-                 if 'frictionSpeed' in self.info and 'slidingRadius' in self.info else 0.)
         out = {'normal': [], 'sliding': []}
         for k in range(4):
-            m = self._Window(t0 + k * (t1 - t0) / 4, t0 + (k + 1) * (t1 - t0) / 4)
-            if np.count_nonzero(m) < 3:
-                out['normal'].append(0.)
-                out['sliding'].append(0.)
-                continue
-            rest, trend = _Detrended(t[m], s['normalForce'][m])
-            steady = float(np.mean(np.abs(trend)))
-            out['normal'].append(_HalfRange(rest) / steady if steady > 0. else 0.)
-            if 'omega0' in s:
-                rest, _ = _Detrended(t[m], s['omega1'][m] - s['omega0'][m])
-                steady = float(np.mean(np.abs(s['omega0'][m])))
-            else:
-                rest, trend = _Detrended(t[m], s['omega1'][m])
-                steady = float(np.mean(np.abs(trend)))
-            steady = max(steady, floor)
-            out['sliding'].append(_HalfRange(rest) / steady if steady > 0. else 0.)
+            for name, a in self._QuarterAmplitudes(t0 + k * (t1 - t0) / 4, t0 + (k + 1) * (t1 - t0) / 4).items():
+                out[name].append(a)
         return out
 
-    def _Relative(self, t0: float, t1: float) -> Dict[str, Tuple[np.ndarray, np.ndarray, np.ndarray]]:
-        """Per measure of :meth:`MeshOscillation`, over [t0, t1]: time, the signal with its quadratic removed, and
-        its steady value (positive, per sample)."""
+    def _SlidingFloor(self) -> float:
+        """The worm speed of the friction law's regularization speed in rad/s (0 where the run does not say)."""
+        return (self.info['frictionSpeed'] / self.info['slidingRadius']
+                if 'frictionSpeed' in self.info and 'slidingRadius' in self.info else 0.)
+
+    def _QuarterAmplitudes(self, a: float, b: float, fitFrom: Optional[float] = None) -> Dict[str, float]:
+        """The relative amplitudes of :meth:`MeshOscillation` over [a, b]; with ``fitFrom`` the quadratic removed from
+        the signal is fitted over [fitFrom, b] instead (the steady value stays that of [a, b])."""
+        s, t = self.series, self.time
+        m = self._Window(a, b)
+        if np.count_nonzero(m) < 3:
+            return {'normal': 0., 'sliding': 0.}
+        fit = m if fitFrom is None else self._Window(fitFrom, b)
+        inner = m[fit]
+
+        def Rest(x):
+            rest, trend = _Detrended(t[fit], x[fit])
+            return rest[inner], (trend[inner] if fitFrom is None else _Detrended(t[m], x[m])[1])
+        out = {}
+        rest, trend = Rest(s['normalForce'])
+        steady = float(np.mean(np.abs(trend)))
+        out['normal'] = _HalfRange(rest) / steady if steady > 0. else 0.
+        if 'omega0' in s:
+            rest, _ = Rest(s['omega1'] - s['omega0'])
+            steady = float(np.mean(np.abs(s['omega0'][m])))
+        else:
+            rest, trend = Rest(s['omega1'])
+            steady = float(np.mean(np.abs(trend)))
+        steady = max(steady, self._SlidingFloor())
+        out['sliding'] = _HalfRange(rest) / steady if steady > 0. else 0.
+        return out
+
+    def _Relative(self, t0: float, t1: float) -> Dict[str, Tuple[np.ndarray, np.ndarray, np.ndarray, bool]]:
+        """Per measure of :meth:`MeshOscillation`, over [t0, t1]: time, the signal with its quadratic removed, its
+        steady value (positive, per sample) and whether that steady value is fitted (the quadratic's magnitude) rather
+        than given (the motor speed)."""
         s, t = self.series, self.time
         m = self._Window(t0, t1)
-        floor = (self.info['frictionSpeed'] / self.info['slidingRadius']
-                 if 'frictionSpeed' in self.info and 'slidingRadius' in self.info else 0.)
+        floor = self._SlidingFloor()
         tm = t[m]
         rest, trend = _Detrended(tm, s['normalForce'][m])
-        out = {'normal': (tm, rest, np.abs(trend))}
+        out = {'normal': (tm, rest, np.abs(trend), True)}
         if 'omega0' in s:
             rest, _ = _Detrended(tm, s['omega1'][m] - s['omega0'][m])
-            steady = np.maximum(np.abs(s['omega0'][m]), floor)
+            out['sliding'] = (tm, rest, np.maximum(np.abs(s['omega0'][m]), floor), False)
         else:
             rest, steady = _Detrended(tm, s['omega1'][m])
-        out['sliding'] = (tm, rest, np.maximum(np.abs(steady), floor))
+            out['sliding'] = (tm, rest, np.maximum(np.abs(steady), floor), True)
         return out
+
+    def _RatesAndFrequencies(self, t0: float, t1: float) -> Dict[str, Tuple[float, float]]:
+        """Per measure: the rate of :meth:`EnvelopeRates` and the dominant frequency in Hz over the same stretch."""
+        a, b = SteadyMotorStretch(self, 0.5 * (t0 + t1), t1)
+        return {name: (_EnvelopeRate(tm, rest, steady, fitted, float(t1 - t0)), _DominantFrequency(tm, rest))
+                for name, (tm, rest, steady, fitted) in self._Relative(a, b).items()}
 
     def EnvelopeRates(self, t0: float, t1: float) -> Dict[str, float]:
         """Growth (> 0) or decay (< 0) rate in 1/s of each mesh measure's relative vibration amplitude over the
@@ -382,8 +459,10 @@ class SimulationResult:
 
         The measure's signal, a quadratic over the second half removed, has its envelope taken as half the range
         over sliding spans of one period of its dominant frequency (a span's steady value, the mean magnitude of the
-        quadratic or of the motor speed, at least the friction law's regularization speed, divides it); the rate is
-        the slope of the logarithm of that relative envelope over time, fitted robustly (Theil-Sen: the median of the
+        quadratic or of the motor speed, at least the friction law's regularization speed, divides it, except where
+        the steady value is the fitted quadratic and the swing could move it across the steady band: then the half
+        range itself, see validation/CHATTER_RULE.md); the rate is
+        the slope of the logarithm of that envelope over time, fitted robustly (Theil-Sen: the median of the
         slopes between all pairs of envelope points, so that a stop at the window's end, a speed ramp to rest, does
         not read as a decay of the whole window). Only the longest stretch of the second half in which the motor
         holds its speed is fitted (:func:`SteadyMotorStretch`: a ramp within the window, which starts a transient of
@@ -400,8 +479,7 @@ class SimulationResult:
         dict
             ``normal`` and ``sliding``: rates in 1/s.
         """
-        a, b = SteadyMotorStretch(self, 0.5 * (t0 + t1), t1)
-        return {name: _EnvelopeRate(tm, rest, steady) for name, (tm, rest, steady) in self._Relative(a, b).items()}
+        return {name: rate for name, (rate, _) in self._RatesAndFrequencies(t0, t1).items()}
 
     def ChatterVerdict(self, t0: float, t1: float) -> 'ChatterVerdict':
         """The chatter verdict of [t0, t1] from the amplitude and the growth or decay rate of the mesh's vibration.
@@ -409,12 +487,18 @@ class SimulationResult:
         For each measure of :meth:`MeshOscillation` (the normal force, the sliding), with its relative amplitude a4
         in the last quarter and the rate sigma of :meth:`EnvelopeRates` over the window's second half, L = t1 - t0:
 
-        - a4 < :data:`CHATTER_AMPLITUDE`: ``none`` (small);
+        - a4 < :data:`CHATTER_AMPLITUDE`: ``none`` (small); where the last quarter holds fewer than
+          :data:`CHATTER_MIN_PERIODS` periods of the measure's dominant frequency, a4 is also read with the whole
+          window's quadratic removed and the larger reading counts;
+        - fewer than :data:`CHATTER_MIN_PERIODS` periods in the last quarter, or sigma not measured: ``undecided``;
+        - sigma L <= -:data:`CHATTER_DECAY_EXPONENT`: ``decaying`` (its decay time is at most the window), at any
+          amplitude;
+        - -:data:`CHATTER_DECAY_EXPONENT` < sigma L < -:data:`CHATTER_STEADY_EXPONENT`: ``undecided`` (the decay time
+          is longer than the window);
         - sigma L >= :data:`CHATTER_GROWTH_EXPONENT`: ``chatter`` (growing);
-        - sigma L >= -:data:`CHATTER_STEADY_EXPONENT` (steady): ``chatter`` where a4 >= :data:`CHATTER_SATURATION`
-          (the flanks unload or the sliding stops), else ``undecided`` (a lightly damped free vibration looks the same);
-        - sigma L <= -:data:`CHATTER_DECAY_EXPONENT`: ``decaying`` (its decay time is at most the window);
-        - between, or sigma not measured: ``undecided`` (the decay time is longer than the window).
+        - steady between: ``chatter`` where it saturates, a4 >= :data:`CHATTER_SATURATION` (the flanks unload or
+          change) or, for the sliding, the worm turns back in the last quarter with the motor at speed; else
+          ``undecided`` (a lightly damped free vibration looks the same).
 
         The window's state: ``chatter`` if any measure chatters, else ``undecided`` if any is undecided, else
         ``decaying`` if any decays, else ``none``; ``none`` for an unloaded mesh (its torque on the wheel never above
@@ -431,14 +515,31 @@ class SimulationResult:
         """
         length = float(t1 - t0)
         loaded = self._LoadedOscillation(t0, t1)
-        rates = self.EnvelopeRates(t0, t1) if loaded else {}
-        states = {name: _MeasureState(a[3], rates[name], length) for name, a in loaded.items()}
+        measured = self._RatesAndFrequencies(t0, t1) if loaded else {}
+        amplitudes, rates, states = {}, {}, {}
+        for name, a in loaded.items():
+            rate, f = measured[name]
+            few = f * length / 4 < CHATTER_MIN_PERIODS
+            amplitudes[name] = (max(a[3], self._QuarterAmplitudes(t0 + 0.75 * length, t1, fitFrom=t0)[name])
+                                if few else a[3])
+            rates[name] = float('nan') if few else rate
+            states[name] = _MeasureState(amplitudes[name], rates[name], length, few,
+                                         name == 'sliding' and self._WormTurnsBack(t0 + 0.75 * length, t1))
         state = next((x for x in ('chatter', UNDECIDED, 'decaying') if x in states.values()), 'none')
         measures = tuple(name for name, x in states.items() if x == state) if state != 'none' else ()
-        pick = max(measures or tuple(loaded), key=lambda name: loaded[name][3], default=None)
+        pick = max(measures or tuple(loaded), key=lambda name: amplitudes[name], default=None)
         return ChatterVerdict(state=state, measures=measures, window=length,
-                              amplitude=float(loaded[pick][3]) if pick else 0.,
+                              amplitude=float(amplitudes[pick]) if pick else 0.,
                               rate=float(rates[pick]) if pick else float('nan'))
+
+    def _WormTurnsBack(self, a: float, b: float) -> bool:
+        """The worm turns back in [a, b] (:meth:`MinWormSpeed` <= 0) while the motor's mean speed magnitude there
+        exceeds the worm speed of the friction law's regularization speed; False without a motor series."""
+        m = self._Window(a, b)
+        if 'omega0' not in self.series or not m.any():
+            return False
+        return (abs(float(np.mean(self.series['omega0'][m]))) > self._SlidingFloor()
+                and self.MinWormSpeed(a, b) <= 0.)
 
     def Chatter(self, t0: float, t1: float) -> bool:
         """Chatter in [t0, t1]: :meth:`ChatterVerdict`'s state is ``chatter`` (a vibration of the mesh that grows,
