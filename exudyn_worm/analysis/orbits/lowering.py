@@ -266,7 +266,8 @@ def BuildRigidBodyLoweringModel(parameters: Mapping[str, float],
     reel = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(),
                                      Drive.FromParameters({**parameters, 'loadType': 'constant', 'loadTorque': loadTorque}),
                                      contactOptions,
-                                     profile=ConstantSpeed(motorSpeed), startFromEquilibrium=True)
+                                     profile=ConstantSpeed(motorSpeed), startFromEquilibrium=True,
+                                     model='exact')     # the orbit functions read the rigid bodies' nodes
     sensors = AddSeriesSensors(reel)
     reel.connector.sensors.update(wormAccelerations=sensors['wormAccelerations'],
                                   wheelAccelerations=sensors['wheelAccelerations'])
