@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -213,6 +213,8 @@ class SmallWormGearConnector:
         The stick/slip state of the sticking friction model; None with the regularized model or a fixed S.
     userFunction : callable or None
         The law's user function (kept alive here).
+    useSymbolic : bool
+        The law in C++ (a symbolic user function) or in plain Python.
     """
     objectNumber: Any
     linearObjectNumber: Any
@@ -230,7 +232,7 @@ class SmallWormGearConnector:
     userFunction: Any = field(default=None, repr=False)
     useSymbolic: bool = True
 
-    def CoordinateMarker(self, mbs, body: str, coordinate: int):
+    def CoordinateMarker(self, mbs: Any, body: str, coordinate: int) -> Tuple[Any, Any]:
         """A ``MarkerNodeCoordinate`` on shaft coordinate ``coordinate`` (0..5) of ``body`` ('worm' or 'wheel'),
         if that coordinate is one node coordinate of the model (the turns are).
 
@@ -256,7 +258,7 @@ class SmallWormGearConnector:
         node = self.nodeNumbers[0] if j < 4 else self.nodeNumbers[1]
         return mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=j if j < 4 else j - 4)), node
 
-    def Evaluate(self, q, v, time=None) -> MeshState:
+    def Evaluate(self, q: Any, v: Any, time: Optional[Any] = None) -> MeshState:
         """Mesh quantities for arrays of the shafts' states.
 
         Parameters
@@ -279,7 +281,7 @@ class SmallWormGearConnector:
             state = self.stickSlip.StatesAt(np.asarray(time, dtype=float))
         return _Law(self.gear, self.options, list(x), list(w), NUMPY_OPS, state)
 
-    def InitialMeshState(self, mbs) -> MeshState:
+    def InitialMeshState(self, mbs: Any) -> MeshState:
         """Mesh quantities at the system's initial state.
 
         Parameters
@@ -293,7 +295,7 @@ class SmallWormGearConnector:
         state = None if self.stickSlip is None or not self.options.hasStickState else self.stickSlip.history[0][1]
         return _Law(self.gear, self.options, x, zt[:4], MATH_OPS, state)
 
-    def RestartAngles(self, mbs, coordinates) -> None:
+    def RestartAngles(self, mbs: Any, coordinates: Any) -> None:
         """Nothing to do: the turns are coordinates (the exact model's method of the same name moves its angle
         references).
 
@@ -305,7 +307,7 @@ class SmallWormGearConnector:
             The start's ODE2 coordinates (not used).
         """
 
-    def SetContactOptions(self, mbs, options: ContactOptions) -> None:
+    def SetContactOptions(self, mbs: Any, options: ContactOptions) -> None:
         """Replace the contact options (e.g. hold S); re-records the law.
 
         Parameters
@@ -331,7 +333,7 @@ class SmallWormGearConnector:
         self.options = options
         _SetLaw(mbs, self)
 
-    def AddSensors(self, mbs) -> Dict[str, Any]:
+    def AddSensors(self, mbs: Any) -> Dict[str, Any]:
         """Add internally stored sensors of both nodes' coordinates, velocities and accelerations.
 
         Parameters
@@ -353,7 +355,7 @@ class SmallWormGearConnector:
                                                                          storeInternal=True, writeToFile=False))
         return self.sensors
 
-    def StoredShaftStates(self, mbs) -> Dict[str, np.ndarray]:
+    def StoredShaftStates(self, mbs: Any) -> Dict[str, np.ndarray]:
         """The shafts' coordinates, velocities and accelerations over the stored steps (after :meth:`AddSensors`).
 
         Parameters
@@ -375,12 +377,12 @@ class SmallWormGearConnector:
             out['worm' + key], out['wheel' + key] = shafts[:, :6], shafts[:, 6:]
         return out
 
-    def _Stored(self, mbs):
+    def _Stored(self, mbs: Any):
         s = self.StoredShaftStates(mbs)
         return (s['time'], np.hstack([s['wormCoordinates'], s['wheelCoordinates']]),
                 np.hstack([s['wormVelocities'], s['wheelVelocities']]))
 
-    def StoredMeshState(self, mbs) -> MeshState:
+    def StoredMeshState(self, mbs: Any) -> MeshState:
         """Mesh quantities over the stored time steps (requires :meth:`AddSensors`), with their ``time`` in s.
 
         Parameters
@@ -397,7 +399,7 @@ class SmallWormGearConnector:
         state.time = time
         return state
 
-    def BearingLoads(self, q, v) -> Dict[str, Dict[str, np.ndarray]]:
+    def BearingLoads(self, q: Any, v: Any) -> Dict[str, Dict[str, np.ndarray]]:
         """The bearings' forces for arrays of the shafts' states, as
         :func:`~exudyn_worm.items.bearings.StoredBearingLoads` gives them for the exact model.
 
@@ -430,7 +432,7 @@ class SmallWormGearConnector:
         return out
 
 
-def _SetLaw(mbs, connector: SmallWormGearConnector) -> None:
+def _SetLaw(mbs: Any, connector: SmallWormGearConnector) -> None:
     """(Re)set the law's user function on the inputs' node."""
     stickSlip = connector.stickSlip if connector.options.hasStickState else None
     gear, options = connector.gear, connector.options
@@ -446,7 +448,7 @@ def _SetLaw(mbs, connector: SmallWormGearConnector) -> None:
                                                 useSymbolic=connector.useSymbolic, check=False)
 
 
-def CreateSmallDisplacementWormGear(mbs, bodies: Sequence[SmallDisplacementBody], gear: WormGear,
+def CreateSmallDisplacementWormGear(mbs: Any, bodies: Sequence[SmallDisplacementBody], gear: WormGear,
                                     contactOptions: ContactOptions = ContactOptions(),
                                     initialCoordinates: Optional[Sequence[float]] = None,
                                     initialVelocities: Optional[Sequence[float]] = None,
