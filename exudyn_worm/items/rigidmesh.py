@@ -44,7 +44,7 @@ import numpy as np
 from .._checks import CheckBool, CheckName, CheckReal, CheckSystem
 from ._rigidnodes import RIGID_NODES
 from ._userfunctions import CheckPlainForceLaw, SetGenericForceLaw
-from .connector import _AddStickSlip, _StickSlip
+from .connector import _AddStickSlip, _StickSlip, _SwitchContactOptions
 from ..model.contact import ContactOptions, FrictionState, MeshContact, MeshState
 from ..model.friction import MATH_OPS, NUMPY_OPS
 from ..model.gear import WormGear
@@ -485,16 +485,8 @@ class RigidBodyWormGearConnector:
         options : ContactOptions
             The new options.
         """
-        if not isinstance(options, ContactOptions):
-            raise TypeError(f"RigidBodyWormGearConnector.SetContactOptions: 'options' must be a ContactOptions, got "
-                            f"{type(options).__name__}")
-        if options.hasStickState and self.stickSlip is None:
-            self.stickSlip = _RigidStickSlip(self, self._StartState(mbs))
-            _AddStickSlip(mbs, self.stickSlip)
-        if self.stickSlip is not None:
-            self.stickSlip.options = options
-            self.stickSlip.clock.Wake()
-        self.options = options
+        _SwitchContactOptions('RigidBodyWormGearConnector', mbs, self, options,
+                              lambda: _RigidStickSlip(self, self._StartState(mbs)))
         if self.compiled is not None:
             _RecordCompiledLaw(mbs, self, options)
             return

@@ -35,7 +35,7 @@ from .._checks import CheckName, CheckPositive, CheckSystem
 from ._rigidnodes import RIGID_NODES
 from ._userfunctions import SetGenericForceLaw
 from .bearings import ShaftBearings
-from .connector import _AddStickSlip, _StickSlip
+from .connector import _AddStickSlip, _StickSlip, _SwitchContactOptions
 from .rigidmesh import MeshGeometry, _Law, _MeshFrame
 from ..model.contact import ContactOptions, FrictionState, MeshState, SymbolicOps
 from ..model.friction import MATH_OPS, NUMPY_OPS
@@ -317,20 +317,12 @@ class SmallWormGearConnector:
         options : ContactOptions
             The new options.
         """
-        if not isinstance(options, ContactOptions):
-            raise TypeError(f"SmallWormGearConnector.SetContactOptions: 'options' must be a ContactOptions, got "
-                            f"{type(options).__name__}")
-        if options.hasStickState and self.stickSlip is None:
+        def NewStickSlip():
             z, zt = ([float(x) for x in np.ravel(mbs.GetNode(self.nodeNumbers[0])[key])]
                      for key in ('initialCoordinates', 'initialVelocities'))
             start = StartFrictionState(self.gear, z[0] + self.offsets[0], z[1] + self.offsets[1], zt[0])
-            self.stickSlip = _SmallStickSlip(self.gear, options, self.nodeNumbers[0], self.offsets, start,
-                                             self.useSymbolic)
-            _AddStickSlip(mbs, self.stickSlip)
-        if self.stickSlip is not None:
-            self.stickSlip.options = options
-            self.stickSlip.clock.Wake()
-        self.options = options
+            return _SmallStickSlip(self.gear, options, self.nodeNumbers[0], self.offsets, start, self.useSymbolic)
+        _SwitchContactOptions('SmallWormGearConnector', mbs, self, options, NewStickSlip)
         _SetLaw(mbs, self)
 
     def AddSensors(self, mbs: Any) -> Dict[str, Any]:
