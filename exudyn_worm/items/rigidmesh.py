@@ -30,7 +30,8 @@ coordinates: the normal and friction forces at the pitch point on both bodies, t
 Angles. A body's rotation about its axis is measured from its reference orientation by an ``atan`` relative to a
 reference angle that the system's post-Newton function moves along with the body between time steps (a fifth
 of a radian ahead at most), so no rotation parameter wraps and the angle grows over any number of turns. It starts
-within +-pi from the bodies' initial rotations. ``referenceAngles`` shift the tooth position: they are added to the
+within +-pi from the bodies' initial rotations (the plain-Python law; the C++ law's inputs are coordinates, and no
+reference needs moving). ``referenceAngles`` shift the tooth position: they are added to the
 law's worm and wheel angles (not to the measured rotations), as the one-angle connector adds its nodes' references.
 """
 from __future__ import annotations
