@@ -250,13 +250,36 @@ class SmallWormGearConnector:
         (marker number, node number)
         """
         from exudyn.itemInterface import MarkerNodeCoordinate
+        k, j = self._NodeCoordinate(body, coordinate)
+        node = self.nodeNumbers[k]
+        return mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=j)), node
+
+    def _NodeCoordinate(self, body: str, coordinate: int) -> Tuple[int, int]:
+        """(node index 0 or 1, coordinate of that node) that equals the shaft coordinate, else ValueError."""
         row = self.toShafts[6 * ('worm', 'wheel').index(body) + coordinate]
         j = int(np.argmax(np.abs(row)))
         if abs(row[j] - 1.) > 1e-12 or np.count_nonzero(np.abs(row) > 1e-12) != 1:
-            raise ValueError(f"SmallWormGearConnector.CoordinateMarker: the {body}'s coordinate {coordinate} is not "
-                             f"a coordinate of the model's nodes")
-        node = self.nodeNumbers[0] if j < 4 else self.nodeNumbers[1]
-        return mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=node, coordinate=j if j < 4 else j - 4)), node
+            raise ValueError(f"SmallWormGearConnector: the {body}'s coordinate {coordinate} is not a coordinate of "
+                             f"the model's nodes")
+        return (0, j) if j < 4 else (1, j - 4)
+
+    def TurnIndices(self, mbs: Any) -> Tuple[int, int]:
+        """The ODE2 indices (assembled system) of the worm's and the wheel's turn.
+
+        Parameters
+        ----------
+        mbs : exudyn.MainSystem
+            The system, assembled.
+
+        Returns
+        -------
+        (int, int)
+        """
+        out = []
+        for body in ('worm', 'wheel'):
+            k, j = self._NodeCoordinate(body, _TURN)
+            out.append(int(mbs.GetNodeODE2Index(self.nodeNumbers[k])) + j)
+        return out[0], out[1]
 
     def Evaluate(self, q: Any, v: Any, time: Optional[Any] = None) -> MeshState:
         """Mesh quantities for arrays of the shafts' states.
@@ -290,7 +313,7 @@ class SmallWormGearConnector:
             The system the connector belongs to.
         """
         z, zt = ([float(x) for node in self.nodeNumbers for x in np.ravel(mbs.GetNode(node)[key])]
-                 for key in ('initialCoordinates', 'initialVelocities'))
+                 for key in ('initialCoordinates', 'initialCoordinates_t'))
         x = [a + b for a, b in zip(z[:4], self.offsets)]
         state = None if self.stickSlip is None or not self.options.hasStickState else self.stickSlip.history[0][1]
         return _Law(self.gear, self.options, x, zt[:4], MATH_OPS, state)
@@ -319,7 +342,7 @@ class SmallWormGearConnector:
         """
         def NewStickSlip():
             z, zt = ([float(x) for x in np.ravel(mbs.GetNode(self.nodeNumbers[0])[key])]
-                     for key in ('initialCoordinates', 'initialVelocities'))
+                     for key in ('initialCoordinates', 'initialCoordinates_t'))
             start = StartFrictionState(self.gear, z[0] + self.offsets[0], z[1] + self.offsets[1], zt[0])
             return _SmallStickSlip(self.gear, options, self.nodeNumbers[0], self.offsets, start, self.useSymbolic)
         _SwitchContactOptions('SmallWormGearConnector', mbs, self, options, NewStickSlip)
