@@ -15,6 +15,7 @@ Usage::
 
     python benchmarks/count_instructions.py [--json FILE]          # four processes under valgrind, 5-10 min
     python benchmarks/count_instructions.py --solve ours reel-P1    # one solve in this process (what valgrind runs)
+    python benchmarks/count_instructions.py --3d    # P1's 3D model, elastic bearings: small-displacement, exact, one-angle
 
 Needs valgrind on PATH. Nothing is written unless ``--json FILE`` is given (callgrind's output goes to a temporary
 folder that is removed).
@@ -40,6 +41,10 @@ __all__ = ['MODELS', 'PRESETS', 'Trampoline', 'SolveOnce', 'CountInstructions', 
 
 MODELS = ('ours', 'lsoda')
 PRESETS = ('reel-P1', 'reel-P7')
+#: the 3D model of a preset with the bearings of examples/drives/reel-3d.toml (``--3d``): its small-displacement model
+#: (the default of a drive with both shafts' bearings) and the exact rigid-body model, against the one-angle model
+MODELS_3D = ('ours', 'small3d', 'exact3d')
+DRIVE_3D = HERE.parent / 'examples' / 'drives' / 'reel-3d.toml'
 
 _COMPARE = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p)
 
@@ -62,7 +67,8 @@ def Trampoline(function: Callable) -> Callable:
 
 
 def SolveOnce(model: str, preset: str) -> None:
-    """One solve of ``preset`` by ``model`` ('ours', 'lsoda' or 'none') with its solver call in the trampoline."""
+    """One solve of ``preset`` by ``model`` ('ours', 'lsoda', 'small3d', 'exact3d' or 'none') with its solver call in
+    the trampoline ('small3d', 'exact3d': the preset with the bearings of examples/drives/reel-3d.toml)."""
     sys.path.insert(0, str(HERE))
     import exudyn as exu                                         # lazy: a benchmark script's own process
     from exudyn_worm.drive.presets import GetPreset
@@ -75,6 +81,13 @@ def SolveOnce(model: str, preset: str) -> None:
     if model == 'ours':
         reelchanger.SolveDynamicInChunks = Trampoline(reelchanger.SolveDynamicInChunks)
         reelchanger.SimulateReelChanger(ResolveDrive(preset), progress=False)
+    elif model in ('small3d', 'exact3d'):
+        import functools                                         # lazy: a benchmark script's own process
+        from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
+        bearings = {k: v for k, v in ResolveDrive(config=str(DRIVE_3D)).parameters.items() if k not in GetPreset('reel-P1')}
+        reelchanger.BuildRigidBodyReelChanger = functools.partial(BuildRigidBodyReelChanger, model=model[:-2])
+        reelchanger.SolveDynamicInChunks = Trampoline(reelchanger.SolveDynamicInChunks)
+        reelchanger.SimulateReelChanger(ResolveDrive(parameters={**p, **bearings}), progress=False)
     elif model == 'lsoda':
         scipy_reference.solve_ivp = Trampoline(scipy_reference.solve_ivp)
         scipy_reference.SolveReelChangerScipy(p, **SCIPY_SETTINGS)
@@ -117,6 +130,9 @@ def Main(argv: Optional[Sequence[str]] = None) -> Dict:
     parser.add_argument('--solve', nargs=2, metavar=('MODEL', 'PRESET'),
                         help="solve once in this process (what valgrind runs): MODEL 'ours', 'lsoda' or 'none'")
     parser.add_argument('--json', metavar='FILE', help='save the counts to FILE (JSON)')
+    parser.add_argument('--3d', dest='threeD', action='store_true',
+                        help="P1's 3D model with elastic bearings (small-displacement and exact) against the one-angle "
+                             "model instead of ours against LSODA")
     args = parser.parse_args(argv)
     if args.solve:
         SolveOnce(*args.solve)
@@ -124,6 +140,15 @@ def Main(argv: Optional[Sequence[str]] = None) -> Dict:
     valgrind = shutil.which('valgrind')
     if valgrind is None:
         parser.error('valgrind is not on PATH')
+    if args.threeD:
+        counts = {model: CountInstructions(model, 'reel-P1', valgrind) for model in MODELS_3D}
+        data = {'reel-P1': counts}
+        for model in MODELS_3D[1:]:
+            print(f"reel-P1 {model}: {counts[model] / 1e6:.1f} M instructions, one-angle {counts['ours'] / 1e6:.1f} M: "
+                  f"x{counts[model] / counts['ours']:.2f}", flush=True)
+        if args.json:
+            Path(args.json).write_text(json.dumps(data, indent=1))
+        return data
     data = {'trampoline': CountInstructions('none', 'reel-P1', valgrind)}
     for preset in PRESETS:
         counts = {model: CountInstructions(model, preset, valgrind) for model in MODELS}

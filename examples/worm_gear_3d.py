@@ -1,6 +1,7 @@
 """The reel changer with worm and wheel as 3D rigid bodies in elastic bearings: bearing loads and stability.
 
-Model: :func:`~exudyn_worm.builders.rigidbody.BuildRigidBodyReelChanger`, worm and wheel from
+Model: :func:`~exudyn_worm.builders.rigidbody.BuildRigidBodyReelChanger`: with both shafts on their bearings the
+small-displacement model (:mod:`exudyn_worm.items.smallmesh`, the default), otherwise worm and wheel from
 ``mbs.CreateRigidBody`` coupled by :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`, each shaft on two
 radial bearings and an axial bearing (:func:`~exudyn_worm.items.bearings.CreateShaftBearings`) or on ideal revolute
 joints. Bearing values: the worm's radial bearings 5e8 N/m each, 0.12 m apart, the wheel's 1e9 N/m, 0.05 m apart
@@ -30,7 +31,8 @@ from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
 from exudyn_worm.builders.oneangle import BuildReelChanger
 from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
 from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
-from exudyn_worm.items.bearings import ShaftBearings, StoredBearingLoads
+from exudyn_worm.items.bearings import ShaftBearings
+from exudyn_worm.analysis.simulation.reelchanger3d import StoredShaftLoads
 from exudyn_worm.drive.presets import GetPreset
 from exudyn_worm.drive.wholedrive import ResolveDrive
 
@@ -70,11 +72,11 @@ def BearingLoadSeries(parameters: Optional[Mapping[str, float]] = None, endTime:
     model.mbs.SolveDynamic(ss, solverType=solverType)
     mesh = model.connector.StoredMeshState(model.mbs)
     out = {'normalForce': np.asarray(mesh.normalForce, dtype=float)}
+    loads = StoredShaftLoads(model)           # the small-displacement model's or the rigid bodies' (model=...)
+    out['time'] = np.asarray(loads['time'], dtype=float)
     for body in ('worm', 'wheel'):
-        loads = StoredBearingLoads(model.mbs, model.bearings[body])
-        out['time'] = np.asarray(loads['time'], dtype=float)
-        out[body + 'Axial'] = np.abs(np.asarray(loads['axial'], dtype=float))
-        out[body + 'Radial'] = np.asarray(loads['radial'], dtype=float)
+        out[body + 'Axial'] = np.abs(np.asarray(loads[body + 'AxialLoad'], dtype=float))
+        out[body + 'Radial'] = np.asarray(loads[body + 'RadialLoad'], dtype=float)
     return out
 
 

@@ -82,6 +82,23 @@ def test_branch_points_of_the_3d_model_carry_the_bearing_loads_in_text_and_json(
     assert FormatBranch(one, 'title')[2] == f"  {'J1':>12} {'Fn/Fstatic':>11} {'|phi2dd| rad/s2':>16} {'f Hz':>8}  orbit"
 
 
+def test_a_branch_point_whose_multiplier_is_closer_to_1_than_its_error_is_undecided_with_both_numbers():
+    # the trivial multiplier 0.995 (error 0.005), a pair of modulus 0.999 (0.001 from the unit circle): the monodromy
+    # cannot tell stable from unstable, so the table says so with both numbers instead of 'stable'
+    pair = 0.999 * np.exp(0.5j)
+    monodromy = np.zeros((4, 4))
+    monodromy[:2, :2] = [[pair.real, -pair.imag], [pair.imag, pair.real]]
+    monodromy[2, 2], monodromy[3, 3] = 0.995, 0.3
+    orbit = PeriodicOrbit(state=np.zeros(4), period=0.032, monodromy=monodromy, velocity=np.array([0., 0., 1., 0.]),
+                          residual=1e-9, iterations=3, converged=True)
+    point = BranchPoint(1e9, orbit, {'forceFactor': 2.74, 'maxWheelAcceleration': 112.7})
+    branch = ChatterBranch('wheelRadialStiffness', (0.9e9, 1.1e9), points=[point, _FakePoint(1.05e9)], model='3D')
+    text = FormatBranch(branch, 'title')
+    assert text[3].endswith('undecided (|mu| 0.9990: 0.001 from 1, error 0.005)')
+    assert text[4].endswith('stable')
+    assert [p['stabilityDecided'] for p in branch.ToDict()['points']] == [False, True]
+
+
 def test_chatter_vary_on_a_bearing_drive_with_a_chain_key_prints_one_line(capsys):
     status, out, err = _Run(capsys, 'chatter', '--config', DRIVE_3D, '--vary', 'kL1=1e6:1e7')
     assert status == 2 and len(err.strip().splitlines()) == 1 and not out and 'Traceback' not in err

@@ -28,15 +28,16 @@ from ..items.drivetrain import CreatePrescribedRotation, CreateRotor
 from ..items.equilibrium import SteadyInitialState
 from ..items._userfunctions import AddCoordinateForce
 from ..items.rigidmesh import CreateRigidBodyWormGear, RigidBodyWormGearConnector
+from ..items.smallmesh import CreateSmallDisplacementWormGear, SmallDisplacementBody
 from ..model.contact import ContactOptions, MeshContact
 from ..model.friction import MATH_OPS
 from ..model.profiles import ConstantSpeed
-from ..model.stability import OperatingPoint
-from ..drive.wholedrive import Drive
+from ..drive.wholedrive import CheckDrive, Drive
 from .oneangle import CheckModelDrive
 from .start import LinearizationPoint
 
-__all__ = ['WORM_AXIS', 'WHEEL_AXIS', 'WORM_REFERENCE', 'TURN', 'RigidBodyReelChanger', 'BuildRigidBodyReelChanger']
+__all__ = ['WORM_AXIS', 'WHEEL_AXIS', 'WORM_REFERENCE', 'TURN', 'MODELS', 'RigidBodyReelChanger',
+           'BuildRigidBodyReelChanger', 'BodyInertiaTensors', 'DefaultModel']
 
 
 #: the worm's axis (global): its turn is about -y, so that with the wheel's axis +z and the centre line +x the thread is
@@ -48,6 +49,47 @@ WHEEL_AXIS = np.array([0., 0., 1.])
 WORM_REFERENCE = np.array([[1., 0., 0.], [0., 0., -1.], [0., 1., 0.]])
 #: index of the bodies' turn among their node coordinates (the last Tait-Bryan angle)
 TURN = 5
+#: the 3D models :func:`BuildRigidBodyReelChanger` builds: ``'small'`` the small-displacement model of shafts on linear
+#: bearings (:mod:`exudyn_worm.items.smallmesh`), ``'exact'`` worm and wheel as Exudyn rigid bodies
+#: (:mod:`exudyn_worm.items.rigidmesh`)
+MODELS = ('small', 'exact')
+
+
+def BodyInertiaTensors(drive: Drive) -> Tuple[np.ndarray, np.ndarray]:
+    """The inertia tensors of the worm and the wheel body of the 3D model, in body coordinates (local z: the axis).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+
+    Returns
+    -------
+    (ndarray, ndarray)
+        Worm and wheel, 3 x 3 in kg*m^2: J1 and J2 about every axis.
+    """
+    core = CheckDrive('BodyInertiaTensors', drive, 'drive').elastic
+    return np.diag([core.J1] * 3), np.diag([core.J2] * 3)
+
+
+def DefaultModel(wormBearings: Optional[ShaftBearings], wheelBearings: Optional[ShaftBearings],
+                 axialBearing: Optional[Any] = None) -> str:
+    """The 3D model :func:`BuildRigidBodyReelChanger` builds by default: ``'small'`` when both shafts sit on
+    linear bearings (and the worm has no separate axial bearing), else ``'exact'``.
+
+    Parameters
+    ----------
+    wormBearings, wheelBearings : ShaftBearings or None
+        The shafts' bearings (None: an ideal revolute joint).
+    axialBearing : AxialBearing, optional
+        The worm's axial bearing ``kA, dA, mA`` on its joint.
+
+    Returns
+    -------
+    str
+        An entry of :data:`MODELS`.
+    """
+    return 'small' if wormBearings is not None and wheelBearings is not None and axialBearing is None else 'exact'
 
 
 @dataclass
@@ -77,10 +119,14 @@ class RigidBodyReelChanger:
         The worm's axial bearing ``kA, dA, mA`` (the worm slides on its joint), if the parameter set gives one.
     sensors : dict
         Sensors by name (:func:`AddSeriesSensors`).
+    model : str
+        ``'exact'`` (rigid bodies) or ``'small'`` (the small-displacement model; ``connector`` is then a
+        :class:`~exudyn_worm.items.smallmesh.SmallWormGearConnector`, ``bodies`` its two nodes, ``inputs`` and
+        ``shafts``, and ``bearings`` the shafts' names: its bearing loads come from the connector).
     """
     systemContainer: Any
     mbs: Any
-    connector: RigidBodyWormGearConnector
+    connector: Any
     bodies: Dict[str, Any]
     bearings: Dict[str, Any]
     drive: Any
@@ -89,13 +135,14 @@ class RigidBodyReelChanger:
     load: Optional[Any] = None
     axialBearing: Optional[Any] = None
     sensors: Dict[str, Any] = field(default_factory=dict)
+    model: str = 'exact'
 
 
 def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = ContactOptions(),
                               useSymbolic: bool = True, wormBearings: Optional[ShaftBearings] = None,
                               wheelBearings: Optional[ShaftBearings] = None, wormMass: Optional[float] = None,
                               wheelMass: Optional[float] = None, profile: Optional[Any] = None,
-                              startFromEquilibrium: bool = True,
+                              startFromEquilibrium: bool = True, model: Optional[str] = None,
                               linearization: Optional[LinearizationPoint] = None) -> RigidBodyReelChanger:
     """Add the 3D model of a drive to ``mbs``: worm and wheel as rigid bodies (module docstring), starting in
     equilibrium. The one builder of this model: the time simulation, the linear analysis and the lowering-phase
@@ -125,12 +172,17 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     startFromEquilibrium : bool
         Start in the static equilibrium under the initial load at the motor's initial speed (default); otherwise
         at rest with zero angles.
+    model : str, optional
+        ``'small'``: the small-displacement model (:mod:`exudyn_worm.items.smallmesh`; both shafts on linear
+        bearings, no separate axial bearing of the worm); ``'exact'``: worm and wheel as Exudyn rigid bodies
+        (:mod:`exudyn_worm.items.rigidmesh`), the reference for large motions. None (default):
+        :func:`DefaultModel` (``'small'`` with both shafts' bearings, docs/mesh-3d.md).
     linearization : LinearizationPoint, optional
         Build the model to be linearized at this point instead
         (:class:`~exudyn_worm.builders.start.LinearizationPoint`: no load, the motor held at the point's speed, the
         worm turned into contact while the bearings are undeflected: their springs are linear, the linearization
-        does not depend on their preload); the drive needs no duty then, ``profile`` and ``startFromEquilibrium``
-        are not used.
+        does not depend on their preload; the exact model, whose linearization Exudyn computes); the drive needs no
+        duty then, ``profile``, ``startFromEquilibrium`` and ``model`` are not used.
 
     Returns
     -------
@@ -139,7 +191,8 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     Raises
     ------
     ValueError
-        For a parameter set with chains, a motor on its characteristic, a bearing given twice or a bad mass.
+        For a parameter set with chains, a motor on its characteristic, a bearing given twice, a bad mass or a
+        model that is not one of :data:`MODELS` or does not fit the supports.
     """
     w = 'BuildRigidBodyReelChanger'
     CheckModelDrive(w, drive, linearization)
@@ -170,8 +223,8 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
         init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0.,
                 'omega2': speed / drive.gear.ratio}
         return _Build(mbs, drive, linearization.ContactOptions(contactOptions), useSymbolic, wormBearings,
-                      wheelBearings, axial.mass if axial is not None else wormMass, wheelMass, axial, init,
-                      ConstantSpeed(speed), None)
+                      wheelBearings, axial.mass if axial is not None else wormMass, wheelMass,
+                      BodyInertiaTensors(whole), axial, init, ConstantSpeed(speed), None)
     load = whole.load
     profile = whole.motor if profile is None else profile
     angle0, motorSpeed = (float(x) for x in profile.AngleAndSpeed(0., MATH_OPS))
@@ -181,14 +234,92 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
         init, angle0, motorSpeed = {'phi1': 0., 'omega1': 0., 'phi2': 0., 'omega2': 0.}, 0., 0.
     init['phi0'], init['omega0'] = angle0, motorSpeed
     wormMass = axial.mass if axial is not None else wormMass
+    default = DefaultModel(wormBearings, wheelBearings, axial)
+    model = default if model is None else model
+    if model not in MODELS:
+        raise ValueError(f"{w}: 'model' must be one of {', '.join(map(repr, MODELS))} or None, got {model!r}")
+    if model == 'small' and default != 'small':
+        raise ValueError(f"{w}: model='small' needs both shafts on linear bearings (wormBearings and wheelBearings, "
+                         f"no kA of the parameter set); use model='exact' for ideal joints")
+    inertias = BodyInertiaTensors(whole)
+    if model == 'small':
+        if startFromEquilibrium:
+            init['shafts'] = _SmallStaticCoordinates(drive, contactOptions, wormBearings, wheelBearings, wormMass,
+                                                     wheelMass, inertias, init, load)
+        return _BuildSmall(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass,
+                           wheelMass, inertias, init, profile, load)
     if startFromEquilibrium and (wormBearings is not None or wheelBearings is not None):
         init.update(_StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass,
-                                 axial, init, profile, load))
+                                 inertias, axial, init, profile, load))
     return _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
-                  axial, init, profile, load)
+                  inertias, axial, init, profile, load)
 
 
-def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, axial, init,
+def _StaticSettings():
+    """Settings of the static solves that deflect the bearings at the start."""
+    import exudyn as exu
+    ss = exu.SimulationSettings()
+    ss.solution.file.write = False
+    ss.staticSolver.newton.relativeTolerance = 1e-10
+    ss.staticSolver.verboseMode = 0
+    ss.linearSolver.solverType = exu.LinearSolverType.EigenDense
+    return ss
+
+
+def _SmallStaticCoordinates(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, inertias, init,
+                            load) -> np.ndarray:
+    """The shafts' 12 coordinates of the small-displacement model with the bearings deflected by the initial mesh
+    force (as :func:`_StaticPoses` for the exact model): a static solve at t = 0 with the contact state held."""
+    import exudyn as exu
+    S = 1 if init['omega1'] == 0. else int(np.sign(_StartS(drive, load, init, contactOptions)))
+    static = _BuildSmall(exu.SystemContainer().AddSystem(), drive, ContactOptions(fixedS=S, frictionModel='regularized'),
+                         True, wormBearings, wheelBearings, wormMass, wheelMass, inertias,
+                         {**init, 'omega0': 0., 'omega1': 0., 'omega2': 0.}, ConstantSpeed(0.), load)
+    mbs = static.mbs
+    mbs.Assemble()
+    mbs.SolveStatic(_StaticSettings())
+    z = np.concatenate([np.asarray(mbs.GetNodeOutput(n, exu.OutputVariableType.Coordinates), dtype=float)
+                        for n in static.connector.nodeNumbers])
+    return static.connector.toShafts @ z
+
+
+def _BuildSmall(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass, inertias,
+                init, profile, load) -> RigidBodyReelChanger:
+    """The small-displacement system of :func:`BuildRigidBodyReelChanger` from the initial state ``init`` (phi0,
+    omega0, phi1, omega1, phi2, omega2; ``shafts``: the 12 coordinates with the bearings deflected)."""
+    from exudyn.itemInterface import CoordinateSpringDamper
+    w = 'BuildRigidBodyReelChanger'
+    gear = drive.gear
+    q0 = np.zeros(12)
+    q0[TURN], q0[6 + TURN] = init['phi1'], init['phi2']
+    if 'shafts' in init:
+        q0 = np.asarray(init['shafts'], dtype=float).copy()
+    v0 = np.zeros(12)
+    v0[TURN], v0[6 + TURN] = init['omega1'], init['omega2']
+    bodies = [SmallDisplacementBody(referencePosition=[0., 0., 0.], referenceRotation=WORM_REFERENCE, mass=wormMass,
+                                    inertia=inertias[0], bearings=wormBearings, spinSpeed=init['omega1']),
+              SmallDisplacementBody(referencePosition=[gear.r1 + gear.r2, 0., 0.], referenceRotation=np.eye(3),
+                                    mass=wheelMass, inertia=inertias[1], bearings=wheelBearings,
+                                    spinSpeed=init['omega2'])]
+    connector = CreateSmallDisplacementWormGear(mbs, bodies, gear, contactOptions, initialCoordinates=q0,
+                                                initialVelocities=v0, name='wormGear', useSymbolic=useSymbolic)
+    motor = CreateRotor(mbs, 1e-3, initialAngle=init['phi0'], initialSpeed=init['omega0'], name='motor')
+    CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+    wormAngle, _ = connector.CoordinateMarker(mbs, 'worm', TURN)
+    mbs.AddObject(CoordinateSpringDamper(markerNumbers=[motor['markerNumber'], wormAngle], stiffness=drive.kT,
+                                         damping=drive.dT, name='driveShaft'))
+    if load is not None:                       # the load torque on the wheel's turn
+        wheelAngle, wheelNode = connector.CoordinateMarker(mbs, 'wheel', TURN)
+        AddCoordinateForce(mbs, wheelNode, wheelAngle,
+                           lambda t, phi, omega, ops: load.Torque(phi, omega, t, ops), name='reelLoad',
+                           useSymbolic=useSymbolic, where=w, signature='load.Torque(phi, omega, t, ops)')
+    nodes = {'inputs': {'nodeNumber': connector.nodeNumbers[0]}, 'shafts': {'nodeNumber': connector.nodeNumbers[1]}}
+    return RigidBodyReelChanger(mbs.GetSystemContainer(), mbs, connector, nodes,
+                                {'worm': {'small': 'worm'}, 'wheel': {'small': 'wheel'}}, drive, dict(init),
+                                motor=motor, load=load, model='small')
+
+
+def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, inertias, axial, init,
                  profile, load) -> Dict[str, Any]:
     """The bodies' poses with the bearings deflected by the initial mesh force: a static solve of the model at
     t = 0 with the contact state of the one-angle equilibrium ``init`` held, so that a run starts without the
@@ -197,16 +328,11 @@ def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, w
     import exudyn as exu
     S = 1 if init['omega1'] == 0. else int(np.sign(_StartS(drive, load, init, contactOptions)))
     static = _Build(exu.SystemContainer().AddSystem(), drive, ContactOptions(fixedS=S, frictionModel='regularized'), True, wormBearings,
-                    wheelBearings, wormMass, wheelMass, axial, {**init, 'omega0': 0., 'omega1': 0., 'omega2': 0.},
-                    ConstantSpeed(0.), load)
+                    wheelBearings, wormMass, wheelMass, inertias, axial,
+                    {**init, 'omega0': 0., 'omega1': 0., 'omega2': 0.}, ConstantSpeed(0.), load)
     mbs = static.mbs
     mbs.Assemble()
-    ss = exu.SimulationSettings()
-    ss.solution.file.write = False
-    ss.staticSolver.newton.relativeTolerance = 1e-10
-    ss.staticSolver.verboseMode = 0
-    ss.linearSolver.solverType = exu.LinearSolverType.EigenDense
-    mbs.SolveStatic(ss)
+    mbs.SolveStatic(_StaticSettings())
     out = {}
     for body in ('worm', 'wheel'):
         node = static.bodies[body]['nodeNumber']
@@ -223,7 +349,7 @@ def _StartS(drive, load, init, contactOptions) -> float:
                                         axialSpeed=init.get('vA')).S))
 
 
-def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
+def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass, inertias,
            axial, init, profile, load) -> RigidBodyReelChanger:
     """The system of :func:`BuildRigidBodyReelChanger` from the initial state ``init`` (phi0, omega0, phi1, omega1,
     phi2, omega2, xA, vA), the motor ``profile`` and the ``load`` (None: none)."""
@@ -241,15 +367,13 @@ def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings,
     wheelPose = init.get('wheelPose', (np.zeros(3), RotationMatrixZ(init['phi2'])))
     worm = mbs.CreateRigidBody(name='worm', nodeType=exu.NodeType.RotationRxyz, referencePosition=[0., 0., 0.],
                                referenceRotationMatrix=WORM_REFERENCE,
-                               inertia=RigidBodyInertia(mass=wormMass,
-                                                        inertiaTensor=np.diag([drive.J1, drive.J1, drive.J1])),
+                               inertia=RigidBodyInertia(mass=wormMass, inertiaTensor=inertias[0]),
                                initialRotationMatrix=WORM_REFERENCE.T @ wormPose[1],
                                initialDisplacement=list(wormPose[0]),
                                initialVelocity=list(init.get('vA', 0.) * WORM_AXIS),
                                initialAngularVelocity=list(init['omega1'] * WORM_AXIS), returnDict=True)
     wheel = mbs.CreateRigidBody(name='wheel', nodeType=exu.NodeType.RotationRxyz, referencePosition=[a, 0., 0.],
-                                inertia=RigidBodyInertia(mass=wheelMass,
-                                                         inertiaTensor=np.diag([drive.J2, drive.J2, drive.J2])),
+                                inertia=RigidBodyInertia(mass=wheelMass, inertiaTensor=inertias[1]),
                                 initialRotationMatrix=wheelPose[1], initialDisplacement=list(wheelPose[0]),
                                 initialAngularVelocity=list(init['omega2'] * WHEEL_AXIS), returnDict=True)
     bearings = {'worm': _Support(mbs, worm, WORM_AXIS, wormBearings, 'worm', axial),

@@ -12,6 +12,18 @@ from ..items.bearings import BEARING_LOADS
 __all__ = ['FormatBranch', 'FormatSteadyChatter']
 
 
+def _OrbitVerdict(orbit, stable: bool) -> str:
+    """A branch point's stability: decided only where the largest non-trivial multiplier lies farther from the unit
+    circle than the trivial multiplier's error (the monodromy's accuracy); else 'undecided' with both numbers."""
+    error = orbit.trivialMultiplierError
+    if not orbit.accurate:
+        return f"INACCURATE (trivial multiplier off by {error:.2g})"
+    if not orbit.stabilityDecided:
+        mu = max((abs(complex(m)) for m in orbit.nontrivialMultipliers), default=0.)
+        return f"undecided (|mu| {mu:.4f}: {abs(mu - 1.):.2g} from 1, error {error:.2g})"
+    return 'stable' if stable else 'unstable'
+
+
 def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
     """Table of a :class:`~exudyn_worm.analysis.orbits.chatterbranch.ChatterBranch`.
 
@@ -36,8 +48,7 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
         row = ''.join(f" {p.info.get(k, float('nan')) / 1e3:15.3f}" for k, _ in loads)
         lines.append(f"  {p.value:{width}.6g} {p.info.get('forceFactor', float('nan')):11.3f} "
                      f"{p.info.get('maxWheelAcceleration', float('nan')):16.1f} {p.orbit.frequencyHz:8.2f}{row}  "
-                     + (f"{'stable' if p.stable else 'unstable'}" if p.orbit.accurate else
-                        f"INACCURATE (trivial multiplier off by {p.orbit.trivialMultiplierError:.2g})"))
+                     + _OrbitVerdict(p.orbit, p.stable))
     if loads:
         lines.append('  (bearing loads: the largest over each orbit)')
     if any(not p.orbit.accurate for p in branch.points):

@@ -330,6 +330,22 @@ def _Floats(q, v):
     return np.asarray(q, dtype=float).tolist(), np.asarray(v, dtype=float).tolist()
 
 
+def _SwitchContactOptions(where: str, mbs, connector, options: ContactOptions, NewStickSlip) -> None:
+    """The part of a mesh's ``SetContactOptions`` that every mesh shares: check ``options``, give a sticking mesh its
+    stick/slip state (``NewStickSlip()``, registered here unless it registered itself), hand it the options and wake
+    the post-Newton function; the caller then re-records its law."""
+    if not isinstance(options, ContactOptions):
+        raise TypeError(f"{where}.SetContactOptions: 'options' must be a ContactOptions, got {type(options).__name__}")
+    if options.hasStickState and connector.stickSlip is None:
+        connector.stickSlip = NewStickSlip()
+        if connector.stickSlip.clock is None:
+            _AddStickSlip(mbs, connector.stickSlip)
+    if connector.stickSlip is not None:
+        connector.stickSlip.options = options
+        connector.stickSlip.clock.Wake()            # look at every mesh after the next step
+    connector.options = options
+
+
 def _AddStickSlip(mbs, item) -> None:
     """Register a connector's stick/slip state (or another item with ``PostNewton`` and ``NextCheck``) with the
     system's post-Newton user function (one per system)."""
@@ -437,20 +453,12 @@ class WormGearConnector:
         options : ContactOptions
             The new options.
         """
-        if not isinstance(options, ContactOptions):
-            raise TypeError(f"WormGearConnector.SetContactOptions: 'options' must be a ContactOptions, got "
-                            f"{type(options).__name__}")
-        if options.hasStickState and self.stickSlip is None:
-            self.stickSlip = _CreateStickSlip(mbs, self.gear, options, self.coordinateNodes,
-                                              self._References(), self.useSymbolic)
-        if self.stickSlip is not None:
-            self.stickSlip.options = options
-            self.stickSlip.clock.Wake()            # look at every mesh after the next step
+        _SwitchContactOptions('WormGearConnector', mbs, self, options, lambda: _CreateStickSlip(
+            mbs, self.gear, options, self.coordinateNodes, self._References(), self.useSymbolic))
         law = _WormGearLaw(self.gear, options, self.referenceAngles, self.axialNodeNumber is not None,
                            self.axialReference, self.stickSlip)
         self.userFunction = SetGenericForceLaw(mbs, self.objectNumber, len(self.coordinateNodes), law,
                                                self.useSymbolic)
-        self.options = options
 
     def _References(self) -> List[float]:
         return list(self.referenceAngles) + ([] if self.axialNodeNumber is None else [self.axialReference])

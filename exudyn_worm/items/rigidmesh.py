@@ -30,7 +30,8 @@ coordinates: the normal and friction forces at the pitch point on both bodies, t
 Angles. A body's rotation about its axis is measured from its reference orientation by an ``atan`` relative to a
 reference angle that the system's post-Newton function moves along with the body between time steps (a fifth
 of a radian ahead at most), so no rotation parameter wraps and the angle grows over any number of turns. It starts
-within +-pi from the bodies' initial rotations. ``referenceAngles`` shift the tooth position: they are added to the
+within +-pi from the bodies' initial rotations (the plain-Python law; the C++ law's inputs are coordinates, and no
+reference needs moving). ``referenceAngles`` shift the tooth position: they are added to the
 law's worm and wheel angles (not to the measured rotations), as the one-angle connector adds its nodes' references.
 """
 from __future__ import annotations
@@ -44,7 +45,7 @@ import numpy as np
 from .._checks import CheckBool, CheckName, CheckReal, CheckSystem
 from ._rigidnodes import RIGID_NODES
 from ._userfunctions import CheckPlainForceLaw, SetGenericForceLaw
-from .connector import _AddStickSlip, _StickSlip
+from .connector import _AddStickSlip, _StickSlip, _SwitchContactOptions
 from ..model.contact import ContactOptions, FrictionState, MeshContact, MeshState
 from ..model.friction import MATH_OPS, NUMPY_OPS
 from ..model.gear import WormGear
@@ -327,9 +328,19 @@ class _RigidStickSlip(_StickSlip):
 
     def __init__(self, connector: 'RigidBodyWormGearConnector', initial: FrictionState):
         self._connector = connector
-        super().__init__(connector.gear, connector.options, connector.nodeNumbers, [0., 0.], initial, False)
+        nodes = connector.nodeNumbers if connector.compiled is None else connector.compiled['nodes']
+        super().__init__(connector.gear, connector.options, nodes, [0., 0.], initial, False)
+
+    def UseCompiledInputs(self, nodes) -> None:
+        """Read the law's inputs from the compiled law's auxiliary nodes (worm's 3, wheel's 4): they are its
+        coordinates, so no turn of the bodies needs to be followed."""
+        self.nodes, self._indices, self._q = list(nodes), None, None
 
     def _LawInputs(self, q, v):
+        if self._connector.compiled is not None:        # the auxiliary coordinates: worm's parts, wheel's parts
+            i, k = self._indices
+            return ([q[i] + q[k], q[k + 3], q[i + 1] + q[k + 1], q[i + 2] + q[k + 2]],
+                    [v[i] + v[k], v[k + 3], v[i + 1] + v[k + 1], v[i + 2] + v[k + 2]])
         x, w, _ = self._connector._Inputs(self._Slice(q), self._Slice(v))
         return [float(a) for a in x], [float(a) for a in w]
 
@@ -338,9 +349,16 @@ class _RigidStickSlip(_StickSlip):
                                for start, b in zip(self._indices, self._connector._kinematics.bodies)]).tolist()
 
     def _WormSpeed(self, data, v) -> float:
+        if self._connector.compiled is not None:
+            i, k = self._indices
+            return v[i] + v[k]
         return self._LawInputs(data.GetODE2Coordinates(), v)[1][0]
 
     def _WormAcceleration(self, data) -> float:
+        if self._connector.compiled is not None:
+            i, k = self._indices
+            a = data.GetODE2Coordinates_tt()
+            return float(a[i] + a[k])
         _, rate, _ = self._connector._Inputs(self._Slice(data.GetODE2Coordinates()),
                                              self._Slice(data.GetODE2Coordinates_tt()))   # the row times q_tt
         return float(rate[0])
@@ -350,10 +368,18 @@ class _RigidStickSlip(_StickSlip):
         return mesh.frictionForce, mesh.normalForce
 
 
-def _Law(gear, options, x, w, ops, frictionState) -> MeshState:
-    """The contact law at the four mesh inputs ``x`` = (worm angle, wheel angle, axial, radial) and rates ``w``."""
+def _Law(gear, options, x, w, ops, frictionState, forceMap=None) -> MeshState:
+    """The contact law at the four mesh inputs ``x`` = (worm angle, wheel angle, axial, radial) and rates ``w``
+    (``forceMap``: the generalized forces, :func:`~exudyn_worm.model.contact.MeshContact`)."""
     return MeshContact(gear, x[0], x[1], w[0], w[1], options, ops, axialDisplacement=x[2], axialSpeed=w[2],
-                       frictionState=frictionState, radialApproach=x[3], radialSpeed=w[3])
+                       frictionState=frictionState, radialApproach=x[3], radialSpeed=w[3], forceMap=forceMap)
+
+
+#: the compiled law's generalized forces on its 7 auxiliary coordinates (:func:`_CompileLaw`) from [worm torque,
+#: wheel torque, axial force, radial force]: the worm's and the wheel's parts of the worm angle, the axial
+#: displacement and the radial approach, then the wheel angle
+_COMPILED_FORCE_MAP = ((1., 0., 0., 0.), (0., 0., 1., 0.), (0., 0., 0., 1.),
+                       (1., 0., 0., 0.), (0., 0., 1., 0.), (0., 0., 0., 1.), (0., 1., 0., 0.))
 
 
 @dataclass
@@ -460,16 +486,8 @@ class RigidBodyWormGearConnector:
         options : ContactOptions
             The new options.
         """
-        if not isinstance(options, ContactOptions):
-            raise TypeError(f"RigidBodyWormGearConnector.SetContactOptions: 'options' must be a ContactOptions, got "
-                            f"{type(options).__name__}")
-        if options.hasStickState and self.stickSlip is None:
-            self.stickSlip = _RigidStickSlip(self, self._StartState(mbs))
-            _AddStickSlip(mbs, self.stickSlip)
-        if self.stickSlip is not None:
-            self.stickSlip.options = options
-            self.stickSlip.clock.Wake()
-        self.options = options
+        _SwitchContactOptions('RigidBodyWormGearConnector', mbs, self, options,
+                              lambda: _RigidStickSlip(self, self._StartState(mbs)))
         if self.compiled is not None:
             _RecordCompiledLaw(mbs, self, options)
             return
@@ -704,6 +722,56 @@ def _Rotation(body: _Body, theta) -> np.ndarray:
     return np.array(body.kinematics.rotationMatrix([float(x) for x in theta], MATH_OPS), dtype=float)
 
 
+def _MeshFrame(w: str, gear: WormGear, nodes, nodeInfos, axes, linePoints):
+    """The mesh frame (:class:`MeshGeometry`, checked), the law inputs' kinematics (:class:`_Kinematics`) and the
+    bodies' initial angles about their axes, from the nodes' dictionaries (``mbs.GetNode``: node type, reference
+    and initial coordinates), the axes and the axis points in body coordinates; errors name ``w``."""
+    bodies, references, initial = [], [], []
+    for node, nodeInfo, axis in zip(nodes, nodeInfos, axes):
+        ref = np.asarray(nodeInfo['referenceCoordinates'], dtype=float)
+        kin = RIGID_NODES[nodeInfo['nodeType']]
+        b = _Body(node, kin, len(ref), ref[:3], ref[3:], axis, np.zeros(3), np.zeros(3), np.zeros(3))
+        bodies.append(b)
+        references.append((ref[:3], _Rotation(b, ref[3:])))
+        initial.append(ref + np.asarray(nodeInfo['initialCoordinates'], dtype=float))
+    (x1, R1), (x2, R2) = references
+    p1, p2 = x1 + R1 @ linePoints[0], x2 + R2 @ linePoints[1]
+    ea, eb = R1 @ axes[0], R2 @ axes[1]
+    cross = math.degrees(math.acos(max(-1., min(1., abs(float(ea @ eb))))))
+    if abs(float(ea @ eb)) > math.sin(PERPENDICULAR_TOLERANCE):
+        raise ValueError(f"{w}: the worm axis and the wheel axis must cross at 90 deg (within "
+                         f"{math.degrees(PERPENDICULAR_TOLERANCE):g} deg), got {cross:.4g} deg (global worm axis "
+                         f"{np.round(ea, 6).tolist()}, wheel axis {np.round(eb, 6).tolist()})")
+    d = p2 - p1
+    F1, F2 = p1 + (d @ ea) * ea, p2 - (d @ eb) * eb
+    D0 = F2 - F1
+    a, target = float(np.linalg.norm(D0)), gear.r1 + gear.r2
+    if abs(a - target) > CENTRE_DISTANCE_TOLERANCE * target:
+        raise ValueError(f"{w}: the axes are {a:.6g} m apart in the reference configuration, but the gear's centre "
+                         f"distance r1 + r2 is {target:.6g} m (more than {CENTRE_DISTANCE_TOLERANCE:.0%} off: positions "
+                         f"and radii in m?)")
+    for role, offset in (('worm', abs(float(d @ ea))), ('wheel', abs(float(d @ eb)))):
+        if offset > 10. * target:
+            raise ValueError(f"{w}: the pitch point is {offset:.6g} m along the {role} axis from the {role} body's "
+                             f"reference point (more than ten centre distances, {10. * target:.6g} m): is the body "
+                             f"placed in m?")
+    ec = D0 / a
+    t = np.cross(ea, ec)
+    hand = 1. if float(t @ eb) > 0 else -1.
+    geometry = MeshGeometry(ea, eb, ec, t, hand, F1, F2, F1 + gear.r1 * ec, a)
+    for b, (x, R), F, e in zip(bodies, references, (F1, F2), (ea, eb)):
+        b.axisPoint = R.T @ (F - x)
+        b.radial = R.T @ ec
+        b.spinTangent = np.cross(e, ec)
+    kinematics = _Kinematics(gear, geometry, bodies)
+    angles = []
+    for b, q in zip(bodies, initial):
+        R = _Rotation(b, q[3:])
+        angles.append(math.atan2(float(b.spinTangent @ R @ b.radial), float(ec @ R @ b.radial)))
+
+    return geometry, kinematics, angles
+
+
 #: largest change of the law inputs' gradient rows with the bodies' turns for which :func:`CreateRigidBodyWormGear`
 #: with ``useSymbolic`` takes them as linear in the node coordinates
 LINEAR_ROWS_TOLERANCE = 1e-9
@@ -761,6 +829,8 @@ def _CompileLaw(mbs, where: str, connector: RigidBodyWormGearConnector, found) -
     law = mbs.AddObject(ObjectGenericODE2(nodeNumbers=nodes, massMatrix=zeros, stiffnessMatrix=zeros,
                                           dampingMatrix=zeros, name=(connector.name + 'Law') if connector.name else ''))
     connector.compiled = {'nodes': nodes, 'ties': ties, 'objectNumber': law}
+    if connector.stickSlip is not None:
+        connector.stickSlip.UseCompiledInputs(nodes)
     _RecordCompiledLaw(mbs, connector, connector.options)
 
 
@@ -778,9 +848,9 @@ def _RecordCompiledLaw(mbs, connector: RigidBodyWormGearConnector, options: Cont
     def CompiledLaw(t, q, q_t, ops):
         x = [q[0] + q[3], q[6], q[1] + q[4], q[2] + q[5]]
         w = [q_t[0] + q_t[3], q_t[6], q_t[1] + q_t[4], q_t[2] + q_t[5]]
-        mesh = _Law(gear, options, x, w, ops, None if stickSlip is None else stickSlip.LawState(ops))
-        f0, f2, f3 = mesh.wormTorque, mesh.axialForce, mesh.radialForce
-        return [f0, f2, f3, f0, f2, f3, mesh.wheelTorque]
+        # [worm torque, axial, radial] on both nodes' parts, the wheel torque last: one vector expression
+        return _Law(gear, options, x, w, ops, None if stickSlip is None else stickSlip.LawState(ops),
+                    _COMPILED_FORCE_MAP).generalizedForces
     connector.userFunction = SetGenericForceLaw(mbs, connector.compiled['objectNumber'], 7, CompiledLaw,
                                                 useSymbolic=True, where='CreateRigidBodyWormGear')
 
@@ -868,48 +938,8 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Optional[Sequence[Any]] = None, ge
     for (body, info, node, nodeInfo), axis, role in zip(found, axes, ('worm', 'wheel')):
         _CheckMass(w, f'{role} body {body}', info, axis)
 
-    bodies, references, initial = [], [], []
-    for (body, info, node, nodeInfo), axis in zip(found, axes):
-        ref = np.asarray(nodeInfo['referenceCoordinates'], dtype=float)
-        kin = RIGID_NODES[nodeInfo['nodeType']]
-        b = _Body(node, kin, len(ref), ref[:3], ref[3:], axis, np.zeros(3), np.zeros(3), np.zeros(3))
-        bodies.append(b)
-        references.append((ref[:3], _Rotation(b, ref[3:])))
-        initial.append(ref + np.asarray(nodeInfo['initialCoordinates'], dtype=float))
-    (x1, R1), (x2, R2) = references
-    p1, p2 = x1 + R1 @ linePoints[0], x2 + R2 @ linePoints[1]
-    ea, eb = R1 @ axes[0], R2 @ axes[1]
-    cross = math.degrees(math.acos(max(-1., min(1., abs(float(ea @ eb))))))
-    if abs(float(ea @ eb)) > math.sin(PERPENDICULAR_TOLERANCE):
-        raise ValueError(f"{w}: the worm axis and the wheel axis must cross at 90 deg (within "
-                         f"{math.degrees(PERPENDICULAR_TOLERANCE):g} deg), got {cross:.4g} deg (global worm axis "
-                         f"{np.round(ea, 6).tolist()}, wheel axis {np.round(eb, 6).tolist()})")
-    d = p2 - p1
-    F1, F2 = p1 + (d @ ea) * ea, p2 - (d @ eb) * eb
-    D0 = F2 - F1
-    a, target = float(np.linalg.norm(D0)), gear.r1 + gear.r2
-    if abs(a - target) > CENTRE_DISTANCE_TOLERANCE * target:
-        raise ValueError(f"{w}: the axes are {a:.6g} m apart in the reference configuration, but the gear's centre "
-                         f"distance r1 + r2 is {target:.6g} m (more than {CENTRE_DISTANCE_TOLERANCE:.0%} off: positions "
-                         f"and radii in m?)")
-    for role, offset in (('worm', abs(float(d @ ea))), ('wheel', abs(float(d @ eb)))):
-        if offset > 10. * target:
-            raise ValueError(f"{w}: the pitch point is {offset:.6g} m along the {role} axis from the {role} body's "
-                             f"reference point (more than ten centre distances, {10. * target:.6g} m): is the body "
-                             f"placed in m?")
-    ec = D0 / a
-    t = np.cross(ea, ec)
-    hand = 1. if float(t @ eb) > 0 else -1.
-    geometry = MeshGeometry(ea, eb, ec, t, hand, F1, F2, F1 + gear.r1 * ec, a)
-    for b, (x, R), F, e in zip(bodies, references, (F1, F2), (ea, eb)):
-        b.axisPoint = R.T @ (F - x)
-        b.radial = R.T @ ec
-        b.spinTangent = np.cross(e, ec)
-    kinematics = _Kinematics(gear, geometry, bodies)
-    angles = []
-    for b, q in zip(bodies, initial):
-        R = _Rotation(b, q[3:])
-        angles.append(math.atan2(float(b.spinTangent @ R @ b.radial), float(ec @ R @ b.radial)))
+    geometry, kinematics, angles = _MeshFrame(w, gear, [f[2] for f in found], [f[3] for f in found], axes,
+                                              linePoints)
 
     from exudyn.itemInterface import ObjectGenericODE2
     nodes = [f[2] for f in found]
@@ -931,7 +961,8 @@ def CreateRigidBodyWormGear(mbs, bodyNumbers: Optional[Sequence[Any]] = None, ge
     else:
         connector.userFunction = SetGenericForceLaw(mbs, connector.objectNumber, n, law, useSymbolic=False,
                                                     check=False)
-    _AddStickSlip(mbs, connector._spin)
+    if connector.compiled is None:     # the compiled law's inputs are coordinates: no turn to follow
+        _AddStickSlip(mbs, connector._spin)
     if connector.stickSlip is not None:
         _AddStickSlip(mbs, connector.stickSlip)
     mbs.variables.setdefault(RIGID_CONNECTORS_KEY, []).append(connector)

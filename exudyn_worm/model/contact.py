@@ -278,7 +278,8 @@ def NormalForceFlanks(normalForce):
 
 def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOptions = ContactOptions(),
                 ops=MATH_OPS, axialDisplacement=None, axialSpeed=None,
-                frictionState: Optional[FrictionState] = None, radialApproach=None, radialSpeed=None) -> MeshState:
+                frictionState: Optional[FrictionState] = None, radialApproach=None, radialSpeed=None,
+                forceMap: Optional[Any] = None) -> MeshState:
     """Evaluate the contact law for worm/wheel angles ``phi1, phi2`` and speeds ``omega1, omega2``.
 
     Parameters
@@ -305,6 +306,11 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
         by ``alphaN`` towards the centre line, so an approach deepens the contact on either flank by
         ``sin(alphaN) C``: the penetration becomes ``|Delta s| + sin(alphaN) C - delta/2``. None (default): the
         law is evaluated exactly as without this option.
+    forceMap : array_like, optional
+        A constant matrix (n x 4) that maps ``[wormTorque, wheelTorque, axialForce, radialForce]`` onto the
+        generalized forces of a model whose coordinates are not the law's inputs (the 3D model's, e.g.
+        :mod:`exudyn_worm.items.rigidmesh`): ``generalizedForces`` is then ``forceMap @ [...]``, with the symbolic
+        backend one vector expression (each shared term once). None (default): ``generalizedForces`` as below.
 
     Returns
     -------
@@ -387,7 +393,10 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
             * (1. / math.cos(gear.gamma))
         stuck = 0.
         levers = [-c2, c4] + ([c4 * (-1. / gear.r2)] if axialDisplacement is not None else [])
+        if forceMap is not None:                 # the map's rows over the levers of [worm, wheel, axial, radial]
+            levers = [_Combine(row, [-c2, c4, c4 * (-1. / gear.r2), (-sinAlpha) * sigma]) for row in _Rows(forceMap)]
         generalized = (vector(levers) * normalForce if vector is not None
+                       else [lv * normalForce for lv in levers] if forceMap is not None
                        else [wormTorque, wheelTorque] + ([wheelTorque * (-1. / gear.r2)] if len(levers) > 2 else []))
     else:
         frictionForce, sf, stuck, slipFactor, stickForce = _FrictionForce(gear, options, ops, sigma, fn, phi1, phi2,
@@ -397,23 +406,52 @@ def MeshContact(gear: WormGear, phi1, phi2, omega1, omega2, options: ContactOpti
         normalLevers = [-(gear.r1 * math.cos(gear.alphaN) * math.sin(gear.gamma)),
                         gear.r2 * math.cos(gear.alphaN) * math.cos(gear.gamma)]
         frictionLevers = [-(gear.r1 * math.cos(gear.gamma)), -(gear.r2 * math.sin(gear.gamma))]
-        if axialDisplacement is not None:        # axialForce = -wheelTorque / r2
+        wormTorque, wheelTorque = (a * normalForce + b * frictionForce
+                                   for a, b in zip(normalLevers, frictionLevers))
+        radialLevers = None
+        if forceMap is not None:                 # [worm, wheel, axial, radial] mapped: constant levers
+            rows = _Rows(forceMap)
+            radialLevers = [row[3] * -sinAlpha for row in rows]
+            normalLevers, frictionLevers = ([_Combine(row, [a[0], a[1], a[1] * (-1. / gear.r2), 0.]) for row in rows]
+                                            for a in (normalLevers, frictionLevers))
+        elif axialDisplacement is not None:      # axialForce = -wheelTorque / r2
             normalLevers.append(normalLevers[1] * (-1. / gear.r2))
             frictionLevers.append(frictionLevers[1] * (-1. / gear.r2))
         # frictionForce = slipFactor * normalForce + stickForce (slipFactor = mu m sigma sliding, 0 stuck; stickForce
         # the stuck flanks' force, 0 sliding): each generalized force is (a + b slipFactor) normalForce + b stickForce
+        # (+ c sigma normalForce = c fn with a force map's radial levers c)
         if vector is not None:                   # one vector expression: each shared term once
-            generalized = (vector(normalLevers) + vector(frictionLevers) * slipFactor) * normalForce
+            factor = vector(normalLevers) + vector(frictionLevers) * slipFactor
+            if radialLevers is not None:
+                factor = factor + vector(radialLevers) * sigma
+            generalized = factor * normalForce
             if stickForce is not None:
                 generalized = generalized + vector(frictionLevers) * stickForce
-        wormTorque, wheelTorque = (a * normalForce + b * frictionForce
-                                   for a, b in zip(normalLevers[:2], frictionLevers[:2]))
-        if vector is None:
+        elif radialLevers is not None:
+            generalized = [a * normalForce + b * frictionForce + c * (sigma * normalForce)
+                           for a, b, c in zip(normalLevers, frictionLevers, radialLevers)]
+        else:
             generalized = [wormTorque, wheelTorque] + ([wheelTorque * (-1. / gear.r2)] if len(normalLevers) > 2 else [])
     return MeshState(deltaPhi=deltaPhi, deltaS=lever * d, normalForce=normalForce, S=S, sf=sf,
                      wormTorque=wormTorque, wheelTorque=wheelTorque, axialForce=wheelTorque * (-1. / gear.r2),
                      frictionForce=frictionForce, stuck=stuck, radialForce=fn * (-sinAlpha),
                      generalizedForces=generalized)
+
+
+def _Rows(forceMap) -> list:
+    """The rows of a force map (n x 4) as lists of floats."""
+    rows = [[float(x) for x in row] for row in np.asarray(forceMap, dtype=float).reshape(-1, 4)]
+    return rows
+
+
+def _Combine(row, values):
+    """row . values, leaving out the zero entries of the constant row (no '0 *' node in a recorded expression)."""
+    total = None
+    for c, v in zip(row, values):
+        if c != 0.:
+            term = v if c == 1. else c * v
+            total = term if total is None else total + term
+    return 0. if total is None else total
 
 
 def FrictionCoefficientAt(gear: WormGear, omega1: Any, ops: Any = MATH_OPS) -> Any:

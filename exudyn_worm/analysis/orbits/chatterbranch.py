@@ -122,7 +122,8 @@ class ChatterBranch:
                                           **{k: float(p.info[k]) for k in BEARING_LOAD_KEYS if k in p.info}},
                             'frequencyHz': float(p.orbit.frequencyHz), 'stable': bool(p.stable),
                             'multipliers': [abs(complex(m)) for m in p.orbit.nontrivialMultipliers],
-                            'trivialMultiplierError': p.orbit.trivialMultiplierError}
+                            'trivialMultiplierError': p.orbit.trivialMultiplierError,
+                            'stabilityDecided': bool(p.orbit.stabilityDecided)}
                            for p in self.points],
                 'messages': list(self.messages)}
         if self.model != 'one-angle':

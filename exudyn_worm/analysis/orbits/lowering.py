@@ -22,6 +22,7 @@ from ...model.profiles import STANDARD_GRAVITY, ConstantSpeed, ConstantTorque, G
 from ..._checks import CheckPositive, CheckSystem
 from ...items.connector import CONNECTORS_KEY, WormGearConnector
 from ...items.rigidmesh import RIGID_CONNECTORS_KEY, RigidBodyWormGearConnector
+from ...items.smallmesh import SMALL_CONNECTORS_KEY, SmallWormGearConnector
 from ..stability.drivestability import AnalyzeDrive
 from ...drive.wholedrive import CheckDrive, Component, Drive
 from ...drive.presets import DUTY_KEYS
@@ -246,10 +247,12 @@ def BuildLoweringModel(drive: Drive, contactOptions: ContactOptions = ContactOpt
 
 def BuildRigidBodyLoweringModel(drive: Drive, contactOptions: ContactOptions = ContactOptions()) -> LoweringModel:
     """The lowering model of :func:`BuildLoweringModel` on the 3D model: worm and wheel as rigid bodies on their
-    shafts' bearings (:func:`~exudyn_worm.builders.rigidbody.BuildRigidBodyReelChanger`), motor at constant
+    shafts' bearings (:func:`~exudyn_worm.builders.rigidbody.BuildRigidBodyReelChanger`: with both shafts' bearings
+    its small-displacement model, on ideal joints the rigid bodies), motor at constant
     speed ``motorSpeed``, constant load torque ``loadMass * g * leverArm`` on the wheel's turn, starting in the
     static equilibrium under that load (the mesh and the bearings deflected). The flow state holds every free ODE2
-    coordinate (both bodies' six, the C++ mesh law's auxiliary ones: :func:`LoweringModelOfSystem`).
+    coordinate (the small-displacement model's twelve; on joints both bodies' six, the C++ mesh law's auxiliary ones
+    set by the flow: :func:`LoweringModelOfSystem`).
 
     Parameters
     ----------
@@ -280,8 +283,9 @@ def BuildRigidBodyLoweringModel(drive: Drive, contactOptions: ContactOptions = C
     reel = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), lowering, contactOptions,
                                      profile=ConstantSpeed(motorSpeed), startFromEquilibrium=True)
     sensors = AddSeriesSensors(reel)
-    reel.connector.sensors.update(wormAccelerations=sensors['wormAccelerations'],
-                                  wheelAccelerations=sensors['wheelAccelerations'])
+    if reel.model == 'exact':
+        reel.connector.sensors.update(wormAccelerations=sensors['wormAccelerations'],
+                                      wheelAccelerations=sensors['wheelAccelerations'])
     reel.mbs.Assemble()
     model = LoweringModelOfSystem(reel.mbs, reel.connector)
     model.systemContainer, model.drive, model.rigidBody = reel.systemContainer, reel.drive, reel
@@ -301,7 +305,7 @@ def _MeshAt(connector, state: Mapping[str, Any], mask=None):
     """The connector's mesh quantities for the states in ``state`` (keys ``phi1, phi2, omega1, omega2`` and, with
     an axial node, ``xA, vA``: a steady state or stored sensor series), at ``mask`` (None: all). A rigid-body
     connector's are in ``state['mesh']`` (:func:`_StoredStates`; the steady state's from its initial state)."""
-    if isinstance(connector, RigidBodyWormGearConnector):
+    if isinstance(connector, (RigidBodyWormGearConnector, SmallWormGearConnector)):
         mesh = state['mesh']
         if mask is None:
             return mesh
@@ -323,6 +327,15 @@ def _StoredStates(model: LoweringModel) -> Dict[str, Any]:
     wheel's turns; a rigid body's turn is its last Tait-Bryan angle) and, for a rigid-body connector, ``mesh`` (the
     mesh quantities of every stored step, :meth:`~exudyn_worm.items.rigidmesh.RigidBodyWormGearConnector.Evaluate`)."""
     connector, mbs = model.connector, model.mbs
+    if isinstance(connector, SmallWormGearConnector):     # the shafts' coordinates from the model's nodes
+        shafts = connector.StoredShaftStates(mbs)
+        out = {'time': shafts['time'], 'mesh': connector.Evaluate(*(np.hstack([shafts['worm' + k], shafts['wheel' + k]])
+                                                                     for k in ('Coordinates', 'Velocities')),
+                                                                   shafts['time'])}
+        for body, name in (('1', 'worm'), ('2', 'wheel')):
+            out['phi' + body], out['omega' + body], out['alpha' + body] = (
+                shafts[name + k][:, _RIGID_TURN] for k in ('Coordinates', 'Velocities', 'Accelerations'))
+        return out
     if not isinstance(connector, RigidBodyWormGearConnector):
         return connector.StoredStates(mbs)
     time, q, v = connector._Stored(mbs)
@@ -519,17 +532,23 @@ def LoweringModelOfSystem(mbs: Any, connector: WormGearConnector,
     w = 'LoweringModelOfSystem'
     CheckSystem(w, mbs)
     rigid = isinstance(connector, RigidBodyWormGearConnector)
+    small = isinstance(connector, SmallWormGearConnector)
     if not (rigid and connector in mbs.variables.get(RIGID_CONNECTORS_KEY, [])
+            or small and connector in mbs.variables.get(SMALL_CONNECTORS_KEY, [])
             or isinstance(connector, WormGearConnector) and connector in mbs.variables.get(CONNECTORS_KEY, [])):
-        raise TypeError(f"{w}: 'connector' must be a WormGearConnector built in 'mbs' by CreateWormGear or a "
-                        f"RigidBodyWormGearConnector built by CreateRigidBodyWormGear, got {type(connector).__name__}")
+        raise TypeError(f"{w}: 'connector' must be a WormGearConnector built in 'mbs' by CreateWormGear, a "
+                        f"RigidBodyWormGearConnector built by CreateRigidBodyWormGear or a SmallWormGearConnector "
+                        f"built by CreateSmallDisplacementWormGear, got {type(connector).__name__}")
     size = mbs.systemData.ODE2Size()
     if not size:
         raise ValueError(f"{w}: 'mbs' has no ODE2 coordinates: call mbs.Assemble() first")
     C = _Configuration()
     q0 = np.array(mbs.systemData.GetODE2Coordinates(configuration=C.Initial), dtype=float)
     v0 = np.array(mbs.systemData.GetODE2Coordinates_t(configuration=C.Initial), dtype=float)
-    worm, wheel = (int(mbs.GetNodeODE2Index(n)) for n in connector.nodeNumbers)
+    if small:                      # the turns are coordinates of the model's nodes
+        worm, wheel = connector.TurnIndices(mbs)
+    else:
+        worm, wheel = (int(mbs.GetNodeODE2Index(n)) for n in connector.nodeNumbers)
     if rigid:                      # the turns: the flow state subtracts v0 t, exact for the last Rxyz angle only
         types = [str(mbs.GetNode(n)['nodeType']) for n in connector.nodeNumbers]
         if any(t != 'RigidBodyRxyz' for t in types) or connector.compiled is None:
@@ -561,7 +580,7 @@ def LoweringModelOfSystem(mbs: Any, connector: WormGearConnector,
     keys = ['phi1', 'phi2'] + [f'q{i}' for i in index[2:]]
     steady = {k: float(q0[i]) for k, i in zip(keys, index)}
     steady.update(omega1=float(v0[worm]), omega2=float(v0[wheel]))
-    if rigid:
+    if rigid or small:
         steady['mesh'] = connector.InitialMeshState(mbs)
     elif connector.axialNodeNumber is not None:
         a = int(mbs.GetNodeODE2Index(connector.axialNodeNumber))

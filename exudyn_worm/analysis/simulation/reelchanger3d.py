@@ -36,6 +36,13 @@ def StoredShaftLoads(model: RigidBodyReelChanger) -> Dict[str, np.ndarray]:
     """
     mbs = model.mbs
     out = {}
+    if model.model == 'small':             # the bearings' forces from the shafts' stored states
+        time, q, v = model.connector._Stored(mbs)
+        loads = model.connector.BearingLoads(q, v)
+        out['time'] = time
+        for body in ('worm', 'wheel'):
+            out[body + 'AxialLoad'], out[body + 'RadialLoad'] = loads[body]['axial'], loads[body]['radial']
+        return out
     for body, items in model.bearings.items():
         if 'joint' not in items:
             loads = StoredBearingLoads(mbs, items)
@@ -91,6 +98,9 @@ def StoredSeries(model: RigidBodyReelChanger) -> Dict[str, np.ndarray]:
     """
     mbs = model.mbs
     data = {k: np.asarray(mbs.GetSensorStoredData(s)) for k, s in model.sensors.items()}
+    if model.model == 'small':             # the shafts' coordinates from the model's nodes
+        shafts = model.connector.StoredShaftStates(mbs)
+        data.update({k: np.column_stack([shafts['time'], v]) for k, v in shafts.items() if k != 'time'})
     out = {'time': data['motorAngle'][:, 0], 'phi0': data['motorAngle'][:, 1], 'omega0': data['motorSpeed'][:, 1]}
     for body, prefix in (('worm', '1'), ('wheel', '2')):
         for name, key in (('phi', 'Coordinates'), ('omega', 'Velocities'), ('alpha', 'Accelerations')):
@@ -175,6 +185,9 @@ def AddSeriesSensors(model: RigidBodyReelChanger) -> Dict[str, Any]:
                             ('motorSpeed', model.motor['nodeNumber'], OVT.Coordinates_t)):
         model.sensors[name] = mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=ovt, storeInternal=True,
                                                        writeToFile=False))
+    if model.model == 'small':             # the connector's sensors of its nodes (StoredShaftStates)
+        model.connector.AddSensors(mbs)
+        return model.sensors
     for body, info in model.bodies.items():
         for key, ovt in (('Coordinates', OVT.Coordinates), ('Velocities', OVT.Coordinates_t),
                          ('Accelerations', OVT.Coordinates_tt)):
