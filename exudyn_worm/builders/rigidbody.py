@@ -18,7 +18,7 @@ joint against the axial spring-damper, the model of :func:`~exudyn_worm.items.co
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Dict, Optional, Tuple
+from typing import Any, Dict, NamedTuple, Optional, Tuple
 
 import numpy as np
 
@@ -37,7 +37,7 @@ from .oneangle import CheckReelChangerKeys
 from .start import LinearizationStart
 
 __all__ = ['WORM_AXIS', 'WHEEL_AXIS', 'WORM_REFERENCE', 'TURN', 'RigidBodyReelChanger', 'BuildRigidBodyReelChanger',
-           'BuildRigidBodyLinearizationModel']
+           'BuildRigidBodyLinearizationModel', 'BodyInertiaTensor', 'BodyInertiaTensors']
 
 
 #: the worm's axis (global): its turn is about -y, so that with the wheel's axis +z and the centre line +x the thread is
@@ -49,6 +49,71 @@ WHEEL_AXIS = np.array([0., 0., 1.])
 WORM_REFERENCE = np.array([[1., 0., 0.], [0., 0., -1.], [0., 1., 0.]])
 #: index of the bodies' turn among their node coordinates (the last Tait-Bryan angle)
 TURN = 5
+
+
+class BodyInertiaTensor(NamedTuple):
+    """One body of the 3D model: what :func:`BodyInertiaTensors` gives for it.
+
+    Attributes
+    ----------
+    mass : float
+        The body's mass in kg.
+    tensor : numpy.ndarray
+        3x3 inertia tensor in kg*m^2 about the centre of mass (the body's reference point), in body coordinates
+        with the local z along the axis: ``diag(tilt, tilt, polar)`` with the body's own polar inertia.
+    shaftInertia : float
+        Inertia in kg*m^2 about the axis that turns with the body without tilting with it (the shaft's J1 or J2 less
+        the body's own polar inertia: a motor rotor behind a coupling, a reel on its own bearings); it acts on the
+        body's turn alone.
+    tiltGiven : bool
+        Whether the tilt inertia came from the drive; False for a body on an ideal revolute joint without it, whose
+        tilt the joint holds: its tilt entries are then half the polar one and enter no result.
+    """
+    mass: float
+    tensor: np.ndarray
+    shaftInertia: float
+    tiltGiven: bool
+
+
+def BodyInertiaTensors(drive: Drive) -> Dict[str, BodyInertiaTensor]:
+    """The inertias of the 3D model's worm and wheel bodies: the one place the model builders take them from.
+
+    Each body is a body of revolution turning about its local z: its tensor about its centre is
+    ``diag(tilt, tilt, polar)`` with its own polar and tilt inertia (``[worm] tiltInertia``, ``polarInertia`` or a
+    shape, :func:`~exudyn_worm.drive.presets.ShaftSupportsFromParameters`); what else is on its shaft (J1 or J2
+    less its own polar inertia) turns with it but does not tilt with it (``shaftInertia``). Without a tilt inertia
+    the drive's body must be on an ideal joint (the drive refuses elastic bearings without it); its tensor is then
+    ``diag(J/2, J/2, J)`` with the shaft's J, which the joint's held tilt keeps out of every result.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (:func:`~exudyn_worm.drive.wholedrive.ResolveDrive`).
+
+    Returns
+    -------
+    dict
+        ``'worm'``, ``'wheel'``: a :class:`BodyInertiaTensor` each.
+
+    Raises
+    ------
+    TypeError
+        If ``drive`` is not a Drive.
+    """
+    CheckDrive('BodyInertiaTensors', drive, 'drive')
+    supports, elastic = drive.shaftSupports, drive.elastic
+    axial = drive.axialBearing
+    out = {}
+    for body, J, default in (('worm', elastic.J1, WORM_MASS), ('wheel', elastic.J2, WHEEL_MASS)):
+        own = None if supports is None else getattr(supports, body + 'Inertia')
+        mass = default if supports is None else getattr(supports, body + 'Mass')
+        if body == 'worm' and axial is not None:
+            mass = axial.mass
+        if own is None:
+            out[body] = BodyInertiaTensor(mass, np.diag([J / 2., J / 2., J]), 0., False)
+        else:
+            out[body] = BodyInertiaTensor(own.mass, np.diag([own.tilt, own.tilt, own.polar]), J - own.polar, True)
+    return out
 
 
 @dataclass
@@ -117,7 +182,8 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
         Elastic bearings of the shafts; None (default): those of the parameter set, else ideal revolute joints.
     wormMass, wheelMass : float, optional
         Masses in kg of the bodies (> 0); default those of the parameter set, else :data:`WORM_MASS`,
-        :data:`WHEEL_MASS`. The moments of inertia about the axes are J1 and J2 of the set.
+        :data:`WHEEL_MASS`. The moments of inertia are those of :func:`BodyInertiaTensors`; a body on elastic
+        bearings needs its tilt inertia in the drive (``wormTiltInertia`` or its shape, docs/mesh-3d.md).
     profile : optional
         Motor motion with ``AngleAndSpeed(t, ops)`` (default: the duty's motor,
         :func:`~exudyn_worm.drive.duty.MotorFromParameters`).
@@ -132,7 +198,8 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     Raises
     ------
     ValueError
-        For a parameter set with chains, a motor on its characteristic, a bearing given twice or a bad mass.
+        For a parameter set with chains, a motor on its characteristic, a bearing given twice, a bad mass or a body
+        on elastic bearings without its tilt inertia.
     """
     w = 'BuildRigidBodyReelChanger'
     CheckReelChangerKeys(drive, w)
@@ -147,6 +214,12 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
         wheelMass = supports.wheelMass if wheelMass is None else wheelMass
     wormMass = CheckPositive(w, 'wormMass', WORM_MASS if wormMass is None else wormMass, 'kg')
     wheelMass = CheckPositive(w, 'wheelMass', WHEEL_MASS if wheelMass is None else wheelMass, 'kg')
+    inertias = BodyInertiaTensors(whole)
+    for body, bearings in (('worm', wormBearings), ('wheel', wheelBearings)):
+        if bearings is not None and not inertias[body].tiltGiven:
+            raise ValueError(f"{w}: the {body} on elastic bearings needs its tilt inertia: give {body}TiltInertia "
+                             f"(kg*m^2, or its shape {body}Radius, {body}Length) in the drive, with the bearings "
+                             f"([{body}] tiltInertia, [{body}Bearing]); the polar inertia is never used for it")
     if whole.driveSideChain or whole.loadSideChain:
         raise ValueError(f"{w}: the rigid-body reel changer has no drive-side or load-side chain: remove J4.., JL1.. "
                          f"from the parameter set")
@@ -169,13 +242,13 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     wormMass = axial.mass if axial is not None else wormMass
     if startFromEquilibrium and (wormBearings is not None or wheelBearings is not None):
         init.update(_StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass,
-                                 axial, init, profile, load))
+                                 axial, init, profile, load, inertias))
     return _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
-                  axial, init, profile, load)
+                  axial, init, profile, load, inertias)
 
 
 def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, axial, init,
-                 profile, load) -> Dict[str, Any]:
+                 profile, load, inertias) -> Dict[str, Any]:
     """The bodies' poses with the bearings deflected by the initial mesh force: a static solve of the model at
     t = 0 with the contact state of the one-angle equilibrium ``init`` held, so that a run starts without the
     bearings' transient. Returns ``wormPose``, ``wheelPose`` (displacement, rotation matrix) and ``phi0``, the
@@ -184,7 +257,7 @@ def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, w
     S = 1 if init['omega1'] == 0. else int(np.sign(_StartS(drive, load, init, contactOptions)))
     static = _Build(exu.SystemContainer().AddSystem(), drive, ContactOptions(fixedS=S, frictionModel='regularized'), True, wormBearings,
                     wheelBearings, wormMass, wheelMass, axial, {**init, 'omega0': 0., 'omega1': 0., 'omega2': 0.},
-                    ConstantSpeed(0.), load)
+                    ConstantSpeed(0.), load, inertias)
     mbs = static.mbs
     mbs.Assemble()
     ss = exu.SimulationSettings()
@@ -210,9 +283,10 @@ def _StartS(drive, load, init, contactOptions) -> float:
 
 
 def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
-           axial, init, profile, load) -> RigidBodyReelChanger:
+           axial, init, profile, load, inertias) -> RigidBodyReelChanger:
     """The system of :func:`BuildRigidBodyReelChanger` from the initial state ``init`` (phi0, omega0, phi1, omega1,
-    phi2, omega2, xA, vA), the motor ``profile`` and the ``load`` (None: none)."""
+    phi2, omega2, xA, vA), the motor ``profile``, the ``load`` (None: none) and the bodies' ``inertias``
+    (:func:`BodyInertiaTensors`)."""
     import exudyn as exu
     from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate
     from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixZ
@@ -227,17 +301,17 @@ def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings,
     wheelPose = init.get('wheelPose', (np.zeros(3), RotationMatrixZ(init['phi2'])))
     worm = mbs.CreateRigidBody(name='worm', nodeType=exu.NodeType.RotationRxyz, referencePosition=[0., 0., 0.],
                                referenceRotationMatrix=WORM_REFERENCE,
-                               inertia=RigidBodyInertia(mass=wormMass,
-                                                        inertiaTensor=np.diag([drive.J1, drive.J1, drive.J1])),
+                               inertia=RigidBodyInertia(mass=wormMass, inertiaTensor=inertias['worm'].tensor),
                                initialRotationMatrix=WORM_REFERENCE.T @ wormPose[1],
                                initialDisplacement=list(wormPose[0]),
                                initialVelocity=list(init.get('vA', 0.) * WORM_AXIS),
                                initialAngularVelocity=list(init['omega1'] * WORM_AXIS), returnDict=True)
     wheel = mbs.CreateRigidBody(name='wheel', nodeType=exu.NodeType.RotationRxyz, referencePosition=[a, 0., 0.],
-                                inertia=RigidBodyInertia(mass=wheelMass,
-                                                         inertiaTensor=np.diag([drive.J2, drive.J2, drive.J2])),
+                                inertia=RigidBodyInertia(mass=wheelMass, inertiaTensor=inertias['wheel'].tensor),
                                 initialRotationMatrix=wheelPose[1], initialDisplacement=list(wheelPose[0]),
                                 initialAngularVelocity=list(init['omega2'] * WHEEL_AXIS), returnDict=True)
+    for body, name in ((worm, 'worm'), (wheel, 'wheel')):
+        _ShaftInertia(mbs, body['nodeNumber'], inertias[name].shaftInertia, name)
     bearings = {'worm': _Support(mbs, worm, WORM_AXIS, wormBearings, 'worm', axial),
                 'wheel': _Support(mbs, wheel, WHEEL_AXIS, wheelBearings, 'wheel')}
     motor = CreateRotor(mbs, 1e-3, initialAngle=init['phi0'], initialSpeed=init['omega0'], name='motor')
@@ -294,12 +368,24 @@ def BuildRigidBodyLinearizationModel(whole: Drive, S: Optional[int] = None,
     # the plain-Python law: the C++ law's auxiliary coordinates give the same eigenvalues, but which coordinates
     # Exudyn keeps independent then shifts the modes' energy shares between the bodies' coordinates
     import exudyn as exu
+    inertias = BodyInertiaTensors(whole)
     model = _Build(exu.SystemContainer().AddSystem(), drive, options, False, None if supports is None else supports.wormBearings,
-                   None if supports is None else supports.wheelBearings,
-                   axial.mass if axial is not None else (WORM_MASS if supports is None else supports.wormMass),
-                   WHEEL_MASS if supports is None else supports.wheelMass, axial, init, ConstantSpeed(speed), None)
+                   None if supports is None else supports.wheelBearings, inertias['worm'].mass,
+                   inertias['wheel'].mass, axial, init, ConstantSpeed(speed), None, inertias)
     model.mbs.Assemble()
     return model.systemContainer, model.mbs
+
+
+def _ShaftInertia(mbs, node: int, inertia: float, name: str) -> Optional[int]:
+    """What turns with a body without tilting with it: ``inertia`` (kg*m^2) on the node's turn coordinate alone, an
+    ``ObjectGenericODE2`` with that one mass entry and no forces (nothing if ``inertia`` is 0)."""
+    if inertia <= 0.:
+        return None
+    from exudyn.itemInterface import ObjectGenericODE2
+    mass = np.zeros((6, 6))
+    mass[TURN, TURN] = inertia
+    return mbs.AddObject(ObjectGenericODE2(nodeNumbers=[node], massMatrix=mass, stiffnessMatrix=np.zeros((6, 6)),
+                                           dampingMatrix=np.zeros((6, 6)), name=name + 'ShaftInertia'))
 
 
 def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axial=None):

@@ -55,7 +55,7 @@ CONTINUABLE = ('J1', 'J2', 'kT', 'dT', 'DT', 'DTV', 'kV', 'dV', 'DV', 'mu', 'muS
 #: the 3D model, as each branch point's ``info`` and ``ToDict()['points'][i]['amplitude']`` hold them
 BEARING_LOAD_KEYS = tuple(key for key, _ in BEARING_LOADS)
 #: on the 3D model with elastic bearings, a largest nontrivial Floquet multiplier this close to 1 is within the
-#: uncertainty of the finite-difference monodromy (0.987-0.994 from two starts of the same orbit, reel-3d.toml,
+#: uncertainty of the finite-difference monodromy (0.987-0.994 from two starts of the same orbit, reel-3d-chatter.toml,
 #: docs/chatter-amplitude.md): a message says so
 NEAR_ONE = 0.01
 #: an orbit whose largest normal force is below this multiple of the static force stays in contact all the time:
@@ -200,7 +200,7 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     :func:`~exudyn_worm.analysis.orbits.lowering.BuildRigidBodyLoweringModel`) with elastic bearings the first orbit is
     found as without continuation (:func:`~exudyn_worm.analysis.orbits.chatter.SteadyChatterSummary`): shooting from a time
     simulation settled on its Poincare section (:func:`~exudyn_worm.analysis.orbits.settling.SettleOnSection`, about 14 s
-    simulated for ``examples/drives/reel-3d.toml``), at the parameter set's own value of ``name`` where that lies in
+    simulated for ``examples/drives/reel-3d-chatter.toml``), at the parameter set's own value of ``name`` where that lies in
     the range and the drive is linearly unstable there (else in the middle of the widest unstable interval, as on
     the one-angle model); the continuation then follows it from that orbit, and each point carries the largest
     bearing loads.
@@ -280,7 +280,7 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     own = base.get(name)
     if unstable and rigidBody and own is not None and low <= own <= high and Growth(own) > 0:
         # the 3D model: at the drive's own value, where the first orbit is the one without continuation (shooting
-        # from the settled start converges there; in the middle of reel-3d.toml's unstable interval of
+        # from the settled start converges there; in the middle of reel-3d-chatter.toml's unstable interval of
         # wheelRadialStiffness in [5e8, 2e9], 1.112e9 N/m, it stalled at a residual of 0.016)
         start, kick = float(own), 0.01
     elif unstable:
