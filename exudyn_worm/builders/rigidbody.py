@@ -40,8 +40,9 @@ __all__ = ['WORM_AXIS', 'WHEEL_AXIS', 'WORM_REFERENCE', 'TURN', 'RigidBodyReelCh
            'BuildRigidBodyLinearizationModel', 'BodyInertiaTensor', 'BodyInertiaTensors']
 
 
-#: the worm's axis (global): its turn is about -y, so that with the wheel's axis +z and the centre line +x the thread is
-#: right-handed, as in the one-angle model's sign conventions
+#: the worm's axis (global): its turn is about -y, so that with the wheel's axis +z and the centre line +x a positive
+#: worm rotation turns the wheel positively, as in the one-angle model's sign conventions; the mesh's hand is then
+#: h = +1, a left-handed thread (:attr:`~exudyn_worm.items.rigidmesh.MeshGeometry.rightHanded`)
 WORM_AXIS = np.array([0., -1., 0.])
 #: the wheel's axis (global)
 WHEEL_AXIS = np.array([0., 0., 1.])
