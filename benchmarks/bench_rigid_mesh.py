@@ -9,7 +9,9 @@ seconds, their ratio, and the largest difference of the normal force between the
 
 Usage::
 
-    python benchmarks/bench_rigid_mesh.py [--end-time 8]
+    python benchmarks/bench_rigid_mesh.py [--end-time 8] [--model oneAngle|rigid|rigidPython]
+
+``--model`` runs that model alone and prints nothing (for timing each as a whole process).
 
 Nothing is written.
 """
@@ -50,8 +52,14 @@ def Main(argv=None) -> int:
     """Run the benchmark and print the table."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument('--end-time', type=float, default=8.)
+    parser.add_argument('--model', choices=('oneAngle', 'rigid', 'rigidPython'),
+                        help='run this model alone and print nothing')
     args = parser.parse_args(argv)
     p1 = GetPreset('reel-P1')
+    if args.model is not None:
+        build = BuildReelChanger if args.model == 'oneAngle' else BuildRigidBodyReelChanger
+        RunOnce(build, p1, args.end_time, **({'useSymbolic': False} if args.model == 'rigidPython' else {}))
+        return 0
     one = RunOnce(BuildReelChanger, p1, args.end_time)
     rigid = RunOnce(BuildRigidBodyReelChanger, p1, args.end_time)
     python = RunOnce(BuildRigidBodyReelChanger, p1, args.end_time, useSymbolic=False)
