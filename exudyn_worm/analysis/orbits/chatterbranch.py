@@ -37,7 +37,7 @@ from ...drive.wholedrive import Drive
 from ..stability.drivestability import AnalyzeDrive
 from ..._workers import CancelPool, SignalsHeld, WorkerInit
 from ...params.parameters import PARAMETERS
-from ...drive.presets import ElasticDriveFromParameters
+from ...drive.presets import BODY_KEYS, ElasticDriveFromParameters
 from .disturbance import COEXISTENCE_KICK, SmallestDisturbance
 from .smoothbranch import ChatterBranchError, SmoothHopfBranch
 
@@ -179,11 +179,11 @@ def LinearBoundaries(parameters: Mapping[str, float], name: str, low: float, hig
 def _ComponentKeys(parameters: Mapping[str, float], rigidBody: bool = False) -> List[str]:
     """The keys of the parameter set's drive-side and load-side chain stages and axial bearing (``J4, k4, d4, ...,
     JL1, kL1, dL1, ..., kA, dA, mA``) that can be continued too (each value rebuilds the lowering model); on the 3D
-    model (``rigidBody``) the shafts' bearing keys and the bodies' masses the set gives (``wormRadialStiffness``,
-    ..., ``wheelBearingSpan``, ``wormMass``, ``wheelMass``)."""
+    model (``rigidBody``) the shafts' bearing keys and the bodies' keys the set gives (``wormRadialStiffness``,
+    ..., ``wheelBearingSpan``, ``wormMass``, ``wheelTiltInertia``, ...)."""
     if rigidBody:
         return [k for k in PARAMETERS.KeysOf('wormBearing') + PARAMETERS.KeysOf('wheelBearing')
-                + ('wormMass', 'wheelMass', 'kA', 'dA', 'mA') if k in parameters]
+                + BODY_KEYS + ('kA', 'dA', 'mA') if k in parameters]
     keys = [k for k in parameters if (PARAMETERS.SeriesIndex(k) or ('',))[0] in _SERIES_PREFIXES]
     if float(parameters.get('kA', 0.)) > 0:
         keys += [k for k in ('kA', 'dA', 'mA') if k in parameters]
@@ -212,8 +212,8 @@ def AnalyzeChatterBranch(parameters: Mapping[str, float], name: str, low: float,
     name : str
         The parameter, one of :data:`CONTINUABLE`, or a key of the parameter set's drive-side or load-side chain
         (``J4, k4, d4, ...``, ``JL1, kL1, dL1, ...``) or axial bearing (``kA, dA, mA``); on the 3D model a key of
-        the shafts' bearings or the bodies' masses that the set gives (``wormRadialStiffness``, ...,
-        ``wheelBearingSpan``, ``wormMass``, ``wheelMass``).
+        the shafts' bearings or the bodies (mass, inertias, shape) that the set gives (``wormRadialStiffness``, ...,
+        ``wheelBearingSpan``, ``wormMass``, ``wheelTiltInertia``, ...).
     low, high : float
         Range of the parameter in its SI unit, ``low < high``.
     maxPoints : int
