@@ -24,7 +24,8 @@ DRIVE_3D = 'examples/drives/reel-3d-chatter.toml'
 STATIC_NORMAL_FORCE = 20513.1
 BEARING_KEYS = ('wormRadialStiffness', 'wormAxialStiffness', 'wormRadialDamping', 'wormAxialDamping',
                 'wormBearingSpan', 'wheelRadialStiffness', 'wheelAxialStiffness', 'wheelRadialDamping',
-                'wheelAxialDamping', 'wheelBearingSpan', 'wormMass', 'wheelMass', 'wormTiltInertia', 'wheelTiltInertia')
+                'wheelAxialDamping', 'wheelBearingSpan', 'wormMass', 'wheelMass', 'wormTiltInertia',
+                'wheelTiltInertia')
 
 
 def _Parameters():
