@@ -6,9 +6,11 @@ import exudyn as exu
 import numpy as np
 import pytest
 
+from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
 from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
 from exudyn_worm.builders.oneangle import BuildReelChanger
-from exudyn_worm.builders.rigidbody import BodyInertiaTensors, BuildRigidBodyLinearizationModel, BuildRigidBodyReelChanger
+from exudyn_worm.builders.rigidbody import (TURN, BodyInertiaTensors, BuildRigidBodyLinearizationModel,
+                                            BuildRigidBodyReelChanger)
 from exudyn_worm.drive.presets import GetPreset
 from exudyn_worm.drive.wholedrive import ResolveDrive
 from exudyn_worm.items.bearings import ShaftBearings
@@ -91,3 +93,44 @@ def test_what_turns_without_tilting_keeps_the_shafts_inertia():
     got = sorted((m.eigenvalue for m in rigid if m.eigenvalue.imag > 0), key=lambda z: z.imag)
     expected = sorted((m.eigenvalue for m in reference if m.eigenvalue.imag > 0), key=lambda z: z.imag)
     np.testing.assert_allclose(got, expected, rtol=1e-3)
+
+
+#: P1 with the reel (32.8 of its 33 kg*m^2) behind a load shaft of 2e5 N*m/rad: the wheel's own 0.2 kg*m^2 left as J2,
+#: the mesh damping P1's (dV from D_V with J2 = 33 kg*m^2) given as such, so that the mesh is P1's
+REEL_CHAIN = {'J2': 0.2, 'JL1': 32.8, 'kL1': 2e5, 'dL1': 10., 'dV': ResolveDrive('reel-P1').elastic.gear.dV}
+
+
+def _WithChain(parameters):
+    return {k: v for k, v in {**parameters, **REEL_CHAIN}.items() if k != 'DV'}
+
+
+@pytest.mark.physics
+def test_the_reel_as_a_load_side_inertia_gives_the_one_angle_chains_modes():
+    """The reel as its own inertia behind a load shaft ([[loadSide]]) on the 3D model: with stiff bearings (1e13 N/m)
+    the torsional modes are those of the one-angle model with the same chain (1e-3)."""
+    stiff = {f'{b}{k}': 1e13 for b in ('worm', 'wheel') for k in ('RadialStiffness', 'AxialStiffness')}
+    stiff.update(wormMass=5., wormRadius=0.021, wormLength=0.46, wheelMass=30., wheelTiltInertia=0.12,
+                 wheelPolarInertia=0.2, wormBearingSpan=0.5, wheelBearingSpan=0.5)
+    rigid = [m for m in _Modes(_WithChain({**P1, **stiff})) if m.frequencyHz < 200.]
+    reference = AnalyzeLinearStability(BuildReelChanger(exu.SystemContainer().AddSystem(),
+                                                        ResolveDrive(parameters=_WithChain(P1))).mbs).State(-1).modes
+    got = sorted((m.eigenvalue for m in rigid if m.eigenvalue.imag > 0), key=lambda z: z.imag)
+    expected = sorted((m.eigenvalue for m in reference if m.eigenvalue.imag > 0 and m.frequencyHz < 200.),
+                      key=lambda z: z.imag)
+    assert len(got) == len(expected) == 2
+    np.testing.assert_allclose(got, expected, rtol=1e-3)
+
+
+def test_the_3d_model_with_a_load_side_chain_starts_in_equilibrium():
+    """reel-3d.toml with the reel behind a load shaft: the run starts in the static equilibrium of the bearings, the
+    mesh and the load shaft (the chain's rotor twisted onto the wheel's deflected pose): the wheel does not
+    accelerate (below 1 rad/s^2 over 0.1 s; with the one-angle model's twist alone it rang at about 500 rad/s^2)."""
+    drive = ResolveDrive(config=DRIVE_3D, sets=[f'{k}={v}' for k, v in REEL_CHAIN.items()])
+    model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), drive)
+    assert len(model.loadRotors) == 1
+    model.connector.AddSensors(model.mbs)
+    model.mbs.Assemble()
+    ss, solverType = SolverSettings(0.1, 1e-4)
+    model.mbs.SolveDynamic(ss, solverType=solverType)
+    omega2 = np.asarray(model.mbs.GetSensorStoredData(model.connector.sensors['wheelVelocities']))[:, 1 + TURN]
+    assert np.max(np.abs(np.diff(omega2))) / 1e-4 < 1.

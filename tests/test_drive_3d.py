@@ -79,7 +79,7 @@ BAD = [('[wormBearing]\nradialStiffness = "5e8 N/m"\naxialStiffness = "5e8 N/m"\
        ('[worm]\nmass = "5 kg"\n[wormBearing]\nradialStiffness = 5e8\naxialStiffness = 5e8\n'
         '[axialBearing]\nstiffness = 1e8\nmass = 5\n', "the worm's axial bearing is given twice"),
        ('[wheel]\nmass = 30\ntiltInertia = 20\n[wheelBearing]\nradialStiffness = 1e9\naxialStiffness = 1e9\n'
-        '[[loadSide]]\ninertia = 0.5\nstiffness = 2e4\n', 'which has no load-side chain'),
+        '[[driveSide]]\ninertia = 0.5\nstiffness = 2e4\n', 'which has no drive-side chain'),
        ('[wheel]\nmass = 30\n[wheelBearing]\nradialStiffness = -1e9\naxialStiffness = 1e9\n',
         "'wheelRadialStiffness' must be > 0 N/m, got -1e+09")]
 

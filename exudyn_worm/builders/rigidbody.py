@@ -11,20 +11,21 @@ global z), so the drive shaft and the load act on those coordinates (the torque 
 the mesh law runs in C++ (``useSymbolic``, :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`). The
 centre line is global +x; the pitch point is at x = r1.
 
-Parameter sets: those of the reel changer without drive-side or load-side chains, with a constant-speed motor (the
+Parameter sets: those of the reel changer without a drive-side chain (a load-side chain acts on the wheel's turn,
+the load on its last stage), with a constant-speed motor (the
 presets reel-P1 ... reel-P7); an axial bearing ``kA, dA, mA`` lets the worm (of mass mA) slide on its revolute
 joint against the axial spring-damper, the model of :func:`~exudyn_worm.items.connector.CreateWormAxialBearing`.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Dict, NamedTuple, Optional, Tuple
+from typing import Any, Dict, List, NamedTuple, Optional, Tuple
 
 import numpy as np
 
 from .._checks import CheckPositive
 from ..items.bearings import WHEEL_MASS, WORM_MASS, ShaftBearings, CreateShaftBearings
-from ..items.drivetrain import CreatePrescribedRotation, CreateRotor
+from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateRotorTorque
 from ..items.equilibrium import SteadyInitialState
 from ..items._userfunctions import AddCoordinateForce
 from ..items.rigidmesh import CreateRigidBodyWormGear, RigidBodyWormGearConnector
@@ -144,6 +145,9 @@ class RigidBodyReelChanger:
         The worm's axial bearing ``kA, dA, mA`` (the worm slides on its joint), if the parameter set gives one.
     sensors : dict
         Sensors by name (:func:`AddSeriesSensors`).
+    loadRotors : list of dict
+        The rotors of the drive's load-side chain on the wheel's turn (``[[loadSide]]``, wheel side first; the load
+        acts on the last), :func:`~exudyn_worm.items.drivetrain.CreateLoadSideChain`.
     """
     systemContainer: Any
     mbs: Any
@@ -156,6 +160,7 @@ class RigidBodyReelChanger:
     load: Optional[Any] = None
     axialBearing: Optional[Any] = None
     sensors: Dict[str, Any] = field(default_factory=dict)
+    loadRotors: List[Dict[str, Any]] = field(default_factory=list)
 
 
 def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = ContactOptions(),
@@ -171,7 +176,7 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     mbs : exudyn.MainSystem
         The system to add the items to (``SC.AddSystem()``); it is not assembled here.
     drive : Drive
-        The drive (:func:`~exudyn_worm.drive.wholedrive.ResolveDrive`), without chains or a motor on its
+        The drive (:func:`~exudyn_worm.drive.wholedrive.ResolveDrive`), without a drive-side chain or a motor on its
         characteristic (e.g. ``ResolveDrive('reel-P1')``), with a duty; its shafts' bearings and masses
         (``drive.shaftSupports``) are used where the arguments below do not give them.
     contactOptions : ContactOptions
@@ -199,7 +204,7 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     Raises
     ------
     ValueError
-        For a parameter set with chains, a motor on its characteristic, a bearing given twice, a bad mass or a body
+        For a parameter set with a drive-side chain, a motor on its characteristic, a bearing given twice, a bad mass or a body
         on elastic bearings without its tilt inertia.
     """
     w = 'BuildRigidBodyReelChanger'
@@ -221,9 +226,10 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
             raise ValueError(f"{w}: the {body} on elastic bearings needs its tilt inertia: give {body}TiltInertia "
                              f"(kg*m^2, or its shape {body}Radius, {body}Length) in the drive, with the bearings "
                              f"([{body}] tiltInertia, [{body}Bearing]); the polar inertia is never used for it")
-    if whole.driveSideChain or whole.loadSideChain:
-        raise ValueError(f"{w}: the rigid-body reel changer has no drive-side or load-side chain: remove J4.., JL1.. "
-                         f"from the parameter set")
+    if whole.driveSideChain:
+        raise ValueError(f"{w}: the rigid-body reel changer has no drive-side chain: remove J4.. from the parameter "
+                         f"set")
+    loadChain = whole.loadSideChain
     axial = whole.axialBearing
     if axial is not None and wormBearings is not None:
         raise ValueError(f"{w}: give the worm's axial bearing once: as kA, dA, mA of the parameter set or in "
@@ -236,29 +242,30 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     profile = whole.motor if profile is None else profile
     angle0, motorSpeed = (float(x) for x in profile.AngleAndSpeed(0., MATH_OPS))
     if startFromEquilibrium:
-        init = SteadyInitialState(drive, load, motorSpeed, contactOptions, axial)
+        init = SteadyInitialState(drive, load, motorSpeed, contactOptions, axial, loadSide=loadChain)
     else:
         init, angle0, motorSpeed = {'phi1': 0., 'omega1': 0., 'phi2': 0., 'omega2': 0.}, 0., 0.
     init['phi0'], init['omega0'] = angle0, motorSpeed
     wormMass = axial.mass if axial is not None else wormMass
     if startFromEquilibrium and (wormBearings is not None or wheelBearings is not None):
         init.update(_StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass,
-                                 axial, init, profile, load, inertias))
+                                 axial, init, profile, load, inertias, loadChain))
     return _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
-                  axial, init, profile, load, inertias)
+                  axial, init, profile, load, inertias, loadChain)
 
 
 def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, axial, init,
-                 profile, load, inertias) -> Dict[str, Any]:
+                 profile, load, inertias, loadChain=()) -> Dict[str, Any]:
     """The bodies' poses with the bearings deflected by the initial mesh force: a static solve of the model at
     t = 0 with the contact state of the one-angle equilibrium ``init`` held, so that a run starts without the
-    bearings' transient. Returns ``wormPose``, ``wheelPose`` (displacement, rotation matrix) and ``phi0``, the
-    motor's angle held (unchanged)."""
+    bearings' transient. Returns ``wormPose``, ``wheelPose`` (displacement, rotation matrix) and the angles
+    ``phiL1, ...`` of the load-side chain's rotors."""
     import exudyn as exu
     S = 1 if init['omega1'] == 0. else int(np.sign(_StartS(drive, load, init, contactOptions)))
+    resting = {k: 0. for k in init if k.startswith('omega')}
     static = _Build(exu.SystemContainer().AddSystem(), drive, ContactOptions(fixedS=S, frictionModel='regularized'), True, wormBearings,
-                    wheelBearings, wormMass, wheelMass, axial, {**init, 'omega0': 0., 'omega1': 0., 'omega2': 0.},
-                    ConstantSpeed(0.), load, inertias)
+                    wheelBearings, wormMass, wheelMass, axial, {**init, **resting},
+                    ConstantSpeed(0.), load, inertias, loadChain)
     mbs = static.mbs
     mbs.Assemble()
     ss = exu.SimulationSettings()
@@ -273,6 +280,8 @@ def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, w
         position = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.Displacement), dtype=float)
         rotation = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.RotationMatrix), dtype=float).reshape(3, 3)
         out[body + 'Pose'] = (position, rotation)
+    for i, rotor in enumerate(static.loadRotors, start=1):   # the load-side chain twisted onto the wheel's pose
+        out[f'phiL{i}'] = float(np.ravel(mbs.GetNodeOutput(rotor['nodeNumber'], exu.OutputVariableType.Coordinates))[0])
     return out
 
 
@@ -284,10 +293,10 @@ def _StartS(drive, load, init, contactOptions) -> float:
 
 
 def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
-           axial, init, profile, load, inertias) -> RigidBodyReelChanger:
+           axial, init, profile, load, inertias, loadChain=()) -> RigidBodyReelChanger:
     """The system of :func:`BuildRigidBodyReelChanger` from the initial state ``init`` (phi0, omega0, phi1, omega1,
-    phi2, omega2, xA, vA), the motor ``profile``, the ``load`` (None: none) and the bodies' ``inertias``
-    (:func:`BodyInertiaTensors`)."""
+    phi2, omega2, xA, vA, phiL1, omegaL1, ...), the motor ``profile``, the ``load`` (None: none; on the last stage of
+    the load-side chain ``loadChain`` if there is one) and the bodies' ``inertias`` (:func:`BodyInertiaTensors`)."""
     import exudyn as exu
     from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate
     from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixZ
@@ -320,15 +329,20 @@ def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings,
     wormAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=worm['nodeNumber'], coordinate=TURN))
     mbs.AddObject(CoordinateSpringDamper(markerNumbers=[motor['markerNumber'], wormAngle], stiffness=drive.kT,
                                          damping=drive.dT, name='driveShaft'))
-    if load is not None:                       # the load torque on the wheel's turn about z (its last Rxyz angle)
-        wheelAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=wheel['nodeNumber'], coordinate=TURN))
+    wheelAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=wheel['nodeNumber'], coordinate=TURN))
+    # the load-side chain on the wheel's turn (its last Rxyz angle): wheel --kL1-- loadInertia1 --kL2-- ...
+    loadRotors = CreateLoadSideChain(mbs, {'markerNumber': wheelAngle, 'nodeNumber': wheel['nodeNumber']}, loadChain,
+                                     init)
+    if load is not None and loadRotors:        # the load torque on the chain's last stage
+        CreateRotorTorque(mbs, loadRotors[-1], load, name='reelLoad', useSymbolic=useSymbolic)
+    elif load is not None:                     # the load torque on the wheel's turn about z
         AddCoordinateForce(mbs, wheel['nodeNumber'], wheelAngle,
                            lambda t, phi, omega, ops: load.Torque(phi, omega, t, ops), name='reelLoad',
                            useSymbolic=useSymbolic, where=w, signature='load.Torque(phi, omega, t, ops)')
     connector = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=gear, wormAxis=[0., 0., 1.], wheelAxis=[0., 0., 1.],
                                         name='wormGear', contactOptions=contactOptions, useSymbolic=useSymbolic)
     return RigidBodyReelChanger(mbs.GetSystemContainer(), mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init),
-                                motor=motor, load=load, axialBearing=axial)
+                                motor=motor, load=load, axialBearing=axial, loadRotors=loadRotors)
 
 
 def BuildRigidBodyLinearizationModel(whole: Drive, S: Optional[int] = None,
@@ -363,7 +377,8 @@ def BuildRigidBodyLinearizationModel(whole: Drive, S: Optional[int] = None,
     supports, drive = CheckDrive(w, whole, 'whole').shaftSupports, whole.elastic
     g = drive.gear
     speed, deltaPhi = LinearizationStart(g, S, operatingPoint)
-    init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0., 'omega2': speed / g.ratio}
+    init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0., 'omega2': speed / g.ratio,
+            **{f'omegaL{i}': speed / g.ratio for i in range(1, len(whole.loadSideChain) + 1)}}
     options = ContactOptions() if S is None else ContactOptions(fixedS=S, dampingCanPull=True)
     axial = whole.axialBearing
     # the plain-Python law: the C++ law's auxiliary coordinates give the same eigenvalues, but which coordinates
@@ -372,7 +387,7 @@ def BuildRigidBodyLinearizationModel(whole: Drive, S: Optional[int] = None,
     inertias = BodyInertiaTensors(whole)
     model = _Build(exu.SystemContainer().AddSystem(), drive, options, False, None if supports is None else supports.wormBearings,
                    None if supports is None else supports.wheelBearings, inertias['worm'].mass,
-                   inertias['wheel'].mass, axial, init, ConstantSpeed(speed), None, inertias)
+                   inertias['wheel'].mass, axial, init, ConstantSpeed(speed), None, inertias, whole.loadSideChain)
     model.mbs.Assemble()
     return model.systemContainer, model.mbs
 
