@@ -39,7 +39,7 @@ def emptyWorkingDirectory(tmp_path, monkeypatch):
 
 
 #: results of deterministic analyses that several tests compute with the same arguments (the 3D model's steady
-#: chatter and branch of examples/drives/reel-3d.toml: minutes each, mostly its settling run): computed once per
+#: chatter and branch of examples/drives/reel-3d-chatter.toml: minutes each, mostly its settling run): computed once per
 #: test run by :func:`Shared` and handed to each caller as a copy
 _SHARED = {}
 #: [the folder where :func:`Shared` leaves its results for the other pytest-xdist workers of the run]

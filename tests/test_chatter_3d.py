@@ -18,7 +18,7 @@ from exudyn_worm.drive.presets import GetPreset
 from exudyn_worm.drive.wholedrive import ResolveDrive
 
 pytest.importorskip('exudyn')
-DRIVE_3D = 'examples/drives/reel-3d.toml'
+DRIVE_3D = 'examples/drives/reel-3d-chatter.toml'
 
 
 def _Run(capsys, *argv):
@@ -83,7 +83,7 @@ def test_chatter_plot_needs_vary(capsys):
 
 def test_lowering_point_of_the_bearing_drive_has_a_barely_damped_tilt_mode_beside_the_chatter():
     # the measured reason why the 3D model settles slowly (docs/chatter-amplitude.md, "The 3D model"): at the lowering
-    # point of reel-3d.toml a mode at 30.97 Hz has Re = -0.014 1/s (damping ratio 7e-5, decay time 70 s), and the
+    # point of reel-3d-chatter.toml a mode at 30.97 Hz has Re = -0.014 1/s (damping ratio 7e-5, decay time 70 s), and the
     # unstable (chatter) mode is at 31.8 Hz beside it, not the one-angle model's 40 Hz
     state = AnalyzeDrive(ResolveDrive(config=DRIVE_3D)).State(-1)
     ev = np.asarray(state.eigenvalues)
@@ -98,7 +98,7 @@ def test_lowering_point_of_the_bearing_drive_has_a_barely_damped_tilt_mode_besid
 @pytest.mark.slow
 @pytest.mark.usefixtures('sharedChatterAnalyses')      # computed once for --json, the text and test_chatter_vary_3d.py
 def test_chatter_reports_the_steady_chatter_of_a_drive_with_shaft_bearings(capsys):
-    # measured on reel-3d.toml: a 20 s time simulation (step 1e-4 s) settles to a motion of period 32.224 ms on the
+    # measured on reel-3d-chatter.toml: a 20 s time simulation (step 1e-4 s) settles to a motion of period 32.224 ms on the
     # Poincare section (wheel-speed crossings, period spread 1 us), force factor 2.741, |phi2''| 112.6 rad/s^2, worm
     # speed down to 48.20 rad/s over its last 2 s; shooting from the section point of a 14-16 s run converges to it
     status, out, err = _Run(capsys, 'chatter', '--config', DRIVE_3D, '--json')

@@ -19,12 +19,13 @@ from exudyn_worm.drive.wholedrive import ResolveDrive
 from conftest import Shared
 
 pytest.importorskip('exudyn')
-DRIVE_3D = 'examples/drives/reel-3d.toml'
+DRIVE_3D = 'examples/drives/reel-3d-chatter.toml'
 #: the static normal force of reel-P1's lowering point in N (tests/test_chatter_3d.py)
 STATIC_NORMAL_FORCE = 20513.1
 BEARING_KEYS = ('wormRadialStiffness', 'wormAxialStiffness', 'wormRadialDamping', 'wormAxialDamping',
                 'wormBearingSpan', 'wheelRadialStiffness', 'wheelAxialStiffness', 'wheelRadialDamping',
-                'wheelAxialDamping', 'wheelBearingSpan', 'wormMass', 'wheelMass')
+                'wheelAxialDamping', 'wheelBearingSpan', 'wormMass', 'wheelMass', 'wormTiltInertia',
+                'wheelTiltInertia')
 
 
 def _Parameters():
@@ -107,7 +108,7 @@ def test_chatter_vary_on_a_bearing_drive_with_a_chain_key_prints_one_line(capsys
 
 @pytest.fixture(scope='module')
 def stiffnessBranch():
-    # reel-3d.toml's wheel bearings (1e9 N/m) +-5 %: linearly unstable on the whole range, so the first orbit is at
+    # reel-3d-chatter.toml's wheel bearings (1e9 N/m) +-5 %: linearly unstable on the whole range, so the first orbit is at
     # the drive's own value, as without --vary; two orbits in each direction (about 30 s on the 2-core machine);
     # the same branch as the command line's in test_chatter_vary_on_a_bearing_drive_gives_the_3d_branch_as_json,
     # computed once for both (conftest.Shared)

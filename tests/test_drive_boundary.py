@@ -75,7 +75,8 @@ def test_set_takes_zero_units_and_the_plain_numbers_of_other_quantities(text, va
 def test_the_rule_covers_every_angle_speed_and_length_of_the_registry():
     required = {p.key for p in PARAMETERS if p.kind == 'number' and p.unit in UNIT_REQUIRED}
     assert {'alphaN', 'gamma', 'rho', 'r1', 'r2', 'a', 'mx', 'backlash', 'leverArm', 'motorSpeed',
-            'noLoadSpeed', 'wormBearingSpan', 'wheelBearingSpan'} == required
+            'noLoadSpeed', 'wormBearingSpan', 'wheelBearingSpan', 'wormRadius', 'wormInnerRadius', 'wormLength',
+            'wheelRadius', 'wheelInnerRadius', 'wheelLength'} == required
     assert all(PARAMETERS.UnitRequired(k) for k in required) and not PARAMETERS.UnitRequired('J2')
 
 

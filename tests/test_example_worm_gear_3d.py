@@ -43,3 +43,14 @@ def test_bearing_loads_start_from_the_static_mesh_force(example):
     for key in ('wormAxial', 'wormRadial', 'wheelAxial', 'wheelRadial'):
         assert series[key][0] > 100.
         assert loads[key] == pytest.approx(series[key][0], rel=1e-4), key
+
+
+def test_without_a_display_the_frame_says_why(example, tmp_path, monkeypatch):
+    """--out without a display and without xvfb-run: the frame's file is a picture that says why, and the line
+    printed says so too (no window is opened)."""
+    monkeypatch.delenv('DISPLAY', raising=False)
+    monkeypatch.setattr(example.shutil, 'which', lambda name: None)
+    line = example.WriteFrame(str(tmp_path))
+    assert line == (f"wrote {tmp_path / example.FRAME} without a rendered frame: no display is set and xvfb-run "
+                    f"(Debian package xvfb) is not installed")
+    assert (tmp_path / example.FRAME).read_bytes()[:8] == b'\x89PNG\r\n\x1a\n'

@@ -7,7 +7,6 @@ import pytest
 from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
 from exudyn_worm.builders.oneangle import BuildReelChanger
 from exudyn_worm.builders.rigidbody import BuildRigidBodyReelChanger
-from exudyn_worm.items.bearings import ShaftBearings
 from exudyn_worm.drive.presets import GetPreset
 from exudyn_worm.drive.wholedrive import ResolveDrive
 
@@ -40,8 +39,11 @@ def test_ideal_joints_give_the_eigenvalues_of_the_one_angle_model(extra):
 def test_elastic_bearings_add_modes_with_their_bearing_named():
     """Elastic bearings (worm 5e8 N/m radial, 3e8 N/m axial): more modes; the worm's axial motion (its node's y)
     takes the largest energy share of one of them, and the torsional chatter pair stays near 40 Hz."""
-    model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=P1), wormBearings=ShaftBearings(5e8, 3e8, span=0.12),
-                                      wheelBearings=ShaftBearings(1e9, 1e9, span=0.05), model='exact')
+    bearings = dict(wormMass=5., wormRadialStiffness=5e8, wormAxialStiffness=3e8, wormBearingSpan=0.12,
+                    wormTiltInertia=0.1, wheelMass=30., wheelRadialStiffness=1e9, wheelAxialStiffness=1e9,
+                    wheelBearingSpan=0.05, wheelTiltInertia=33.)
+    model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters={**P1, **bearings}),
+                                      model='exact')
     model.mbs.Assemble()
     state = AnalyzeLinearStability(model.mbs).State(-1)
     assert len(state.modes) > 2

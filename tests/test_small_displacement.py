@@ -18,7 +18,6 @@ from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
 from exudyn_worm.builders.rigidbody import BodyInertiaTensors, BuildRigidBodyReelChanger, DefaultModel
 from exudyn_worm.drive.presets import GetPreset
 from exudyn_worm.drive.wholedrive import ResolveDrive
-from exudyn_worm.items.bearings import ShaftBearings
 from exudyn_worm.items.smallmesh import SmallWormGearConnector
 
 pytest.importorskip('exudyn')
@@ -51,9 +50,11 @@ def test_bearing_tables_build_the_small_displacement_model_by_default():
     assert DefaultModel(None, drive.shaftSupports.wheelBearings) == 'exact'
     exact = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), drive, model='exact')
     assert exact.model == 'exact' and not isinstance(exact.connector, SmallWormGearConnector)
-    worm, wheel = BodyInertiaTensors(drive)
-    np.testing.assert_array_equal(worm, np.diag([drive.elastic.J1] * 3))
-    np.testing.assert_array_equal(wheel, np.diag([drive.elastic.J2] * 3))
+    inertias = BodyInertiaTensors(drive)        # both models take the bodies' inertias from here
+    for body, J in (('worm', drive.elastic.J1), ('wheel', drive.elastic.J2)):
+        t = inertias[body]
+        assert t.tiltGiven and t.tensor[0, 0] == t.tensor[1, 1] > 0.
+        assert t.tensor[2, 2] + t.shaftInertia == pytest.approx(J, rel=1e-12)
 
 
 @pytest.mark.messages
@@ -61,9 +62,10 @@ def test_a_model_that_does_not_fit_is_refused_with_its_argument():
     drive = ResolveDrive(parameters=GetPreset('reel-P1'))
     with pytest.raises(ValueError, match=r"'model' must be one of 'small', 'exact' or None, got 'linear'"):
         BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), drive, model='linear')
+    wormOnly = ResolveDrive(parameters={**GetPreset('reel-P1'), 'wormRadialStiffness': 5e8, 'wormAxialStiffness': 5e8,
+                                        'wormBearingSpan': 0.12, 'wormMass': 5., 'wormTiltInertia': 0.1})
     with pytest.raises(ValueError, match=r"model='small' needs both shafts on linear bearings"):
-        BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), drive, model='small',
-                                  wormBearings=ShaftBearings(5e8, 5e8, span=0.12))
+        BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), wormOnly, model='small')
 
 
 @pytest.mark.physics

@@ -11,20 +11,21 @@ global z), so the drive shaft and the load act on those coordinates (the torque 
 the mesh law runs in C++ (``useSymbolic``, :func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear`). The
 centre line is global +x; the pitch point is at x = r1.
 
-Parameter sets: those of the reel changer without drive-side or load-side chains, with a constant-speed motor (the
+Parameter sets: those of the reel changer without a drive-side chain (a load-side chain acts on the wheel's turn,
+the load on its last stage), with a constant-speed motor (the
 presets reel-P1 ... reel-P7); an axial bearing ``kA, dA, mA`` lets the worm (of mass mA) slide on its revolute
 joint against the axial spring-damper, the model of :func:`~exudyn_worm.items.connector.CreateWormAxialBearing`.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Dict, Optional, Tuple
+from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
 from .._checks import CheckPositive
 from ..items.bearings import WHEEL_MASS, WORM_MASS, ShaftBearings, CreateShaftBearings
-from ..items.drivetrain import CreatePrescribedRotation, CreateRotor
+from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateRotorTorque
 from ..items.equilibrium import SteadyInitialState
 from ..items._userfunctions import AddCoordinateForce
 from ..items.rigidmesh import CreateRigidBodyWormGear, RigidBodyWormGearConnector
@@ -37,11 +38,12 @@ from .oneangle import CheckModelDrive
 from .start import LinearizationPoint
 
 __all__ = ['WORM_AXIS', 'WHEEL_AXIS', 'WORM_REFERENCE', 'TURN', 'MODELS', 'RigidBodyReelChanger',
-           'BuildRigidBodyReelChanger', 'BodyInertiaTensors', 'DefaultModel']
+           'BuildRigidBodyReelChanger', 'BodyInertiaTensor', 'BodyInertiaTensors', 'DefaultModel']
 
 
-#: the worm's axis (global): its turn is about -y, so that with the wheel's axis +z and the centre line +x the thread is
-#: right-handed, as in the one-angle model's sign conventions
+#: the worm's axis (global): its turn is about -y, so that with the wheel's axis +z and the centre line +x a positive
+#: worm rotation turns the wheel positively, as in the one-angle model's sign conventions; the mesh's hand is then
+#: h = +1, a left-handed thread (:attr:`~exudyn_worm.items.rigidmesh.MeshGeometry.rightHanded`)
 WORM_AXIS = np.array([0., -1., 0.])
 #: the wheel's axis (global)
 WHEEL_AXIS = np.array([0., 0., 1.])
@@ -55,27 +57,10 @@ TURN = 5
 MODELS = ('small', 'exact')
 
 
-def BodyInertiaTensors(drive: Drive) -> Tuple[np.ndarray, np.ndarray]:
-    """The inertia tensors of the worm and the wheel body of the 3D model, in body coordinates (local z: the axis).
-
-    Parameters
-    ----------
-    drive : Drive
-        The drive.
-
-    Returns
-    -------
-    (ndarray, ndarray)
-        Worm and wheel, 3 x 3 in kg*m^2: J1 and J2 about every axis.
-    """
-    core = CheckDrive('BodyInertiaTensors', drive, 'drive').elastic
-    return np.diag([core.J1] * 3), np.diag([core.J2] * 3)
-
-
 def DefaultModel(wormBearings: Optional[ShaftBearings], wheelBearings: Optional[ShaftBearings],
-                 axialBearing: Optional[Any] = None) -> str:
+                 axialBearing: Optional[Any] = None, loadSideChain: Sequence = ()) -> str:
     """The 3D model :func:`BuildRigidBodyReelChanger` builds by default: ``'small'`` when both shafts sit on
-    linear bearings (and the worm has no separate axial bearing), else ``'exact'``.
+    linear bearings (and the worm has no separate axial bearing, the wheel no load-side chain), else ``'exact'``.
 
     Parameters
     ----------
@@ -83,13 +68,81 @@ def DefaultModel(wormBearings: Optional[ShaftBearings], wheelBearings: Optional[
         The shafts' bearings (None: an ideal revolute joint).
     axialBearing : AxialBearing, optional
         The worm's axial bearing ``kA, dA, mA`` on its joint.
+    loadSideChain : sequence, optional
+        The load-side chain ``(J, k, d), ...`` on the wheel's turn.
 
     Returns
     -------
     str
         An entry of :data:`MODELS`.
     """
-    return 'small' if wormBearings is not None and wheelBearings is not None and axialBearing is None else 'exact'
+    return ('small' if wormBearings is not None and wheelBearings is not None and axialBearing is None
+            and not loadSideChain else 'exact')
+
+
+class BodyInertiaTensor(NamedTuple):
+    """One body of the 3D model: what :func:`BodyInertiaTensors` gives for it.
+
+    Attributes
+    ----------
+    mass : float
+        The body's mass in kg.
+    tensor : numpy.ndarray
+        3x3 inertia tensor in kg*m^2 about the centre of mass (the body's reference point), in body coordinates
+        with the local z along the axis: ``diag(tilt, tilt, polar)`` with the body's own polar inertia.
+    shaftInertia : float
+        Inertia in kg*m^2 about the axis that turns with the body without tilting with it (the shaft's J1 or J2 less
+        the body's own polar inertia: a motor rotor behind a coupling, a reel on its own bearings); it acts on the
+        body's turn alone.
+    tiltGiven : bool
+        Whether the tilt inertia came from the drive; False for a body on an ideal revolute joint without it, whose
+        tilt the joint holds: its tilt entries are then half the polar one and enter no result.
+    """
+    mass: float
+    tensor: np.ndarray
+    shaftInertia: float
+    tiltGiven: bool
+
+
+def BodyInertiaTensors(drive: Drive) -> Dict[str, BodyInertiaTensor]:
+    """The inertias of the 3D model's worm and wheel bodies: the one place the model builders take them from.
+
+    Each body is a body of revolution turning about its local z: its tensor about its centre is
+    ``diag(tilt, tilt, polar)`` with its own polar and tilt inertia (``[worm] tiltInertia``, ``polarInertia`` or a
+    shape, :func:`~exudyn_worm.drive.presets.ShaftSupportsFromParameters`); what else is on its shaft (J1 or J2
+    less its own polar inertia) turns with it but does not tilt with it (``shaftInertia``). Without a tilt inertia
+    the drive's body must be on an ideal joint (the drive refuses elastic bearings without it); its tensor is then
+    ``diag(J/2, J/2, J)`` with the shaft's J, which the joint's held tilt keeps out of every result.
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive (:func:`~exudyn_worm.drive.wholedrive.ResolveDrive`).
+
+    Returns
+    -------
+    dict
+        ``'worm'``, ``'wheel'``: a :class:`BodyInertiaTensor` each.
+
+    Raises
+    ------
+    TypeError
+        If ``drive`` is not a Drive.
+    """
+    CheckDrive('BodyInertiaTensors', drive, 'drive')
+    supports, elastic = drive.shaftSupports, drive.elastic
+    axial = drive.axialBearing
+    out = {}
+    for body, J, default in (('worm', elastic.J1, WORM_MASS), ('wheel', elastic.J2, WHEEL_MASS)):
+        own = None if supports is None else getattr(supports, body + 'Inertia')
+        mass = default if supports is None else getattr(supports, body + 'Mass')
+        if body == 'worm' and axial is not None:
+            mass = axial.mass
+        if own is None:
+            out[body] = BodyInertiaTensor(mass, np.diag([J / 2., J / 2., J]), 0., False)
+        else:
+            out[body] = BodyInertiaTensor(own.mass, np.diag([own.tilt, own.tilt, own.polar]), J - own.polar, True)
+    return out
 
 
 @dataclass
@@ -123,6 +176,9 @@ class RigidBodyReelChanger:
         ``'exact'`` (rigid bodies) or ``'small'`` (the small-displacement model; ``connector`` is then a
         :class:`~exudyn_worm.items.smallmesh.SmallWormGearConnector`, ``bodies`` its two nodes, ``inputs`` and
         ``shafts``, and ``bearings`` the shafts' names: its bearing loads come from the connector).
+    loadRotors : list of dict
+        The rotors of the drive's load-side chain on the wheel's turn (``[[loadSide]]``, wheel side first; the load
+        acts on the last), :func:`~exudyn_worm.items.drivetrain.CreateLoadSideChain`.
     """
     systemContainer: Any
     mbs: Any
@@ -136,6 +192,7 @@ class RigidBodyReelChanger:
     axialBearing: Optional[Any] = None
     sensors: Dict[str, Any] = field(default_factory=dict)
     model: str = 'exact'
+    loadRotors: List[Dict[str, Any]] = field(default_factory=list)
 
 
 def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = ContactOptions(),
@@ -153,7 +210,7 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     mbs : exudyn.MainSystem
         The system to add the items to (``SC.AddSystem()``); it is not assembled here.
     drive : Drive
-        The drive (:func:`~exudyn_worm.drive.wholedrive.ResolveDrive`), without chains or a motor on its
+        The drive (:func:`~exudyn_worm.drive.wholedrive.ResolveDrive`), without a drive-side chain or a motor on its
         characteristic (e.g. ``ResolveDrive('reel-P1')``), with a duty; its shafts' bearings and masses
         (``drive.shaftSupports``) are used where the arguments below do not give them.
     contactOptions : ContactOptions
@@ -165,7 +222,8 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
         Elastic bearings of the shafts; None (default): those of the parameter set, else ideal revolute joints.
     wormMass, wheelMass : float, optional
         Masses in kg of the bodies (> 0); default those of the parameter set, else :data:`WORM_MASS`,
-        :data:`WHEEL_MASS`. The moments of inertia about the axes are J1 and J2 of the set.
+        :data:`WHEEL_MASS`. The moments of inertia are those of :func:`BodyInertiaTensors`; a body on elastic
+        bearings needs its tilt inertia in the drive (``wormTiltInertia`` or its shape, docs/mesh-3d.md).
     profile : optional
         Motor motion with ``AngleAndSpeed(t, ops)`` (default: the duty's motor,
         :func:`~exudyn_worm.drive.duty.MotorFromParameters`).
@@ -191,8 +249,9 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     Raises
     ------
     ValueError
-        For a parameter set with chains, a motor on its characteristic, a bearing given twice, a bad mass or a
-        model that is not one of :data:`MODELS` or does not fit the supports.
+        For a parameter set with a drive-side chain, a motor on its characteristic, a bearing given twice, a bad
+        mass, a body on elastic bearings without its tilt inertia, or a model that is not one of :data:`MODELS` or
+        does not fit the supports.
     """
     w = 'BuildRigidBodyReelChanger'
     CheckModelDrive(w, drive, linearization)
@@ -207,9 +266,16 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
         wheelMass = supports.wheelMass if wheelMass is None else wheelMass
     wormMass = CheckPositive(w, 'wormMass', WORM_MASS if wormMass is None else wormMass, 'kg')
     wheelMass = CheckPositive(w, 'wheelMass', WHEEL_MASS if wheelMass is None else wheelMass, 'kg')
-    if whole.driveSideChain or whole.loadSideChain:
-        raise ValueError(f"{w}: the rigid-body reel changer has no drive-side or load-side chain: remove J4.., JL1.. "
-                         f"from the parameter set")
+    inertias = BodyInertiaTensors(whole)
+    for body, bearings in (('worm', wormBearings), ('wheel', wheelBearings)):
+        if bearings is not None and not inertias[body].tiltGiven:
+            raise ValueError(f"{w}: the {body} on elastic bearings needs its tilt inertia: give {body}TiltInertia "
+                             f"(kg*m^2, or its shape {body}Radius, {body}Length) in the drive, with the bearings "
+                             f"([{body}] tiltInertia, [{body}Bearing]); the polar inertia is never used for it")
+    if whole.driveSideChain:
+        raise ValueError(f"{w}: the rigid-body reel changer has no drive-side chain: remove J4.. from the parameter "
+                         f"set")
+    loadChain = whole.loadSideChain
     axial = whole.axialBearing
     if axial is not None and wormBearings is not None:
         raise ValueError(f"{w}: give the worm's axial bearing once: as kA, dA, mA of the parameter set or in "
@@ -220,28 +286,28 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     drive = whole.elastic
     if linearization is not None:        # every body at the point's speed, the worm turned into contact
         speed, deltaPhi = linearization.Start(drive.gear)
-        init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0.,
-                'omega2': speed / drive.gear.ratio}
+        wheelSpeed = speed / drive.gear.ratio
+        init = {'phi0': 0., 'omega0': speed, 'phi1': deltaPhi, 'omega1': speed, 'phi2': 0., 'omega2': wheelSpeed,
+                **{f'omegaL{i}': wheelSpeed for i in range(1, len(loadChain) + 1)}}
         return _Build(mbs, drive, linearization.ContactOptions(contactOptions), useSymbolic, wormBearings,
-                      wheelBearings, axial.mass if axial is not None else wormMass, wheelMass,
-                      BodyInertiaTensors(whole), axial, init, ConstantSpeed(speed), None)
+                      wheelBearings, axial.mass if axial is not None else wormMass, wheelMass, axial, init,
+                      ConstantSpeed(speed), None, inertias, loadChain)
     load = whole.load
     profile = whole.motor if profile is None else profile
     angle0, motorSpeed = (float(x) for x in profile.AngleAndSpeed(0., MATH_OPS))
     if startFromEquilibrium:
-        init = SteadyInitialState(drive, load, motorSpeed, contactOptions, axial)
+        init = SteadyInitialState(drive, load, motorSpeed, contactOptions, axial, loadSide=loadChain)
     else:
         init, angle0, motorSpeed = {'phi1': 0., 'omega1': 0., 'phi2': 0., 'omega2': 0.}, 0., 0.
     init['phi0'], init['omega0'] = angle0, motorSpeed
     wormMass = axial.mass if axial is not None else wormMass
-    default = DefaultModel(wormBearings, wheelBearings, axial)
+    default = DefaultModel(wormBearings, wheelBearings, axial, loadChain)
     model = default if model is None else model
     if model not in MODELS:
         raise ValueError(f"{w}: 'model' must be one of {', '.join(map(repr, MODELS))} or None, got {model!r}")
     if model == 'small' and default != 'small':
         raise ValueError(f"{w}: model='small' needs both shafts on linear bearings (wormBearings and wheelBearings, "
-                         f"no kA of the parameter set); use model='exact' for ideal joints")
-    inertias = BodyInertiaTensors(whole)
+                         f"no kA of the parameter set) and no load-side chain; use model='exact'")
     if model == 'small':
         if startFromEquilibrium:
             init['shafts'] = _SmallStaticCoordinates(drive, contactOptions, wormBearings, wheelBearings, wormMass,
@@ -250,9 +316,9 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
                            wheelMass, inertias, init, profile, load)
     if startFromEquilibrium and (wormBearings is not None or wheelBearings is not None):
         init.update(_StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass,
-                                 inertias, axial, init, profile, load))
+                                 axial, init, profile, load, inertias, loadChain))
     return _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
-                  inertias, axial, init, profile, load)
+                  axial, init, profile, load, inertias, loadChain)
 
 
 def _StaticSettings():
@@ -297,10 +363,11 @@ def _BuildSmall(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBear
     v0 = np.zeros(12)
     v0[TURN], v0[6 + TURN] = init['omega1'], init['omega2']
     bodies = [SmallDisplacementBody(referencePosition=[0., 0., 0.], referenceRotation=WORM_REFERENCE, mass=wormMass,
-                                    inertia=inertias[0], bearings=wormBearings, spinSpeed=init['omega1']),
+                                    inertia=inertias['worm'].tensor, bearings=wormBearings, spinSpeed=init['omega1'],
+                                    shaftInertia=inertias['worm'].shaftInertia),
               SmallDisplacementBody(referencePosition=[gear.r1 + gear.r2, 0., 0.], referenceRotation=np.eye(3),
-                                    mass=wheelMass, inertia=inertias[1], bearings=wheelBearings,
-                                    spinSpeed=init['omega2'])]
+                                    mass=wheelMass, inertia=inertias['wheel'].tensor, bearings=wheelBearings,
+                                    spinSpeed=init['omega2'], shaftInertia=inertias['wheel'].shaftInertia)]
     connector = CreateSmallDisplacementWormGear(mbs, bodies, gear, contactOptions, initialCoordinates=q0,
                                                 initialVelocities=v0, name='wormGear', useSymbolic=useSymbolic)
     motor = CreateRotor(mbs, 1e-3, initialAngle=init['phi0'], initialSpeed=init['omega0'], name='motor')
@@ -319,17 +386,18 @@ def _BuildSmall(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBear
                                 motor=motor, load=load, model='small')
 
 
-def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, inertias, axial, init,
-                 profile, load) -> Dict[str, Any]:
+def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass, axial, init,
+                 profile, load, inertias, loadChain=()) -> Dict[str, Any]:
     """The bodies' poses with the bearings deflected by the initial mesh force: a static solve of the model at
     t = 0 with the contact state of the one-angle equilibrium ``init`` held, so that a run starts without the
-    bearings' transient. Returns ``wormPose``, ``wheelPose`` (displacement, rotation matrix) and ``phi0``, the
-    motor's angle held (unchanged)."""
+    bearings' transient. Returns ``wormPose``, ``wheelPose`` (displacement, rotation matrix) and the angles
+    ``phiL1, ...`` of the load-side chain's rotors."""
     import exudyn as exu
     S = 1 if init['omega1'] == 0. else int(np.sign(_StartS(drive, load, init, contactOptions)))
+    resting = {k: 0. for k in init if k.startswith('omega')}
     static = _Build(exu.SystemContainer().AddSystem(), drive, ContactOptions(fixedS=S, frictionModel='regularized'), True, wormBearings,
-                    wheelBearings, wormMass, wheelMass, inertias, axial,
-                    {**init, 'omega0': 0., 'omega1': 0., 'omega2': 0.}, ConstantSpeed(0.), load)
+                    wheelBearings, wormMass, wheelMass, axial, {**init, **resting},
+                    ConstantSpeed(0.), load, inertias, loadChain)
     mbs = static.mbs
     mbs.Assemble()
     mbs.SolveStatic(_StaticSettings())
@@ -339,6 +407,8 @@ def _StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, w
         position = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.Displacement), dtype=float)
         rotation = np.asarray(mbs.GetNodeOutput(node, exu.OutputVariableType.RotationMatrix), dtype=float).reshape(3, 3)
         out[body + 'Pose'] = (position, rotation)
+    for i, rotor in enumerate(static.loadRotors, start=1):   # the load-side chain twisted onto the wheel's pose
+        out[f'phiL{i}'] = float(np.ravel(mbs.GetNodeOutput(rotor['nodeNumber'], exu.OutputVariableType.Coordinates))[0])
     return out
 
 
@@ -349,10 +419,11 @@ def _StartS(drive, load, init, contactOptions) -> float:
                                         axialSpeed=init.get('vA')).S))
 
 
-def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass, inertias,
-           axial, init, profile, load) -> RigidBodyReelChanger:
+def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass,
+           axial, init, profile, load, inertias, loadChain=()) -> RigidBodyReelChanger:
     """The system of :func:`BuildRigidBodyReelChanger` from the initial state ``init`` (phi0, omega0, phi1, omega1,
-    phi2, omega2, xA, vA), the motor ``profile`` and the ``load`` (None: none)."""
+    phi2, omega2, xA, vA, phiL1, omegaL1, ...), the motor ``profile``, the ``load`` (None: none; on the last stage of
+    the load-side chain ``loadChain`` if there is one) and the bodies' ``inertias`` (:func:`BodyInertiaTensors`)."""
     import exudyn as exu
     from exudyn.itemInterface import CoordinateSpringDamper, MarkerNodeCoordinate
     from exudyn.rigidBodyUtilities import RigidBodyInertia, RotationMatrixZ
@@ -367,15 +438,17 @@ def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings,
     wheelPose = init.get('wheelPose', (np.zeros(3), RotationMatrixZ(init['phi2'])))
     worm = mbs.CreateRigidBody(name='worm', nodeType=exu.NodeType.RotationRxyz, referencePosition=[0., 0., 0.],
                                referenceRotationMatrix=WORM_REFERENCE,
-                               inertia=RigidBodyInertia(mass=wormMass, inertiaTensor=inertias[0]),
+                               inertia=RigidBodyInertia(mass=wormMass, inertiaTensor=inertias['worm'].tensor),
                                initialRotationMatrix=WORM_REFERENCE.T @ wormPose[1],
                                initialDisplacement=list(wormPose[0]),
                                initialVelocity=list(init.get('vA', 0.) * WORM_AXIS),
                                initialAngularVelocity=list(init['omega1'] * WORM_AXIS), returnDict=True)
     wheel = mbs.CreateRigidBody(name='wheel', nodeType=exu.NodeType.RotationRxyz, referencePosition=[a, 0., 0.],
-                                inertia=RigidBodyInertia(mass=wheelMass, inertiaTensor=inertias[1]),
+                                inertia=RigidBodyInertia(mass=wheelMass, inertiaTensor=inertias['wheel'].tensor),
                                 initialRotationMatrix=wheelPose[1], initialDisplacement=list(wheelPose[0]),
                                 initialAngularVelocity=list(init['omega2'] * WHEEL_AXIS), returnDict=True)
+    for body, name in ((worm, 'worm'), (wheel, 'wheel')):
+        _ShaftInertia(mbs, body['nodeNumber'], inertias[name].shaftInertia, name)
     bearings = {'worm': _Support(mbs, worm, WORM_AXIS, wormBearings, 'worm', axial),
                 'wheel': _Support(mbs, wheel, WHEEL_AXIS, wheelBearings, 'wheel')}
     motor = CreateRotor(mbs, 1e-3, initialAngle=init['phi0'], initialSpeed=init['omega0'], name='motor')
@@ -383,15 +456,32 @@ def _Build(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings,
     wormAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=worm['nodeNumber'], coordinate=TURN))
     mbs.AddObject(CoordinateSpringDamper(markerNumbers=[motor['markerNumber'], wormAngle], stiffness=drive.kT,
                                          damping=drive.dT, name='driveShaft'))
-    if load is not None:                       # the load torque on the wheel's turn about z (its last Rxyz angle)
-        wheelAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=wheel['nodeNumber'], coordinate=TURN))
+    wheelAngle = mbs.AddMarker(MarkerNodeCoordinate(nodeNumber=wheel['nodeNumber'], coordinate=TURN))
+    # the load-side chain on the wheel's turn (its last Rxyz angle): wheel --kL1-- loadInertia1 --kL2-- ...
+    loadRotors = CreateLoadSideChain(mbs, {'markerNumber': wheelAngle, 'nodeNumber': wheel['nodeNumber']}, loadChain,
+                                     init)
+    if load is not None and loadRotors:        # the load torque on the chain's last stage
+        CreateRotorTorque(mbs, loadRotors[-1], load, name='reelLoad', useSymbolic=useSymbolic)
+    elif load is not None:                     # the load torque on the wheel's turn about z
         AddCoordinateForce(mbs, wheel['nodeNumber'], wheelAngle,
                            lambda t, phi, omega, ops: load.Torque(phi, omega, t, ops), name='reelLoad',
                            useSymbolic=useSymbolic, where=w, signature='load.Torque(phi, omega, t, ops)')
     connector = CreateRigidBodyWormGear(mbs, [worm, wheel], gear=gear, wormAxis=[0., 0., 1.], wheelAxis=[0., 0., 1.],
                                         name='wormGear', contactOptions=contactOptions, useSymbolic=useSymbolic)
     return RigidBodyReelChanger(mbs.GetSystemContainer(), mbs, connector, {'worm': worm, 'wheel': wheel}, bearings, drive, dict(init),
-                                motor=motor, load=load, axialBearing=axial)
+                                motor=motor, load=load, axialBearing=axial, loadRotors=loadRotors)
+
+
+def _ShaftInertia(mbs, node: int, inertia: float, name: str) -> Optional[int]:
+    """What turns with a body without tilting with it: ``inertia`` (kg*m^2) on the node's turn coordinate alone, an
+    ``ObjectGenericODE2`` with that one mass entry and no forces (nothing if ``inertia`` is 0)."""
+    if inertia <= 0.:
+        return None
+    from exudyn.itemInterface import ObjectGenericODE2
+    mass = np.zeros((6, 6))
+    mass[TURN, TURN] = inertia
+    return mbs.AddObject(ObjectGenericODE2(nodeNumbers=[node], massMatrix=mass, stiffnessMatrix=np.zeros((6, 6)),
+                                           dampingMatrix=np.zeros((6, 6)), name=name + 'ShaftInertia'))
 
 
 def _Support(mbs, body, axis, bearings: Optional[ShaftBearings], name: str, axial=None):

@@ -48,6 +48,7 @@ from ..model.gear import WormGear
 from ..model.geometry import GEOMETRY_FORMS, GEOMETRY_KEYS, GeometryForm, GeometryFromParameters, MissingGeometryKeys
 from ..params.parameters import PARAMETERS, MissingParameterError, ParameterError
 from ..items.bearings import WHEEL_MASS, WORM_MASS, ShaftBearings, ShaftSupports
+from ..model.bodies import BodyInertia, CheckBodyInertia, CylinderInertia
 from ..model.friction import FrictionLaw, ReadFrictionTable
 from ..model.stability import CharacteristicCoefficients
 
@@ -57,7 +58,7 @@ __all__ = ['DRIVE_KEYS', 'REEL_KEYS', 'DUTY_KEYS', 'CHAIN_KEYS', 'AXIAL_KEYS', '
            'FrictionLawFromParameters',
            'DriveFromParameters', 'ElasticDriveFromParameters', 'ElasticDriveWithGear',
            'DriveSideChain', 'LoadSideChain', 'LOAD_CHAIN_KEYS',
-           'AxialBearingFromParameters', 'ShaftSupportsFromParameters', 'SHAFT_KEYS', 'MAX_RATE', 'MIN_RATE_SPREAD']
+           'AxialBearingFromParameters', 'ShaftSupportsFromParameters', 'SHAFT_KEYS', 'BODY_KEYS', 'MAX_RATE', 'MIN_RATE_SPREAD']
 
 #: keys of the elastic drive (Figure 2): the drive-file tables [gear], [worm], [wheel], [driveShaft]
 DRIVE_KEYS = PARAMETERS.KeysOf('gear', 'worm', 'wheel', 'driveShaft')
@@ -72,8 +73,11 @@ CHAIN_KEYS = PARAMETERS.KeysOf('driveSide')
 LOAD_CHAIN_KEYS = PARAMETERS.KeysOf('loadSide')
 #: keys of the worm's axial bearing
 AXIAL_KEYS = PARAMETERS.KeysOf('axialBearing')
-#: keys of the 3D model (worm and wheel as rigid bodies, docs/mesh-3d.md): the shafts' bearings and the masses
-SHAFT_KEYS = PARAMETERS.KeysOf('wormBearing', 'wheelBearing') + ('wormMass', 'wheelMass')
+#: the bodies' keys of the 3D model: mass, own inertias or the shape they come from
+BODY_KEYS = tuple(f'{body}{key}' for body in ('worm', 'wheel')
+                  for key in ('Mass', 'TiltInertia', 'PolarInertia', 'Radius', 'InnerRadius', 'Length'))
+#: keys of the 3D model (worm and wheel as rigid bodies, docs/mesh-3d.md): the shafts' bearings and the bodies
+SHAFT_KEYS = PARAMETERS.KeysOf('wormBearing', 'wheelBearing') + BODY_KEYS
 
 #: SI unit of every key (pint syntax), used to parse quantities such as ``8 deg`` or ``0.5 mm``; the
 #: chain keys J5, k5, d5, J6, ... are accepted too (``'J5' in PARAMETER_UNITS``), though only J4/k4/d4 are listed.
@@ -782,13 +786,16 @@ def ShaftSupportsFromParameters(parameters: Mapping[str, float], where: str = 'S
             radialStiffness=parameters[f'{body}RadialStiffness'], axialStiffness=parameters[f'{body}AxialStiffness'],
             radialDamping=parameters.get(f'{body}RadialDamping', 0.), axialDamping=parameters.get(f'{body}AxialDamping', 0.),
             span=parameters.get(f'{body}BearingSpan', 0.1))
-    masses = [k for k in ('wormMass', 'wheelMass') if k in parameters]
+    bodyKeys = [k for k in BODY_KEYS if k in parameters]
     if bearings['worm'] is None and bearings['wheel'] is None:
-        if masses:
-            raise ParameterError(where, f"'{masses[0]}' (the {masses[0][:-4]}'s mass, kg) is used only by the 3D "
-                                 f"model, which the shafts' bearings select ([wormBearing], [wheelBearing]), got "
-                                 f"{parameters[masses[0]]:g} kg without them; add them or remove '{masses[0]}'",
-                                 (masses[0],))
+        if bodyKeys:
+            k = bodyKeys[0]
+            body = 'worm' if k.startswith('worm') else 'wheel'
+            what = {'Mass': 'mass', 'TiltInertia': 'tilt inertia', 'PolarInertia': 'polar inertia', 'Radius': 'radius',
+                    'InnerRadius': 'inner radius', 'Length': 'length'}[k[len(body):]]
+            raise ParameterError(where, f"'{k}' (the {body}'s {what}, {PARAMETERS.units[k]}) is used only by the 3D "
+                                 f"model, which the shafts' bearings select ([wormBearing], [wheelBearing]), got {parameters[k]:g} "
+                                 f"{PARAMETERS.units[k]} without them; add them or remove '{k}'", (k,))
         return None
     axial = AxialBearingFromParameters(parameters, where)
     if axial is not None and bearings['worm'] is not None:
@@ -800,6 +807,60 @@ def ShaftSupportsFromParameters(parameters: Mapping[str, float], where: str = 'S
         raise ParameterError(where, f"the worm's mass is given twice, as mA = {parameters['mA']:g} kg ([axialBearing] "
                              f"mass) and as wormMass = {parameters['wormMass']:g} kg ([worm] mass); give it once",
                              ('wormMass', 'mA'))
+    masses = {'worm': axial.mass if axial is not None else parameters.get('wormMass', WORM_MASS),
+              'wheel': parameters.get('wheelMass', WHEEL_MASS)}
+    inertias = {body: _BodyInertiaFromParameters(parameters, body, masses[body], bearings[body] is not None, where)
+                for body in ('worm', 'wheel')}
     return ShaftSupports(wormBearings=bearings['worm'], wheelBearings=bearings['wheel'],
-                         wormMass=axial.mass if axial is not None else parameters.get('wormMass', WORM_MASS),
-                         wheelMass=parameters.get('wheelMass', WHEEL_MASS))
+                         wormMass=masses['worm'], wheelMass=masses['wheel'],
+                         wormInertia=inertias['worm'], wheelInertia=inertias['wheel'])
+
+
+def _BodyInertiaFromParameters(p: Mapping[str, float], body: str, mass: float, onBearings: bool,
+                               where: str) -> Optional[BodyInertia]:
+    """The 3D model's body ``body`` ('worm' or 'wheel'): its own mass, polar and tilt inertia from
+    ``{body}TiltInertia`` (with ``{body}PolarInertia``, default the shaft's J1 or J2) or from its shape
+    (``{body}Radius``, ``{body}Length``, ``{body}InnerRadius``), checked against the shaft's inertia and the
+    perpendicular-axis bound; None for a body on an ideal joint without them. A body on elastic bearings without them
+    is refused: its tilt inertia is never taken from the polar one."""
+    J = 'J1' if body == 'worm' else 'J2'
+    shape = [k for k in (f'{body}Radius', f'{body}Length', f'{body}InnerRadius') if k in p]
+    direct = [k for k in (f'{body}TiltInertia', f'{body}PolarInertia') if k in p]
+    if shape and direct:
+        raise ParameterError(where, f"the {body}'s inertia is given twice, as its shape ({', '.join(shape)}) and "
+                             f"as {', '.join(direct)}; give one of them", (direct[0], shape[0]))
+    if shape:
+        missing = [k for k in (f'{body}Radius', f'{body}Length') if k not in p]
+        if missing:
+            raise MissingParameterError(f"{where}: the {body}'s shape (a cylinder) needs its radius and length "
+                                        f"([{body}] radius, length in m); missing {', '.join(missing)}", missing)
+        try:
+            own = CylinderInertia(mass, p[f'{body}Radius'], p[f'{body}Length'], p.get(f'{body}InnerRadius', 0.),
+                                  where=where, body=body)
+        except ValueError as error:
+            raise ParameterError(where, str(error).split(': ', 1)[1], (f'{body}InnerRadius',)) from None
+        polarText = f"the {body}'s polar inertia from its shape"
+    elif f'{body}TiltInertia' in p:
+        polar = p.get(f'{body}PolarInertia', p[J])
+        polarText = (f'{body}PolarInertia' if f'{body}PolarInertia' in p else
+                     f"{J}, all of the shaft's inertia in the {body} body without {body}PolarInertia")
+        try:
+            CheckBodyInertia(where, body, mass, polar, p[f'{body}TiltInertia'], what=polarText)
+        except ValueError as error:
+            raise ParameterError(where, str(error).split(': ', 1)[1], (f'{body}TiltInertia',)) from None
+        own = BodyInertia(mass=mass, polar=polar, tilt=p[f'{body}TiltInertia'])
+    elif direct:
+        raise MissingParameterError(f"{where}: '{body}PolarInertia' needs the {body}'s tilt inertia: missing "
+                                    f"{body}TiltInertia ([{body}] tiltInertia, kg*m^2)", (f'{body}TiltInertia',))
+    elif onBearings:
+        raise MissingParameterError(
+            f"{where}: the {body} on elastic bearings ([{body}Bearing]) needs its tilt inertia: missing "
+            f"{body}TiltInertia ([{body}] tiltInertia, kg*m^2, about a line across the axis through its centre; or "
+            f"its shape: [{body}] radius, length)", (f'{body}TiltInertia',))
+    else:
+        return None
+    if own.polar > p[J] * (1. + 1e-12):
+        raise ParameterError(where, f"the {body}'s own polar inertia ({polarText}, {own.polar:g} kg*m^2) must be "
+                             f"<= {J} = {p[J]:g} kg*m^2, the inertia of everything on the {body} shaft",
+                             ((shape or direct)[0], J))
+    return own

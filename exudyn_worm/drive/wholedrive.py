@@ -164,9 +164,8 @@ class Drive:
             supports = ShaftSupportsFromParameters(p, where)
             axialBearing = AxialBearingFromParameters(p, where)
             driveSideChain, loadSideChain = tuple(DriveSideChain(p)), tuple(LoadSideChain(p))
-            if supports is not None and (driveSideChain or loadSideChain or MotorType(p) == 'characteristic'):
+            if supports is not None and (driveSideChain or MotorType(p) == 'characteristic'):
                 other, key = (('a drive-side chain ([[driveSide]])', 'J4') if driveSideChain else
-                              ('a load-side chain ([[loadSide]])', 'JL1') if loadSideChain else
                               ('a motor on its characteristic (motorType characteristic)', 'motorType'))
                 raise ParameterError(where, f"the shafts' bearings ([wormBearing], [wheelBearing]) make the drive the "
                                             f"3D model of worm and wheel as rigid bodies, which has no {other[2:]}; "

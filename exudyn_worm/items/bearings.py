@@ -16,6 +16,7 @@ from typing import Any, Dict, Optional, Sequence
 import numpy as np
 
 from .._checks import CheckName, CheckNonNegative, CheckPositive, CheckSystem
+from ..model.bodies import BodyInertia
 
 __all__ = ['ShaftBearings', 'ShaftSupports', 'WORM_MASS', 'WHEEL_MASS', 'CreateShaftBearings', 'StoredBearingLoads',
            'BEARING_LOADS']
@@ -72,12 +73,19 @@ class ShaftSupports:
         The shafts' elastic bearings; None: the shaft turns on an ideal revolute joint (with the worm's axial
         bearing ``kA, dA, mA`` of the parameter set, the worm slides along its joint on it).
     wormMass, wheelMass : float
-        Masses in kg (> 0) of the worm and the wheel body (the moments of inertia about the axes are J1 and J2).
+        Masses in kg (> 0) of the worm and the wheel body.
+    wormInertia, wheelInertia : BodyInertia or None
+        The body's own mass, polar and tilt inertia (:class:`~exudyn_worm.model.bodies.BodyInertia`, its mass the
+        one above); a shaft on elastic bearings needs it. Its polar inertia is at most the shaft's J1 (J2): the rest
+        turns with the body without tilting with it (a motor rotor, a reel on its own bearings). None: a body on an
+        ideal revolute joint, which holds its tilt (docs/mesh-3d.md, "Inertia").
     """
     wormBearings: Optional[ShaftBearings]
     wheelBearings: Optional[ShaftBearings]
     wormMass: float
     wheelMass: float
+    wormInertia: Optional[BodyInertia] = None
+    wheelInertia: Optional[BodyInertia] = None
 
     def __post_init__(self):
         w = 'ShaftSupports'
@@ -87,6 +95,16 @@ class ShaftSupports:
                 raise TypeError(f"{w}: '{name}' must be a ShaftBearings or None, got {type(value).__name__}")
         for name in ('wormMass', 'wheelMass'):
             object.__setattr__(self, name, CheckPositive(w, name, getattr(self, name), 'kg'))
+        for body in ('worm', 'wheel'):
+            inertia, bearings = getattr(self, body + 'Inertia'), getattr(self, body + 'Bearings')
+            if inertia is not None and not isinstance(inertia, BodyInertia):
+                raise TypeError(f"{w}: '{body}Inertia' must be a BodyInertia or None, got {type(inertia).__name__}")
+            if inertia is None and bearings is not None:
+                raise ValueError(f"{w}: the {body} on elastic bearings needs its tilt inertia: give '{body}Inertia' "
+                                 f"(a BodyInertia), got None")
+            if inertia is not None and inertia.mass != getattr(self, body + 'Mass'):
+                raise ValueError(f"{w}: '{body}Inertia' has the mass {inertia.mass:g} kg, '{body}Mass' is "
+                                 f"{getattr(self, body + 'Mass'):g} kg; give one mass")
 
 
 def _AxisFrame(axis: np.ndarray) -> np.ndarray:

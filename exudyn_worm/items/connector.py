@@ -13,8 +13,10 @@ recorded law and is switched between time steps by the system's post-Newton user
 docs/friction-sticking.md). ``frictionModel='regularized'`` gives the stateless law of earlier versions.
 
 Supported nodes: nodes with exactly one ODE2 coordinate that is a rotation angle, i.e. ``Node1D``
-(with ``ObjectRotationalMass1D``) and ``NodeGenericODE2`` with one coordinate. 3D rigid-body nodes
-are not supported: their rotation parameters wrap at +-pi (see docs/exudyn notes).
+(with ``ObjectRotationalMass1D``) and ``NodeGenericODE2`` with one coordinate. Worm and wheel as 3D rigid bodies
+(``mbs.CreateRigidBody``, any rotation parametrization) take
+:func:`~exudyn_worm.items.rigidmesh.CreateRigidBodyWormGear` instead, which measures each body's turn without
+wrapping and gives the bearing reactions (docs/mesh-3d.md).
 
 The worm's axial bearing (optional, :class:`~exudyn_worm.model.drive.AxialBearing`): :func:`CreateWormAxialBearing`
 adds the worm's axial degree of freedom (mass ``mA`` on a spring-damper ``kA, dA`` to ground); pass its node as ``axialNodeNumber`` to

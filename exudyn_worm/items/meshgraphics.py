@@ -1,20 +1,29 @@
 """Graphics of a rigid-body worm mesh for Exudyn's renderer (``mbs.SolutionViewer()``, ``exu.StartRenderer()``).
 
-:func:`AddRigidMeshGraphics` gives the worm its pitch cylinder and the helix of its thread, the wheel its pitch
-cylinder and tooth lines on the rim (both drawn in body coordinates, so they turn with the bodies), and adds a
-ground object that draws the mesh force on the wheel as an arrow at the pitch point, looked up in the stored
-results of the run at the time shown.
+:func:`AddRigidMeshGraphics` gives the worm its pitch cylinder and the helix of its thread, with the hand the
+mechanics use (:attr:`~exudyn_worm.items.rigidmesh.MeshGeometry.rightHanded`), the wheel its pitch cylinder and
+tooth lines on the rim (both drawn in body coordinates, so they turn with the bodies), and adds a ground object that
+draws the mesh force on the wheel as an arrow, looked up in the stored results of the run at the time shown. The
+arrow starts beside the pitch point, moved along the wheel's axis out of the wheel's face that looks towards +z
+(the renderer's default view looks along -z), so that neither body hides it.
+
+:func:`RecordSolution` makes a solve write the coordinates that ``mbs.SolutionViewer()`` plays (into a temporary
+folder, not the current directory), so that the viewer shows the run after the solve, and :func:`SaveFrame`
+renders one state of a recorded run into a PNG file (it needs a display: a desktop, or a virtual one such as Xvfb).
 """
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, Optional
+import os
+import tempfile
+from typing import Any, Dict, Optional, Sequence
 
 import numpy as np
 
 from .._checks import CheckPositive, CheckSystem
+from .rigidmesh import RigidBodyWormGearConnector
 
-__all__ = ['AddRigidMeshGraphics']
+__all__ = ['AddRigidMeshGraphics', 'ThreadHelix', 'ArrowStart', 'RecordSolution', 'SaveFrame']
 
 
 def _Basis(axis: np.ndarray):
@@ -23,6 +32,57 @@ def _Basis(axis: np.ndarray):
     u = np.cross(axis, helper)
     u /= np.linalg.norm(u)
     return u, np.cross(axis, u)
+
+
+def ThreadHelix(connector: RigidBodyWormGearConnector, wormLength: float, pointsPerTurn: int = 48) -> np.ndarray:
+    """Points of the worm thread's helix in the worm's body coordinates, on 1.01 r1 over ``wormLength``, with the
+    lead ``2 pi r1 tan(gamma)`` per turn and the hand of the mechanics: turning positively about the worm's axis the
+    helix advances along the axis for a right-handed thread, against it for a left-handed one.
+
+    Parameters
+    ----------
+    connector : RigidBodyWormGearConnector
+        The mesh.
+    wormLength : float
+        Length in m of the helix along the axis (> 0), centred on the worm's axis point.
+    pointsPerTurn : int
+        Points per turn of the helix.
+
+    Returns
+    -------
+    numpy.ndarray
+        The points (n x 3), body coordinates.
+    """
+    gear, worm = connector.gear, connector._kinematics.bodies[0]
+    r1 = gear.r1
+    u, v = _Basis(worm.axis)
+    sense = 1. if connector.geometry.rightHanded else -1.
+    lead = 2. * math.pi * r1 * math.tan(gear.gamma)
+    angles = np.linspace(0., 2. * math.pi * wormLength / lead, int(pointsPerTurn * wormLength / lead) + 2)
+    start = worm.axisPoint - 0.5 * sense * wormLength * worm.axis
+    return np.array([start + sense * (a / (2. * math.pi)) * lead * worm.axis
+                     + 1.01 * r1 * (math.cos(a) * u + math.sin(a) * v) for a in angles])
+
+
+def ArrowStart(connector: RigidBodyWormGearConnector, wheelWidth: float) -> np.ndarray:
+    """Where the mesh-force arrow starts (global): the pitch point moved along the wheel's axis by half the wheel's
+    drawn width plus r1, out of the face that looks towards +z (the default view), so that neither body hides it.
+
+    Parameters
+    ----------
+    connector : RigidBodyWormGearConnector
+        The mesh.
+    wheelWidth : float
+        Width in m of the wheel's drawn pitch cylinder.
+
+    Returns
+    -------
+    numpy.ndarray
+        The point (3,), global coordinates of the reference configuration.
+    """
+    g = connector.geometry
+    side = 1. if g.wheelAxis[2] >= 0. else -1.
+    return g.meshPoint + side * (0.5 * wheelWidth + connector.gear.r1) * g.wheelAxis
 
 
 def AddRigidMeshGraphics(mbs, connector, wormLength: Optional[float] = None, wheelWidth: Optional[float] = None,
@@ -68,13 +128,9 @@ def AddRigidMeshGraphics(mbs, connector, wormLength: Optional[float] = None, whe
         forceScale = CheckPositive(w, 'forceScale', forceScale, 'm/N')
     color = exu.graphics.color
     worm, wheel = kin.bodies
-    # worm: pitch cylinder and the thread's helix (lead 2 pi r1 tan(gamma) per turn)
-    u, v = _Basis(worm.axis)
+    # worm: pitch cylinder and the thread's helix (lead 2 pi r1 tan(gamma) per turn, the mechanics' hand)
     start = worm.axisPoint - 0.5 * wormLength * worm.axis
-    lead = 2. * math.pi * r1 * math.tan(gear.gamma)
-    angles = np.linspace(0., 2. * math.pi * wormLength / lead, int(48 * wormLength / lead) + 2)
-    helix = [start + (a / (2. * math.pi)) * lead * worm.axis + 1.01 * r1 * (math.cos(a) * u + math.sin(a) * v)
-             for a in angles]
+    helix = ThreadHelix(connector, wormLength)
     wormGraphics = [exu.graphics.Cylinder(pAxis=list(start), vAxis=list(wormLength * worm.axis), radius=r1,
                                           color=color.steelblue, nTiles=32),
                     exu.graphics.Lines([list(p) for p in helix], color=color.black)]
@@ -92,9 +148,11 @@ def AddRigidMeshGraphics(mbs, connector, wormLength: Optional[float] = None, whe
         mbs.SetObjectParameter(body, 'VgraphicsData', graphics)
 
     cache = {}
+    arrowStart = ArrowStart(connector, wheelWidth)
 
     def Arrow(mbs, t: float):
-        """The mesh force on the wheel as an arrow at the pitch point at time t (nearest stored step)."""
+        """The mesh force on the wheel as an arrow beside the pitch point (:func:`ArrowStart`) at time t (nearest
+        stored step)."""
         if 'forces' not in cache:
             try:
                 cache['forces'] = connector.StoredMeshForces(mbs)
@@ -109,11 +167,110 @@ def AddRigidMeshGraphics(mbs, connector, wormLength: Optional[float] = None, whe
         F = np.asarray(forces['wheelForce'])[k] * scale
         if not np.any(F):
             return []
-        return [exu.graphics.Arrow(pAxis=list(connector.geometry.meshPoint), vAxis=list(F), radius=0.05 * r1,
-                                   color=color.red)]
+        return [exu.graphics.Arrow(pAxis=list(arrowStart), vAxis=list(F), radius=0.08 * r1, color=color.red)]
 
     def ArrowGraphics(mbs, itemNumber):
         return Arrow(mbs, mbs.systemData.GetTime(exu.ConfigurationType.Visualization))
 
     arrow = mbs.AddObject(ObjectGround(visualization=VObjectGround(graphicsDataUserFunction=ArrowGraphics)))
     return {'worm': wormGraphics, 'wheel': wheelGraphics, 'arrowObject': arrow, 'Arrow': Arrow}
+
+
+def RecordSolution(simulationSettings: Any, folder: Optional[str] = None, period: float = 0.01) -> str:
+    """Make the next solve with ``simulationSettings`` write the coordinates that ``mbs.SolutionViewer()`` plays,
+    so that the viewer shows the run (without a written solution it has nothing to play).
+
+    Parameters
+    ----------
+    simulationSettings : exudyn.SimulationSettings
+        The settings of the solve (changed here: ``solution.file`` on, its name and write period).
+    folder : str, optional
+        Folder of the file (default: a new temporary folder, never the current directory).
+    period : float
+        Write period in s (> 0): one frame of the viewer per period.
+
+    Returns
+    -------
+    str
+        The path of the solution file the solve writes.
+
+    Raises
+    ------
+    ValueError
+        For a period that is not positive.
+    """
+    period = CheckPositive('RecordSolution', 'period', period, 's')
+    folder = tempfile.mkdtemp(prefix='exudyn_worm_run_') if folder is None else folder
+    path = os.path.abspath(os.path.join(folder, 'coordinatesSolution.txt'))
+    simulationSettings.solution.file.write = True
+    simulationSettings.solution.file.name = path
+    simulationSettings.solution.file.binary = False
+    simulationSettings.solution.file.writePeriod = period
+    return path
+
+
+def SaveFrame(mbs: Any, solutionFile: str, path: str, time: Optional[float] = None,
+              windowSize: Sequence[int] = (1024, 640)) -> str:
+    """Render one state of a recorded run (:func:`RecordSolution`) into a PNG file with Exudyn's renderer: the
+    renderer opens a window, so this needs a display (a desktop, or a virtual one: ``xvfb-run``).
+
+    Parameters
+    ----------
+    mbs : exudyn.MainSystem
+        The solved system, with its graphics (:func:`AddRigidMeshGraphics`).
+    solutionFile : str
+        The recorded solution.
+    path : str
+        The PNG file to write.
+    time : float, optional
+        The time shown (the nearest recorded one; default the end of the run).
+    windowSize : (int, int)
+        Width and height of the picture in pixels.
+
+    Returns
+    -------
+    str
+        ``path``.
+
+    Raises
+    ------
+    RuntimeError
+        If no display is set (``DISPLAY``) or the renderer wrote no picture.
+    """
+    import exudyn as exu
+    from exudyn.utilities import LoadSolutionFile, SetSolutionState
+    if not os.environ.get('DISPLAY') and not os.environ.get('WAYLAND_DISPLAY'):
+        raise RuntimeError('SaveFrame: no display (DISPLAY is not set): run under a desktop or a virtual one '
+                           '(xvfb-run)')
+    solution = LoadSolutionFile(solutionFile, verbose=False)
+    times = np.asarray(solution['data'])[:, 0]
+    row = len(times) - 1 if time is None else int(np.argmin(np.abs(times - time)))
+    SC = mbs.GetSystemContainer()
+    settings = SC.visualizationSettings
+    settings.window.renderWindowSize = [int(windowSize[0]), int(windowSize[1])]
+    settings.general.autoFitScene = True
+    settings.general.drawCoordinateSystem = False
+    settings.general.drawWorldBasis = False
+    settings.openGL.multiSampling = 4
+    for items in (settings.nodes, settings.markers, settings.connectors, settings.loads, settings.sensors):
+        items.show = False                    # the bodies, their graphics and the arrow alone
+    stem = os.path.splitext(os.path.abspath(path))[0]
+    settings.exportImages.saveImageFileName = stem
+    settings.exportImages.saveImageFormat = 'PNG'
+    settings.exportImages.saveImageSingleFile = True
+    SC.renderer.Attach()
+    SC.renderer.Start()
+    try:
+        SetSolutionState(mbs, solution, row, exu.ConfigurationType.Visualization)
+        SC.renderer.ZoomAll()
+        for _ in range(3):                    # let the renderer fit the scene before the picture
+            SC.renderer.DoIdleTasks(0.1)
+        SC.renderer.RedrawAndSaveImage()
+    finally:
+        SC.renderer.Stop()
+    written = stem + '.png'
+    if not os.path.isfile(written):
+        raise RuntimeError(f'SaveFrame: the renderer wrote no picture {written}')
+    if written != os.path.abspath(path):
+        os.replace(written, path)
+    return path

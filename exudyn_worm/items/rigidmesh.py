@@ -99,6 +99,14 @@ class MeshGeometry:
     meshPoint: np.ndarray
     centreDistance: float
 
+    @property
+    def rightHanded(self) -> bool:
+        """Whether the worm's thread is right-handed. A positive worm rotation moves the wheel's tooth at the pitch
+        point along ``h e_a`` (the wheel's positive rotation there). A right-handed thread turned positively about
+        its axis (held axially) moves its thread past a fixed point backwards along the axis, so the tooth in it
+        along ``-e_a``: right-handed if ``h = -1``, left-handed if ``h = +1``."""
+        return self.hand < 0.
+
 
 @dataclass
 class _Body:

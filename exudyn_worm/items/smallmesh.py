@@ -71,6 +71,9 @@ class SmallDisplacementBody:
         The shaft's linear bearings.
     spinSpeed : float
         Speed in rad/s about the axis of the gyroscopic matrix (the speed at the start).
+    shaftInertia : float
+        Inertia in kg*m^2 that turns with the body without tilting with it (a motor rotor behind a coupling, a reel
+        on its own bearings): a mass on the turn coordinate alone, outside the gyroscopic matrix.
     """
     referencePosition: Any
     referenceRotation: Any
@@ -78,6 +81,7 @@ class SmallDisplacementBody:
     inertia: Any
     bearings: ShaftBearings
     spinSpeed: float = 0.
+    shaftInertia: float = 0.
 
 
 def _Skew(v) -> np.ndarray:
@@ -107,6 +111,7 @@ def _BodyMatrices(where: str, name: str, body: SmallDisplacementBody, theta0: np
     M = np.zeros((6, 6))
     M[:3, :3] = np.eye(3) * CheckPositive(where, f'{name} mass', body.mass, 'kg')
     M[3:, 3:] = Mr(theta0)
+    M[5, 5] += float(body.shaftInertia)        # the turn only (the last Tait-Bryan angle)
     # gyroscopic matrix of the steady spin Omega e_s (s: the turn) from the Lagrangian T = 1/2 theta'^T M(theta) theta':
     # D_ij = Omega (d_s M_ij + d_j M_is - d_i M_sj), the derivatives by central differences
     dM = []

@@ -1061,6 +1061,20 @@ PARAMETERS = ParameterRegistry([
               table='worm', fileKey='mass'),
     Parameter('wheelMass', 'kg', 'positive', 'mass of the wheel body (3D model: required with [wheelBearing])',
               table='wheel', fileKey='mass'),
+    *[Parameter(f'{body}{key[0].upper()}{key[1:]}', unit, rng, text.format(body=body, J=J), table=body, fileKey=key,
+                quantity=f'{body} inertia', forms=(('given',) if key.endswith('Inertia') else ('shape',)))
+      for body, J in (('worm', 'J1'), ('wheel', 'J2'))
+      for key, unit, rng, text in (
+          ('tiltInertia', 'kg*m^2', 'positive', "the {body} body's own moment of inertia about a line across its "
+           "axis through its centre, >= polarInertia / 2 (3D model: required with [{body}Bearing], or the shape)"),
+          ('polarInertia', 'kg*m^2', 'positive', "the {body} body's own moment of inertia about its axis, <= {J}; "
+           "the rest of {J} turns with it without tilting (3D model; default {J}: all of it tilts with the body)"),
+          ('radius', 'm', 'positive', "outer radius of the {body} body as a cylinder: with its mass and length it "
+           "gives polarInertia and tiltInertia (3D model)"),
+          ('innerRadius', 'm', 'nonNegative', "inner radius of the {body} body as a hollow cylinder (default 0: "
+           "solid)"),
+          ('length', 'm', 'positive', "length of the {body} body as a cylinder, along its axis (3D model; with "
+           "radius)"))],
     *[Parameter(f'{body}{key[0].upper()}{key[1:]}', unit, rng, text.format(body=body), table=f'{body}Bearing',
                 fileKey='span' if key == 'bearingSpan' else key)
       for body in ('worm', 'wheel')

@@ -88,7 +88,7 @@ def FindSteadyChatter(drive: Drive, settleTime: float = 1.0, stepsPerPeriod: int
         the first guess, if ``start`` is not given. For the 3D model (``model`` from
         :func:`~exudyn_worm.analysis.orbits.lowering.BuildRigidBodyLoweringModel`) with elastic shaft bearings the guess
         is instead taken from a run that has settled on its Poincare section (:func:`~exudyn_worm.analysis.orbits.settling.SettleOnSection`,
-        15-20 s for ``examples/drives/reel-3d.toml``: its tilt modes are barely damped).
+        15-20 s for ``examples/drives/reel-3d-chatter.toml``: its tilt modes are barely damped).
     stepsPerPeriod : int
         Solver steps per period in the shooting runs.
     contactOptions : ContactOptions

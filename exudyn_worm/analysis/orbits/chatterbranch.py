@@ -37,6 +37,7 @@ from ...drive.wholedrive import CheckDrive, Drive
 from ..stability.drivestability import AnalyzeDrive
 from ..._workers import CancelPool, SignalsHeld, WorkerInit
 from ...params.parameters import PARAMETERS
+from ...drive.presets import BODY_KEYS
 from .disturbance import COEXISTENCE_KICK, SmallestDisturbance
 from .smoothbranch import ChatterBranchError, SmoothHopfBranch
 
@@ -54,7 +55,7 @@ CONTINUABLE = ('J1', 'J2', 'kT', 'dT', 'DT', 'DTV', 'kV', 'dV', 'DV', 'mu', 'muS
 #: the 3D model, as each branch point's ``info`` and ``ToDict()['points'][i]['amplitude']`` hold them
 BEARING_LOAD_KEYS = tuple(key for key, _ in BEARING_LOADS)
 #: on the 3D model with elastic bearings, a largest nontrivial Floquet multiplier this close to 1 is within the
-#: uncertainty of the finite-difference monodromy (0.987-0.994 from two starts of the same orbit, reel-3d.toml,
+#: uncertainty of the finite-difference monodromy (0.987-0.994 from two starts of the same orbit, reel-3d-chatter.toml,
 #: docs/chatter-amplitude.md): a message says so
 NEAR_ONE = 0.01
 #: an orbit whose largest normal force is below this multiple of the static force stays in contact all the time:
@@ -181,12 +182,12 @@ def LinearBoundaries(drive: Drive, name: str, low: float, high: float, samples: 
 def _ComponentKeys(drive: Drive) -> List[str]:
     """The keys of the drive's drive-side and load-side chain stages and axial bearing (``J4, k4, d4, ...,
     JL1, kL1, dL1, ..., kA, dA, mA``) that can be continued too (each value rebuilds the lowering model); on the 3D
-    model (a drive with shaft bearings) the shafts' bearing keys and the bodies' masses the drive gives
-    (``wormRadialStiffness``, ..., ``wheelBearingSpan``, ``wormMass``, ``wheelMass``)."""
+    model (a drive with shaft bearings) the shafts' bearing keys and the bodies' keys the drive gives
+    (``wormRadialStiffness``, ..., ``wheelBearingSpan``, ``wormMass``, ``wheelTiltInertia``, ...)."""
     parameters = drive.parameters
     if drive.isRigidBody:
         return [k for k in PARAMETERS.KeysOf('wormBearing') + PARAMETERS.KeysOf('wheelBearing')
-                + ('wormMass', 'wheelMass', 'kA', 'dA', 'mA') if k in parameters]
+                + BODY_KEYS + ('kA', 'dA', 'mA') if k in parameters]
     keys = [k for k in parameters if (PARAMETERS.SeriesIndex(k) or ('',))[0] in _SERIES_PREFIXES]
     if float(parameters.get('kA', 0.)) > 0:
         keys += [k for k in ('kA', 'dA', 'mA') if k in parameters]
@@ -202,7 +203,7 @@ def AnalyzeChatterBranch(drive: Drive, name: str, low: float, high: float,
     :func:`~exudyn_worm.analysis.orbits.lowering.BuildRigidBodyLoweringModel`) with elastic bearings the first orbit is
     found as without continuation (:func:`~exudyn_worm.analysis.orbits.chatter.SteadyChatterSummary`): shooting from a time
     simulation settled on its Poincare section (:func:`~exudyn_worm.analysis.orbits.settling.SettleOnSection`, about 14 s
-    simulated for ``examples/drives/reel-3d.toml``), at the parameter set's own value of ``name`` where that lies in
+    simulated for ``examples/drives/reel-3d-chatter.toml``), at the parameter set's own value of ``name`` where that lies in
     the range and the drive is linearly unstable there (else in the middle of the widest unstable interval, as on
     the one-angle model); the continuation then follows it from that orbit, and each point carries the largest
     bearing loads.
@@ -215,8 +216,8 @@ def AnalyzeChatterBranch(drive: Drive, name: str, low: float, high: float,
     name : str
         The parameter, one of :data:`CONTINUABLE`, or a key of the drive's drive-side or load-side chain
         (``J4, k4, d4, ...``, ``JL1, kL1, dL1, ...``) or axial bearing (``kA, dA, mA``); on the 3D model a key of
-        the shafts' bearings or the bodies' masses that the set gives (``wormRadialStiffness``, ...,
-        ``wheelBearingSpan``, ``wormMass``, ``wheelMass``).
+        the shafts' bearings or the bodies (mass, inertias, shape) that the set gives (``wormRadialStiffness``, ...,
+        ``wheelBearingSpan``, ``wormMass``, ``wheelTiltInertia``, ...).
     low, high : float
         Range of the parameter in its SI unit, ``low < high``.
     maxPoints : int
@@ -280,7 +281,7 @@ def AnalyzeChatterBranch(drive: Drive, name: str, low: float, high: float,
     own = drive.parameters.get(name)
     if unstable and rigidBody and own is not None and low <= own <= high and Growth(own) > 0:
         # the 3D model: at the drive's own value, where the first orbit is the one without continuation (shooting
-        # from the settled start converges there; in the middle of reel-3d.toml's unstable interval of
+        # from the settled start converges there; in the middle of reel-3d-chatter.toml's unstable interval of
         # wheelRadialStiffness in [5e8, 2e9], 1.112e9 N/m, it stalled at a residual of 0.016)
         start, kick = float(own), 0.01
     elif unstable:

@@ -1,7 +1,7 @@
 """The lowering phase settled by a long time simulation, watched on a Poincare section: the start of the 3D
 model's orbit search, and its steady vibration where no periodic orbit is found.
 
-The 3D model with elastic shaft bearings settles slowly: at the lowering point of ``examples/drives/reel-3d.toml``
+The 3D model with elastic shaft bearings settles slowly: at the lowering point of ``examples/drives/reel-3d-chatter.toml``
 the linearization has a wheel-tilt mode at 30.97 Hz with a damping ratio of 7e-5 beside the chatter (31.0 Hz, locked
 to the tilt modes), and the orbit's largest nontrivial Floquet multiplier is 0.994 per period. One second of
 settling leaves the state 13 state scales from the orbit, and the worm speed, dominated by the second harmonic,
@@ -25,7 +25,7 @@ __all__ = ['SettleOnSection', 'SECTION_TOLERANCE']
 
 #: the section point may move by at most this fraction of the state scale (:func:`~exudyn_worm.analysis.orbits.lowering.StateScale`)
 #: over one piece for the run to count as settled: from the states reached so (0.2-0.3 of the state scale from the
-#: orbit, reel-3d.toml after 14-16 s) shooting converges in a few Newton steps, from 1 state scale (10 s) in 30 s,
+#: orbit, reel-3d-chatter.toml after 14-16 s) shooting converges in a few Newton steps, from 1 state scale (10 s) in 30 s,
 #: from 13 (1 s) it stalls (measured, docs/chatter-amplitude.md); the bearings' kHz modes leave a jitter of up to
 #: 0.13 on the section (a contact switch resolved to a solver step)
 SECTION_TOLERANCE = 0.3
