@@ -116,7 +116,8 @@ class ChatterBranch:
     def ToDict(self) -> Dict:
         """JSON-ready dictionary: ``{"parameter", "hopf": {"value", "type"}, "folds", "points": [...], ...}``
         (``hopf`` is the first Hopf point or None; ``hopfPoints`` lists all). On the 3D model also ``model`` ('3D'),
-        ``settling`` and, per point, the largest bearing loads in N in ``amplitude`` (:data:`BEARING_LOAD_KEYS`)."""
+        ``settling``, ``simulated`` and, per point, the largest bearing loads in N in ``amplitude``
+        (:data:`BEARING_LOAD_KEYS`), ``residual`` and ``method``."""
         out = {'parameter': self.parameter, 'range': list(self.bounds),
                 'hopf': ({'value': self.hopf[0]['value'], 'type': self.hopf[0]['type']} if self.hopf else None),
                 'hopfPoints': [dict(h) for h in self.hopf], 'linearBoundaries': list(self.linearBoundaries),
@@ -214,7 +215,10 @@ def AnalyzeChatterBranch(drive: Drive, name: str, low: float, high: float,
     simulated for ``examples/drives/reel-3d.toml``), at the parameter set's own value of ``name`` where that lies in
     the range and the drive is linearly unstable there (else in the middle of the widest unstable interval, as on
     the one-angle model); the continuation then follows it from that orbit, and each point carries the largest
-    bearing loads.
+    bearing loads. Where a direction's corrector fails, the rest of the range towards that end comes by
+    natural-parameter points, each from its own settled time simulation
+    (:func:`~exudyn_worm.analysis.orbits.settledbranch.SettledBranchPoints`): orbits join ``points``, the points at rest
+    or without an orbit go to ``simulated``.
 
     Parameters
     ----------
