@@ -122,8 +122,9 @@ def test_every_point_without_an_orbit_says_why_and_is_labelled(decade):
     for s in decade.simulated:
         vibration = s['amplitude']
         if s['method'] == 'rest':
-            # rest only where the linearized drive is stable and the settled run stays in contact
+            # rest only where the linearized drive is stable and the settled run stays in contact, sliding forward
             assert s['linearGrowth'] < 0 and vibration['forceFactor'] < REST_FORCE_FACTOR
+            assert vibration['minWormSpeed'] > 0
             assert s['stabilityDecided'] is True and s['residual'] is None
         else:
             assert s['method'] == 'long simulation' and s['stabilityDecided'] is False

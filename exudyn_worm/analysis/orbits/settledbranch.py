@@ -13,8 +13,8 @@ phase simulated from its kicked steady state until it settles on its Poincare se
 - an orbit (``info['method']`` 'shooting') where Newton reached the shooting tolerance, or stopped with a residual
   below :data:`SETTLED_ORBIT_TOLERANCE` (a tenth of the map's jumps: the iterate closes to the resolution of the map
   itself; ``converged`` is then False and ``info['residual']`` says how closely it closes);
-- 'rest' where the drive is linearly stable and the settled run stays in contact (the mesh is then linear, so the
-  vibration decays at the linear rate: no steady chatter);
+- 'rest' where the drive is linearly stable and the settled run stays in contact with the worm sliding forward
+  (the mesh's law is then linear, so the vibration decays at the linear rate: no steady chatter);
 - 'long simulation' otherwise: the settled run's vibration, with the best shooting residual (none where the run
   still stays in contact on the linearly unstable side: an orbit in contact is one of the linearized drive, whose
   amplitude the mesh does not fix), its stability undecided.
@@ -124,10 +124,11 @@ def SettledBranchPoints(drive: Drive, name: str, values: Sequence[float], growth
         common = {'settled': bool(settled['settled']), 'settledS': float(settled['duration']),
                   'sectionChange': float(settled['change']), 'linearGrowth': rate}
         inContact = not np.isfinite(settled['period']) or vibration['forceFactor'] < restForceFactor
-        if rate < 0 and inContact:
+        # in contact and sliding forward the mesh's law is linear: a linearly stable drive's vibration decays
+        if rate < 0 and inContact and vibration['minWormSpeed'] > 0:
             simulated.append(_Simulated(value, 'rest', settled, None, True, common,
-                                        'linearly stable and the settled run stays in contact: it decays at the '
-                                        'linear rate'))
+                                        'linearly stable and the settled run stays in contact with the worm '
+                                        'sliding forward: it decays at the linear rate'))
             continue
         if inContact:
             # an orbit in contact is one of the linearized drive, whose amplitude the mesh does not fix: not shot
