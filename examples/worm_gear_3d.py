@@ -205,7 +205,7 @@ def TiltInertiaScan(tilts: Optional[Sequence[float]] = None, drive: Optional[Dri
     rows = []
     for tilt in tilts:
         varied = drive.Replace(wheelTiltInertia=tilt, wheelPolarInertia=polar)
-        model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), varied)
+        model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), varied, model='exact')
         model.mbs.Assemble()
         state = AnalyzeLinearStability(model.mbs).State(-1)
         mode = max((m for m in state.modes if m.frequencyHz < DRIVE_MODES_HZ), key=lambda m: m.eigenvalue.real)

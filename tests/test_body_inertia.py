@@ -7,10 +7,9 @@ import numpy as np
 import pytest
 
 from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
-from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability
+from exudyn_worm.analysis.stability.linearization import AnalyzeLinearStability, LinearizationModel
 from exudyn_worm.builders.oneangle import BuildReelChanger
-from exudyn_worm.builders.rigidbody import (TURN, BodyInertiaTensors, BuildRigidBodyLinearizationModel,
-                                            BuildRigidBodyReelChanger)
+from exudyn_worm.builders.rigidbody import TURN, BodyInertiaTensors, BuildRigidBodyReelChanger
 from exudyn_worm.drive.presets import GetPreset
 from exudyn_worm.drive.wholedrive import ResolveDrive
 from exudyn_worm.items.bearings import ShaftBearings
@@ -60,7 +59,7 @@ def test_the_builder_refuses_elastic_bearings_without_a_tilt_inertia():
 
 
 def _Modes(parameters, S=-1):
-    SC, mbs = BuildRigidBodyLinearizationModel(ResolveDrive(parameters=parameters))
+    mbs = LinearizationModel(ResolveDrive(parameters=parameters)).mbs
     return AnalyzeLinearStability(mbs).State(S).modes
 
 

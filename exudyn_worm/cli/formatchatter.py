@@ -24,6 +24,13 @@ def _OrbitVerdict(orbit, stable: bool) -> str:
     return 'stable' if stable else 'unstable'
 
 
+def _Row(value: float, amplitude: dict, frequencyHz: float, loads: list, width: int) -> str:
+    """A branch table's row up to its verdict."""
+    row = ''.join(f" {amplitude.get(k, float('nan')) / 1e3:15.3f}" for k, _ in loads)
+    return (f"  {value:{width}.6g} {amplitude.get('forceFactor', float('nan')):11.3f} "
+            f"{amplitude.get('maxWheelAcceleration', float('nan')):16.1f} {frequencyHz:8.2f}{row}  ")
+
+
 def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
     """Table of a :class:`~exudyn_worm.analysis.orbits.chatterbranch.ChatterBranch`.
 
@@ -39,16 +46,25 @@ def FormatBranch(branch: 'ChatterBranch', title: str) -> List[str]:
     list of str
     """
     # the 3D model's points carry the largest bearing loads: one more column each, in kN
-    loads = [(k, text) for k, text in BEARING_LOADS if any(k in p.info for p in branch.points)]
+    loads = [(k, text) for k, text in BEARING_LOADS
+             if any(k in p.info for p in branch.points) or any(k in s['amplitude'] for s in branch.simulated)]
     head = ''.join(f" {text + ' kN':>15}" for _, text in loads)
     width = max(12, len(branch.parameter))      # a long name (wheelRadialStiffness) widens the first column
     lines = [title, '', f"  {branch.parameter:>{width}} {'Fn/Fstatic':>11} {'|phi2dd| rad/s2':>16} {'f Hz':>8}{head}"
                         f"  orbit"]
+    rows = []
     for p in branch.points:
-        row = ''.join(f" {p.info.get(k, float('nan')) / 1e3:15.3f}" for k, _ in loads)
-        lines.append(f"  {p.value:{width}.6g} {p.info.get('forceFactor', float('nan')):11.3f} "
-                     f"{p.info.get('maxWheelAcceleration', float('nan')):16.1f} {p.orbit.frequencyHz:8.2f}{row}  "
-                     + _OrbitVerdict(p.orbit, p.stable))
+        # an orbit accepted above the shooting tolerance (the 3D model's natural-parameter points) says how closely
+        # it closes
+        closes = '' if p.orbit.converged is not False else f", residual {p.orbit.residual:.1g}"
+        rows.append((p.value, _Row(p.value, p.info, p.orbit.frequencyHz, loads, width)
+                     + _OrbitVerdict(p.orbit, p.stable) + closes))
+    for s in branch.simulated:        # the 3D model's points without an orbit: the settled run's vibration
+        verdict = ('rest (linearly stable; the settled run stays in contact)' if s['method'] == 'rest' else
+                   'long simulation, undecided (no orbit: ' + ('the run still in contact' if s['residual'] is None
+                                                                else f"shooting residual {s['residual']:.2g}") + ')')
+        rows.append((s['value'], _Row(s['value'], s['amplitude'], s['frequencyHz'], loads, width) + verdict))
+    lines += [text for _, text in (sorted(rows, key=lambda r: r[0]) if branch.simulated else rows)]
     if loads:
         lines.append('  (bearing loads: the largest over each orbit)')
     if any(not p.orbit.accurate for p in branch.points):

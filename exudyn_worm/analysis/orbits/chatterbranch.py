@@ -29,6 +29,7 @@ from .chatter import MONODROMY_PERTURBATION, FindSteadyChatter, OrbitAmplitude, 
 from .lowering import (BuildLoweringModel, BuildRigidBodyLoweringModel, LoweringModel, StateScale,
                        UpdateLoweringModel, _LoweringFlow)
 from .settling import SettleOnSection
+from .settledbranch import SettledBranchPoints, SettledValues
 from .continuation import Branch, BranchPoint, ContinueOrbits, StopKind
 from .periodic import PeriodicOrbit, ShootingError
 from ..._checks import CheckPositive
@@ -95,6 +96,10 @@ class ChatterBranch:
     settling : dict or None
         On the 3D model with elastic bearings: how the first orbit's start was settled
         (:func:`~exudyn_worm.analysis.orbits.settling.SettleOnSection`: ``value``, ``duration`` and ``change``), else None.
+    simulated : list of dict
+        On the 3D model with elastic bearings, where the continuation failed: the natural-parameter points without
+        an orbit (:func:`~exudyn_worm.analysis.orbits.settledbranch.SettledBranchPoints`: 'rest' or 'long
+        simulation', with the settled run's vibration), by value.
     """
     parameter: str
     bounds: Tuple[float, float]
@@ -107,11 +112,13 @@ class ChatterBranch:
     messages: List[str] = field(default_factory=list)
     model: str = 'one-angle'
     settling: Optional[Dict] = None
+    simulated: List[Dict] = field(default_factory=list)
 
     def ToDict(self) -> Dict:
         """JSON-ready dictionary: ``{"parameter", "hopf": {"value", "type"}, "folds", "points": [...], ...}``
         (``hopf`` is the first Hopf point or None; ``hopfPoints`` lists all). On the 3D model also ``model`` ('3D'),
-        ``settling`` and, per point, the largest bearing loads in N in ``amplitude`` (:data:`BEARING_LOAD_KEYS`)."""
+        ``settling``, ``simulated`` and, per point, the largest bearing loads in N in ``amplitude``
+        (:data:`BEARING_LOAD_KEYS`), ``residual`` and ``method``."""
         out = {'parameter': self.parameter, 'range': list(self.bounds),
                 'hopf': ({'value': self.hopf[0]['value'], 'type': self.hopf[0]['type']} if self.hopf else None),
                 'hopfPoints': [dict(h) for h in self.hopf], 'linearBoundaries': list(self.linearBoundaries),
@@ -128,7 +135,10 @@ class ChatterBranch:
                            for p in self.points],
                 'messages': list(self.messages)}
         if self.model != 'one-angle':
-            out.update(model=self.model, settling=None if self.settling is None else dict(self.settling))
+            out.update(model=self.model, settling=None if self.settling is None else dict(self.settling),
+                       simulated=[dict(s, amplitude=dict(s['amplitude'])) for s in self.simulated])
+            for p, d in zip(self.points, out['points']):
+                d.update(residual=float(p.orbit.residual), method=p.info.get('method', 'shooting'))
         return out
 
     def plot(self, fileName: Optional[str] = None, **kwargs):
@@ -206,7 +216,10 @@ def AnalyzeChatterBranch(drive: Drive, name: str, low: float, high: float,
     simulated for ``examples/drives/reel-3d-chatter.toml``), at the parameter set's own value of ``name`` where that lies in
     the range and the drive is linearly unstable there (else in the middle of the widest unstable interval, as on
     the one-angle model); the continuation then follows it from that orbit, and each point carries the largest
-    bearing loads.
+    bearing loads. Where a direction's corrector fails, the rest of the range towards that end comes by
+    natural-parameter points, each from its own settled time simulation
+    (:func:`~exudyn_worm.analysis.orbits.settledbranch.SettledBranchPoints`): orbits join ``points``, the points at rest
+    or without an orbit go to ``simulated``.
 
     Parameters
     ----------
@@ -322,6 +335,7 @@ def AnalyzeChatterBranch(drive: Drive, name: str, low: float, high: float,
         result.messages += messages
     result.points = [p for p in list(reversed(halves[0].points)) + halves[1].points[1:] if low <= p.value <= high]
     if _ElasticBearings(model):
+        _SettledEnds(drive, name, low, high, halves, Growth, onPoint, result)
         near = [p.value for p in result.points
                 if abs(max((abs(complex(m)) for m in p.orbit.nontrivialMultipliers), default=0.) - 1.) < NEAR_ONE]
         if near:
@@ -402,6 +416,28 @@ def _FirstOrbit(model: LoweringModel, settleTime: float, kick: float, result: Ch
                            f"{settled['duration']:g} s time simulation settled on the Poincare section (its section "
                            f"point moved by {settled['change']:.2g} of the state scale over the last 2 s)")
     return orbit
+
+
+def _SettledEnds(drive: Drive, name: str, low: float, high: float, halves: List[Branch], Growth: Callable,
+                 onPoint: Optional[Callable], result: ChatterBranch) -> None:
+    """On the 3D model with elastic bearings: where a direction's corrector failed, the rest of the range by
+    natural-parameter points, each from its own settled time simulation
+    (:func:`~exudyn_worm.analysis.orbits.settledbranch.SettledBranchPoints`), put into ``result``."""
+    ends = ([min(p.value for p in halves[0].points), low], [max(p.value for p in halves[1].points), high])
+    for index, (half, (covered, end)) in enumerate(zip(halves, ends)):
+        values = SettledValues(covered, end)
+        if half.stopKinds[-1] is not StopKind.CORRECTOR_FAILED or not values:
+            continue
+        orbits, simulated = SettledBranchPoints(drive, name, values, Growth, REST_FORCE_FACTOR,
+                                                half.points[-1].orbit.state, onPoint)
+        result.points = (orbits[::-1] + result.points) if index == 0 else (result.points + orbits)
+        result.simulated = sorted(result.simulated + simulated, key=lambda s: s['value'])
+        kinds = [s['method'] for s in simulated]
+        result.messages.append(
+            f"3D model: {name} from {covered:.6g} to {end:.6g} by {len(values)} natural-parameter points (the "
+            f"continuation's corrector failed), each shot from its own time simulation settled on the Poincare "
+            f"section: {len(orbits)} orbits, {kinds.count('long simulation')} long simulations (no orbit), "
+            f"{kinds.count('rest')} at rest (linearly stable, the mesh stays in contact)")
 
 
 def _SpeedDependentFriction(drive: Drive) -> bool:

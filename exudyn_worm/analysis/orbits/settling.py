@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Any, Dict
+from typing import Any, Dict, Optional, Sequence
 
 import numpy as np
 
@@ -67,7 +67,8 @@ def _TailVibration(model: LoweringModel, window: float) -> Dict[str, float]:
 
 
 def SettleOnSection(model: LoweringModel, maxDuration: float = 40., piece: float = 2., stepSize: float = 1e-4,
-                    tolerance: float = SECTION_TOLERANCE, kick: float = 0.01, window: float = 0.5) -> Dict[str, Any]:
+                    tolerance: float = SECTION_TOLERANCE, kick: float = 0.01, window: float = 0.5,
+                    initialState: Optional[Sequence[float]] = None) -> Dict[str, Any]:
     """Simulate the lowering phase from its kicked steady state in pieces of ``piece`` s (the time simulations'
     solver settings, :data:`~exudyn_worm.analysis.simulation.reelchanger.SOLVER_SETTINGS`) until its state on the Poincare
     section (the upward crossings of the wheel speed through its mean) moved by less than ``tolerance`` state
@@ -89,6 +90,9 @@ def SettleOnSection(model: LoweringModel, maxDuration: float = 40., piece: float
         Initial worm speed disturbance as a fraction of the motor speed.
     window : float
         Final part of the run in s over which ``vibration`` is measured.
+    initialState : array_like, optional
+        Flow state to start from instead of the kicked steady state (``kick`` is then not used), e.g. a state of
+        the chatter at a neighbouring parameter value.
 
     Returns
     -------
@@ -110,8 +114,14 @@ def SettleOnSection(model: LoweringModel, maxDuration: float = 40., piece: float
         raise ValueError(f"{w}: 'piece' must be longer than 'window' ({window:g} s), got {piece:g} s")
     scale = StateScale(model)
     flow = _LoweringFlow(model, max(10, int(round(piece / stepSize))), SOLVER_SETTINGS)
-    x = EquilibriumState(model)
-    x[len(model.coordinates)] += kick * model.motorSpeed          # the worm's speed
+    if initialState is None:
+        x = EquilibriumState(model)
+        x[len(model.coordinates)] += kick * model.motorSpeed          # the worm's speed
+    else:
+        x = np.array(initialState, dtype=float)
+        if x.shape != EquilibriumState(model).shape or not np.all(np.isfinite(x)):
+            raise ValueError(f"{w}: 'initialState' must hold {2 * len(model.coordinates)} finite flow coordinates, "
+                             f"got {initialState!r}")
     t0, duration, before, change, settled = time.perf_counter(), 0., None, math.inf, False
     state, period = x, math.nan
     while duration < maxDuration and not settled:
