@@ -198,3 +198,39 @@ def test_constant_speed_on_velocity_level_is_the_same_motion(initialAngle, veloc
         speeds.append(mbs.GetSensorStoredData(sensor)[:, 1])
     assert (_ConstantSpeedFromStart(mbs, motor, ConstantSpeed(20., initialAngle=0.3)) is not None) is velocityLevel
     np.testing.assert_allclose(speeds[0], speeds[1], rtol=0, atol=1e-9 * np.max(np.abs(speeds[1])))
+
+
+@pytest.mark.parametrize('preset', ['reel-P1', 'reel-P7'])
+def test_constant_speed_flywheel_is_the_constraint_bit_for_bit(preset):
+    """A motor at constant speed kept by its inertia (FLYWHEEL_INERTIA, constraint=False, what SimulateReelChanger
+    builds) turns exactly as the velocity-level constraint prescribes it: every stored state is the same to the
+    last bit over the first second (P7: through its first chatter), with the same solver work, and the motor's
+    speed is the prescribed one exactly."""
+    from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
+    from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
+    from exudyn_worm.builders.oneangle import BuildReelChanger
+    drive = ew.ResolveDrive(preset)
+    runs = []
+    for motorConstraint in (True, False):
+        model = BuildReelChanger(exu.SystemContainer().AddSystem(), drive, motorConstraint=motorConstraint)
+        mbs = model.mbs
+        mbs.Assemble()
+        assert (mbs.systemData.NumberOfObjects() > 0 and
+                any(len(mbs.systemData.GetObjectLTGAE(i)) for i in range(mbs.systemData.NumberOfObjects()))) \
+            is motorConstraint
+        ss, solverType = SolverSettings(1., RecommendedStepSize(drive))
+        printing, exu.config.printToConsole = exu.config.printToConsole, False
+        try:
+            mbs.SolveDynamic(ss, solverType=solverType)
+        finally:
+            exu.config.printToConsole = printing
+        states = model.connector.StoredStates(mbs)
+        states.update({k: mbs.GetSensorStoredData(model.sensors[k])[:, 1] for k in ('phi0', 'omega0')})
+        it = mbs.sys['dynamicSolver'].it
+        runs.append((states, (int(it.newtonStepsCount), int(it.newtonJacobiCount))))
+    (withConstraint, work), (flywheel, flywheelWork) = runs
+    assert flywheelWork == work
+    assert sorted(flywheel) == sorted(withConstraint)
+    for key in withConstraint:
+        np.testing.assert_array_equal(flywheel[key], withConstraint[key], err_msg=key)
+    assert np.all(flywheel['omega0'] == drive.parameters['motorSpeed'])

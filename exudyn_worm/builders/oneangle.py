@@ -127,7 +127,8 @@ class ReelChangerModel:
 
 
 def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = ContactOptions(),
-                     useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None) -> ReelChangerModel:
+                     useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
+                     motorConstraint: bool = True) -> ReelChangerModel:
     """Add the one-angle model of a drive to ``mbs``: motor, drive shaft, worm, mesh, wheel, the chains, the
     worm's axial bearing and the duty's load, each rotor with its angle (the reel changer of section 3.2 and any
     other duty).
@@ -154,6 +155,11 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
         Motor motion: an object with ``AngleAndSpeed(t, ops)`` such as :class:`ConstantSpeed` or
         :class:`~exudyn_worm.model.profiles.StartStopProfile` (default: the drive's motor, ``drive.motor``:
         :class:`ConstantSpeed` at ``motorSpeed`` for the reel changer).
+    motorConstraint : bool
+        True (default): the prescribed motor is held by a constraint (what a linearization needs); False: a motor
+        at constant speed is a flywheel that turns exactly as prescribed, for a time simulation (the same numbers,
+        fewer instructions; :func:`~exudyn_worm.items.drivetrain.CreatePrescribedRotation` with
+        ``constraint=False``).
 
     Returns
     -------
@@ -180,6 +186,7 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
 
     w = 'BuildReelChanger'
     CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
+    CheckBool(w, 'motorConstraint', motorConstraint)
     CheckReelChangerKeys(drive, w)
     whole, drive = drive, drive.elastic
     if whole.motorType in ('constantSpeed', 'startStop'):
@@ -212,7 +219,8 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
     wheel = CreateRotor(mbs, drive.J2, initialAngle=init.get('phi2', 0.), initialSpeed=init.get('omega2', 0.),
                         name='wheel')
     if characteristic is None:
-        CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+        CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic,
+                                 constraint=motorConstraint)
     else:
         CreateRotorTorque(mbs, motor, characteristic, name='motorTorque', useSymbolic=useSymbolic)
     rotors = {'motor': motor, 'worm': worm, 'wheel': wheel}
