@@ -17,8 +17,9 @@ __all__ = ['CreateRotor', 'CreateShaft', 'CreateDriveSideChain', 'CreateLoadSide
            'FLYWHEEL_INERTIA']
 
 #: inertia in kg*m^2 of a rotor kept at constant speed as a flywheel (``CreatePrescribedRotation(...,
-#: constraint=False)``): a torque T changes its speed by T h / FLYWHEEL_INERTIA in a step h, less than half a rounding
-#: unit of any speed above 1e-6 rad/s while |T| h < 1e8 N*m*s, so the rotor turns exactly as prescribed
+#: constraint=False)``): a torque ``T`` changes its speed by ``T * h / FLYWHEEL_INERTIA`` in a step ``h``, less than
+#: half a rounding unit of any speed above 1e-6 rad/s while ``abs(T) * h < 1e8`` N*m*s, so the rotor turns exactly as
+#: prescribed
 FLYWHEEL_INERTIA = 1e30
 
 
