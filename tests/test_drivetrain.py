@@ -7,7 +7,7 @@ import pytest
 
 import exudyn_worm as ew
 from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
-from exudyn_worm.items.drivetrain import _ConstantSpeedFromStart
+from exudyn_worm.items.drivetrain import FLYWHEEL_INERTIA, _ConstantSpeedFromStart
 from exudyn_worm.model.profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque,
                                   LinearMotorCharacteristic, StartStopProfile)
 
@@ -234,3 +234,20 @@ def test_constant_speed_flywheel_is_the_constraint_bit_for_bit(preset):
     for key in withConstraint:
         np.testing.assert_array_equal(flywheel[key], withConstraint[key], err_msg=key)
     assert np.all(flywheel['omega0'] == drive.parameters['motorSpeed'])
+
+
+@pytest.mark.messages
+def test_flywheel_refuses_a_rotor_without_its_mass_object():
+    """constraint=False sets the rotor's inertia: a rotor dict without 'objectNumber' is refused by name, and a
+    'constraint' that is not a bool as well."""
+    mbs = exu.SystemContainer().AddSystem()
+    rotor = ew.CreateRotor(mbs, 1e-3, initialSpeed=20.)
+    bare = {'markerNumber': rotor['markerNumber'], 'nodeNumber': rotor['nodeNumber']}
+    with pytest.raises(TypeError, match=r"CreatePrescribedRotation: with constraint=False 'rotor' must be a rotor "
+                                        r"returned by CreateRotor"):
+        ew.CreatePrescribedRotation(mbs, bare, ConstantSpeed(20.), constraint=False)
+    with pytest.raises(TypeError, match=r"CreatePrescribedRotation: 'constraint'"):
+        ew.CreatePrescribedRotation(mbs, rotor, ConstantSpeed(20.), constraint='no')
+    assert ew.CreatePrescribedRotation(mbs, rotor, ConstantSpeed(20.), constraint=False) == \
+        {'objectNumber': None, 'groundNodeNumber': None}
+    assert mbs.GetObject(rotor['objectNumber'])['inertia'] == FLYWHEEL_INERTIA
