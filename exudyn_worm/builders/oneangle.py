@@ -112,6 +112,9 @@ class ReelChangerModel:
         The drive-side chain ``(J, k, d)`` of inertia4, spring-Damper4, ... (empty: none).
     loadChain : tuple of (float, float, float)
         The load-side chain ``(J, k, d)`` behind the wheel, wheel side first (empty: none).
+    motorFlywheel : bool
+        The motor turns at ``motorSpeed`` as a flywheel (``BuildReelChanger(..., motorConstraint=False)``): its speed
+        is ``motorSpeed`` to the last bit, so it has no speed sensor (``sensors`` lacks ``'omega0'``).
     """
     systemContainer: Any
     mbs: Any
@@ -124,6 +127,7 @@ class ReelChangerModel:
     axialBearing: Optional[Dict[str, Any]] = None
     chain: Tuple[Tuple[float, float, float], ...] = ()
     loadChain: Tuple[Tuple[float, float, float], ...] = ()
+    motorFlywheel: bool = False
 
 
 def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = ContactOptions(),
@@ -218,9 +222,10 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
                        name='worm')
     wheel = CreateRotor(mbs, drive.J2, initialAngle=init.get('phi2', 0.), initialSpeed=init.get('omega2', 0.),
                         name='wheel')
+    motorFlywheel = False
     if characteristic is None:
-        CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic,
-                                 constraint=motorConstraint)
+        motorFlywheel = CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic,
+                                                 constraint=motorConstraint)['objectNumber'] is None
     else:
         CreateRotorTorque(mbs, motor, characteristic, name='motorTorque', useSymbolic=useSymbolic)
     rotors = {'motor': motor, 'worm': worm, 'wheel': wheel}
@@ -245,10 +250,12 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
     for index, rotor in ([('0', motor)] + [(str(i), r) for i, r in enumerate(chainRotors, start=4)]
                          + [(f'L{i}', r) for i, r in enumerate(loadRotors, start=1)]):
         quantities = (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t))
+        if index == '0' and motorFlywheel:         # its speed is motorSpeed to the last bit: no sensor needed
+            quantities = (('phi', OVT.Coordinates),)
         if index != '0':
             quantities += (('alpha', OVT.Coordinates_tt),)
         for prefix, ovt in quantities:
             sensors[prefix + index] = mbs.AddSensor(SensorNode(nodeNumber=rotor['nodeNumber'], outputVariableType=ovt,
                                                                storeInternal=True, writeToFile=False))
     return ReelChangerModel(mbs.GetSystemContainer(), mbs, drive, load, motorSpeed, connector, rotors, sensors, axial,
-                            chain, loadChain)
+                            chain, loadChain, motorFlywheel)
