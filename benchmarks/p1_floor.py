@@ -1,6 +1,7 @@
 """Where P1's solver time goes: the reel changer's P1 with parts of its work taken out, one variant per process.
 
-Each variant builds ``BuildReelChanger(GetPreset('reel-P1'))`` with the defaults, changes it as below, and solves
+Each variant builds ``BuildReelChanger(GetPreset('reel-P1'), motorConstraint=False)`` (the model of
+``SimulateReelChanger``: the motor a flywheel), changes it as below, and solves
 P1's 8 s at the drive's recommended step with ``SOLVER_SETTINGS`` (only the variant ``default`` is the real model;
 the others answer "what would the solve cost if this part cost nothing"):
 
@@ -18,8 +19,8 @@ the others answer "what would the solve cost if this part cost nothing"):
     does no work.
 ``noUserFunctions``
     no user function at all: the mesh a constant stiffness matrix ``kV a a^T`` (``a`` the normal
-    displacement per worm and wheel angle), no load, no post-Newton function: Exudyn's solver with the nodes, the
-    motor's constraint, the drive shaft and the sensors.
+    displacement per worm and wheel angle), no load, no post-Newton function: Exudyn's solver with the nodes (the
+    motor a flywheel), the drive shaft and the sensors.
 
 Run under callgrind to count the instructions of the solve alone (the counts repeat exactly, whatever else the
 machine does)::
@@ -78,7 +79,7 @@ def SolveVariant(variant: str):
     if variant not in VARIANTS:
         raise ValueError(f"p1_floor: variant must be one of {', '.join(VARIANTS)}, got {variant!r}")
     p = GetPreset('reel-P1')
-    model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p))
+    model = BuildReelChanger(exu.SystemContainer().AddSystem(), ResolveDrive(parameters=p), motorConstraint=False)
     mbs, keep = model.mbs, []
     mesh = model.connector.objectNumber
     if variant in ('noPostNewton', 'zeroLawNoLoadNoPostNewton', 'noUserFunctions'):

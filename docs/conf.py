@@ -13,8 +13,11 @@ Generated at build time, so they follow the code without edits:
 - the gallery, ``gallery.md``: every script of ``examples/`` is run as the reader would run it,
   ``python examples/NAME.py --out DIR``, with DIR and its working folder in the doctree folder (``-d``), while
   the other pages are read; the page shows each example's docstring, the figures it wrote with their captions
-  from ``gallery.toml``, what it printed, and its source. A failed example, a figure without a caption or a
-  caption without its figure is a build warning.
+  from ``gallery.toml``, what it printed, and its source. A caption's placeholders ``{name}`` are filled with
+  what the example printed at this build (``[NAME.printed]`` of ``gallery.toml``: a regular expression per
+  name); a number typed into a caption must be an input of the example (in its source). A failed example, a
+  figure without a caption, a caption without its figure, an unfilled placeholder or a typed-in result is a
+  build warning.
 
 Equations are rendered by MathJax shipped with the site (``sphinx-mathjax-offline``): nothing is fetched from
 the network. At the end of the build ``sitecheck.py`` checks every local link and anchor of the built site and
@@ -310,9 +313,9 @@ def GalleryPage(srcdir: Path) -> str:
            '`python examples/NAME.py --out DIR`, with the figures it wrote into `DIR` and what it printed. Each',
            'example is also checked by its test in `tests/` (`tests/test_example_NAME.py`); `--help` lists its',
            'options. The drive files of `examples/drives/` are described in [Whole-drive files](drive-files.md).',
-           "A caption's numbers are read from what its example printed (shown below its figures, from this build)",
-           'and from its figures when the caption was written; the time beside each example is measured at this',
-           'build.', '']
+           "A caption's numbers are filled in at this build from what its example printed (shown below its figures);",
+           'the other numbers of a caption are inputs of the example (in its source). The time beside each example',
+           'is measured at this build.', '']
     index = []
     sections = []
     for path in ExampleScripts():
@@ -325,7 +328,8 @@ def GalleryPage(srcdir: Path) -> str:
         if run['status'] != 0:
             logger.warning(f'gallery: examples/{path.name} failed (exit status {run["status"]}): '
                            f'{run["stderr"].strip().splitlines()[-1:] or ""}')
-        own = captions.get(name, {})
+        own = dict(captions.get(name, {}))
+        printed = own.pop(sitecheck.PRINTED_KEY, {})
         drawn = {p.name: p for p in run['figures']}
         for missing in sorted(set(drawn) - set(own)):
             logger.warning(f'gallery: examples/{path.name} drew {missing}, which has no caption in '
@@ -336,10 +340,14 @@ def GalleryPage(srcdir: Path) -> str:
         part = [f'(example-{name})=', f'## {title}', '', f'`examples/{path.name}`: '
                 f'`python examples/{path.name} --out DIR`, {_RunTime(run)}.', '',
                 '```{eval-rst}', body.strip(), '```', '']
+        source = path.read_text(encoding='utf-8')
         for figureName, figurePath in drawn.items():
             if figureName in own:
+                caption, problems = sitecheck.FillCaption(own[figureName].strip(), printed, run['stdout'], source)
+                for problem in problems:
+                    logger.warning(f'gallery: {GALLERY_CAPTIONS.name} [{name}] {figureName}: {problem}')
                 part += [f'```{{figure}} {os.path.relpath(figurePath, srcdir)}', f':alt: {figureName}', ':width: 100%',
-                         '', f'`{figureName}`: {own[figureName].strip()}', '```', '']
+                         '', f'`{figureName}`: {caption}', '```', '']
         part += ['What it prints:', '', '```text', run['stdout'].rstrip() or '(nothing)', '```', '',
                  'Its source:', '', f'```{{literalinclude}} ../examples/{path.name}', ':language: python',
                  f':lines: {_FirstLineAfterDocstring(path)}-', '```', '']

@@ -24,6 +24,10 @@ It reads every ``*.html`` file below the folder and reports
   number again).
 
 Links to other sites (``<a href="https://...">``) are not followed: the check is about the site's own pages.
+
+The gallery's captions (``docs/gallery.toml``) are checked while the gallery is built: :func:`FillCaption` fills
+their placeholders with what each example printed at that build and reports a number typed into a caption that is
+no input of its example (:func:`TypedNumbers`); ``docs/conf.py`` turns each report into a build warning.
 Exit status 0 when there is no problem, 1 otherwise (one line per problem on stdout), 2 for a folder that is no
 built site.
 """
@@ -36,7 +40,8 @@ from pathlib import Path
 from typing import Dict, List, Optional, Sequence, Set, Tuple
 from urllib.parse import unquote, urlsplit
 
-__all__ = ['MATH_RENDERERS', 'PageLinks', 'ReadPage', 'CheckSite', 'main']
+__all__ = ['MATH_RENDERERS', 'PRINTED_KEY', 'PageLinks', 'ReadPage', 'CheckSite', 'TypedNumbers', 'FillCaption',
+           'main']
 
 #: file names of the math renderers the site may ship (MathJax 3 components, KaTeX)
 MATH_RENDERERS = ('tex-chtml.js', 'tex-svg.js', 'tex-mml-chtml.js', 'tex-mml-svg.js', 'katex.min.js', 'katex.js')
@@ -283,6 +288,81 @@ def _CheckLocal(root: Path, page: Path, url: str, pages: Dict[Path, PageLinks]) 
         if fragment not in anchors:
             return f'links to a missing anchor: {url}', target
     return None, target
+
+
+# ---- the gallery's captions (docs/gallery.toml; docs/conf.py fills them when it builds the gallery) ---------------
+
+#: the key of an example's table in ``gallery.toml`` that says where its captions' numbers are printed
+PRINTED_KEY = 'printed'
+#: a number in a caption's text: not part of a name (``P1``, ``fig08``, ``D_V``)
+_CAPTION_NUMBER = re.compile(r'(?<![\w.])[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?(?![\w])')
+#: a placeholder in a caption: ``{name}``, filled with what the example printed
+_CAPTION_PLACEHOLDER = re.compile(r'\{(\w+)\}')
+
+
+def TypedNumbers(caption: str, source: str) -> List[str]:
+    """The numbers typed into a gallery caption (outside its placeholders) that are no input of its example.
+
+    A number in a caption's text must occur as a number in the example's source (a backlash of 0.25 mm, a speed
+    of 160 rpm); a result typed in by hand (a peak, a frequency) is a placeholder instead, filled at each build
+    from what the example printed (:func:`FillCaption`).
+
+    Parameters
+    ----------
+    caption : str
+        A caption of ``gallery.toml``.
+    source : str
+        The source of its example.
+
+    Returns
+    -------
+    list of str
+        The offending numbers, in the order of the caption (empty: none).
+    """
+    inputs = {m.group().lstrip('+-') for m in _CAPTION_NUMBER.finditer(source)}
+    return [m.group() for m in _CAPTION_NUMBER.finditer(_CAPTION_PLACEHOLDER.sub(' ', caption))
+            if m.group().lstrip('+-') not in inputs]
+
+
+def FillCaption(caption: str, printed: Dict[str, str], stdout: str, source: str) -> Tuple[str, List[str]]:
+    """A gallery caption with its numbers from this build's run of its example, and what is wrong with it.
+
+    Each placeholder ``{name}`` of ``caption`` becomes the text that the regular expression ``printed[name]``
+    captures (its first group) in the example's printed output ``stdout``, searched line by line: the digits the
+    example printed at this build. A number typed into the caption must be an input of the example
+    (:func:`TypedNumbers`).
+
+    Parameters
+    ----------
+    caption : str
+        A caption of ``gallery.toml``.
+    printed : dict of str
+        Placeholder name -> regular expression with one group, searched in ``stdout``.
+    stdout : str
+        What the example printed at this build.
+    source : str
+        The example's source.
+
+    Returns
+    -------
+    (str, list of str)
+        The caption with its placeholders filled (one that cannot be filled is left as it is), and one sentence
+        per problem (empty: none).
+    """
+    problems = [f'the number {number} is neither an input of the example (a number in its source) nor a '
+                f'placeholder filled from what it printed' for number in TypedNumbers(caption, source)]
+
+    def Fill(match):
+        name = match.group(1)
+        if name not in printed:
+            problems.append(f'the placeholder {{{name}}} has no entry in [{PRINTED_KEY}]')
+            return match.group()
+        found = re.search(printed[name], stdout, re.MULTILINE)
+        if found is None or not found.groups() or found.group(1) is None:
+            problems.append(f'the placeholder {{{name}}}: {printed[name]!r} matches nothing the example printed')
+            return match.group()
+        return found.group(1)
+    return _CAPTION_PLACEHOLDER.sub(Fill, caption), problems
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

@@ -7,7 +7,7 @@ import pytest
 
 import exudyn_worm as ew
 from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
-from exudyn_worm.items.drivetrain import _ConstantSpeedFromStart
+from exudyn_worm.items.drivetrain import FLYWHEEL_INERTIA, _ConstantSpeedFromStart
 from exudyn_worm.model.profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque,
                                   LinearMotorCharacteristic, StartStopProfile)
 
@@ -198,3 +198,59 @@ def test_constant_speed_on_velocity_level_is_the_same_motion(initialAngle, veloc
         speeds.append(mbs.GetSensorStoredData(sensor)[:, 1])
     assert (_ConstantSpeedFromStart(mbs, motor, ConstantSpeed(20., initialAngle=0.3)) is not None) is velocityLevel
     np.testing.assert_allclose(speeds[0], speeds[1], rtol=0, atol=1e-9 * np.max(np.abs(speeds[1])))
+
+
+@pytest.mark.parametrize('preset', ['reel-P1', 'reel-P7'])
+def test_constant_speed_flywheel_is_the_constraint_bit_for_bit(preset):
+    """A motor at constant speed kept by its inertia (FLYWHEEL_INERTIA, constraint=False, what SimulateReelChanger
+    builds) turns exactly as the velocity-level constraint prescribes it: every stored state is the same to the
+    last bit over the first second (P7: through its first chatter), with the same solver work; the constraint holds
+    the motor's speed at the prescribed one exactly, which is why the flywheel needs no speed sensor."""
+    from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
+    from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
+    from exudyn_worm.builders.oneangle import BuildReelChanger
+    drive = ew.ResolveDrive(preset)
+    runs = []
+    for motorConstraint in (True, False):
+        model = BuildReelChanger(exu.SystemContainer().AddSystem(), drive, motorConstraint=motorConstraint)
+        mbs = model.mbs
+        mbs.Assemble()
+        assert (mbs.systemData.NumberOfObjects() > 0 and
+                any(len(mbs.systemData.GetObjectLTGAE(i)) for i in range(mbs.systemData.NumberOfObjects()))) \
+            is motorConstraint
+        ss, solverType = SolverSettings(1., RecommendedStepSize(drive))
+        printing, exu.config.printToConsole = exu.config.printToConsole, False
+        try:
+            mbs.SolveDynamic(ss, solverType=solverType)
+        finally:
+            exu.config.printToConsole = printing
+        assert model.motorFlywheel is not motorConstraint and ('omega0' in model.sensors) is motorConstraint
+        states = model.connector.StoredStates(mbs)
+        states.update({k: mbs.GetSensorStoredData(model.sensors[k])[:, 1] for k in ('phi0', 'omega0')
+                       if k in model.sensors})
+        it = mbs.sys['dynamicSolver'].it
+        runs.append((states, (int(it.newtonStepsCount), int(it.newtonJacobiCount))))
+    (withConstraint, work), (flywheel, flywheelWork) = runs
+    assert flywheelWork == work
+    # the flywheel has no speed sensor: its speed is the prescribed one, which the constraint holds exactly
+    assert np.all(withConstraint.pop('omega0') == drive.parameters['motorSpeed'])
+    assert sorted(flywheel) == sorted(withConstraint)
+    for key in withConstraint:
+        np.testing.assert_array_equal(flywheel[key], withConstraint[key], err_msg=key)
+
+
+@pytest.mark.messages
+def test_flywheel_refuses_a_rotor_without_its_mass_object():
+    """constraint=False sets the rotor's inertia: a rotor dict without 'objectNumber' is refused by name, and a
+    'constraint' that is not a bool as well."""
+    mbs = exu.SystemContainer().AddSystem()
+    rotor = ew.CreateRotor(mbs, 1e-3, initialSpeed=20.)
+    bare = {'markerNumber': rotor['markerNumber'], 'nodeNumber': rotor['nodeNumber']}
+    with pytest.raises(TypeError, match=r"CreatePrescribedRotation: with constraint=False 'rotor' must be a rotor "
+                                        r"returned by CreateRotor"):
+        ew.CreatePrescribedRotation(mbs, bare, ConstantSpeed(20.), constraint=False)
+    with pytest.raises(TypeError, match=r"CreatePrescribedRotation: 'constraint'"):
+        ew.CreatePrescribedRotation(mbs, rotor, ConstantSpeed(20.), constraint='no')
+    assert ew.CreatePrescribedRotation(mbs, rotor, ConstantSpeed(20.), constraint=False) == \
+        {'objectNumber': None, 'groundNodeNumber': None}
+    assert mbs.GetObject(rotor['objectNumber'])['inertia'] == FLYWHEEL_INERTIA

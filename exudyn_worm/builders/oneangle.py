@@ -141,6 +141,9 @@ class ReelChangerModel:
         The drive-side chain ``(J, k, d)`` of inertia4, spring-Damper4, ... (empty: none).
     loadChain : tuple of (float, float, float)
         The load-side chain ``(J, k, d)`` behind the wheel, wheel side first (empty: none).
+    motorFlywheel : bool
+        The motor turns at ``motorSpeed`` as a flywheel (``BuildReelChanger(..., motorConstraint=False)``): its speed
+        is ``motorSpeed`` to the last bit, so it has no speed sensor (``sensors`` lacks ``'omega0'``).
     """
     systemContainer: Any
     mbs: Any
@@ -153,11 +156,13 @@ class ReelChangerModel:
     axialBearing: Optional[Dict[str, Any]] = None
     chain: Tuple[Tuple[float, float, float], ...] = ()
     loadChain: Tuple[Tuple[float, float, float], ...] = ()
+    motorFlywheel: bool = False
 
 
 def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = ContactOptions(),
                      useSymbolic: bool = True, startFromEquilibrium: bool = True, profile=None,
-                     linearization: Optional[LinearizationPoint] = None) -> ReelChangerModel:
+                     linearization: Optional[LinearizationPoint] = None, motorConstraint: bool = True
+                     ) -> ReelChangerModel:
     """Add the one-angle model of a drive to ``mbs``: motor, drive shaft, worm, mesh, wheel, the chains, the
     worm's axial bearing and the duty's load, each rotor with its angle (the reel changer of section 3.2 and any
     other duty). The one builder of this model: the time simulation, the linear analysis, the lowering-phase orbit
@@ -189,6 +194,11 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
         Build the model to be linearized at this point instead (:class:`~exudyn_worm.builders.start.LinearizationPoint`:
         no load, the motor at the point's speed, the worm turned into contact, the contact state held); the drive
         needs no duty then, and ``startFromEquilibrium`` and ``profile`` are not used.
+    motorConstraint : bool
+        True (default): the prescribed motor is held by a constraint (what a linearization needs); False: a motor
+        at constant speed is a flywheel that turns exactly as prescribed, for a time simulation (the same numbers,
+        fewer instructions; :func:`~exudyn_worm.items.drivetrain.CreatePrescribedRotation` with
+        ``constraint=False``).
 
     Returns
     -------
@@ -215,6 +225,7 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
 
     w = 'BuildReelChanger'
     CheckModelOptions(w, contactOptions, profile, useSymbolic, startFromEquilibrium)
+    CheckBool(w, 'motorConstraint', motorConstraint)
     CheckModelDrive(w, drive, linearization)
     whole, drive = drive, drive.elastic
     if linearization is None and whole.motorType in ('constantSpeed', 'startStop'):
@@ -257,8 +268,10 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
                        name='worm')
     wheel = CreateRotor(mbs, drive.J2, initialAngle=init.get('phi2', 0.), initialSpeed=init.get('omega2', 0.),
                         name='wheel')
+    motorFlywheel = False
     if characteristic is None:
-        CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+        motorFlywheel = CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic,
+                                                 constraint=motorConstraint)['objectNumber'] is None
     else:
         CreateRotorTorque(mbs, motor, characteristic, name='motorTorque', useSymbolic=useSymbolic)
     rotors = {'motor': motor, 'worm': worm, 'wheel': wheel}
@@ -283,10 +296,12 @@ def BuildReelChanger(mbs, drive: Drive, contactOptions: ContactOptions = Contact
     for index, rotor in ([('0', motor)] + [(str(i), r) for i, r in enumerate(chainRotors, start=4)]
                          + [(f'L{i}', r) for i, r in enumerate(loadRotors, start=1)]):
         quantities = (('phi', OVT.Coordinates), ('omega', OVT.Coordinates_t))
+        if index == '0' and motorFlywheel:         # its speed is motorSpeed to the last bit: no sensor needed
+            quantities = (('phi', OVT.Coordinates),)
         if index != '0':
             quantities += (('alpha', OVT.Coordinates_tt),)
         for prefix, ovt in quantities:
             sensors[prefix + index] = mbs.AddSensor(SensorNode(nodeNumber=rotor['nodeNumber'], outputVariableType=ovt,
                                                                storeInternal=True, writeToFile=False))
     return ReelChangerModel(mbs.GetSystemContainer(), mbs, drive, load, motorSpeed, connector, rotors, sensors, axial,
-                            chain, loadChain)
+                            chain, loadChain, motorFlywheel)

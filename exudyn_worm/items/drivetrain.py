@@ -13,7 +13,14 @@ from .._checks import CheckBool, CheckName, CheckNonNegative, CheckPositive, Che
 from ._userfunctions import AddCoordinateForce, CheckOffsetLaw, CheckPlainOffsetLaw, SetOffsetFunction
 from ..model.profiles import ConstantSpeed
 
-__all__ = ['CreateRotor', 'CreateShaft', 'CreateDriveSideChain', 'CreateLoadSideChain', 'CreatePrescribedRotation', 'CreateRotorTorque']
+__all__ = ['CreateRotor', 'CreateShaft', 'CreateDriveSideChain', 'CreateLoadSideChain', 'CreatePrescribedRotation', 'CreateRotorTorque',
+           'FLYWHEEL_INERTIA']
+
+#: inertia in kg*m^2 of a rotor kept at constant speed as a flywheel (``CreatePrescribedRotation(...,
+#: constraint=False)``): a torque ``T`` changes its speed by ``T * h / FLYWHEEL_INERTIA`` in a step ``h``, less than
+#: half a rounding unit of any speed above 1e-6 rad/s while ``abs(T) * h < 1e8`` N*m*s, so the rotor turns exactly as
+#: prescribed
+FLYWHEEL_INERTIA = 1e30
 
 
 def _Marker(mbs, rotor, where, name):
@@ -210,7 +217,8 @@ def CreateDriveSideChain(mbs, motor, worm, shaftStiffness: float, shaftDamping: 
     return rotors
 
 
-def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: bool = True) -> Dict[str, Any]:
+def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: bool = True,
+                             constraint: bool = True) -> Dict[str, Any]:
     """Prescribe the rotation of ``rotor`` to ``profile`` (e.g. :class:`~exudyn_worm.model.profiles.ConstantSpeed`).
 
     Uses a ``CoordinateConstraint`` to ground with an offset user function, which the implicit
@@ -218,6 +226,13 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
     whose initial angle and speed the rotor already has is prescribed on velocity level instead
     (``velocityLevel=True``, ``offset`` = the speed): the same motion without a user function. Explicit solvers ignore it (they pin the
     coordinate to 0): use an implicit solver, or a stiff shaft to a driven rotor.
+
+    With ``constraint=False`` such a rotor (a :class:`~exudyn_worm.model.profiles.ConstantSpeed` it starts on) is
+    kept at its speed by its inertia instead: it becomes a flywheel of :data:`FLYWHEEL_INERTIA`, whose speed no
+    torque of a drive changes by a rounding unit, so it turns exactly as prescribed, without the constraint's
+    algebraic equation. A time simulation gets the same numbers with fewer instructions (the reel changer's P1 and
+    P7: bit for bit, 12 % fewer for P1; benchmarks/README.md); a linearization needs the constraint (the flywheel is a
+    free rotation). Other profiles always get the constraint.
 
     Parameters
     ----------
@@ -230,11 +245,14 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
         Name of the constraint.
     useSymbolic : bool
         Symbolic (C++) offset user functions (default) or plain Python.
+    constraint : bool
+        True (default): a ``CoordinateConstraint``; False: a constant speed the rotor starts on by the rotor's
+        inertia (set to :data:`FLYWHEEL_INERTIA`), other profiles by the constraint.
 
     Returns
     -------
     dict
-        ``objectNumber``, ``groundNodeNumber``.
+        ``objectNumber``, ``groundNodeNumber`` (both None for a flywheel).
 
     Raises
     ------
@@ -252,9 +270,17 @@ def CreatePrescribedRotation(mbs, rotor, profile, name: str = '', useSymbolic: b
     marker = _Marker(mbs, rotor, w, 'rotor')
     CheckName(w, 'name', name)
     CheckBool(w, 'useSymbolic', useSymbolic)
+    CheckBool(w, 'constraint', constraint)
     if not callable(getattr(profile, 'AngleAndSpeed', None)):
         raise TypeError(f"{w}: 'profile' must have AngleAndSpeed(t, ops) (e.g. ConstantSpeed), got {type(profile).__name__}")
     constantSpeed = _ConstantSpeedFromStart(mbs, rotor, profile)
+    if constantSpeed is not None and not constraint:
+        if 'objectNumber' not in rotor:
+            raise TypeError(f"{w}: with constraint=False 'rotor' must be a rotor returned by CreateRotor (a dict with "
+                            f"'objectNumber', its ObjectRotationalMass1D), got {rotor!r}")
+        # the rotor keeps its speed to the last bit: the same motion as the constraint's, without its equation
+        mbs.SetObjectParameter(rotor['objectNumber'], 'inertia', FLYWHEEL_INERTIA)
+        return {'objectNumber': None, 'groundNodeNumber': None}
     if useSymbolic and constantSpeed is None:   # before anything is added: a law recorded wrongly is refused
         CheckOffsetLaw(w, profile.AngleAndSpeed, 'profile.AngleAndSpeed(t, ops)')
     elif constantSpeed is None:
