@@ -8,6 +8,9 @@ import pytest
 import exudyn_worm as ew
 from exudyn_worm.model.friction import MATH_OPS, NUMPY_OPS
 from exudyn_worm.items.drivetrain import FLYWHEEL_INERTIA, _ConstantSpeedFromStart
+from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
+from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
+from exudyn_worm.builders.oneangle import BuildReelChanger
 from exudyn_worm.model.profiles import (ConstantSpeed, CoulombViscousFriction, GravityLeverTorque,
                                   LinearMotorCharacteristic, StartStopProfile)
 
@@ -206,9 +209,6 @@ def test_constant_speed_flywheel_is_the_constraint_bit_for_bit(preset):
     builds) turns exactly as the velocity-level constraint prescribes it: every stored state is the same to the
     last bit over the first second (P7: through its first chatter), with the same solver work; the constraint holds
     the motor's speed at the prescribed one exactly, which is why the flywheel needs no speed sensor."""
-    from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
-    from exudyn_worm.analysis.simulation.stepsize import RecommendedStepSize
-    from exudyn_worm.builders.oneangle import BuildReelChanger
     drive = ew.ResolveDrive(preset)
     runs = []
     for motorConstraint in (True, False):

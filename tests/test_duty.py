@@ -150,7 +150,7 @@ def test_sweep_of_another_duty_takes_its_phases_as_windows(capsys, tmp_path, mon
     for run in runs:
         assert run['status'] == 'ok', run['error']
         assert [(w['t0'], w['t1']) for w in run['windows']] == [pytest.approx((t0, t1)) for t0, t1, _ in phases]
-        assert run['loweringChatter'] in (True, False)          # the second window is a lowering one
+        assert run['loweringChatter'] is not None          # the second window is a lowering one (judged or undecided)
     assert list(tmp_path.iterdir()) == []
 
 

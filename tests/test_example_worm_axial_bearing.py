@@ -93,7 +93,12 @@ def test_simulation_agrees_with_the_linear_verdict(run):
     cases = {(s['preset'], s['kA']): s for s in run['simulations']}
     assert not cases[('reel-P1', 5e8)]['chatter'] and cases[('reel-P1', 5e8)]['linearStable']
     assert cases[('reel-P1', 1e9)]['chatter'] and not cases[('reel-P1', 1e9)]['linearStable']
-    assert cases[('reel-P2', 1e8)]['chatter'] and not cases[('reel-P2', 1e8)]['linearStable']
+    # P2 on a soft bearing vibrates while lowering: the mesh swings across both flanks (amplitude >= 1); the
+    # time-domain verdict can read that window as decaying, its swing measured uncorrected for the lever's load that
+    # falls within it (validation/CHATTER_RULE.md, "What it cannot do")
+    soft = cases[('reel-P2', 1e8)]
+    assert not soft['linearStable'] and soft['chatterAmplitude'] >= 1.
+    assert soft['maxAbsWheelAcceleration'] > 100. * cases[('reel-P1', 5e8)]['maxAbsWheelAcceleration']
 
 
 @pytest.mark.messages
