@@ -225,8 +225,10 @@ def _Print(run: Dict[str, Any]) -> None:
     for name, row in run['table'].items():
         print(f'{name:8}' + ''.join(f'{x:9.2f}' for x in row))
     for s in run.get('simulations', []):
+        rate = '' if s['envelopeRate'] is None else f", rate {s['envelopeRate']:+.2f} 1/s"
+        amplitude = '' if s['chatterAmplitude'] is None else f", amplitude {s['chatterAmplitude']:.2f}"
         print(f"simulation {s['preset']} kA = {s['kA']:.0e} N/m: chatter while lowering {s['chatter']} "
-              f"({s['chatterState']}, rate {s['envelopeRate']:+.2f} 1/s, amplitude {s['chatterAmplitude']:.2f}) "
+              f"({s['chatterState']}{rate}{amplitude}) "
               f"(max |phi2''| {s['maxAbsWheelAcceleration']:.2f} rad/s^2, {s['dominantFrequencyHz']:.1f} Hz); "
               f"linear: {'stable' if s['linearStable'] else 'unstable'}")
 
