@@ -5,7 +5,9 @@ of P1 with the elastic bearings of ``examples/drives/reel-3d.toml``, as the smal
 drive with both shafts' bearings, ``exudyn_worm/items/smallmesh.py``) and as the exact rigid-body model
 (``model='exact'``); and ``BuildRigidBodyReelChanger(mbs, ResolveDrive('reel-P1'))`` on ideal joints (linear coordinate
 constraints, the law in C++ on auxiliary coordinates) and the same with ``useSymbolic=False`` (the law a plain-Python
-user function). Each is 8 s simulated at the drive's recommended step with the same solver settings; reports the
+user function). Each is 8 s simulated at the drive's recommended step with the settings of ``SimulateReelChanger``
+(``SOLVER_SETTINGS``, for the small-displacement model with ``SMALL_3D_SOLVER_SETTINGS``; the constant-speed motor a
+flywheel in the one-angle and the small-displacement model, the exact models hold it by a constraint); reports the
 solver call's wall and CPU seconds (best of ``--repeat``), their ratio to the one-angle connector's, and the largest
 difference of the peak normal force from the one-angle model's (on joints) or from the exact model's (bearings).
 
@@ -25,7 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
-from exudyn_worm.analysis.simulation.reelchanger import SolverSettings
+from exudyn_worm.analysis.simulation.reelchanger import SMALL_3D_SOLVER_SETTINGS, SolverSettings
 import exudyn as exu
 from exudyn_worm.analysis.simulation import reelchanger3d
 from exudyn_worm.builders.oneangle import BuildReelChanger
@@ -46,9 +48,10 @@ def _Bearings():
 
 #: the models by name: (label, builder, parameters, keyword arguments)
 MODELS = {
-    'one-angle': ('P1 one-angle connector (symbolic C++)', BuildReelChanger, lambda: GetPreset('reel-P1'), {}),
+    'one-angle': ('P1 one-angle connector (symbolic C++)', BuildReelChanger, lambda: GetPreset('reel-P1'),
+                  {'motorConstraint': False}),
     'small': ('P1 3D, elastic bearings: small-displacement', BuildRigidBodyReelChanger,
-              lambda: {**GetPreset('reel-P1'), **_Bearings()}, {'model': 'small'}),
+              lambda: {**GetPreset('reel-P1'), **_Bearings()}, {'model': 'small', 'motorConstraint': False}),
     'exact': ('P1 3D, elastic bearings: exact rigid bodies', BuildRigidBodyReelChanger,
               lambda: {**GetPreset('reel-P1'), **_Bearings()}, {'model': 'exact'}),
     'joints': ('P1 rigid bodies on joints (C++ law)', BuildRigidBodyReelChanger, lambda: GetPreset('reel-P1'), {}),
@@ -64,7 +67,8 @@ def RunOnce(build, parameters, endTime: float, **kwargs):
     if build is BuildRigidBodyReelChanger:
         reelchanger3d.AddSeriesSensors(model)
     model.mbs.Assemble()
-    ss, solverType = SolverSettings(endTime, RecommendedStepSize(drive))
+    ss, solverType = SolverSettings(endTime, RecommendedStepSize(drive),
+                                    SMALL_3D_SOLVER_SETTINGS if kwargs.get('model') == 'small' else None)
     wall, cpu = time.perf_counter(), time.process_time()
     model.mbs.SolveDynamic(ss, solverType=solverType)
     wall, cpu = time.perf_counter() - wall, time.process_time() - cpu

@@ -23,7 +23,7 @@ from typing import Any, Dict, List, NamedTuple, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .._checks import CheckPositive
+from .._checks import CheckBool, CheckPositive
 from ..items.bearings import WHEEL_MASS, WORM_MASS, ShaftBearings, CreateShaftBearings
 from ..items.drivetrain import CreateLoadSideChain, CreatePrescribedRotation, CreateRotor, CreateRotorTorque
 from ..items.equilibrium import SteadyInitialState
@@ -200,7 +200,8 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
                               wheelBearings: Optional[ShaftBearings] = None, wormMass: Optional[float] = None,
                               wheelMass: Optional[float] = None, profile: Optional[Any] = None,
                               startFromEquilibrium: bool = True, model: Optional[str] = None,
-                              linearization: Optional[LinearizationPoint] = None) -> RigidBodyReelChanger:
+                              linearization: Optional[LinearizationPoint] = None,
+                              motorConstraint: bool = True) -> RigidBodyReelChanger:
     """Add the 3D model of a drive to ``mbs``: worm and wheel as rigid bodies (module docstring), starting in
     equilibrium. The one builder of this model: the time simulation, the linear analysis and the lowering-phase
     orbit use it.
@@ -241,6 +242,11 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
         worm turned into contact while the bearings are undeflected: their springs are linear, the linearization
         does not depend on their preload; the exact model, whose linearization Exudyn computes); the drive needs no
         duty then, ``profile``, ``startFromEquilibrium`` and ``model`` are not used.
+    motorConstraint : bool
+        True (default): the motor is held on its path by a constraint; False: a constant-speed motor of the
+        small-displacement model is a flywheel instead (``CreatePrescribedRotation(..., constraint=False)``, the
+        same motion without the constraint's equation; for time simulations: the orbits and the linearization
+        hold the motor by the constraint). The exact model always has the constraint.
 
     Returns
     -------
@@ -255,6 +261,7 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
     """
     w = 'BuildRigidBodyReelChanger'
     CheckModelDrive(w, drive, linearization)
+    CheckBool(w, 'motorConstraint', motorConstraint)
     whole, supports = drive, drive.shaftSupports
     for name, value in (('wormBearings', wormBearings), ('wheelBearings', wheelBearings)):
         if value is not None and supports is not None and getattr(supports, name) is not None:
@@ -313,7 +320,7 @@ def BuildRigidBodyReelChanger(mbs, drive: Drive, contactOptions: ContactOptions 
             init['shafts'] = _SmallStaticCoordinates(drive, contactOptions, wormBearings, wheelBearings, wormMass,
                                                      wheelMass, inertias, init, load)
         return _BuildSmall(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass,
-                           wheelMass, inertias, init, profile, load)
+                           wheelMass, inertias, init, profile, load, motorConstraint)
     if startFromEquilibrium and (wormBearings is not None or wheelBearings is not None):
         init.update(_StaticPoses(drive, contactOptions, wormBearings, wheelBearings, wormMass, wheelMass,
                                  axial, init, profile, load, inertias, loadChain))
@@ -350,7 +357,7 @@ def _SmallStaticCoordinates(drive, contactOptions, wormBearings, wheelBearings, 
 
 
 def _BuildSmall(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBearings, wormMass, wheelMass, inertias,
-                init, profile, load) -> RigidBodyReelChanger:
+                init, profile, load, motorConstraint: bool = True) -> RigidBodyReelChanger:
     """The small-displacement system of :func:`BuildRigidBodyReelChanger` from the initial state ``init`` (phi0,
     omega0, phi1, omega1, phi2, omega2; ``shafts``: the 12 coordinates with the bearings deflected)."""
     from exudyn.itemInterface import CoordinateSpringDamper
@@ -371,7 +378,8 @@ def _BuildSmall(mbs, drive, contactOptions, useSymbolic, wormBearings, wheelBear
     connector = CreateSmallDisplacementWormGear(mbs, bodies, gear, contactOptions, initialCoordinates=q0,
                                                 initialVelocities=v0, name='wormGear', useSymbolic=useSymbolic)
     motor = CreateRotor(mbs, 1e-3, initialAngle=init['phi0'], initialSpeed=init['omega0'], name='motor')
-    CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic)
+    CreatePrescribedRotation(mbs, motor, profile, name='motorDrive', useSymbolic=useSymbolic,
+                             constraint=motorConstraint)
     wormAngle, _ = connector.CoordinateMarker(mbs, 'worm', TURN)
     mbs.AddObject(CoordinateSpringDamper(markerNumbers=[motor['markerNumber'], wormAngle], stiffness=drive.kT,
                                          damping=drive.dT, name='driveShaft'))

@@ -35,7 +35,7 @@ from .stepsize import CheckStepSize, RecommendedStepSize
 __all__ = ['SimulateReelChanger', 'RotationPeriod', 'DefaultWindows',
            'DefaultPhases', 'DefaultSimulatedTime', 'WindowPhases', 'PhaseLabel',
            'CheckRunSize', 'RunSizeError', 'SolverSettings', 'DEFAULT_STEP_SIZE',
-           'SOLVER_SETTINGS', 'MAX_STEPS', 'STANDSTILL_TOLERANCE']
+           'SOLVER_SETTINGS', 'SMALL_3D_SOLVER_SETTINGS', 'MAX_STEPS', 'STANDSTILL_TOLERANCE']
 
 #: time step in s of the validation's simulations and the benchmark's output grid (the P1/P7 amplitudes change
 #: < 1 % when it is halved, see validation/REPORT.md); SimulateReelChanger's default is the drive's own
@@ -52,6 +52,14 @@ SOLVER_SETTINGS = {'timeIntegration.newton.useModifiedNewton': True, 'timeIntegr
                    'timeIntegration.newton.maxModifiedNewtonIterations': 1,
                    'timeIntegration.newton.relativeTolerance': 1e-6,
                    'timeIntegration.generalizedAlpha.spectralRadius': 0.8}
+#: what the small-displacement 3D model (docs/mesh-3d.md) sets over :data:`SOLVER_SETTINGS`: an absolute floor of
+#: 1e-6 (N, N*m) under the relative tolerance. Its bearings (1e8-1e9 N/m) make the residual's round-off about that
+#: size; where a step starts near equilibrium (the steady lowering before a load reversal) the relative goal, 1e-6 of
+#: that step's small initial residual, lies below it, Newton stalls and the step is halved again and again (P1 with
+#: examples/drives/reel-3d.toml: 94 halvings down to 3e-6 s and 1040 Jacobians in the 25 ms before t = 6 s; with the
+#: floor none and 16, peaks and RMS of the forces within 0.002 % of a run with tolerance 1e-8 and half the step,
+#: benchmarks/README.md)
+SMALL_3D_SOLVER_SETTINGS = {'timeIntegration.newton.absoluteTolerance': 1e-6}
 
 #: default limit of solver steps (= stored samples, one per step) of one run: 1e6 steps is about 0.4 GB of
 #: stored results and 15 s (P1) to 3.5 min (P7) of solving (780 s simulated of P1 at its recommended step);
@@ -404,8 +412,8 @@ def SimulateReelChanger(drive: Drive, endTime: Optional[float] = None,
     solverOptions : mapping, optional
         Changes to the solver settings, keyed by their path in ``exudyn.SimulationSettings`` (e.g.
         ``{'timeIntegration.newton.maxIterations': 10}``), and ``'solverType'`` (a name of
-        ``exudyn.DynamicSolverType``, default ``'GeneralizedAlpha'``), applied over :data:`SOLVER_SETTINGS`.
-        For benchmarks and studies.
+        ``exudyn.DynamicSolverType``, default ``'GeneralizedAlpha'``), applied over :data:`SOLVER_SETTINGS` (and, for
+        the small-displacement 3D model, :data:`SMALL_3D_SOLVER_SETTINGS`). For benchmarks and studies.
     maxSteps : int
         Refuse a run of more than this many steps (:func:`CheckRunSize`, default :data:`MAX_STEPS`).
     progress : bool or None
@@ -442,9 +450,13 @@ def SimulateReelChanger(drive: Drive, endTime: Optional[float] = None,
     if rigid:
         # lazy: the 3D model's module builds on this one's helpers
         from . import reelchanger3d
+        # a constant-speed motor is a flywheel, as in the one-angle model below (the small model; the exact one keeps
+        # the constraint)
         model = BuildRigidBodyReelChanger(exu.SystemContainer().AddSystem(), drive, contactOptions, useSymbolic, profile=profile,
-                                                        startFromEquilibrium=startFromEquilibrium)
+                                          startFromEquilibrium=startFromEquilibrium, motorConstraint=False)
         reelchanger3d.AddSeriesSensors(model)
+        if model.model == 'small':
+            solverOptions = {**SMALL_3D_SOLVER_SETTINGS, **(solverOptions or {})}
     else:
         # the motor at constant speed as a flywheel: the constraint's numbers bit for bit, 12 % fewer instructions
         model = BuildReelChanger(exu.SystemContainer().AddSystem(), drive, contactOptions, useSymbolic,
