@@ -393,9 +393,10 @@ def AnalyzeChatterBranch(drive: Drive, name: str, low: float, high: float,
                                "only: not given for the 3D model")
     for lo, hi in ([] if rigidBody else result.coexistence):
         middle = 0.5 * (lo + hi)
-        kick = SmallestDisturbance(drive.Replace(**{name: middle}))
+        there = drive.Replace(**{name: middle})
+        kick = SmallestDisturbance(there)
         result.disturbances.append({'value': middle, 'wormSpeedFraction': kick,
-                                    'wormSpeed': kick * float(drive.Replace(**{name: middle}).motor.speed)})
+                                    'wormSpeed': kick * float(there.motor.speed)})
     return result
 
 
